@@ -1,0 +1,35 @@
+"""Errors raised for user mistakes, so the CLI can print them without a traceback."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One violated rule: which field, what it held, and the rule it breaks."""
+
+    field: str
+    value: object
+    rule: str
+
+    def __str__(self) -> str:
+        return f"{self.field} = {self.value!r}: {self.rule}"
+
+
+class FetorsionError(Exception):
+    """A mistake in what the user asked for (input file, option); never a bug."""
+
+
+class DescriptionError(FetorsionError, ValueError):
+    """A crank or chain description breaks one or more rules.
+
+    Every problem is collected before raising, so the user fixes them in one go.
+    """
+
+    def __init__(self, source: str, problems: list[Problem]):
+        self.source = source
+        self.problems = list(problems)
+        lines = [f"{source}: {len(self.problems)} problem(s) in the description"]
+        lines += [f"  - {p}" for p in self.problems]
+        super().__init__("\n".join(lines))
