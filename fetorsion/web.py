@@ -14,8 +14,33 @@ import numpy as np
 
 from .crank import Web
 
-# 2¹⁴ midpoint samples put the quadrature error at the kinks of ρ(φ) below 1e-8 (relative).
-_SAMPLES = 1 << 14
+# Gauss–Legendre on each smooth piece of ρ(φ): 8 sub-intervals × 24 nodes integrate the
+# arcs and tangent pieces to round-off.
+_GAUSS = np.polynomial.legendre.leggauss(24)
+_SPLIT = 8
+
+
+def _geometry(web: Web, R: float):
+    r1, r2 = 0.5 * web.width_journal, 0.5 * web.width_pin
+    # Common tangent of the two discs: unit normal at angle ±beta, n·x = r1.
+    beta = np.arccos((r1 - r2) / R)
+    # Polar angle of the tangent point on the pin disc.
+    phi2 = np.arctan2(r2 * np.sin(beta), R + r2 * np.cos(beta))
+    return r1, r2, beta, phi2
+
+
+def _kinks(web: Web, R: float) -> np.ndarray:
+    """Angles in [-π, π] where ρ(φ) or its slope jumps: piece ends and sector edges."""
+    r1, _, beta, phi2 = _geometry(web, R)
+    pts = [-np.pi, np.pi, phi2, -phi2, beta, -beta]
+    if web.counterweight_radius > 0:
+        half = 0.5 * web.counterweight_angle
+        pts += [np.pi - half, -np.pi + half]
+        if web.counterweight_radius > r1:  # where the sector edge meets the tangent lines
+            d = np.arccos(r1 / web.counterweight_radius)
+            pts += [beta + d, -beta - d]
+    pts = np.clip(np.array(pts, dtype=float), -np.pi, np.pi)
+    return np.unique(pts)
 
 
 def radial_function(web: Web, crank_radius: float, phi: np.ndarray) -> np.ndarray:
@@ -29,11 +54,7 @@ def radial_function(web: Web, crank_radius: float, phi: np.ndarray) -> np.ndarra
     phi = np.angle(np.exp(1j * np.asarray(phi, dtype=float)))  # wrap to (-π, π]
     a = np.abs(phi)
     R = crank_radius
-    r1, r2 = 0.5 * web.width_journal, 0.5 * web.width_pin
-    # Common tangent of the two discs: unit normal at angle ±beta, n·x = r1.
-    beta = np.arccos((r1 - r2) / R)
-    # Polar angle of the tangent point on the pin disc.
-    phi2 = np.arctan2(r2 * np.sin(beta), R + r2 * np.cos(beta))
+    r1, r2, beta, phi2 = _geometry(web, R)
     on_pin_disc = R * np.cos(a) + np.sqrt(np.maximum(r2**2 - (R * np.sin(a)) ** 2, 0.0))
     on_tangent = r1 / np.cos(np.minimum(np.abs(a - beta), 0.5 * np.pi - 1e-12))
     rho = np.where(a <= phi2, on_pin_disc, np.where(a <= beta, on_tangent, r1))
@@ -46,12 +67,16 @@ def radial_function(web: Web, crank_radius: float, phi: np.ndarray) -> np.ndarra
 def section_properties(web: Web, crank_radius: float) -> dict[str, float]:
     """Area (m²), centroid offset towards the pin (m), and polar second moment about the
     crank axis (m⁴) of the web outline."""
-    phi = (np.arange(_SAMPLES) + 0.5) * (2 * np.pi / _SAMPLES) - np.pi
-    dphi = 2 * np.pi / _SAMPLES
+    kinks = _kinks(web, crank_radius)
+    edges = np.concatenate([np.linspace(a, b, _SPLIT + 1)[:-1] for a, b in zip(kinks[:-1], kinks[1:])] + [[np.pi]])
+    x, w = _GAUSS
+    half = 0.5 * np.diff(edges)[:, None]
+    phi = (0.5 * (edges[:-1] + edges[1:])[:, None] + half * x).ravel()
+    weights = (half * w).ravel()
     rho = radial_function(web, crank_radius, phi)
-    area = 0.5 * np.sum(rho**2) * dphi
-    first_x = np.sum(rho**3 * np.cos(phi)) * dphi / 3.0
-    polar = 0.25 * np.sum(rho**4) * dphi
+    area = 0.5 * np.sum(weights * rho**2)
+    first_x = np.sum(weights * rho**3 * np.cos(phi)) / 3.0
+    polar = 0.25 * np.sum(weights * rho**4)
     return {"area": area, "centroid": first_x / area, "polar_moment": polar}
 
 

@@ -1,0 +1,40 @@
+import copy
+import tomllib
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+GEOMETRY = ROOT / "geometry"
+
+
+def read_raw(name: str) -> dict:
+    with open(GEOMETRY / name, "rb") as fh:
+        return tomllib.load(fh)
+
+
+@pytest.fixture
+def glx_raw():
+    return read_raw("peugeot_glx.toml")
+
+
+@pytest.fixture
+def renault_raw():
+    return read_raw("renault21.toml")
+
+
+def simple_crank_raw(cylinders: int = 4) -> dict:
+    """A hand-made crank with round numbers (mm), every journal/pin/web alike."""
+    n = cylinders
+    return copy.deepcopy({
+        "units": {"length": "mm"},
+        "material": {"youngs_modulus_pa": 200e9, "poisson_ratio": 0.25, "density_kgm3": 8000.0},
+        "engine": {"cylinders": n, "stroke": 80.0, "rod_length": 140.0,
+                   "crank_angles_deg": [0.0, 180.0, 180.0, 0.0][:n] if n <= 4 else [0.0] * n,
+                   "firing_order": list(range(1, n + 1))},
+        "journals": [{"diameter": 60.0, "length": 25.0}] * (n + 1),
+        "pins": [{"diameter": 50.0, "length": 24.0}] * n,
+        "webs": [{"thickness": 20.0, "width_journal": 90.0, "width_pin": 70.0}] * (2 * n),
+        "front": [{"diameter": 40.0, "length": 50.0}],
+        "rear": [{"diameter": 80.0, "length": 15.0}],
+    })

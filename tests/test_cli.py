@@ -1,0 +1,48 @@
+"""The command line as a user runs it: tables, JSON, clean errors."""
+
+import json
+import subprocess
+import sys
+
+from conftest import GEOMETRY, ROOT
+
+
+def run(*args):
+    return subprocess.run([sys.executable, "-m", "fetorsion.cli", *args], capture_output=True, text=True, cwd=ROOT)
+
+
+def test_lumped_all_json_stdout():
+    p = run("lumped", str(GEOMETRY / "peugeot_glx.toml"), "--dof", "all", "--json", "-")
+    assert p.returncode == 0, p.stderr
+    data = json.loads(p.stdout)
+    assert [m["dof"] for m in data["models"]] == [5, 6, 17, 19, 21]
+    for m in data["models"]:
+        assert len(m["frequencies_hz"]) == m["dof"] - 1
+        assert len(m["mode_shapes"]) == m["dof"] - 1 and len(m["mode_shapes"][0]) == m["dof"]
+        assert len(m["inertias_kgm2"]) == m["dof"] and len(m["stiffnesses_nm_per_rad"]) == m["dof"] - 1
+        assert m["frequencies_hz"] == sorted(m["frequencies_hz"])
+    assert "17 DOF" in p.stderr  # the table goes to stderr when JSON takes stdout
+
+
+def test_lumped_json_file_and_table(tmp_path):
+    out = tmp_path / "r.json"
+    p = run("lumped", str(GEOMETRY / "renault21.toml"), "--dof", "5,17", "--stiffness", "ker-wilson",
+            "--json", str(out))
+    assert p.returncode == 0, p.stderr
+    assert "5 DOF" in p.stdout and "17 DOF" in p.stdout
+    data = json.loads(out.read_text())
+    assert data["stiffness_method"] == "ker-wilson" and len(data["models"]) == 2
+
+
+def test_bad_description_is_a_clean_error(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((GEOMETRY / "peugeot_glx.toml").read_text().replace('length = "mm"', 'length = "parsec"'))
+    p = run("lumped", str(bad), "--json", str(tmp_path / "out.json"))
+    assert p.returncode == 2
+    assert "units.length" in p.stderr and "parsec" in p.stderr and "Traceback" not in p.stderr
+    assert not (tmp_path / "out.json").exists()
+
+
+def test_bad_dof_option():
+    p = run("lumped", str(GEOMETRY / "peugeot_glx.toml"), "--dof", "7")
+    assert p.returncode == 2 and "not a partition" in p.stderr

@@ -1,0 +1,112 @@
+"""Every validation rule names its field, value and rule; good files parse."""
+
+import copy
+
+import pytest
+
+import fetorsion
+from fetorsion.crank import parse_chain, parse_crank
+from fetorsion.errors import DescriptionError
+
+from conftest import GEOMETRY, simple_crank_raw
+
+
+def problems_of(raw):
+    with pytest.raises(DescriptionError) as info:
+        parse_crank(raw, source="test.toml")
+    return info.value.problems, str(info.value)
+
+
+@pytest.mark.parametrize("name", ["peugeot_glx.toml", "renault21.toml"])
+def test_reference_cranks_parse(name):
+    crank = fetorsion.load(GEOMETRY / name)
+    assert crank.engine.cylinders == 4 and len(crank.webs) == 8
+    assert crank.journals[0].diameter < 0.1  # mm converted to m
+    assert crank.uncertainty, "reference geometries state their uncertainty"
+
+
+def test_length_unit_scales_everything():
+    raw_mm = simple_crank_raw()
+    raw_m = copy.deepcopy(raw_mm)
+    raw_m["units"]["length"] = "m"
+    for group in ("journals", "pins", "front", "rear"):
+        raw_m[group] = [{k: v / 1000 for k, v in t.items()} for t in raw_m[group]]
+    raw_m["webs"] = [{k: v / 1000 for k, v in t.items()} for t in raw_m["webs"]]
+    for key in ("stroke", "rod_length"):
+        raw_m["engine"][key] /= 1000
+    a, b = parse_crank(raw_mm), parse_crank(raw_m)
+    assert a.journals == b.journals and a.webs == b.webs and a.engine == b.engine
+
+
+CASES = [
+    # (mutation, field named in the message, words of the rule)
+    (lambda r: r["units"].update(length="furlong"), "units.length", "must be one of"),
+    (lambda r: r["journals"].__setitem__(2, {"diameter": 60.0, "length": -5.0}), "journals.3.length", "> 0"),
+    (lambda r: r["pins"].__setitem__(0, {"diameter": 50.0, "length": 24.0, "bore": 55.0}), "pins.1.bore", "smaller than diameter"),
+    (lambda r: r["webs"].__setitem__(3, {"thickness": 20.0, "width_journal": 90.0, "width_pin": 40.0}),
+     "webs.4.width_pin", "must lie inside its web"),
+    (lambda r: r["webs"].__setitem__(0, {"thickness": 20.0, "width_journal": 55.0, "width_pin": 70.0}),
+     "webs.1.width_journal", "must lie inside its web"),
+    (lambda r: r["webs"].pop(), "webs", "needs 8"),
+    (lambda r: r["engine"].update(firing_order=[1, 2, 2, 4]), "engine.firing_order", "permutation"),
+    (lambda r: r["engine"].update(crank_angles_deg=[0.0, 180.0]), "engine.crank_angles_deg", "one angle per cylinder"),
+    (lambda r: r["engine"].update(rod_length=30.0), "engine.rod_length", "longer than the crank radius"),
+    (lambda r: r["material"].update(poisson_ratio=0.6), "material.poisson_ratio", "< 0.5"),
+    (lambda r: r["material"].pop("density_kgm3"), "material.density_kgm3", "required"),
+    (lambda r: r["engine"].update(cylindres=4), "engine.cylindres", "not a known field"),
+    (lambda r: r.update(fillets={"pin": 12.0}), "fillets.pin", "half the thickness"),
+    (lambda r: r.update(oil_holes={"diameter": 30.0, "in_pins": True}), "oil_holes.diameter", "smaller than the length"),
+    (lambda r: r.update(attachments=[{"name": "x", "at": "middle", "polar_inertia_kgm2": 1.0}]),
+     "attachments.1.at", "must be one of"),
+    (lambda r: r.update(attachments=[{"name": "x", "at": "rear", "polar_inertia_kgm2": -1.0}]),
+     "attachments.1.polar_inertia_kgm2", "> 0"),
+    (lambda r: r["webs"].__setitem__(0, {"thickness": 20.0, "width_journal": 90.0, "width_pin": 70.0,
+                                         "counterweight_radius": 80.0}),
+     "webs.1.counterweight_radius", "both"),
+    (lambda r: r.update(uncertainty={"webs.*.thickness": [22.0, 25.0]}), "uncertainty.webs.*.thickness",
+     "nominal value"),
+    (lambda r: r.update(uncertainty={"webs.*.thicknes": [18.0, 25.0]}), "uncertainty.webs.*.thicknes",
+     "does not name a numeric field"),
+    (lambda r: r.update(uncertainty={"pins.*.length": [30.0, 20.0]}), "uncertainty.pins.*.length", "low < high"),
+]
+
+
+@pytest.mark.parametrize("mutate, field, rule", CASES)
+def test_each_rule_names_field_value_and_rule(mutate, field, rule):
+    raw = simple_crank_raw()
+    mutate(raw)
+    problems, message = problems_of(raw)
+    hits = [p for p in problems if p.field == field]
+    assert hits, f"no problem names {field}: {message}"
+    assert any(rule in p.rule for p in hits), message
+    assert field in message and "test.toml" in message
+
+
+def test_all_problems_reported_at_once():
+    raw = simple_crank_raw()
+    raw["journals"][0] = {"diameter": -1.0, "length": 0.0}
+    raw["engine"]["firing_order"] = [1]
+    problems, _ = problems_of(raw)
+    assert {"journals.1.diameter", "journals.1.length", "engine.firing_order"} <= {p.field for p in problems}
+
+
+@pytest.mark.parametrize("chain, field", [
+    ({"inertias_kgm2": [1.0, 2.0], "stiffnesses_nm_per_rad": [1.0, 2.0]}, "chain.stiffnesses_nm_per_rad"),
+    ({"inertias_kgm2": [1.0, -2.0], "stiffnesses_nm_per_rad": [1.0]}, "chain.inertias_kgm2[2]"),
+    ({"inertias_kgm2": [1.0, 2.0], "stiffnesses_nm_per_rad": [1.0], "relative_damping_nms_per_rad": [1.0, 1.0]},
+     "chain.relative_damping_nms_per_rad"),
+    ({"inertias_kgm2": [1.0, 2.0], "stiffnesses_nm_per_rad": [1.0], "springs": [1.0]}, "chain.springs"),
+])
+def test_chain_rules(chain, field):
+    with pytest.raises(DescriptionError) as info:
+        parse_chain({"chain": chain})
+    assert field in [p.field for p in info.value.problems], str(info.value)
+
+
+def test_missing_file_and_bad_toml(tmp_path):
+    with pytest.raises(DescriptionError, match="does not exist"):
+        fetorsion.load(tmp_path / "nope.toml")
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[units\nlength = 'mm'")
+    with pytest.raises(DescriptionError, match="not valid TOML"):
+        fetorsion.load(bad)
