@@ -10,6 +10,7 @@ from .crank import Chain, load
 from .errors import FetorsionError
 from .io import write_text_atomic
 from .lumped import PARTITIONS, lumped
+from .parts import build_parts
 from .stiffness import DEFAULT_WEB_METHOD, WEB_METHODS
 
 
@@ -41,9 +42,19 @@ def cmd_lumped(args) -> int:
     results = [lumped(model)] if isinstance(model, Chain) else [lumped(model, d, args.stiffness) for d in args.dof]
     out = sys.stderr if args.json == "-" else sys.stdout
     print(format_lumped_table(results), file=out)
-    _emit_json({"file": args.file, "stiffness_method": None if isinstance(model, Chain) else args.stiffness,
-                "models": [r.to_dict() for r in results]}, args.json)
+    payload = {"file": args.file, "models": [r.to_dict() for r in results]}
+    if not isinstance(model, Chain):
+        payload.update(stiffness_method=args.stiffness, parts=parts_table(build_parts(model, args.stiffness)),
+                       web_inertia="analytic web outline (fetorsion.web), no fillets", description=model.raw)
+    _emit_json(payload, args.json)
     return 0
+
+
+def parts_table(chain) -> list[dict]:
+    """The crank parts with their equivalent lengths, stiffnesses and inertias (SI)."""
+    return [{"part": p.label, "x0_m": p.x0, "x1_m": p.x1, "equivalent_length_m": p.equivalent_length,
+             "stiffness_nm_per_rad": 1.0 / p.compliance, "inertia_kgm2": p.inertia,
+             "attached_inertia_kgm2": p.attached_inertia} for p in chain.parts]
 
 
 def format_lumped_table(results, modes: int = 4) -> str:

@@ -21,6 +21,8 @@ def test_lumped_all_json_stdout():
         assert len(m["mode_shapes"]) == m["dof"] - 1 and len(m["mode_shapes"][0]) == m["dof"]
         assert len(m["inertias_kgm2"]) == m["dof"] and len(m["stiffnesses_nm_per_rad"]) == m["dof"] - 1
         assert m["frequencies_hz"] == sorted(m["frequencies_hz"])
+    assert [q["part"] for q in data["parts"]][:4] == ["F1", "F2", "J1", "W1"]
+    assert data["description"]["units"]["length"] == "mm"
     assert "17 DOF" in p.stderr  # the table goes to stderr when JSON takes stdout
 
 
