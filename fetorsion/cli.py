@@ -6,6 +6,8 @@ import argparse
 import json
 import sys
 
+import numpy as np
+
 from .crank import Chain, load
 from .errors import FetorsionError
 from .io import write_text_atomic
@@ -69,6 +71,98 @@ def format_lumped_table(results, modes: int = 4) -> str:
     return "\n".join(lines)
 
 
+def _save_plot(obj, path: str) -> None:
+    """Draw ``obj.plot()`` and save it atomically to ``path`` (format from the extension)."""
+    import os
+    import tempfile
+    from pathlib import Path
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = obj.plot()
+    fig = out.figure if hasattr(out, "figure") else out
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=target.parent, suffix=target.suffix)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=130)
+        os.replace(tmp, target)
+    finally:
+        Path(tmp).unlink(missing_ok=True)
+        plt.close(fig)
+
+
+def _partition_of(source: str) -> int:
+    return int(source.removeprefix("lumped"))
+
+
+def cmd_campbell(args) -> int:
+    from .campbell import lumped_modes, run_campbell
+
+    crank = load(args.file)
+    if isinstance(crank, Chain):
+        raise FetorsionError(f"{args.file}: a Campbell diagram needs a crank description with [excitation]")
+    res = run_campbell(crank, lumped_modes(crank, _partition_of(args.source), args.stiffness), orders=args.orders,
+                       speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
+    out = sys.stderr if args.json == "-" else sys.stdout
+    print(f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
+          f"most severe first ({res.source})", file=out)
+    print(res.table(), file=out)
+    _emit_json(res.to_dict(), args.json)
+    if args.plot:
+        _save_plot(res, args.plot)
+    return 0
+
+
+def cmd_response(args) -> int:
+    from .response import run_response
+
+    crank = load(args.file)
+    if isinstance(crank, Chain):
+        raise FetorsionError(f"{args.file}: the forced response needs a crank description with [excitation]")
+    rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
+    res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
+                       web_method=args.stiffness)
+    out = sys.stderr if args.json == "-" else sys.stdout
+    i, j = res.pulley_twist_deg.argmax(), np.unravel_index(res.section_torque_nm.argmax(), res.section_torque_nm.shape)
+    print(f"{res.name}: forced response {res.rpm[0]:.0f}-{res.rpm[-1]:.0f} rpm, zeta = {res.damping_ratio:g}", file=out)
+    print(f"  largest pulley twist   {res.pulley_twist_deg[i]:.4f} deg at {res.rpm[i]:.0f} rpm", file=out)
+    print(f"  largest pulley angle   {res.pulley_angle_deg.max():.4f} deg at {res.rpm[res.pulley_angle_deg.argmax()]:.0f} rpm",
+          file=out)
+    print(f"  largest section torque {res.section_torque_nm[j]:.1f} N m at {res.rpm[j[0]]:.0f} rpm "
+          f"({res.labels[j[1]]}-{res.labels[j[1] + 1]})", file=out)
+    _emit_json(res.to_dict(), args.json)
+    if args.plot:
+        _save_plot(res, args.plot)
+    return 0
+
+
+def _orders(text: str) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--orders {text!r}: give comma-separated numbers, e.g. 0.5,1,1.5") from None
+    if any(v <= 0 for v in values):
+        raise argparse.ArgumentTypeError(f"--orders {text!r}: orders must be > 0")
+    return values
+
+
+def _add_excitation_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", help="crank description with an [excitation] table (.toml)")
+    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS],
+                   help="which model gives the modes (default %(default)s)")
+    p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
+    p.add_argument("--speed-range", nargs=2, type=float, metavar=("LOW", "HIGH"), help="rpm")
+    p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
+    p.add_argument("--damping", type=float, help="modal damping ratio (default from the file, else 0.02)")
+    p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .svg)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="fetorsion", description="Torsional vibration analysis of engine crankshafts.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -80,6 +174,16 @@ def build_parser() -> argparse.ArgumentParser:
                     help="web stiffness method (default %(default)s)")
     lp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
     lp.set_defaults(func=cmd_lumped)
+
+    cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
+    _add_excitation_options(cp)
+    cp.add_argument("--modes", type=int, default=3, help="number of lowest modes (default %(default)s)")
+    cp.set_defaults(func=cmd_campbell)
+
+    rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
+    _add_excitation_options(rp)
+    rp.add_argument("--steps", type=int, default=300, help="speeds in the range (default %(default)s)")
+    rp.set_defaults(func=cmd_response)
     return p
 
 

@@ -119,6 +119,31 @@ class Attachment:
 
 
 @dataclass(frozen=True)
+class Excitation:
+    """Cylinder pressure and operating data for the Campbell diagram and forced response.
+
+    Either ``pressure_curve`` (crank angle rad from firing TDC over one cycle, absolute
+    pressure Pa) or the synthetic cycle: polytropic compression/expansion with a Wiebe
+    heat release scaled to ``load`` ((rpm, value) pairs, linear in between; value is the
+    IMEP or the peak pressure in Pa as ``load_kind`` says).
+    """
+
+    reciprocating_mass: float  # kg per cylinder (piston, pin, rod small-end share)
+    speed_range: tuple[float, float]  # rpm
+    compression_ratio: float = 0.0
+    load_kind: str = "imep"  # "imep" or "peak"
+    load: tuple[tuple[float, float], ...] = ()
+    intake_pressure: float = 1.0e5  # Pa, absolute
+    polytropic_exponent: float = 1.3
+    combustion_start: float = -0.2618  # rad from firing TDC (−15°)
+    combustion_duration: float = 0.8727  # rad (50°)
+    wiebe_a: float = 5.0
+    wiebe_m: float = 2.0
+    pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    modal_damping_ratio: float = 0.02
+
+
+@dataclass(frozen=True)
 class Crank:
     """A complete crankshaft description in SI units.
 
@@ -142,6 +167,7 @@ class Crank:
     source: str = ""
     notes: dict = field(default_factory=dict, compare=False)
     uncertainty: tuple[tuple[str, float, float], ...] = ()
+    excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
     @property
@@ -486,15 +512,76 @@ def parse_crank(data: dict, source: str = "<crank>") -> Crank:
         t.used.add("source")
         t.finish()
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
+    excitation = None
+    if "excitation" in data:
+        excitation = _excitation(root.table("excitation"), Path(source).parent)
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
-                  tuple(attachments), unit, source, notes, uncertainty, data)
+                  tuple(attachments), unit, source, notes, uncertainty, excitation, data)
     if not problems:
         problems.extend(_geometry_problems(crank, root.scale))
     if problems:
         raise DescriptionError(source, problems)
     return crank
+
+
+def _excitation(t: _Table, folder: Path) -> Excitation:
+    """The ``[excitation]`` table; a pressure CSV path is relative to the description file."""
+    mass = t.number("reciprocating_mass_kg", nonnegative=True)
+    speeds = t.numbers("speed_range_rpm")
+    if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
+        t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
+        speeds = (1.0, 2.0)
+    zeta = t.number("modal_damping_ratio", 0.02, positive=True, below=1.0)
+    csv = t.text("pressure_csv", default="")
+    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta)
+    if csv:
+        t.finish()
+        return Excitation(pressure_curve=_pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems), **common)
+    kinds = [k for k in ("imep_pa", "peak_pressure_pa") if k in t.data]
+    if len(kinds) != 1:
+        t.problems.append(Problem(t.path, sorted(t.data), "give exactly one of imep_pa, peak_pressure_pa or pressure_csv"))
+        t.finish()
+        return Excitation(**common)
+    raw = t._get(kinds[0], None)
+    pairs = [(1.0, raw)] if isinstance(raw, (int, float)) and not isinstance(raw, bool) else raw
+    if not (isinstance(pairs, list) and pairs and all(
+            isinstance(p, (list, tuple)) and len(p) == 2 and all(isinstance(v, (int, float)) for v in p) and p[1] > 0
+            for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
+        t.problems.append(Problem(f"{t.path}.{kinds[0]}", raw,
+                                  "must be a pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
+        pairs = [(1.0, 1.0)]
+    ex = Excitation(
+        compression_ratio=t.number("compression_ratio", above=1.0),
+        load_kind="imep" if kinds[0] == "imep_pa" else "peak",
+        load=tuple((float(a), float(b)) for a, b in pairs),
+        intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
+        polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),
+        combustion_start=math.radians(t.number("combustion_start_deg", -15.0, above=-90.0, below=90.0)),
+        combustion_duration=math.radians(t.number("combustion_duration_deg", 50.0, positive=True, below=180.0)),
+        wiebe_a=t.number("wiebe_a", 5.0, positive=True),
+        wiebe_m=t.number("wiebe_m", 2.0, nonnegative=True),
+        **common,
+    )
+    t.finish()
+    return ex
+
+
+def _pressure_csv(path: Path, field_name: str, problems: list[Problem]):
+    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)."""
+    import numpy as np
+
+    try:
+        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2)
+    except (OSError, ValueError) as exc:
+        problems.append(Problem(field_name, str(path), f"could not be read as 'angle_deg, pressure_pa' rows ({exc})"))
+        return None
+    if table.shape[1] != 2 or len(table) < 8 or np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 1] <= 0):
+        problems.append(Problem(field_name, str(path),
+                                "needs >= 8 rows of 'angle_deg, pressure_pa', angles ascending, pressures > 0"))
+        return None
+    return tuple(np.radians(table[:, 0])), tuple(table[:, 1])
 
 
 def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
