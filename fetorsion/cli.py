@@ -141,6 +141,20 @@ def cmd_response(args) -> int:
     return 0
 
 
+def cmd_sensitivity(args) -> int:
+    from .sensitivity import run_sensitivity
+
+    crank = load(args.file)
+    if isinstance(crank, Chain):
+        raise FetorsionError(f"{args.file}: sensitivities need a crank description with [uncertainty]")
+    res = run_sensitivity(crank, args.dof, args.stiffness)
+    print(res.table(), file=sys.stderr if args.json == "-" else sys.stdout)
+    _emit_json(res.to_dict(), args.json)
+    if args.plot:
+        _save_plot(res, args.plot)
+    return 0
+
+
 def _orders(text: str) -> list[float]:
     try:
         values = [float(v) for v in text.split(",")]
@@ -184,6 +198,14 @@ def build_parser() -> argparse.ArgumentParser:
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=int, default=300, help="speeds in the range (default %(default)s)")
     rp.set_defaults(func=cmd_response)
+
+    sp = sub.add_parser("sensitivity", help="f1 against each reconstructed input, and the f1 band")
+    sp.add_argument("file", help="crank description with an [uncertainty] table (.toml)")
+    sp.add_argument("--dof", type=int, choices=PARTITIONS, default=17)
+    sp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
+    sp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .svg)")
+    sp.set_defaults(func=cmd_sensitivity)
     return p
 
 

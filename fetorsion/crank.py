@@ -166,7 +166,7 @@ class Crank:
     length_unit: str = "m"
     source: str = ""
     notes: dict = field(default_factory=dict, compare=False)
-    uncertainty: tuple[tuple[str, float, float], ...] = ()
+    uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
     excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
 
@@ -604,23 +604,29 @@ def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
 
 
 def _uncertainty(t: _Table, data: dict, problems: list[Problem]):
-    """Ranges [low, high] of reconstructed inputs, each checked against its nominal value."""
+    """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
+    ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
+    e.g. a material's E and density. Each range must contain its nominal value."""
     out = []
-    for path, rng in t.data.items():
-        t.used.add(path)
-        name = f"uncertainty.{path}"
-        if not (isinstance(rng, list) and len(rng) == 2 and all(
-                isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng) and rng[0] < rng[1]):
-            problems.append(Problem(name, rng, "must be [low, high] with low < high"))
-            continue
-        targets = resolve_field(data, path)
-        if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
-            problems.append(Problem(name, rng, f"'{path}' does not name a numeric field of this description"))
-            continue
-        for where, v in targets:
-            if not rng[0] <= v <= rng[1]:
-                problems.append(Problem(name, rng, f"must contain the nominal value {where} = {v}"))
-        out.append((path, float(rng[0]), float(rng[1])))
+    for name, spec in t.data.items():
+        t.used.add(name)
+        members = spec.items() if isinstance(spec, dict) else [(name, spec)]
+        group = []
+        for path, rng in members:
+            where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
+            if not (isinstance(rng, list) and len(rng) == 2 and all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng) and rng[0] < rng[1]):
+                problems.append(Problem(where_name, rng, "must be [low, high] with low < high"))
+                continue
+            targets = resolve_field(data, path)
+            if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
+                problems.append(Problem(where_name, rng, f"'{path}' does not name a numeric field of this description"))
+                continue
+            for where, v in targets:
+                if not rng[0] <= v <= rng[1]:
+                    problems.append(Problem(where_name, rng, f"must contain the nominal value {where} = {v}"))
+            group.append((path, float(rng[0]), float(rng[1])))
+        out.append((name, tuple(group)))
     return tuple(out)
 
 
