@@ -100,59 +100,48 @@ def _partition_of(source: str) -> int:
     return int(source.removeprefix("lumped"))
 
 
-def cmd_campbell(args) -> int:
-    from .campbell import lumped_modes, run_campbell
-
-    crank = load(args.file)
+def _load_crank(path: str, needs: str):
+    crank = load(path)
     if isinstance(crank, Chain):
-        raise FetorsionError(f"{args.file}: a Campbell diagram needs a crank description with [excitation]")
-    res = run_campbell(crank, lumped_modes(crank, _partition_of(args.source), args.stiffness), orders=args.orders,
-                       speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
-    out = sys.stderr if args.json == "-" else sys.stdout
-    print(f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
-          f"most severe first ({res.source})", file=out)
-    print(res.table(), file=out)
+        raise FetorsionError(f"{path}: this command needs a crank description with {needs}, not a chain file")
+    return crank
+
+
+def _report(res, text: str, args) -> int:
+    """Print ``text`` (to stderr when JSON takes stdout), then write the JSON and the plot."""
+    print(text, file=sys.stderr if args.json == "-" else sys.stdout)
     _emit_json(res.to_dict(), args.json)
     if args.plot:
         _save_plot(res, args.plot)
     return 0
+
+
+def cmd_campbell(args) -> int:
+    from .campbell import lumped_modes, run_campbell
+
+    crank = _load_crank(args.file, "[excitation]")
+    res = run_campbell(crank, lumped_modes(crank, _partition_of(args.source), args.stiffness), orders=args.orders,
+                       speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
+    head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
+            f"most severe first ({res.source})")
+    return _report(res, head + "\n" + res.table(), args)
 
 
 def cmd_response(args) -> int:
     from .response import run_response
 
-    crank = load(args.file)
-    if isinstance(crank, Chain):
-        raise FetorsionError(f"{args.file}: the forced response needs a crank description with [excitation]")
+    crank = _load_crank(args.file, "[excitation]")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
-    out = sys.stderr if args.json == "-" else sys.stdout
-    i, j = res.pulley_twist_deg.argmax(), np.unravel_index(res.section_torque_nm.argmax(), res.section_torque_nm.shape)
-    print(f"{res.name}: forced response {res.rpm[0]:.0f}-{res.rpm[-1]:.0f} rpm, zeta = {res.damping_ratio:g}", file=out)
-    print(f"  largest pulley twist   {res.pulley_twist_deg[i]:.4f} deg at {res.rpm[i]:.0f} rpm", file=out)
-    print(f"  largest pulley angle   {res.pulley_angle_deg.max():.4f} deg at {res.rpm[res.pulley_angle_deg.argmax()]:.0f} rpm",
-          file=out)
-    print(f"  largest section torque {res.section_torque_nm[j]:.1f} N m at {res.rpm[j[0]]:.0f} rpm "
-          f"({res.labels[j[1]]}-{res.labels[j[1] + 1]})", file=out)
-    _emit_json(res.to_dict(), args.json)
-    if args.plot:
-        _save_plot(res, args.plot)
-    return 0
+    return _report(res, res.summary(), args)
 
 
 def cmd_sensitivity(args) -> int:
     from .sensitivity import run_sensitivity
 
-    crank = load(args.file)
-    if isinstance(crank, Chain):
-        raise FetorsionError(f"{args.file}: sensitivities need a crank description with [uncertainty]")
-    res = run_sensitivity(crank, args.dof, args.stiffness)
-    print(res.table(), file=sys.stderr if args.json == "-" else sys.stdout)
-    _emit_json(res.to_dict(), args.json)
-    if args.plot:
-        _save_plot(res, args.plot)
-    return 0
+    res = run_sensitivity(_load_crank(args.file, "[uncertainty]"), args.dof, args.stiffness)
+    return _report(res, res.table(), args)
 
 
 def _orders(text: str) -> list[float]:

@@ -80,6 +80,17 @@ class ResponseResult:
                 "section_torque_nm": self.section_torque_nm.tolist(),
                 "order_pulley_deg": self.order_pulley_deg.tolist()}
 
+    def summary(self) -> str:
+        """The largest pulley angle and twist and section torque, with where they occur."""
+        i, a = self.pulley_twist_deg.argmax(), self.pulley_angle_deg.argmax()
+        s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
+        return "\n".join([
+            f"{self.name}: forced response {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, zeta = {self.damping_ratio:g}",
+            f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
+            f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
+            f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
+            f"({self.labels[k]}-{self.labels[k + 1]})"])
+
     def plot(self, fig=None):
         """Pulley angle and twist, and the largest section torque, against speed."""
         import matplotlib.pyplot as plt
