@@ -6,6 +6,7 @@ import argparse
 import json
 import sys
 
+from . import cli_mechanics
 from .crank import Chain, load
 from .errors import FetorsionError
 from .io import write_text_atomic
@@ -69,6 +70,7 @@ def build_parser() -> argparse.ArgumentParser:
                     help="web stiffness method (default %(default)s)")
     lp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
     lp.set_defaults(func=cmd_lumped)
+    cli_mechanics.add_parsers(sub, _emit_json)
     return p
 
 

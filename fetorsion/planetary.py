@@ -26,7 +26,8 @@ Two "torque arms" are reported, because they differ for a geared crank:
 At a dead centre of the piston dx_p/dφ = 0, so the effective arm is zero for every
 mechanism; the planetary crank can have a geometric arm there (the rod line misses O), but
 the fixed gear's reaction then cancels its moment. The module reports both and
-:func:`dead_centres` finds the piston's dead centres.
+:func:`dead_centres` finds the piston's dead centres
+(not the dwells at the path's cusps).
 """
 
 from __future__ import annotations
@@ -115,18 +116,22 @@ def closing_turns(kind, fixed_diameter, planet_diameter, max_den=64):
     return Fraction(abs(spin)).limit_denominator(max_den).denominator
 
 
-def dead_centres(phi, x):
-    """Indices of the piston's dead centres (local extrema of x over a closed sampling).
+def dead_centres(x, dx):
+    """Indices of the piston's dead centres over a closed (periodic) sampling.
+
+    A dead centre is where dx_p/dφ changes sign; where it only touches zero (the big end
+    stops at a cusp of the path and goes on the same way) the piston dwells but does not
+    turn back, and that is not counted. The sample nearer the sign change is returned.
 
     Returns
     -------
     top, bottom : ndarray of int
-        Indices of local maxima (TDC) and minima (BDC) of ``x`` (periodic, last sample
-        excluded if it repeats the first).
+        Indices of the TDCs (+ to −) and BDCs (− to +).
     """
-    x = np.asarray(x)
-    prev, nxt = np.roll(x, 1), np.roll(x, -1)
-    return np.flatnonzero((x >= prev) & (x > nxt)), np.flatnonzero((x <= prev) & (x < nxt))
+    dx = np.asarray(dx)
+    nxt = np.roll(dx, -1)
+    pick = lambda i: np.where(np.abs(dx[i]) <= np.abs(nxt[i]), i, (i + 1) % len(dx))  # noqa: E731
+    return pick(np.flatnonzero((dx > 0) & (nxt <= 0))), pick(np.flatnonzero((dx < 0) & (nxt >= 0)))
 
 
 @dataclass
@@ -186,6 +191,12 @@ class PlanetaryResult:
         return {"phi_deg": float(np.degrees(self.phi_rad[i])), "piston_m": float(self.piston_m[i]),
                 "geometric_arm_m": float(self.geometric_arm_m[i]), "effective_arm_m": float(self.effective_arm_m[i])}
 
+    def at_dead_centres(self) -> dict:
+        """Largest |geometric| and |effective| arm over all dead centres (TDC and BDC), m."""
+        dead = np.concatenate([self.tdc_index, self.bdc_index])
+        return {"max_geometric_arm_m": float(np.abs(self.geometric_arm_m[dead]).max()),
+                "max_effective_arm_m": float(np.abs(self.effective_arm_m[dead]).max())}
+
     def summary(self) -> dict:
         return {"name": self.name, "kind": self.kind, "fixed_diameter_m": self.fixed_diameter_m,
                 "planet_diameter_m": self.planet_diameter_m, "eccentricity_m": self.eccentricity_m,
@@ -193,7 +204,7 @@ class PlanetaryResult:
                 "strokes_per_turn": self.strokes_per_turn,
                 "max_geometric_arm_m": float(np.abs(self.geometric_arm_m).max()),
                 "max_effective_arm_m": float(np.abs(self.effective_arm_m).max()),
-                "at_tdc": self.at_top_dead_centre(), **self.inputs}
+                "at_tdc": self.at_top_dead_centre(), "at_dead_centres": self.at_dead_centres(), **self.inputs}
 
     def to_dict(self) -> dict:
         out = self.summary()
@@ -256,7 +267,7 @@ def planetary(kind, fixed_diameter, planet_diameter, rod_length, eccentricity=No
     phi = np.arange(n) * (2 * np.pi * turns / n)
     b, db, ddb = big_end(phi, kind, fixed_diameter, planet_diameter, eccentricity, pin_phase)
     x, dx, ddx = piston_motion(b, db, ddb, rod_length)
-    top, bottom = dead_centres(phi, x)
+    top, bottom = dead_centres(x, dx)
     e = _geometry(kind, fixed_diameter, planet_diameter, eccentricity)[2]
     return PlanetaryResult(kind, fixed_diameter, planet_diameter, e, rod_length, turns, phi, b.real, b.imag,
                            x, dx, ddx, b.imag * x / rod_length, -dx, top, bottom, name)
