@@ -8,9 +8,10 @@ import sys
 
 import numpy as np
 
+from . import cli_mechanics
 from .crank import Chain, load
 from .errors import FetorsionError
-from .io import write_text_atomic
+from .io import save_figure_atomic, write_text_atomic
 from .lumped import PARTITIONS, lumped
 from .parts import build_parts
 from .stiffness import DEFAULT_WEB_METHOD, WEB_METHODS
@@ -73,10 +74,6 @@ def format_lumped_table(results, modes: int = 4) -> str:
 
 def _save_plot(obj, path: str) -> None:
     """Draw ``obj.plot()`` and save it atomically to ``path`` (format from the extension)."""
-    import os
-    import tempfile
-    from pathlib import Path
-
     import matplotlib
 
     matplotlib.use("Agg")
@@ -84,15 +81,9 @@ def _save_plot(obj, path: str) -> None:
 
     out = obj.plot()
     fig = out.figure if hasattr(out, "figure") else out
-    target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=target.parent, suffix=target.suffix)
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=130)
-        os.replace(tmp, target)
+        save_figure_atomic(fig, path, dpi=130)
     finally:
-        Path(tmp).unlink(missing_ok=True)
         plt.close(fig)
 
 
@@ -195,6 +186,8 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
     sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .svg)")
     sp.set_defaults(func=cmd_sensitivity)
+
+    cli_mechanics.add_parsers(sub, _emit_json)
     return p
 
 
