@@ -224,9 +224,9 @@ def cmd_balance(args, emit_json) -> int:
 
 
 def cmd_flywheel(args, emit_json) -> int:
-    _, spec = _load(args.file)
-    if spec is None:
-        raise FetorsionError(f"{args.file} is a crank description; flywheel needs a mechanics file with [flywheel]")
+    crank, spec = _load(args.file)
+    if crank is not None:
+        return _flywheel_from_engine_torque(crank, args, emit_json)
     spec.need("flywheel")
     f = spec.flywheel
     stroke = f.stroke if f.stroke is not None else (2 * spec.slider_crank.crank_radius if spec.slider_crank else None)
@@ -240,6 +240,28 @@ def cmd_flywheel(args, emit_json) -> int:
         ax = res.plot()
         _save_plot(ax.figure, args.plot)
         plt.close("all")
+    return 0
+
+
+def _flywheel_from_engine_torque(crank, args, emit_json) -> int:
+    """Flywheel inertia from the real engine torque of a crank description with [excitation]."""
+    from .excitation import engine_torque
+
+    if args.rpm is None:
+        raise FetorsionError(f"{args.file} is a crank description: give the speed with --rpm")
+    t = engine_torque(crank, args.rpm)
+    theta = np.append(t["theta"], t["theta"][-1] + (t["theta"][1] - t["theta"][0]))
+    delta_e, mean = fw.fluctuation_energy(theta, np.append(t["total"], t["total"][0]))
+    omega = args.rpm * 2 * np.pi / 60
+    inertia = fw.flywheel_inertia(delta_e, args.speed_fluctuation, omega)
+    have = sum(a.polar_inertia for a in crank.attachments_at("rear"))
+    res = {"file": args.file, "rpm": args.rpm, "mean_torque_nm": mean, "delta_e_j": delta_e,
+           "speed_fluctuation": args.speed_fluctuation, "inertia_kgm2": inertia, "rear_attachments_kgm2": have}
+    print(f"{crank.name}: flywheel from the engine torque at {args.rpm:g} rpm\n"
+          f"  mean torque {mean:10.2f} N m\n  ΔE          {delta_e:10.2f} J\n"
+          f"  I = ΔE/(C_s ω²), C_s = {args.speed_fluctuation:g}: {inertia:.5f} kg m^2 "
+          f"(the description's rear attachments: {have:.5f})", file=_out(args))
+    emit_json(res, args.json)
     return 0
 
 
@@ -277,6 +299,9 @@ def add_parsers(sub, emit_json) -> None:
     bp.set_defaults(func=lambda a: cmd_balance(a, emit_json))
 
     fp = sub.add_parser("flywheel", help="flywheel sizing by the energy method (seed 000)")
-    fp.add_argument("file", help="mechanics file (.toml) with [flywheel]")
+    fp.add_argument("file", help="mechanics file (.toml) with [flywheel], or a crank description with [excitation]")
+    fp.add_argument("--rpm", type=float, help="speed for a crank description, rev/min")
+    fp.add_argument("--speed-fluctuation", type=float, default=0.04,
+                    help="C_s = 2 (N1 − N2)/(N1 + N2) for a crank description (default %(default)s, seed 000)")
     common(fp)
     fp.set_defaults(func=lambda a: cmd_flywheel(a, emit_json))

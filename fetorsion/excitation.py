@@ -151,6 +151,22 @@ def cylinder_torque(crank: Crank, rpm: float, theta=None) -> dict[str, np.ndarra
             "total": tangential_torque(theta, gas_force + inertia_force, r, l)}
 
 
+def engine_torque(crank: Crank, rpm: float) -> dict[str, np.ndarray]:
+    """Sum of all cylinders' torques on a rigid crank over one cycle, N·m.
+
+    Cylinder c's torque is cylinder 1's delayed by its firing angle; the shift is done on
+    the periodic sample grid, so the firing angles must fall on it (they do for any even
+    firing of up to 16 cylinders at 0.5° sampling).
+    """
+    one = cylinder_torque(crank, rpm)
+    step = one["theta"][1] - one["theta"][0]
+    shifts = firing_angles(crank.engine) / step
+    if np.any(np.abs(shifts - np.rint(shifts)) > 1e-6):
+        raise FetorsionError("firing angles do not fall on the 0.5° sample grid")
+    total = sum(np.roll(one["total"], int(k)) for k in np.rint(shifts))
+    return {"theta": one["theta"], "total": total}
+
+
 @dataclass(frozen=True)
 class Harmonics:
     """Harmonic orders of a periodic torque: T(θ) = mean + Re Σ_q T_q e^{i q θ}.

@@ -149,3 +149,15 @@ def test_campbell_cli_writes_json_and_plot(tmp_path):
     p = subprocess.run([sys.executable, "-m", "fetorsion.cli", "campbell", "geometry/peugeot_glx.toml"],
                        capture_output=True, text=True, cwd=ROOT)
     assert p.returncode == 2 and "no [excitation] table" in p.stderr
+
+
+def test_inline4_engine_torque_has_only_major_orders_and_four_times_the_mean(renault):
+    from fetorsion.excitation import engine_torque
+    one = harmonics(cylinder_torque(renault, 2500.0)["total"], 4 * np.pi)
+    four = harmonics(engine_torque(renault, 2500.0)["total"], 4 * np.pi)
+    assert four.mean_nm == pytest.approx(4 * one.mean_nm, rel=1e-12)
+    orders = np.arange(0.5, 20.5, 0.5)
+    major = orders % 2 == 0
+    # Orders 2, 4, 6 … of the four cylinders add in phase; all others cancel (1-3-4-2).
+    np.testing.assert_allclose(four.at(orders[major]), 4 * one.at(orders[major]), rtol=1e-9)
+    assert np.abs(four.at(orders[~major])).max() < 1e-9 * np.abs(one.complex_nm).max()
