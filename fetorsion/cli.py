@@ -135,6 +135,39 @@ def cmd_sensitivity(args) -> int:
     return _report(res, res.table(), args)
 
 
+REFERENCE_CRANKS = ("renault21", "peugeot_glx")
+
+
+def _geometry_folder():
+    """``geometry/`` in the working folder, else beside the package (a source checkout)."""
+    from pathlib import Path
+
+    import os
+
+    for folder in (Path("geometry"), Path(__file__).resolve().parents[1] / "geometry"):
+        if (folder / f"{REFERENCE_CRANKS[0]}.toml").exists():
+            rel = os.path.relpath(folder)
+            return Path(rel) if not rel.startswith("..") else folder
+    raise FetorsionError("no FILE given and no geometry/ folder with the reference cranks found; give FILE")
+
+
+def cmd_run(args) -> int:
+    from pathlib import Path
+
+    from .pipeline import run
+
+    if args.all:
+        folder = _geometry_folder()
+        jobs = [(folder / f"{name}.toml", Path(args.out or "results") / name) for name in REFERENCE_CRANKS]
+    else:
+        file = Path(args.file) if args.file else _geometry_folder() / f"{REFERENCE_CRANKS[0]}.toml"
+        jobs = [(file, Path(args.out) if args.out else Path("out") / file.stem)]
+    for file, out in jobs:
+        folder = run(file, out)
+        print(f"report: {folder / 'report.md'}")
+    return 0
+
+
 def _orders(text: str) -> list[float]:
     try:
         values = [float(v) for v in text.split(",")]
@@ -188,6 +221,12 @@ def build_parser() -> argparse.ArgumentParser:
     sp.set_defaults(func=cmd_sensitivity)
 
     cli_mechanics.add_parsers(sub, _emit_json)
+
+    up = sub.add_parser("run", help="the main job: every analysis of a crank into one report folder")
+    up.add_argument("file", nargs="?", help="crank description (default geometry/renault21.toml)")
+    up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
+    up.add_argument("--all", action="store_true", help="both reference cranks into results/<name>/")
+    up.set_defaults(func=cmd_run)
     return p
 
 

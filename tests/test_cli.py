@@ -48,3 +48,11 @@ def test_bad_description_is_a_clean_error(tmp_path):
 def test_bad_dof_option():
     p = run("lumped", str(GEOMETRY / "peugeot_glx.toml"), "--dof", "7")
     assert p.returncode == 2 and "not a partition" in p.stderr
+
+
+def test_run_on_broken_description_exits_2_and_writes_nothing(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((GEOMETRY / "renault21.toml").read_text().replace("stroke = 83.5", "stroke = -83.5"))
+    p = run("run", str(bad), "--out", str(tmp_path / "report"))
+    assert p.returncode == 2 and "engine.stroke" in p.stderr and "Traceback" not in p.stderr
+    assert sorted(x.name for x in tmp_path.iterdir()) == ["bad.toml"]
