@@ -100,7 +100,7 @@ def stiffness(basis, youngs_modulus: float, poisson_ratio: float) -> sp.csr_arra
 
 def mass(basis, density: float) -> sp.csr_array:
     """Consistent vector-P2 mass, kg, interleaved DOFs: ρ ∫ φ_a φ_b ⊗ I₃."""
-    phi = np.stack([b[0].value for b in basis.basis], axis=1)  # (E, 10, Q)
+    phi = np.stack([np.asarray(b[0]) for b in basis.basis], axis=1)  # (E, 10, Q)
     Me = np.matmul(phi * (density * basis.dx)[:, None, :], phi.transpose(0, 2, 1))
     Ms = _scatter(Me, basis.element_dofs.T, basis.N)
     return sp.kron(Ms, sp.eye_array(3), format="csr")
