@@ -22,6 +22,7 @@ per iteration).
 
 from __future__ import annotations
 
+import contextlib
 import time
 import warnings
 from dataclasses import dataclass
@@ -88,8 +89,22 @@ class EigenResult:
     method: str
 
 
+def blas_threads(n: int | None):
+    """Context limiting every loaded BLAS (numpy's and CHOLMOD's) to ``n`` threads (None: as is).
+
+    Without threadpoolctl this does nothing.
+    """
+    if n is None:
+        return contextlib.nullcontext()
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:
+        return contextlib.nullcontext()
+    return threadpool_limits(n, user_api="blas")
+
+
 def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str = "lanczos",
-                 tol: float = 1e-10, seed: int = 0) -> EigenResult:
+                 tol: float = 1e-10, seed: int = 0, iteration_threads: int | None = 1) -> EigenResult:
     """The ``k`` eigenpairs of K x = ω² M x nearest the negative shift ``sigma``.
 
     Parameters
@@ -108,6 +123,12 @@ def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str 
         Relative eigenvalue tolerance.
     seed : int
         Start vector seed, for reproducible runs.
+    iteration_threads : int or None
+        BLAS threads during the iterations (None: leave as is). The iterations are
+        memory-bound vector work and single-right-hand-side triangular solves; with two
+        BLAS libraries loaded (numpy's and the system one under CHOLMOD) their spinning
+        threads oversubscribe a small machine: on 2 shared cores, 80 k DOF, the Lanczos
+        phase took 3.5 s with 1 thread and 12 s with 2. The factorisation keeps all threads.
     """
     if sigma >= 0:
         raise ValueError("the shift must be negative so that K - σM is positive definite")
@@ -115,8 +136,16 @@ def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str 
     t0 = time.perf_counter()
     solve = factorize((K - sigma * M).tocsc(), backend)
     t1 = time.perf_counter()
-    n = K.shape[0]
     rng = np.random.default_rng(seed)
+    with blas_threads(iteration_threads):
+        w, V = _iterate(K, M, k, sigma, solve, method, tol, rng)
+    order = np.argsort(w)
+    t2 = time.perf_counter()
+    return EigenResult(w[order], V[:, order], {"factorize": t1 - t0, "eigensolve": t2 - t1}, backend, method)
+
+
+def _iterate(K, M, k, sigma, solve, method, tol, rng):
+    n = K.shape[0]
     if method == "lanczos":
         op = spla.LinearOperator((n, n), matvec=lambda b: solve(b), dtype=float)
         ncv = min(n, max(2 * k + 1, k + 32))
@@ -135,6 +164,4 @@ def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str 
         w, V = w[:k] + sigma, V[:, :k]
     else:
         raise FetorsionError(f"unknown eigen-method {method!r}; choose from {METHODS}")
-    order = np.argsort(w)
-    t2 = time.perf_counter()
-    return EigenResult(w[order], V[:, order], {"factorize": t1 - t0, "eigensolve": t2 - t1}, backend, method)
+    return w, V
