@@ -206,8 +206,9 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = 20, attachments: li
     basis = assembly.p2_basis(m)
     timings["mesh"] = time.perf_counter() - t
     t = time.perf_counter()
-    K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio)
-    M = assembly.mass(basis, material.density)
+    pattern = assembly.block_pattern(basis)
+    K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio, pattern)
+    M = assembly.mass(basis, material.density, pattern)
     timings["assembly"] = time.perf_counter() - t
 
     t = time.perf_counter()
