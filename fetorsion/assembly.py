@@ -1,0 +1,156 @@
+"""Stiffness and consistent mass of isotropic linear elasticity on curved P2 tetrahedra.
+
+Displacement DOF numbering is interleaved, ``3 * s + i`` for scalar P2 DOF ``s`` (a mesh
+node) and component ``i`` (x, y, z), which is also scikit-fem's ``ElementVector`` order.
+
+The stiffness is built from the scalar gradient blocks
+
+    G_e[i, a, j, b] = ∫_e ∂_i φ_a ∂_j φ_b dx
+
+as  K_e[(a, i), (b, j)] = λ G_e[i, a, j, b] + μ G_e[j, a, i, b] + μ δ_ij Σ_k G_e[k, a, k, b],
+
+the expansion of ∫ λ div u div v + 2 μ ε(u) : ε(v) for u = φ_b e_j, v = φ_a e_i. One
+batched matrix product gives all G_e; on the issue-4 trial this was 7× faster than
+scikit-fem's generic vector form (:func:`stiffness_generic`, kept as the test reference).
+The mass is ρ ∫ φ_a φ_b times the 3 × 3 identity.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from .tetmesh import TetMesh
+
+#: Quadrature order: exact for P2·P2 mass on straight tets; on the curved (quadratic-map)
+#: tets of a smooth surface the remaining quadrature error is far below the discretisation error.
+INTORDER = 4
+
+
+def lame(youngs_modulus: float, poisson_ratio: float) -> tuple[float, float]:
+    """Lamé constants (λ, μ) in Pa from E (Pa) and ν (-)."""
+    E, nu = youngs_modulus, poisson_ratio
+    return E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+
+
+def skfem_mesh(mesh: TetMesh):
+    """The scikit-fem ``MeshTet2`` of ``mesh`` and the map from mesh node to scalar DOF.
+
+    scikit-fem renumbers a ten-node mesh (vertices first, then one DOF per edge), so the
+    second value ``dof_of_node`` (length N, -1 for unused nodes) carries node indices and
+    node sets over to DOF indices.
+    """
+    from skfem import MeshTet2
+
+    m = MeshTet2(mesh.nodes.T.copy(), mesh.tets.T.astype(np.int32).copy())
+    # The same bookkeeping as MeshTet2.__post_init__: vertices keep their sorted order,
+    # mid-edge nodes land on the element's edge DOFs.
+    dof_of_node = np.full(len(mesh.nodes), -1, dtype=np.int64)
+    dof_of_node[np.unique(mesh.tets[:, :4])] = np.arange(m.nvertices)
+    dof_of_node[mesh.tets[:, 4:].ravel()] = m.dofs.element_dofs[4:].T.ravel()
+    return m, dof_of_node
+
+
+def p2_basis(m, intorder: int = INTORDER):
+    """Scalar curved-P2 basis on scikit-fem mesh ``m``."""
+    from skfem import Basis, ElementTetP2
+
+    return Basis(m, ElementTetP2(), intorder=intorder)
+
+
+@dataclass(frozen=True)
+class BlockPattern:
+    """Sparsity of the node-to-node coupling: CSR ``indptr``/``indices`` over nodes, and for
+    every (element, a, b) entry its position ``slot`` in that CSR (duplicates share slots)."""
+
+    n: int
+    indptr: np.ndarray
+    indices: np.ndarray
+    slot: np.ndarray
+
+
+def block_pattern(basis) -> BlockPattern:
+    """The node-pair pattern of ``basis`` (scalar P2): one 3 × 3 block per pair in vector form.
+
+    Summing element matrices by 3 × 3 blocks over this pattern (9× fewer index entries than
+    a scalar COO of the vector problem) halved the assembly time at 240 k DOF.
+    """
+    ed = basis.element_dofs.T.astype(np.int64)  # (E, 10)
+    p, n = ed.shape[1], basis.N
+    key = (np.repeat(ed, p, axis=1) * n + np.tile(ed, (1, p))).ravel()
+    uniq, slot = np.unique(key, return_inverse=True)
+    rows, cols = np.divmod(uniq, n)
+    indptr = np.searchsorted(rows, np.arange(n + 1))
+    return BlockPattern(n, indptr, cols.astype(np.int32), slot.ravel())
+
+
+def _sum_blocks(values: np.ndarray, pat: BlockPattern) -> sp.csr_array:
+    """Sum element blocks into a 3n × 3n CSR.
+
+    ``values`` is (E, p, p, 3, 3) [e, a, b, i, j], or (E, p, p) for blocks that are a
+    scalar times the 3 × 3 identity (the mass).
+    """
+    nb = len(pat.indices)
+    if values.ndim == 3:
+        data = np.bincount(pat.slot, values.ravel(), minlength=nb)[:, None, None] * np.eye(3)
+    else:
+        flat = values.reshape(len(pat.slot), 9)
+        data = np.stack([np.bincount(pat.slot, flat[:, c], minlength=nb) for c in range(9)], axis=1)
+    bsr = sp.bsr_array((data.reshape(nb, 3, 3), pat.indices, pat.indptr), shape=(3 * pat.n, 3 * pat.n))
+    return bsr.tocsr()
+
+
+def gradient_blocks(basis) -> np.ndarray:
+    """G[e, i, a, j, b] = ∫_e ∂_i φ_a ∂_j φ_b dx, shape (E, 3, 10, 3, 10), m."""
+    # grads[e, i, a, q] = ∂_i φ_a at quadrature point q of element e
+    grads = np.stack([b[0].grad for b in basis.basis], axis=2).transpose(1, 0, 2, 3)
+    E, Q = basis.dx.shape
+    A = grads.reshape(E, 30, Q)
+    G = np.matmul(A * basis.dx[:, None, :], A.transpose(0, 2, 1))
+    return G.reshape(E, 3, 10, 3, 10)
+
+
+def stiffness(basis, youngs_modulus: float, poisson_ratio: float,
+              pattern: BlockPattern | None = None) -> sp.csr_array:
+    """Vector-P2 elasticity stiffness from scalar gradient blocks, N/m, interleaved DOFs.
+
+    Parameters
+    ----------
+    basis : skfem.Basis
+        Scalar ``ElementTetP2`` basis (:func:`p2_basis`).
+    youngs_modulus : float
+        E, Pa.
+    poisson_ratio : float
+        ν, -.
+    pattern : BlockPattern, optional
+        From :func:`block_pattern`, to share with :func:`mass`.
+    """
+    lam, mu = lame(youngs_modulus, poisson_ratio)
+    G = gradient_blocks(basis)  # [e, i, a, j, b]
+    trace = np.einsum("ekakb->eab", G)
+    # Ke[e, a, b, i, j]: the 3 × 3 block coupling node a (component i) to node b (component j)
+    Ke = lam * G.transpose(0, 2, 4, 1, 3) + mu * G.transpose(0, 2, 4, 3, 1)
+    Ke += mu * trace[:, :, :, None, None] * np.eye(3)
+    return _sum_blocks(Ke, block_pattern(basis) if pattern is None else pattern)
+
+
+def mass(basis, density: float, pattern: BlockPattern | None = None) -> sp.csr_array:
+    """Consistent vector-P2 mass, kg, interleaved DOFs: ρ ∫ φ_a φ_b ⊗ I₃.
+
+    ``pattern`` (from :func:`block_pattern`) may be shared with :func:`stiffness`.
+    """
+    phi = np.stack([np.asarray(b[0]) for b in basis.basis], axis=1)  # (E, 10, Q)
+    Me = np.matmul(phi * (density * basis.dx)[:, None, :], phi.transpose(0, 2, 1))
+    return _sum_blocks(Me, block_pattern(basis) if pattern is None else pattern)
+
+
+def stiffness_generic(m, youngs_modulus: float, poisson_ratio: float, intorder: int = INTORDER):
+    """The same stiffness through scikit-fem's generic vector form (slow; test reference)."""
+    from skfem import Basis, ElementTetP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    lam, mu = lame(youngs_modulus, poisson_ratio)
+    vb = Basis(m, ElementVector(ElementTetP2()), intorder=intorder)
+    return asm(linear_elasticity(lam, mu), vb).tocsr()
