@@ -306,19 +306,28 @@ def _circle_curves(occ, x: float, centre, radius: float) -> list[int]:
     return out
 
 
+def _material_point(p: _Piece, s: float) -> list[float]:
+    """A point inside the metal of part ``p`` (model units): mid-length, mid-wall."""
+    if p.kind == "web":
+        return [0.5 * (p.x0 + p.x1), 0.0, 0.0]  # the axis is inside the journal-end disc
+    r = 0.25 * (p.spec.diameter + p.spec.bore) * s
+    return [0.5 * (p.x0 + p.x1), p.centre[0], p.centre[1] + r]
+
+
 def _fuse_all(occ, volumes: list[list[tuple[int, int]]], pieces: list[_Piece]) -> int:
     """Fuse the part volumes into one; name the parts that end up apart from the rest."""
     flat = [dt for vols in volumes for dt in vols]
-    owner = [k for k, vols in enumerate(volumes) for _ in vols]
-    out, mapping = occ.fuse(flat[:1], flat[1:])
+    out, _ = occ.fuse(flat[:1], flat[1:])
     solids = [t for d, t in out if d == 3]
     if len(solids) == 1:
         return solids[0]
-    # The piece holding the most parts is "the crank"; every part not in it is loose.
-    members = {t: {owner[k] for k, res in enumerate(mapping) if (3, t) in res} for t in solids}
-    main = max(members, key=lambda t: len(members[t]))
-    loose = sorted({pieces[k].name for k in range(len(volumes)) if k not in members[main]},
-                   key=lambda n: [p.name for p in pieces].index(n))
+    # OCC's input-to-output map is incomplete for fused inputs: locate each part by a
+    # point of its metal instead. The piece holding the most parts is "the crank".
+    occ.synchronize()
+    s = 1.0 / MODEL_UNIT
+    where = [next((t for t in solids if gmsh.model.isInside(3, t, _material_point(p, s))), None) for p in pieces]
+    main = max(solids, key=where.count)
+    loose = [p.name for p, w in zip(pieces, where) if w != main]
     raise GeometryError(f"the crank does not fuse into one solid ({len(solids)} pieces): "
                         f"{', '.join(loose)} not connected to the rest (check the diameters and "
                         f"bores where it meets its neighbours)")
@@ -415,7 +424,6 @@ def build_solid(crank: Crank) -> CrankSolid:
     s = 1.0 / MODEL_UNIT
     R = crank.engine.crank_radius * s
     pieces = layout(crank)
-    _check_fillet_room(crank, pieces)
 
     volumes = []
     for i, p in enumerate(pieces):
@@ -425,6 +433,7 @@ def build_solid(crank: Crank) -> CrankSolid:
             volumes.append(_web_volume(occ, p, journal, pin, R, s))
         else:
             volumes.append(_hollow_cylinder(occ, p.x0, p.x1 - p.x0, p.spec, p.centre, s))
+    _check_fillet_room(crank, pieces)  # after the webs: a web that misses its pin says so first
     solid = _fuse_all(occ, volumes, pieces)
     occ.synchronize()
 
@@ -528,3 +537,38 @@ def crank_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
     with gmsh_session():
         solid = build_solid(crank)
         return solid_mass_properties(solid, crank.material.density)
+
+
+def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A linear triangulation of the outer surface of a built solid, for pictures.
+
+    Parameters
+    ----------
+    solid : CrankSolid
+        Built in the current session (the model is meshed in 2D here).
+    size : float
+        Largest triangle edge, m; curved faces get at least 16 triangles per turn.
+
+    Returns
+    -------
+    points : (P, 3) float array, m
+    triangles : (T, 3) int array of 0-based point indices
+    part : (T,) int array, index into ``solid.parts`` of the part each triangle bounds
+    """
+    gmsh.option.setNumber("Mesh.MeshSizeMax", size / MODEL_UNIT)
+    gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 16)
+    gmsh.model.mesh.generate(2)
+    tags, coords, _ = gmsh.model.mesh.getNodes()
+    lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
+    lookup[tags.astype(np.int64)] = np.arange(tags.size)
+    part_of_volume = {v: k for k, p in enumerate(solid.parts) for v in p.volumes}
+    tris, part = [], []
+    for _, s in gmsh.model.getEntities(2):
+        up = gmsh.model.getAdjacencies(2, s)[0]
+        if len(up) != 1:  # a cut between two parts is inside the metal
+            continue
+        _, etags, enodes = gmsh.model.mesh.getElements(2, s)
+        for et, en in zip(etags, enodes):
+            tris.append(lookup[en.astype(np.int64)].reshape(et.size, -1)[:, :3])
+            part.append(np.full(et.size, part_of_volume[int(up[0])]))
+    return coords.reshape(-1, 3) * MODEL_UNIT, np.concatenate(tris), np.concatenate(part)
