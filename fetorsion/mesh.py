@@ -235,14 +235,18 @@ def mesh_crank(crank: Crank, size: float = 0.006, fillet_size: float | None = No
 # Writers
 
 
-def _meshio_mesh(mesh: CrankMesh):
+def _meshio_mesh(mesh: CrankMesh, fmt: str):
+    """The mesh for meshio; the part index rides as Gmsh physical tag (1-based, named)."""
     import meshio
 
-    return meshio.Mesh(
-        mesh.nodes, [("tetra10", mesh.tets)],
-        cell_data={"part": [mesh.part], "gmsh:physical": [mesh.part + 1], "gmsh:geometrical": [mesh.part + 1]},
-        field_data={n: np.array([k + 1, 3]) for k, n in enumerate(mesh.part_names)},
-    )
+    if fmt == "gmsh":
+        # meshio 5 writes int32 ElementData of an ASCII .msh as "np.int32(0)" under numpy 2,
+        # which nobody can read back: the part goes in the physical tags alone.
+        cell_data = {"gmsh:physical": [mesh.part + 1], "gmsh:geometrical": [mesh.part + 1]}
+    else:
+        cell_data = {"part": [mesh.part]}
+    return meshio.Mesh(mesh.nodes, [("tetra10", mesh.tets)], cell_data=cell_data,
+                       field_data={n: np.array([k + 1, 3]) for k, n in enumerate(mesh.part_names)})
 
 
 def _rows(fmt: str, table: np.ndarray) -> str:
@@ -329,5 +333,5 @@ def write_mesh(mesh: CrankMesh, path, modes: int = 20) -> Path:
         else:
             fmt = {".msh": "gmsh", ".vtu": "vtu"}[ext]
             kwargs = {"binary": False} if ext == ".msh" else {}
-            _meshio_mesh(mesh).write(tmp, file_format=fmt, **kwargs)
+            _meshio_mesh(mesh, fmt).write(tmp, file_format=fmt, **kwargs)
     return path
