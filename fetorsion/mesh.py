@@ -20,7 +20,8 @@ holds plain numpy arrays, SI units:
 ``material``   the :class:`fetorsion.crank.Material` (E, ν, ρ), or None.
 ``quality``    :class:`MeshQuality` (minimum SICN of the curved elements, counts, sizes).
 
-``write_mesh(mesh, path)`` writes ``.msh`` (Gmsh 4.1) or ``.vtu`` through meshio, or
+``write_mesh(mesh, path)`` writes ``.msh`` (Gmsh 2.2 ASCII, part names as physical groups) or
+``.vtu`` (cell data ``part``) through meshio, or
 ``.inp`` (CalculiX/Abaqus: C3D10, material and a free-free ``*FREQUENCY`` step), atomically.
 ``mesh_model(...)`` meshes whatever solid is in the current Gmsh model (used for the plain
 cylinder check against CalculiX).
@@ -239,7 +240,8 @@ def _meshio_mesh(mesh: CrankMesh, fmt: str):
     """The mesh for meshio; the part index rides as Gmsh physical tag (1-based, named)."""
     import meshio
 
-    if fmt == "gmsh":
+    if fmt == "gmsh22":
+        # Format 2.2: meshio's 4.1 writer leaves out $Entities and Gmsh refuses the file.
         # meshio 5 writes int32 ElementData of an ASCII .msh as "np.int32(0)" under numpy 2,
         # which nobody can read back: the part goes in the physical tags alone.
         cell_data = {"gmsh:physical": [mesh.part + 1], "gmsh:geometrical": [mesh.part + 1]}
@@ -331,7 +333,7 @@ def write_mesh(mesh: CrankMesh, path, modes: int = 20) -> Path:
         if ext == ".inp":
             tmp.write_text(inp_text(mesh, modes), encoding="ascii")
         else:
-            fmt = {".msh": "gmsh", ".vtu": "vtu"}[ext]
+            fmt = {".msh": "gmsh22", ".vtu": "vtu"}[ext]
             kwargs = {"binary": False} if ext == ".msh" else {}
             _meshio_mesh(mesh, fmt).write(tmp, file_format=fmt, **kwargs)
     return path

@@ -114,6 +114,10 @@ def test_msh_and_vtu_read_back_the_same_tets(tmp_path, ext):
     part = back.cell_data_dict["gmsh:physical" if ext == ".msh" else "part"]["tetra10"]
     assert np.array_equal(part - (ext == ".msh"), mesh.part)
     assert not list(tmp_path.glob(".*"))  # no temporary file left behind
+    if ext == ".msh":  # and Gmsh itself opens it, with the part names
+        with gmsh_session("read"):
+            gmsh.open(str(tmp_path / "shaft.msh"))
+            assert [gmsh.model.getPhysicalName(*g) for g in gmsh.model.getPhysicalGroups(3)] == ["shaft"]
 
 
 def frd_displacements(path: Path) -> list[np.ndarray]:
