@@ -44,7 +44,7 @@ from .errors import FetorsionError
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
-# Relative tolerance for "same plane / same circle" searches in model units (mm): far above
+# Tolerance for "same plane / same circle" searches, model units (mm): far above
 # OCC's 1e-7 and far below any real feature (≥ 0.1 mm).
 _FIND_TOL = 1e-3
 
@@ -276,8 +276,8 @@ def _check_fillet_room(crank: Crank, pieces: list[_Piece]) -> None:
                 raise GeometryError(f"fillets.{other.kind} = {r:g} mm: {other.name} is shorter than two fillets")
 
 
-def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, tuple, float, float]]:
-    """(x, centre, circle radius, fillet radius) of every journal/web and pin/web junction."""
+def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, tuple, float, float, str]]:
+    """(x, centre, circle radius, fillet radius, label) of every journal/web and pin/web junction."""
     s = 1.0 / MODEL_UNIT
     out = []
     for i, p in enumerate(pieces):
@@ -286,7 +286,7 @@ def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, t
         for other, x in ((pieces[i - 1], p.x0), (pieces[i + 1], p.x1)):
             r = (crank.fillets.pin if other.kind == "pin" else crank.fillets.journal) * s
             if r > 0 and other.kind in ("pin", "journal"):
-                out.append((x, other.centre, 0.5 * other.spec.diameter * s, r))
+                out.append((x, other.centre, 0.5 * other.spec.diameter * s, r, f"{other.name}/{p.name}"))
     return out
 
 
@@ -412,7 +412,8 @@ def build_solid(crank: Crank) -> CrankSolid:
     Returns
     -------
     CrankSolid
-        Entity tags and x ranges (m) of the parts, the end faces and the fillet faces.
+        Entity tags and x ranges (m) of the parts, the end faces, the fillet and drilling
+        faces, and the crank axis (the x axis through the origin).
 
     Raises
     ------
@@ -437,12 +438,13 @@ def build_solid(crank: Crank) -> CrankSolid:
     solid = _fuse_all(occ, volumes, pieces)
     occ.synchronize()
 
-    before = {t for _, t in gmsh.model.getEntities(2)}
     junctions = _junction_circles(crank, pieces)
     if junctions:
         curves, radii = [], []
-        for x, centre, radius, r in junctions:
+        for x, centre, radius, r, label in junctions:
             found = _circle_curves(occ, x, centre, radius)
+            if not found:
+                raise GeometryError(f"no edge to fillet where {label} meet (x = {x:g} mm)")
             curves += found
             radii += [r] * len(found)
         try:
@@ -452,8 +454,6 @@ def build_solid(crank: Crank) -> CrankSolid:
                                 f"{crank.fillets.pin / MODEL_UNIT:g} mm) could not be built: {exc}") from None
         solid = out[0][1]
         occ.synchronize()
-    fillet_faces = tuple(t for _, t in gmsh.model.getEntities(2) if t not in before
-                         and gmsh.model.getType(2, t) in ("Torus", "SurfaceOfRevolution", "BSplineSurface"))
 
     holes = _oil_holes(occ, crank, pieces, s)
     if holes:
@@ -484,7 +484,6 @@ def build_solid(crank: Crank) -> CrankSolid:
     hole_r = 0.5 * crank.oil_holes.diameter * s
     drill = tuple(t for _, t in gmsh.model.getEntities(2)
                   if hole_r > 0 and gmsh.model.getType(2, t) == "Cylinder" and _radius_of(t) < 1.01 * hole_r)
-    del fillet_faces
     return CrankSolid(crank.name, length * MODEL_UNIT, tuple(parts), front, rear, fillets, drill)
 
 
