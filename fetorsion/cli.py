@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -58,6 +59,46 @@ def parts_table(chain) -> list[dict]:
     return [{"part": p.label, "x0_m": p.x0, "x1_m": p.x1, "equivalent_length_m": p.equivalent_length,
              "stiffness_nm_per_rad": 1.0 / p.compliance, "inertia_kgm2": p.inertia,
              "attached_inertia_kgm2": p.attached_inertia} for p in chain.parts]
+
+
+def cmd_mesh(args) -> int:
+    # Imported here: gmsh and VTK take a second to load and 'lumped' needs neither.
+    from .geometry import build_solid, gmsh_session, solid_mass_properties
+    from .mesh import MESH_FORMATS, mesh_solid, write_mesh
+
+    if args.output is None and args.png is None:
+        raise FetorsionError("mesh: give -o OUT (.msh, .vtu, .inp) and/or --png OUT.png")
+    if args.output is not None and Path(args.output).suffix.lower() not in MESH_FORMATS:
+        raise FetorsionError(f"-o {args.output}: unknown mesh format; use one of {', '.join(MESH_FORMATS)}")
+    if args.mesh_size <= 0:
+        raise FetorsionError(f"--mesh-size {args.mesh_size:g}: must be > 0 (mm)")
+    crank = load(args.file)
+    if isinstance(crank, Chain):
+        raise FetorsionError(f"{args.file}: a chain file has no geometry to mesh; give a crank description")
+    with gmsh_session():
+        solid = build_solid(crank)
+        total, parts = solid_mass_properties(solid, crank.material.density)
+        print(format_mass_table(crank.name, total, parts))
+        if args.output is not None:
+            mesh = mesh_solid(solid, crank, args.mesh_size * 1e-3)
+            q = mesh.quality
+            write_mesh(mesh, args.output)
+            print(f"mesh: {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
+                  f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
+                  f"{q.seconds:.1f} s -> {args.output}")
+    if args.png is not None:
+        from .picture import render_png
+
+        print(f"picture -> {render_png(crank, args.png)}")
+    return 0
+
+
+def format_mass_table(name: str, total, parts: dict) -> str:
+    """Plain-text table of mass (kg) and polar inertia about the crank axis (kg·m²) per part."""
+    lines = [f"{name}: mass properties of the solid", f"{'part':>10} {'mass [kg]':>10} {'J [kg m2]':>12}"]
+    lines += [f"{n:>10} {b.mass:10.4f} {b.polar_inertia:12.4e}" for n, b in parts.items()]
+    lines.append(f"{'total':>10} {total.mass:10.4f} {total.polar_inertia:12.4e}")
+    return "\n".join(lines)
 
 
 def format_lumped_table(results, modes: int = 4) -> str:
@@ -227,6 +268,15 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
     up.add_argument("--all", action="store_true", help="both reference cranks into results/<name>/")
     up.set_defaults(func=cmd_run)
+
+
+    mp = sub.add_parser("mesh", help="Gmsh solid of a crank description: mass properties, curved tet mesh, picture")
+    mp.add_argument("file", help="crank description (.toml)")
+    mp.add_argument("-o", "--output", metavar="OUT", help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10)")
+    mp.add_argument("--mesh-size", type=float, default=6.0, metavar="MM",
+                    help="global element size in mm (default %(default)s); fillets and drillings get finer")
+    mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
+    mp.set_defaults(func=cmd_mesh)
     return p
 
 
