@@ -190,7 +190,15 @@ def cmd_campbell(args) -> int:
     from .campbell import lumped_modes, run_campbell
 
     crank = _load_crank(args.file, "[excitation]")
-    res = run_campbell(crank, lumped_modes(crank, _partition_of(args.source), args.stiffness), orders=args.orders,
+    if crank.excitation is None:
+        raise FetorsionError(f"{args.file}: the description has no [excitation] table")
+    if args.source == "fe":
+        from .crankfe import run_modal
+
+        modes = run_modal(crank, args.mesh_size * 1e-3, modes=20).torsional_modes(args.modes)
+    else:
+        modes = lumped_modes(crank, _partition_of(args.source), args.stiffness)
+    res = run_campbell(crank, modes, orders=args.orders,
                        speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
@@ -201,6 +209,8 @@ def cmd_response(args) -> int:
     from .response import run_response
 
     crank = _load_crank(args.file, "[excitation]")
+    if args.source == "fe":
+        raise FetorsionError("response: the forced response uses a lumped model; choose --source lumpedN")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
@@ -259,8 +269,8 @@ def _orders(text: str) -> list[float]:
 
 def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", help="crank description with an [excitation] table (.toml)")
-    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS],
-                   help="which model gives the modes (default %(default)s)")
+    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe"],
+                   help="which model gives the modes (default %(default)s; fe: campbell only)")
     p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     p.add_argument("--speed-range", nargs=2, type=float, metavar=("LOW", "HIGH"), help="rpm")
     p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
@@ -284,6 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
     cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
     _add_excitation_options(cp)
     cp.add_argument("--modes", type=int, default=3, help="number of lowest modes (default %(default)s)")
+    cp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM", help="FE mesh size for --source fe")
     cp.set_defaults(func=cmd_campbell)
 
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
