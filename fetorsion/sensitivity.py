@@ -23,12 +23,14 @@ from .stiffness import DEFAULT_WEB_METHOD
 def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
     """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
 
-    ``details=False`` also drops fillets, oil holes and the uncertainty table: a cheap
-    variant for coarse FE checks, where those details would dominate the element count.
+    The variant is a new design, so the original's ``[uncertainty]`` ranges are dropped.
+    ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
+    checks, where those details would dominate the element count.
     """
     raw = copy.deepcopy(crank.raw)
+    raw.pop("uncertainty", None)
     if not details:
-        for key in ("fillets", "oil_holes", "uncertainty"):
+        for key in ("fillets", "oil_holes"):
             raw.pop(key, None)
     for path, value in changes.items():
         parent_path, _, key = path.rpartition(".")
