@@ -428,18 +428,23 @@ def _web(t: _Table) -> Web:
     return Web(h, b_max, b_min, r_cw, math.radians(a_cw))
 
 
+def read_length_unit(root: _Table, source: str) -> str:
+    """Read ``[units] length`` and set the table's length scale; without a known unit no
+    length can be checked, so that problem is raised at once."""
+    units = root.table("units")
+    unit = units.text("length", choices=tuple(LENGTH_UNITS))
+    units.finish()
+    if unit not in LENGTH_UNITS:
+        raise DescriptionError(source, root.problems)
+    root.scale = LENGTH_UNITS[unit]
+    return unit
+
+
 def parse_crank(data: dict, source: str = "<crank>") -> Crank:
     """Build a :class:`Crank` from a parsed TOML mapping; see :func:`load`."""
     problems: list[Problem] = []
     root = _Table(data, "", problems)
-    units = root.table("units")
-    unit = units.text("length", choices=tuple(LENGTH_UNITS))
-    units.finish()
-    root.scale = LENGTH_UNITS.get(unit, math.nan)
-    if unit not in LENGTH_UNITS:
-        # Without a unit no length can be checked meaningfully: stop here.
-        root.finish_keys = None
-        raise DescriptionError(source, problems)
+    unit = read_length_unit(root, source)
 
     meta = root.table("meta", required=False)
     name = meta.text("name", default=Path(source).stem)

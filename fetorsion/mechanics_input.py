@@ -58,10 +58,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from .crank import _read_toml, _Table
+from .crank import _read_toml, _Table, read_length_unit
 from .errors import DescriptionError, Problem
 from .flywheel import RIM_SPEED_LIMITS
-from .units import LENGTH_UNITS
 
 TABLES = ("meta", "units", "slider_crank", "masses", "balance", "flywheel", "planetary")
 
@@ -142,12 +141,7 @@ def parse_mechanics(data: dict, source: str = "<mechanics>") -> MechanicsInput:
     """Build a :class:`MechanicsInput` from a parsed TOML mapping; see the module docs."""
     problems: list[Problem] = []
     root = _Table(data, "", problems)
-    units = root.table("units")
-    unit = units.text("length", choices=tuple(LENGTH_UNITS))
-    units.finish()
-    if unit not in LENGTH_UNITS:
-        raise DescriptionError(source, problems)
-    root.scale = LENGTH_UNITS[unit]
+    read_length_unit(root, source)
     meta = root.table("meta", required=False)
     name = meta.text("name", default=Path(source).stem)
     meta.used.update(meta.data)
