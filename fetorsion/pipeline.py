@@ -88,8 +88,17 @@ def step_fe(ctx: RunContext) -> None:
     from .crankfe import run_modal
     from .render import render_mode
 
+    from .mesh import mesh_crank
+
     size = ctx.options.get("mesh_size", 0.010)
-    fe = run_modal(ctx.crank, size, modes=ctx.options.get("modes", 20))
+    _progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
+    mesh = mesh_crank(ctx.crank, size)
+    _progress(f"  {len(mesh.tets)} tetrahedra, {3 * len(np.unique(mesh.tets))} DOF in {mesh.quality.seconds:.1f} s; "
+              "assembling, factorising, eigen-solving ...")
+    fe = run_modal(ctx.crank, size, modes=ctx.options.get("modes", 20), mesh=mesh)
+    t = fe.result.timings_s
+    _progress(f"  assembly {t.get('assembly', 0):.1f} s, factorisation {t.get('factorize', 0):.1f} s, "
+              f"eigen-solve {t.get('eigensolve', 0):.1f} s; rendering mode images ...")
     ctx.fe = fe
     res, cm = fe.result, fe.mesh
     ctx.results["fe"] = {**res.to_dict(), "first_torsional_hz": res.first_torsional(), "mesh_size_m": size,
