@@ -114,3 +114,13 @@ def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str 
             f"webs.{web_index + 1}: the {method} formula gives a non-positive equivalent length "
             f"({value:.4g} m); this web is outside the range the formula was made for")
     return value
+
+
+def fe(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term of the throw's static 3D FE torsion (:mod:`fetorsion.throwfe`), per web, m."""
+    from .throwfe import web_equivalent_length_fe  # Gmsh and scikit-fem load only when asked for
+
+    return web_equivalent_length_fe(crank, web_index, d_e)
+
+
+WEB_METHODS["fe"] = fe
