@@ -18,6 +18,8 @@ to be corrected against the books.
 from __future__ import annotations
 
 import math
+
+import numpy as np
 from typing import Callable
 
 from .crank import Crank, Cylinder, Web
@@ -124,3 +126,32 @@ def fe(crank: Crank, web_index: int, d_e: float) -> float:
 
 
 WEB_METHODS["fe"] = fe
+
+
+# Nestorides (BICERA 1958) stepped-shaft fillet chart as fitted in the rotordin Fortran code
+# (tsecdl.f, docs/stiffness-formulas.md §4): ΔL/d = Σ a_k(ρ) x^k, a_k quadratic in ρ.
+_STEP_FIT = np.array([[-0.39806698, 0.905826203, -0.374011947],   # a0: ρ², ρ, 1
+                      [0.70609558, -1.35354548, 0.534644181],     # a1
+                      [-0.36438888, 0.518083459, -0.183161384],   # a2
+                      [0.05618723, -0.065556259, 0.021020194]])   # a3
+
+
+def step_fillet_length(d: float, D: float, r: float) -> float:
+    """Extra length (m, at the smaller diameter d) of a shaft step d → D with fillet radius r.
+
+    Nestorides' chart as fitted in ``tsecdlf`` (docs/stiffness-formulas.md §4), with
+    x = min(D/d, 3), ρ = r/(d/2):  ΔL/d = max(0, a3 x³ + a2 x² + a1 x + a0), 0 for ρ > 0.52.
+
+    Parameters
+    ----------
+    d, D : float
+        Smaller and larger diameter, m.
+    r : float
+        Fillet radius, m.
+    """
+    rho = r / (0.5 * d)
+    if rho > 0.52:
+        return 0.0
+    a = _STEP_FIT @ np.array([rho**2, rho, 1.0])
+    x = min(D / d, 3.0)
+    return d * max(0.0, float(np.polyval(a[::-1], x)))

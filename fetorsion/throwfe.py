@@ -290,3 +290,57 @@ def web_equivalent_length_fe(crank: Crank, web_index: int, d_e: float, mesh_size
     """
     throw = throw_of(crank, crank.throw_of_web(web_index))
     return web_term(throw, throw_equivalent_length_fe(throw, d_e, mesh_size), d_e)
+
+
+# ---------------------------------------------------------------------------
+# Reference shafts for the checks
+
+
+def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fillet: float,
+                       size: float, fillet_size: float | None = None) -> TetMesh:
+    """A round bar of diameter d (length l_small) then D (length l_large) along +x, the
+    re-entrant corner rounded with radius ``fillet``; curved ten-node tets.
+
+    Parameters
+    ----------
+    d, D : float
+        Smaller and larger diameter, m.
+    l_small, l_large : float
+        Lengths of the two sections, m (the fillet eats into the small one).
+    fillet : float
+        Fillet radius, m (0: sharp corner).
+    size : float
+        Global element size, m.
+    fillet_size : float, optional
+        Element size on the fillet, m (default ``fillet / 2``).
+
+    Returns
+    -------
+    TetMesh
+        With node sets ``front_face`` (x = 0) and ``rear_face`` (x = l_small + l_large).
+    """
+    import gmsh
+
+    from .geometry import MODEL_UNIT, _circle_curves, gmsh_session
+    from .mesh import mesh_model
+
+    s = 1.0 / MODEL_UNIT
+    with gmsh_session("stepped_shaft"):
+        occ = gmsh.model.occ
+        a = occ.addCylinder(0, 0, 0, l_small * s, 0, 0, 0.5 * d * s)
+        b = occ.addCylinder(l_small * s, 0, 0, l_large * s, 0, 0, 0.5 * D * s)
+        out, _ = occ.fuse([(3, a)], [(3, b)])
+        vol = out[0][1]
+        occ.synchronize()
+        fine_faces = []
+        if fillet > 0:
+            edges = _circle_curves(occ, l_small * s, (0.0, 0.0), 0.5 * d * s)
+            vol = occ.fillet([vol], edges, [fillet * s] * len(edges))[0][1]
+            occ.synchronize()
+            fine_faces = [t for _, t in gmsh.model.getEntities(2) if gmsh.model.getType(2, t) == "Torus"]
+        ends = {}
+        for name, x in (("front_face", 0.0), ("rear_face", (l_small + l_large) * s)):
+            ends[name] = [t for _, t in gmsh.model.getEntitiesInBoundingBox(x - 1e-3, -1e9, -1e9, x + 1e-3, 1e9, 1e9, 2)]
+        fine = (0.5 * fillet if fillet_size is None else fillet_size) if fillet > 0 else size
+        cm = mesh_model({"shaft": [vol]}, ends, size * s, fine * s, fine_faces, name="stepped shaft")
+    return TetMesh(cm.nodes, cm.tets, cm.node_sets)
