@@ -52,8 +52,14 @@ MESH_SHARE = 1.0 / 6.0
 FILLET_SHARE = 0.5
 #: Applied torque, N·m. The problem is linear: any value gives the same k.
 TORQUE = 1000.0
-#: Environment variable naming the on-disk cache file (JSON); unset: in-memory only.
+#: Environment variable naming a user cache file (JSON) of throw results; unset: none.
 CACHE_ENV = "FETORSION_THROW_CACHE"
+#: Throw results shipped with the package (the reference cranks' throws at the default
+#: mesh), written by ``scripts/stiffness_methods.py``; read-only.
+SHIPPED_CACHE = Path(__file__).with_name("data") / "throw_fe.json"
+#: Part of every cache key: bump when the FE model or its defaults change, so that no
+#: stale stiffness is read back.
+MODEL_VERSION = "throwfe-1"
 
 
 @dataclass(frozen=True)
@@ -212,7 +218,7 @@ def throw_key(throw: Crank, mesh_size: float | None) -> str:
               "pins": [dataclasses.asdict(p) for p in throw.pins],
               "webs": [dataclasses.asdict(w) for w in throw.webs],
               "fillets": dataclasses.asdict(throw.fillets), "oil_holes": dataclasses.asdict(throw.oil_holes),
-              "mesh_size": mesh_size}
+              "mesh_size": mesh_size, "model": MODEL_VERSION}
     fields["material"].pop("name", None)
     text = json.dumps(fields, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:20]
@@ -223,8 +229,8 @@ def _cache_file() -> Path | None:
     return Path(path) if path else None
 
 
-def _load_disk() -> dict:
-    path = _cache_file()
+def _load_disk(path: Path | None = None) -> dict:
+    path = _cache_file() if path is None else path
     if path is None or not path.exists():
         return {}
     try:
@@ -246,11 +252,12 @@ def _save_disk(key: str, entry: dict) -> None:
 
 
 def throw_torsion(throw: Crank, mesh_size: float | None = None) -> dict:
-    """:func:`torsional_stiffness_fe` of ``throw``, cached in memory (and on disk when
-    :data:`CACHE_ENV` names a file); a dict of the :class:`TorsionResult` fields."""
+    """:func:`torsional_stiffness_fe` of ``throw`` as a dict of the :class:`TorsionResult`
+    fields, cached: in memory, then the package's :data:`SHIPPED_CACHE`, then the user file
+    named by :data:`CACHE_ENV` (written to when set); computed only when all miss."""
     key = throw_key(throw, mesh_size)
     if key not in _CACHE:
-        entry = _load_disk().get(key)
+        entry = _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
         if entry is None:
             entry = dataclasses.asdict(torsional_stiffness_fe(throw, mesh_size))
             _save_disk(key, entry)
