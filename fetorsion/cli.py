@@ -93,6 +93,44 @@ def cmd_mesh(args) -> int:
     return 0
 
 
+def cmd_modal(args) -> int:
+    from .crankfe import run_modal, run_refinement
+    from .mesh import read_mesh
+
+    crank = _load_crank(args.file, "geometry")
+    if args.mesh_size <= 0:
+        raise FetorsionError(f"--mesh-size {args.mesh_size:g}: must be > 0 (mm)")
+    if args.modes < 1:
+        raise FetorsionError(f"--modes {args.modes}: must be >= 1")
+    refinement = None
+    if args.refine:
+        if args.mesh:
+            raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
+        runs, refinement = run_refinement(crank, args.mesh_size * 1e-3, args.modes)
+        fe = runs[-1]
+    else:
+        mesh = read_mesh(args.mesh, crank) if args.mesh else None
+        fe = run_modal(crank, args.mesh_size * 1e-3, args.modes, mesh=mesh)
+    res = fe.result
+    out = sys.stderr if args.json == "-" else sys.stdout
+    print(f"{crank.name}: free-free FE modes ({res.dofs} DOF, {res.elements} curved P2 tets, "
+          f"{res.backend}/{res.method}, {res.timings_s['total']:.1f} s)", file=out)
+    print(f"{'mode':>4} {'f [Hz]':>9} {'kind':>10} {'torsion':>8} {'bending':>8} {'axial':>8}", file=out)
+    for j, (f, k, fr) in enumerate(zip(res.frequencies_hz, res.kinds, res.fractions)):
+        print(f"{j + 1:>4} {f:9.1f} {k:>10} {fr[0]:8.3f} {fr[1]:8.3f} {fr[2]:8.3f}", file=out)
+    payload = {"file": args.file, **res.to_dict()}
+    torsional = res.of_kind("torsional")
+    payload["first_torsional_hz"] = float(torsional[0]) if len(torsional) else None
+    print(f"first torsional: {payload['first_torsional_hz']} Hz", file=out)
+    if refinement:
+        payload["refinement"] = refinement
+        print(f"refinement: f1 = {refinement['first_torsional_hz']} Hz at {refinement['dofs']} DOF -> "
+              f"extrapolated {refinement['extrapolated']:.1f} Hz, error estimate {refinement['error_estimate']:.1f} Hz",
+              file=out)
+    _emit_json(payload, args.json)
+    return 0
+
+
 def format_mass_table(name: str, total, parts: dict) -> str:
     """Plain-text table of mass (kg) and polar inertia about the crank axis (kg·m²) per part."""
     lines = [f"{name}: mass properties of the solid", f"{'part':>10} {'mass [kg]':>10} {'J [kg m2]':>12}"]
@@ -152,7 +190,15 @@ def cmd_campbell(args) -> int:
     from .campbell import lumped_modes, run_campbell
 
     crank = _load_crank(args.file, "[excitation]")
-    res = run_campbell(crank, lumped_modes(crank, _partition_of(args.source), args.stiffness), orders=args.orders,
+    if crank.excitation is None:
+        raise FetorsionError(f"{args.file}: the description has no [excitation] table")
+    if args.source == "fe":
+        from .crankfe import run_modal
+
+        modes = run_modal(crank, args.mesh_size * 1e-3, modes=20).torsional_modes(args.modes)
+    else:
+        modes = lumped_modes(crank, _partition_of(args.source), args.stiffness)
+    res = run_campbell(crank, modes, orders=args.orders,
                        speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
@@ -163,6 +209,8 @@ def cmd_response(args) -> int:
     from .response import run_response
 
     crank = _load_crank(args.file, "[excitation]")
+    if args.source == "fe":
+        raise FetorsionError("response: the forced response uses a lumped model; choose --source lumpedN")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
@@ -221,8 +269,8 @@ def _orders(text: str) -> list[float]:
 
 def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", help="crank description with an [excitation] table (.toml)")
-    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS],
-                   help="which model gives the modes (default %(default)s)")
+    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe"],
+                   help="which model gives the modes (default %(default)s; fe: campbell only)")
     p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     p.add_argument("--speed-range", nargs=2, type=float, metavar=("LOW", "HIGH"), help="rpm")
     p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
@@ -246,6 +294,7 @@ def build_parser() -> argparse.ArgumentParser:
     cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
     _add_excitation_options(cp)
     cp.add_argument("--modes", type=int, default=3, help="number of lowest modes (default %(default)s)")
+    cp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM", help="FE mesh size for --source fe")
     cp.set_defaults(func=cmd_campbell)
 
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
@@ -273,10 +322,21 @@ def build_parser() -> argparse.ArgumentParser:
     mp = sub.add_parser("mesh", help="Gmsh solid of a crank description: mass properties, curved tet mesh, picture")
     mp.add_argument("file", help="crank description (.toml)")
     mp.add_argument("-o", "--output", metavar="OUT", help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10)")
-    mp.add_argument("--mesh-size", type=float, default=6.0, metavar="MM",
+    mp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
                     help="global element size in mm (default %(default)s); fillets and drillings get finer")
     mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
     mp.set_defaults(func=cmd_mesh)
+
+    fp = sub.add_parser("modal", help="free-free 3D FE modal analysis with attachments, modes labelled")
+    fp.add_argument("file", help="crank description (.toml)")
+    fp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
+                    help="global element size in mm (default %(default)s), as for 'fetorsion mesh'")
+    fp.add_argument("--mesh", metavar="MESHFILE", help="use a .msh written by 'fetorsion mesh' instead of meshing")
+    fp.add_argument("--modes", type=int, default=20, help="elastic modes to compute (default %(default)s)")
+    fp.add_argument("--refine", action="store_true",
+                    help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
+    fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    fp.set_defaults(func=cmd_modal)
     return p
 
 

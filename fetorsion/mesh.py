@@ -337,3 +337,33 @@ def write_mesh(mesh: CrankMesh, path, modes: int = 20) -> Path:
             kwargs = {"binary": False} if ext == ".msh" else {}
             _meshio_mesh(mesh, fmt).write(tmp, file_format=fmt, **kwargs)
     return path
+
+
+def read_mesh(path, crank: Crank) -> CrankMesh:
+    """Read back a ``.msh`` written by :func:`write_mesh` (part names ride as physical groups).
+
+    The front and rear face node sets are found again as the nodes at x = min and x = max.
+    """
+    import meshio
+
+    path = Path(path)
+    if path.suffix.lower() != ".msh":
+        raise FetorsionError(f"--mesh {path}: give a .msh file written by 'fetorsion mesh' (it carries the part names)")
+    try:
+        m = meshio.read(path)
+    except Exception as exc:  # meshio raises many kinds of errors for a bad file
+        raise FetorsionError(f"--mesh {path}: could not be read ({exc})") from None
+    if "tetra10" not in m.cells_dict or "gmsh:physical" not in m.cell_data_dict:
+        raise FetorsionError(f"--mesh {path}: needs ten-node tetrahedra with physical groups")
+    names = {int(v[0]): k for k, v in m.field_data.items() if int(v[1]) == 3}
+    tags = np.asarray(m.cell_data_dict["gmsh:physical"]["tetra10"], dtype=int)
+    part_names = tuple(names[t] for t in sorted(names))
+    part = np.searchsorted(sorted(names), tags).astype(np.int32)
+    tets = np.asarray(m.cells_dict["tetra10"], dtype=np.int64)
+    nodes = np.asarray(m.points, dtype=float)[:, :3]
+    used = np.unique(tets)
+    x = nodes[used, 0]
+    tol = 1e-9 * np.ptp(x) + 1e-12
+    sets = {"front_face": used[x <= x.min() + tol], "rear_face": used[x >= x.max() - tol]}
+    return CrankMesh(path.stem, nodes, tets, part, part_names, sets, crank.material, None)
+

@@ -82,6 +82,7 @@ def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1
         else:
             plotter.view_vector((1.0, -1.2, 0.8), viewup=(0.0, 0.0, 1.0))
         plotter.reset_camera()
+        plotter.camera.zoom(1.35)
         if col == 0 and title:
             plotter.add_text(title, font_size=11, color="black")
     path = Path(path)

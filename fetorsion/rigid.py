@@ -90,12 +90,14 @@ def from_attachment(att, nodes: np.ndarray, node_xyz: np.ndarray, outward: float
         equivalent inertia per cylinder); the parallel-axis part m r² is then taken off so
         that the body's inertia about the crank axis equals ``att.polar_inertia``.
 
-    The body's axis is the x-parallel line through the face centroid (the crank axis for
-    end faces, the pin axis for pins).
+    The body's axis is the crank axis for end faces and the x-parallel line through the
+    nodes' centroid for pins.
     """
     nodes = np.asarray(nodes, dtype=np.int64)
     c = node_xyz[nodes].mean(axis=0)
     c[0] += outward * att.offset
+    if outward != 0.0:
+        c[1:] = 0.0  # an end-face body sits on the crank axis, whatever the face's node pattern
     polar = att.polar_inertia
     if about_crank_axis:
         polar = polar - att.mass * float(c[1] ** 2 + c[2] ** 2)

@@ -20,9 +20,16 @@ from .lumped import lumped
 from .stiffness import DEFAULT_WEB_METHOD
 
 
-def with_values(crank: Crank, changes: dict[str, float]) -> Crank:
-    """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value."""
+def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
+    """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
+
+    ``details=False`` also drops fillets, oil holes and the uncertainty table: a cheap
+    variant for coarse FE checks, where those details would dominate the element count.
+    """
     raw = copy.deepcopy(crank.raw)
+    if not details:
+        for key in ("fillets", "oil_holes", "uncertainty"):
+            raw.pop(key, None)
     for path, value in changes.items():
         parent_path, _, key = path.rpartition(".")
         parents = resolve_field(raw, parent_path) if parent_path else [("", raw)]
@@ -92,6 +99,30 @@ class SensitivityResult:
         ax.legend(fontsize=7)
         ax.figure.tight_layout()
         return ax
+
+
+def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size: float = 0.025) -> list[dict]:
+    """FE first torsional frequency at the bounds of the ``count`` most influential inputs.
+
+    Runs on the crank without fillets and drillings at a coarse mesh (a few seconds per
+    run): what is compared is the change of f1, which those details barely affect.
+    """
+    from .crankfe import run_modal
+
+    def f1(changes):
+        return run_modal(with_values(crank, changes, details=False), mesh_size, modes=12).result.first_torsional()
+
+    groups = dict(crank.uncertainty)
+    nominal = f1({})
+    out = []
+    for row in sorted(result.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"]))[:count]:
+        members = groups[row["field"]]
+        lo = f1({p: low for p, low, _ in members})
+        hi = f1({p: high for p, _, high in members})
+        out.append({"field": row["field"], "fe_f1_nominal_hz": nominal, "fe_f1_low_hz": lo, "fe_f1_high_hz": hi,
+                    "fe_change_percent": 100 * (hi - lo) / nominal,
+                    "lumped_change_percent": 100 * (row["f1_high_hz"] - row["f1_low_hz"]) / result.f1_hz})
+    return out
 
 
 def run_sensitivity(crank: Crank, dof: int = 17, stiffness: str = DEFAULT_WEB_METHOD) -> SensitivityResult:

@@ -11,8 +11,11 @@ from fetorsion.pipeline import DEFAULT_STEPS, run
 from conftest import GEOMETRY
 
 
+NO_FE = tuple(step for step in DEFAULT_STEPS if "FE" not in step[0])
+
+
 def test_run_writes_report_consistent_with_the_api(tmp_path):
-    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx")
+    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE)
     report = (out / "report.md").read_text()
     assert "## Lumped models" in report and "905.9" in report
     data = json.loads((out / "results.json").read_text())
@@ -22,6 +25,25 @@ def test_run_writes_report_consistent_with_the_api(tmp_path):
     for img in ("lumped_modes_17dof.png", "sensitivity.png"):
         assert (out / img).stat().st_size > 10_000
     assert [p.name for p in tmp_path.iterdir()] == ["glx"]  # no temporary folder left
+
+
+def test_full_run_with_fe_and_mode_images(tmp_path):
+    # Every step, FE included, on the Renault crank without fillets and drillings (cheap mesh).
+    import re
+    from PIL import Image
+    text = (GEOMETRY / "renault21.toml").read_text()
+    text = re.sub(r"^\[uncertainty\].*", "", text, flags=re.M | re.S)
+    text = re.sub(r"^(journal|pin|diameter) = (2\.5|5\.0)", r"\1 = 0.0", text, flags=re.M)
+    src = tmp_path / "r21.toml"
+    src.write_text(text)
+    out = run(src, tmp_path / "r21", options={"mesh_size": 0.03})
+    data = json.loads((out / "results.json").read_text())
+    f1 = data["fe"]["first_torsional_hz"]
+    assert 0.9 < f1 / data["lumped"]["carter"][2]["frequencies_hz"][0] < 1.1
+    images = sorted(out.glob("mode_*_torsional.png"))
+    assert images and Image.open(images[0]).size == (1400, 600)
+    assert "FE (" in data["campbell"]["source"]  # the Campbell diagram used the FE modes
+    assert "## 3D FE modal analysis" in (out / "report.md").read_text()
 
 
 def test_broken_description_fails_cleanly_and_writes_nothing(tmp_path):

@@ -59,3 +59,14 @@ def test_group_member_rules():
     with pytest.raises(DescriptionError) as info:
         parse_crank(raw)
     assert "uncertainty.mat.material.density_kgm3" in str(info.value)
+
+
+def test_fe_check_material_follows_exact_scaling():
+    # Crank alone, same geometry and mesh: FE f1 ∝ √(E/ρ) exactly, as in the lumped model.
+    from fetorsion.sensitivity import fe_check
+    crank = only(read_raw("peugeot_glx.toml"),
+                 {"material": {"material.youngs_modulus_pa": [165e9, 212e9], "material.density_kgm3": [7100.0, 7870.0]}})
+    row = fe_check(crank, run_sensitivity(crank), count=1, mesh_size=0.03)[0]
+    expected = math.sqrt((212 / 7870) / (165 / 7100))
+    assert row["fe_f1_high_hz"] / row["fe_f1_low_hz"] == pytest.approx(expected, rel=1e-6)
+    assert row["fe_change_percent"] == pytest.approx(row["lumped_change_percent"], rel=1e-6)
