@@ -155,3 +155,13 @@ def step_fillet_length(d: float, D: float, r: float) -> float:
     a = _STEP_FIT @ np.array([rho**2, rho, 1.0])
     x = min(D / d, 3.0)
     return d * max(0.0, float(np.polyval(a[::-1], x)))
+
+
+def chart(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term from fetorsion's computed BICERA-style chart (:mod:`fetorsion.webchart`), m."""
+    from .webchart import web_equivalent_length_chart
+
+    return web_equivalent_length_chart(crank, web_index, d_e)
+
+
+WEB_METHODS["chart"] = chart

@@ -46,6 +46,8 @@ from .tetmesh import TetMesh
 #: Sized by the convergence study in docs/web-chart.md: at D_t/6 the throw stiffness is
 #: within about 0.3 % of the finest mesh tried.
 MESH_SHARE = 1.0 / 6.0
+#: The same for junctions without fillets (slow convergence at the sharp edges).
+SHARP_MESH_SHARE = 1.0 / 12.0
 #: Element size on fillets and drillings as a share of the smallest fillet or drilling
 #: radius: at r/2 the GLX throw stiffness is within about 0.1 % of the finest mesh tried
 #: (at r: 0.4 %).
@@ -122,8 +124,15 @@ def throw_of(crank: Crank, index: int) -> Crank:
 
 
 def default_mesh_size(crank: Crank) -> float:
-    """Global element size (m) for a throw of ``crank``: :data:`MESH_SHARE` · D_t."""
-    return MESH_SHARE * min(j.diameter for j in crank.journals)
+    """Global element size (m) for a throw of ``crank``: :data:`MESH_SHARE` · D_t, or
+    :data:`SHARP_MESH_SHARE` · D_t when a junction has no fillet.
+
+    A sharp re-entrant junction is a stress singularity: the web term then converges only
+    as about h^1.5 (docs/web-chart.md): at D_t/6 it comes out some 4 % short, at D_t/12
+    about 1.5 % (use :mod:`fetorsion.webchart`'s two-mesh extrapolation for better).
+    """
+    share = MESH_SHARE if crank.fillets.journal > 0 and crank.fillets.pin > 0 else SHARP_MESH_SHARE
+    return share * min(j.diameter for j in crank.journals)
 
 
 def static_torsion(mesh: TetMesh, material, fixed: str = "front_face", loaded: str = "rear_face",

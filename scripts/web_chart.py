@@ -24,6 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import matplotlib  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -210,6 +211,7 @@ def plot(table: dict, done: dict) -> None:
     ax.plot([], [], "kx", label="held-out FE")
     ax.set_xscale("log")
     ax.set_xticks(Q_GRID, [f"{q:g}" for q in Q_GRID])
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
     ax.set_xlabel("R·D_e³ / (L_b·B_e³)")
     ax.set_ylabel("L_e0 / D_t (per web)")
     ax.set_title("Computed web chart (static 3D FE of the throw)")

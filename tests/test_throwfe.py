@@ -13,7 +13,7 @@ from fetorsion.stiffness import WEB_METHODS, cylinder_equivalent_length, step_fi
 from fetorsion.tetmesh import cylinder_mesh
 from fetorsion.throwfe import static_torsion, stepped_shaft_mesh, throw_of
 
-from .conftest import GEOMETRY, simple_crank_raw
+from conftest import GEOMETRY, simple_crank_raw
 
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 G = STEEL.shear_modulus
