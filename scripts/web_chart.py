@@ -96,7 +96,7 @@ def main(argv=None) -> int:
     table = build_table(done, p)
     write_text_atomic(wc.CHART_FILE, json.dumps(table, indent=1))
     fe_seconds = done["rate"]["seconds"] + sum(v["seconds"] for k, v in done.items() if k != "rate")
-    write_text_atomic(OUT / "web_chart.md", markdown(table, done, fe_seconds, wall))
+    write_text_atomic(OUT / "web_chart.md", markdown(table, done, fe_seconds))
     plot(table, done)
     print(f"{len(jobs)} points, FE time {fe_seconds:.0f} s, wall this run {wall:.0f} s", flush=True)
     return 0
@@ -160,7 +160,7 @@ def validity(table: dict, done: dict) -> dict:
             "correction_checks": [{"c": c, "q": q, "kind": k, "fe": a, "chart": b} for c, q, k, a, b in cors]}
 
 
-def markdown(table: dict, done: dict, fe_seconds: float, wall: float) -> str:
+def markdown(table: dict, done: dict, fe_seconds: float) -> str:
     v = table["validity"]
     lines = ["# Computed BICERA web chart: L_e0/D_t", "",
              "Static 3D FE torsion of one throw of the parametric family in `fetorsion/webchart.py` "
@@ -195,7 +195,8 @@ def markdown(table: dict, done: dict, fe_seconds: float, wall: float) -> str:
               for k in v["correction_checks"]]
     n = len([k for k in done if k != "rate"])
     lines += ["", f"Sweep: {n} chart points (two meshes each) plus a three-mesh convergence study; "
-              f"FE time {fe_seconds:.0f} s in all on 2 shared CPU cores (this run's wall time {wall:.0f} s).", ""]
+              f"{fe_seconds:.0f} s of FE wall time in all (meshing included, one job at a time on 2 CPU cores "
+              "shared with other work).", ""]
     return "\n".join(lines)
 
 
