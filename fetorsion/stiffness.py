@@ -10,6 +10,10 @@ centre to journal centre: one journal length, two webs, one pin); each is split 
 into eq. (4) for the journal, eq. (5) for the pin, and the remainder shared by the two
 webs, so that the sum over a throw is exactly the published throw formula.
 
+Two methods are computed rather than quoted (docs/web-chart.md): ``fe``, the static 3D FE
+of the web's own throw (:mod:`fetorsion.throwfe`), and ``chart``, fetorsion's computed
+counterpart of the BICERA chart (:mod:`fetorsion.webchart`).
+
 Carter's and Ker Wilson's coefficients are *as commonly quoted*: no source we could
 read prints them (see docs/stiffness-formulas.md), so they are named constants here,
 to be corrected against the books.

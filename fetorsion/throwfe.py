@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from . import assembly
-from .crank import Crank, Cylinder, Engine
+from .crank import Crank, Engine
 from .eigen import factorize
 from .errors import FetorsionError
 from .rigid import RigidBody, reduction
@@ -356,7 +356,8 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
             fine_faces = [t for _, t in gmsh.model.getEntities(2) if gmsh.model.getType(2, t) == "Torus"]
         ends = {}
         for name, x in (("front_face", 0.0), ("rear_face", (l_small + l_large) * s)):
-            ends[name] = [t for _, t in gmsh.model.getEntitiesInBoundingBox(x - 1e-3, -1e9, -1e9, x + 1e-3, 1e9, 1e9, 2)]
+            box = (x - 1e-3, -1e9, -1e9, x + 1e-3, 1e9, 1e9)
+            ends[name] = [t for _, t in gmsh.model.getEntitiesInBoundingBox(*box, 2)]
         fine = (0.5 * fillet if fillet_size is None else fillet_size) if fillet > 0 else size
         cm = mesh_model({"shaft": [vol]}, ends, size * s, fine * s, fine_faces, name="stepped shaft")
     return TetMesh(cm.nodes, cm.tets, cm.node_sets)

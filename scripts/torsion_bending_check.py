@@ -58,7 +58,8 @@ def main(argv=None) -> int:
         nodes = part_nodes(cm, f"journal_{j + 1}")
         p = cm.nodes[nodes]
         xm = 0.5 * (p[:, 0].min() + p[:, 0].max())
-        ring = nodes[(np.hypot(p[:, 1], p[:, 2]) > 0.49 * journal.diameter) & (np.abs(p[:, 0] - xm) < RING_HALF_WIDTH)]
+        surface = np.hypot(p[:, 1], p[:, 2]) > 0.49 * journal.diameter
+        ring = nodes[surface & (np.abs(p[:, 0] - xm) < RING_HALF_WIDTH)]
         bodies.append(RigidBody(f"J{j + 1}", dof_of_node[ring], 0.0, np.zeros((3, 3)), np.array([xm, 0.0, 0.0])))
     red = reduction(K.shape[0], bodies, m.doflocs.T)
     Kr, Mr = red.reduce(K), red.reduce(M)
@@ -66,7 +67,8 @@ def main(argv=None) -> int:
     sigma = -(2 * np.pi * 100.0) ** 2
     print(f"{crank.name}: {K.shape[0]} DOF, {len(bodies)} journal rings")
     first = {}
-    for label, drop in (("rings free", []), ("rings held in y, z", [n + 6 * b + k for b in range(len(bodies)) for k in (1, 2)])):
+    lateral = [n + 6 * b + k for b in range(len(bodies)) for k in (1, 2)]  # ty, tz of every ring
+    for label, drop in (("rings free", []), ("rings held in y, z", lateral)):
         keep = np.setdiff1d(np.arange(Kr.shape[0]), drop)
         res = eigen.lowest_modes(Kr[keep][:, keep], Mr[keep][:, keep], 12, sigma)
         pos = np.full(Kr.shape[0], -1)
@@ -82,7 +84,8 @@ def main(argv=None) -> int:
             torsional = np.abs(tx).max() > np.abs(tilt).max()
             if torsional and label not in first:
                 first[label] = f
-            print(f"  {f:8.1f}  {'T' if torsional else 'B'}  twist {np.round(tx * 1e3, 1)}  tilt {np.round(tilt * 1e3, 1)}")
+            kind = "T" if torsional else "B"
+            print(f"  {f:8.1f}  {kind}  twist {np.round(tx * 1e3, 1)}  tilt {np.round(tilt * 1e3, 1)}")
     if len(first) == 2:
         a, b = first.values()
         print(f"\nfirst torsional: {a:.1f} Hz free, {b:.1f} Hz held laterally ({100 * (b / a - 1):+.1f} %)")
