@@ -217,7 +217,8 @@ def lumped(model: Crank | Chain, dof: int = 17, stiffness: str = DEFAULT_WEB_MET
         Partition name for a crank, one of 5, 6, 17, 19, 21 (see module docs);
         ignored for a chain.
     stiffness : str
-        Web stiffness method: ``"carter"``, ``"ker-wilson"`` or ``"beam"``.
+        Web stiffness method, a key of :data:`fetorsion.stiffness.WEB_METHODS`: ``"carter"``,
+        ``"ker-wilson"``, ``"beam"``, ``"fe"`` (static FE of each throw, cached) or ``"chart"``.
 
     Returns
     -------

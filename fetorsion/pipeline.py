@@ -56,25 +56,30 @@ def step_lumped(ctx: RunContext) -> None:
 
     matplotlib.use("Agg")
     crank = ctx.crank
-    table = {}
+    table, skipped = {}, {}
     for method in WEB_METHODS:
-        table[method] = [lumped(crank, d, method) for d in PARTITIONS]
+        try:
+            table[method] = [lumped(crank, d, method) for d in PARTITIONS]
+        except FetorsionError as exc:  # e.g. a web outside the computed chart's range
+            skipped[method] = str(exc)
     ctx.results["lumped"] = {m: [r.to_dict() for r in rs] for m, rs in table.items()}
+    ctx.results["lumped_skipped"] = skipped
     main = table[DEFAULT_WEB_METHOD][PARTITIONS.index(17)]
     img = ctx.save(main.plot().figure, "lumped_modes_17dof.png")
     measured = crank.notes.get("measured_first_torsional_hz")
     paper = crank.notes.get("paper_lumped_first_torsional_hz", {})
     lines = ["## Lumped models (BICERA-style equivalent lengths)", "",
              "First torsional frequency f1 (Hz), free-free; error against the measurement where there is one.", ""]
-    head = "| model | " + " | ".join(WEB_METHODS) + (" | paper |" if paper else " |")
-    lines += [head, "|" + "---|" * (len(WEB_METHODS) + 1 + bool(paper))]
+    head = "| model | " + " | ".join(table) + (" | paper |" if paper else " |")
+    lines += [head, "|" + "---|" * (len(table) + 1 + bool(paper))]
     for i, d in enumerate(PARTITIONS):
-        cells = [_with_error(table[m][i].frequencies_hz[0], measured) for m in WEB_METHODS]
+        cells = [_with_error(table[m][i].frequencies_hz[0], measured) for m in table]
         row = f"| {d} DOF | " + " | ".join(cells)
         row += f" | {paper.get(str(d), '')} |" if paper else " |"
         lines.append(row)
     if measured:
         lines += ["", f"Measured (free-free modal test): **{measured:g} Hz**."]
+    lines += [f"Web method `{m}` not used: {why}" for m, why in skipped.items()]
     lines += ["", f"17-DOF mode shapes (Carter webs), unit twist at the pulley end: ![]({img})", ""]
     ctx.report += lines
 

@@ -10,6 +10,10 @@ centre to journal centre: one journal length, two webs, one pin); each is split 
 into eq. (4) for the journal, eq. (5) for the pin, and the remainder shared by the two
 webs, so that the sum over a throw is exactly the published throw formula.
 
+Two methods are computed rather than quoted (docs/web-chart.md): ``fe``, the static 3D FE
+of the web's own throw (:mod:`fetorsion.throwfe`), and ``chart``, fetorsion's computed
+counterpart of the BICERA chart (:mod:`fetorsion.webchart`).
+
 Carter's and Ker Wilson's coefficients are *as commonly quoted*: no source we could
 read prints them (see docs/stiffness-formulas.md), so they are named constants here,
 to be corrected against the books.
@@ -18,6 +22,8 @@ to be corrected against the books.
 from __future__ import annotations
 
 import math
+
+import numpy as np
 from typing import Callable
 
 from .crank import Crank, Cylinder, Web
@@ -114,3 +120,52 @@ def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str 
             f"webs.{web_index + 1}: the {method} formula gives a non-positive equivalent length "
             f"({value:.4g} m); this web is outside the range the formula was made for")
     return value
+
+
+def fe(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term of the throw's static 3D FE torsion (:mod:`fetorsion.throwfe`), per web, m."""
+    from .throwfe import web_equivalent_length_fe  # Gmsh and scikit-fem load only when asked for
+
+    return web_equivalent_length_fe(crank, web_index, d_e)
+
+
+WEB_METHODS["fe"] = fe
+
+
+# Nestorides (BICERA 1958) stepped-shaft fillet chart as fitted in the rotordin Fortran code
+# (tsecdl.f, docs/stiffness-formulas.md §4): ΔL/d = Σ a_k(ρ) x^k, a_k quadratic in ρ.
+_STEP_FIT = np.array([[-0.39806698, 0.905826203, -0.374011947],   # a0: ρ², ρ, 1
+                      [0.70609558, -1.35354548, 0.534644181],     # a1
+                      [-0.36438888, 0.518083459, -0.183161384],   # a2
+                      [0.05618723, -0.065556259, 0.021020194]])   # a3
+
+
+def step_fillet_length(d: float, D: float, r: float) -> float:
+    """Extra length (m, at the smaller diameter d) of a shaft step d → D with fillet radius r.
+
+    Nestorides' chart as fitted in ``tsecdlf`` (docs/stiffness-formulas.md §4), with
+    x = min(D/d, 3), ρ = r/(d/2):  ΔL/d = max(0, a3 x³ + a2 x² + a1 x + a0), 0 for ρ > 0.52.
+
+    Parameters
+    ----------
+    d, D : float
+        Smaller and larger diameter, m.
+    r : float
+        Fillet radius, m.
+    """
+    rho = r / (0.5 * d)
+    if rho > 0.52:
+        return 0.0
+    a = _STEP_FIT @ np.array([rho**2, rho, 1.0])
+    x = min(D / d, 3.0)
+    return d * max(0.0, float(np.polyval(a[::-1], x)))
+
+
+def chart(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term from fetorsion's computed BICERA-style chart (:mod:`fetorsion.webchart`), m."""
+    from .webchart import web_equivalent_length_chart
+
+    return web_equivalent_length_chart(crank, web_index, d_e)
+
+
+WEB_METHODS["chart"] = chart
