@@ -87,9 +87,9 @@ def cmd_mesh(args) -> int:
                   f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
                   f"{q.seconds:.1f} s -> {args.output}")
     if args.png is not None:
-        from .picture import render_png
+        from .render import render_solid
 
-        print(f"picture -> {render_png(crank, args.png)}")
+        print(f"picture -> {render_solid(crank, args.png)}")
     return 0
 
 

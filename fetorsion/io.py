@@ -19,6 +19,8 @@ def atomic_output(path):
     tmp = Path(tmp)
     try:
         yield tmp
+        # mkstemp makes the file private (0600); give it the mode a plain open() would.
+        os.chmod(tmp, 0o666 & ~_umask())
         os.replace(tmp, path)
     except BaseException:
         tmp.unlink(missing_ok=True)
@@ -35,3 +37,14 @@ def save_figure_atomic(fig, path, **kwargs) -> None:
     """Save a matplotlib figure to ``path`` atomically (format from the suffix)."""
     with atomic_output(path) as tmp:
         fig.savefig(tmp, **kwargs)
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def public_dir_mode(path) -> None:
+    """Give a folder made by ``tempfile.mkdtemp`` (0700) the mode ``mkdir`` would."""
+    os.chmod(path, 0o777 & ~_umask())

@@ -21,7 +21,7 @@ import numpy as np
 
 from .crank import Chain, Crank, load
 from .errors import FetorsionError
-from .io import save_figure_atomic, write_text_atomic
+from .io import public_dir_mode, save_figure_atomic, write_text_atomic
 from .lumped import PARTITIONS, lumped
 from .stiffness import DEFAULT_WEB_METHOD, WEB_METHODS
 
@@ -222,6 +222,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None) -> Path:
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    public_dir_mode(work)
     try:
         ctx = RunContext(crank, work, dict(options or {}))
         ctx.report += [f"# {crank.name}", "", f"Description: `{path}`", ""]

@@ -67,3 +67,15 @@ def test_failing_step_keeps_the_previous_report(tmp_path):
     assert (out / "report.md").read_text() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r"]
     assert not (out / "partial.txt").exists()
+
+
+def test_report_files_are_readable_by_others(tmp_path):
+    import os
+    import stat
+    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE[:1])
+    mask = os.umask(0)
+    os.umask(mask)
+    for p in [out, *out.iterdir()]:
+        mode = stat.S_IMODE(p.stat().st_mode)
+        expected = (0o777 if p.is_dir() else 0o666) & ~mask
+        assert mode == expected, (p, oct(mode))
