@@ -231,9 +231,10 @@ class _Table:
             return _MISSING if default is _REQUIRED else default
         return self.data[key]
 
-    def number(self, key, default=_REQUIRED if False else None, *, length=False,
+    def number(self, key, default=None, *, length=False,
                positive=False, nonnegative=False, below=None, above=None):
-        """A real number; ``length=True`` converts from the file's length unit to m."""
+        """A real number (required when ``default`` is None); ``length=True`` converts
+        from the file's length unit to m."""
         raw = self._get(key, _REQUIRED if default is None else default)
         if raw is _MISSING:
             return math.nan
@@ -360,8 +361,7 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     problems: list[Problem] = []
     root = _Table(data, "", problems)
     t = root.table("chain")
-    root.table("meta", required=False).data  # free-form, not checked
-    root.used.add("meta")
+    root.used.add("meta")  # free-form notes, not checked
     name = t.text("name", default=Path(source).stem)
     inertias = t.numbers("inertias_kgm2")
     stiffnesses = t.numbers("stiffnesses_nm_per_rad")
