@@ -5,5 +5,5 @@ import fetorsion
 crank = fetorsion.load("geometry/renault21.toml")
 res = fetorsion.run_campbell(crank)
 print(res.table())
-worst = max((c for c in res.crossings if c["in_range"]), key=lambda c: c["severity_deg"])
-print(f"worst: order {worst['order']:g} at {worst['rpm']:.0f} rpm, {worst['severity_deg']:.3f} deg at the pulley")
+worst = max((c for c in res.crossings if c["in_range"]), key=lambda c: c["severity"])
+print(f"worst: order {worst['order']:g} at {worst['rpm']:.0f} rpm, {worst['severity']:.3f} deg at the pulley")

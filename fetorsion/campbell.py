@@ -85,7 +85,7 @@ class CampbellResult:
     crossings : list of dict
         Each ``mode`` (1-based), ``frequency_hz``, ``order``, ``rpm``, ``in_range``,
         ``torque_harmonic_nm`` (one cylinder's |T_q| at that speed), ``phase_sum`` (0..1),
-        ``severity_deg`` (resonant vibratory angle at the pulley, degrees).
+        ``severity`` (resonant vibratory angle at the pulley, degrees, for the modal damping).
     """
 
     name: str
@@ -100,16 +100,17 @@ class CampbellResult:
     def to_dict(self) -> dict:
         return {"name": self.name, "source": self.source, "frequencies_hz": self.frequencies_hz.tolist(),
                 "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
-                "modal_damping_ratio": self.damping_ratio, "crossings": self.crossings,
+                "modal_damping_ratio": self.damping_ratio,
+                "severity_unit": "deg: resonant vibratory angle at the pulley", "crossings": self.crossings,
                 "torque_harmonics": self.harmonics_table}
 
     def table(self, only_in_range: bool = True) -> str:
         rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
-        rows.sort(key=lambda c: -c["severity_deg"])
+        rows.sort(key=lambda c: -c["severity"])
         head = f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} {'severity [deg]':>15}"
         lines = [head, "-" * len(head)]
         lines += [f"{c['mode']:>4} {c['frequency_hz']:8.1f} {c['order']:6.1f} {c['rpm']:7.0f} "
-                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity_deg']:15.4g}" for c in rows]
+                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity']:15.4g}" for c in rows]
         return "\n".join(lines)
 
     def plot(self, ax=None, max_rpm: float | None = None):
@@ -131,7 +132,7 @@ class CampbellResult:
             ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz")
         inside = [c for c in self.crossings if c["in_range"]]
         if inside:
-            sev = np.array([c["severity_deg"] for c in inside])
+            sev = np.array([c["severity"] for c in inside])
             size = 20 + 400 * sev / sev.max()
             ax.scatter([c["rpm"] for c in inside], [c["frequency_hz"] for c in inside], s=size,
                        facecolors="none", edgecolors="crimson", lw=1.3, zorder=3,
@@ -205,7 +206,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     crossings = [
         {"mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(rpm[j, i]),
          "in_range": bool(lo <= rpm[j, i] <= hi), "torque_harmonic_nm": float(abs(Tq[j, i])),
-         "phase_sum": float(phase_sum[j, i]), "severity_deg": float(np.degrees(theta[j, i]))}
+         "phase_sum": float(phase_sum[j, i]), "severity": float(np.degrees(theta[j, i]))}
         for j in range(k) for i, q in enumerate(orders)
     ]
     table = {}

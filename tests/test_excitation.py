@@ -120,7 +120,7 @@ def test_severity_is_independent_of_mode_normalisation(renault):
                             s**2 * modes.modal_inertia)
     a = run_campbell(renault, modes)
     b = run_campbell(renault, scaled)
-    np.testing.assert_allclose([c["severity_deg"] for c in a.crossings], [c["severity_deg"] for c in b.crossings],
+    np.testing.assert_allclose([c["severity"] for c in a.crossings], [c["severity"] for c in b.crossings],
                                rtol=1e-12)
 
 
@@ -144,7 +144,7 @@ def test_campbell_cli_writes_json_and_plot(tmp_path):
                         "--plot", str(png), "--orders", "0.5,1,2,4,6"], capture_output=True, text=True, cwd=ROOT)
     assert p.returncode == 0, p.stderr
     data = json.loads(out.read_text())
-    assert {"mode", "order", "rpm", "severity_deg"} <= set(data["crossings"][0])
+    assert {"mode", "order", "rpm", "severity"} <= set(data["crossings"][0])
     assert png.stat().st_size > 10_000
     p = subprocess.run([sys.executable, "-m", "fetorsion.cli", "campbell", "geometry/peugeot_glx.toml"],
                        capture_output=True, text=True, cwd=ROOT)
