@@ -98,7 +98,7 @@ def step_fe(ctx: RunContext) -> None:
     size = ctx.options.get("mesh_size", 0.010)
     _progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
     mesh = mesh_crank(ctx.crank, size)
-    _progress(f"  {len(mesh.tets)} tetrahedra, {3 * len(np.unique(mesh.tets))} DOF in {mesh.quality.seconds:.1f} s; "
+    _progress(f"  {len(mesh.tets)} tetrahedra, {len(np.unique(mesh.tets))} nodes in {mesh.quality.seconds:.1f} s; "
               "assembling, factorising, eigen-solving ...")
     fe = run_modal(ctx.crank, size, modes=ctx.options.get("modes", 20), mesh=mesh)
     t = fe.result.timings_s
