@@ -156,14 +156,8 @@ def _save_plot(obj, path: str) -> None:
     import matplotlib
 
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
     out = obj.plot()
-    fig = out.figure if hasattr(out, "figure") else out
-    try:
-        save_figure_atomic(fig, path, dpi=130)
-    finally:
-        plt.close(fig)
+    save_figure_atomic(out.figure if hasattr(out, "figure") else out, path, close=True, dpi=130)
 
 
 def _partition_of(source: str) -> int:

@@ -26,10 +26,7 @@ def _out(args):
 
 
 def _save_plot(fig, path):
-    import matplotlib.pyplot as plt
-
-    save_figure_atomic(fig, path, dpi=130)
-    plt.close(fig)
+    save_figure_atomic(fig, path, close=True, dpi=130)
 
 
 def _load(path):

@@ -21,6 +21,7 @@ import numpy as np
 from .campbell import TorsionalModes
 from .crank import Attachment, Crank
 from .errors import FetorsionError
+from .extrapolation import richardson
 from .mesh import CrankMesh, mesh_crank
 from .modal import ModalResult, modal
 from .modeshape import slab_fit
@@ -133,7 +134,7 @@ def run_modal(crank: Crank, mesh_size: float = 0.010, modes: int = 20, fillet_si
     return CrankModal(crank, cm, res)
 
 
-def richardson(sizes, values) -> dict:
+def extrapolate_refinement(sizes, values) -> dict:
     """Extrapolate f(h) = f∞ + C hᵖ from three results at sizes in a constant ratio.
 
     Returns ``extrapolated``, ``order`` p and ``error_estimate`` (|f∞ − finest|). When the
@@ -149,7 +150,7 @@ def richardson(sizes, values) -> dict:
     if d1 * d2 <= 0 or abs(d2) >= abs(d1):
         return {"extrapolated": float(f[2]), "order": None, "error_estimate": float(np.ptp(f))}
     p = float(np.log(d1 / d2) / np.log(1 / ratio))
-    f_inf = float(f[2] + d2 / (ratio**-p - 1))
+    f_inf = float(richardson(f[1], f[2], h[1], h[2], p))
     return {"extrapolated": f_inf, "order": p, "error_estimate": abs(f_inf - float(f[2]))}
 
 
@@ -166,7 +167,7 @@ def run_refinement(crank: Crank, mesh_size: float, modes: int = 20, fillet_size:
     scales = [1.0, REFINE_RATIO, REFINE_RATIO**2]
     runs = [run_modal(crank, mesh_size * s, modes, fine * s, **solver) for s in scales]
     f1 = [r.result.first_torsional() for r in runs]
-    out = richardson([mesh_size * s for s in scales], f1)
+    out = extrapolate_refinement([mesh_size * s for s in scales], f1)
     out.update(sizes_m=[mesh_size * s for s in scales], fillet_sizes_m=[fine * s for s in scales],
                dofs=[r.result.dofs for r in runs], first_torsional_hz=f1)
     return runs, out

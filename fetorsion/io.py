@@ -33,10 +33,17 @@ def write_text_atomic(path, text: str) -> None:
         tmp.write_text(text, encoding="utf-8")
 
 
-def save_figure_atomic(fig, path, **kwargs) -> None:
-    """Save a matplotlib figure to ``path`` atomically (format from the suffix)."""
-    with atomic_output(path) as tmp:
-        fig.savefig(tmp, **kwargs)
+def save_figure_atomic(fig, path, close: bool = False, **kwargs) -> None:
+    """Save a matplotlib figure to ``path`` atomically (format from the suffix);
+    ``close=True`` also releases the figure."""
+    try:
+        with atomic_output(path) as tmp:
+            fig.savefig(tmp, **kwargs)
+    finally:
+        if close:
+            import matplotlib.pyplot as plt
+
+            plt.close(fig)
 
 
 def _umask() -> int:

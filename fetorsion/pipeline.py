@@ -39,10 +39,7 @@ class RunContext:
     timings_s: dict = field(default_factory=dict)
 
     def save(self, fig, name: str) -> str:
-        import matplotlib.pyplot as plt
-
-        save_figure_atomic(fig, self.folder / name, dpi=120)
-        plt.close(fig)
+        save_figure_atomic(fig, self.folder / name, close=True, dpi=120)
         return name
 
 

@@ -35,6 +35,7 @@ import numpy as np
 
 from .crank import Crank, Cylinder, Engine, Fillets, Material, OilHoles, Web
 from .errors import FetorsionError
+from .extrapolation import convergence_rate, richardson
 
 CHART_FILE = Path(__file__).with_name("data") / "web_chart.json"
 
@@ -130,25 +131,6 @@ def chart_point_fe(c: float, q: float, mesh_share: float, **kwargs) -> dict:
     res = torsional_stiffness_fe(throw, mesh_share * d_t)
     le = web_term(throw, res.equivalent_length(throw.material.shear_modulus, d_t), d_t)
     return {"le_dt": le / d_t, "dofs": res.dofs, "seconds": res.seconds}
-
-
-def convergence_rate(values, shares) -> float:
-    """Observed order p of L(h) = L∞ − C h^p from three meshes h₁ > h₂ > h₃ (bisection, 0.3 ≤ p ≤ 4)."""
-    (l1, l2, l3), (h1, h2, h3) = values, shares
-    ratio = (l2 - l1) / (l3 - l2)
-    g = lambda p: (h1**p - h2**p) / (h2**p - h3**p) - ratio  # noqa: E731  increasing in p
-    lo, hi = 0.3, 4.0
-    if g(lo) * g(hi) > 0:
-        raise FetorsionError(f"mesh sequence {values} is not in the asymptotic range")
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if g(lo) * g(mid) > 0 else (lo, mid)
-    return 0.5 * (lo + hi)
-
-
-def richardson(coarse: float, fine: float, h_coarse: float, h_fine: float, p: float) -> float:
-    """L∞ ≈ L_fine + (L_fine − L_coarse) h_fineᵖ / (h_coarseᵖ − h_fineᵖ)."""
-    return fine + (fine - coarse) * h_fine**p / (h_coarse**p - h_fine**p)
 
 
 def chart_point(c: float, q: float, rate: float, shares=MESH_SHARES, **kwargs) -> dict:

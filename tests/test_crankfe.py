@@ -11,7 +11,7 @@ import pytest
 
 import fetorsion
 from fetorsion.crank import parse_crank
-from fetorsion.crankfe import attachment_bodies, richardson, run_modal
+from fetorsion.crankfe import attachment_bodies, extrapolate_refinement, run_modal
 from fetorsion.mesh import mesh_crank, read_mesh, write_mesh
 
 from conftest import GEOMETRY, ROOT
@@ -61,11 +61,11 @@ def test_fe_pin_twist_follows_the_lumped_mode_shape(renault_fe):
     assert np.all(np.diff(fe) < 0)
 
 
-def test_richardson_is_exact_for_a_power_law():
+def test_refinement_extrapolation_is_exact_for_a_power_law():
     h = np.array([10.0, 8.0, 6.4])
-    out = richardson(h, 500.0 + 0.3 * h**2)
+    out = extrapolate_refinement(h, 500.0 + 0.3 * h**2)
     assert out["extrapolated"] == pytest.approx(500.0, rel=1e-12) and out["order"] == pytest.approx(2.0)
-    noisy = richardson(h, [500.0, 501.0, 499.5])
+    noisy = extrapolate_refinement(h, [500.0, 501.0, 499.5])
     assert noisy["order"] is None and noisy["error_estimate"] == pytest.approx(1.5)
 
 
