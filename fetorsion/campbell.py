@@ -186,8 +186,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     if np.any(orders <= 0):
         raise FetorsionError(f"orders must be > 0, got {orders.tolist()}")
-    lo, hi = speed_range or crank.excitation.speed_range
-    zeta = damping_ratio or crank.excitation.modal_damping_ratio
+    lo, hi = crank.excitation.speed_range if speed_range is None else speed_range
+    zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio
     k = min(n_modes, len(modes.frequencies_hz))
     f = modes.frequencies_hz[:k]
     rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)

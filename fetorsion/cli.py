@@ -4,18 +4,24 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 from pathlib import Path
 
 import numpy as np
 
 from . import cli_mechanics
-from .crank import Chain, load
+from .cli_options import integer, real
+from .crank import Chain, load, plausibility_warnings
 from .errors import FetorsionError
-from .io import save_figure_atomic, write_text_atomic
+from .isolate import call_isolated
+from .io import check_output_file, check_report_folder, save_figure_atomic, write_text_atomic
 from .lumped import PARTITIONS, lumped
 from .parts import build_parts
 from .stiffness import DEFAULT_WEB_METHOD, WEB_METHODS
+
+PLOT_FORMATS = (".png", ".pdf", ".svg")
+DEFAULT_MESH_SIZE_MM = 10.0
 
 
 def _dof_list(text: str) -> list[int]:
@@ -41,8 +47,17 @@ def _emit_json(payload: dict, target: str | None) -> None:
         write_text_atomic(target, text)
 
 
+def load_description(path: str):
+    """Read a description; print a warning line for each implausible dimension."""
+    model = load(path)
+    if not isinstance(model, Chain):
+        for line in plausibility_warnings(model):
+            print(f"fetorsion: warning: {path}: {line}", file=sys.stderr)
+    return model
+
+
 def cmd_lumped(args) -> int:
-    model = load(args.file)
+    model = load_description(args.file)
     results = [lumped(model)] if isinstance(model, Chain) else [lumped(model, d, args.stiffness) for d in args.dof]
     out = sys.stderr if args.json == "-" else sys.stdout
     print(format_lumped_table(results), file=out)
@@ -68,24 +83,11 @@ def cmd_mesh(args) -> int:
 
     if args.output is None and args.png is None:
         raise FetorsionError("mesh: give -o OUT (.msh, .vtu, .inp) and/or --png OUT.png")
-    if args.output is not None and Path(args.output).suffix.lower() not in MESH_FORMATS:
-        raise FetorsionError(f"-o {args.output}: unknown mesh format; use one of {', '.join(MESH_FORMATS)}")
-    if args.mesh_size <= 0:
-        raise FetorsionError(f"--mesh-size {args.mesh_size:g}: must be > 0 (mm)")
-    crank = load(args.file)
-    if isinstance(crank, Chain):
-        raise FetorsionError(f"{args.file}: a chain file has no geometry to mesh; give a crank description")
-    with gmsh_session():
-        solid = build_solid(crank)
-        total, parts = solid_mass_properties(solid, crank.material.density)
-        print(format_mass_table(crank.name, total, parts))
-        if args.output is not None:
-            mesh = mesh_solid(solid, crank, args.mesh_size * 1e-3)
-            q = mesh.quality
-            write_mesh(mesh, args.output)
-            print(f"mesh: {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
-                  f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
-                  f"{q.seconds:.1f} s -> {args.output}")
+    crank = _load_crank(args.file, "a geometry to mesh")
+    if args.output is not None:
+        check_mesh_size(crank, args.mesh_size, "mesh")
+    print(call_isolated(_mesh_job, crank, args.mesh_size * 1e-3, args.output,
+                        what=f"{crank.name}: Gmsh, at --mesh-size {args.mesh_size:g} mm"))
     if args.png is not None:
         from .render import render_solid
 
@@ -93,19 +95,54 @@ def cmd_mesh(args) -> int:
     return 0
 
 
+def _mesh_job(crank, size: float, output: str | None) -> str:
+    """Mass table, and the mesh written to ``output``: one Gmsh session (in a child process)."""
+    from .geometry import build_solid, gmsh_session, solid_mass_properties
+    from .mesh import mesh_solid, write_mesh
+
+    with gmsh_session():
+        solid = build_solid(crank)
+        total, parts = solid_mass_properties(solid, crank.material.density)
+        lines = [format_mass_table(crank.name, total, parts)]
+        if output is not None:
+            mesh = mesh_solid(solid, crank, size)
+            q = mesh.quality
+            write_mesh(mesh, output)
+            lines.append(f"mesh: {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
+                         f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
+                         f"{q.seconds:.1f} s -> {output}")
+    return "\n".join(lines)
+
+
+def check_mesh_size(crank, mesh_size_mm: float, job: str, option: str = "--mesh-size") -> None:
+    """Refuse a mesh size whose mesh (``job`` 'mesh') or FE modal job ('modal') would not fit in
+    memory, naming the option and the estimate; print the estimate when the job is long."""
+    from .mesh import available_memory, estimate_mesh
+
+    est = estimate_mesh(crank, mesh_size_mm * 1e-3)
+    need = est.mesh_bytes if job == "mesh" else est.mesh_bytes + est.modal_bytes
+    have = available_memory()
+    gib = 2.0**30
+    what = f"about {est.tets:,} tetrahedra (±25 %) and {need / gib:.1f} GiB of memory"
+    if need > have:
+        raise FetorsionError(f"{option} {mesh_size_mm:g}: the {job} job would need {what}; this machine has "
+                             f"{have / gib:.1f} GiB available. Give a larger {option}")
+    if est.tets > 150_000:
+        print(f"fetorsion: {option} {mesh_size_mm:g} mm: expect {what} (available {have / gib:.1f} GiB); "
+              f"meshing alone takes about {est.mesh_seconds:.0f} s", file=sys.stderr)
+
+
 def cmd_modal(args) -> int:
     from .crankfe import run_modal, run_refinement
     from .mesh import read_mesh
 
+    if args.refine and args.mesh:
+        raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
     crank = _load_crank(args.file, "geometry")
-    if args.mesh_size <= 0:
-        raise FetorsionError(f"--mesh-size {args.mesh_size:g}: must be > 0 (mm)")
-    if args.modes < 1:
-        raise FetorsionError(f"--modes {args.modes}: must be >= 1")
+    if not args.mesh:
+        check_mesh_size(crank, args.mesh_size * (0.64 if args.refine else 1.0), "modal")
     refinement = None
     if args.refine:
-        if args.mesh:
-            raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
         runs, refinement = run_refinement(crank, args.mesh_size * 1e-3, args.modes)
         fe = runs[-1]
     else:
@@ -165,7 +202,7 @@ def _partition_of(source: str) -> int:
 
 
 def _load_crank(path: str, needs: str):
-    crank = load(path)
+    crank = load_description(path)
     if isinstance(crank, Chain):
         raise FetorsionError(f"{path}: this command needs a crank description with {needs}, not a chain file")
     return crank
@@ -189,6 +226,8 @@ def cmd_campbell(args) -> int:
     if args.source == "fe":
         from .crankfe import run_modal
 
+        check_mesh_size(crank, args.mesh_size, "modal")
+
         modes = run_modal(crank, args.mesh_size * 1e-3, modes=20).torsional_modes(args.modes)
     else:
         modes = lumped_modes(crank, _partition_of(args.source), args.stiffness)
@@ -202,9 +241,11 @@ def cmd_campbell(args) -> int:
 def cmd_response(args) -> int:
     from .response import run_response
 
-    crank = _load_crank(args.file, "[excitation]")
     if args.source == "fe":
-        raise FetorsionError("response: the forced response uses a lumped model; choose --source lumpedN")
+        raise FetorsionError("--source fe: the forced response uses a lumped model; choose --source lumpedN")
+    crank = _load_crank(args.file, "[excitation]")
+    if crank.excitation is None:
+        raise FetorsionError(f"{args.file}: the description has no [excitation] table")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
@@ -214,7 +255,10 @@ def cmd_response(args) -> int:
 def cmd_sensitivity(args) -> int:
     from .sensitivity import run_sensitivity
 
-    res = run_sensitivity(_load_crank(args.file, "[uncertainty]"), args.dof, args.stiffness)
+    crank = _load_crank(args.file, "[uncertainty]")
+    if not crank.uncertainty:
+        raise FetorsionError(f"{args.file}: the description has no [uncertainty] table")
+    res = run_sensitivity(crank, args.dof, args.stiffness)
     return _report(res, res.table(), args)
 
 
@@ -234,19 +278,29 @@ def _geometry_folder():
     raise FetorsionError("no FILE given and no geometry/ folder with the reference cranks found; give FILE")
 
 
-def cmd_run(args) -> int:
-    from pathlib import Path
-
-    from .pipeline import run
-
+def run_jobs(args) -> list[tuple[Path, Path]]:
+    """(description, report folder) of each crank ``run`` will do."""
     if args.all:
+        if args.file:
+            raise FetorsionError("--all runs both reference cranks; it takes no FILE")
         folder = _geometry_folder()
-        jobs = [(folder / f"{name}.toml", Path(args.out or "results") / name) for name in REFERENCE_CRANKS]
-    else:
-        file = Path(args.file) if args.file else _geometry_folder() / f"{REFERENCE_CRANKS[0]}.toml"
-        jobs = [(file, Path(args.out) if args.out else Path("out") / file.stem)]
+        return [(folder / f"{name}.toml", Path(args.out or "results") / name) for name in REFERENCE_CRANKS]
+    file = Path(args.file) if args.file else _geometry_folder() / f"{REFERENCE_CRANKS[0]}.toml"
+    return [(file, Path(args.out) if args.out else Path("out") / file.stem)]
+
+
+def cmd_run(args) -> int:
+    from .pipeline import FAST_STEPS, run
+
+    jobs = run_jobs(args)
+    for file, out in jobs:  # every destination and description is checked before any work
+        check_report_folder(out, "--out", force=args.force, inputs=[file])
+        crank = _load_crank(str(file), "geometry")
+        if not args.no_fe:
+            check_mesh_size(crank, args.mesh_size, "modal")
+    options = {"mesh_size": args.mesh_size * 1e-3}
     for file, out in jobs:
-        folder = run(file, out)
+        folder = run(file, out, options=options, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
         print(f"report: {folder / 'report.md'}")
     return 0
 
@@ -256,8 +310,8 @@ def _orders(text: str) -> list[float]:
         values = [float(v) for v in text.split(",")]
     except ValueError:
         raise argparse.ArgumentTypeError(f"--orders {text!r}: give comma-separated numbers, e.g. 0.5,1,1.5") from None
-    if any(v <= 0 for v in values):
-        raise argparse.ArgumentTypeError(f"--orders {text!r}: orders must be > 0")
+    if any(not (math.isfinite(v) and 0 < v <= 100) for v in values):
+        raise argparse.ArgumentTypeError(f"--orders {text!r}: orders must be > 0 and <= 100")
     return values
 
 
@@ -266,11 +320,12 @@ def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe"],
                    help="which model gives the modes (default %(default)s; fe: campbell only)")
     p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
-    p.add_argument("--speed-range", nargs=2, type=float, metavar=("LOW", "HIGH"), help="rpm")
+    p.add_argument("--speed-range", nargs=2, type=real(0.0, unit="rpm"), metavar=("LOW", "HIGH"),
+                   help="rpm, 0 < LOW < HIGH")
     p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
-    p.add_argument("--damping", type=float, help="modal damping ratio (default from the file, else 0.02)")
+    p.add_argument("--damping", type=real(0.0, 1.0), help="modal damping ratio, 0 < ζ < 1 (default from the file)")
     p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
-    p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .svg)")
+    p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -287,13 +342,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
     _add_excitation_options(cp)
-    cp.add_argument("--modes", type=int, default=3, help="number of lowest modes (default %(default)s)")
-    cp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM", help="FE mesh size for --source fe")
+    cp.add_argument("--modes", type=integer(1, 50), default=3, help="number of lowest modes (default %(default)s)")
+    cp.add_argument("--mesh-size", type=real(0.0, unit="mm"), default=DEFAULT_MESH_SIZE_MM, metavar="MM",
+                    help="FE mesh size for --source fe (default %(default)s)")
     cp.set_defaults(func=cmd_campbell)
 
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
     _add_excitation_options(rp)
-    rp.add_argument("--steps", type=int, default=300, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--steps", type=integer(2, 100_000), default=300, help="speeds in the range (default %(default)s)")
     rp.set_defaults(func=cmd_response)
 
     sp = sub.add_parser("sensitivity", help="f1 against each reconstructed input, and the f1 band")
@@ -301,7 +357,7 @@ def build_parser() -> argparse.ArgumentParser:
     sp.add_argument("--dof", type=int, choices=PARTITIONS, default=17)
     sp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     sp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
-    sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .svg)")
+    sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .pdf, .svg)")
     sp.set_defaults(func=cmd_sensitivity)
 
     cli_mechanics.add_parsers(sub, _emit_json)
@@ -310,23 +366,28 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("file", nargs="?", help="crank description (default geometry/renault21.toml)")
     up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
     up.add_argument("--all", action="store_true", help="both reference cranks into results/<name>/")
+    up.add_argument("--mesh-size", type=real(0.0, unit="mm"), default=DEFAULT_MESH_SIZE_MM, metavar="MM",
+                    help="FE mesh size in mm (default %(default)s)")
+    up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--force", action="store_true",
+                    help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")
     up.set_defaults(func=cmd_run)
 
 
     mp = sub.add_parser("mesh", help="Gmsh solid of a crank description: mass properties, curved tet mesh, picture")
     mp.add_argument("file", help="crank description (.toml)")
     mp.add_argument("-o", "--output", metavar="OUT", help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10)")
-    mp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
+    mp.add_argument("--mesh-size", type=real(0.0, unit="mm"), default=DEFAULT_MESH_SIZE_MM, metavar="MM",
                     help="global element size in mm (default %(default)s); fillets and drillings get finer")
     mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
     mp.set_defaults(func=cmd_mesh)
 
     fp = sub.add_parser("modal", help="free-free 3D FE modal analysis with attachments, modes labelled")
     fp.add_argument("file", help="crank description (.toml)")
-    fp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
+    fp.add_argument("--mesh-size", type=real(0.0, unit="mm"), default=DEFAULT_MESH_SIZE_MM, metavar="MM",
                     help="global element size in mm (default %(default)s), as for 'fetorsion mesh'")
     fp.add_argument("--mesh", metavar="MESHFILE", help="use a .msh written by 'fetorsion mesh' instead of meshing")
-    fp.add_argument("--modes", type=int, default=20, help="elastic modes to compute (default %(default)s)")
+    fp.add_argument("--modes", type=integer(1, 200), default=20, help="elastic modes to compute (default %(default)s)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
     fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
@@ -334,13 +395,44 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+# Output options: (attribute, option name, accepted suffixes); "-" means standard output.
+OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS),
+                  ("output", "-o", None), ("png", "--png", (".png",)))
+
+
+def check_options(args) -> None:
+    """Every check on the command line that needs no file read: before any work."""
+    from .mesh import MESH_FORMATS
+
+    inputs = [getattr(args, "file", None), getattr(args, "mesh", None)]
+    for attr, option, suffixes in OUTPUT_OPTIONS:
+        target = getattr(args, attr, None)
+        if target is None or (attr == "json" and target == "-"):
+            continue
+        check_output_file(target, option, suffixes or MESH_FORMATS, inputs)
+    speeds = getattr(args, "speed_range", None)
+    if speeds is not None and not speeds[0] < speeds[1]:
+        raise FetorsionError(f"--speed-range {speeds[0]:g} {speeds[1]:g}: LOW must be below HIGH (rpm)")
+    mesh = getattr(args, "mesh", None)
+    if mesh is not None and not Path(mesh).is_file():
+        raise FetorsionError(f"--mesh {mesh}: no such file")
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     try:
+        check_options(args)
         return args.func(args)
     except FetorsionError as exc:
         print(f"fetorsion: error: {exc}", file=sys.stderr)
         return 2
+    except KeyboardInterrupt:
+        print("fetorsion: interrupted; nothing was written", file=sys.stderr)
+        return 130
+    except OSError as exc:  # the file system refused something after the checks (disk full, ...)
+        where = f" {exc.filename}" if exc.filename else ""
+        print(f"fetorsion: error:{where}: {exc.strerror or exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -15,7 +15,8 @@ from . import balance as bal
 from . import flywheel as fw
 from . import kinematics as kin
 from . import planetary as pl
-from .crank import _read_toml, parse_crank
+from .crank import read_toml, parse_crank
+from .cli_options import real
 from .errors import FetorsionError
 from .io import save_figure_atomic
 from .mechanics_input import is_crank_description, parse_mechanics
@@ -30,7 +31,7 @@ def _save_plot(fig, path):
 
 
 def _load(path):
-    data = _read_toml(Path(path))
+    data = read_toml(Path(path))
     if is_crank_description(data):
         crank = parse_crank(data, source=str(path))
         return crank, None
@@ -285,8 +286,9 @@ def add_parsers(sub, emit_json) -> None:
 
     kp = sub.add_parser("kinematics", help="slider-crank or planetary-crank kinematics (seeds 002, 004)")
     kp.add_argument("file", help="mechanics file (.toml) with [slider_crank] or [planetary], or a crank description")
-    kp.add_argument("--rpm", type=float, help="crank speed, rev/min (overrides the file's)")
-    kp.add_argument("--step", type=float, default=30.0, help="table step in crank angle, deg (default %(default)s)")
+    kp.add_argument("--rpm", type=real(0.0, unit="rpm"), help="crank speed, rev/min (overrides the file's)")
+    kp.add_argument("--step", type=real(0.0, 360.0, high_open=False, unit="deg"), default=30.0,
+                    help="table step in crank angle, deg (default %(default)s)")
     common(kp)
     kp.set_defaults(func=lambda a: cmd_kinematics(a, emit_json))
 
@@ -297,8 +299,8 @@ def add_parsers(sub, emit_json) -> None:
 
     fp = sub.add_parser("flywheel", help="flywheel sizing by the energy method (seed 000)")
     fp.add_argument("file", help="mechanics file (.toml) with [flywheel], or a crank description with [excitation]")
-    fp.add_argument("--rpm", type=float, help="speed for a crank description, rev/min")
-    fp.add_argument("--speed-fluctuation", type=float, default=0.04,
+    fp.add_argument("--rpm", type=real(0.0, unit="rpm"), help="speed for a crank description, rev/min")
+    fp.add_argument("--speed-fluctuation", type=real(0.0, 1.0), default=0.04,
                     help="C_s = 2 (N1 − N2)/(N1 + N2) for a crank description (default %(default)s, seed 000)")
     common(fp)
     fp.set_defaults(func=lambda a: cmd_flywheel(a, emit_json))

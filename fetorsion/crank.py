@@ -20,6 +20,8 @@ from .errors import DescriptionError, Problem
 from .units import LENGTH_UNITS
 
 ATTACH_POINTS = ("front", "rear", "pins")
+# Tables of the crank-train mechanics file (fetorsion.mechanics_input), which has no [engine].
+MECHANICS_TABLES = {"slider_crank", "masses", "balance", "flywheel", "planetary"}
 
 
 @dataclass(frozen=True)
@@ -207,13 +209,15 @@ class Chain:
 # Parsing with problem collection
 
 
-class _Table:
+class Table:
     """Typed access to one TOML table that records problems instead of raising."""
 
-    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0):
+    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0, absent: bool = False):
         self.path = path
         self.problems = problems
         self.scale = scale
+        # A required table that is missing is reported once, not once more for each field.
+        self.absent = absent or not isinstance(data, dict)
         if not isinstance(data, dict):
             problems.append(Problem(path, data, "must be a table"))
             data = {}
@@ -223,10 +227,22 @@ class _Table:
     def _name(self, key: str) -> str:
         return f"{self.path}.{key}" if self.path else key
 
+    def get(self, key: str, default=None):
+        """The raw value of ``key`` (``default`` when absent), marked as read."""
+        return self._get(key, default)
+
+    def choice(self, key, values, default):
+        """One of ``values`` (ints or strings, compared exactly, bools never match)."""
+        raw = self._get(key, default)
+        if isinstance(raw, bool) or raw not in values or type(raw) not in {type(v) for v in values}:
+            self.problems.append(Problem(self._name(key), raw, f"must be one of {', '.join(map(str, values))}"))
+            return default
+        return raw
+
     def _get(self, key: str, default):
         self.used.add(key)
         if key not in self.data:
-            if default is _REQUIRED:
+            if default is _REQUIRED and not self.absent:
                 self.problems.append(Problem(self._name(key), None, "is required"))
             return _MISSING if default is _REQUIRED else default
         return self.data[key]
@@ -242,14 +258,13 @@ class _Table:
             self.problems.append(Problem(self._name(key), raw, "must be a finite number"))
             return math.nan
         value = float(raw)
-        if positive and not value > 0:
-            self.problems.append(Problem(self._name(key), raw, "must be > 0"))
-        if nonnegative and value < 0:
-            self.problems.append(Problem(self._name(key), raw, "must be >= 0"))
-        if below is not None and not value < below:
-            self.problems.append(Problem(self._name(key), raw, f"must be < {below}"))
-        if above is not None and not value > above:
-            self.problems.append(Problem(self._name(key), raw, f"must be > {above}"))
+        broken = [rule for rule, ok in (("must be > 0", not positive or value > 0),
+                                        ("must be >= 0", not nonnegative or value >= 0),
+                                        (f"must be < {below}", below is None or value < below),
+                                        (f"must be > {above}", above is None or value > above)) if not ok]
+        self.problems += [Problem(self._name(key), raw, rule) for rule in broken]
+        if broken:  # NaN: no rule relating this field to others can fire on a value already refused
+            return math.nan
         return value * self.scale if length else value
 
     def integer(self, key, *, minimum=1):
@@ -283,9 +298,7 @@ class _Table:
         raw = self._get(key, _REQUIRED if required else [])
         if raw is _MISSING:
             return ()
-        if not isinstance(raw, list) or any(
-            isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) for v in raw
-        ):
+        if not isinstance(raw, list) or not all(_finite_number(v) for v in raw):
             self.problems.append(Problem(self._name(key), raw, "must be a list of finite numbers"))
             return ()
         return tuple(float(v) for v in raw)
@@ -297,11 +310,12 @@ class _Table:
         if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
             self.problems.append(Problem(self._name(key), raw, "must be an array of tables ([[...]])"))
             return []
-        return [_Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale) for i, t in enumerate(raw)]
+        return [Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale) for i, t in enumerate(raw)]
 
     def table(self, key, *, required=True):
         raw = self._get(key, _REQUIRED if required else {})
-        return _Table({} if raw is _MISSING else raw, self._name(key), self.problems, self.scale)
+        return Table({} if raw is _MISSING else raw, self._name(key), self.problems, self.scale,
+                     absent=raw is _MISSING or self.absent)
 
     def finish(self):
         """Report keys the reader never asked for: they are typos or unsupported."""
@@ -314,14 +328,41 @@ _REQUIRED = object()
 _MISSING = object()
 
 
-def _read_toml(path: Path) -> dict:
+def _finite_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+MAX_DESCRIPTION_BYTES = 16 * 2**20  # a description is a few kB; anything this big is not one
+
+
+def read_toml(path) -> dict:
+    """Read a TOML file defensively: a missing, unreadable, oversized, binary or non-TOML
+    file gives a :class:`DescriptionError` naming it, never a traceback."""
+    path = Path(path)
+
+    def fail(rule):
+        raise DescriptionError(str(path), [Problem("file", str(path), rule)])
+
+    if not path.exists():
+        fail("does not exist")
+    if path.is_dir():
+        fail("is a folder; give a .toml description file")
+    if not path.is_file():
+        fail("is not a regular file")
+    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
+        fail(f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB; a description is a small TOML text file")
     try:
-        with open(path, "rb") as fh:
-            return tomllib.load(fh)
-    except FileNotFoundError:
-        raise DescriptionError(str(path), [Problem("file", str(path), "does not exist")]) from None
+        raw = path.read_bytes()
+    except OSError as exc:
+        fail(f"could not be read ({exc.strerror or exc})")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        fail(f"is not UTF-8 text (byte {exc.start}); a description is a TOML text file")
+    try:
+        return tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise DescriptionError(str(path), [Problem("file", str(path), f"is not valid TOML ({exc})")]) from None
+        fail(f"is not valid TOML ({exc})")
 
 
 def load(path) -> Crank | Chain:
@@ -350,7 +391,11 @@ def load(path) -> Crank | Chain:
     4
     """
     path = Path(path)
-    data = _read_toml(path)
+    data = read_toml(path)
+    if "engine" not in data and "chain" not in data and MECHANICS_TABLES & set(data):
+        raise DescriptionError(str(path), [Problem("file", str(path), (
+            "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
+            "or chain file"))])
     if "chain" in data:
         return parse_chain(data, source=str(path))
     return parse_crank(data, source=str(path))
@@ -359,13 +404,13 @@ def load(path) -> Crank | Chain:
 def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     """Build a :class:`Chain` from a parsed TOML mapping with a ``[chain]`` table."""
     problems: list[Problem] = []
-    root = _Table(data, "", problems)
+    root = Table(data, "", problems)
     t = root.table("chain")
     root.used.add("meta")  # free-form notes, not checked
     name = t.text("name", default=Path(source).stem)
     inertias = t.numbers("inertias_kgm2")
     stiffnesses = t.numbers("stiffnesses_nm_per_rad")
-    labels = t._get("labels", [])
+    labels = t.get("labels", [])
     absolute = t.numbers("absolute_damping_nms_per_rad", required=False)
     relative = t.numbers("relative_damping_nms_per_rad", required=False)
     t.finish()
@@ -403,17 +448,17 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     return Chain(name, inertias, stiffnesses, labels, absolute, relative, source)
 
 
-def _cylinder(t: _Table) -> Cylinder:
+def _cylinder(t: Table) -> Cylinder:
     d = t.number("diameter", length=True, positive=True)
     length = t.number("length", length=True, positive=True)
     bore = t.number("bore", 0.0, length=True, nonnegative=True)
     t.finish()
-    if bore >= d:
+    if d > 0 and bore >= d:
         t.problems.append(Problem(f"{t.path}.bore", bore / t.scale, f"must be smaller than diameter ({d / t.scale:g})"))
     return Cylinder(d, length, bore)
 
 
-def _web(t: _Table) -> Web:
+def _web(t: Table) -> Web:
     h = t.number("thickness", length=True, positive=True)
     b_max = t.number("width_journal", length=True, positive=True)
     b_min = t.number("width_pin", length=True, positive=True)
@@ -428,7 +473,7 @@ def _web(t: _Table) -> Web:
     return Web(h, b_max, b_min, r_cw, math.radians(a_cw))
 
 
-def read_length_unit(root: _Table, source: str) -> str:
+def read_length_unit(root: Table, source: str) -> str:
     """Read ``[units] length`` and set the table's length scale; without a known unit no
     length can be checked, so that problem is raised at once."""
     units = root.table("units")
@@ -440,10 +485,14 @@ def read_length_unit(root: _Table, source: str) -> str:
     return unit
 
 
-def parse_crank(data: dict, source: str = "<crank>") -> Crank:
-    """Build a :class:`Crank` from a parsed TOML mapping; see :func:`load`."""
+def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = True) -> Crank:
+    """Build a :class:`Crank` from a parsed TOML mapping; see :func:`load`.
+
+    With ``check_uncertainty`` every bound of the ``[uncertainty]`` table is checked too:
+    the description with that input at that bound must obey every rule.
+    """
     problems: list[Problem] = []
-    root = _Table(data, "", problems)
+    root = Table(data, "", problems)
     unit = read_length_unit(root, source)
 
     meta = root.table("meta", required=False)
@@ -463,9 +512,7 @@ def parse_crank(data: dict, source: str = "<crank>") -> Crank:
 
     et = root.table("engine")
     n = et.integer("cylinders")
-    strokes = et._get("cycle_strokes", 4)
-    if strokes not in (2, 4):
-        problems.append(Problem("engine.cycle_strokes", strokes, "must be 2 or 4"))
+    strokes = et.choice("cycle_strokes", (2, 4), 4)
     stroke = et.number("stroke", length=True, positive=True)
     rod = et.number("rod_length", length=True, positive=True)
     bore = et.number("bore", 0.0, length=True, nonnegative=True)
@@ -474,16 +521,17 @@ def parse_crank(data: dict, source: str = "<crank>") -> Crank:
     et.finish()
     if firing is _MISSING:
         firing = []
-        problems.append(Problem("engine.firing_order", None, "is required"))
-    if n and len(angles) != n:
-        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
-    if not (isinstance(firing, list) and sorted(firing) == list(range(1, n + 1))):
-        problems.append(Problem("engine.firing_order", firing, f"must be a permutation of cylinders 1..{n}"))
+    elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
+              and (not n or sorted(firing) == list(range(1, n + 1)))):
+        problems.append(Problem("engine.firing_order", firing,
+                                f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
         firing = []
+    if n and angles and len(angles) != n:
+        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
     if rod <= 0.5 * stroke:
         problems.append(Problem("engine.rod_length", rod / root.scale,
                                 f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
-    engine = Engine(n, strokes if strokes in (2, 4) else 4, stroke, rod,
+    engine = Engine(n, strokes, stroke, rod,
                     tuple(math.radians(a) for a in angles), tuple(firing), bore)
 
     journals = tuple(_cylinder(t) for t in root.tables("journals"))
@@ -519,19 +567,23 @@ def parse_crank(data: dict, source: str = "<crank>") -> Crank:
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
     excitation = None
     if "excitation" in data:
-        excitation = _excitation(root.table("excitation"), Path(source).parent)
+        excitation = _excitation(root.table("excitation"), Path(source).parent, engine.strokes_per_cycle)
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
                   tuple(attachments), unit, source, notes, uncertainty, excitation, data)
-    if not problems:
-        problems.extend(_geometry_problems(crank, root.scale))
+    problems.extend(_geometry_problems(crank, root.scale))
+    if check_uncertainty and not problems:
+        problems.extend(_uncertainty_bound_problems(crank))
     if problems:
-        raise DescriptionError(source, problems)
+        raise DescriptionError(source, _unique(problems))
     return crank
 
 
-def _excitation(t: _Table, folder: Path) -> Excitation:
+EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
+
+
+def _excitation(t: Table, folder: Path, strokes: int) -> Excitation:
     """The ``[excitation]`` table; a pressure CSV path is relative to the description file."""
     mass = t.number("reciprocating_mass_kg", nonnegative=True)
     speeds = t.numbers("speed_range_rpm")
@@ -539,27 +591,30 @@ def _excitation(t: _Table, folder: Path) -> Excitation:
         t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
         speeds = (1.0, 2.0)
     zeta = t.number("modal_damping_ratio", 0.02, positive=True, below=1.0)
-    csv = t.text("pressure_csv", default="")
     common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta)
-    if csv:
-        t.finish()
-        return Excitation(pressure_curve=_pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems), **common)
-    kinds = [k for k in ("imep_pa", "peak_pressure_pa") if k in t.data]
-    if len(kinds) != 1:
-        t.problems.append(Problem(t.path, sorted(t.data), "give exactly one of imep_pa, peak_pressure_pa or pressure_csv"))
+    given = [k for k in EXCITATION_SOURCES if k in t.data]
+    if len(given) != 1:
+        t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))
+        t.used.update(EXCITATION_SOURCES)
+        t.used.update(_SYNTHETIC_CYCLE_KEYS)
         t.finish()
         return Excitation(**common)
-    raw = t._get(kinds[0], None)
-    pairs = [(1.0, raw)] if isinstance(raw, (int, float)) and not isinstance(raw, bool) else raw
+    if given[0] == "pressure_csv":
+        csv = t.text("pressure_csv")
+        t.finish()
+        curve = _pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems, 180.0 * strokes) if csv else None
+        return Excitation(pressure_curve=curve, **common)
+    raw = t.get(given[0])
+    pairs = [(1.0, raw)] if _finite_number(raw) else raw
     if not (isinstance(pairs, list) and pairs and all(
-            isinstance(p, (list, tuple)) and len(p) == 2 and all(isinstance(v, (int, float)) for v in p) and p[1] > 0
+            isinstance(p, (list, tuple)) and len(p) == 2 and all(_finite_number(v) for v in p) and p[1] > 0
             for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
-        t.problems.append(Problem(f"{t.path}.{kinds[0]}", raw,
-                                  "must be a pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
+        t.problems.append(Problem(f"{t.path}.{given[0]}", raw,
+                                  "must be a finite pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
         pairs = [(1.0, 1.0)]
     ex = Excitation(
         compression_ratio=t.number("compression_ratio", above=1.0),
-        load_kind="imep" if kinds[0] == "imep_pa" else "peak",
+        load_kind="imep" if given[0] == "imep_pa" else "peak",
         load=tuple((float(a), float(b)) for a, b in pairs),
         intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
         polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),
@@ -573,20 +628,45 @@ def _excitation(t: _Table, folder: Path) -> Excitation:
     return ex
 
 
-def _pressure_csv(path: Path, field_name: str, problems: list[Problem]):
-    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)."""
+_SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",
+                         "combustion_duration_deg", "wiebe_a", "wiebe_m")
+
+
+def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_deg: float):
+    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)
+    that covers one whole cycle (``cycle_deg``: 720 for a 4-stroke, 360 for a 2-stroke)."""
     import numpy as np
 
+    rows = "rows of 'angle_deg, pressure_pa'"
+    if not path.is_file():
+        problems.append(Problem(field_name, str(path), "is not a file"))
+        return None
+    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
+        problems.append(Problem(field_name, str(path), f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB"))
+        return None
     try:
-        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2)
+        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2, encoding="utf-8")
     except (OSError, ValueError) as exc:
-        problems.append(Problem(field_name, str(path), f"could not be read as 'angle_deg, pressure_pa' rows ({exc})"))
+        problems.append(Problem(field_name, str(path), f"could not be read as {rows} ({exc})"))
         return None
-    if table.shape[1] != 2 or len(table) < 8 or np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 1] <= 0):
-        problems.append(Problem(field_name, str(path),
-                                "needs >= 8 rows of 'angle_deg, pressure_pa', angles ascending, pressures > 0"))
+    if table.ndim != 2 or table.shape[1] != 2 or len(table) < 8:
+        problems.append(Problem(field_name, str(path), f"needs >= 8 {rows}"))
         return None
-    return tuple(np.radians(table[:, 0])), tuple(table[:, 1])
+    angle, pressure = table[:, 0], table[:, 1]
+    if not np.all(np.isfinite(table)):
+        bad = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
+        problems.append(Problem(field_name, str(path), f"row {bad + 1} holds a non-finite number"))
+    elif np.any(np.diff(angle) <= 0) or np.any(pressure <= 0):
+        problems.append(Problem(field_name, str(path), f"needs {rows} with angles ascending and pressures > 0"))
+    else:
+        span, step = angle[-1] - angle[0], np.diff(angle).max()
+        if not cycle_deg - step - 1e-9 <= span <= cycle_deg + 1e-9:
+            problems.append(Problem(field_name, str(path),
+                                    f"covers {angle[0]:g}..{angle[-1]:g} deg; it must cover one whole cycle "
+                                    f"({cycle_deg:g} deg, one step short at most)"))
+        else:
+            return tuple(np.radians(angle)), tuple(pressure)
+    return None
 
 
 def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
@@ -608,7 +688,7 @@ def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
     return [(where.lstrip("."), v) for where, v in found]
 
 
-def _uncertainty(t: _Table, data: dict, problems: list[Problem]):
+def _uncertainty(t: Table, data: dict, problems: list[Problem]):
     """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
     ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
     e.g. a material's E and density. Each range must contain its nominal value."""
@@ -619,16 +699,17 @@ def _uncertainty(t: _Table, data: dict, problems: list[Problem]):
         group = []
         for path, rng in members:
             where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
-            if not (isinstance(rng, list) and len(rng) == 2 and all(
-                    isinstance(v, (int, float)) and not isinstance(v, bool) for v in rng) and rng[0] < rng[1]):
-                problems.append(Problem(where_name, rng, "must be [low, high] with low < high"))
+            if not (isinstance(rng, list) and len(rng) == 2 and all(_finite_number(v) for v in rng)
+                    and rng[0] < rng[1]):
+                problems.append(Problem(where_name, rng, "must be [low, high], finite numbers with low < high"))
                 continue
             targets = resolve_field(data, path)
             if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
                 problems.append(Problem(where_name, rng, f"'{path}' does not name a numeric field of this description"))
                 continue
+            refused = {p.field for p in problems}  # a nominal value already refused is reported once
             for where, v in targets:
-                if not rng[0] <= v <= rng[1]:
+                if where not in refused and not rng[0] <= v <= rng[1]:
                     problems.append(Problem(where_name, rng, f"must contain the nominal value {where} = {v}"))
             group.append((path, float(rng[0]), float(rng[1])))
         out.append((name, tuple(group)))
@@ -636,7 +717,9 @@ def _uncertainty(t: _Table, data: dict, problems: list[Problem]):
 
 
 def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
-    """Rules that relate parts to each other (run once every field parsed cleanly)."""
+    """Rules that relate parts to each other. They run even when other fields are bad: a
+    field that did not parse is NaN, and every comparison with NaN is false, so only rules
+    whose inputs are all valid can fire."""
     out = []
     R = crank.engine.crank_radius
     u = crank.length_unit
@@ -645,31 +728,134 @@ def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
         return round(x / scale, 6)
 
     for i, web in enumerate(crank.webs):
-        pin = crank.pins[crank.throw_of_web(i)]
-        journal = crank.journals[crank.journal_of_web(i)]
         p = f"webs.{i + 1}"
-        if web.width_pin < pin.diameter:
+        throw, side = crank.throw_of_web(i), crank.journal_of_web(i)
+        if throw < len(crank.pins) and web.width_pin < crank.pins[throw].diameter:
             out.append(Problem(f"{p}.width_pin", show(web.width_pin),
-                               f"the pin (diameter {show(pin.diameter)} {u}) must lie inside its web: "
+                               f"the pin (diameter {show(crank.pins[throw].diameter)} {u}) must lie inside its web: "
                                f"width_pin must be >= the pin diameter"))
-        if web.width_journal < journal.diameter:
+        if side < len(crank.journals) and web.width_journal < crank.journals[side].diameter:
             out.append(Problem(f"{p}.width_journal", show(web.width_journal),
-                               f"the journal (diameter {show(journal.diameter)} {u}) must lie inside its web: "
-                               f"width_journal must be >= the journal diameter"))
+                               f"the journal (diameter {show(crank.journals[side].diameter)} {u}) must lie inside "
+                               f"its web: width_journal must be >= the journal diameter"))
         if abs(web.width_journal - web.width_pin) / 2 >= R:
             out.append(Problem(f"{p}.width_journal", show(web.width_journal),
                                f"web end circles ({show(web.width_journal)} and {show(web.width_pin)} {u}) "
                                f"must differ in radius by less than the crank radius {show(R)} {u}"))
+    thickness = [w.thickness for w in crank.webs if w.thickness > 0]
+    if thickness:
+        thinnest = min(range(len(crank.webs)), key=lambda i: crank.webs[i].thickness if crank.webs[i].thickness > 0
+                       else math.inf)
         for part, radius in (("journal", crank.fillets.journal), ("pin", crank.fillets.pin)):
-            if radius >= web.thickness / 2:
+            if radius >= min(thickness) / 2:
                 out.append(Problem(f"fillets.{part}", show(radius),
-                                   f"must be smaller than half the thickness of web {i + 1} ({show(web.thickness)} {u})"))
+                                   f"must be smaller than half the thickness of the thinnest web "
+                                   f"(webs.{thinnest + 1}: {show(min(thickness))} {u})"))
     oh = crank.oil_holes
     if oh.diameter > 0 and not (oh.in_journals or oh.in_pins):
         out.append(Problem("oil_holes.diameter", show(oh.diameter), "set in_journals and/or in_pins to place the holes"))
     for kind, parts, used in (("journals", crank.journals, oh.in_journals), ("pins", crank.pins, oh.in_pins)):
-        for i, c in enumerate(parts):
-            if used and oh.diameter >= min(c.length, c.diameter - c.bore):
-                out.append(Problem("oil_holes.diameter", show(oh.diameter),
-                                   f"must be smaller than the length and wall of {kind}.{i + 1}"))
+        small = [i for i, c in enumerate(parts) if used and oh.diameter >= min(c.length, c.diameter - c.bore)]
+        if small:
+            out.append(Problem("oil_holes.diameter", show(oh.diameter),
+                               f"must be smaller than the length and wall of {kind}.{small[0] + 1}"))
+    return out
+
+
+def _unique(problems: list[Problem]) -> list[Problem]:
+    """Each problem once, in the order first found."""
+    seen, out = set(), []
+    for p in problems:
+        key = (p.field, repr(p.value), p.rule)
+        if key not in seen:
+            seen.add(key)
+            out.append(p)
+    return out
+
+
+def _uncertainty_bound_problems(crank: Crank) -> list[Problem]:
+    """Each ``[uncertainty]`` bound must give a valid description: the inputs of one entry
+    are set to their low (then high) bounds together, all else nominal, and the result is
+    checked with every rule of a description."""
+    import copy
+
+    out = []
+    for name, members in crank.uncertainty:
+        for which, pick in (("low", 1), ("high", 2)):
+            raw = copy.deepcopy(crank.raw)
+            raw.pop("uncertainty", None)
+            for member in members:
+                parent_path, _, key = member[0].rpartition(".")
+                for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):
+                    parent[key] = _as_file_value(parent[key], member[pick])
+            try:
+                parse_crank(raw, crank.source, check_uncertainty=False)
+            except DescriptionError as exc:
+                # One line per bound: a range applied to every web can break one rule eight times.
+                more = len(exc.problems) - 1
+                out.append(Problem(f"uncertainty.{name}", [list(m[1:]) for m in members] if len(members) > 1
+                                   else list(members[0][1:]),
+                                   f"its {which} bound breaks a rule: {exc.problems[0]}"
+                                   + (f" (and {more} more)" if more else "")))
+    return out
+
+
+def _as_file_value(nominal, bound: float):
+    """The bound as the file would hold it: an int field stays an int when the bound is whole,
+    so that a non-whole bound of an integer (a cylinder count of 3.5) is caught by its rule."""
+    if isinstance(nominal, int) and not isinstance(nominal, bool) and float(bound).is_integer():
+        return int(bound)
+    return bound
+
+
+# ---------------------------------------------------------------------------
+# Plausibility: values that parse and obey every rule, yet fit no engine
+
+# Engines span model engines (a few mm of stroke) to marine two-strokes (bore 0.96 m,
+# stroke 3.2 m); the ratios cover car, truck, motorcycle and marine cranks with room to spare.
+_STROKE_RANGE_M = (0.005, 4.0)
+_RATIO_RULES = (  # (field, value of, relative to, low, high)
+    ("journals.*.diameter", "journals", "diameter", 0.2, 3.0),
+    ("pins.*.diameter", "pins", "diameter", 0.2, 3.0),
+    ("webs.*.thickness", "webs", "thickness", 0.03, 2.0),
+    ("journals.*.length", "journals", "length", 0.05, 3.0),
+    ("pins.*.length", "pins", "length", 0.05, 3.0),
+    ("front.*.diameter", "front", "diameter", 0.05, 5.0),
+    ("front.*.length", "front", "length", 0.01, 5.0),
+    ("rear.*.diameter", "rear", "diameter", 0.05, 5.0),
+    ("rear.*.length", "rear", "length", 0.01, 5.0),
+)
+
+
+def plausibility_warnings(crank: Crank) -> list[str]:
+    """One line for each dimension far outside any engine (a likely unit mix-up or typo).
+
+    Not errors: the description is valid and the analysis runs; the user is told which
+    value to check. Sizes are compared with the stroke, the one length every engine has.
+    """
+    u, scale = crank.length_unit, LENGTH_UNITS[crank.length_unit]
+    stroke = crank.engine.stroke
+    out = []
+    lo, hi = _STROKE_RANGE_M
+    if not lo <= stroke <= hi:
+        hint = {True: 'is [units] length = "m" meant to be "mm"?', False: "is [units] length right?"}[
+            u == "m" and stroke > hi]
+        out.append(f"engine.stroke = {stroke / scale:g} {u} ({stroke:g} m) is outside any engine "
+                   f"({lo * 1e3:g} mm to {hi:g} m): {hint}")
+    for field_name, group, attr, low, high in _RATIO_RULES:
+        values = [getattr(x, attr) for x in getattr(crank, group)]
+        bad = [i for i, v in enumerate(values) if not low <= v / stroke <= high]
+        if bad:
+            i = bad[0]
+            more = f" (and {len(bad) - 1} more)" if len(bad) > 1 else ""
+            out.append(f"{field_name.replace('*', str(i + 1))} = {values[i] / scale:g} {u}{more} is "
+                       f"{values[i] / stroke:.3g} × the stroke; engines have {low:g}-{high:g}: check the value")
+    lam = crank.engine.crank_radius / crank.engine.rod_length
+    if not 0.1 <= lam <= 0.5:
+        out.append(f"engine.rod_length = {crank.engine.rod_length / scale:g} {u} gives crank radius/rod length "
+                   f"{lam:.3g}; engines have 0.1-0.5: check the value")
+    bore = crank.engine.bore
+    if bore > 0 and not 0.3 <= bore / stroke <= 3.0:
+        out.append(f"engine.bore = {bore / scale:g} {u} is {bore / stroke:.3g} × the stroke; engines have 0.3-3: "
+                   "check the value")
     return out

@@ -1,11 +1,65 @@
-"""Atomic file writes: a reader never sees a half-written file."""
+"""Output policy: atomic writes, and nothing fetorsion did not write is ever replaced.
+
+Every file or folder is written under a temporary sibling name and renamed into place only
+on success. Temporary siblings carry :data:`TMP_TAG` and the writer's process id, so a run
+killed outright (SIGKILL, a native library's abort) leaves something the next run can
+recognise as its own and remove, while a run still in progress is left alone.
+
+Report folders carry :data:`REPORT_MARKER`, a manifest of what fetorsion wrote there. An
+existing folder is replaced only when it is empty or holds exactly such a report;
+anything else is refused unless the user forces it (:func:`check_report_folder`).
+"""
 
 from __future__ import annotations
 
+import glob
+import json
 import os
+import shutil
 import tempfile
 from contextlib import contextmanager
 from pathlib import Path
+
+from .errors import FetorsionError
+
+TMP_TAG = ".fetorsion-tmp-"
+REPORT_MARKER = ".fetorsion-report"
+
+
+def _tmp_prefix(path: Path) -> str:
+    return f".{path.name}{TMP_TAG}{os.getpid()}-"
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # someone else's live process
+        return True
+    return True
+
+
+def remove_stale_siblings(path) -> list[Path]:
+    """Remove the temporary siblings of ``path`` left by fetorsion runs that no longer exist.
+
+    Only names made by :func:`atomic_output` / :func:`atomic_folder` (``.NAME`` + :data:`TMP_TAG`
+    + a process id) whose process is gone are removed; the removed paths are returned.
+    """
+    path = Path(path)
+    if not path.parent.is_dir():
+        return []
+    removed = []
+    for entry in path.parent.glob(glob.escape(f".{path.name}{TMP_TAG}") + "*"):
+        pid = entry.name[len(path.name) + 1 + len(TMP_TAG):].split("-", 1)[0]
+        if not pid.isdigit() or _pid_alive(int(pid)):
+            continue
+        if entry.is_dir() and not entry.is_symlink():
+            shutil.rmtree(entry, ignore_errors=True)
+        else:
+            entry.unlink(missing_ok=True)
+        removed.append(entry)
+    return removed
 
 
 @contextmanager
@@ -14,7 +68,8 @@ def atomic_output(path):
     replaces ``path`` in one rename, on failure it is removed."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
+    remove_stale_siblings(path)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=_tmp_prefix(path), suffix=path.suffix)
     os.close(fd)
     tmp = Path(tmp)
     try:
@@ -52,6 +107,146 @@ def _umask() -> int:
     return mask
 
 
-def public_dir_mode(path) -> None:
-    """Give a folder made by ``tempfile.mkdtemp`` (0700) the mode ``mkdir`` would."""
-    os.chmod(path, 0o777 & ~_umask())
+# ---------------------------------------------------------------------------
+# Checks made before any work
+
+
+def _nearest_existing(path: Path) -> Path:
+    for parent in (path, *path.parents):
+        if os.path.lexists(parent):
+            return parent
+    return Path(".")
+
+
+def check_writable_location(path, option: str) -> None:
+    """Raise a :class:`FetorsionError` naming ``option`` unless ``path`` can be created:
+    its nearest existing ancestor must be a writable folder."""
+    path = Path(path)
+    base = _nearest_existing(path.parent)
+    if not base.is_dir():
+        raise FetorsionError(f"{option} {path}: {base} is a file, not a folder")
+    if not os.access(base, os.W_OK | os.X_OK):
+        raise FetorsionError(f"{option} {path}: no permission to write in {base}")
+
+
+def check_output_file(path, option: str, suffixes, inputs=()) -> None:
+    """Check an output file option before any work.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file the user named.
+    option : str
+        The option's name, for the message (``--json``).
+    suffixes : iterable of str
+        Accepted suffixes, lower case with the dot (``.json``).
+    inputs : iterable of str or Path
+        Files this command reads: writing onto one of them is refused.
+    """
+    path = Path(path)
+    suffixes = tuple(suffixes)
+    if path.is_dir():
+        raise FetorsionError(f"{option} {path}: is a folder; give a file name")
+    if path.suffix.lower() not in suffixes:
+        raise FetorsionError(f"{option} {path}: unknown output format {path.suffix or '(no suffix)'!r}; "
+                             f"use {', '.join(suffixes)}")
+    for source in inputs:
+        if source is not None and path.exists() and Path(source).exists() and os.path.samefile(path, source):
+            raise FetorsionError(f"{option} {path}: is an input of this command; it would be overwritten")
+    if path.exists() and not path.is_file():
+        raise FetorsionError(f"{option} {path}: exists and is not a regular file")
+    check_writable_location(path, option)
+
+
+def report_manifest(folder) -> dict | None:
+    """The marker of a report folder written by fetorsion, or None."""
+    marker = Path(folder) / REPORT_MARKER
+    try:
+        data = json.loads(marker.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    if not isinstance(data, dict) or data.get("written_by") != "fetorsion" or not isinstance(data.get("files"), list):
+        return None
+    return data
+
+
+def write_report_manifest(folder) -> None:
+    """Mark ``folder`` as a fetorsion report: the marker lists every entry fetorsion put there."""
+    from . import __version__
+
+    folder = Path(folder)
+    files = sorted(p.name for p in folder.iterdir() if p.name != REPORT_MARKER)
+    write_text_atomic(folder / REPORT_MARKER, json.dumps(
+        {"written_by": "fetorsion", "version": __version__, "files": files}, indent=1) + "\n")
+
+
+def check_report_folder(out, option: str = "--out", force: bool = False, inputs=()) -> None:
+    """Refuse, before any work, a report destination that would lose something of the user's.
+
+    ``out`` may be new, an empty folder, or a folder that holds exactly a report fetorsion
+    wrote (its marker lists every entry). A regular file, or a folder with anything else,
+    is refused unless ``force``; a folder that holds one of ``inputs`` is refused always.
+    """
+    out = Path(out)
+    if os.path.lexists(out) and (out.is_symlink() or not out.is_dir()):
+        raise FetorsionError(f"{option} {out}: exists and is not a folder; give a folder name")
+    for source in inputs:
+        if source is not None and out.is_dir() and _inside(Path(source), out):
+            raise FetorsionError(f"{option} {out}: holds the input {source}; the report would replace it")
+    if out.is_dir():
+        if not os.access(out, os.W_OK | os.X_OK):
+            raise FetorsionError(f"{option} {out}: no permission to replace this folder")
+        entries = sorted(p.name for p in out.iterdir())
+        manifest = report_manifest(out)
+        ours = set(manifest["files"]) | {REPORT_MARKER} if manifest else set()
+        foreign = [e for e in entries if e not in ours]
+        if foreign and not force:
+            what = "is not a fetorsion report" if manifest is None else "holds files fetorsion did not write"
+            shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
+            raise FetorsionError(f"{option} {out}: the folder exists and {what} ({shown}); "
+                                 "give a new folder, or --force to replace it")
+    check_writable_location(out, option)
+
+
+def _inside(path: Path, folder: Path) -> bool:
+    try:
+        path.resolve().relative_to(folder.resolve())
+    except ValueError:
+        return False
+    return True
+
+
+@contextmanager
+def atomic_folder(out):
+    """Yield a fresh temporary folder beside ``out``; on success it becomes ``out`` (marked as
+    a report, an earlier one replaced only after the rename), on failure it is removed.
+
+    The caller checks ``out`` first with :func:`check_report_folder`.
+    """
+    out = Path(out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    remove_stale_siblings(out)
+    work = Path(tempfile.mkdtemp(prefix=_tmp_prefix(out), dir=out.parent))
+    os.chmod(work, 0o777 & ~_umask())  # mkdtemp makes it private (0700)
+    try:
+        yield work
+        write_report_manifest(work)
+        _swap_into_place(work, out)
+    except BaseException:
+        shutil.rmtree(work, ignore_errors=True)
+        raise
+
+
+def _swap_into_place(work: Path, out: Path) -> None:
+    """Rename the finished folder onto ``out``; an older one is removed only afterwards."""
+    old = None
+    if os.path.lexists(out):
+        old = Path(tempfile.mkdtemp(prefix=_tmp_prefix(out), dir=out.parent))
+        try:
+            os.replace(out, old)  # a rename onto the empty folder just made
+        except OSError:
+            old.rmdir()
+            raise
+    os.replace(work, out)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)

@@ -58,7 +58,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from .crank import _read_toml, _Table, read_length_unit
+from .crank import read_toml, Table, read_length_unit
 from .errors import DescriptionError, Problem
 from .flywheel import RIM_SPEED_LIMITS
 
@@ -133,14 +133,14 @@ class MechanicsInput:
             raise DescriptionError(self.source, missing)
 
 
-def _optional(t: _Table, key: str, **rules):
+def _optional(t: Table, key: str, **rules):
     return t.number(key, **rules) if key in t.data else (t.used.add(key) or None)
 
 
 def parse_mechanics(data: dict, source: str = "<mechanics>") -> MechanicsInput:
     """Build a :class:`MechanicsInput` from a parsed TOML mapping; see the module docs."""
     problems: list[Problem] = []
-    root = _Table(data, "", problems)
+    root = Table(data, "", problems)
     read_length_unit(root, source)
     meta = root.table("meta", required=False)
     name = meta.text("name", default=Path(source).stem)
@@ -232,7 +232,7 @@ def load_mechanics(path) -> MechanicsInput:
     (0.0355, 0.5)
     """
     path = Path(path)
-    return parse_mechanics(_read_toml(path), source=str(path))
+    return parse_mechanics(read_toml(path), source=str(path))
 
 
 def is_crank_description(data: dict) -> bool:

@@ -29,6 +29,7 @@ cylinder check against CalculiX).
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,6 +41,7 @@ from .crank import Crank, Material
 from .errors import FetorsionError
 from .geometry import MODEL_UNIT, CrankSolid, build_solid, gmsh_session
 from .io import atomic_output
+from .isolate import call_isolated
 
 GMSH_TET10 = 11
 GMSH_TRI6 = 9
@@ -219,6 +221,9 @@ def mesh_solid(solid: CrankSolid, crank: Crank, size: float, fillet_size: float 
 def mesh_crank(crank: Crank, size: float = 0.006, fillet_size: float | None = None) -> CrankMesh:
     """Build and mesh ``crank`` in a private Gmsh session; see the module docstring.
 
+    Gmsh runs in a child process (:func:`fetorsion.isolate.call_isolated`), so a Gmsh
+    abort is reported as a :class:`FetorsionError` instead of ending the program.
+
     Parameters
     ----------
     crank : Crank
@@ -227,9 +232,82 @@ def mesh_crank(crank: Crank, size: float = 0.006, fillet_size: float | None = No
     fillet_size : float, optional
         Element size on fillets and drillings, m.
     """
+    return call_isolated(_mesh_crank_here, crank, size, fillet_size,
+                         what=f"{crank.name}: Gmsh, meshing at size {size * 1e3:g} mm")
+
+
+def _mesh_crank_here(crank: Crank, size: float, fillet_size: float | None) -> CrankMesh:
     with gmsh_session():
         solid = build_solid(crank)
         return mesh_solid(solid, crank, size, fillet_size)
+
+
+@dataclass(frozen=True)
+class MeshEstimate:
+    """Expected size of a crank mesh and of the jobs on it (about ±25 %)."""
+
+    tets: int
+    mesh_bytes: float
+    modal_bytes: float
+    mesh_seconds: float
+
+
+# Calibrated on the plain test crank and both reference cranks at 4-20 mm (issue 11; within
+# -20/+10 % there): Gmsh gives about 5.5 tets per size³ of volume, and a size field graded
+# away from the fine surfaces adds about 15 tets per fine-size² of their area.
+_TETS_PER_CELL = 5.5
+_TETS_PER_FINE_FACE = 15.0
+# Peak memory per tet: 'fetorsion mesh' 0.7 kB + 0.3 GiB of libraries (247 k tets, 0.46 GiB);
+# the modal job 50-62 kB (67 k tets 3.2 GiB, 247 k tets 15 GiB); both taken with margin.
+_MESH_BYTES_PER_TET = 2.0e3
+_MESH_BASE_BYTES = 0.35 * 2**30
+_MODAL_BYTES_PER_TET = 64.0e3
+_TETS_PER_SECOND = 15.0e3
+
+
+def estimate_mesh(crank: Crank, size: float, fillet_size: float | None = None) -> MeshEstimate:
+    """Estimate the tet count and peak memory of meshing ``crank`` (and of an FE modal job
+    on it) from the description alone, before any Gmsh work.
+
+    Parameters
+    ----------
+    crank : Crank
+    size : float
+        Global element size, m.
+    fillet_size : float, optional
+        Element size on fillets and drillings, m (default :func:`default_fillet_size`).
+    """
+    from .web import section_properties
+
+    fine = default_fillet_size(crank, size) if fillet_size is None else min(fillet_size, size)
+    shafts = (*crank.journals, *crank.pins, *crank.front, *crank.rear)
+    volume = sum(0.25 * np.pi * (c.diameter**2 - c.bore**2) * c.length for c in shafts)
+    volume += sum(section_properties(w, crank.engine.crank_radius)["area"] * w.thickness for w in crank.webs)
+    area = 0.0  # quarter-torus fillets at both ends of every web, and the drillings' walls
+    for i in range(len(crank.webs)):
+        area += 0.5 * np.pi * crank.fillets.journal * np.pi * crank.journals[crank.journal_of_web(i)].diameter
+        area += 0.5 * np.pi * crank.fillets.pin * np.pi * crank.pins[crank.throw_of_web(i)].diameter
+    holes = crank.oil_holes
+    if holes.diameter > 0:
+        area += sum(np.pi * holes.diameter * c.diameter for c, used in
+                    [(j, holes.in_journals) for j in crank.journals] + [(p, holes.in_pins) for p in crank.pins] if used)
+    tets = _TETS_PER_CELL * volume / size**3
+    if fine < size:
+        tets += _TETS_PER_FINE_FACE * area * (1.0 / fine**2 - 1.0 / size**2)
+    return MeshEstimate(int(tets), _MESH_BASE_BYTES + _MESH_BYTES_PER_TET * tets,
+                        _MODAL_BYTES_PER_TET * tets, tets / _TETS_PER_SECOND)
+
+
+def available_memory() -> float:
+    """Bytes of memory available to a new job (Linux MemAvailable; total RAM elsewhere)."""
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
 
 
 # ---------------------------------------------------------------------------

@@ -2,16 +2,15 @@
 
 The folder is built under a temporary name beside the target and renamed into place only
 when every step has succeeded, so a failed run leaves nothing behind and a reader never
-sees a half-written report. Each step is a small function ``step(ctx) -> None`` that
+sees a half-written report. An existing target is replaced only when it is an earlier
+report (:func:`fetorsion.io.check_report_folder`). Each step is a small function ``step(ctx) -> None`` that
 writes its files and records its numbers in ``ctx.results``.
 """
 
 from __future__ import annotations
 
 import json
-import shutil
 import sys
-import tempfile
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,7 +20,7 @@ import numpy as np
 
 from .crank import Chain, Crank, load
 from .errors import FetorsionError
-from .io import public_dir_mode, save_figure_atomic, write_text_atomic
+from .io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from .lumped import PARTITIONS, lumped
 from .stiffness import DEFAULT_WEB_METHOD, WEB_METHODS
 
@@ -192,9 +191,11 @@ DEFAULT_STEPS: tuple[tuple[str, Callable[[RunContext], None]], ...] = (
     ("Campbell diagram and forced response", step_campbell),
     ("sensitivity of f1", step_sensitivity),
 )
+# ``fetorsion run --no-fe``: the same report without the mesh and the FE modal analysis.
+FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[1] is not step_fe)
 
 
-def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None) -> Path:
+def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool = False) -> Path:
     """Run every step on the crank in ``path`` and write the report folder ``out``.
 
     Parameters
@@ -202,25 +203,26 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None) -> Path:
     path : str or Path
         Crank description (.toml).
     out : str or Path
-        Report folder; replaced only once the whole run has succeeded.
+        Report folder. It may be new, empty, or an earlier fetorsion report (replaced only
+        once the whole run has succeeded); anything else is refused unless ``force``.
     steps : sequence of (name, function)
         The analyses, in order.
     options : dict, optional
         Passed to the steps (mesh size and such).
+    force : bool
+        Replace ``out`` even when it is not an earlier report.
 
     Returns
     -------
     Path
         The report folder.
     """
+    out = Path(out)
+    check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
     if isinstance(crank, Chain):
         raise FetorsionError(f"{path}: 'run' needs a crank description, not a chain file")
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    work = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
-    public_dir_mode(work)
-    try:
+    with atomic_folder(out) as work:
         ctx = RunContext(crank, work, dict(options or {}))
         ctx.report += [f"# {crank.name}", "", f"Description: `{path}`", ""]
         for name, fn in steps:
@@ -233,22 +235,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None) -> Path:
         ctx.report += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in ctx.timings_s.items()], ""]
         write_text_atomic(work / "report.md", "\n".join(ctx.report))
         write_text_atomic(work / "results.json", json.dumps(_jsonable(ctx.results), indent=1) + "\n")
-        _swap_into_place(work, out)
-    except BaseException:
-        shutil.rmtree(work, ignore_errors=True)
-        raise
     return out
-
-
-def _swap_into_place(work: Path, out: Path) -> None:
-    """Rename the finished folder onto ``out``; an older report is removed only afterwards."""
-    old = None
-    if out.exists():
-        old = out.with_name(f".{out.name}.old-{time.time_ns()}")
-        out.rename(old)
-    work.rename(out)
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
 
 
 def _jsonable(x):

@@ -143,7 +143,7 @@ def run_response(crank: Crank, partition: int = 17, rpm=None, orders=None, dampi
     lo, hi = ex.speed_range
     rpm = np.linspace(lo, hi, 300) if rpm is None else np.asarray(rpm, dtype=float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
-    zeta = damping_ratio or ex.modal_damping_ratio
+    zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     res = lumped(crank, partition, web_method)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     C = modal_damping_matrix(M, K, zeta)

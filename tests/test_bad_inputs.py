@@ -1,0 +1,411 @@
+"""A battery of bad inputs and invocations, as a new user makes them (issue 11).
+
+Each case runs the command line in a folder that holds a user's description, notes and
+earlier outputs, and asserts: the exit status; that the message names the offending field
+or option; that no traceback is printed; and that nothing in the folder was created,
+changed or deleted (the checks come before any work, so not even a temporary sibling is
+left). Warning cases (valid but implausible dimensions) run to exit 0 and name the field.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+
+import pytest
+
+from conftest import GEOMETRY
+from fetorsion import cli
+
+RENAULT = (GEOMETRY / "renault21.toml").read_text()
+CERTAIN = RENAULT.split("[uncertainty]")[0]  # without the ranges, which a changed nominal would leave
+CHAIN = """
+[chain]
+name = "two discs"
+inertias_kgm2 = [0.1, 0.2]
+stiffnesses_nm_per_rad = [1.0e4]
+"""
+
+
+def edit(old: str, new: str, text: str = RENAULT) -> str:
+    assert old in text, old
+    return text.replace(old, new, 1)
+
+
+def csv_rows(angles, value=5.0e5) -> str:
+    return "".join(f"{a:g}, {value}\n" for a in angles)
+
+
+def with_csv(name: str) -> str:
+    return edit("imep_pa = [", f'pressure_csv = "{name}"\nimep_pa_was = [')
+
+
+# The user's folder: every case starts from these files (name -> text or bytes).
+BASE = {
+    "crank.toml": RENAULT,
+    "notes.txt": "my notes\n",
+    "chain.toml": CHAIN,
+    "mech.toml": (GEOMETRY / "b112_single.toml").read_text(),
+    "old.json": '{"mine": true}\n',
+    "report/notes.md": "a user's folder named report\n",
+}
+
+# (id, argv with {d} for the folder, extra files, expected exit status, texts the message must hold)
+CASES = [
+    # --- the description file itself
+    ("binary", "lumped {d}/bin.toml", {"bin.toml": bytes(range(256))}, 2, ["bin.toml", "not UTF-8"]),
+    ("latin1", "lumped {d}/l1.toml", {"l1.toml": "[meta]\nname = 'Citro\xebn'\n".encode("latin-1")}, 2,
+     ["l1.toml", "not UTF-8"]),
+    ("folder", "lumped {d}/report", {}, 2, ["report", "is a folder"]),
+    ("missing", "lumped {d}/nothere.toml", {}, 2, ["nothere.toml", "does not exist"]),
+    ("device", "lumped /dev/zero", {}, 2, ["/dev/zero", "not a regular file"]),
+    ("not-toml", "lumped {d}/x.toml", {"x.toml": "this is = = not toml\n"}, 2, ["x.toml", "not valid TOML"]),
+    ("empty", "lumped {d}/x.toml", {"x.toml": ""}, 2, ["units"]),
+    ("mechanics-as-crank", "lumped {d}/mech.toml", {}, 2, ["mech.toml", "mechanics file"]),
+    ("no-material", "lumped {d}/x.toml", {"x.toml": edit("[material]", "[materials]")}, 2, ["material"]),
+    ("huge", "lumped {d}/big.toml", {"big.toml": None}, 2, ["big.toml", "MiB"]),
+    # --- fields
+    ("firing-mixed", "lumped {d}/x.toml", {"x.toml": edit("firing_order = [1, 3, 4, 2]", 'firing_order = [1, "3", 4, 2]')},
+     2, ["engine.firing_order", "permutation"]),
+    ("cylinders-float", "lumped {d}/x.toml", {"x.toml": edit("cylinders = 4", "cylinders = 4.0")}, 2,
+     ["engine.cylinders", "integer"]),
+    ("cylinders-text", "lumped {d}/x.toml", {"x.toml": edit("cylinders = 4", 'cylinders = "4"')}, 2,
+     ["engine.cylinders"]),
+    ("strokes-3", "lumped {d}/x.toml", {"x.toml": edit("cycle_strokes = 4", "cycle_strokes = 3")}, 2,
+     ["engine.cycle_strokes", "2, 4"]),
+    ("strokes-bool", "lumped {d}/x.toml", {"x.toml": edit("cycle_strokes = 4", "cycle_strokes = true")}, 2,
+     ["engine.cycle_strokes"]),
+    ("imep-inf", "campbell {d}/x.toml", {"x.toml": edit("imep_pa = [", "imep_pa = inf\nimep_was = [")}, 2,
+     ["excitation.imep_pa", "finite"]),
+    ("imep-nan-pair", "response {d}/x.toml", {"x.toml": edit("imep_pa = [", "imep_pa = [[1000.0, nan]]\nimep_was = [")},
+     2, ["excitation.imep_pa", "finite"]),
+    ("E-nan", "lumped {d}/x.toml", {"x.toml": edit("youngs_modulus_pa = ", "youngs_modulus_pa = nan\nE_was = ")}, 2,
+     ["material.youngs_modulus_pa", "finite"]),
+    ("csv-nan", "campbell {d}/x.toml", {"x.toml": with_csv("p.csv"),
+                                        "p.csv": csv_rows(range(0, 720, 10)).replace("50, 500000.0", "50, nan")},
+     2, ["excitation.pressure_csv", "non-finite"]),
+    ("csv-quarter", "campbell {d}/x.toml", {"x.toml": with_csv("p.csv"), "p.csv": csv_rows(range(0, 91, 5))}, 2,
+     ["excitation.pressure_csv", "whole cycle"]),
+    ("csv-missing", "campbell {d}/x.toml", {"x.toml": with_csv("none.csv")}, 2, ["excitation.pressure_csv", "not a file"]),
+    ("csv-binary", "campbell {d}/x.toml", {"x.toml": with_csv("p.csv"), "p.csv": bytes(range(256)) * 4}, 2,
+     ["excitation.pressure_csv"]),
+    ("csv-and-imep", "campbell {d}/x.toml",
+     {"x.toml": edit("imep_pa = [", 'pressure_csv = "p.csv"\nimep_pa = ['), "p.csv": csv_rows(range(0, 720, 10))}, 2,
+     ["excitation", "exactly one of"]),
+    ("no-source", "campbell {d}/x.toml", {"x.toml": edit("imep_pa = [", "imep_was = [")}, 2,
+     ["excitation", "exactly one of"]),
+    ("speeds-reversed", "campbell {d}/x.toml", {"x.toml": edit("speed_range_rpm = [750.0, 6500.0]",
+                                                               "speed_range_rpm = [6500.0, 750.0]")},
+     2, ["excitation.speed_range_rpm"]),
+    ("unknown-key", "lumped {d}/x.toml", {"x.toml": edit("[engine]", "[engine]\ncylinder = 4")}, 2,
+     ["engine.cylinder", "not a known field"]),
+    ("no-units", "lumped {d}/x.toml", {"x.toml": edit('length = "mm"', "")}, 2, ["units.length"]),
+    ("bad-unit", "lumped {d}/x.toml", {"x.toml": edit('length = "mm"', 'length = "parsec"')}, 2, ["units.length"]),
+    ("rod-short", "lumped {d}/x.toml", {"x.toml": edit("rod_length = 149.1", "rod_length = 30.0")}, 2,
+     ["engine.rod_length"]),
+    ("web-thin", "lumped {d}/x.toml", {"x.toml": RENAULT.replace("thickness = ", "thickness = 1e-6 #")}, 2,
+     ["fillets.journal", "thinnest web"]),
+    ("relational-with-bad-field", "lumped {d}/x.toml",
+     {"x.toml": edit("stroke = 83.5", "stroke = -83.5").replace("width_pin = ", "width_pin = 10.0 #", 1)}, 2,
+     ["engine.stroke", "webs.1.width_pin"]),
+    ("pin-outside-web", "lumped {d}/x.toml", {"x.toml": RENAULT.replace("width_pin = ", "width_pin = 10.0 #", 1)}, 2,
+     ["webs.1.width_pin", "inside its web"]),
+    ("uncertainty-nu", "sensitivity {d}/x.toml", {"x.toml": edit("[uncertainty]",
+                                                                 '[uncertainty]\n"material.poisson_ratio" = [0.2, 0.6]')},
+     2, ["uncertainty.material.poisson_ratio", "high bound", "material.poisson_ratio"]),
+    ("uncertainty-cylinders", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]",
+                                                                   '[uncertainty]\n"engine.cylinders" = [3.5, 4.5]')},
+     2, ["uncertainty.engine.cylinders", "engine.cylinders"]),
+    ("uncertainty-inf", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", '[uncertainty]\n"engine.stroke" = [80.0, inf]')},
+     2, ["uncertainty.engine.stroke", "finite"]),
+    ("uncertainty-journal-outgrows-webs", "lumped {d}/x.toml",
+     {"x.toml": edit('"journals.*.diameter" = [54.0, 56.0]', '"journals.*.diameter" = [54.0, 95.0]')},
+     2, ["uncertainty.journals.*.diameter", "high bound", "width_journal", "more"]),
+    ("uncertainty-reversed", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]",
+                                                                  '[uncertainty]\n"engine.stroke" = [90.0, 80.0]')},
+     2, ["uncertainty.engine.stroke", "low < high"]),
+    ("uncertainty-no-field", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]",
+                                                                  '[uncertainty]\n"engine.strok" = [80.0, 90.0]')},
+     2, ["uncertainty.engine.strok", "does not name"]),
+    ("chain-negative", "lumped {d}/c.toml", {"c.toml": CHAIN.replace("[0.1, 0.2]", "[0.1, -0.2]")}, 2,
+     ["chain.inertias_kgm2[2]"]),
+    ("chain-labels", "lumped {d}/c.toml", {"c.toml": CHAIN + 'labels = ["a", 3]\n'}, 2, ["chain.labels"]),
+    ("chain-springs", "lumped {d}/c.toml", {"c.toml": CHAIN.replace("[1.0e4]", "[1.0e4, 2.0e4]")}, 2,
+     ["chain.stiffnesses_nm_per_rad"]),
+    ("mech-strokes", "flywheel {d}/m.toml", {"m.toml": BASE["mech.toml"].replace("[flywheel]", "[flywheel]\ncycle_strokes = 3")},
+     2, ["flywheel.cycle_strokes"]),
+    # --- options
+    ("dof-7", "lumped {d}/crank.toml --dof 7", {}, 2, ["--dof", "not a partition"]),
+    ("stiffness-x", "lumped {d}/crank.toml --stiffness foo", {}, 2, ["--stiffness"]),
+    ("json-folder", "lumped {d}/crank.toml --json {d}/report", {}, 2, ["--json", "is a folder"]),
+    ("json-suffix", "lumped {d}/crank.toml --json {d}/notes.txt", {}, 2, ["--json", "format"]),
+    ("json-onto-input", "lumped {d}/crank.toml --json {d}/crank.toml", {}, 2, ["--json"]),
+    ("json-under-file", "lumped {d}/crank.toml --json {d}/notes.txt/out.json", {}, 2, ["--json", "not a folder"]),
+    ("plot-xyz", "sensitivity {d}/crank.toml --plot {d}/out.xyz", {}, 2, ["--plot", ".xyz"]),
+    ("plot-folder", "campbell {d}/crank.toml --plot {d}/report", {}, 2, ["--plot"]),
+    ("speeds-order", "campbell {d}/crank.toml --speed-range 5000 1000", {}, 2, ["--speed-range", "below"]),
+    ("speeds-negative", "campbell {d}/crank.toml --speed-range -1000 2000", {}, 2, ["--speed-range", "> 0"]),
+    ("speeds-inf", "response {d}/crank.toml --speed-range 1000 inf", {}, 2, ["--speed-range", "finite"]),
+    ("damping-2", "campbell {d}/crank.toml --damping 2", {}, 2, ["--damping", "< 1"]),
+    ("damping-negative", "response {d}/crank.toml --damping -0.05", {}, 2, ["--damping", "> 0"]),
+    ("damping-nan", "response {d}/crank.toml --damping nan", {}, 2, ["--damping", "finite"]),
+    ("orders-zero", "campbell {d}/crank.toml --orders 0,1", {}, 2, ["--orders", "> 0"]),
+    ("orders-text", "campbell {d}/crank.toml --orders a,b", {}, 2, ["--orders"]),
+    ("modes-0", "campbell {d}/crank.toml --modes 0", {}, 2, ["--modes"]),
+    ("fe-mesh-0", "campbell {d}/crank.toml --source fe --mesh-size 0", {}, 2, ["--mesh-size", "> 0"]),
+    ("fe-mesh-tiny", "campbell {d}/crank.toml --source fe --mesh-size 0.01", {}, 2, ["--mesh-size", "GiB"]),
+    ("steps-0", "response {d}/crank.toml --steps 0", {}, 2, ["--steps"]),
+    ("steps-1", "response {d}/crank.toml --steps 1", {}, 2, ["--steps"]),
+    ("response-fe", "response {d}/crank.toml --source fe", {}, 2, ["--source fe"]),
+    ("response-chain", "response {d}/chain.toml", {}, 2, ["chain.toml", "chain file"]),
+    ("campbell-no-excitation", "campbell {d}/x.toml", {"x.toml": RENAULT.split("[excitation]")[0]}, 2,
+     ["x.toml", "[excitation]"]),
+    ("sensitivity-no-uncertainty", "sensitivity {d}/x.toml", {"x.toml": RENAULT.split("[uncertainty]")[0]}, 2,
+     ["x.toml", "[uncertainty]"]),
+    ("mesh-nothing", "mesh {d}/crank.toml", {}, 2, ["-o"]),
+    ("mesh-stl", "mesh {d}/crank.toml -o {d}/x.stl", {}, 2, ["-o", ".stl"]),
+    ("mesh-tiny", "mesh {d}/crank.toml -o {d}/x.msh --mesh-size 0.01", {}, 2, ["--mesh-size", "GiB"]),
+    ("mesh-png-jpg", "mesh {d}/crank.toml --png {d}/x.jpg", {}, 2, ["--png"]),
+    ("mesh-chain", "mesh {d}/chain.toml -o {d}/x.msh", {}, 2, ["chain.toml", "chain file"]),
+    ("modal-modes-0", "modal {d}/crank.toml --modes 0", {}, 2, ["--modes"]),
+    ("modal-size-negative", "modal {d}/crank.toml --mesh-size -1", {}, 2, ["--mesh-size"]),
+    ("modal-mesh-missing", "modal {d}/crank.toml --mesh {d}/none.msh", {}, 2, ["--mesh", "no such file"]),
+    ("modal-mesh-txt", "modal {d}/crank.toml --mesh {d}/notes.txt", {}, 2, ["--mesh", ".msh"]),
+    ("modal-refine-mesh", "modal {d}/crank.toml --refine --mesh {d}/notes.txt", {}, 2, ["--refine", "--mesh"]),
+    ("run-user-folder", "run {d}/crank.toml --out {d}/report", {}, 2, ["--out", "not a fetorsion report", "notes.md"]),
+    ("run-out-file", "run {d}/crank.toml --out {d}/notes.txt", {}, 2, ["--out", "not a folder"]),
+    ("run-out-holds-input", "run {d}/crank.toml --out {d} --force", {}, 2, ["--out", "crank.toml"]),
+    ("run-all-file", "run --all {d}/crank.toml", {}, 2, ["--all"]),
+    ("run-tiny-mesh", "run {d}/crank.toml --out {d}/new --mesh-size 0.01", {}, 2, ["--mesh-size", "GiB"]),
+    ("run-chain", "run {d}/chain.toml --out {d}/new", {}, 2, ["chain.toml", "chain file"]),
+    ("kinematics-step-0", "kinematics {d}/mech.toml --step 0", {}, 2, ["--step", "> 0"]),
+    ("kinematics-step-big", "kinematics {d}/mech.toml --step 400", {}, 2, ["--step", "<= 360"]),
+    ("kinematics-rpm-0", "kinematics {d}/mech.toml --rpm 0", {}, 2, ["--rpm"]),
+    ("kinematics-crank-no-rpm", "kinematics {d}/crank.toml", {}, 2, ["--rpm"]),
+    ("flywheel-cs-negative", "flywheel {d}/crank.toml --rpm 2000 --speed-fluctuation -0.04", {}, 2,
+     ["--speed-fluctuation"]),
+    ("flywheel-cs-big", "flywheel {d}/mech.toml --speed-fluctuation 1.5", {}, 2, ["--speed-fluctuation"]),
+    ("flywheel-rpm-negative", "flywheel {d}/crank.toml --rpm -1", {}, 2, ["--rpm"]),
+    ("balance-crank", "balance {d}/crank.toml", {}, 2, ["mechanics file"]),
+    ("balance-json-txt", "balance {d}/mech.toml --json {d}/out.txt", {}, 2, ["--json"]),
+    ("no-command", "", {}, 2, ["command"]),
+    ("unknown-command", "frobnicate {d}/crank.toml", {}, 2, ["frobnicate"]),
+]
+
+# Valid descriptions with dimensions that fit no engine: they run, and say which value to check.
+WARNINGS = [
+    ("metres-for-mm", "lumped {d}/x.toml", {"x.toml": edit('length = "mm"', 'length = "m"')}, 0,
+     ["warning", "engine.stroke", '"mm"']),
+    ("km-shaft", "lumped {d}/x.toml", {"x.toml": edit("length = 45.0", "length = 1.0e6", CERTAIN)}, 0,
+     ["warning", "front.1.length"]),
+    ("tiny-rod-ratio", "lumped {d}/x.toml", {"x.toml": edit("rod_length = 149.1", "rod_length = 2000.0")}, 0,
+     ["warning", "engine.rod_length"]),
+]
+
+
+def snapshot(folder) -> dict:
+    """Every entry below ``folder``: kind, mode and content hash."""
+    out = {}
+    for root, dirs, files in os.walk(folder):
+        for name in dirs + files:
+            path = os.path.join(root, name)
+            st = os.lstat(path)
+            digest = "" if os.path.isdir(path) else hashlib.sha256(open(path, "rb").read()).hexdigest()
+            out[os.path.relpath(path, folder)] = (st.st_mode, digest)
+    return out
+
+
+def make_folder(tmp_path, extra: dict):
+    for name, content in {**BASE, **extra}.items():
+        path = tmp_path / name
+        path.parent.mkdir(parents=True, exist_ok=True)
+        if content is None:  # a sparse file over the size limit: nothing to read, no disk used
+            with open(path, "wb") as fh:
+                fh.truncate(17 * 2**20)
+        elif isinstance(content, bytes):
+            path.write_bytes(content)
+        else:
+            path.write_text(content)
+    return tmp_path
+
+
+def run_cli(argv: list[str], capsys) -> tuple[int, str]:
+    try:
+        code = cli.main(argv)
+    except SystemExit as exc:  # argparse
+        code = exc.code
+    captured = capsys.readouterr()
+    return code, captured.out + captured.err
+
+
+def _check(case, tmp_path, capsys, monkeypatch):
+    name, argv, extra, status, needles = case
+    folder = make_folder(tmp_path, extra)
+    monkeypatch.chdir(folder)
+    before = snapshot(folder)
+    code, text = run_cli(argv.format(d=folder).split(), capsys)
+    assert code == status, f"{name}: exit {code}\n{text}"
+    for needle in needles:
+        assert needle in text, f"{name}: message does not name {needle!r}:\n{text}"
+    assert "Traceback" not in text
+    if status != 0:
+        assert "error" in text
+    assert snapshot(folder) == before, f"{name}: the folder changed"
+    return text
+
+
+@pytest.mark.parametrize("case", CASES, ids=[c[0] for c in CASES])
+def test_bad_input_is_refused_by_name_and_touches_nothing(case, tmp_path, capsys, monkeypatch):
+    _check(case, tmp_path, capsys, monkeypatch)
+
+
+@pytest.mark.parametrize("case", WARNINGS, ids=[c[0] for c in WARNINGS])
+def test_implausible_dimension_is_warned_by_name(case, tmp_path, capsys, monkeypatch):
+    _check(case, tmp_path, capsys, monkeypatch)
+
+
+def test_battery_is_large():
+    assert len(CASES) + len(WARNINGS) >= 60
+
+
+def test_each_problem_is_reported_once(tmp_path, capsys, monkeypatch):
+    """A too-large fillet breaks its rule against all eight webs: one line, not eight; and a
+    negative journal diameter does not drag in its (unset) bore."""
+    text = edit("\njournal = 2.5", "\njournal = 30.0", CERTAIN)
+    text = text.replace("diameter = 54.8", "diameter = -54.8", 1)
+    case = ("once", "lumped {d}/x.toml", {"x.toml": text}, 2, ["fillets.journal", "journals.1.diameter"])
+    out = _check(case, tmp_path, capsys, monkeypatch)
+    assert out.count("fillets.journal") == 1, out
+    assert "bore" not in out, out
+
+
+@pytest.mark.skipif(hasattr(os, "geteuid") and os.geteuid() == 0, reason="root may write anywhere")
+def test_read_only_destination_is_refused_before_work(tmp_path, capsys, monkeypatch):
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    locked.chmod(0o555)
+    try:
+        case = ("read-only", "lumped {d}/crank.toml --json {d}/locked/out.json", {}, 2, ["--json", "permission"])
+        _check(case, tmp_path, capsys, monkeypatch)
+    finally:
+        locked.chmod(0o755)
+
+
+def test_subprocess_shows_no_traceback(tmp_path):
+    """The real program (not main() in-process) on a binary description."""
+    import subprocess
+
+    bad = tmp_path / "bin.toml"
+    bad.write_bytes(bytes(range(256)))
+    p = subprocess.run([sys.executable, "-m", "fetorsion.cli", "lumped", str(bad)], capture_output=True, text=True)
+    assert p.returncode == 2 and "not UTF-8" in p.stderr and "Traceback" not in p.stderr
+
+
+# ---------------------------------------------------------------------------
+# Output locations: kills, stale temporaries, user folders
+
+
+def _tree(folder):
+    return snapshot(folder) if folder.exists() else None
+
+
+def _strays(parent):
+    from fetorsion.io import TMP_TAG
+
+    return [p.name for p in parent.iterdir() if TMP_TAG in p.name]
+
+
+def test_sigkill_midway_leaves_the_earlier_report_and_the_next_run_cleans_up(tmp_path):
+    """SIGKILL during the FE step: the earlier report is intact; the next run removes the
+    killed run's temporary folder and leaves no stray of its own; no meshing child lives on."""
+    import signal
+    import subprocess
+    import time
+
+    crank, report = str(GEOMETRY / "renault21.toml"), tmp_path / "report"
+    cmd = [sys.executable, "-m", "fetorsion.cli", "run", crank, "--out", str(report)]
+    assert subprocess.run(cmd + ["--no-fe"], capture_output=True).returncode == 0
+    earlier = _tree(report)
+    proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    for line in proc.stderr:  # kill once the run is inside its FE step
+        if "meshing the Gmsh solid" in line:
+            time.sleep(1.0)
+            break
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    assert proc.returncode == -signal.SIGKILL
+    assert _strays(tmp_path), "the killed run should have left its temporary folder"
+    assert _tree(report) == earlier
+    time.sleep(0.5)
+    alive = [p for p in os.listdir("/proc") if p.isdigit() and str(report).encode() in
+             _read(f"/proc/{p}/cmdline")]
+    assert not alive, "a child of the killed run lives on"
+    assert subprocess.run(cmd + ["--no-fe"], capture_output=True).returncode == 0
+    assert not _strays(tmp_path)
+    assert (report / "report.md").exists()
+
+
+def _read(path) -> bytes:
+    try:
+        with open(path, "rb") as fh:
+            return fh.read()
+    except OSError:
+        return b""
+
+
+def test_out_folder_of_user_files_is_refused_and_survives(tmp_path, capsys):
+    folder = tmp_path / "project"
+    folder.mkdir()
+    (folder / "crank.toml").write_text(RENAULT)
+    (folder / "notes.txt").write_text("mine\n")
+    before = snapshot(tmp_path)
+    code, text = run_cli(["run", str(folder / "crank.toml"), "--out", str(folder), "--no-fe"], capsys)
+    assert code == 2 and "--out" in text and "Traceback" not in text
+    assert snapshot(tmp_path) == before
+    # the same with --force: the folder holds the description itself, so still refused
+    code, text = run_cli(["run", str(folder / "crank.toml"), "--out", str(folder), "--no-fe", "--force"], capsys)
+    assert code == 2 and snapshot(tmp_path) == before
+
+
+def test_earlier_report_is_replaced_but_not_one_the_user_added_to(tmp_path, capsys):
+    out = tmp_path / "report"
+    argv = ["run", str(GEOMETRY / "renault21.toml"), "--out", str(out), "--no-fe"]
+    assert run_cli(argv, capsys)[0] == 0
+    assert run_cli(argv, capsys)[0] == 0  # an earlier report: replaced
+    (out / "my-comments.txt").write_text("keep me\n")
+    code, text = run_cli(argv, capsys)
+    assert code == 2 and "my-comments.txt" in text
+    assert (out / "my-comments.txt").read_text() == "keep me\n"
+    assert run_cli(argv + ["--force"], capsys)[0] == 0  # the user said so
+    assert not (out / "my-comments.txt").exists() and (out / "report.md").exists()
+
+
+def test_stale_temporaries_of_dead_runs_are_removed_live_ones_kept(tmp_path):
+    from fetorsion.io import TMP_TAG, write_text_atomic
+
+    dead = subprocess_pid_that_has_exited()
+    stale = tmp_path / f".out.json{TMP_TAG}{dead}-abc.json"
+    live = tmp_path / f".out.json{TMP_TAG}{os.getpid()}-def.json"
+    other = tmp_path / ".out.json.user-file"
+    for p in (stale, live, other):
+        p.write_text("x")
+    write_text_atomic(tmp_path / "out.json", "{}")
+    assert not stale.exists() and live.exists() and other.exists()
+
+
+def subprocess_pid_that_has_exited() -> int:
+    import subprocess
+
+    p = subprocess.Popen([sys.executable, "-c", "pass"])
+    p.wait()
+    return p.pid
+
+
+def test_native_abort_in_isolated_call_is_an_ordinary_error():
+    from fetorsion.errors import FetorsionError
+    from fetorsion.isolate import call_isolated
+
+    with pytest.raises(FetorsionError, match="SIGABRT"):
+        call_isolated(os.abort, what="Gmsh")
+    assert call_isolated(sum, [1, 2, 3]) == 6
