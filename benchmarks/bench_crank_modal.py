@@ -22,8 +22,8 @@ def run_case(crank_path: str, size_mm: float, fillet_scale: float, modes: int) -
     import time
 
     import fetorsion
-    from fetorsion.crankfe import run_modal
-    from fetorsion.mesh import default_fillet_size
+    from fetorsion.fe.crankfe import run_modal
+    from fetorsion.solid.mesh import default_fillet_size
 
     crank = fetorsion.load(crank_path)
     size = size_mm * 1e-3

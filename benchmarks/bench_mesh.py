@@ -3,7 +3,7 @@
 Run: ``PYTHONPATH=. python benchmarks/bench_mesh.py [SIZE_MM ...]`` (default 10 and 6 mm).
 Each line: crank, global size, size at fillets/drillings, tets, nodes, minimum SICN, time
 to build the solid and the time to mesh it (linear mesh, order 2, untangling, arrays).
-Gmsh runs on one thread (see fetorsion.geometry.gmsh_session).
+Gmsh runs on one thread (see fetorsion.solid.geometry.gmsh_session).
 """
 
 from __future__ import annotations
@@ -13,8 +13,8 @@ import time
 from pathlib import Path
 
 import fetorsion
-from fetorsion.geometry import build_solid, gmsh_session
-from fetorsion.mesh import mesh_solid
+from fetorsion.solid.geometry import build_solid, gmsh_session
+from fetorsion.solid.mesh import mesh_solid
 
 ROOT = Path(__file__).resolve().parents[1]
 CRANKS = ("peugeot_glx.toml", "renault21.toml")

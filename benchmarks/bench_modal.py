@@ -30,9 +30,9 @@ def run_case(size: float, backend: str, method: str, modes: int, generic_upto: i
     import numpy as np
 
     from fetorsion import assembly, eigen
-    from fetorsion.crank import Material
-    from fetorsion.modal import default_shift, split_rigid
-    from fetorsion.tetmesh import cylinder_mesh
+    from fetorsion.description.crank import Material
+    from fetorsion.fe.modal import default_shift, split_rigid
+    from fetorsion.fe.tetmesh import cylinder_mesh
 
     steel = Material(210e9, 0.3, 7850.0)
     t = time.perf_counter()

@@ -11,7 +11,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import fetorsion
-from fetorsion.render import render_mode
+from fetorsion.report.render import render_mode
 
 path = sys.argv[1] if len(sys.argv) > 1 else "geometry/renault21.toml"
 out = Path(sys.argv[2] if len(sys.argv) > 2 else "out/examples")

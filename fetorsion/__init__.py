@@ -7,21 +7,22 @@
 True
 """
 
-from .campbell import run_campbell
-from .crank import Chain, Crank, load
+from .excitation.campbell import run_campbell
+from .description.crank import Chain, Crank, load
+from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
-from .lumped import PARTITIONS, LumpedResult, lumped
-from .response import run_response
-from .sensitivity import run_sensitivity, with_values
+from .lumped_model.lumped import PARTITIONS, LumpedResult, lumped
+from .response.forced import run_response
+from .studies.sensitivity import run_sensitivity, with_values
 
 
-def run_modal(crank, mesh_size: float = 0.010, modes: int = 20, **kwargs):
+def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, **kwargs):
     """3D FE free-free modes of a crank (lazy import: gmsh and scikit-fem load on first use).
 
-    See :func:`fetorsion.crankfe.run_modal`; returns a :class:`fetorsion.crankfe.CrankModal`
-    whose ``.result`` is a :class:`fetorsion.modal.ModalResult`.
+    See :func:`fetorsion.fe.crankfe.run_modal`; returns a :class:`fetorsion.fe.crankfe.CrankModal`
+    whose ``.result`` is a :class:`fetorsion.fe.modal.ModalResult`.
     """
-    from .crankfe import run_modal as _run
+    from .fe.crankfe import run_modal as _run
 
     return _run(crank, mesh_size, modes, **kwargs)
 

@@ -172,12 +172,16 @@ def report_manifest(folder) -> dict | None:
 
 def write_report_manifest(folder) -> None:
     """Mark ``folder`` as a fetorsion report: the marker lists every entry fetorsion put there."""
-    from . import __version__
+    from importlib.metadata import PackageNotFoundError, version
 
+    try:
+        written_by = version("fetorsion")
+    except PackageNotFoundError:  # run from a source tree that was never installed
+        written_by = "unknown"
     folder = Path(folder)
     files = sorted(p.name for p in folder.iterdir() if p.name != REPORT_MARKER)
     write_text_atomic(folder / REPORT_MARKER, json.dumps(
-        {"written_by": "fetorsion", "version": __version__, "files": files}, indent=1) + "\n")
+        {"written_by": "fetorsion", "version": written_by, "files": files}, indent=1) + "\n")
 
 
 def check_report_folder(out, option: str = "--out", force: bool = False, inputs=()) -> None:

@@ -28,7 +28,7 @@ from fetorsion import cli_mechanics as cm  # noqa: E402
 from fetorsion import flywheel as fw  # noqa: E402
 from fetorsion import kinematics as kin  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
-from fetorsion.mechanics_input import load_mechanics  # noqa: E402
+from fetorsion.mechanics.input import load_mechanics  # noqa: E402
 
 OUT = ROOT / "results" / "mechanics"
 TABLE1 = {  # λ: ((P_max)_min / J, k0, α0 deg, φ0 deg, θ0 deg), seed 001 Table 1

@@ -30,9 +30,9 @@ os.environ[throwfe.CACHE_ENV] = str(throwfe.SHIPPED_CACHE)
 
 import fetorsion  # noqa: E402
 from fetorsion.io import write_text_atomic  # noqa: E402
-from fetorsion.lumped import PARTITIONS  # noqa: E402
-from fetorsion.stiffness import WEB_METHODS, web_equivalent_length  # noqa: E402
-from fetorsion.webchart import chart_coordinates  # noqa: E402
+from fetorsion.lumped_model.lumped import PARTITIONS  # noqa: E402
+from fetorsion.webs.methods import WEB_METHODS, web_equivalent_length  # noqa: E402
+from fetorsion.webs.chart import chart_coordinates  # noqa: E402
 
 OUT = ROOT / "results" / "chart"
 CRANKS = ("peugeot_glx", "renault21")
@@ -45,9 +45,9 @@ def main(argv=None) -> int:
     OUT.mkdir(parents=True, exist_ok=True)
     report = {}
     lines = ["# Web stiffness methods side by side (issue 8)", "",
-             "Lumped free-free models of seed 003 (partitions in `fetorsion/lumped.py`), first torsional "
+             "Lumped free-free models of seed 003 (partitions in `fetorsion/lumped_model/lumped.py`), first torsional "
              "frequency f1 in Hz, one column per web method. `fe`: static 3D FE of each throw "
-             "(`fetorsion/throwfe.py`); `chart`: the computed web chart (`fetorsion/webchart.py`, "
+             "(`fetorsion/webs/throwfe.py`); `chart`: the computed web chart (`fetorsion/webs/chart.py`, "
              "`results/chart/web_chart.md`). Carter and Ker Wilson are as commonly quoted (unverified). "
              "Written by `scripts/stiffness_methods.py`.", ""]
     for name in CRANKS:
@@ -66,7 +66,7 @@ def main(argv=None) -> int:
         entry = {"f1_hz": table, "web_le_m": webs, "throws": throws, "chart_c": c, "chart_q": q,
                  "fe_web_without_counterweight_m": no_cw, "lumped_seconds": seconds}
         if args.modal:
-            from fetorsion.crankfe import run_modal
+            from fetorsion.fe.crankfe import run_modal
 
             t0 = time.perf_counter()
             res = run_modal(crank, args.modal, modes=12).result

@@ -32,10 +32,10 @@ sys.path.insert(0, str(ROOT))
 
 import fetorsion  # noqa: E402
 from fetorsion import assembly, eigen  # noqa: E402
-from fetorsion.crankfe import part_nodes  # noqa: E402
-from fetorsion.mesh import mesh_crank  # noqa: E402
-from fetorsion.rigid import RigidBody, reduction  # noqa: E402
-from fetorsion.tetmesh import TetMesh  # noqa: E402
+from fetorsion.fe.crankfe import part_nodes  # noqa: E402
+from fetorsion.solid.mesh import mesh_crank  # noqa: E402
+from fetorsion.fe.rigid import RigidBody, reduction  # noqa: E402
+from fetorsion.fe.tetmesh import TetMesh  # noqa: E402
 
 RING_HALF_WIDTH = 0.004  # m either side of the journal's mid-plane
 

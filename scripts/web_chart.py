@@ -8,7 +8,7 @@ Run from the repository root (about 10 minutes on 2 shared cores, one FE job at 
 Writes ``fetorsion/data/web_chart.json`` (the table the ``chart`` web method interpolates),
 ``results/chart/points.json`` (every FE point, both meshes, timings),
 ``results/chart/web_chart.png`` and ``results/chart/web_chart.md``. The family and the
-chart coordinates are defined in :mod:`fetorsion.webchart`.
+chart coordinates are defined in :mod:`fetorsion.webs.chart`.
 """
 
 from __future__ import annotations
@@ -108,7 +108,7 @@ def build_table(done: dict, p: float) -> dict:
     oil = [0.0] + [done[key("oil", *CENTRE, h)]["le_dt"] - base for h in OIL_HOLES]
     table = {
         "description": "L_e0/D_t of a plain crank web (per web, reduced to D_e = D_t) from static 3D FE "
-                       "of the throw, fetorsion issue 8; family and method in fetorsion/webchart.py",
+                       "of the throw, fetorsion issue 8; family and method in fetorsion/webs/chart.py",
         "family": {"pin_diameter_dt": wc.PIN_DIAMETER, "journal_length_dt": wc.JOURNAL_LENGTH,
                    "pin_length_dt": wc.PIN_LENGTH, "width_ratio_bmin_bmax": wc.WIDTH_RATIO,
                    "ref_thickness_dt": wc.REF_THICKNESS, "ref_width_dt": wc.REF_WIDTH, "split": 0.5,
@@ -162,7 +162,7 @@ def validity(table: dict, done: dict) -> dict:
 def markdown(table: dict, done: dict, fe_seconds: float) -> str:
     v = table["validity"]
     lines = ["# Computed BICERA web chart: L_e0/D_t", "",
-             "Static 3D FE torsion of one throw of the parametric family in `fetorsion/webchart.py` "
+             "Static 3D FE torsion of one throw of the parametric family in `fetorsion/webs/chart.py` "
              "(no counterweight, sharp junctions), web term per web reduced to D_e = D_t; each point "
              f"Richardson-extrapolated from meshes D_t/8 and D_t/12 with the observed order "
              f"p = {table['mesh']['richardson_order']:.2f}. Written by `scripts/web_chart.py`.", "",

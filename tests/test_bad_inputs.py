@@ -16,8 +16,7 @@ import sys
 import pytest
 
 from conftest import GEOMETRY
-from fetorsion import cli
-
+from fetorsion.cli import main as cli_main
 RENAULT = (GEOMETRY / "renault21.toml").read_text()
 CERTAIN = RENAULT.split("[uncertainty]")[0]  # without the ranges, which a changed nominal would leave
 CHAIN = """
@@ -232,7 +231,7 @@ def make_folder(tmp_path, extra: dict):
 
 def run_cli(argv: list[str], capsys) -> tuple[int, str]:
     try:
-        code = cli.main(argv)
+        code = cli_main(argv)
     except SystemExit as exc:  # argparse
         code = exc.code
     captured = capsys.readouterr()
@@ -404,7 +403,7 @@ def subprocess_pid_that_has_exited() -> int:
 
 def test_native_abort_in_isolated_call_is_an_ordinary_error():
     from fetorsion.errors import FetorsionError
-    from fetorsion.isolate import call_isolated
+    from fetorsion.solid.isolate import call_isolated
 
     with pytest.raises(FetorsionError, match="SIGABRT"):
         call_isolated(os.abort, what="Gmsh")

@@ -10,9 +10,9 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.crank import parse_crank
-from fetorsion.crankfe import attachment_bodies, extrapolate_refinement, run_modal
-from fetorsion.mesh import mesh_crank, read_mesh, write_mesh
+from fetorsion.description.crank import parse_crank
+from fetorsion.fe.crankfe import attachment_bodies, extrapolate_refinement, run_modal
+from fetorsion.solid.mesh import mesh_crank, read_mesh, write_mesh
 
 from conftest import GEOMETRY, ROOT
 
@@ -53,7 +53,7 @@ def test_crank_fe_has_six_rigid_modes_and_a_torsional_mode_near_the_lumped_one(r
 def test_fe_pin_twist_follows_the_lumped_mode_shape(renault_fe):
     tm = renault_fe.torsional_modes(1)
     fe = tm.pin_amplitudes[0] / tm.pulley_amplitude[0]
-    from fetorsion.campbell import lumped_modes
+    from fetorsion.excitation.campbell import lumped_modes
     lm = lumped_modes(renault_fe.crank, 17)
     lumped = lm.pin_amplitudes[0] / lm.pulley_amplitude[0]
     # Same shape, one node near the flywheel; the models differ by a few % in stiffness.

@@ -5,7 +5,7 @@ import copy
 import pytest
 
 import fetorsion
-from fetorsion.crank import parse_chain, parse_crank
+from fetorsion.description.crank import parse_chain, parse_crank
 from fetorsion.errors import DescriptionError
 
 from conftest import GEOMETRY, simple_crank_raw

@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.campbell import TorsionalModes, lumped_modes, run_campbell
-from fetorsion.crank import parse_crank
-from fetorsion.excitation import (cycle_grid, cylinder_pressure, cylinder_torque, cylinder_volume, firing_angles,
+from fetorsion.excitation.campbell import TorsionalModes, lumped_modes, run_campbell
+from fetorsion.description.crank import parse_crank
+from fetorsion.excitation.torque import (cycle_grid, cylinder_pressure, cylinder_torque, cylinder_volume, firing_angles,
                                   harmonics)
-from fetorsion.kinematics import piston_velocity
-from fetorsion.lumped import chain_matrices
-from fetorsion.response import modal_damping_matrix, steady_state
+from fetorsion.excitation.kinematics import piston_velocity
+from fetorsion.lumped_model.lumped import chain_matrices
+from fetorsion.response.forced import modal_damping_matrix, steady_state
 
 from conftest import read_raw
 
@@ -127,7 +127,7 @@ def test_severity_is_independent_of_mode_normalisation(renault):
 def test_response_peaks_at_a_crossing(renault):
     # The forced response of the 17-DOF model over speed must peak where the Campbell
     # analysis puts the most severe in-range crossing of mode 1 with a major order (6th).
-    from fetorsion.response import run_response
+    from fetorsion.response.forced import run_response
     rpm = np.linspace(4500, 5300, 161)
     r = run_response(renault, rpm=rpm, orders=[6.0])
     crossing = 60 * fetorsion.lumped(renault, 17).frequencies_hz[0] / 6.0
@@ -152,7 +152,7 @@ def test_campbell_cli_writes_json_and_plot(tmp_path):
 
 
 def test_inline4_engine_torque_has_only_major_orders_and_four_times_the_mean(renault):
-    from fetorsion.excitation import engine_torque
+    from fetorsion.excitation.torque import engine_torque
     one = harmonics(cylinder_torque(renault, 2500.0)["total"], 4 * np.pi)
     four = harmonics(engine_torque(renault, 2500.0)["total"], 4 * np.pi)
     assert four.mean_nm == pytest.approx(4 * one.mean_nm, rel=1e-12)

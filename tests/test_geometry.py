@@ -10,10 +10,10 @@ import gmsh
 import pytest
 
 import fetorsion
-from fetorsion.crank import Cylinder, Fillets, OilHoles, parse_crank
-from fetorsion.geometry import GeometryError, build_solid, crank_mass_properties, gmsh_session, solid_mass_properties
-from fetorsion.parts import build_parts, cylinder_inertia
-from fetorsion.web import mass_properties as web_mass
+from fetorsion.description.crank import Cylinder, Fillets, OilHoles, parse_crank
+from fetorsion.solid.geometry import GeometryError, build_solid, crank_mass_properties, gmsh_session, solid_mass_properties
+from fetorsion.lumped_model.parts import build_parts, cylinder_inertia
+from fetorsion.solid.outline import mass_properties as web_mass
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = [ROOT / "geometry" / "peugeot_glx.toml", ROOT / "geometry" / "renault21.toml"]
@@ -35,7 +35,7 @@ def analytic_mass(crank) -> float:
 def test_plain_solid_matches_analytic_part_sums(path):
     crank = plain(fetorsion.load(path))
     total, parts = crank_mass_properties(crank)
-    # Same geometry on both sides; only fetorsion.web's midpoint quadrature differs (~6e-5 at
+    # Same geometry on both sides; only fetorsion.solid.outline's midpoint quadrature differs (~6e-5 at
     # the counterweight's jumps), so 1e-3 is margin, well inside the 0.5 %.
     assert total.mass == pytest.approx(analytic_mass(crank), rel=1e-3)
     assert total.polar_inertia == pytest.approx(sum(p.inertia for p in build_parts(crank).parts), rel=1e-3)

@@ -12,9 +12,9 @@ import pytest
 
 import fetorsion
 from fetorsion.cli import main
-from fetorsion.crank import Material
-from fetorsion.geometry import crank_mass_properties, gmsh_session
-from fetorsion.mesh import inp_text, mesh_crank, mesh_model, write_mesh
+from fetorsion.description.crank import Material
+from fetorsion.solid.geometry import crank_mass_properties, gmsh_session
+from fetorsion.solid.mesh import inp_text, mesh_crank, mesh_model, write_mesh
 
 ROOT = Path(__file__).resolve().parents[1]
 REFERENCE = [ROOT / "geometry" / "peugeot_glx.toml", ROOT / "geometry" / "renault21.toml"]

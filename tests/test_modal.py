@@ -9,11 +9,11 @@ import pytest
 
 from beams import (euler_bernoulli_free_free_hz, shaft_with_end_disk_hz, timoshenko_free_free_hz)
 from fetorsion import assembly, eigen, modeshape
-from fetorsion.crank import Attachment, Material
+from fetorsion.description.crank import Attachment, Material
 from fetorsion.errors import FetorsionError
-from fetorsion.modal import modal
-from fetorsion.rigid import RigidBody, from_attachment, reduction, rigid_rows
-from fetorsion.tetmesh import TetMesh, cylinder_mesh
+from fetorsion.fe.modal import modal
+from fetorsion.fe.rigid import RigidBody, from_attachment, reduction, rigid_rows
+from fetorsion.fe.tetmesh import TetMesh, cylinder_mesh
 
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 L, D, H = 0.5, 0.05, 0.0167  # slender bar (L/D = 10), ~3 P2 elements across the diameter

@@ -6,7 +6,7 @@ import pytest
 
 import fetorsion
 from fetorsion.errors import DescriptionError
-from fetorsion.pipeline import DEFAULT_STEPS, run
+from fetorsion.report.pipeline import DEFAULT_STEPS, run
 
 from conftest import GEOMETRY
 

@@ -3,10 +3,8 @@
 import numpy as np
 import pytest
 
-from fetorsion import kinematics as kin
-from fetorsion import planetary as pl
-
-
+from fetorsion.excitation import kinematics as kin
+from fetorsion.mechanics import planetary as pl
 def test_cardan_hypocycloid_is_a_straight_line_and_pure_harmonic():
     # Ring radius a = 2ρ: the big end runs on a diameter (Cardan / Tusi couple): x_p = l + a cos φ.
     a, l = 0.03, 0.2

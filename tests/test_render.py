@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fetorsion.render import mode_scale, render_gif, render_mode
+from fetorsion.report.render import mode_scale, render_gif, render_mode
 
 
 def twisted_bar(n=(13, 4, 4)):

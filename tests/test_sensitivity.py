@@ -6,9 +6,9 @@ import math
 import pytest
 
 import fetorsion
-from fetorsion.crank import parse_crank
+from fetorsion.description.crank import parse_crank
 from fetorsion.errors import DescriptionError
-from fetorsion.sensitivity import run_sensitivity, with_values
+from fetorsion.studies.sensitivity import run_sensitivity, with_values
 
 from conftest import read_raw
 
@@ -63,7 +63,7 @@ def test_group_member_rules():
 
 def test_fe_check_material_follows_exact_scaling():
     # Crank alone, same geometry and mesh: FE f1 ∝ √(E/ρ) exactly, as in the lumped model.
-    from fetorsion.sensitivity import fe_check
+    from fetorsion.studies.sensitivity import fe_check
     crank = only(read_raw("peugeot_glx.toml"),
                  {"material": {"material.youngs_modulus_pa": [165e9, 212e9], "material.density_kgm3": [7100.0, 7870.0]}})
     row = fe_check(crank, run_sensitivity(crank), count=1, mesh_size=0.03)[0]

@@ -7,11 +7,12 @@ import math
 import pytest
 
 import fetorsion
-from fetorsion import throwfe
-from fetorsion.crank import Material, parse_crank
-from fetorsion.stiffness import WEB_METHODS, cylinder_equivalent_length, step_fillet_length, web_equivalent_length
-from fetorsion.tetmesh import cylinder_mesh
-from fetorsion.throwfe import static_torsion, stepped_shaft_mesh, throw_of
+from fetorsion.webs import throwfe
+from fetorsion.description.crank import Material, parse_crank
+from fetorsion.webs.methods import WEB_METHODS, web_equivalent_length
+from fetorsion.webs.sections import cylinder_equivalent_length, step_fillet_length
+from fetorsion.fe.tetmesh import cylinder_mesh
+from fetorsion.webs.throwfe import static_torsion, stepped_shaft_mesh, throw_of
 
 from conftest import GEOMETRY, simple_crank_raw
 

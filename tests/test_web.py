@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from fetorsion.crank import Web
-from fetorsion.web import radial_function, section_properties
+from fetorsion.description.crank import Web
+from fetorsion.solid.outline import radial_function, section_properties
 
 
 def stadium_polar(r, R):

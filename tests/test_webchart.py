@@ -5,9 +5,10 @@ import math
 import pytest
 
 import fetorsion
-from fetorsion import webchart as wc
+from fetorsion.webs import chart as wc
 from fetorsion.errors import FetorsionError
-from fetorsion.stiffness import WEB_METHODS, effective_web_width, overlap_ratio, web_equivalent_length
+from fetorsion.webs.methods import WEB_METHODS, web_equivalent_length
+from fetorsion.webs.sections import effective_web_width, overlap_ratio
 
 from conftest import GEOMETRY
 

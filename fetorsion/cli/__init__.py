@@ -1,0 +1,7 @@
+"""The command line, ``fetorsion <command> ...``: parses and checks every option before any
+work, calls the stages, prints their tables. User mistakes print one message, exit 2.
+"""
+
+from .commands import build_parser, main
+
+__all__ = ["build_parser", "main"]

@@ -1,0 +1,57 @@
+"""Option types for the command line: each refuses a bad value by the option's name (argparse
+prefixes the message with ``argument --OPTION:``) before any work starts."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+
+def real(low=None, high=None, *, low_open=True, high_open=True, unit=""):
+    """An argparse type: a finite number inside the given bounds (open by default)."""
+    unit = f" {unit}" if unit else ""
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+        if not math.isfinite(value):
+            raise argparse.ArgumentTypeError(f"{text!r}: must be a finite number")
+        if low is not None and not (value > low if low_open else value >= low):
+            raise argparse.ArgumentTypeError(f"{text}: must be {'>' if low_open else '>='} {low:g}{unit}")
+        if high is not None and not (value < high if high_open else value <= high):
+            raise argparse.ArgumentTypeError(f"{text}: must be {'<' if high_open else '<='} {high:g}{unit}")
+        return value
+
+    return parse
+
+
+def integer(minimum: int, maximum: int | None = None):
+    """An argparse type: a whole number in [minimum, maximum]."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if value < minimum or (maximum is not None and value > maximum):
+            raise argparse.ArgumentTypeError(f"{text}: must be from {minimum} to {maximum}" if maximum is not None
+                                             else f"{text}: must be >= {minimum}")
+        return value
+
+    return parse
+
+
+def millimetres(low=0.0):
+    """An argparse type: a length given in mm on the command line, returned in m (the one
+    place where the command line's millimetres become SI)."""
+    check = real(low, unit="mm")
+
+    def parse(text: str) -> float:
+        return check(text) * MM
+
+    return parse
+
+
+MM = 1e-3  # m per mm

@@ -1,0 +1,862 @@
+"""The crank description: one TOML file, parsed into frozen dataclasses in SI units.
+
+Every later step (Gmsh solid, FE modal, lumped models, Campbell) reads a :class:`Crank`.
+The file format is documented in ``docs/description-format.md``; ``geometry/*.toml`` are
+examples. Lengths are in the unit the file names in ``[units] length``; every other
+quantity carries its SI unit in its key name (``density_kgm3``, ``polar_inertia_kgm2``).
+
+Validation collects every violated rule (field, value, rule) and raises one
+:class:`~fetorsion.errors.DescriptionError` before any work starts.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..errors import DescriptionError, Problem
+from .defaults import DEFAULT_DAMPING_RATIO
+from .units import LENGTH_UNITS
+
+ATTACH_POINTS = ("front", "rear", "pins")
+# Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
+MECHANICS_TABLES = {"slider_crank", "masses", "balance", "flywheel", "planetary"}
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear elastic isotropic material, SI units (Pa, -, kg/m³)."""
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+    name: str = ""
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + ν)) in Pa."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A round shaft piece (journal, pin, nose or flange step), lengths in m."""
+
+    diameter: float
+    length: float
+    bore: float = 0.0
+
+
+@dataclass(frozen=True)
+class Web:
+    """A crank web (arm) joining a journal to a pin, lengths in m, angle in rad.
+
+    The outline is the convex hull of a circle of diameter ``width_journal`` (B_max)
+    around the crank axis and one of diameter ``width_pin`` (B_min) around the pin
+    centre, united with an optional counterweight sector of radius
+    ``counterweight_radius`` and full angle ``counterweight_angle`` centred opposite
+    the pin.
+    """
+
+    thickness: float
+    width_journal: float
+    width_pin: float
+    counterweight_radius: float = 0.0
+    counterweight_angle: float = 0.0
+
+
+@dataclass(frozen=True)
+class Engine:
+    """Cylinder layout and slider-crank data; lengths in m, angles in rad."""
+
+    cylinders: int
+    strokes_per_cycle: int
+    stroke: float
+    rod_length: float
+    crank_angles: tuple[float, ...]
+    firing_order: tuple[int, ...]
+    bore: float = 0.0
+
+    @property
+    def crank_radius(self) -> float:
+        """R = stroke / 2 in m."""
+        return 0.5 * self.stroke
+
+
+@dataclass(frozen=True)
+class Fillets:
+    """Fillet radii at journal/web and pin/web junctions, m."""
+
+    journal: float = 0.0
+    pin: float = 0.0
+
+
+@dataclass(frozen=True)
+class OilHoles:
+    """Diametral oil drillings of diameter ``diameter`` (m) through each pin/journal."""
+
+    diameter: float = 0.0
+    in_journals: bool = False
+    in_pins: bool = False
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """A rigid body fixed to the crank.
+
+    ``at`` is ``"front"`` (pulley end face), ``"rear"`` (flywheel flange face) or
+    ``"pins"`` (one copy on every crank pin, e.g. piston + connecting rod, its
+    ``polar_inertia`` being the equivalent inertia about the crank axis per cylinder).
+    Inertias in kg·m², mass in kg, offset (axial distance of its centre of mass from
+    the face, outwards) in m.
+    """
+
+    name: str
+    at: str
+    polar_inertia: float
+    mass: float = 0.0
+    diametral_inertia: float = 0.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """Cylinder pressure and operating data for the Campbell diagram and forced response.
+
+    Either ``pressure_curve`` (crank angle rad from firing TDC over one cycle, absolute
+    pressure Pa) or the synthetic cycle: polytropic compression/expansion with a Wiebe
+    heat release scaled to ``load`` ((rpm, value) pairs, linear in between; value is the
+    IMEP or the peak pressure in Pa as ``load_kind`` says).
+    """
+
+    reciprocating_mass: float  # kg per cylinder (piston, pin, rod small-end share)
+    speed_range: tuple[float, float]  # rpm
+    compression_ratio: float = 0.0
+    load_kind: str = "imep"  # "imep" or "peak"
+    load: tuple[tuple[float, float], ...] = ()
+    intake_pressure: float = 1.0e5  # Pa, absolute
+    polytropic_exponent: float = 1.3
+    combustion_start: float = -0.2618  # rad from firing TDC (−15°)
+    combustion_duration: float = 0.8727  # rad (50°)
+    wiebe_a: float = 5.0
+    wiebe_m: float = 2.0
+    pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
+
+
+@dataclass(frozen=True)
+class Crank:
+    """A complete crankshaft description in SI units.
+
+    The shaft is stacked along +x from the front (pulley) end: ``front`` sections,
+    then journal 1, web 1, pin 1, web 2, journal 2, ... journal N+1, then ``rear``
+    sections. Webs 2i-1 and 2i belong to throw i.
+    """
+
+    name: str
+    material: Material
+    engine: Engine
+    journals: tuple[Cylinder, ...]
+    pins: tuple[Cylinder, ...]
+    webs: tuple[Web, ...]
+    front: tuple[Cylinder, ...] = ()
+    rear: tuple[Cylinder, ...] = ()
+    fillets: Fillets = Fillets()
+    oil_holes: OilHoles = OilHoles()
+    attachments: tuple[Attachment, ...] = ()
+    length_unit: str = "m"
+    source: str = ""
+    notes: dict = field(default_factory=dict, compare=False)
+    uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
+    excitation: Excitation | None = None
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def cylinders(self) -> int:
+        return self.engine.cylinders
+
+    def throw_of_web(self, web_index: int) -> int:
+        """0-based throw index of 0-based web ``web_index``."""
+        return web_index // 2
+
+    def journal_of_web(self, web_index: int) -> int:
+        """0-based index of the journal a web is joined to (its own side)."""
+        return web_index // 2 + web_index % 2
+
+    def attachments_at(self, at: str) -> tuple[Attachment, ...]:
+        return tuple(a for a in self.attachments if a.at == at)
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A torsional chain given directly: inertias (kg·m²), springs (N·m/rad), dampers.
+
+    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground) and
+    ``relative_damping`` (N·m·s/rad, one per spring) are optional.
+    """
+
+    name: str
+    inertias: tuple[float, ...]
+    stiffnesses: tuple[float, ...]
+    labels: tuple[str, ...]
+    absolute_damping: tuple[float, ...] = ()
+    relative_damping: tuple[float, ...] = ()
+    source: str = ""
+
+
+# ---------------------------------------------------------------------------
+# Parsing with problem collection
+
+
+class Table:
+    """Typed access to one TOML table that records problems instead of raising."""
+
+    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0, absent: bool = False):
+        self.path = path
+        self.problems = problems
+        self.scale = scale
+        # A required table that is missing is reported once, not once more for each field.
+        self.absent = absent or not isinstance(data, dict)
+        if not isinstance(data, dict):
+            problems.append(Problem(path, data, "must be a table"))
+            data = {}
+        self.data = data
+        self.used: set[str] = set()
+
+    def _name(self, key: str) -> str:
+        return f"{self.path}.{key}" if self.path else key
+
+    def get(self, key: str, default=None):
+        """The raw value of ``key`` (``default`` when absent), marked as read."""
+        return self._get(key, default)
+
+    def choice(self, key, values, default):
+        """One of ``values`` (ints or strings, compared exactly, bools never match)."""
+        raw = self._get(key, default)
+        if isinstance(raw, bool) or raw not in values or type(raw) not in {type(v) for v in values}:
+            self.problems.append(Problem(self._name(key), raw, f"must be one of {', '.join(map(str, values))}"))
+            return default
+        return raw
+
+    def _get(self, key: str, default):
+        self.used.add(key)
+        if key not in self.data:
+            if default is _REQUIRED and not self.absent:
+                self.problems.append(Problem(self._name(key), None, "is required"))
+            return _MISSING if default is _REQUIRED else default
+        return self.data[key]
+
+    def number(self, key, default=None, *, length=False,
+               positive=False, nonnegative=False, below=None, above=None):
+        """A real number (required when ``default`` is None); ``length=True`` converts
+        from the file's length unit to m."""
+        raw = self._get(key, _REQUIRED if default is None else default)
+        if raw is _MISSING:
+            return math.nan
+        if isinstance(raw, bool) or not isinstance(raw, (int, float)) or not math.isfinite(raw):
+            self.problems.append(Problem(self._name(key), raw, "must be a finite number"))
+            return math.nan
+        value = float(raw)
+        broken = [rule for rule, ok in (("must be > 0", not positive or value > 0),
+                                        ("must be >= 0", not nonnegative or value >= 0),
+                                        (f"must be < {below}", below is None or value < below),
+                                        (f"must be > {above}", above is None or value > above)) if not ok]
+        self.problems += [Problem(self._name(key), raw, rule) for rule in broken]
+        if broken:  # NaN: no rule relating this field to others can fire on a value already refused
+            return math.nan
+        return value * self.scale if length else value
+
+    def integer(self, key, *, minimum=1):
+        raw = self._get(key, _REQUIRED)
+        if raw is _MISSING:
+            return 0
+        if isinstance(raw, bool) or not isinstance(raw, int) or raw < minimum:
+            self.problems.append(Problem(self._name(key), raw, f"must be an integer >= {minimum}"))
+            return 0
+        return raw
+
+    def text(self, key, default="", choices=None):
+        raw = self._get(key, default)
+        if raw is _MISSING:
+            return ""
+        if not isinstance(raw, str):
+            self.problems.append(Problem(self._name(key), raw, "must be a string"))
+            return ""
+        if choices is not None and raw not in choices:
+            self.problems.append(Problem(self._name(key), raw, f"must be one of {', '.join(choices)}"))
+        return raw
+
+    def flag(self, key, default=False):
+        raw = self._get(key, default)
+        if not isinstance(raw, bool):
+            self.problems.append(Problem(self._name(key), raw, "must be true or false"))
+            return False
+        return raw
+
+    def numbers(self, key, *, required=True):
+        raw = self._get(key, _REQUIRED if required else [])
+        if raw is _MISSING:
+            return ()
+        if not isinstance(raw, list) or not all(_finite_number(v) for v in raw):
+            self.problems.append(Problem(self._name(key), raw, "must be a list of finite numbers"))
+            return ()
+        return tuple(float(v) for v in raw)
+
+    def tables(self, key, *, required=True):
+        raw = self._get(key, _REQUIRED if required else [])
+        if raw is _MISSING:
+            return []
+        if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
+            self.problems.append(Problem(self._name(key), raw, "must be an array of tables ([[...]])"))
+            return []
+        return [Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale) for i, t in enumerate(raw)]
+
+    def table(self, key, *, required=True):
+        raw = self._get(key, _REQUIRED if required else {})
+        return Table({} if raw is _MISSING else raw, self._name(key), self.problems, self.scale,
+                     absent=raw is _MISSING or self.absent)
+
+    def finish(self):
+        """Report keys the reader never asked for: they are typos or unsupported."""
+        for key in self.data:
+            if key not in self.used:
+                self.problems.append(Problem(self._name(key), self.data[key], "is not a known field here"))
+
+
+_REQUIRED = object()
+_MISSING = object()
+
+
+def _finite_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+MAX_DESCRIPTION_BYTES = 16 * 2**20  # a description is a few kB; anything this big is not one
+
+
+def read_toml(path) -> dict:
+    """Read a TOML file defensively: a missing, unreadable, oversized, binary or non-TOML
+    file gives a :class:`DescriptionError` naming it, never a traceback."""
+    path = Path(path)
+
+    def fail(rule):
+        raise DescriptionError(str(path), [Problem("file", str(path), rule)])
+
+    if not path.exists():
+        fail("does not exist")
+    if path.is_dir():
+        fail("is a folder; give a .toml description file")
+    if not path.is_file():
+        fail("is not a regular file")
+    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
+        fail(f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB; a description is a small TOML text file")
+    try:
+        raw = path.read_bytes()
+    except OSError as exc:
+        fail(f"could not be read ({exc.strerror or exc})")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        fail(f"is not UTF-8 text (byte {exc.start}); a description is a TOML text file")
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        fail(f"is not valid TOML ({exc})")
+
+
+def load(path) -> Crank | Chain:
+    """Read a crank description or a chain file (``[chain]`` table) from TOML.
+
+    Parameters
+    ----------
+    path : str or Path
+        The ``.toml`` file.
+
+    Returns
+    -------
+    Crank or Chain
+        In SI units.
+
+    Raises
+    ------
+    DescriptionError
+        Listing every violated rule with its field, value and rule.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")
+    >>> crank.engine.cylinders
+    4
+    """
+    path = Path(path)
+    data = read_toml(path)
+    if "engine" not in data and "chain" not in data and MECHANICS_TABLES & set(data):
+        raise DescriptionError(str(path), [Problem("file", str(path), (
+            "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
+            "or chain file"))])
+    if "chain" in data:
+        return parse_chain(data, source=str(path))
+    return parse_crank(data, source=str(path))
+
+
+def parse_chain(data: dict, source: str = "<chain>") -> Chain:
+    """Build a :class:`Chain` from a parsed TOML mapping with a ``[chain]`` table."""
+    problems: list[Problem] = []
+    root = Table(data, "", problems)
+    t = root.table("chain")
+    root.used.add("meta")  # free-form notes, not checked
+    name = t.text("name", default=Path(source).stem)
+    inertias = t.numbers("inertias_kgm2")
+    stiffnesses = t.numbers("stiffnesses_nm_per_rad")
+    labels = t.get("labels", [])
+    absolute = t.numbers("absolute_damping_nms_per_rad", required=False)
+    relative = t.numbers("relative_damping_nms_per_rad", required=False)
+    t.finish()
+    root.finish()
+    n = len(inertias)
+    if inertias and n < 2:
+        problems.append(Problem("chain.inertias_kgm2", list(inertias), "needs at least 2 inertias"))
+    for i, v in enumerate(inertias):
+        if not v > 0:
+            problems.append(Problem(f"chain.inertias_kgm2[{i + 1}]", v, "must be > 0"))
+    for i, v in enumerate(stiffnesses):
+        if not v > 0:
+            problems.append(Problem(f"chain.stiffnesses_nm_per_rad[{i + 1}]", v, "must be > 0"))
+    if inertias and len(stiffnesses) != n - 1:
+        problems.append(Problem("chain.stiffnesses_nm_per_rad", list(stiffnesses),
+                                f"must have one spring fewer than inertias ({n - 1})"))
+    if absolute and len(absolute) != n:
+        problems.append(Problem("chain.absolute_damping_nms_per_rad", list(absolute),
+                                f"must have one value per inertia ({n})"))
+    if relative and len(relative) != n - 1:
+        problems.append(Problem("chain.relative_damping_nms_per_rad", list(relative),
+                                f"must have one value per spring ({n - 1})"))
+    for key, values in (("absolute_damping_nms_per_rad", absolute), ("relative_damping_nms_per_rad", relative)):
+        for i, v in enumerate(values):
+            if v < 0:
+                problems.append(Problem(f"chain.{key}[{i + 1}]", v, "must be >= 0"))
+    if not isinstance(labels, list) or not all(isinstance(s, str) for s in labels) or (
+        labels and len(labels) != n
+    ):
+        problems.append(Problem("chain.labels", labels, f"must be a list of {n} strings"))
+        labels = []
+    if problems:
+        raise DescriptionError(source, problems)
+    labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
+    return Chain(name, inertias, stiffnesses, labels, absolute, relative, source)
+
+
+def _cylinder(t: Table) -> Cylinder:
+    d = t.number("diameter", length=True, positive=True)
+    length = t.number("length", length=True, positive=True)
+    bore = t.number("bore", 0.0, length=True, nonnegative=True)
+    t.finish()
+    if d > 0 and bore >= d:
+        t.problems.append(Problem(f"{t.path}.bore", bore / t.scale, f"must be smaller than diameter ({d / t.scale:g})"))
+    return Cylinder(d, length, bore)
+
+
+def _web(t: Table) -> Web:
+    h = t.number("thickness", length=True, positive=True)
+    b_max = t.number("width_journal", length=True, positive=True)
+    b_min = t.number("width_pin", length=True, positive=True)
+    r_cw = t.number("counterweight_radius", 0.0, length=True, nonnegative=True)
+    a_cw = t.number("counterweight_angle_deg", 0.0, nonnegative=True)
+    t.finish()
+    if a_cw > 360:
+        t.problems.append(Problem(f"{t.path}.counterweight_angle_deg", a_cw, "must be <= 360"))
+    if (r_cw > 0) != (a_cw > 0):
+        t.problems.append(Problem(f"{t.path}.counterweight_radius", r_cw / t.scale,
+                                  "counterweight needs both counterweight_radius and counterweight_angle_deg > 0"))
+    return Web(h, b_max, b_min, r_cw, math.radians(a_cw))
+
+
+def read_length_unit(root: Table, source: str) -> str:
+    """Read ``[units] length`` and set the table's length scale; without a known unit no
+    length can be checked, so that problem is raised at once."""
+    units = root.table("units")
+    unit = units.text("length", choices=tuple(LENGTH_UNITS))
+    units.finish()
+    if unit not in LENGTH_UNITS:
+        raise DescriptionError(source, root.problems)
+    root.scale = LENGTH_UNITS[unit]
+    return unit
+
+
+def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = True) -> Crank:
+    """Build a :class:`Crank` from a parsed TOML mapping; see :func:`load`.
+
+    With ``check_uncertainty`` every bound of the ``[uncertainty]`` table is checked too:
+    the description with that input at that bound must obey every rule.
+    """
+    problems: list[Problem] = []
+    root = Table(data, "", problems)
+    unit = read_length_unit(root, source)
+
+    meta = root.table("meta", required=False)
+    name = meta.text("name", default=Path(source).stem)
+    notes = {k: v for k, v in meta.data.items() if k != "name"}
+    meta.used.update(meta.data)
+
+    mt = root.table("material")
+    material = Material(
+        youngs_modulus=mt.number("youngs_modulus_pa", positive=True),
+        poisson_ratio=mt.number("poisson_ratio", above=0.0, below=0.5),
+        density=mt.number("density_kgm3", positive=True),
+        name=mt.text("name"),
+    )
+    mt.used.add("source")
+    mt.finish()
+
+    et = root.table("engine")
+    n = et.integer("cylinders")
+    strokes = et.choice("cycle_strokes", (2, 4), 4)
+    stroke = et.number("stroke", length=True, positive=True)
+    rod = et.number("rod_length", length=True, positive=True)
+    bore = et.number("bore", 0.0, length=True, nonnegative=True)
+    angles = et.numbers("crank_angles_deg")
+    firing = et._get("firing_order", _REQUIRED)
+    et.finish()
+    if firing is _MISSING:
+        firing = []
+    elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
+              and (not n or sorted(firing) == list(range(1, n + 1)))):
+        problems.append(Problem("engine.firing_order", firing,
+                                f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
+        firing = []
+    if n and angles and len(angles) != n:
+        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
+    if rod <= 0.5 * stroke:
+        problems.append(Problem("engine.rod_length", rod / root.scale,
+                                f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
+    engine = Engine(n, strokes, stroke, rod,
+                    tuple(math.radians(a) for a in angles), tuple(firing), bore)
+
+    journals = tuple(_cylinder(t) for t in root.tables("journals"))
+    pins = tuple(_cylinder(t) for t in root.tables("pins"))
+    webs = tuple(_web(t) for t in root.tables("webs"))
+    front = tuple(_cylinder(t) for t in root.tables("front", required=False))
+    rear = tuple(_cylinder(t) for t in root.tables("rear", required=False))
+    for key, items, want in (("journals", journals, n + 1), ("pins", pins, n), ("webs", webs, 2 * n)):
+        if n and len(items) != want:
+            problems.append(Problem(key, f"{len(items)} entries", f"a {n}-cylinder crank needs {want} [[{key}]]"))
+
+    ft = root.table("fillets", required=False)
+    fillets = Fillets(ft.number("journal", 0.0, length=True, nonnegative=True),
+                      ft.number("pin", 0.0, length=True, nonnegative=True))
+    ft.finish()
+    ot = root.table("oil_holes", required=False)
+    oil = OilHoles(ot.number("diameter", 0.0, length=True, nonnegative=True),
+                   ot.flag("in_journals"), ot.flag("in_pins"))
+    ot.finish()
+
+    attachments = []
+    for t in root.tables("attachments", required=False):
+        attachments.append(Attachment(
+            name=t.text("name", default=""),
+            at=t.text("at", choices=ATTACH_POINTS),
+            polar_inertia=t.number("polar_inertia_kgm2", positive=True),
+            mass=t.number("mass_kg", 0.0, nonnegative=True),
+            diametral_inertia=t.number("diametral_inertia_kgm2", 0.0, nonnegative=True),
+            offset=t.number("offset", 0.0, length=True),
+        ))
+        t.used.add("source")
+        t.finish()
+    uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
+    excitation = None
+    if "excitation" in data:
+        excitation = _excitation(root.table("excitation"), Path(source).parent, engine.strokes_per_cycle)
+    root.finish()
+
+    crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
+                  tuple(attachments), unit, source, notes, uncertainty, excitation, data)
+    problems.extend(_geometry_problems(crank, root.scale))
+    if check_uncertainty and not problems:
+        problems.extend(_uncertainty_bound_problems(crank))
+    if problems:
+        raise DescriptionError(source, _unique(problems))
+    return crank
+
+
+EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
+
+
+def _excitation(t: Table, folder: Path, strokes: int) -> Excitation:
+    """The ``[excitation]`` table; a pressure CSV path is relative to the description file."""
+    mass = t.number("reciprocating_mass_kg", nonnegative=True)
+    speeds = t.numbers("speed_range_rpm")
+    if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
+        t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
+        speeds = (1.0, 2.0)
+    zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=True, below=1.0)
+    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta)
+    given = [k for k in EXCITATION_SOURCES if k in t.data]
+    if len(given) != 1:
+        t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))
+        t.used.update(EXCITATION_SOURCES)
+        t.used.update(_SYNTHETIC_CYCLE_KEYS)
+        t.finish()
+        return Excitation(**common)
+    if given[0] == "pressure_csv":
+        csv = t.text("pressure_csv")
+        t.finish()
+        curve = _pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems, 180.0 * strokes) if csv else None
+        return Excitation(pressure_curve=curve, **common)
+    raw = t.get(given[0])
+    pairs = [(1.0, raw)] if _finite_number(raw) else raw
+    if not (isinstance(pairs, list) and pairs and all(
+            isinstance(p, (list, tuple)) and len(p) == 2 and all(_finite_number(v) for v in p) and p[1] > 0
+            for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
+        t.problems.append(Problem(f"{t.path}.{given[0]}", raw,
+                                  "must be a finite pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
+        pairs = [(1.0, 1.0)]
+    ex = Excitation(
+        compression_ratio=t.number("compression_ratio", above=1.0),
+        load_kind="imep" if given[0] == "imep_pa" else "peak",
+        load=tuple((float(a), float(b)) for a, b in pairs),
+        intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
+        polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),
+        combustion_start=math.radians(t.number("combustion_start_deg", -15.0, above=-90.0, below=90.0)),
+        combustion_duration=math.radians(t.number("combustion_duration_deg", 50.0, positive=True, below=180.0)),
+        wiebe_a=t.number("wiebe_a", 5.0, positive=True),
+        wiebe_m=t.number("wiebe_m", 2.0, nonnegative=True),
+        **common,
+    )
+    t.finish()
+    return ex
+
+
+_SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",
+                         "combustion_duration_deg", "wiebe_a", "wiebe_m")
+
+
+def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_deg: float):
+    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)
+    that covers one whole cycle (``cycle_deg``: 720 for a 4-stroke, 360 for a 2-stroke)."""
+    import numpy as np
+
+    rows = "rows of 'angle_deg, pressure_pa'"
+    if not path.is_file():
+        problems.append(Problem(field_name, str(path), "is not a file"))
+        return None
+    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
+        problems.append(Problem(field_name, str(path), f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB"))
+        return None
+    try:
+        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2, encoding="utf-8")
+    except (OSError, ValueError) as exc:
+        problems.append(Problem(field_name, str(path), f"could not be read as {rows} ({exc})"))
+        return None
+    if table.ndim != 2 or table.shape[1] != 2 or len(table) < 8:
+        problems.append(Problem(field_name, str(path), f"needs >= 8 {rows}"))
+        return None
+    angle, pressure = table[:, 0], table[:, 1]
+    if not np.all(np.isfinite(table)):
+        bad = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
+        problems.append(Problem(field_name, str(path), f"row {bad + 1} holds a non-finite number"))
+    elif np.any(np.diff(angle) <= 0) or np.any(pressure <= 0):
+        problems.append(Problem(field_name, str(path), f"needs {rows} with angles ascending and pressures > 0"))
+    else:
+        span, step = angle[-1] - angle[0], np.diff(angle).max()
+        if not cycle_deg - step - 1e-9 <= span <= cycle_deg + 1e-9:
+            problems.append(Problem(field_name, str(path),
+                                    f"covers {angle[0]:g}..{angle[-1]:g} deg; it must cover one whole cycle "
+                                    f"({cycle_deg:g} deg, one step short at most)"))
+        else:
+            return tuple(np.radians(angle)), tuple(pressure)
+    return None
+
+
+def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
+    """The (concrete path, value) pairs a dotted field path names in a raw description.
+
+    Indices are 1-based; ``*`` stands for every entry of a list of tables.
+    """
+    found = [("", data)]
+    for key in path.split("."):
+        nxt = []
+        for where, node in found:
+            if isinstance(node, list) and key == "*":
+                nxt += [(f"{where}.{i + 1}", v) for i, v in enumerate(node)]
+            elif isinstance(node, list) and key.isdigit() and 1 <= int(key) <= len(node):
+                nxt.append((f"{where}.{key}", node[int(key) - 1]))
+            elif isinstance(node, dict) and key in node:
+                nxt.append((f"{where}.{key}", node[key]))
+        found = nxt
+    return [(where.lstrip("."), v) for where, v in found]
+
+
+def _uncertainty(t: Table, data: dict, problems: list[Problem]):
+    """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
+    ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
+    e.g. a material's E and density. Each range must contain its nominal value."""
+    out = []
+    for name, spec in t.data.items():
+        t.used.add(name)
+        members = spec.items() if isinstance(spec, dict) else [(name, spec)]
+        group = []
+        for path, rng in members:
+            where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
+            if not (isinstance(rng, list) and len(rng) == 2 and all(_finite_number(v) for v in rng)
+                    and rng[0] < rng[1]):
+                problems.append(Problem(where_name, rng, "must be [low, high], finite numbers with low < high"))
+                continue
+            targets = resolve_field(data, path)
+            if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
+                problems.append(Problem(where_name, rng, f"'{path}' does not name a numeric field of this description"))
+                continue
+            refused = {p.field for p in problems}  # a nominal value already refused is reported once
+            for where, v in targets:
+                if where not in refused and not rng[0] <= v <= rng[1]:
+                    problems.append(Problem(where_name, rng, f"must contain the nominal value {where} = {v}"))
+            group.append((path, float(rng[0]), float(rng[1])))
+        out.append((name, tuple(group)))
+    return tuple(out)
+
+
+def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
+    """Rules that relate parts to each other. They run even when other fields are bad: a
+    field that did not parse is NaN, and every comparison with NaN is false, so only rules
+    whose inputs are all valid can fire."""
+    out = []
+    R = crank.engine.crank_radius
+    u = crank.length_unit
+
+    def show(x):
+        return round(x / scale, 6)
+
+    for i, web in enumerate(crank.webs):
+        p = f"webs.{i + 1}"
+        throw, side = crank.throw_of_web(i), crank.journal_of_web(i)
+        if throw < len(crank.pins) and web.width_pin < crank.pins[throw].diameter:
+            out.append(Problem(f"{p}.width_pin", show(web.width_pin),
+                               f"the pin (diameter {show(crank.pins[throw].diameter)} {u}) must lie inside its web: "
+                               f"width_pin must be >= the pin diameter"))
+        if side < len(crank.journals) and web.width_journal < crank.journals[side].diameter:
+            out.append(Problem(f"{p}.width_journal", show(web.width_journal),
+                               f"the journal (diameter {show(crank.journals[side].diameter)} {u}) must lie inside "
+                               f"its web: width_journal must be >= the journal diameter"))
+        if abs(web.width_journal - web.width_pin) / 2 >= R:
+            out.append(Problem(f"{p}.width_journal", show(web.width_journal),
+                               f"web end circles ({show(web.width_journal)} and {show(web.width_pin)} {u}) "
+                               f"must differ in radius by less than the crank radius {show(R)} {u}"))
+    thickness = [w.thickness for w in crank.webs if w.thickness > 0]
+    if thickness:
+        thinnest = min(range(len(crank.webs)), key=lambda i: crank.webs[i].thickness if crank.webs[i].thickness > 0
+                       else math.inf)
+        for part, radius in (("journal", crank.fillets.journal), ("pin", crank.fillets.pin)):
+            if radius >= min(thickness) / 2:
+                out.append(Problem(f"fillets.{part}", show(radius),
+                                   f"must be smaller than half the thickness of the thinnest web "
+                                   f"(webs.{thinnest + 1}: {show(min(thickness))} {u})"))
+    oh = crank.oil_holes
+    if oh.diameter > 0 and not (oh.in_journals or oh.in_pins):
+        out.append(Problem("oil_holes.diameter", show(oh.diameter), "set in_journals and/or in_pins to place the holes"))
+    for kind, parts, used in (("journals", crank.journals, oh.in_journals), ("pins", crank.pins, oh.in_pins)):
+        small = [i for i, c in enumerate(parts) if used and oh.diameter >= min(c.length, c.diameter - c.bore)]
+        if small:
+            out.append(Problem("oil_holes.diameter", show(oh.diameter),
+                               f"must be smaller than the length and wall of {kind}.{small[0] + 1}"))
+    return out
+
+
+def _unique(problems: list[Problem]) -> list[Problem]:
+    """Each problem once, in the order first found."""
+    seen, out = set(), []
+    for p in problems:
+        key = (p.field, repr(p.value), p.rule)
+        if key not in seen:
+            seen.add(key)
+            out.append(p)
+    return out
+
+
+def _uncertainty_bound_problems(crank: Crank) -> list[Problem]:
+    """Each ``[uncertainty]`` bound must give a valid description: the inputs of one entry
+    are set to their low (then high) bounds together, all else nominal, and the result is
+    checked with every rule of a description."""
+    import copy
+
+    out = []
+    for name, members in crank.uncertainty:
+        for which, pick in (("low", 1), ("high", 2)):
+            raw = copy.deepcopy(crank.raw)
+            raw.pop("uncertainty", None)
+            for member in members:
+                parent_path, _, key = member[0].rpartition(".")
+                for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):
+                    parent[key] = _as_file_value(parent[key], member[pick])
+            try:
+                parse_crank(raw, crank.source, check_uncertainty=False)
+            except DescriptionError as exc:
+                # One line per bound: a range applied to every web can break one rule eight times.
+                more = len(exc.problems) - 1
+                out.append(Problem(f"uncertainty.{name}", [list(m[1:]) for m in members] if len(members) > 1
+                                   else list(members[0][1:]),
+                                   f"its {which} bound breaks a rule: {exc.problems[0]}"
+                                   + (f" (and {more} more)" if more else "")))
+    return out
+
+
+def _as_file_value(nominal, bound: float):
+    """The bound as the file would hold it: an int field stays an int when the bound is whole,
+    so that a non-whole bound of an integer (a cylinder count of 3.5) is caught by its rule."""
+    if isinstance(nominal, int) and not isinstance(nominal, bool) and float(bound).is_integer():
+        return int(bound)
+    return bound
+
+
+# ---------------------------------------------------------------------------
+# Plausibility: values that parse and obey every rule, yet fit no engine
+
+# Engines span model engines (a few mm of stroke) to marine two-strokes (bore 0.96 m,
+# stroke 3.2 m); the ratios cover car, truck, motorcycle and marine cranks with room to spare.
+_STROKE_RANGE_M = (0.005, 4.0)
+_RATIO_RULES = (  # (field, value of, relative to, low, high)
+    ("journals.*.diameter", "journals", "diameter", 0.2, 3.0),
+    ("pins.*.diameter", "pins", "diameter", 0.2, 3.0),
+    ("webs.*.thickness", "webs", "thickness", 0.03, 2.0),
+    ("journals.*.length", "journals", "length", 0.05, 3.0),
+    ("pins.*.length", "pins", "length", 0.05, 3.0),
+    ("front.*.diameter", "front", "diameter", 0.05, 5.0),
+    ("front.*.length", "front", "length", 0.01, 5.0),
+    ("rear.*.diameter", "rear", "diameter", 0.05, 5.0),
+    ("rear.*.length", "rear", "length", 0.01, 5.0),
+)
+
+
+def plausibility_warnings(crank: Crank) -> list[str]:
+    """One line for each dimension far outside any engine (a likely unit mix-up or typo).
+
+    Not errors: the description is valid and the analysis runs; the user is told which
+    value to check. Sizes are compared with the stroke, the one length every engine has.
+    """
+    u, scale = crank.length_unit, LENGTH_UNITS[crank.length_unit]
+    stroke = crank.engine.stroke
+    out = []
+    lo, hi = _STROKE_RANGE_M
+    if not lo <= stroke <= hi:
+        hint = {True: 'is [units] length = "m" meant to be "mm"?', False: "is [units] length right?"}[
+            u == "m" and stroke > hi]
+        out.append(f"engine.stroke = {stroke / scale:g} {u} ({stroke:g} m) is outside any engine "
+                   f"({lo * 1e3:g} mm to {hi:g} m): {hint}")
+    for field_name, group, attr, low, high in _RATIO_RULES:
+        values = [getattr(x, attr) for x in getattr(crank, group)]
+        bad = [i for i, v in enumerate(values) if not low <= v / stroke <= high]
+        if bad:
+            i = bad[0]
+            more = f" (and {len(bad) - 1} more)" if len(bad) > 1 else ""
+            out.append(f"{field_name.replace('*', str(i + 1))} = {values[i] / scale:g} {u}{more} is "
+                       f"{values[i] / stroke:.3g} × the stroke; engines have {low:g}-{high:g}: check the value")
+    lam = crank.engine.crank_radius / crank.engine.rod_length
+    if not 0.1 <= lam <= 0.5:
+        out.append(f"engine.rod_length = {crank.engine.rod_length / scale:g} {u} gives crank radius/rod length "
+                   f"{lam:.3g}; engines have 0.1-0.5: check the value")
+    bore = crank.engine.bore
+    if bore > 0 and not 0.3 <= bore / stroke <= 3.0:
+        out.append(f"engine.bore = {bore / scale:g} {u} is {bore / stroke:.3g} × the stroke; engines have 0.3-3: "
+                   "check the value")
+    return out

@@ -1,0 +1,13 @@
+"""Every default that more than one stage uses, in one place (SI units)."""
+
+DEFAULT_WEB_METHOD = "carter"
+# FE mesh: global element size; fillets and drillings get finer (fetorsion.solid.mesh).
+DEFAULT_MESH_SIZE = 0.010  # m
+# Coarse FE checks (sensitivity of f1 on the crank without fillets and drillings).
+CHECK_MESH_SIZE = 0.025  # m
+DEFAULT_MODES = 20  # elastic FE modes
+DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
+# Modal damping ratio when the description's [excitation] gives none: a design-rule value for
+# an undamped steel crank (issue 5).
+DEFAULT_DAMPING_RATIO = 0.02
+DEFAULT_SPEED_STEPS = 300  # speeds across the operating range in the forced response

@@ -1,0 +1,221 @@
+"""Campbell (interference) diagram with the excitation of each order measured (seed 003 eq. 21).
+
+A mode j of frequency f_j meets order q at n = 60 f_j / q rpm. Whether that crossing
+matters depends on the cylinders' torque harmonic T_q at that speed and on how the
+cylinders' contributions add on the mode: the phase-vector sum
+
+    S_jq = Σ_c a_jc e^{−i q φ_c}
+
+(a_jc the mode's twist at the pin of cylinder c, φ_c the firing angle of cylinder c).
+The severity of a crossing is the resonant vibratory angle at the pulley it drives, for a
+modal damping ratio ζ:
+
+    θ_pulley = |p_j| · |T_q| · |S_jq| / (2 ζ ω_j² m_j)       (m_j the modal inertia)
+
+which does not depend on how the mode shape is normalised. ``phase_sum`` = |S_jq| / Σ|a_jc|
+says how well the cylinders add (1 = all in phase, 0 = cancelled).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..description.crank import Crank
+from ..errors import FetorsionError
+from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
+from ..lumped_model.lumped import lumped, stations
+from ..lumped_model.parts import build_parts
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+
+
+@dataclass(frozen=True)
+class TorsionalModes:
+    """What the Campbell severity needs of a set of torsional modes, SI units.
+
+    ``pin_amplitudes[j, c]`` is mode j's twist at the pin of cylinder c, ``pulley_amplitude[j]``
+    its twist at the pulley, ``modal_inertia[j]`` = φ_jᵀ M φ_j with the same scaling.
+    """
+
+    source: str
+    frequencies_hz: np.ndarray
+    pin_amplitudes: np.ndarray
+    pulley_amplitude: np.ndarray
+    modal_inertia: np.ndarray
+
+
+def pin_weights(crank: Crank, partition: int, web_method: str = DEFAULT_WEB_METHOD) -> np.ndarray:
+    """(cylinders × stations) share of each pin in each station of a lumped partition.
+
+    The cylinder torque acts where the pin is; a pin split between two stations (the 5-DOF
+    model) passes its torque on in the same shares as its inertia.
+    """
+    chain = build_parts(crank, web_method)
+    st = stations(chain, partition)
+    lo = np.array([s.lo for s in st])
+    hi = np.array([s.hi for s in st])
+    pins = chain.of_kind("pin")
+    x0 = np.array([p.x0 for p in pins])[:, None]
+    x1 = np.array([p.x1 for p in pins])[:, None]
+    overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
+    return overlap / (x1 - x0)
+
+
+def lumped_modes(crank: Crank, partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD) -> TorsionalModes:
+    """Torsional modes of a lumped partition in the form the Campbell analysis uses."""
+    res = lumped(crank, partition, web_method)
+    W = pin_weights(crank, partition, web_method)
+    shapes = res.mode_shapes
+    return TorsionalModes(
+        source=f"lumped {res.dof} DOF ({web_method})",
+        frequencies_hz=res.frequencies_hz,
+        pin_amplitudes=shapes @ W.T,
+        pulley_amplitude=shapes[:, 0],
+        modal_inertia=np.einsum("js,s,js->j", shapes, res.inertias_kgm2, shapes),
+    )
+
+
+@dataclass
+class CampbellResult:
+    """Crossings of modes and orders, with their measured severity.
+
+    Attributes
+    ----------
+    crossings : list of dict
+        Each ``mode`` (1-based), ``frequency_hz``, ``order``, ``rpm``, ``in_range``,
+        ``torque_harmonic_nm`` (one cylinder's |T_q| at that speed), ``phase_sum`` (0..1),
+        ``severity`` (resonant vibratory angle at the pulley, degrees, for the modal damping).
+    """
+
+    name: str
+    source: str
+    frequencies_hz: np.ndarray
+    orders: np.ndarray
+    speed_range_rpm: tuple[float, float]
+    damping_ratio: float
+    crossings: list[dict]
+    harmonics_table: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "source": self.source, "frequencies_hz": self.frequencies_hz.tolist(),
+                "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
+                "modal_damping_ratio": self.damping_ratio,
+                "severity_unit": "deg: resonant vibratory angle at the pulley", "crossings": self.crossings,
+                "torque_harmonics": self.harmonics_table}
+
+    def table(self, only_in_range: bool = True) -> str:
+        rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
+        rows.sort(key=lambda c: -c["severity"])
+        head = f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} {'severity [deg]':>15}"
+        lines = [head, "-" * len(head)]
+        lines += [f"{c['mode']:>4} {c['frequency_hz']:8.1f} {c['order']:6.1f} {c['rpm']:7.0f} "
+                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity']:15.4g}" for c in rows]
+        return "\n".join(lines)
+
+    def plot(self, ax=None, max_rpm: float | None = None):
+        """Campbell diagram: modes, order lines, operating range, crossings sized by severity."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(9, 6))
+        lo, hi = self.speed_range_rpm
+        top = max_rpm or hi * 1.1
+        fmax = max(self.frequencies_hz) * 1.15
+        ax.axvspan(lo, hi, color="0.92", zorder=0, label="operating range")
+        rpm = np.array([0.0, top])
+        for q in self.orders:
+            ax.plot(rpm, q * rpm / 60, color="0.55", lw=0.7, zorder=1)
+            end = min(top, fmax * 60 / q)
+            ax.text(end, q * end / 60, f" {q:g}", fontsize=7, color="0.35", va="bottom")
+        for j, f in enumerate(self.frequencies_hz):
+            ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz")
+        inside = [c for c in self.crossings if c["in_range"]]
+        if inside:
+            sev = np.array([c["severity"] for c in inside])
+            size = 20 + 400 * sev / sev.max()
+            ax.scatter([c["rpm"] for c in inside], [c["frequency_hz"] for c in inside], s=size,
+                       facecolors="none", edgecolors="crimson", lw=1.3, zorder=3,
+                       label="crossing (size ∝ severity)")
+        ax.set_xlim(0, top)
+        ax.set_ylim(0, fmax)
+        ax.set_xlabel("engine speed [rpm]")
+        ax.set_ylabel("frequency [Hz]")
+        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {self.damping_ratio:g}", fontsize=10)
+        ax.legend(fontsize=7, loc="upper left")
+        ax.figure.tight_layout()
+        return ax
+
+
+def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
+    """0.5, 1, 1.5 … for a 4-stroke, 1, 2 … for a 2-stroke, up to ``highest``."""
+    step = 2 * np.pi / cycle_angle(crank.engine)
+    return np.arange(1, int(round(highest / step)) + 1) * step
+
+
+def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
+                 n_modes: int = 3, damping_ratio: float | None = None) -> CampbellResult:
+    """Crossings of the first ``n_modes`` torsional modes with each order, and their severity.
+
+    Parameters
+    ----------
+    crank : Crank
+        With an ``[excitation]`` table.
+    modes : TorsionalModes, optional
+        Default: the 17-DOF lumped model (:func:`lumped_modes`).
+    orders : array_like, optional
+        Orders to check; default 0.5 … 12 for a 4-stroke.
+    speed_range : (float, float), optional
+        Operating range, rpm; default the description's ``speed_range_rpm``.
+    n_modes : int
+        How many of the lowest modes to include.
+    damping_ratio : float, optional
+        Modal damping ratio ζ for the severity; default the description's.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> from fetorsion.excitation.campbell import run_campbell
+    >>> res = run_campbell(fetorsion.load("geometry/renault21.toml"))
+    >>> all(c["rpm"] > 0 for c in res.crossings)
+    True
+    """
+    if crank.excitation is None:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
+    modes = modes or lumped_modes(crank)
+    orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
+    if np.any(orders <= 0):
+        raise FetorsionError(f"orders must be > 0, got {orders.tolist()}")
+    lo, hi = crank.excitation.speed_range if speed_range is None else speed_range
+    zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio
+    k = min(n_modes, len(modes.frequencies_hz))
+    f = modes.frequencies_hz[:k]
+    rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)
+    phi = firing_angles(crank.engine)
+    phasors = np.exp(-1j * orders[:, None] * phi[None, :])  # (orders, cylinders)
+    S = modes.pin_amplitudes[:k] @ phasors.T  # (modes, orders)
+    phase_sum = np.abs(S) / np.abs(modes.pin_amplitudes[:k]).sum(axis=1, keepdims=True)
+    period = cycle_angle(crank.engine)
+    Tq = np.empty_like(rpm, dtype=complex)
+    for j in range(k):  # one torque cycle per mode and order (distinct speeds)
+        for i, q in enumerate(orders):
+            Tq[j, i] = harmonics(cylinder_torque(crank, rpm[j, i])["total"], period).at([q])[0]
+    omega = 2 * np.pi * f[:, None]
+    theta = (np.abs(modes.pulley_amplitude[:k, None]) * np.abs(Tq) * np.abs(S)
+             / (2 * zeta * omega**2 * modes.modal_inertia[:k, None]))
+    crossings = [
+        {"mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(rpm[j, i]),
+         "in_range": bool(lo <= rpm[j, i] <= hi), "torque_harmonic_nm": float(abs(Tq[j, i])),
+         "phase_sum": float(phase_sum[j, i]), "severity": float(np.degrees(theta[j, i]))}
+        for j in range(k) for i, q in enumerate(orders)
+    ]
+    table = {}
+    for speed in np.linspace(lo, hi, 5):
+        h = harmonics(cylinder_torque(crank, speed)["total"], period)
+        table[f"{speed:.0f}"] = {"orders": orders.tolist(), "amplitude_nm": np.abs(h.at(orders)).tolist(),
+                                 "phase_rad": np.angle(h.at(orders)).tolist(), "mean_nm": h.mean_nm}
+    return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table)
+
+
+__all__ = ["CampbellResult", "TorsionalModes", "default_orders", "lumped_modes",
+           "pin_weights", "run_campbell"]

@@ -1,0 +1,209 @@
+"""Cylinder pressure, cylinder torque and its harmonic orders (seed 004 eq. 13–19, exact).
+
+Angles: θ is the crank angle of a cylinder measured from its *firing* TDC, over one
+working cycle (720° for a 4-stroke, 360° for a 2-stroke). Cylinder c fires
+``firing_angles(engine)[c]`` after cylinder 1.
+
+The synthetic 4-stroke cycle: intake and exhaust strokes at the intake pressure; from
+BDC before firing to BDC after it the charge is closed, with one polytropic exponent n
+and a Wiebe heat release, whose first law d(pVⁿ) = (n − 1) Vⁿ⁻¹ dQ integrates in closed
+form: p Vⁿ = p₀ V₀ⁿ + (n − 1) ∫ Vⁿ⁻¹ dQ. Pressure is affine in the heat released, so the
+heat is scaled exactly to the requested IMEP (or, by root-finding, the peak pressure).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.integrate
+import scipy.optimize
+
+from ..description.crank import Crank, Engine, Excitation
+from ..errors import FetorsionError
+from .kinematics import piston_acceleration, piston_position, tangential_torque
+
+SAMPLES_PER_CYCLE = 1440  # 0.5° for a 4-stroke: resolves orders up to 360 (Nyquist)
+
+
+def cycle_angle(engine: Engine) -> float:
+    """Length of one working cycle in crank rad: 4π (4-stroke) or 2π (2-stroke)."""
+    return 2 * np.pi * engine.strokes_per_cycle / 2
+
+
+def cycle_grid(engine: Engine, samples: int = SAMPLES_PER_CYCLE) -> np.ndarray:
+    """Uniform crank angles over one cycle starting at firing TDC, rad (endpoint excluded)."""
+    return np.arange(samples) * (cycle_angle(engine) / samples)
+
+
+def firing_angles(engine: Engine) -> np.ndarray:
+    """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0.
+
+    ``crank_angles[c]`` is how far cylinder c's TDC lags cylinder 1's; each cylinder has two
+    TDCs per 4-stroke cycle, and the firing order picks, cylinder by cylinder, the first
+    TDC after the previous firing.
+    """
+    period = cycle_angle(engine)
+    tdc = np.mod(np.array(engine.crank_angles) - engine.crank_angles[0], 2 * np.pi)
+    out = np.zeros(engine.cylinders)
+    previous = -1e-9
+    order = list(engine.firing_order)
+    start = order.index(1)
+    for c in order[start:] + order[:start]:
+        candidates = np.arange(tdc[c - 1], period, 2 * np.pi)
+        later = candidates[candidates > previous + 1e-9]
+        if c != 1 and len(later) == 0:
+            raise FetorsionError(f"engine.firing_order {order}: cylinder {c} cannot fire after the cylinder before it "
+                                 "within one cycle with these crank_angles_deg")
+        out[c - 1] = 0.0 if c == 1 else later[0]
+        previous = out[c - 1]
+    return out
+
+
+def cylinder_volume(theta, engine: Engine, compression_ratio: float) -> np.ndarray:
+    """Cylinder volume (m³) at crank angle θ from TDC."""
+    area = math.pi / 4 * engine.bore**2
+    r, l = engine.crank_radius, engine.rod_length
+    clearance = area * engine.stroke / (compression_ratio - 1.0)
+    return clearance + area * (r + l - piston_position(theta, r, l))
+
+
+def _closed_cycle_parts(theta, engine: Engine, ex: Excitation):
+    """Motored pressure and pressure per joule of heat (both Pa) on the grid ``theta``."""
+    # Unwrap to [−π, 3π): the closed part runs from BDC before firing (−π) to BDC after (π).
+    phi = np.where(theta >= 3 * np.pi, theta - 4 * np.pi, theta)
+    closed = np.abs(phi) <= np.pi
+    n = ex.polytropic_exponent
+    order = np.argsort(phi)
+    ph = phi[order]
+    V = cylinder_volume(ph, engine, ex.compression_ratio)
+    V0 = cylinder_volume(-np.pi, engine, ex.compression_ratio)
+    x = np.clip((ph - ex.combustion_start) / ex.combustion_duration, 0.0, None)
+    burned = 1.0 - np.exp(-ex.wiebe_a * x ** (ex.wiebe_m + 1.0))
+    # p Vⁿ = p₀V₀ⁿ + (n−1) ∫ Vⁿ⁻¹ dQ, with Q = 1 J · burned fraction.
+    integral = scipy.integrate.cumulative_trapezoid(V ** (n - 1.0), burned, initial=0.0)
+    motored = ex.intake_pressure * (V0 / V) ** n
+    per_joule = (n - 1.0) * integral / V**n
+    back = np.empty_like(order)
+    back[order] = np.arange(len(order))
+    motored, per_joule = motored[back], per_joule[back]
+    return np.where(closed, motored, ex.intake_pressure), np.where(closed, per_joule, 0.0)
+
+
+def _imep(theta, p, engine: Engine, ex: Excitation) -> float:
+    V = cylinder_volume(theta, engine, ex.compression_ratio)
+    work = np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(V, -1) - V))
+    return work / (math.pi / 4 * engine.bore**2 * engine.stroke)
+
+
+def cylinder_pressure(crank: Crank, rpm: float, theta=None) -> tuple[np.ndarray, np.ndarray]:
+    """Absolute cylinder pressure (Pa) over one cycle at ``rpm``: (θ rad, p Pa).
+
+    From the description's pressure CSV if it has one (interpolated periodically), else
+    the synthetic cycle scaled to the load at ``rpm``.
+    """
+    engine, ex = crank.engine, _excitation_of(crank)
+    theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
+    if ex.pressure_curve is not None:
+        ang, p = (np.asarray(v) for v in ex.pressure_curve)
+        return theta, np.interp(theta, ang, p, period=cycle_angle(engine))
+    if engine.strokes_per_cycle != 4:
+        raise FetorsionError("the synthetic cycle is a 4-stroke cycle; give excitation.pressure_csv for a 2-stroke")
+    if not engine.bore > 0:
+        raise FetorsionError("engine.bore is needed for the gas force")
+    target = float(np.interp(rpm, *zip(*ex.load)))
+    motored, per_joule = _closed_cycle_parts(theta, engine, ex)
+    if ex.load_kind == "imep":
+        q = (target - _imep(theta, motored, engine, ex)) / _imep(theta, per_joule, engine, ex)
+    else:
+        if motored.max() >= target:
+            raise FetorsionError(f"excitation.peak_pressure_pa {target:.4g} Pa is below the motored peak "
+                                 f"{motored.max():.4g} Pa")
+        q = scipy.optimize.brentq(lambda h: (motored + h * per_joule).max() - target, 0.0, 1e7)
+    if q < 0:
+        raise FetorsionError(f"excitation.imep_pa {target:.4g} Pa is below the motored IMEP")
+    return theta, motored + q * per_joule
+
+
+def _excitation_of(crank: Crank) -> Excitation:
+    if crank.excitation is None:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
+    return crank.excitation
+
+
+def cylinder_torque(crank: Crank, rpm: float, theta=None) -> dict[str, np.ndarray]:
+    """Torque of one cylinder on the crank over a cycle at constant ``rpm``, N·m.
+
+    Returns ``theta`` (rad from firing TDC), ``gas``, ``inertia`` and ``total`` torque: the
+    gas force A (p − p_intake) and the reciprocating inertia force m S̈ act together on the
+    pin through the exact rod geometry, T = r F sin(θ + β)/cos β.
+    """
+    engine, ex = crank.engine, _excitation_of(crank)
+    theta, p = cylinder_pressure(crank, rpm, theta)
+    r, l = engine.crank_radius, engine.rod_length
+    omega = rpm * 2 * np.pi / 60
+    gas_force = math.pi / 4 * engine.bore**2 * (p - ex.intake_pressure)
+    inertia_force = ex.reciprocating_mass * piston_acceleration(theta, r, l, omega)
+    return {"theta": theta,
+            "gas": tangential_torque(theta, gas_force, r, l),
+            "inertia": tangential_torque(theta, inertia_force, r, l),
+            "total": tangential_torque(theta, gas_force + inertia_force, r, l)}
+
+
+def engine_torque(crank: Crank, rpm: float) -> dict[str, np.ndarray]:
+    """Sum of all cylinders' torques on a rigid crank over one cycle, N·m.
+
+    Cylinder c's torque is cylinder 1's delayed by its firing angle; the shift is done on
+    the periodic sample grid, so the firing angles must fall on it (they do for any even
+    firing of up to 16 cylinders at 0.5° sampling).
+    """
+    one = cylinder_torque(crank, rpm)
+    step = one["theta"][1] - one["theta"][0]
+    shifts = firing_angles(crank.engine) / step
+    if np.any(np.abs(shifts - np.rint(shifts)) > 1e-6):
+        raise FetorsionError("firing angles do not fall on the 0.5° sample grid")
+    total = sum(np.roll(one["total"], int(k)) for k in np.rint(shifts))
+    return {"theta": one["theta"], "total": total}
+
+
+@dataclass(frozen=True)
+class Harmonics:
+    """Harmonic orders of a periodic torque: T(θ) = mean + Re Σ_q T_q e^{i q θ}.
+
+    ``orders`` in multiples of crank speed (0.5, 1, 1.5 ... for a 4-stroke), ``complex_nm``
+    the complex amplitudes T_q (N·m), so the amplitude is |T_q| and the phase arg T_q.
+    """
+
+    orders: np.ndarray
+    complex_nm: np.ndarray
+    mean_nm: float
+
+    @property
+    def amplitude_nm(self) -> np.ndarray:
+        return np.abs(self.complex_nm)
+
+    @property
+    def phase_rad(self) -> np.ndarray:
+        return np.angle(self.complex_nm)
+
+    def at(self, orders) -> np.ndarray:
+        """Complex amplitudes of the given orders (0 where the order is not present)."""
+        idx = np.rint(np.asarray(orders, dtype=float) / self.orders[0]).astype(int) - 1
+        ok = (idx >= 0) & (idx < len(self.orders))
+        return np.where(ok, self.complex_nm[np.clip(idx, 0, len(self.orders) - 1)], 0.0)
+
+
+def harmonics(torque, period: float) -> Harmonics:
+    """Orders of a torque sampled uniformly over one ``period`` (rad), any last-axis length.
+
+    Order q means q oscillations per crank revolution; the lowest present is 2π/period.
+    """
+    torque = np.asarray(torque, dtype=float)
+    n = torque.shape[-1]
+    c = np.fft.rfft(torque, axis=-1) / n
+    base = 2 * np.pi / period
+    amps = 2 * c[..., 1:]
+    if n % 2 == 0:  # the Nyquist bin is real and not doubled
+        amps[..., -1] /= 2
+    return Harmonics(base * np.arange(1, amps.shape[-1] + 1), amps, float(np.real(c[..., 0]).mean()))

@@ -1,0 +1,244 @@
+"""Lumped torsional models of the crank (seed 003): partitions, matrices, free-free modes.
+
+A partition is a list of stations. Each station owns an axial interval [lo, hi) of the
+crank and sits at an anchor point x_a. A station's inertia is the inertia of the metal in
+its interval (each part's inertia spread uniformly along the part) plus the end-face
+attachments inside it; the spring between two stations is the compliance of the shaft
+between their anchors. The five partitions of the paper, for an N-cylinder crank with
+N + 1 main journals (the paper's names are the inline-4 sizes):
+
+========  =========  =============================================================
+name      inline-4   stations
+========  =========  =============================================================
+5         N + 1      front end (anchor x = 0: nose, J1, W1, half P1, pulley);
+                     journals 2..N (anchor at the journal centre, from mid-pin to
+                     mid-pin); rear end (anchor x = L: half P_N, last web, last
+                     journal, flange, flywheel). Exactly eq. (18)–(20).
+6         N + 2      front end (x = 0: nose and half J1, pulley); one per throw
+                     (anchor at the pin centre, from mid-journal to mid-journal);
+                     rear end (x = L: half last journal, flange, flywheel).
+17        4N + 1     one per journal, web and pin, anchored at its centre; the nose
+                     and pulley are lumped into J1, the flange and flywheel into the
+                     last journal.
+19        4N + 3     as 17, plus a front station (x = 0: nose and pulley) and a rear
+                     station (x = L: flange and flywheel).
+21        4N + 5     as 19 with the nose and the flange each cut in two halves of
+                     equal length: the outer half anchored at the end face (with the
+                     pulley or flywheel), the inner half at its own centre.
+========  =========  =============================================================
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+
+from ..description.crank import Chain, Crank
+from ..errors import FetorsionError
+from .parts import PartChain, build_parts
+from ..description.defaults import DEFAULT_WEB_METHOD
+
+PARTITIONS = (5, 6, 17, 19, 21)
+
+
+@dataclass(frozen=True)
+class Station:
+    label: str
+    lo: float
+    hi: float
+    anchor: float
+
+
+def stations(chain: PartChain, partition: int) -> list[Station]:
+    """The stations of ``partition`` (one of :data:`PARTITIONS`) on ``chain``."""
+    journals, webs, pins = chain.of_kind("journal"), chain.of_kind("web"), chain.of_kind("pin")
+    L = chain.length
+    mid = lambda p: 0.5 * (p.x0 + p.x1)  # noqa: E731
+    front_end, rear_end = journals[0].x0, journals[-1].x1
+    if partition == 5:
+        cuts = [0.0] + [mid(p) for p in pins] + [L]
+        anchors = [0.0] + [mid(j) for j in journals[1:-1]] + [L]
+        labels = ["front"] + [j.label for j in journals[1:-1]] + ["rear"]
+        return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors)]
+    if partition == 6:
+        cuts = [0.0] + [mid(j) for j in journals] + [L]
+        anchors = [0.0] + [mid(p) for p in pins] + [L]
+        labels = ["front"] + [f"throw {p.index + 1}" for p in pins] + ["rear"]
+        return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors)]
+    if partition not in PARTITIONS:
+        raise FetorsionError(f"--dof {partition!r} is not a partition; choose from {PARTITIONS} or 'all'")
+    inner = sorted(journals + webs + pins, key=lambda p: p.x0)
+    body = [Station(p.label, p.x0, p.x1, mid(p)) for p in inner]
+    if partition == 17:
+        body[0] = Station(body[0].label, 0.0, body[0].hi, body[0].anchor)
+        body[-1] = Station(body[-1].label, body[-1].lo, L, body[-1].anchor)
+        return body
+    if partition == 19:
+        return [Station("front", 0.0, front_end, 0.0)] + body + [Station("rear", rear_end, L, L)]
+    half_f, half_r = 0.5 * front_end, 0.5 * (L + rear_end)
+    return ([Station("front", 0.0, half_f, 0.0), Station("front inner", half_f, front_end, 0.5 * (half_f + front_end))]
+            + body
+            + [Station("rear inner", rear_end, half_r, 0.5 * (rear_end + half_r)), Station("rear", half_r, L, L)])
+
+
+def partition_matrices(chain: PartChain, partition: int):
+    """Station inertias (kg·m²), springs (N·m/rad), labels and anchors of a partition."""
+    st = stations(chain, partition)
+    edges = np.array([chain.parts[0].x0] + [p.x1 for p in chain.parts])
+    cum_compliance = np.concatenate([[0.0], np.cumsum([p.compliance for p in chain.parts])])
+    cum_inertia = np.concatenate([[0.0], np.cumsum([p.inertia + p.attached_inertia for p in chain.parts])])
+    lo = np.array([s.lo for s in st])
+    hi = np.array([s.hi for s in st])
+    anchors = np.array([s.anchor for s in st])
+    # Both cumulative functions are piecewise linear in x, so interpolation is exact.
+    inertias = np.interp(hi, edges, cum_inertia) - np.interp(lo, edges, cum_inertia)
+    inertias[0] += chain.front_inertia
+    inertias[-1] += chain.rear_inertia
+    springs = 1.0 / np.diff(np.interp(anchors, edges, cum_compliance))
+    empty = [s.label for s, i in zip(st, inertias) if not i > 0]
+    if empty:
+        raise FetorsionError(
+            f"the {partition}-DOF partition has stations without inertia ({', '.join(empty)}): "
+            "it needs front/rear sections or attachments at the crank ends")
+    return inertias, springs, [s.label for s in st], anchors
+
+
+def chain_matrices(inertias, stiffnesses):
+    """Diagonal mass and tridiagonal stiffness matrices of a free-free torsional chain."""
+    k = np.asarray(stiffnesses, dtype=float)
+    K = np.diag(np.concatenate([k, [0.0]]) + np.concatenate([[0.0], k])) - np.diag(k, 1) - np.diag(k, -1)
+    return np.diag(np.asarray(inertias, dtype=float)), K
+
+
+@dataclass
+class LumpedResult:
+    """Free-free natural frequencies and mode shapes of a lumped torsional chain.
+
+    Attributes
+    ----------
+    name : str
+        The crank or chain name.
+    partition : int or None
+        The paper's partition name (5, 6, 17, 19, 21) or None for a chain file.
+    labels : list of str
+        Station names, front (pulley end) first.
+    positions_m : ndarray
+        Anchor of each station along the axis from the front end, m (NaN for chains).
+    inertias_kgm2, stiffnesses_nm_per_rad : ndarray
+        The chain.
+    frequencies_hz : ndarray
+        Elastic natural frequencies, ascending, Hz.
+    mode_shapes : ndarray, shape (modes, stations)
+        Row j is the shape of ``frequencies_hz[j]``, 1 at the front station (the
+        paper's normalisation) unless that station is a node, then max |θ| = 1.
+    rigid_body_hz : float
+        The free-free rigid-body root (≈ 0; its size shows the round-off).
+    """
+
+    name: str
+    partition: int | None
+    labels: list[str]
+    positions_m: np.ndarray
+    inertias_kgm2: np.ndarray
+    stiffnesses_nm_per_rad: np.ndarray
+    frequencies_hz: np.ndarray
+    mode_shapes: np.ndarray
+    rigid_body_hz: float
+    inputs: dict = field(default_factory=dict)
+
+    @property
+    def dof(self) -> int:
+        return len(self.inertias_kgm2)
+
+    def to_dict(self) -> dict:
+        """Plain JSON-ready dict (lists and floats, SI units in the key names)."""
+        return {
+            "name": self.name,
+            "partition": self.partition,
+            "dof": self.dof,
+            "labels": list(self.labels),
+            "positions_m": [None if np.isnan(x) else float(x) for x in self.positions_m],
+            "frequencies_hz": self.frequencies_hz.tolist(),
+            "rigid_body_hz": float(self.rigid_body_hz),
+            "inertias_kgm2": self.inertias_kgm2.tolist(),
+            "stiffnesses_nm_per_rad": self.stiffnesses_nm_per_rad.tolist(),
+            "mode_shapes": self.mode_shapes.tolist(),
+            **self.inputs,
+        }
+
+    def plot(self, modes: int = 4, ax=None):
+        """Mode shapes against station (unit at the pulley end, as in the paper's fig. 13–14).
+
+        Returns the matplotlib Axes.
+        """
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 4.5))
+        x = np.arange(self.dof)
+        for j in range(min(modes, len(self.frequencies_hz))):
+            ax.plot(x, self.mode_shapes[j], marker="o", label=f"mode {j + 1}: {self.frequencies_hz[j]:.1f} Hz")
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.set_xticks(x, self.labels, rotation=60, fontsize=7)
+        ax.set_ylabel("relative twist angle")
+        title = f"{self.name}: {self.dof}-DOF lumped model" if self.partition else f"{self.name}: chain"
+        ax.set_title(title)
+        ax.legend(fontsize=8)
+        ax.figure.tight_layout()
+        return ax
+
+
+def solve_chain(inertias, stiffnesses):
+    """Free-free modes of a chain: (rigid-body Hz, elastic Hz ascending, shapes per row)."""
+    M, K = chain_matrices(inertias, stiffnesses)
+    # eigh returns eigenvalues ascending with eigenvectors in the same column order.
+    lam, vec = scipy.linalg.eigh(K, M)
+    if abs(lam[0]) > 1e-8 * abs(lam[-1]):
+        raise FetorsionError(f"the free-free chain has no rigid-body root (smallest eigenvalue {lam[0]:.3g})")
+    shapes = vec[:, 1:].T
+    ref = shapes[:, 0]
+    scale = np.where(np.abs(ref) > 1e-6 * np.abs(shapes).max(axis=1), ref,
+                     shapes[np.arange(len(shapes)), np.abs(shapes).argmax(axis=1)])
+    shapes = shapes / scale[:, None]
+    hz = np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi)
+    return float(hz[0]), hz[1:], shapes
+
+
+def lumped(model: Crank | Chain, dof: int = 17, stiffness: str = DEFAULT_WEB_METHOD) -> LumpedResult:
+    """Free-free lumped torsional model of a crank (one partition) or of a chain file.
+
+    Parameters
+    ----------
+    model : Crank or Chain
+        From :func:`fetorsion.load`.
+    dof : int
+        Partition name for a crank, one of 5, 6, 17, 19, 21 (see module docs);
+        ignored for a chain.
+    stiffness : str
+        Web stiffness method, a key of :data:`fetorsion.webs.sections.WEB_METHODS`: ``"carter"``,
+        ``"ker-wilson"``, ``"beam"``, ``"fe"`` (static FE of each throw, cached) or ``"chart"``.
+
+    Returns
+    -------
+    LumpedResult
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")
+    >>> res = fetorsion.lumped(crank, dof=17)
+    >>> res.dof, bool(res.frequencies_hz[0] > 0)
+    (17, True)
+    """
+    if isinstance(model, Chain):
+        rigid, hz, shapes = solve_chain(model.inertias, model.stiffnesses)
+        return LumpedResult(model.name, None, list(model.labels), np.full(len(model.inertias), np.nan),
+                            np.array(model.inertias), np.array(model.stiffnesses), hz, shapes, rigid,
+                            {"source": model.source})
+    chain = build_parts(model, stiffness)
+    inertias, springs, labels, anchors = partition_matrices(chain, dof)
+    rigid, hz, shapes = solve_chain(inertias, springs)
+    return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,
+                        {"stiffness_method": stiffness, "source": model.source})

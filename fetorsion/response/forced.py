@@ -1,0 +1,175 @@
+"""Steady-state forced torsional response of a lumped crank model, summed over orders.
+
+For each speed Ω and order q the cylinders' torque harmonics load the stations that hold
+the pins, F_q = Wᵀ (T_q e^{−i q φ_c}), and
+
+    (K − (qΩ)² M + i qΩ C) Θ_q = F_q
+
+is solved for all speeds and orders at once (batched dense solves: the chains are small).
+The angle of station s over a cycle is Σ_q Re(Θ_q,s e^{i q θ}); its vibratory amplitude
+is half its peak-to-peak. Damping: a modal damping ratio ζ on every elastic mode,
+C = M Φ diag(2 ζ ω_j / m_j) Φᵀ M, plus a chain file's absolute and relative dampers.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from ..excitation.campbell import default_orders, pin_weights
+from ..description.crank import Crank
+from ..errors import FetorsionError
+from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
+from ..lumped_model.lumped import chain_matrices, lumped
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
+
+
+def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
+    """C with damping ratio ``ratio`` on every elastic mode and none on the rigid-body mode."""
+    lam, Phi = scipy.linalg.eigh(K, M)  # Φᵀ M Φ = I, eigenvalues ascending
+    omega = np.sqrt(np.clip(lam, 0.0, None))
+    omega[0] = 0.0  # the free-free rigid-body mode stays undamped
+    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M
+
+
+def steady_state(M, K, C, forces, omegas) -> np.ndarray:
+    """Complex amplitudes Θ solving (K − ω²M + iωC) Θ = F for stacks of ω and F.
+
+    ``forces`` has shape (..., n) and ``omegas`` the matching shape (...).
+    """
+    omegas = np.asarray(omegas, dtype=float)[..., None, None]
+    A = K - omegas**2 * M + 1j * omegas * C
+    return np.linalg.solve(A, forces[..., None])[..., 0]
+
+
+@dataclass
+class ResponseResult:
+    """Vibratory response versus engine speed.
+
+    Attributes
+    ----------
+    rpm : ndarray
+        Engine speeds.
+    pulley_angle_deg : ndarray
+        Vibratory angle (half peak-to-peak) of the pulley-end station, degrees.
+    pulley_twist_deg : ndarray
+        The same for the pulley relative to the flywheel-end station (elastic twist).
+    section_torque_nm : ndarray, shape (speeds, springs)
+        Vibratory torque (half peak-to-peak) in each shaft section, N·m.
+    order_pulley_deg : ndarray, shape (speeds, orders)
+        Each order's own pulley amplitude, degrees.
+    """
+
+    name: str
+    labels: list[str]
+    orders: np.ndarray
+    rpm: np.ndarray
+    pulley_angle_deg: np.ndarray
+    pulley_twist_deg: np.ndarray
+    section_torque_nm: np.ndarray
+    order_pulley_deg: np.ndarray
+    damping_ratio: float
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
+                "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
+                "pulley_angle_deg": self.pulley_angle_deg.tolist(),
+                "pulley_twist_deg": self.pulley_twist_deg.tolist(),
+                "section_torque_nm": self.section_torque_nm.tolist(),
+                "order_pulley_deg": self.order_pulley_deg.tolist()}
+
+    def summary(self) -> str:
+        """The largest pulley angle and twist and section torque, with where they occur."""
+        i, a = self.pulley_twist_deg.argmax(), self.pulley_angle_deg.argmax()
+        s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
+        return "\n".join([
+            f"{self.name}: forced response {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, zeta = {self.damping_ratio:g}",
+            f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
+            f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
+            f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
+            f"({self.labels[k]}-{self.labels[k + 1]})"])
+
+    def plot(self, fig=None):
+        """Pulley angle and twist, and the largest section torque, against speed."""
+        import matplotlib.pyplot as plt
+
+        fig = fig or plt.figure(figsize=(9, 7))
+        a1, a2 = fig.subplots(2, 1, sharex=True)
+        a1.plot(self.rpm, self.pulley_angle_deg, label="pulley angle (absolute)")
+        a1.plot(self.rpm, self.pulley_twist_deg, label="pulley twist against flywheel end")
+        a1.set_ylabel("vibratory angle [deg]")
+        a1.legend(fontsize=8)
+        a1.set_title(f"{self.name}\nforced response, ζ = {self.damping_ratio:g}", fontsize=10)
+        worst = np.argmax(self.section_torque_nm.max(axis=0))
+        a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
+                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}")
+        a2.set_ylabel("vibratory torque [N m]")
+        a2.set_xlabel("engine speed [rpm]")
+        a2.legend(fontsize=8)
+        fig.tight_layout()
+        return fig
+
+
+def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, orders=None, damping_ratio: float | None = None,
+                 web_method: str = DEFAULT_WEB_METHOD) -> ResponseResult:
+    """Forced torsional response of a lumped crank model over the operating range.
+
+    Parameters
+    ----------
+    crank : Crank
+        With an ``[excitation]`` table.
+    partition : int
+        Lumped partition (5, 6, 17, 19, 21).
+    rpm : array_like, optional
+        Speeds, rpm; default :data:`DEFAULT_SPEED_STEPS` steps over the description's speed range.
+    orders : array_like, optional
+        Orders summed; default 0.5 … 12 (4-stroke).
+    damping_ratio : float, optional
+        Modal damping ratio; default the description's.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> from fetorsion.response.forced import run_response
+    >>> r = run_response(fetorsion.load("geometry/renault21.toml"), rpm=[1000.0, 2000.0])
+    >>> r.pulley_angle_deg.shape
+    (2,)
+    """
+    ex = crank.excitation
+    if ex is None:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
+    lo, hi = ex.speed_range
+    rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
+    orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
+    zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
+    res = lumped(crank, partition, web_method)
+    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    C = modal_damping_matrix(M, K, zeta)
+    W = pin_weights(crank, partition, web_method)  # (cylinders, stations)
+    period = cycle_angle(crank.engine)
+    Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
+    phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
+    forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
+    omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
+    theta = steady_state(M, K, C, forces, omegas)  # (speeds, orders, stations)
+
+    cycle = np.linspace(0.0, period, 721)[:-1]
+    waves = np.exp(1j * orders[:, None] * cycle[None, :])  # (orders, angles)
+
+    def amplitude(z):  # z: (speeds, orders) complex -> half peak-to-peak over a cycle
+        x = np.real(z @ waves)
+        return 0.5 * (x.max(axis=-1) - x.min(axis=-1))
+
+    k = res.stiffnesses_nm_per_rad
+    twist = theta[:, :, :-1] - theta[:, :, 1:]  # (speeds, orders, springs)
+    section = np.real(np.einsum("soj,oa->sja", twist * k, waves))
+    return ResponseResult(
+        name=crank.name, labels=res.labels, orders=orders, rpm=rpm,
+        pulley_angle_deg=np.degrees(amplitude(theta[:, :, 0])),
+        pulley_twist_deg=np.degrees(amplitude(theta[:, :, 0] - theta[:, :, -1])),
+        section_torque_nm=0.5 * (section.max(axis=-1) - section.min(axis=-1)),
+        order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
+        damping_ratio=zeta,
+    )

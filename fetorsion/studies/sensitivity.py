@@ -1,0 +1,163 @@
+"""How the first torsional frequency depends on each reconstructed input, and its band.
+
+Each ``[uncertainty]`` entry of a description gives a range [low, high] for one input
+(``*`` paths set every entry of the list to the bound), or for a named group of inputs
+that move together (a material's E and density). The lumped model is re-run with
+that input at each bound, all else nominal: that gives the one-at-a-time change of f1 and
+its elasticity (Δf/f)/(Δx/x). The band of f1 is then computed, not estimated: every input
+is put at the bound that lowers f1 (and then at the one that raises it) and the model run
+once more, so the band's ends are real model results, interactions included.
+"""
+
+from __future__ import annotations
+
+import copy
+from dataclasses import dataclass
+
+from ..description.crank import Crank, parse_crank, resolve_field
+from ..errors import FetorsionError
+from ..lumped_model.lumped import lumped
+from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
+
+
+def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
+    """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
+
+    The variant is a new design, so the original's ``[uncertainty]`` ranges are dropped.
+    ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
+    checks, where those details would dominate the element count.
+    """
+    raw = copy.deepcopy(crank.raw)
+    raw.pop("uncertainty", None)
+    if not details:
+        for key in ("fillets", "oil_holes"):
+            raw.pop(key, None)
+    for path, value in changes.items():
+        parent_path, _, key = path.rpartition(".")
+        parents = resolve_field(raw, parent_path) if parent_path else [("", raw)]
+        for _, parent in parents:
+            parent[key] = value
+    return parse_crank(raw, source=crank.source)
+
+
+@dataclass
+class SensitivityResult:
+    """One-at-a-time sensitivities of f1 and the corner band.
+
+    ``rows``: each ``field``, ``low``, ``high`` (file units), ``f1_low_hz``, ``f1_high_hz``,
+    ``elasticity`` ((Δf/f)/(Δx/x) across the range). ``band_hz``: f1 with every input at the
+    bound that lowers it, and at the one that raises it.
+    """
+
+    name: str
+    model: str
+    f1_hz: float
+    rows: list[dict]
+    band_hz: tuple[float, float]
+    measured_hz: float | None
+
+    @property
+    def measured_inside(self) -> bool | None:
+        if self.measured_hz is None:
+            return None
+        return self.band_hz[0] <= self.measured_hz <= self.band_hz[1]
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "model": self.model, "f1_hz": self.f1_hz, "rows": self.rows,
+                "band_hz": list(self.band_hz), "measured_hz": self.measured_hz,
+                "measured_inside_band": self.measured_inside}
+
+    def table(self) -> str:
+        head = f"{'input':<32} {'range':>22} {'f1 at low':>10} {'f1 at high':>10} {'elasticity':>10}"
+        lines = [f"{self.name}: f1 = {self.f1_hz:.1f} Hz ({self.model}); one input at a time", head, "-" * len(head)]
+        for r in sorted(self.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"])):
+            rng = f"{r['low']:g} .. {r['high']:g}"
+            lines.append(f"{r['field']:<32} {rng:>22} {r['f1_low_hz']:10.1f} {r['f1_high_hz']:10.1f} "
+                         f"{r['elasticity']:10.3f}")
+        lo, hi = self.band_hz
+        lines.append(f"band of f1 (all inputs at their worst bounds): {lo:.1f} .. {hi:.1f} Hz")
+        if self.measured_hz is not None:
+            where = "inside" if self.measured_inside else "OUTSIDE"
+            lines.append(f"measured {self.measured_hz:g} Hz is {where} the band")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Tornado chart of f1 against each input's range."""
+        import matplotlib.pyplot as plt
+
+        rows = sorted(self.rows, key=lambda r: abs(r["f1_high_hz"] - r["f1_low_hz"]))
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 0.35 * len(rows) + 1.5))
+        for i, r in enumerate(rows):
+            a, b = sorted((r["f1_low_hz"], r["f1_high_hz"]))
+            ax.barh(i, b - a, left=a, color="C0")
+        ax.set_yticks(range(len(rows)), [r["field"] for r in rows], fontsize=7)
+        ax.axvline(self.f1_hz, color="k", lw=1, label=f"nominal {self.f1_hz:.0f} Hz")
+        ax.axvspan(*self.band_hz, color="C0", alpha=0.12, label="band")
+        if self.measured_hz is not None:
+            ax.axvline(self.measured_hz, color="crimson", lw=1.5, ls="--", label=f"measured {self.measured_hz:g} Hz")
+        ax.set_xlabel("first torsional frequency [Hz]")
+        ax.set_title(f"{self.name}\nf1 sensitivity ({self.model})", fontsize=10)
+        ax.legend(fontsize=7)
+        ax.figure.tight_layout()
+        return ax
+
+
+def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size: float = CHECK_MESH_SIZE) -> list[dict]:
+    """FE first torsional frequency at the bounds of the ``count`` most influential inputs.
+
+    Runs on the crank without fillets and drillings at a coarse mesh (a few seconds per
+    run): what is compared is the change of f1, which those details barely affect.
+    """
+    from ..fe.crankfe import run_modal
+
+    def f1(changes):
+        return run_modal(with_values(crank, changes, details=False), mesh_size, modes=12).result.first_torsional()
+
+    groups = dict(crank.uncertainty)
+    nominal = f1({})
+    out = []
+    for row in sorted(result.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"]))[:count]:
+        members = groups[row["field"]]
+        lo = f1({p: low for p, low, _ in members})
+        hi = f1({p: high for p, _, high in members})
+        out.append({"field": row["field"], "fe_f1_nominal_hz": nominal, "fe_f1_low_hz": lo, "fe_f1_high_hz": hi,
+                    "fe_change_percent": 100 * (hi - lo) / nominal,
+                    "lumped_change_percent": 100 * (row["f1_high_hz"] - row["f1_low_hz"]) / result.f1_hz})
+    return out
+
+
+def run_sensitivity(crank: Crank, dof: int = 17, stiffness: str = DEFAULT_WEB_METHOD) -> SensitivityResult:
+    """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> from fetorsion.studies.sensitivity import run_sensitivity
+    >>> s = run_sensitivity(fetorsion.load("geometry/peugeot_glx.toml"))
+    >>> s.band_hz[0] < s.f1_hz < s.band_hz[1]
+    True
+    """
+    if not crank.uncertainty:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [uncertainty] table")
+
+    def f1(c: Crank) -> float:
+        return float(lumped(c, dof, stiffness).frequencies_hz[0])
+
+    nominal = f1(crank)
+    rows, lower, upper = [], {}, {}
+    for name, members in crank.uncertainty:
+        lows = {path: low for path, low, _ in members}
+        highs = {path: high for path, _, high in members}
+        f_lo, f_hi = f1(with_values(crank, lows)), f1(with_values(crank, highs))
+        path, low, high = members[0]  # the group's first member scales the elasticity
+        values = [v for _, v in resolve_field(crank.raw, path)]
+        x0 = sum(values) / len(values)
+        rows.append({"field": name, "nominal": x0, "low": low, "high": high, "f1_low_hz": f_lo, "f1_high_hz": f_hi,
+                     "elasticity": (f_hi - f_lo) / nominal / ((high - low) / x0)})
+        (lower if f_lo <= f_hi else upper).update(lows)
+        (upper if f_lo <= f_hi else lower).update(highs)
+    band = (f1(with_values(crank, lower)), f1(with_values(crank, upper)))
+    measured = crank.notes.get("measured_first_torsional_hz")
+    return SensitivityResult(crank.name, f"lumped {dof} DOF, {stiffness}", nominal, rows, band,
+                             float(measured) if measured is not None else None)

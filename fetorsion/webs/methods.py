@@ -1,0 +1,53 @@
+"""The one registry of web methods: name -> ``method(crank, web_index, d_e) -> L_eb`` (m).
+
+Add a method by writing such a function and naming it in :data:`WEB_METHODS`. Two methods
+are computed rather than quoted (docs/web-chart.md): ``fe``, the static 3D FE of the web's
+own throw (:mod:`fetorsion.webs.throwfe`), and ``chart``, fetorsion's computed counterpart
+of the BICERA chart (:mod:`fetorsion.webs.chart`); they load Gmsh and scikit-fem only when
+called.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from ..description.crank import Crank
+from ..description.defaults import DEFAULT_WEB_METHOD
+from ..errors import FetorsionError
+from .classical import beam, carter, ker_wilson
+
+
+def fe(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term of the throw's static 3D FE torsion (:mod:`fetorsion.webs.throwfe`), per web, m."""
+    from .throwfe import web_equivalent_length_fe
+
+    return web_equivalent_length_fe(crank, web_index, d_e)
+
+
+def chart(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term from fetorsion's computed BICERA-style chart (:mod:`fetorsion.webs.chart`), m."""
+    from .chart import web_equivalent_length_chart
+
+    return web_equivalent_length_chart(crank, web_index, d_e)
+
+
+WebMethod = Callable[[Crank, int, float], float]
+
+WEB_METHODS: dict[str, WebMethod] = {"carter": carter, "ker-wilson": ker_wilson, "beam": beam, "fe": fe, "chart": chart}
+
+__all__ = ["DEFAULT_WEB_METHOD", "WEB_METHODS", "WebMethod", "web_equivalent_length"]
+
+
+def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str = DEFAULT_WEB_METHOD) -> float:
+    """Equivalent length L_eb (m, at D_e) of web ``web_index`` (0-based) by ``method``."""
+    try:
+        fn = WEB_METHODS[method]
+    except KeyError:
+        raise FetorsionError(
+            f"stiffness method {method!r} is not known; choose one of {', '.join(WEB_METHODS)}") from None
+    value = fn(crank, web_index, d_e)
+    if not value > 0:
+        raise FetorsionError(
+            f"webs.{web_index + 1}: the {method} formula gives a non-positive equivalent length "
+            f"({value:.4g} m); this web is outside the range the formula was made for")
+    return value
