@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.excitation.campbell import TorsionalModes, lumped_modes, run_campbell
+from fetorsion.excitation.campbell import lumped_modes, run_campbell
+from fetorsion.modes import TorsionalModes
 from fetorsion.description.crank import parse_crank
 from fetorsion.excitation.torque import (cycle_grid, cylinder_pressure, cylinder_torque, cylinder_volume, firing_angles,
                                   harmonics)

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from beams import (euler_bernoulli_free_free_hz, shaft_with_end_disk_hz, timoshenko_free_free_hz)
-from fetorsion import assembly, eigen, modeshape
+from fetorsion.fe import assembly, eigen, modeshape
 from fetorsion.description.crank import Attachment, Material
 from fetorsion.errors import FetorsionError
 from fetorsion.fe.modal import modal

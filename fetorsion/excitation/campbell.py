@@ -25,55 +25,14 @@ import numpy as np
 from ..description.crank import Crank
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
-from ..lumped_model.lumped import lumped, stations
-from ..lumped_model.parts import build_parts
+from ..lumped_model.lumped import lumped
+from ..modes import TorsionalModes
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
-
-
-@dataclass(frozen=True)
-class TorsionalModes:
-    """What the Campbell severity needs of a set of torsional modes, SI units.
-
-    ``pin_amplitudes[j, c]`` is mode j's twist at the pin of cylinder c, ``pulley_amplitude[j]``
-    its twist at the pulley, ``modal_inertia[j]`` = φ_jᵀ M φ_j with the same scaling.
-    """
-
-    source: str
-    frequencies_hz: np.ndarray
-    pin_amplitudes: np.ndarray
-    pulley_amplitude: np.ndarray
-    modal_inertia: np.ndarray
-
-
-def pin_weights(crank: Crank, partition: int, web_method: str = DEFAULT_WEB_METHOD) -> np.ndarray:
-    """(cylinders × stations) share of each pin in each station of a lumped partition.
-
-    The cylinder torque acts where the pin is; a pin split between two stations (the 5-DOF
-    model) passes its torque on in the same shares as its inertia.
-    """
-    chain = build_parts(crank, web_method)
-    st = stations(chain, partition)
-    lo = np.array([s.lo for s in st])
-    hi = np.array([s.hi for s in st])
-    pins = chain.of_kind("pin")
-    x0 = np.array([p.x0 for p in pins])[:, None]
-    x1 = np.array([p.x1 for p in pins])[:, None]
-    overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
-    return overlap / (x1 - x0)
 
 
 def lumped_modes(crank: Crank, partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD) -> TorsionalModes:
     """Torsional modes of a lumped partition in the form the Campbell analysis uses."""
-    res = lumped(crank, partition, web_method)
-    W = pin_weights(crank, partition, web_method)
-    shapes = res.mode_shapes
-    return TorsionalModes(
-        source=f"lumped {res.dof} DOF ({web_method})",
-        frequencies_hz=res.frequencies_hz,
-        pin_amplitudes=shapes @ W.T,
-        pulley_amplitude=shapes[:, 0],
-        modal_inertia=np.einsum("js,s,js->j", shapes, res.inertias_kgm2, shapes),
-    )
+    return lumped(crank, partition, web_method).torsional_modes()
 
 
 @dataclass

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..excitation.campbell import TorsionalModes
+from ..modes import TorsionalModes
 from ..description.crank import Attachment, Crank
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from ..errors import FetorsionError

@@ -37,6 +37,7 @@ import scipy.linalg
 
 from ..description.crank import Chain, Crank
 from ..errors import FetorsionError
+from ..modes import TorsionalModes
 from .parts import PartChain, build_parts
 from ..description.defaults import DEFAULT_WEB_METHOD
 
@@ -135,6 +136,9 @@ class LumpedResult:
         paper's normalisation) unless that station is a node, then max |θ| = 1.
     rigid_body_hz : float
         The free-free rigid-body root (≈ 0; its size shows the round-off).
+    pin_weights : ndarray, shape (cylinders, stations), or None
+        Share of each crank pin in each station (None for a chain file): where the
+        cylinder torques act.
     """
 
     name: str
@@ -147,6 +151,7 @@ class LumpedResult:
     mode_shapes: np.ndarray
     rigid_body_hz: float
     inputs: dict = field(default_factory=dict)
+    pin_weights: np.ndarray | None = None
 
     @property
     def dof(self) -> int:
@@ -167,6 +172,19 @@ class LumpedResult:
             "mode_shapes": self.mode_shapes.tolist(),
             **self.inputs,
         }
+
+    def torsional_modes(self) -> TorsionalModes:
+        """The modes in the form the Campbell analysis uses (needs the pin weights of a crank)."""
+        if self.pin_weights is None:
+            raise FetorsionError(f"{self.name}: a chain file does not say where the cylinders act")
+        shapes = self.mode_shapes
+        return TorsionalModes(
+            source=f"lumped {self.dof} DOF ({self.inputs.get('stiffness_method')})",
+            frequencies_hz=self.frequencies_hz,
+            pin_amplitudes=shapes @ self.pin_weights.T,
+            pulley_amplitude=shapes[:, 0],
+            modal_inertia=np.einsum("js,s,js->j", shapes, self.inertias_kgm2, shapes),
+        )
 
     def plot(self, modes: int = 4, ax=None):
         """Mode shapes against station (unit at the pulley end, as in the paper's fig. 13–14).
@@ -241,4 +259,20 @@ def lumped(model: Crank | Chain, dof: int = 17, stiffness: str = DEFAULT_WEB_MET
     inertias, springs, labels, anchors = partition_matrices(chain, dof)
     rigid, hz, shapes = solve_chain(inertias, springs)
     return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,
-                        {"stiffness_method": stiffness, "source": model.source})
+                        {"stiffness_method": stiffness, "source": model.source}, pin_weights(chain, dof))
+
+
+def pin_weights(chain: PartChain, partition: int) -> np.ndarray:
+    """(cylinders × stations) share of each pin in each station of a lumped partition.
+
+    The cylinder torque acts where the pin is; a pin split between two stations (the 5-DOF
+    model) passes its torque on in the same shares as its inertia.
+    """
+    st = stations(chain, partition)
+    lo = np.array([s.lo for s in st])
+    hi = np.array([s.hi for s in st])
+    pins = chain.of_kind("pin")
+    x0 = np.array([p.x0 for p in pins])[:, None]
+    x1 = np.array([p.x1 for p in pins])[:, None]
+    overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
+    return overlap / (x1 - x0)

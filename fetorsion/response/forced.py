@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg
 
-from ..excitation.campbell import default_orders, pin_weights
+from ..excitation.campbell import default_orders
 from ..description.crank import Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
@@ -147,7 +147,7 @@ def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, ord
     res = lumped(crank, partition, web_method)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     C = modal_damping_matrix(M, K, zeta)
-    W = pin_weights(crank, partition, web_method)  # (cylinders, stations)
+    W = res.pin_weights  # (cylinders, stations)
     period = cycle_angle(crank.engine)
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
