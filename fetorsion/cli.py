@@ -66,10 +66,12 @@ def cmd_mesh(args) -> int:
     from .geometry import build_solid, gmsh_session, solid_mass_properties
     from .mesh import MESH_FORMATS, mesh_solid, write_mesh
 
-    if args.output is None and args.png is None:
+    outputs = args.output or []
+    if not outputs and args.png is None:
         raise FetorsionError("mesh: give -o OUT (.msh, .vtu, .inp) and/or --png OUT.png")
-    if args.output is not None and Path(args.output).suffix.lower() not in MESH_FORMATS:
-        raise FetorsionError(f"-o {args.output}: unknown mesh format; use one of {', '.join(MESH_FORMATS)}")
+    for out in outputs:
+        if Path(out).suffix.lower() not in MESH_FORMATS:
+            raise FetorsionError(f"-o {out}: unknown mesh format; use one of {', '.join(MESH_FORMATS)}")
     if args.mesh_size <= 0:
         raise FetorsionError(f"--mesh-size {args.mesh_size:g}: must be > 0 (mm)")
     crank = load(args.file)
@@ -79,18 +81,28 @@ def cmd_mesh(args) -> int:
         solid = build_solid(crank)
         total, parts = solid_mass_properties(solid, crank.material.density)
         print(format_mass_table(crank.name, total, parts))
-        if args.output is not None:
-            mesh = mesh_solid(solid, crank, args.mesh_size * 1e-3)
+        if outputs:
+            mesh = mesh_solid(solid, crank, args.mesh_size * 1e-3, _fillet_m(args), args.purpose)
             q = mesh.quality
-            write_mesh(mesh, args.output)
-            print(f"mesh: {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
-                  f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
-                  f"{q.seconds:.1f} s -> {args.output}")
+            for out in outputs:  # one mesh, several formats: the same elements in each file
+                write_mesh(mesh, out, modes=args.modes)
+            print(f"mesh ({args.purpose}): {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
+                  f"({q.fillet_size * 1e3:g} mm at fillets and drillings, {q.straightened} folded elements "
+                  f"straightened), minimum SICN {q.min_sicn:.3f}, {q.seconds:.1f} s -> {', '.join(outputs)}")
     if args.png is not None:
         from .render import render_solid
 
         print(f"picture -> {render_solid(crank, args.png)}")
     return 0
+
+
+def _fillet_m(args) -> float | None:
+    """``--fillet-size`` in m (None: the default for ``--purpose``)."""
+    if args.fillet_size is None:
+        return None
+    if args.fillet_size <= 0:
+        raise FetorsionError(f"--fillet-size {args.fillet_size:g}: must be > 0 (mm)")
+    return args.fillet_size * 1e-3
 
 
 def cmd_modal(args) -> int:
@@ -106,11 +118,11 @@ def cmd_modal(args) -> int:
     if args.refine:
         if args.mesh:
             raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
-        runs, refinement = run_refinement(crank, args.mesh_size * 1e-3, args.modes)
+        runs, refinement = run_refinement(crank, args.mesh_size * 1e-3, args.modes, _fillet_m(args), args.purpose)
         fe = runs[-1]
     else:
         mesh = read_mesh(args.mesh, crank) if args.mesh else None
-        fe = run_modal(crank, args.mesh_size * 1e-3, args.modes, mesh=mesh)
+        fe = run_modal(crank, args.mesh_size * 1e-3, args.modes, _fillet_m(args), mesh=mesh, purpose=args.purpose)
     res = fe.result
     out = sys.stderr if args.json == "-" else sys.stdout
     print(f"{crank.name}: free-free FE modes ({res.dofs} DOF, {res.elements} curved P2 tets, "
@@ -273,6 +285,14 @@ def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .svg)")
 
 
+def _add_purpose_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--purpose", choices=("modal", "stress"), default="modal",
+                   help="what the mesh is for (default %(default)s): modal, the sizes the frequency convergence "
+                        "study chose (docs/modal-mesh.md); stress, fillet elements of the fillet radius")
+    p.add_argument("--fillet-size", type=float, metavar="MM",
+                   help="element size at fillets and drillings in mm (default from --purpose)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="fetorsion", description="Torsional vibration analysis of engine crankshafts.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -315,9 +335,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     mp = sub.add_parser("mesh", help="Gmsh solid of a crank description: mass properties, curved tet mesh, picture")
     mp.add_argument("file", help="crank description (.toml)")
-    mp.add_argument("-o", "--output", metavar="OUT", help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10)")
+    mp.add_argument("-o", "--output", metavar="OUT", action="append",
+                    help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10); repeat for the same mesh in several formats")
     mp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
                     help="global element size in mm (default %(default)s); fillets and drillings get finer")
+    _add_purpose_options(mp)
+    mp.add_argument("--modes", type=int, default=20,
+                    help=".inp: eigenfrequencies asked of *FREQUENCY, rigid-body ones included (default %(default)s)")
     mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
     mp.set_defaults(func=cmd_mesh)
 
@@ -326,6 +350,7 @@ def build_parser() -> argparse.ArgumentParser:
     fp.add_argument("--mesh-size", type=float, default=10.0, metavar="MM",
                     help="global element size in mm (default %(default)s), as for 'fetorsion mesh'")
     fp.add_argument("--mesh", metavar="MESHFILE", help="use a .msh written by 'fetorsion mesh' instead of meshing")
+    _add_purpose_options(fp)
     fp.add_argument("--modes", type=int, default=20, help="elastic modes to compute (default %(default)s)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")

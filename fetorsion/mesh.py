@@ -77,9 +77,9 @@ class CrankMesh:
     quality: MeshQuality | None = None
 
 
-def _size_fields(size: float, fine: float, fine_surfaces: list[int]) -> None:
+def _size_fields(size: float, fine: float, fine_surfaces: list[int], growth: float = 1.0) -> None:
     """Global size ``size`` with ``fine`` on (and growing away from) ``fine_surfaces``;
-    model units."""
+    model units. ``growth``: element size gained per length travelled away from them."""
     f = gmsh.model.mesh.field
     gmsh.option.setNumber("Mesh.MeshSizeMax", size)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
@@ -93,9 +93,9 @@ def _size_fields(size: float, fine: float, fine_surfaces: list[int]) -> None:
     f.setNumber(thr, "SizeMin", fine)
     f.setNumber(thr, "SizeMax", size)
     f.setNumber(thr, "DistMin", 0.5 * fine)
-    # Size grows by about its own length per length travelled: graded, but the refinement
-    # stays a thin skin around the fillets.
-    f.setNumber(thr, "DistMax", 0.5 * fine + (size - fine))
+    # Size grows by about ``growth`` times the length travelled: graded, the refinement a thin
+    # skin around the fillets.
+    f.setNumber(thr, "DistMax", 0.5 * fine + (size - fine) / growth)
     f.setAsBackgroundMesh(thr)
     # The background field decides alone; points and curvature would fight it.
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
@@ -104,7 +104,7 @@ def _size_fields(size: float, fine: float, fine_surfaces: list[int]) -> None:
 
 def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[int]], size: float,
                fine: float = 0.0, fine_surfaces: list[int] = (), name: str = "model",
-               material: Material | None = None, untangle: str = "optimize") -> CrankMesh:
+               material: Material | None = None, untangle: str = "optimize", growth: float = 1.0) -> CrankMesh:
     """Mesh the solid in the current (synchronised) Gmsh model with curved 10-node tets.
 
     Parameters
@@ -130,6 +130,9 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
         few elements fold, tens of seconds for hundreds); ``"straighten"`` gives just those
         elements straight edges (:func:`straighten_folded`), in milliseconds, at the cost of a
         chord instead of an arc on a few fillet edges.
+    growth : float
+        Element size gained per length travelled away from ``fine_surfaces`` (1: the stress
+        mesh's gentle grading; 2: a thinner refined skin, fewer elements).
 
     Raises
     ------
@@ -137,7 +140,7 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
         If Gmsh fails, or the curved mesh has an invalid element (SICN <= 0).
     """
     t0 = time.perf_counter()
-    _size_fields(size, fine, list(fine_surfaces))
+    _size_fields(size, fine, list(fine_surfaces), growth)
     gmsh.option.setNumber("Mesh.ElementOrder", 2)
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
     try:
@@ -291,20 +294,22 @@ def straighten_folded(coords: np.ndarray, tets: np.ndarray, folded: np.ndarray, 
 #: What a mesh is for: ``"modal"`` (frequencies) or ``"stress"`` (fillet stress concentration).
 PURPOSES = ("modal", "stress")
 #: Modal meshes: fillet and drilling elements this many times the smallest fillet or drilling
-#: radius. Chosen on the frequencies (docs/modal-mesh.md, benchmarks/bench_fillet_size.py):
-#: from factor 1 (the stress mesh) to 2, f1 of both reference cranks moves by less than
-#: 0.1 % while the element count halves; beyond ~2.5 Gmsh's surface mesher fails on the
-#: fillet-web junctions.
-MODAL_FILLET_FACTOR = 2.0
+#: radius r. Chosen on f1 (docs/modal-mesh.md, Peugeot GLX, 10 mm global): 1.5 r moves f1 by
+#: +0.25 % against r, 2 r by +1.0 % (with the folded elements straightened), both beyond the
+#: 0.2 % the modal mesh promises, so the fillets keep their stress-mesh size r.
+MODAL_FILLET_FACTOR = 1.0
+#: Modal meshes: element size gained per length travelled away from the fillets. A thinner
+#: refined skin (2, 18 % fewer DOF) moved the Peugeot's f1 by +0.13 % (924.05 against
+#: 922.81 Hz): the fillet zone carries the frequency too, so the grading stays the stress one.
+MODAL_GROWTH = 1.0
 
 
 def default_fillet_size(crank: Crank, size: float, purpose: str = "stress") -> float:
     """Element size (m) on fillets and drillings, at most ``size``.
 
     ``"stress"``: the smallest fillet or drilling radius r; the fillet stress concentration
-    needs that resolution. ``"modal"``: :data:`MODAL_FILLET_FACTOR` × r, which the
-    frequencies do not feel; the elements that then fold where a fillet meets its web face
-    are straightened (``untangle="straighten"`` of :func:`mesh_model`).
+    needs that resolution. ``"modal"``: :data:`MODAL_FILLET_FACTOR` × r, the coarsest that
+    keeps f1 within 0.2 % (docs/modal-mesh.md).
     """
     if purpose not in PURPOSES:
         raise FetorsionError(f"unknown mesh purpose {purpose!r}; choose from {PURPOSES}")
@@ -330,15 +335,15 @@ def mesh_solid(solid: CrankSolid, crank: Crank, size: float, fillet_size: float 
         Element size on fillets and oil drillings, m; default :func:`default_fillet_size`
         for ``purpose``.
     purpose : str
-        ``"modal"`` (coarser fillets, folded elements straightened) or ``"stress"`` (fillet
-        elements of the fillet radius, kept on the CAD surface by Gmsh's optimiser).
+        ``"modal"`` (:data:`MODAL_FILLET_FACTOR`, refinement grading :data:`MODAL_GROWTH`) or
+        ``"stress"`` (fillet elements of the fillet radius, gentle grading).
     """
     fine = default_fillet_size(crank, size, purpose) if fillet_size is None else fillet_size
     return mesh_model({p.name: list(p.volumes) for p in solid.parts},
                       {"front_face": list(solid.front_face), "rear_face": list(solid.rear_face)},
                       size / MODEL_UNIT, fine / MODEL_UNIT, list(solid.fillet_faces) + list(solid.hole_faces),
                       name=crank.name, material=crank.material,
-                      untangle="straighten" if purpose == "modal" else "optimize")
+                      growth=MODAL_GROWTH if purpose == "modal" else 1.0)
 
 
 def mesh_crank(crank: Crank, size: float = 0.006, fillet_size: float | None = None,
