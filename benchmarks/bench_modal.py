@@ -29,7 +29,7 @@ def run_case(size: float, backend: str, method: str, modes: int, generic_upto: i
     """One mesh size and solver, in this process: timings (s), sizes and peak memory (GiB)."""
     import numpy as np
 
-    from fetorsion import assembly, eigen
+    from fetorsion.fe import assembly, eigen
     from fetorsion.description.crank import Material
     from fetorsion.fe.modal import default_shift, split_rigid
     from fetorsion.fe.tetmesh import cylinder_mesh

@@ -23,10 +23,10 @@ import numpy as np  # noqa: E402
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from fetorsion import balance as bal  # noqa: E402
-from fetorsion import cli_mechanics as cm  # noqa: E402
-from fetorsion import flywheel as fw  # noqa: E402
-from fetorsion import kinematics as kin  # noqa: E402
+from fetorsion.mechanics import balance as bal  # noqa: E402
+from fetorsion.cli import mechanics as cm  # noqa: E402
+from fetorsion.mechanics import flywheel as fw  # noqa: E402
+from fetorsion.excitation import kinematics as kin  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
 from fetorsion.mechanics.input import load_mechanics  # noqa: E402
 

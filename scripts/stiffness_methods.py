@@ -23,7 +23,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from fetorsion import throwfe  # noqa: E402
+from fetorsion.webs import throwfe  # noqa: E402
 
 # Every throw computed here goes into the shipped cache.
 os.environ[throwfe.CACHE_ENV] = str(throwfe.SHIPPED_CACHE)

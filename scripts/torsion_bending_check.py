@@ -31,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import fetorsion  # noqa: E402
-from fetorsion import assembly, eigen  # noqa: E402
+from fetorsion.fe import assembly, eigen  # noqa: E402
 from fetorsion.fe.crankfe import part_nodes  # noqa: E402
 from fetorsion.solid.mesh import mesh_crank  # noqa: E402
 from fetorsion.fe.rigid import RigidBody, reduction  # noqa: E402

@@ -29,7 +29,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from fetorsion import webchart as wc  # noqa: E402
+from fetorsion.webs import chart as wc  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
 
 OUT = ROOT / "results" / "chart"

@@ -329,17 +329,25 @@ def test_sigkill_midway_leaves_the_earlier_report_and_the_next_run_cleans_up(tmp
     proc = subprocess.Popen(cmd, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
     for line in proc.stderr:  # kill once the run is inside its FE step
         if "meshing the Gmsh solid" in line:
-            time.sleep(1.0)
             break
+    mark = f"FETORSION_ISOLATE_PARENT={proc.pid}".encode()
+    for _ in range(100):  # ... with its meshing child at work
+        children = [p for p in os.listdir("/proc") if p.isdigit() and mark in _read(f"/proc/{p}/environ").split(b"\0")]
+        if children:
+            break
+        time.sleep(0.05)
+    assert children, "the run should be meshing in a child process"
     proc.send_signal(signal.SIGKILL)
     proc.wait()
     assert proc.returncode == -signal.SIGKILL
     assert _strays(tmp_path), "the killed run should have left its temporary folder"
     assert _tree(report) == earlier
-    time.sleep(0.5)
-    alive = [p for p in os.listdir("/proc") if p.isdigit() and str(report).encode() in
-             _read(f"/proc/{p}/cmdline")]
-    assert not alive, "a child of the killed run lives on"
+    for _ in range(100):  # the kernel ends the child with its parent (give it 5 s to go)
+        alive = [p for p in children if mark in _read(f"/proc/{p}/environ").split(b"\0")]
+        if not alive:
+            break
+        time.sleep(0.05)
+    assert not alive, "a meshing child of the killed run lives on"
     assert subprocess.run(cmd + ["--no-fe"], capture_output=True).returncode == 0
     assert not _strays(tmp_path)
     assert (report / "report.md").exists()

@@ -94,3 +94,74 @@ def test_modal_cli_json(tmp_path):
     assert {"frequency_hz", "kind", "torsional_fraction", "bending_fraction", "axial_fraction"} <= set(data["modes"][0])
     assert data["first_torsional_hz"] in [m["frequency_hz"] for m in data["modes"] if m["kind"] == "torsional"]
     assert data["material"]["E"] == 210e9 and data["mesh"]["dofs"] > 1000
+
+
+def test_block_solver_eigenpairs_equal_the_arpack_reference():
+    from fetorsion.fe import assembly, eigen
+    from fetorsion.fe.modal import default_shift
+    from fetorsion.fe.tetmesh import TetMesh
+
+    crank = plain("peugeot_glx.toml")
+    cm = mesh_crank(crank, 0.03)
+    tm = TetMesh(cm.nodes, cm.tets)
+    m, _ = assembly.skfem_mesh(tm)
+    basis = assembly.p2_basis(m)
+    K = assembly.stiffness(basis, crank.material.youngs_modulus, crank.material.poisson_ratio)
+    M = assembly.mass(basis, crank.material.density)
+    sigma = default_shift(tm, crank.material)
+    ref = eigen.lowest_modes(K, M, 20, sigma, method="lanczos")
+    blk = eigen.lowest_modes(K, M, 20, sigma, method="block")
+    # Both stop at a relative residual of 1e-10 on S⁻¹M: eigenvalues agree to ~1e-18 of the
+    # largest θ, i.e. 1e-8 is round-off for the elastic ω² (≥ 1e7 rad²/s² here).
+    np.testing.assert_allclose(blk.omega2[6:], ref.omega2[6:], rtol=1e-8)
+    # Vectors: error ≤ residual / relative gap (≥ 1e-2 between these modes), so both bases span
+    # the same modes to 1e-8: |x_refᵀ M x_blk| = 1 per elastic mode, and the six rigid-body
+    # modes (one eigenvalue, any basis) span the same space (singular values of the overlap 1).
+    overlap = ref.vectors.T @ (M @ blk.vectors)
+    gaps = np.diff(ref.omega2[6:]) / ref.omega2[7:]
+    assert gaps.min() > 1e-3
+    np.testing.assert_allclose(np.abs(np.diag(overlap)[6:]), 1.0, atol=1e-8)
+    np.testing.assert_allclose(np.linalg.svd(overlap[:6, :6], compute_uv=False), 1.0, atol=1e-8)
+    np.testing.assert_allclose(blk.vectors.T @ (M @ blk.vectors), np.eye(20), atol=1e-10)
+
+
+def test_straightening_untangles_folded_fillet_elements():
+    from fetorsion.solid.geometry import build_solid, gmsh_session
+    from fetorsion.solid.mesh import jacobian_positive, mesh_model
+
+    crank = fetorsion.load(GEOMETRY / "peugeot_glx.toml")
+    with gmsh_session():
+        solid = build_solid(crank)
+        cm = mesh_model({p.name: list(p.volumes) for p in solid.parts}, {}, 25.0, 5.0,
+                        list(solid.fillet_faces) + list(solid.hole_faces), untangle="straighten")
+    # 5 mm elements on 2.5 mm fillets fold where a fillet meets its web (hundreds of them):
+    # straightened, every element is valid again.
+    assert cm.quality.straightened > 0
+    assert jacobian_positive(cm.nodes, cm.tets).all()
+
+
+def test_jacobian_check_sees_a_folded_element():
+    from fetorsion.solid.mesh import TET10_EDGES, jacobian_positive
+
+    vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
+    nodes = np.vstack([vertices, vertices[TET10_EDGES].mean(axis=1)])
+    straight = np.arange(10)[None]
+    assert jacobian_positive(nodes, straight).all()
+    folded = nodes.copy()
+    folded[4] = [0.5, 0.0, 1.2]  # the 0-1 midside node pushed through the opposite face
+    assert not jacobian_positive(folded, straight).any()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["peugeot_glx.toml", "renault21.toml"])
+def test_modal_mesh_default_within_its_stated_f1_error(name):
+    from fetorsion.fe.crankfe import MODAL_F1_ERROR
+    from fetorsion.solid.mesh import default_fillet_size
+
+    crank = fetorsion.load(GEOMETRY / name)
+    modal_f1 = run_modal(crank).result.first_torsional()
+    # Independent, finer discretisation of the same crank where f1 is most sensitive (the
+    # fillet-size study of docs/modal-mesh.md): fillet and drilling elements × 0.8.
+    fine = 0.8 * default_fillet_size(crank, 0.010, "modal")
+    finer_f1 = run_modal(crank, fillet_size=fine, purpose="stress").result.first_torsional()
+    assert modal_f1 == pytest.approx(finer_f1, rel=MODAL_F1_ERROR)

@@ -149,7 +149,7 @@ def small_bar():
 
 
 @pytest.mark.parametrize("backend,method", [("cholmod", "lanczos"), ("cholmod", "lobpcg"),
-                                            ("superlu", "lobpcg")])
+                                            ("cholmod", "block"), ("superlu", "lobpcg"), ("superlu", "block")])
 def test_backends_and_methods_agree(small_bar, backend, method):
     if backend == "cholmod" and not eigen.have_cholmod():
         pytest.skip("scikit-sparse not installed")

@@ -77,16 +77,13 @@ def parts_table(chain) -> list[dict]:
 
 
 def cmd_mesh(args) -> int:
-    # Imported here: gmsh and VTK take a second to load and 'lumped' needs neither.
-    from ..solid.geometry import build_solid, gmsh_session, solid_mass_properties
-    from ..solid.mesh import MESH_FORMATS, mesh_solid, write_mesh
-
-    if args.output is None and args.png is None:
+    outputs = args.output or []
+    if not outputs and args.png is None:
         raise FetorsionError("mesh: give -o OUT (.msh, .vtu, .inp) and/or --png OUT.png")
     crank = _load_crank(args.file, "a geometry to mesh")
-    if args.output is not None:
-        check_mesh_size(crank, args.mesh_size, "mesh")
-    print(call_isolated(_mesh_job, crank, args.mesh_size, args.output,
+    if outputs:
+        check_mesh_size(crank, args.mesh_size, "mesh", args.purpose, args.fillet_size)
+    print(call_isolated(_mesh_job, crank, args.mesh_size, outputs, args.fillet_size, args.purpose, args.modes,
                         what=f"{crank.name}: Gmsh, at --mesh-size {args.mesh_size / MM:g} mm"))
     if args.png is not None:
         from ..report.render import render_solid
@@ -95,8 +92,9 @@ def cmd_mesh(args) -> int:
     return 0
 
 
-def _mesh_job(crank, size: float, output: str | None) -> str:
-    """Mass table, and the mesh written to ``output``: one Gmsh session (in a child process)."""
+def _mesh_job(crank, size: float, outputs: list[str], fillet_size: float | None, purpose: str, modes: int) -> str:
+    """Mass table, and one mesh written to every file of ``outputs``: one Gmsh session (in a
+    child process)."""
     from ..solid.geometry import build_solid, gmsh_session, solid_mass_properties
     from ..solid.mesh import mesh_solid, write_mesh
 
@@ -104,22 +102,25 @@ def _mesh_job(crank, size: float, output: str | None) -> str:
         solid = build_solid(crank)
         total, parts = solid_mass_properties(solid, crank.material.density)
         lines = [format_mass_table(crank.name, total, parts)]
-        if output is not None:
-            mesh = mesh_solid(solid, crank, size)
+        if outputs:
+            mesh = mesh_solid(solid, crank, size, fillet_size, purpose)
             q = mesh.quality
-            write_mesh(mesh, output)
-            lines.append(f"mesh: {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size {q.size * 1e3:g} mm "
-                         f"({q.fillet_size * 1e3:g} mm at fillets and drillings), minimum SICN {q.min_sicn:.3f}, "
-                         f"{q.seconds:.1f} s -> {output}")
+            for out in outputs:  # one mesh, several formats: the same elements in each file
+                write_mesh(mesh, out, modes=modes)
+            lines.append(f"mesh ({purpose}): {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size "
+                         f"{q.size / MM:g} mm ({q.fillet_size / MM:g} mm at fillets and drillings, {q.straightened} "
+                         f"folded elements straightened), minimum SICN {q.min_sicn:.3f}, {q.seconds:.1f} s -> "
+                         f"{', '.join(outputs)}")
     return "\n".join(lines)
 
 
-def check_mesh_size(crank, mesh_size: float, job: str, option: str = "--mesh-size") -> None:
+def check_mesh_size(crank, mesh_size: float, job: str, purpose: str = "modal", fillet_size: float | None = None,
+                    option: str = "--mesh-size") -> None:
     """Refuse a mesh size whose mesh (``job`` 'mesh') or FE modal job ('modal') would not fit in
     memory, naming the option and the estimate; print the estimate when the job is long."""
     from ..solid.mesh import available_memory, estimate_mesh
 
-    est = estimate_mesh(crank, mesh_size)
+    est = estimate_mesh(crank, mesh_size, fillet_size, purpose)
     mesh_size_mm = mesh_size / MM
     need = est.mesh_bytes if job == "mesh" else est.mesh_bytes + est.modal_bytes
     have = available_memory()
@@ -141,14 +142,15 @@ def cmd_modal(args) -> int:
         raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
     crank = _load_crank(args.file, "geometry")
     if not args.mesh:
-        check_mesh_size(crank, args.mesh_size * (REFINE_RATIO**2 if args.refine else 1.0), "modal")
+        check_mesh_size(crank, args.mesh_size * (REFINE_RATIO**2 if args.refine else 1.0), "modal", args.purpose,
+                        None if args.fillet_size is None else args.fillet_size * (REFINE_RATIO**2 if args.refine else 1.0))
     refinement = None
     if args.refine:
-        runs, refinement = run_refinement(crank, args.mesh_size, args.modes)
+        runs, refinement = run_refinement(crank, args.mesh_size, args.modes, args.fillet_size, args.purpose)
         fe = runs[-1]
     else:
         mesh = read_mesh(args.mesh, crank) if args.mesh else None
-        fe = run_modal(crank, args.mesh_size, args.modes, mesh=mesh)
+        fe = run_modal(crank, args.mesh_size, args.modes, args.fillet_size, mesh=mesh, purpose=args.purpose)
     res = fe.result
     out = sys.stderr if args.json == "-" else sys.stdout
     print(f"{crank.name}: free-free FE modes ({res.dofs} DOF, {res.elements} curved P2 tets, "
@@ -329,6 +331,14 @@ def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
 
 
+def _add_purpose_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--purpose", choices=("modal", "stress"), default="modal",
+                   help="what the mesh is for (default %(default)s): modal, the sizes the frequency convergence "
+                        "study chose (docs/modal-mesh.md); stress, fillet elements of the fillet radius")
+    p.add_argument("--fillet-size", type=millimetres(), metavar="MM",
+                   help="element size at fillets and drillings in mm (default from --purpose)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(prog="fetorsion", description="Torsional vibration analysis of engine crankshafts.")
     sub = p.add_subparsers(dest="command", required=True)
@@ -377,9 +387,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     mp = sub.add_parser("mesh", help="Gmsh solid of a crank description: mass properties, curved tet mesh, picture")
     mp.add_argument("file", help="crank description (.toml)")
-    mp.add_argument("-o", "--output", metavar="OUT", help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10)")
+    mp.add_argument("-o", "--output", metavar="OUT", action="append",
+                    help="mesh file: .msh, .vtu or .inp (CalculiX, C3D10); repeat for the same mesh in several formats")
     mp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"global element size in mm (default {DEFAULT_MESH_SIZE / MM:g}); fillets and drillings get finer")
+    _add_purpose_options(mp)
+    mp.add_argument("--modes", type=integer(1, 1000), default=DEFAULT_MODES,
+                    help=".inp: eigenfrequencies asked of *FREQUENCY, rigid-body ones included (default %(default)s)")
     mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
     mp.set_defaults(func=cmd_mesh)
 
@@ -388,6 +402,7 @@ def build_parser() -> argparse.ArgumentParser:
     fp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"global element size in mm (default {DEFAULT_MESH_SIZE / MM:g}), as for 'fetorsion mesh'")
     fp.add_argument("--mesh", metavar="MESHFILE", help="use a .msh written by 'fetorsion mesh' instead of meshing")
+    _add_purpose_options(fp)
     fp.add_argument("--modes", type=integer(1, 200), default=DEFAULT_MODES, help="elastic modes to compute (default %(default)s)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
@@ -407,10 +422,11 @@ def check_options(args) -> None:
 
     inputs = [getattr(args, "file", None), getattr(args, "mesh", None)]
     for attr, option, suffixes in OUTPUT_OPTIONS:
-        target = getattr(args, attr, None)
-        if target is None or (attr == "json" and target == "-"):
-            continue
-        check_output_file(target, option, suffixes or MESH_FORMATS, inputs)
+        targets = getattr(args, attr, None)
+        for target in targets if isinstance(targets, list) else [targets]:
+            if target is None or (attr == "json" and target == "-"):
+                continue
+            check_output_file(target, option, suffixes or MESH_FORMATS, inputs)
     speeds = getattr(args, "speed_range", None)
     if speeds is not None and not speeds[0] < speeds[1]:
         raise FetorsionError(f"--speed-range {speeds[0]:g} {speeds[1]:g}: LOW must be below HIGH (rpm)")

@@ -29,6 +29,11 @@ from .modeshape import slab_fit
 from .rigid import RigidBody, from_attachment
 from .tetmesh import TetMesh
 
+#: Stated error of the default modal mesh (10 mm global, fillet elements of the fillet
+#: radius) on the first torsional frequency, relative: the Peugeot GLX's f1 is +0.11 % from
+#: its 1.15 M-DOF value (docs/modal-mesh.md); ``--refine`` estimates it for other cranks.
+MODAL_F1_ERROR = 2e-3
+
 #: Axial share of a pin (around its mid-plane) whose surface nodes carry the piston + rod.
 PIN_RING_SHARE = 1.0 / 3.0
 
@@ -109,7 +114,7 @@ class CrankModal:
 
 
 def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
-              mesh: CrankMesh | None = None, **solver) -> CrankModal:
+              mesh: CrankMesh | None = None, purpose: str = "modal", **solver) -> CrankModal:
     """Free-free FE modes of a crank with its attachments as rigid inertias.
 
     Parameters
@@ -121,13 +126,18 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
     modes : int
         Number of elastic modes.
     fillet_size : float, optional
-        Element size at fillets and drillings, m (default from :mod:`fetorsion.solid.mesh`).
+        Element size at fillets and drillings, m (default:
+        :func:`fetorsion.solid.mesh.default_fillet_size` for ``purpose``).
     mesh : CrankMesh, optional
         A mesh made earlier (``mesh_size`` is then ignored).
+    purpose : str
+        ``"modal"`` (default; f1 within :data:`MODAL_F1_ERROR` of a 1.15 M-DOF mesh on the
+        reference cranks, docs/modal-mesh.md) or ``"stress"``; see
+        :func:`fetorsion.solid.mesh.default_fillet_size`.
     **solver
         Passed to :func:`fetorsion.fe.modal.modal` (``backend``, ``method``, ``shift``).
     """
-    cm = mesh or mesh_crank(crank, mesh_size, fillet_size)
+    cm = mesh or mesh_crank(crank, mesh_size, fillet_size, purpose)
     tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
     slabs = {f"J{k + 1}": part_nodes(cm, f"journal_{k + 1}") for k in range(crank.cylinders + 1)}
     res = modal(tm, crank.material, modes=modes, attachments=attachment_bodies(crank, cm), slabs=slabs, **solver)
@@ -159,14 +169,17 @@ REFINE_RATIO = 0.8
 
 
 def run_refinement(crank: Crank, mesh_size: float, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
-                   **solver) -> tuple[list[CrankModal], dict]:
+                   purpose: str = "modal", **solver) -> tuple[list[CrankModal], dict]:
     """The modal analysis at three meshes (global and fillet sizes × 1, 0.8, 0.64) and the
-    extrapolated first torsional frequency with its discretisation error estimate."""
+    extrapolated first torsional frequency with its discretisation error estimate.
+
+    ``fillet_size`` (m) defaults to :func:`fetorsion.solid.mesh.default_fillet_size` for ``purpose``.
+    """
     from ..solid.mesh import default_fillet_size
 
-    fine = fillet_size or default_fillet_size(crank, mesh_size)
+    fine = fillet_size or default_fillet_size(crank, mesh_size, purpose)
     scales = [1.0, REFINE_RATIO, REFINE_RATIO**2]
-    runs = [run_modal(crank, mesh_size * s, modes, fine * s, **solver) for s in scales]
+    runs = [run_modal(crank, mesh_size * s, modes, fine * s, purpose=purpose, **solver) for s in scales]
     f1 = [r.result.first_torsional() for r in runs]
     out = extrapolate_refinement([mesh_size * s for s in scales], f1)
     out.update(sizes_m=[mesh_size * s for s in scales], fillet_sizes_m=[fine * s for s in scales],

@@ -6,8 +6,8 @@ Pipeline (SI units throughout):
    elasticity K (N/m) and consistent M (kg) on the :class:`~fetorsion.fe.tetmesh.TetMesh`.
 2. :func:`fetorsion.fe.rigid.reduction`: attachments (flywheel, pulley, pistons) as rigid
    bodies tied to node sets, exact master-DOF elimination u = T q.
-3. :func:`fetorsion.fe.eigen.lowest_modes`: shift-invert with a negative shift over a sparse
-   Cholesky (CHOLMOD, SuperLU fallback); the six rigid-body modes come out first, are
+3. :func:`fetorsion.fe.eigen.lowest_modes`: block shift-invert Lanczos with a negative shift over
+   one sparse Cholesky (CHOLMOD, SuperLU fallback); the six rigid-body modes come out first, are
    checked (≈ 0 against the first elastic mode) and reported apart.
 4. :func:`fetorsion.fe.modeshape.identify`: rigid fits to axial slabs (crank: main journals)
    give torsional / bending / axial fractions and a label per mode.
@@ -163,7 +163,7 @@ def split_rigid(omega2: np.ndarray, sigma: float, n_rigid: int = 6):
 
 
 def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, attachments: list[RigidBody] = (),
-          slabs=None, n_slabs: int = 12, backend: str = "auto", method: str = "lanczos",
+          slabs=None, n_slabs: int = 12, backend: str = "auto", method: str = "block",
           shift: float | None = None, keep_shapes: bool = True) -> ModalResult:
     """Free-free natural frequencies and labelled modes of a solid with rigid attachments.
 
@@ -185,7 +185,8 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     backend : str
         ``"cholmod"``, ``"superlu"`` or ``"auto"`` (CHOLMOD when installed).
     method : str
-        ``"lanczos"`` or ``"lobpcg"``.
+        ``"block"`` (block shift-invert Lanczos, default), ``"lanczos"`` (ARPACK, the
+        reference) or ``"lobpcg"``; see :mod:`fetorsion.fe.eigen`.
     shift : float, optional
         Negative shift σ, rad²/s² (default from :func:`default_shift`).
     keep_shapes : bool

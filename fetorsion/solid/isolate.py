@@ -1,67 +1,55 @@
-"""Run a call in a forked child, so that a native library's abort becomes an ordinary error.
+"""Run a call in a fresh child process, so that a native library's abort becomes an ordinary error.
 
 Gmsh is C++: on some inputs its optimiser throws past its C API and the runtime calls
 ``abort()``, which ends the whole Python process with no chance to clean up or to say what
 happened. Run in a child process, the same failure ends only the child; the parent reads
 the child's last words and raises a :class:`~fetorsion.errors.FetorsionError`.
+
+The child is a new interpreter (running :func:`serve`), not a fork: a fork
+inherits the parent's thread pools without their threads, and Gmsh then waits forever on
+workers that do not exist (seen when the parent had run Gmsh itself). The call and its
+result travel pickled through the child's standard input and output, so ``fn`` must be a
+module-level function and its arguments picklable.
 """
 
 from __future__ import annotations
 
-import faulthandler
 import os
 import pickle
 import signal
+import subprocess
+import sys
 import tempfile
-import traceback
 
 from ..errors import FetorsionError
 
+_PARENT_ENV = "FETORSION_ISOLATE_PARENT"
+
 
 def call_isolated(fn, *args, what: str = "the call", **kwargs):
-    """``fn(*args, **kwargs)`` computed in a forked child process; its result is returned.
+    """``fn(*args, **kwargs)`` computed in a child process; its result is returned.
 
     An exception in the child is raised again here (a :class:`FetorsionError` with its
     message, anything else as a RuntimeError carrying the child's traceback). A child that
     dies without answering (abort, segmentation fault, killed) gives a FetorsionError naming
     ``what``, the signal and the last lines the child wrote to standard error.
     """
-    if not hasattr(os, "fork"):
-        return fn(*args, **kwargs)
-    read_end, write_end = os.pipe()
+    request = pickle.dumps((fn, args, kwargs), protocol=pickle.HIGHEST_PROTOCOL)
+    env = {**os.environ, _PARENT_ENV: str(os.getpid())}
     with tempfile.TemporaryFile() as err:
-        parent = os.getpid()
-        pid = os.fork()
-        if pid == 0:  # the child: never returns into the caller's code
-            status = 1
-            try:
-                _die_with(parent)
-                faulthandler.disable()  # its dump would bypass the redirected standard error
-                os.close(read_end)
-                os.dup2(err.fileno(), 2)
-                try:
-                    payload = (True, fn(*args, **kwargs))
-                except BaseException as exc:
-                    payload = (False, (isinstance(exc, FetorsionError), str(exc), traceback.format_exc()))
-                with os.fdopen(write_end, "wb") as fh:
-                    pickle.dump(payload, fh, protocol=pickle.HIGHEST_PROTOCOL)
-                status = 0
-            finally:
-                os._exit(status)
-        os.close(write_end)
+        proc = subprocess.Popen([sys.executable, "-c", _CHILD], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                stderr=err, env=env)
         try:
-            with os.fdopen(read_end, "rb") as fh:
-                data = fh.read()
+            data, _ = proc.communicate(request)
         except BaseException:  # interrupted: the child must not outlive us
-            os.kill(pid, signal.SIGKILL)
-            os.waitpid(pid, 0)
+            proc.kill()
+            proc.wait()
             raise
-        _, status = os.waitpid(pid, 0)
-        if not data:
+        if proc.returncode != 0 or not data:
             err.seek(0)
             tail = [line for line in err.read().decode("utf-8", "replace").splitlines() if line.strip()][-3:]
-            how = (f"signal {signal.Signals(os.WTERMSIG(status)).name}" if os.WIFSIGNALED(status)
-                   else f"exit status {os.WEXITSTATUS(status)}")
+            code = proc.returncode
+            how = f"signal {signal.Signals(-code).name}" if code < 0 else f"exit status {code}"
             raise FetorsionError(f"{what} ended abnormally ({how})" + (": " + " | ".join(tail) if tail else ""))
     ok, value = pickle.loads(data)
     if ok:
@@ -72,15 +60,34 @@ def call_isolated(fn, *args, what: str = "the call", **kwargs):
     raise RuntimeError(f"{what} failed in its child process:\n{trace}")
 
 
-def _die_with(parent: int) -> None:
-    """Linux: have the kernel kill this child when its parent dies (a SIGKILLed run must not
-    leave Gmsh working on as an orphan)."""
-    try:
-        import ctypes
+# The child's first act, before it imports anything heavy: on Linux, have the kernel kill it
+# when its parent dies (a SIGKILLed run must not leave Gmsh working on as an orphan), and
+# leave at once if the parent is already gone.
+_CHILD = f"""
+import os, signal
+try:
+    import ctypes
+    ctypes.CDLL(None).prctl(1, signal.SIGKILL)
+except (OSError, AttributeError):
+    pass
+if os.getppid() != int(os.environ["{_PARENT_ENV}"]):
+    os._exit(1)
+from fetorsion.solid.isolate import serve
+serve()
+"""
 
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        return
-    if os.getppid() != parent:  # the parent died before the request took effect
-        os._exit(1)
+
+def serve() -> None:
+    """The child: read one pickled call from standard input, write the pickled outcome."""
+    import traceback
+
+    out = sys.stdout.buffer
+    sys.stdout = sys.stderr  # anything the call prints must not corrupt the answer
+    fn, args, kwargs = pickle.loads(sys.stdin.buffer.read())
+    try:
+        payload = (True, fn(*args, **kwargs))
+    except BaseException as exc:
+        payload = (False, (isinstance(exc, FetorsionError), str(exc), traceback.format_exc()))
+    out.write(pickle.dumps(payload, protocol=pickle.HIGHEST_PROTOCOL))
+    out.flush()
+
