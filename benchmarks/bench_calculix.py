@@ -47,9 +47,10 @@ def timed(cmd: list[str], cwd: Path, env: dict | None = None) -> tuple[float, fl
 def ccx_frequencies(dat: Path) -> np.ndarray:
     """Frequencies (cycles/time, Hz) of CalculiX's eigenvalue output table, ascending."""
     text = dat.read_text()
-    block = text.split("E I G E N V A L U E   O U T P U T")[1]
+    block = text.split("E I G E N V A L U E   O U T P U T")[1].split("P A R T I C I P A T I O N")[0]
+    # MODE NO, EIGENVALUE, FREQUENCY real (rad/time), real (cycles/time), imaginary (rad/time)
     rows = re.findall(r"^\s*\d+\s+(\S+)\s+(\S+)\s+(\S+)\s+(\S+)\s*$", block, flags=re.M)
-    return np.array([float(r[3]) for r in rows])
+    return np.array([float(r[2]) for r in rows])
 
 
 def main() -> None:
