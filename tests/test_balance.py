@@ -5,7 +5,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from fetorsion.mechanics import balance as bal
-from fetorsion.excitation.torque import kinematics as kin
+from fetorsion.excitation import kinematics as kin
 MM = 1e-3
 # Seed 000, B112: rod 0.625 kg, centroid 33.923 mm from the big end, 83.577 mm from the small end;
 # crank unbalance 1.233 kg at 28.706 mm; piston 0.661 kg; crank radius 35.5 mm.

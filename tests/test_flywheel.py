@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from fetorsion.mechanics import flywheel as fw
-from fetorsion.excitation.torque import kinematics as kin
+from fetorsion.excitation import kinematics as kin
 def test_b112_energy_method():
     s = fw.size_flywheel(7000.0, 3000.0, 0.04, 0.27, 0.21)
     assert s.cycle_work_j == pytest.approx(280.0, rel=1e-12)      # exact: 7000·60/1500

@@ -4,7 +4,7 @@ against exact with the size of the first neglected term as the tolerance."""
 import numpy as np
 import pytest
 
-from fetorsion.excitation.torque import kinematics as kin
+from fetorsion.excitation import kinematics as kin
 THETA = np.linspace(0.0, 2 * np.pi, 4001)
 # EF7 of seed 004 (r 42.5 mm, l from its TDC/BDC positions) and the extremes of seed 002's range.
 CASES = [(0.0425, 0.1345), (0.05, 0.05 / 0.24), (0.05, 0.05 / 0.31), (0.0355, 0.1175)]

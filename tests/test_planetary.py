@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from fetorsion.excitation.torque import kinematics as kin
+from fetorsion.excitation import kinematics as kin
 from fetorsion.mechanics import planetary as pl
 def test_cardan_hypocycloid_is_a_straight_line_and_pure_harmonic():
     # Ring radius a = 2ρ: the big end runs on a diameter (Cardan / Tusi couple): x_p = l + a cos φ.
