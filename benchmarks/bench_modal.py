@@ -30,7 +30,7 @@ def run_case(size: float, backend: str, method: str, modes: int, generic_upto: i
     import numpy as np
 
     from fetorsion.fe import assembly, eigen
-    from fetorsion.description.crank import Material
+    from fetorsion.description.model import Material
     from fetorsion.fe.modal import default_shift, split_rigid
     from fetorsion.fe.tetmesh import cylinder_mesh
 

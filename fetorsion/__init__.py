@@ -8,7 +8,8 @@ True
 """
 
 from .excitation.campbell import run_campbell
-from .description.crank import Chain, Crank, load
+from .description.crank import load
+from .description.model import Chain, Crank
 from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
 from .lumped_model.lumped import PARTITIONS, LumpedResult, lumped

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.description.crank import Chain, parse_crank
+from fetorsion.description.crank import parse_crank
+from fetorsion.description.model import Chain
 from fetorsion.lumped_model.lumped import chain_matrices, partition_matrices, solve_chain
 from fetorsion.lumped_model.parts import build_parts, oil_hole_inertia
 from fetorsion.webs.classical import carter, ker_wilson
@@ -153,7 +154,7 @@ def test_effective_web_width_eq7():
 
 
 def test_oil_hole_inertia_matches_eq17_and_corrected_eq15():
-    from fetorsion.description.crank import Cylinder
+    from fetorsion.description.model import Cylinder
     rho, phi, D, R = 7850.0, 0.005, 0.060, 0.041
     eq17 = math.pi / 48 * rho * phi**2 * D * (3 * (phi / 2) ** 2 + D**2)
     assert oil_hole_inertia(Cylinder(D, 0.02), phi, rho) == pytest.approx(eq17, rel=1e-12)

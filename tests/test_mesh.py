@@ -12,7 +12,7 @@ import pytest
 
 import fetorsion
 from fetorsion.cli import main
-from fetorsion.description.crank import Material
+from fetorsion.description.model import Material
 from fetorsion.solid.geometry import crank_mass_properties, gmsh_session
 from fetorsion.solid.mesh import inp_text, mesh_crank, mesh_model, write_mesh
 

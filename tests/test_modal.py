@@ -9,7 +9,7 @@ import pytest
 
 from beams import (euler_bernoulli_free_free_hz, shaft_with_end_disk_hz, timoshenko_free_free_hz)
 from fetorsion.fe import assembly, eigen, modeshape
-from fetorsion.description.crank import Attachment, Material
+from fetorsion.description.model import Attachment, Material
 from fetorsion.errors import FetorsionError
 from fetorsion.fe.modal import modal
 from fetorsion.fe.rigid import RigidBody, from_attachment, reduction, rigid_rows

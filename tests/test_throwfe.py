@@ -8,7 +8,8 @@ import pytest
 
 import fetorsion
 from fetorsion.webs import throwfe
-from fetorsion.description.crank import Material, parse_crank
+from fetorsion.description.crank import parse_crank
+from fetorsion.description.model import Material
 from fetorsion.webs.methods import WEB_METHODS, web_equivalent_length
 from fetorsion.webs.sections import cylinder_equivalent_length, step_fillet_length
 from fetorsion.fe.tetmesh import cylinder_mesh

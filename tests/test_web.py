@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from fetorsion.description.crank import Web
+from fetorsion.description.model import Web
 from fetorsion.solid.outline import radial_function, section_properties
 
 

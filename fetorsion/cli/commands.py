@@ -12,7 +12,9 @@ import numpy as np
 
 from . import mechanics as cli_mechanics
 from .options import MM, integer, millimetres, real
-from ..description.crank import Chain, load, plausibility_warnings
+from ..description.crank import load
+from ..description.model import Chain
+from ..description.plausibility import plausibility_warnings
 from ..errors import FetorsionError
 from ..solid.isolate import call_isolated
 from ..io import check_output_file, check_report_folder, save_figure_atomic, write_text_atomic

@@ -15,7 +15,9 @@ from ..mechanics import balance as bal
 from ..mechanics import flywheel as fw
 from ..excitation import kinematics as kin
 from ..mechanics import planetary as pl
-from ..description.crank import read_toml, parse_crank
+from ..description.crank import parse_crank
+from ..description.model import AttachPoint
+from ..description.reader import read_toml
 from .options import real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -252,7 +254,7 @@ def _flywheel_from_engine_torque(crank, args, emit_json) -> int:
     delta_e, mean = fw.fluctuation_energy(theta, np.append(t["total"], t["total"][0]))
     omega = args.rpm * 2 * np.pi / 60
     inertia = fw.flywheel_inertia(delta_e, args.speed_fluctuation, omega)
-    have = sum(a.polar_inertia for a in crank.attachments_at("rear"))
+    have = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.REAR))
     res = {"file": args.file, "rpm": args.rpm, "mean_torque_nm": mean, "delta_e_j": delta_e,
            "speed_fluctuation": args.speed_fluctuation, "inertia_kgm2": inertia, "rear_attachments_kgm2": have}
     print(f"{crank.name}: flywheel from the engine torque at {args.rpm:g} rpm\n"

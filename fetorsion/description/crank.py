@@ -12,358 +12,16 @@ Validation collects every violated rule (field, value, rule) and raises one
 from __future__ import annotations
 
 import math
-import tomllib
-from dataclasses import dataclass, field
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_RATIO
-from .units import LENGTH_UNITS
+from .model import (ATTACH_POINTS, Attachment, AttachPoint, Chain, Crank, Cylinder, Engine, Excitation, Fillets,
+                    Material, OilHoles, Web)
+from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
 
-ATTACH_POINTS = ("front", "rear", "pins")
 # Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
 MECHANICS_TABLES = {"slider_crank", "masses", "balance", "flywheel", "planetary"}
-
-
-@dataclass(frozen=True)
-class Material:
-    """Linear elastic isotropic material, SI units (Pa, -, kg/m³)."""
-
-    youngs_modulus: float
-    poisson_ratio: float
-    density: float
-    name: str = ""
-
-    @property
-    def shear_modulus(self) -> float:
-        """G = E / (2 (1 + ν)) in Pa."""
-        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
-
-
-@dataclass(frozen=True)
-class Cylinder:
-    """A round shaft piece (journal, pin, nose or flange step), lengths in m."""
-
-    diameter: float
-    length: float
-    bore: float = 0.0
-
-
-@dataclass(frozen=True)
-class Web:
-    """A crank web (arm) joining a journal to a pin, lengths in m, angle in rad.
-
-    The outline is the convex hull of a circle of diameter ``width_journal`` (B_max)
-    around the crank axis and one of diameter ``width_pin`` (B_min) around the pin
-    centre, united with an optional counterweight sector of radius
-    ``counterweight_radius`` and full angle ``counterweight_angle`` centred opposite
-    the pin.
-    """
-
-    thickness: float
-    width_journal: float
-    width_pin: float
-    counterweight_radius: float = 0.0
-    counterweight_angle: float = 0.0
-
-
-@dataclass(frozen=True)
-class Engine:
-    """Cylinder layout and slider-crank data; lengths in m, angles in rad."""
-
-    cylinders: int
-    strokes_per_cycle: int
-    stroke: float
-    rod_length: float
-    crank_angles: tuple[float, ...]
-    firing_order: tuple[int, ...]
-    bore: float = 0.0
-
-    @property
-    def crank_radius(self) -> float:
-        """R = stroke / 2 in m."""
-        return 0.5 * self.stroke
-
-
-@dataclass(frozen=True)
-class Fillets:
-    """Fillet radii at journal/web and pin/web junctions, m."""
-
-    journal: float = 0.0
-    pin: float = 0.0
-
-
-@dataclass(frozen=True)
-class OilHoles:
-    """Diametral oil drillings of diameter ``diameter`` (m) through each pin/journal."""
-
-    diameter: float = 0.0
-    in_journals: bool = False
-    in_pins: bool = False
-
-
-@dataclass(frozen=True)
-class Attachment:
-    """A rigid body fixed to the crank.
-
-    ``at`` is ``"front"`` (pulley end face), ``"rear"`` (flywheel flange face) or
-    ``"pins"`` (one copy on every crank pin, e.g. piston + connecting rod, its
-    ``polar_inertia`` being the equivalent inertia about the crank axis per cylinder).
-    Inertias in kg·m², mass in kg, offset (axial distance of its centre of mass from
-    the face, outwards) in m.
-    """
-
-    name: str
-    at: str
-    polar_inertia: float
-    mass: float = 0.0
-    diametral_inertia: float = 0.0
-    offset: float = 0.0
-
-
-@dataclass(frozen=True)
-class Excitation:
-    """Cylinder pressure and operating data for the Campbell diagram and forced response.
-
-    Either ``pressure_curve`` (crank angle rad from firing TDC over one cycle, absolute
-    pressure Pa) or the synthetic cycle: polytropic compression/expansion with a Wiebe
-    heat release scaled to ``load`` ((rpm, value) pairs, linear in between; value is the
-    IMEP or the peak pressure in Pa as ``load_kind`` says).
-    """
-
-    reciprocating_mass: float  # kg per cylinder (piston, pin, rod small-end share)
-    speed_range: tuple[float, float]  # rpm
-    compression_ratio: float = 0.0
-    load_kind: str = "imep"  # "imep" or "peak"
-    load: tuple[tuple[float, float], ...] = ()
-    intake_pressure: float = 1.0e5  # Pa, absolute
-    polytropic_exponent: float = 1.3
-    combustion_start: float = -0.2618  # rad from firing TDC (−15°)
-    combustion_duration: float = 0.8727  # rad (50°)
-    wiebe_a: float = 5.0
-    wiebe_m: float = 2.0
-    pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
-    modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
-
-
-@dataclass(frozen=True)
-class Crank:
-    """A complete crankshaft description in SI units.
-
-    The shaft is stacked along +x from the front (pulley) end: ``front`` sections,
-    then journal 1, web 1, pin 1, web 2, journal 2, ... journal N+1, then ``rear``
-    sections. Webs 2i-1 and 2i belong to throw i.
-    """
-
-    name: str
-    material: Material
-    engine: Engine
-    journals: tuple[Cylinder, ...]
-    pins: tuple[Cylinder, ...]
-    webs: tuple[Web, ...]
-    front: tuple[Cylinder, ...] = ()
-    rear: tuple[Cylinder, ...] = ()
-    fillets: Fillets = Fillets()
-    oil_holes: OilHoles = OilHoles()
-    attachments: tuple[Attachment, ...] = ()
-    length_unit: str = "m"
-    source: str = ""
-    notes: dict = field(default_factory=dict, compare=False)
-    uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
-    excitation: Excitation | None = None
-    raw: dict = field(default_factory=dict, compare=False, repr=False)
-
-    @property
-    def cylinders(self) -> int:
-        return self.engine.cylinders
-
-    def throw_of_web(self, web_index: int) -> int:
-        """0-based throw index of 0-based web ``web_index``."""
-        return web_index // 2
-
-    def journal_of_web(self, web_index: int) -> int:
-        """0-based index of the journal a web is joined to (its own side)."""
-        return web_index // 2 + web_index % 2
-
-    def attachments_at(self, at: str) -> tuple[Attachment, ...]:
-        return tuple(a for a in self.attachments if a.at == at)
-
-
-@dataclass(frozen=True)
-class Chain:
-    """A torsional chain given directly: inertias (kg·m²), springs (N·m/rad), dampers.
-
-    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground) and
-    ``relative_damping`` (N·m·s/rad, one per spring) are optional.
-    """
-
-    name: str
-    inertias: tuple[float, ...]
-    stiffnesses: tuple[float, ...]
-    labels: tuple[str, ...]
-    absolute_damping: tuple[float, ...] = ()
-    relative_damping: tuple[float, ...] = ()
-    source: str = ""
-
-
-# ---------------------------------------------------------------------------
-# Parsing with problem collection
-
-
-class Table:
-    """Typed access to one TOML table that records problems instead of raising."""
-
-    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0, absent: bool = False):
-        self.path = path
-        self.problems = problems
-        self.scale = scale
-        # A required table that is missing is reported once, not once more for each field.
-        self.absent = absent or not isinstance(data, dict)
-        if not isinstance(data, dict):
-            problems.append(Problem(path, data, "must be a table"))
-            data = {}
-        self.data = data
-        self.used: set[str] = set()
-
-    def _name(self, key: str) -> str:
-        return f"{self.path}.{key}" if self.path else key
-
-    def get(self, key: str, default=None):
-        """The raw value of ``key`` (``default`` when absent), marked as read."""
-        return self._get(key, default)
-
-    def choice(self, key, values, default):
-        """One of ``values`` (ints or strings, compared exactly, bools never match)."""
-        raw = self._get(key, default)
-        if isinstance(raw, bool) or raw not in values or type(raw) not in {type(v) for v in values}:
-            self.problems.append(Problem(self._name(key), raw, f"must be one of {', '.join(map(str, values))}"))
-            return default
-        return raw
-
-    def _get(self, key: str, default):
-        self.used.add(key)
-        if key not in self.data:
-            if default is _REQUIRED and not self.absent:
-                self.problems.append(Problem(self._name(key), None, "is required"))
-            return _MISSING if default is _REQUIRED else default
-        return self.data[key]
-
-    def number(self, key, default=None, *, length=False,
-               positive=False, nonnegative=False, below=None, above=None):
-        """A real number (required when ``default`` is None); ``length=True`` converts
-        from the file's length unit to m."""
-        raw = self._get(key, _REQUIRED if default is None else default)
-        if raw is _MISSING:
-            return math.nan
-        if isinstance(raw, bool) or not isinstance(raw, (int, float)) or not math.isfinite(raw):
-            self.problems.append(Problem(self._name(key), raw, "must be a finite number"))
-            return math.nan
-        value = float(raw)
-        broken = [rule for rule, ok in (("must be > 0", not positive or value > 0),
-                                        ("must be >= 0", not nonnegative or value >= 0),
-                                        (f"must be < {below}", below is None or value < below),
-                                        (f"must be > {above}", above is None or value > above)) if not ok]
-        self.problems += [Problem(self._name(key), raw, rule) for rule in broken]
-        if broken:  # NaN: no rule relating this field to others can fire on a value already refused
-            return math.nan
-        return value * self.scale if length else value
-
-    def integer(self, key, *, minimum=1):
-        raw = self._get(key, _REQUIRED)
-        if raw is _MISSING:
-            return 0
-        if isinstance(raw, bool) or not isinstance(raw, int) or raw < minimum:
-            self.problems.append(Problem(self._name(key), raw, f"must be an integer >= {minimum}"))
-            return 0
-        return raw
-
-    def text(self, key, default="", choices=None):
-        raw = self._get(key, default)
-        if raw is _MISSING:
-            return ""
-        if not isinstance(raw, str):
-            self.problems.append(Problem(self._name(key), raw, "must be a string"))
-            return ""
-        if choices is not None and raw not in choices:
-            self.problems.append(Problem(self._name(key), raw, f"must be one of {', '.join(choices)}"))
-        return raw
-
-    def flag(self, key, default=False):
-        raw = self._get(key, default)
-        if not isinstance(raw, bool):
-            self.problems.append(Problem(self._name(key), raw, "must be true or false"))
-            return False
-        return raw
-
-    def numbers(self, key, *, required=True):
-        raw = self._get(key, _REQUIRED if required else [])
-        if raw is _MISSING:
-            return ()
-        if not isinstance(raw, list) or not all(_finite_number(v) for v in raw):
-            self.problems.append(Problem(self._name(key), raw, "must be a list of finite numbers"))
-            return ()
-        return tuple(float(v) for v in raw)
-
-    def tables(self, key, *, required=True):
-        raw = self._get(key, _REQUIRED if required else [])
-        if raw is _MISSING:
-            return []
-        if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
-            self.problems.append(Problem(self._name(key), raw, "must be an array of tables ([[...]])"))
-            return []
-        return [Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale) for i, t in enumerate(raw)]
-
-    def table(self, key, *, required=True):
-        raw = self._get(key, _REQUIRED if required else {})
-        return Table({} if raw is _MISSING else raw, self._name(key), self.problems, self.scale,
-                     absent=raw is _MISSING or self.absent)
-
-    def finish(self):
-        """Report keys the reader never asked for: they are typos or unsupported."""
-        for key in self.data:
-            if key not in self.used:
-                self.problems.append(Problem(self._name(key), self.data[key], "is not a known field here"))
-
-
-_REQUIRED = object()
-_MISSING = object()
-
-
-def _finite_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-
-
-MAX_DESCRIPTION_BYTES = 16 * 2**20  # a description is a few kB; anything this big is not one
-
-
-def read_toml(path) -> dict:
-    """Read a TOML file defensively: a missing, unreadable, oversized, binary or non-TOML
-    file gives a :class:`DescriptionError` naming it, never a traceback."""
-    path = Path(path)
-
-    def fail(rule):
-        raise DescriptionError(str(path), [Problem("file", str(path), rule)])
-
-    if not path.exists():
-        fail("does not exist")
-    if path.is_dir():
-        fail("is a folder; give a .toml description file")
-    if not path.is_file():
-        fail("is not a regular file")
-    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
-        fail(f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB; a description is a small TOML text file")
-    try:
-        raw = path.read_bytes()
-    except OSError as exc:
-        fail(f"could not be read ({exc.strerror or exc})")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        fail(f"is not UTF-8 text (byte {exc.start}); a description is a TOML text file")
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        fail(f"is not valid TOML ({exc})")
 
 
 def load(path) -> Crank | Chain:
@@ -449,6 +107,11 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     return Chain(name, inertias, stiffnesses, labels, absolute, relative, source)
 
 
+def _attach_point(text: str) -> AttachPoint:
+    # A bad value is already recorded as a problem; any member stands in until it is raised.
+    return AttachPoint(text) if text in ATTACH_POINTS else AttachPoint.FRONT
+
+
 def _cylinder(t: Table) -> Cylinder:
     d = t.number("diameter", length=True, positive=True)
     length = t.number("length", length=True, positive=True)
@@ -472,18 +135,6 @@ def _web(t: Table) -> Web:
         t.problems.append(Problem(f"{t.path}.counterweight_radius", r_cw / t.scale,
                                   "counterweight needs both counterweight_radius and counterweight_angle_deg > 0"))
     return Web(h, b_max, b_min, r_cw, math.radians(a_cw))
-
-
-def read_length_unit(root: Table, source: str) -> str:
-    """Read ``[units] length`` and set the table's length scale; without a known unit no
-    length can be checked, so that problem is raised at once."""
-    units = root.table("units")
-    unit = units.text("length", choices=tuple(LENGTH_UNITS))
-    units.finish()
-    if unit not in LENGTH_UNITS:
-        raise DescriptionError(source, root.problems)
-    root.scale = LENGTH_UNITS[unit]
-    return unit
 
 
 def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = True) -> Crank:
@@ -518,9 +169,9 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     rod = et.number("rod_length", length=True, positive=True)
     bore = et.number("bore", 0.0, length=True, nonnegative=True)
     angles = et.numbers("crank_angles_deg")
-    firing = et._get("firing_order", _REQUIRED)
+    firing = et.raw("firing_order")
     et.finish()
-    if firing is _MISSING:
+    if firing is None:
         firing = []
     elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
               and (not n or sorted(firing) == list(range(1, n + 1)))):
@@ -557,7 +208,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     for t in root.tables("attachments", required=False):
         attachments.append(Attachment(
             name=t.text("name", default=""),
-            at=t.text("at", choices=ATTACH_POINTS),
+            at=_attach_point(t.text("at", choices=ATTACH_POINTS)),
             polar_inertia=t.number("polar_inertia_kgm2", positive=True),
             mass=t.number("mass_kg", 0.0, nonnegative=True),
             diametral_inertia=t.number("diametral_inertia_kgm2", 0.0, nonnegative=True),
@@ -606,9 +257,9 @@ def _excitation(t: Table, folder: Path, strokes: int) -> Excitation:
         curve = _pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems, 180.0 * strokes) if csv else None
         return Excitation(pressure_curve=curve, **common)
     raw = t.get(given[0])
-    pairs = [(1.0, raw)] if _finite_number(raw) else raw
+    pairs = [(1.0, raw)] if finite_number(raw) else raw
     if not (isinstance(pairs, list) and pairs and all(
-            isinstance(p, (list, tuple)) and len(p) == 2 and all(_finite_number(v) for v in p) and p[1] > 0
+            isinstance(p, (list, tuple)) and len(p) == 2 and all(finite_number(v) for v in p) and p[1] > 0
             for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
         t.problems.append(Problem(f"{t.path}.{given[0]}", raw,
                                   "must be a finite pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
@@ -670,25 +321,6 @@ def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_de
     return None
 
 
-def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
-    """The (concrete path, value) pairs a dotted field path names in a raw description.
-
-    Indices are 1-based; ``*`` stands for every entry of a list of tables.
-    """
-    found = [("", data)]
-    for key in path.split("."):
-        nxt = []
-        for where, node in found:
-            if isinstance(node, list) and key == "*":
-                nxt += [(f"{where}.{i + 1}", v) for i, v in enumerate(node)]
-            elif isinstance(node, list) and key.isdigit() and 1 <= int(key) <= len(node):
-                nxt.append((f"{where}.{key}", node[int(key) - 1]))
-            elif isinstance(node, dict) and key in node:
-                nxt.append((f"{where}.{key}", node[key]))
-        found = nxt
-    return [(where.lstrip("."), v) for where, v in found]
-
-
 def _uncertainty(t: Table, data: dict, problems: list[Problem]):
     """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
     ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
@@ -700,7 +332,7 @@ def _uncertainty(t: Table, data: dict, problems: list[Problem]):
         group = []
         for path, rng in members:
             where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
-            if not (isinstance(rng, list) and len(rng) == 2 and all(_finite_number(v) for v in rng)
+            if not (isinstance(rng, list) and len(rng) == 2 and all(finite_number(v) for v in rng)
                     and rng[0] < rng[1]):
                 problems.append(Problem(where_name, rng, "must be [low, high], finite numbers with low < high"))
                 continue
@@ -809,54 +441,3 @@ def _as_file_value(nominal, bound: float):
     return bound
 
 
-# ---------------------------------------------------------------------------
-# Plausibility: values that parse and obey every rule, yet fit no engine
-
-# Engines span model engines (a few mm of stroke) to marine two-strokes (bore 0.96 m,
-# stroke 3.2 m); the ratios cover car, truck, motorcycle and marine cranks with room to spare.
-_STROKE_RANGE_M = (0.005, 4.0)
-_RATIO_RULES = (  # (field, value of, relative to, low, high)
-    ("journals.*.diameter", "journals", "diameter", 0.2, 3.0),
-    ("pins.*.diameter", "pins", "diameter", 0.2, 3.0),
-    ("webs.*.thickness", "webs", "thickness", 0.03, 2.0),
-    ("journals.*.length", "journals", "length", 0.05, 3.0),
-    ("pins.*.length", "pins", "length", 0.05, 3.0),
-    ("front.*.diameter", "front", "diameter", 0.05, 5.0),
-    ("front.*.length", "front", "length", 0.01, 5.0),
-    ("rear.*.diameter", "rear", "diameter", 0.05, 5.0),
-    ("rear.*.length", "rear", "length", 0.01, 5.0),
-)
-
-
-def plausibility_warnings(crank: Crank) -> list[str]:
-    """One line for each dimension far outside any engine (a likely unit mix-up or typo).
-
-    Not errors: the description is valid and the analysis runs; the user is told which
-    value to check. Sizes are compared with the stroke, the one length every engine has.
-    """
-    u, scale = crank.length_unit, LENGTH_UNITS[crank.length_unit]
-    stroke = crank.engine.stroke
-    out = []
-    lo, hi = _STROKE_RANGE_M
-    if not lo <= stroke <= hi:
-        hint = {True: 'is [units] length = "m" meant to be "mm"?', False: "is [units] length right?"}[
-            u == "m" and stroke > hi]
-        out.append(f"engine.stroke = {stroke / scale:g} {u} ({stroke:g} m) is outside any engine "
-                   f"({lo * 1e3:g} mm to {hi:g} m): {hint}")
-    for field_name, group, attr, low, high in _RATIO_RULES:
-        values = [getattr(x, attr) for x in getattr(crank, group)]
-        bad = [i for i, v in enumerate(values) if not low <= v / stroke <= high]
-        if bad:
-            i = bad[0]
-            more = f" (and {len(bad) - 1} more)" if len(bad) > 1 else ""
-            out.append(f"{field_name.replace('*', str(i + 1))} = {values[i] / scale:g} {u}{more} is "
-                       f"{values[i] / stroke:.3g} × the stroke; engines have {low:g}-{high:g}: check the value")
-    lam = crank.engine.crank_radius / crank.engine.rod_length
-    if not 0.1 <= lam <= 0.5:
-        out.append(f"engine.rod_length = {crank.engine.rod_length / scale:g} {u} gives crank radius/rod length "
-                   f"{lam:.3g}; engines have 0.1-0.5: check the value")
-    bore = crank.engine.bore
-    if bore > 0 and not 0.3 <= bore / stroke <= 3.0:
-        out.append(f"engine.bore = {bore / scale:g} {u} is {bore / stroke:.3g} × the stroke; engines have 0.3-3: "
-                   "check the value")
-    return out

@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..description.crank import Crank
+from ..description.model import Crank
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import lumped

@@ -20,7 +20,7 @@ import numpy as np
 import scipy.integrate
 import scipy.optimize
 
-from ..description.crank import Crank, Engine, Excitation
+from ..description.model import Crank, Engine, Excitation
 from ..errors import FetorsionError
 from .kinematics import piston_acceleration, piston_position, tangential_torque
 

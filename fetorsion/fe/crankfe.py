@@ -19,7 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..modes import TorsionalModes
-from ..description.crank import Attachment, Crank
+from ..description.model import Attachment, AttachPoint, Crank
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from ..errors import FetorsionError
 from ..extrapolation import richardson
@@ -66,17 +66,17 @@ def pin_ring(cm: CrankMesh, crank: Crank, i: int) -> np.ndarray:
 def attachment_bodies(crank: Crank, cm: CrankMesh) -> list[RigidBody]:
     """Rigid bodies for the description's attachments, tied to the mesh."""
     bodies = []
-    for at, outward in (("front", -1.0), ("rear", 1.0)):
+    for at, outward in ((AttachPoint.FRONT, -1.0), (AttachPoint.REAR, 1.0)):
         atts = crank.attachments_at(at)
         if atts:
             bodies.append(from_attachment(_combined(atts, at), cm.node_sets[f"{at}_face"], cm.nodes, outward))
-    pistons = crank.attachments_at("pins")
+    pistons = crank.attachments_at(AttachPoint.PINS)
     if pistons:
         inertia = sum(a.polar_inertia for a in pistons)
         for i in range(crank.cylinders):
             ring = pin_ring(cm, crank, i)
             r2 = float(np.sum(cm.nodes[ring].mean(axis=0)[1:] ** 2))  # the body sits at the ring's centroid
-            att = Attachment(f"piston+rod {i + 1}", "pins", inertia, mass=inertia / r2)
+            att = Attachment(f"piston+rod {i + 1}", AttachPoint.PINS, inertia, mass=inertia / r2)
             bodies.append(from_attachment(att, ring, cm.nodes, 0.0, about_crank_axis=True))
     return bodies
 

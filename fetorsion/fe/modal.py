@@ -25,7 +25,7 @@ from . import assembly
 from . import eigen
 
 from . import modeshape
-from ..description.crank import Material
+from ..description.model import Material
 from ..description.defaults import DEFAULT_MODES
 from ..errors import FetorsionError
 from .rigid import RigidBody, reduction
@@ -198,7 +198,7 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
 
     Examples
     --------
-    >>> from fetorsion.description.crank import Material
+    >>> from fetorsion.description.model import Material
     >>> from fetorsion.fe.tetmesh import cylinder_mesh
     >>> steel = Material(210e9, 0.3, 7850.0)
     >>> res = modal(cylinder_mesh(0.5, 0.05, 0.02), steel, modes=8)

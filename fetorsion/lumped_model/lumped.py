@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from ..description.crank import Chain, Crank
+from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
 from .parts import PartChain, build_parts

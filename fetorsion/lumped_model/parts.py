@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..description.crank import Crank, Cylinder
+from ..description.model import AttachPoint, Crank, Cylinder
 from ..description.defaults import DEFAULT_WEB_METHOD
 from ..webs.methods import web_equivalent_length
 from ..webs.sections import cylinder_equivalent_length
@@ -95,7 +95,7 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD) -> PartChain
     d_e = crank.journals[0].diameter
     j_e = math.pi * d_e**4 / 32
     oil = crank.oil_holes
-    piston = sum(a.polar_inertia for a in crank.attachments_at("pins"))
+    piston = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.PINS))
 
     pieces: list[tuple[str, int, float, float, float, float]] = []  # kind, index, length, L_e, I, attached
     for i, c in enumerate(crank.front):
@@ -129,8 +129,8 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD) -> PartChain
     )
     return PartChain(
         parts,
-        front_inertia=sum(a.polar_inertia for a in crank.attachments_at("front")),
-        rear_inertia=sum(a.polar_inertia for a in crank.attachments_at("rear")),
+        front_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.FRONT)),
+        rear_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.REAR)),
         equivalent_diameter=d_e,
         shear_modulus=G,
         web_method=web_method,

@@ -58,7 +58,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..description.crank import read_toml, Table, read_length_unit
+from ..description.reader import Table, read_length_unit, read_toml
 from ..errors import DescriptionError, Problem
 from .flywheel import RIM_SPEED_LIMITS
 

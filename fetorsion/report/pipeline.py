@@ -18,7 +18,9 @@ from typing import Callable
 
 import numpy as np
 
-from ..description.crank import Chain, Crank, load
+from ..description.crank import load
+
+from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped

@@ -19,7 +19,7 @@ import numpy as np
 import scipy.linalg
 
 from ..excitation.campbell import default_orders
-from ..description.crank import Crank
+from ..description.model import Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_matrices, lumped

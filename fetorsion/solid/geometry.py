@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import gmsh
 import numpy as np
 
-from ..description.crank import Crank, Cylinder, Web
+from ..description.model import Crank, Cylinder, Web
 from ..errors import FetorsionError
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
@@ -290,7 +290,7 @@ def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, t
     return out
 
 
-def _circle_curves(occ, x: float, centre, radius: float) -> list[int]:
+def circle_curves(occ, x: float, centre, radius: float) -> list[int]:
     """Curves of the (synchronised) model that lie on the circle of ``radius`` about
     ``centre`` in the plane x; the bore circle in the same plane is smaller and is left out."""
     y, z = centre
@@ -442,7 +442,7 @@ def build_solid(crank: Crank) -> CrankSolid:
     if junctions:
         curves, radii = [], []
         for x, centre, radius, r, label in junctions:
-            found = _circle_curves(occ, x, centre, radius)
+            found = circle_curves(occ, x, centre, radius)
             if not found:
                 raise GeometryError(f"no edge to fillet where {label} meet (x = {x:g} mm)")
             curves += found

@@ -37,7 +37,7 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from ..description.crank import Crank, Material
+from ..description.model import Crank, Material
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from ..errors import FetorsionError
 from .geometry import MODEL_UNIT, CrankSolid, build_solid, gmsh_session

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..description.crank import Web
+from ..description.model import Web
 
 # Gauss–Legendre on each smooth piece of ρ(φ): 8 sub-intervals × 24 nodes integrate the
 # arcs and tangent pieces to round-off.

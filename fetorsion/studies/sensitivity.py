@@ -14,7 +14,11 @@ from __future__ import annotations
 import copy
 from dataclasses import dataclass
 
-from ..description.crank import Crank, parse_crank, resolve_field
+from ..description.crank import parse_crank
+
+from ..description.model import Crank
+
+from ..description.reader import resolve_field
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD

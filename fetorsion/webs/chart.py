@@ -33,7 +33,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..description.crank import Crank, Cylinder, Engine, Fillets, Material, OilHoles, Web
+from ..description.model import Crank, Cylinder, Engine, Fillets, Material, OilHoles, Web
 from ..errors import FetorsionError
 from ..extrapolation import convergence_rate, richardson
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from ..description.crank import Crank
+from ..description.model import Crank
 from .sections import effective_web_width
 
 # Carter, as commonly quoted, per throw: L_e = l_j + 0.8 h + 0.75 l_p (D_j/D_p)⁴ + 1.5 R D_j⁴/(h b³)

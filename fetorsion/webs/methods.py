@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from typing import Callable
 
-from ..description.crank import Crank
+from ..description.model import Crank
 from ..description.defaults import DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
 from .classical import beam, carter, ker_wilson

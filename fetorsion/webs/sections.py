@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from ..description.crank import Crank, Cylinder, Web
+from ..description.model import Crank, Cylinder, Web
 
 
 def cylinder_equivalent_length(c: Cylinder, d_e: float) -> float:

@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fe import assembly
-from ..description.crank import Crank, Engine
+from ..description.model import Crank, Engine
 from ..fe.eigen import factorize
 from ..errors import FetorsionError
 from ..fe.rigid import RigidBody, reduction
@@ -337,7 +337,7 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
     """
     import gmsh
 
-    from ..solid.geometry import MODEL_UNIT, _circle_curves, gmsh_session
+    from ..solid.geometry import MODEL_UNIT, circle_curves, gmsh_session
     from ..solid.mesh import mesh_model
 
     s = 1.0 / MODEL_UNIT
@@ -350,7 +350,7 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
         occ.synchronize()
         fine_faces = []
         if fillet > 0:
-            edges = _circle_curves(occ, l_small * s, (0.0, 0.0), 0.5 * d * s)
+            edges = circle_curves(occ, l_small * s, (0.0, 0.0), 0.5 * d * s)
             vol = occ.fillet([vol], edges, [fillet * s] * len(edges))[0][1]
             occ.synchronize()
             fine_faces = [t for _, t in gmsh.model.getEntities(2) if gmsh.model.getType(2, t) == "Torus"]

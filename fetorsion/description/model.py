@@ -1,0 +1,205 @@
+"""The description's data types: frozen dataclasses in SI units (m, kg, Pa, rad).
+
+Every later stage reads a :class:`Crank` (or a :class:`Chain`); :mod:`.crank` builds them
+from a file and checks every rule.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import Enum
+
+from .defaults import DEFAULT_DAMPING_RATIO
+
+class AttachPoint(str, Enum):
+    """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
+    on every crank pin. A str, so ``"front" == AttachPoint.FRONT``."""
+
+    FRONT = "front"
+    REAR = "rear"
+    PINS = "pins"
+
+
+ATTACH_POINTS = tuple(p.value for p in AttachPoint)
+
+
+@dataclass(frozen=True)
+class Material:
+    """Linear elastic isotropic material, SI units (Pa, -, kg/m³)."""
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+    name: str = ""
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2 (1 + ν)) in Pa."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A round shaft piece (journal, pin, nose or flange step), lengths in m."""
+
+    diameter: float
+    length: float
+    bore: float = 0.0
+
+
+@dataclass(frozen=True)
+class Web:
+    """A crank web (arm) joining a journal to a pin, lengths in m, angle in rad.
+
+    The outline is the convex hull of a circle of diameter ``width_journal`` (B_max)
+    around the crank axis and one of diameter ``width_pin`` (B_min) around the pin
+    centre, united with an optional counterweight sector of radius
+    ``counterweight_radius`` and full angle ``counterweight_angle`` centred opposite
+    the pin.
+    """
+
+    thickness: float
+    width_journal: float
+    width_pin: float
+    counterweight_radius: float = 0.0
+    counterweight_angle: float = 0.0
+
+
+@dataclass(frozen=True)
+class Engine:
+    """Cylinder layout and slider-crank data; lengths in m, angles in rad."""
+
+    cylinders: int
+    strokes_per_cycle: int
+    stroke: float
+    rod_length: float
+    crank_angles: tuple[float, ...]
+    firing_order: tuple[int, ...]
+    bore: float = 0.0
+
+    @property
+    def crank_radius(self) -> float:
+        """R = stroke / 2 in m."""
+        return 0.5 * self.stroke
+
+
+@dataclass(frozen=True)
+class Fillets:
+    """Fillet radii at journal/web and pin/web junctions, m."""
+
+    journal: float = 0.0
+    pin: float = 0.0
+
+
+@dataclass(frozen=True)
+class OilHoles:
+    """Diametral oil drillings of diameter ``diameter`` (m) through each pin/journal."""
+
+    diameter: float = 0.0
+    in_journals: bool = False
+    in_pins: bool = False
+
+
+@dataclass(frozen=True)
+class Attachment:
+    """A rigid body fixed to the crank.
+
+    ``at`` is ``"front"`` (pulley end face), ``"rear"`` (flywheel flange face) or
+    ``"pins"`` (one copy on every crank pin, e.g. piston + connecting rod, its
+    ``polar_inertia`` being the equivalent inertia about the crank axis per cylinder).
+    Inertias in kg·m², mass in kg, offset (axial distance of its centre of mass from
+    the face, outwards) in m.
+    """
+
+    name: str
+    at: AttachPoint
+    polar_inertia: float
+    mass: float = 0.0
+    diametral_inertia: float = 0.0
+    offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """Cylinder pressure and operating data for the Campbell diagram and forced response.
+
+    Either ``pressure_curve`` (crank angle rad from firing TDC over one cycle, absolute
+    pressure Pa) or the synthetic cycle: polytropic compression/expansion with a Wiebe
+    heat release scaled to ``load`` ((rpm, value) pairs, linear in between; value is the
+    IMEP or the peak pressure in Pa as ``load_kind`` says).
+    """
+
+    reciprocating_mass: float  # kg per cylinder (piston, pin, rod small-end share)
+    speed_range: tuple[float, float]  # rpm
+    compression_ratio: float = 0.0
+    load_kind: str = "imep"  # "imep" or "peak"
+    load: tuple[tuple[float, float], ...] = ()
+    intake_pressure: float = 1.0e5  # Pa, absolute
+    polytropic_exponent: float = 1.3
+    combustion_start: float = -0.2618  # rad from firing TDC (−15°)
+    combustion_duration: float = 0.8727  # rad (50°)
+    wiebe_a: float = 5.0
+    wiebe_m: float = 2.0
+    pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
+    modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
+
+
+@dataclass(frozen=True)
+class Crank:
+    """A complete crankshaft description in SI units.
+
+    The shaft is stacked along +x from the front (pulley) end: ``front`` sections,
+    then journal 1, web 1, pin 1, web 2, journal 2, ... journal N+1, then ``rear``
+    sections. Webs 2i-1 and 2i belong to throw i.
+    """
+
+    name: str
+    material: Material
+    engine: Engine
+    journals: tuple[Cylinder, ...]
+    pins: tuple[Cylinder, ...]
+    webs: tuple[Web, ...]
+    front: tuple[Cylinder, ...] = ()
+    rear: tuple[Cylinder, ...] = ()
+    fillets: Fillets = Fillets()
+    oil_holes: OilHoles = OilHoles()
+    attachments: tuple[Attachment, ...] = ()
+    length_unit: str = "m"
+    source: str = ""
+    notes: dict = field(default_factory=dict, compare=False)
+    uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
+    excitation: Excitation | None = None
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def cylinders(self) -> int:
+        return self.engine.cylinders
+
+    def throw_of_web(self, web_index: int) -> int:
+        """0-based throw index of 0-based web ``web_index``."""
+        return web_index // 2
+
+    def journal_of_web(self, web_index: int) -> int:
+        """0-based index of the journal a web is joined to (its own side)."""
+        return web_index // 2 + web_index % 2
+
+    def attachments_at(self, at: AttachPoint | str) -> tuple[Attachment, ...]:
+        return tuple(a for a in self.attachments if a.at == at)
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A torsional chain given directly: inertias (kg·m²), springs (N·m/rad), dampers.
+
+    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground) and
+    ``relative_damping`` (N·m·s/rad, one per spring) are optional.
+    """
+
+    name: str
+    inertias: tuple[float, ...]
+    stiffnesses: tuple[float, ...]
+    labels: tuple[str, ...]
+    absolute_damping: tuple[float, ...] = ()
+    relative_damping: tuple[float, ...] = ()
+    source: str = ""
