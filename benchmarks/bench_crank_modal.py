@@ -38,7 +38,7 @@ def run_case(crank_path: str, size_mm: float, purpose: str, fillet_scale: float 
     t = time.perf_counter()
     fe = run_modal(crank, size, modes, fillet_size=fillet, purpose=purpose, method=method)
     wall = time.perf_counter() - t
-    r, q = fe.result, fe.mesh.quality
+    r, q = fe, fe.mesh.quality
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
     return {"size_mm": size_mm, "fillet_mm": q.fillet_size * 1e3, "tets": r.elements, "dofs": r.dofs,
             "f1_hz": r.first_torsional(), "meshing_s": r.timings_s.get("meshing", 0.0),

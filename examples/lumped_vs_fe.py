@@ -11,7 +11,7 @@ path = sys.argv[1] if len(sys.argv) > 1 else "geometry/peugeot_glx.toml"
 mesh_mm = float(sys.argv[2]) if len(sys.argv) > 2 else 10.0
 
 crank = fetorsion.load(path)
-fe = fetorsion.run_modal(crank, mesh_size=mesh_mm / 1000, modes=12).result
+fe = fetorsion.run_modal(crank, mesh_size=mesh_mm / 1000, modes=12)
 f_fe = fe.first_torsional()
 print(f"{crank.name}")
 print(f"  FE ({fe.dofs} DOF): first torsional {f_fe:.1f} Hz")

@@ -20,7 +20,7 @@ out.mkdir(parents=True, exist_ok=True)
 
 crank = fetorsion.load(path)
 fe = fetorsion.run_modal(crank, mesh_size=mesh_mm / 1000, modes=12)
-res = fe.result
+res = fe
 j = res.kinds.index("torsional")
 png = render_mode(fe.mesh.nodes, fe.mesh.tets, res.shapes[j], out / "first_torsional.png",
                   title=f"{crank.name}: {res.frequencies_hz[j]:.1f} Hz, torsional")

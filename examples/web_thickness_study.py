@@ -18,5 +18,5 @@ for h in thicknesses:
     print(f"{h:18.1f} {fetorsion.lumped(variant, 17).frequencies_hz[0]:16.1f}")
 for h in thicknesses[[0, -1]]:
     variant = fetorsion.with_values(crank, {"webs.*.thickness": float(h)})
-    f = fetorsion.run_modal(variant, mesh_size=mesh_mm / 1000, modes=12).result.first_torsional()
+    f = fetorsion.run_modal(variant, mesh_size=mesh_mm / 1000, modes=12).first_torsional()
     print(f"FE at {h:.1f} mm: {f:.1f} Hz")

@@ -21,7 +21,7 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
     """3D FE free-free modes of a crank (lazy import: gmsh and scikit-fem load on first use).
 
     See :func:`fetorsion.fe.crankfe.run_modal`; returns a :class:`fetorsion.fe.crankfe.CrankModal`
-    whose ``.result`` is a :class:`fetorsion.fe.modal.ModalResult`.
+    (a :class:`fetorsion.fe.modal.ModalResult` that also holds the crank and its mesh).
     """
     from .fe.crankfe import run_modal as _run
 

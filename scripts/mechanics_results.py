@@ -24,7 +24,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 from fetorsion.mechanics import balance as bal  # noqa: E402
-from fetorsion.cli import mechanics as cm  # noqa: E402
+from fetorsion.mechanics import reports  # noqa: E402
 from fetorsion.mechanics import flywheel as fw  # noqa: E402
 from fetorsion.excitation import kinematics as kin  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
@@ -129,7 +129,7 @@ def main():
     save(fig, "residual_locus_table1.png")
 
     spec = load_mechanics(ROOT / "geometry" / "b112_single.toml")
-    b112 = cm.balance_report(spec)
+    b112 = reports.balance_report(spec)
     lam = b112["lambda"]
     fig, ax = plt.subplots(figsize=(6, 6))
     o = b112["overbalance_minmax"]
@@ -141,13 +141,13 @@ def main():
 
     for toml, name in (("planetary_ismailov.toml", "planetary_epicycloid.png"),
                        ("planetary_ismailov_ring.toml", "planetary_hypocycloid.png")):
-        pairs = cm.planetary_results(load_mechanics(ROOT / "geometry" / toml))
-        save(cm.plot_planetary(pairs), name)
+        pairs = reports.planetary_results(load_mechanics(ROOT / "geometry" / toml))
+        save(reports.plot_planetary(pairs), name)
 
     sc = spec.slider_crank
     res = kin.kinematics(np.radians(np.linspace(0, 360, 721)), sc.crank_radius, sc.rod_length, sc.speed_rpm * np.pi / 30,
                          name=spec.name)
-    save(res.plot(), "kinematics_b112.png")
+    save(res.plot().figure, "kinematics_b112.png")
     f = spec.flywheel
     sizing = fw.size_flywheel(f.power_w, f.speed_rpm, f.speed_fluctuation, f.outer_diameter, f.inner_diameter, f.stroke,
                               f.material, f.other_inertia_kgm2, name=spec.name)

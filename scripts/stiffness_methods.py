@@ -69,7 +69,7 @@ def main(argv=None) -> int:
             from fetorsion.fe.crankfe import run_modal
 
             t0 = time.perf_counter()
-            res = run_modal(crank, args.modal, modes=12).result
+            res = run_modal(crank, args.modal, modes=12)
             entry["fe_modal"] = {"mesh_size_m": args.modal, "dofs": res.dofs, "f1_hz": res.first_torsional(),
                                  "seconds": time.perf_counter() - t0}
         report[name] = entry

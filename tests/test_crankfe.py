@@ -41,7 +41,7 @@ def test_attachment_bodies_carry_the_described_inertia():
 
 
 def test_crank_fe_has_six_rigid_modes_and_a_torsional_mode_near_the_lumped_one(renault_fe):
-    res = renault_fe.result
+    res = renault_fe
     f1 = res.first_torsional()
     assert len(res.rigid_body_hz) == 6 and res.rigid_body_hz.max() < 1e-3 * res.frequencies_hz[0]
     lumped = fetorsion.lumped(renault_fe.crank, 17).frequencies_hz[0]
@@ -159,9 +159,9 @@ def test_modal_mesh_default_within_its_stated_f1_error(name):
     from fetorsion.solid.mesh import default_fillet_size
 
     crank = fetorsion.load(GEOMETRY / name)
-    modal_f1 = run_modal(crank).result.first_torsional()
+    modal_f1 = run_modal(crank).first_torsional()
     # Independent, finer discretisation of the same crank where f1 is most sensitive (the
     # fillet-size study of docs/modal-mesh.md): fillet and drilling elements × 0.8.
     fine = 0.8 * default_fillet_size(crank, 0.010, "modal")
-    finer_f1 = run_modal(crank, fillet_size=fine, purpose="stress").result.first_torsional()
+    finer_f1 = run_modal(crank, fillet_size=fine, purpose="stress").first_torsional()
     assert modal_f1 == pytest.approx(finer_f1, rel=MODAL_F1_ERROR)

@@ -153,13 +153,9 @@ def cmd_modal(args) -> int:
     else:
         mesh = read_mesh(args.mesh, crank) if args.mesh else None
         fe = run_modal(crank, args.mesh_size, args.modes, args.fillet_size, mesh=mesh, purpose=args.purpose)
-    res = fe.result
+    res = fe
     out = sys.stderr if args.json == "-" else sys.stdout
-    print(f"{crank.name}: free-free FE modes ({res.dofs} DOF, {res.elements} curved P2 tets, "
-          f"{res.backend}/{res.method}, {res.timings_s['total']:.1f} s)", file=out)
-    print(f"{'mode':>4} {'f [Hz]':>9} {'kind':>10} {'torsion':>8} {'bending':>8} {'axial':>8}", file=out)
-    for j, (f, k, fr) in enumerate(zip(res.frequencies_hz, res.kinds, res.fractions)):
-        print(f"{j + 1:>4} {f:9.1f} {k:>10} {fr[0]:8.3f} {fr[1]:8.3f} {fr[2]:8.3f}", file=out)
+    print(f"{crank.name}: {res.table()}", file=out)
     payload = {"file": args.file, **res.to_dict()}
     torsional = res.of_kind("torsional")
     payload["first_torsional_hz"] = float(torsional[0]) if len(torsional) else None
@@ -254,7 +250,7 @@ def cmd_response(args) -> int:
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
-    return _report(res, res.summary(), args)
+    return _report(res, res.table(), args)
 
 
 def cmd_sensitivity(args) -> int:

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from enum import Enum
+from enum import StrEnum
 
 from .defaults import DEFAULT_DAMPING_RATIO
 
-class AttachPoint(str, Enum):
+class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
     on every crank pin. A str, so ``"front" == AttachPoint.FRONT``."""
 

@@ -309,32 +309,51 @@ class KinematicsResult:
             out[key] = value.tolist() if isinstance(value, np.ndarray) else value
         return out
 
-    def plot(self, fig=None):
+    def table(self) -> str:
+        """Exact and series piston motion at each crank angle of the result."""
+        top = self.crank_radius_m + self.rod_length_m
+        head = (f"{'θ [deg]':>8} {'X [mm]':>9} {'X ser':>9} {'v [m/s]':>9} {'v ser':>9} {'a [m/s²]':>10} "
+                f"{'a ser':>10} {'β [deg]':>8} {'β̇ [rad/s]':>10}")
+        lines = [f"{self.name}: slider crank r = {1e3 * self.crank_radius_m:g} mm, l = {1e3 * self.rod_length_m:g} mm, "
+                 f"λ = {self.crank_ratio:.4f}, {self.omega_rad_s * 30 / np.pi:g} rpm (X from TDC, v and a towards "
+                 "the head)", head, "-" * len(head)]
+        for i, t in enumerate(self.theta_rad):
+            lines.append(f"{np.degrees(t):8.1f} {1e3 * (top - self.position_m[i]):9.3f} "
+                         f"{1e3 * (top - self.position_series_m[i]):9.3f} {self.velocity_m_s[i]:9.3f} "
+                         f"{self.velocity_series_m_s[i]:9.3f} {self.acceleration_m_s2[i]:10.1f} "
+                         f"{self.acceleration_series_m_s2[i]:10.1f} {np.degrees(self.rod_angle_rad[i]):8.3f} "
+                         f"{self.rod_angular_velocity_rad_s[i]:10.3f}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
         """Position from TDC, velocity and acceleration, exact (lines) and series (dashed).
 
-        Returns the matplotlib Figure.
+        On a given ``ax`` only the position is drawn; without one, a figure with all three.
+        Returns the Axes of the position.
         """
         import matplotlib.pyplot as plt
 
-        if fig is None:
+        if ax is None:
             fig = plt.figure(figsize=(8, 7))
-        axes = fig.subplots(3, 1, sharex=True)
+            axes = fig.subplots(3, 1, sharex=True)
+        else:
+            fig, axes = ax.figure, [ax]
         deg = np.degrees(self.theta_rad)
         top = self.crank_radius_m + self.rod_length_m
         rows = (("displacement from TDC [mm]", 1e3, top - self.position_m, top - self.position_series_m),
                 ("velocity [m/s]", 1.0, self.velocity_m_s, self.velocity_series_m_s),
                 ("acceleration [m/s²]", 1.0, self.acceleration_m_s2, self.acceleration_series_m_s2))
-        for ax, (label, scale, exact, series) in zip(axes, rows):
-            ax.plot(deg, scale * exact, label="exact")
-            ax.plot(deg, scale * series, "--", label="second-order series")
-            ax.set_ylabel(label)
-            ax.grid(alpha=0.3)
+        for a, (label, scale, exact, series) in zip(axes, rows):
+            a.plot(deg, scale * exact, label="exact")
+            a.plot(deg, scale * series, "--", label="second-order series")
+            a.set_ylabel(label)
+            a.grid(alpha=0.3)
         axes[0].legend(fontsize=8)
         axes[-1].set_xlabel("crank angle from TDC [deg]")
         axes[0].set_title(f"{self.name}: r = {1e3 * self.crank_radius_m:g} mm, l = {1e3 * self.rod_length_m:g} mm, "
                           f"λ = {self.crank_ratio:.3f}, {self.omega_rad_s * 30 / np.pi:g} rpm")
         fig.tight_layout()
-        return fig
+        return axes[0]
 
 
 def kinematics(theta, r, l, omega, name: str = "") -> KinematicsResult:

@@ -14,7 +14,7 @@ Glue between :mod:`fetorsion.solid.mesh` (the crank's curved P2 mesh with part t
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -90,12 +90,12 @@ def _combined(atts, at: str) -> Attachment:
 
 
 @dataclass
-class CrankModal:
-    """FE modal result of a crank with the mesh it was computed on."""
+class CrankModal(ModalResult):
+    """FE modal result of a crank: a :class:`~fetorsion.fe.modal.ModalResult` that also holds
+    the crank and the mesh it was computed on (for pictures and the Campbell hand-off)."""
 
-    crank: Crank
-    mesh: CrankMesh
-    result: ModalResult
+    crank: Crank | None = field(default=None, repr=False)
+    mesh: CrankMesh | None = field(default=None, repr=False)
 
     def torsional_modes(self, n: int = 3) -> TorsionalModes:
         """The first ``n`` torsional modes in the form the Campbell analysis uses.
@@ -103,14 +103,13 @@ class CrankModal:
         Pin twist and pulley twist are the rigid-fit rotations about x of each pin's nodes
         and of the front face; the shapes are M-orthonormal, so every modal inertia is 1.
         """
-        res = self.result
-        idx = [j for j, k in enumerate(res.kinds) if k == "torsional"][:n]
+        idx = [j for j, k in enumerate(self.kinds) if k == "torsional"][:n]
         if not idx:
             raise FetorsionError("no torsional mode among the computed modes; ask for more modes")
-        U = res.shapes[idx]
+        U = self.shapes[idx]
         twist = lambda nodes: slab_fit(U[:, nodes], self.mesh.nodes[nodes], np.ones(len(nodes)))[0][:, 3]  # noqa: E731
         pins = np.stack([twist(part_nodes(self.mesh, f"pin_{i + 1}")) for i in range(self.crank.cylinders)], axis=1)
-        return TorsionalModes(f"FE ({res.dofs} DOF)", res.frequencies_hz[idx], pins,
+        return TorsionalModes(f"FE ({self.dofs} DOF)", self.frequencies_hz[idx], pins,
                               twist(self.mesh.node_sets["front_face"]), np.ones(len(idx)))
 
 
@@ -143,7 +142,7 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
     slabs = {f"J{k + 1}": part_nodes(cm, f"journal_{k + 1}") for k in range(crank.cylinders + 1)}
     res = modal(tm, crank.material, modes=modes, attachments=attachment_bodies(crank, cm), slabs=slabs, **solver)
     res.timings_s["meshing"] = cm.quality.seconds if cm.quality else 0.0
-    return CrankModal(crank, cm, res)
+    return CrankModal(**{f.name: getattr(res, f.name) for f in fields(ModalResult)}, crank=crank, mesh=cm)
 
 
 def extrapolate_refinement(sizes, values) -> dict:
@@ -181,9 +180,9 @@ def run_refinement(crank: Crank, mesh_size: float, modes: int = DEFAULT_MODES, f
     fine = fillet_size or default_fillet_size(crank, mesh_size, purpose)
     scales = [1.0, REFINE_RATIO, REFINE_RATIO**2]
     runs = [run_modal(crank, mesh_size * s, modes, fine * s, purpose=purpose, **solver) for s in scales]
-    f1 = [r.result.first_torsional() for r in runs]
+    f1 = [r.first_torsional() for r in runs]
     out = extrapolate_refinement([mesh_size * s for s in scales], f1)
     out.update(sizes_m=[mesh_size * s for s in scales], fillet_sizes_m=[fine * s for s in scales],
-               dofs=[r.result.dofs for r in runs], first_torsional_hz=f1)
+               dofs=[r.dofs for r in runs], first_torsional_hz=f1)
     return runs, out
 

@@ -111,6 +111,15 @@ class ModalResult:
             "timings_s": {k: float(v) for k, v in self.timings_s.items()},
         }
 
+    def table(self) -> str:
+        """Each elastic mode: frequency, label and the torsion/bending/axial shares."""
+        lines = [f"free-free FE modes ({self.dofs} DOF, {self.elements} curved P2 tets, {self.backend}/{self.method}, "
+                 f"{self.timings_s.get('total', sum(self.timings_s.values())):.1f} s)",
+                 f"{'mode':>4} {'f [Hz]':>9} {'kind':>10} {'torsion':>8} {'bending':>8} {'axial':>8}"]
+        lines += [f"{j + 1:>4} {f:9.1f} {k:>10} {fr[0]:8.3f} {fr[1]:8.3f} {fr[2]:8.3f}"
+                  for j, (f, k, fr) in enumerate(zip(self.frequencies_hz, self.kinds, self.fractions))]
+        return "\n".join(lines)
+
     def plot(self, ax=None):
         """Stacked torsional / bending / axial fractions per mode, frequencies on the ticks.
 

@@ -173,6 +173,14 @@ class LumpedResult:
             **self.inputs,
         }
 
+    def table(self) -> str:
+        """Every elastic mode: frequency and the station of largest twist."""
+        kind = f"{self.dof}-DOF ({self.inputs.get('stiffness_method')} webs)" if self.partition else "chain"
+        lines = [f"{self.name}: {kind} free-free torsional modes", f"{'mode':>4} {'f [Hz]':>10}  largest twist at"]
+        lines += [f"{j + 1:>4} {f:10.1f}  {self.labels[int(np.abs(s).argmax())]}"
+                  for j, (f, s) in enumerate(zip(self.frequencies_hz, self.mode_shapes))]
+        return "\n".join(lines)
+
     def torsional_modes(self) -> TorsionalModes:
         """The modes in the form the Campbell analysis uses (needs the pin weights of a crank)."""
         if self.pin_weights is None:

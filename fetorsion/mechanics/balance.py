@@ -378,6 +378,13 @@ class ResidualLocus:
             out["p_max_n"] = self.p_max * self.j_newton
         return out
 
+    def table(self) -> str:
+        """The counterweight and the largest residual force it leaves."""
+        force = f" = {self.p_max * self.j_newton:.1f} N" if self.j_newton is not None else ""
+        return (f"{self.name or 'residual force'}: λ = {self.lam:g}, k = {self.k:.4f}, α = "
+                f"{np.degrees(self.alpha_rad):.3f}°: P_max = {self.p_max:.4f} J{force} at θ = "
+                f"{np.degrees(self.theta_max_rad):.1f}°, φ = {np.degrees(self.phi_max_rad):.2f}°")
+
     def plot(self, ax=None, label=None):
         """The locus (P_x, P_y)/J with its peak marked; returns the matplotlib Axes."""
         import matplotlib.pyplot as plt
@@ -466,6 +473,17 @@ class MinMaxResult:
 
     def locus(self, n_theta=721) -> ResidualLocus:
         return residual_locus(self.k, self.alpha_rad, self.lam, n_theta)
+
+    def table(self) -> str:
+        """The optimum and its active peaks."""
+        peaks = ", ".join(f"θ {t:.1f}° φ {p:.1f}°" for t, p in zip(np.degrees(self.peaks_theta_rad),
+                                                                 np.degrees(self.peaks_phi_rad)))
+        return (f"over-balancing min–max, λ = {self.lam:g}: k = {self.k:.4f}, α = {np.degrees(self.alpha_rad):.3f}°, "
+                f"P_max = {self.p_max:.4f} J (peaks: {peaks})")
+
+    def plot(self, ax=None):
+        """The optimum's residual-force locus; returns the Axes."""
+        return self.locus().plot(ax, label="min–max")
 
 
 def _pmax_exact(k, alpha, lam):

@@ -186,6 +186,21 @@ class FlywheelSizing:
     def to_dict(self) -> dict:
         return dict(self.__dict__)
 
+    def table(self) -> str:
+        """The sizing's numbers and checks, one per line."""
+        rows = [("work per cycle W [J]", self.cycle_work_j), ("expansion work W_E [J]", self.expansion_work_j),
+                ("T_max [N·m]", self.torque_max_nm), ("T_mean [N·m]", self.torque_mean_nm), ("T_ex [N·m]", self.torque_excess_nm),
+                ("ΔE closed form [J]", self.delta_e_j), ("ΔE from the torque curve [J]", self.delta_e_curve_j),
+                (f"I = ΔE/(C_s ω²), C_s = {self.speed_fluctuation:g} [kg·m²]", self.inertia_kgm2)]
+        if self.mass_kg is not None:
+            rows += [("mass 2I/(R1² + R2²) [kg]", self.mass_kg), ("mass with I rounded to 2 digits [kg]", self.mass_at_rounded_inertia_kg)]
+        lines = [f"{self.name}: flywheel, {self.power_w / 1e3:g} kW at {self.speed_rpm:g} rpm (seed 000 energy method)"]
+        lines += [f"  {label:<48} {value:12.4f}" for label, value in rows]
+        for key, c in self.checks.items():
+            vals = list(c.values())
+            lines.append(f"  check {key:<42} {vals[0]:12.4f}  limits {vals[1][0]:g}–{vals[1][1]:g}  {'ok' if vals[2] else 'OUTSIDE'}")
+        return "\n".join(lines)
+
     def plot(self, ax=None, n=2001):
         """Triangular torque over the cycle with its mean and the ΔE area; returns the Axes."""
         import matplotlib.pyplot as plt

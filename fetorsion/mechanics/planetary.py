@@ -197,7 +197,8 @@ class PlanetaryResult:
         return {"max_geometric_arm_m": float(np.abs(self.geometric_arm_m[dead]).max()),
                 "max_effective_arm_m": float(np.abs(self.effective_arm_m[dead]).max())}
 
-    def summary(self) -> dict:
+    def figures(self) -> dict:
+        """The mechanism's scalar results (no curves), SI units."""
         return {"name": self.name, "kind": self.kind, "fixed_diameter_m": self.fixed_diameter_m,
                 "planet_diameter_m": self.planet_diameter_m, "eccentricity_m": self.eccentricity_m,
                 "rod_length_m": self.rod_length_m, "turns_to_close": self.turns, "stroke_m": self.stroke_m,
@@ -207,7 +208,7 @@ class PlanetaryResult:
                 "at_tdc": self.at_top_dead_centre(), "at_dead_centres": self.at_dead_centres(), **self.inputs}
 
     def to_dict(self) -> dict:
-        out = self.summary()
+        out = self.figures()
         for key in ("phi_rad", "big_end_x_m", "big_end_y_m", "piston_m", "piston_dphi_m", "piston_dphi2_m",
                     "geometric_arm_m", "effective_arm_m", "tdc_index", "bdc_index"):
             out[key] = getattr(self, key).tolist()
@@ -218,7 +219,14 @@ class PlanetaryResult:
             return f"conventional r = {1e3 * self.fixed_diameter_m / 2:g} mm"
         return f"{self.kind} d_f = {1e3 * self.fixed_diameter_m:g}, d_p = {1e3 * self.planet_diameter_m:g} mm"
 
-    def plot_trajectory(self, ax=None):
+    def table(self) -> str:
+        """One line: turns to close, strokes per turn, stroke and the largest arms (mm)."""
+        dc = self.at_dead_centres()
+        return (f"{self.label()}: {self.turns} turn(s), {self.strokes_per_turn:.2f} strokes/turn, stroke "
+                f"{1e3 * self.stroke_m:.3f} mm, dead-centre arms {1e3 * dc['max_geometric_arm_m']:.3f} (geometric) / "
+                f"{1e3 * dc['max_effective_arm_m']:.3f} mm (effective)")
+
+    def plot(self, ax=None):
         """Big-end path with the fixed gear circle and the dead centres; returns the Axes."""
         import matplotlib.pyplot as plt
 

@@ -80,7 +80,7 @@ class ResponseResult:
                 "section_torque_nm": self.section_torque_nm.tolist(),
                 "order_pulley_deg": self.order_pulley_deg.tolist()}
 
-    def summary(self) -> str:
+    def table(self) -> str:
         """The largest pulley angle and twist and section torque, with where they occur."""
         i, a = self.pulley_twist_deg.argmax(), self.pulley_angle_deg.argmax()
         s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
@@ -91,17 +91,27 @@ class ResponseResult:
             f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
             f"({self.labels[k]}-{self.labels[k + 1]})"])
 
-    def plot(self, fig=None):
-        """Pulley angle and twist, and the largest section torque, against speed."""
+    def plot(self, ax=None):
+        """Pulley angle and twist, and the most loaded section's torque, against speed.
+
+        On a given ``ax`` only the angles are drawn; without one, a figure with both panels.
+        Returns the Axes of the angles.
+        """
         import matplotlib.pyplot as plt
 
-        fig = fig or plt.figure(figsize=(9, 7))
-        a1, a2 = fig.subplots(2, 1, sharex=True)
+        if ax is None:
+            fig = plt.figure(figsize=(9, 7))
+            a1, a2 = fig.subplots(2, 1, sharex=True)
+        else:
+            fig, a1, a2 = ax.figure, ax, None
         a1.plot(self.rpm, self.pulley_angle_deg, label="pulley angle (absolute)")
         a1.plot(self.rpm, self.pulley_twist_deg, label="pulley twist against flywheel end")
         a1.set_ylabel("vibratory angle [deg]")
         a1.legend(fontsize=8)
         a1.set_title(f"{self.name}\nforced response, ζ = {self.damping_ratio:g}", fontsize=10)
+        if a2 is None:
+            a1.set_xlabel("engine speed [rpm]")
+            return a1
         worst = np.argmax(self.section_torque_nm.max(axis=0))
         a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
                 label=f"section {self.labels[worst]}–{self.labels[worst + 1]}")
@@ -109,7 +119,7 @@ class ResponseResult:
         a2.set_xlabel("engine speed [rpm]")
         a2.legend(fontsize=8)
         fig.tight_layout()
-        return fig
+        return a1
 
 
 def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, orders=None, damping_ratio: float | None = None,

@@ -116,7 +116,7 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     from ..fe.crankfe import run_modal
 
     def f1(changes):
-        return run_modal(with_values(crank, changes, details=False), mesh_size, modes=12).result.first_torsional()
+        return run_modal(with_values(crank, changes, details=False), mesh_size, modes=12).first_torsional()
 
     groups = dict(crank.uncertainty)
     nominal = f1({})

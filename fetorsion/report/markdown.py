@@ -1,0 +1,106 @@
+"""The report as Markdown: presents what the pipeline's steps computed, computes nothing.
+
+Each section function takes a step's outcome (results objects and picture file names, see
+:mod:`fetorsion.report.pipeline`) and returns its lines; :func:`report_markdown` puts the
+sections of a run together. A second format (a web page) is another module beside this one
+taking the same outcomes.
+"""
+
+from __future__ import annotations
+
+from ..description.model import Crank
+from ..lumped_model.lumped import PARTITIONS
+
+
+def _with_error(f: float, measured) -> str:
+    return f"{f:.1f}" + (f" ({100 * (f / measured - 1):+.1f} %)" if measured else "")
+
+
+def lumped_section(crank: Crank, outcome: dict) -> list[str]:
+    """f1 of every partition and web method against the measurement; the 17-DOF shapes."""
+    table, skipped = outcome["table"], outcome["skipped"]
+    measured = crank.notes.get("measured_first_torsional_hz")
+    paper = crank.notes.get("paper_lumped_first_torsional_hz", {})
+    lines = ["## Lumped models (BICERA-style equivalent lengths)", "",
+             "First torsional frequency f1 (Hz), free-free; error against the measurement where there is one.", ""]
+    lines += ["| model | " + " | ".join(table) + (" | paper |" if paper else " |"),
+              "|" + "---|" * (len(table) + 1 + bool(paper))]
+    for i, d in enumerate(PARTITIONS):
+        cells = [_with_error(table[m][i].frequencies_hz[0], measured) for m in table]
+        lines.append(f"| {d} DOF | " + " | ".join(cells) + (f" | {paper.get(str(d), '')} |" if paper else " |"))
+    if measured:
+        lines += ["", f"Measured (free-free modal test): **{measured:g} Hz**."]
+    lines += [f"Web method `{m}` not used: {why}" for m, why in skipped.items()]
+    lines += ["", f"17-DOF mode shapes (Carter webs), unit twist at the pulley end: ![]({outcome['image']})", ""]
+    return lines
+
+
+def fe_section(crank: Crank, outcome: dict) -> list[str]:
+    """Mesh, solver and timings, f1 against the measurement, every mode with its label."""
+    res, size = outcome["modal"], outcome["mesh_size_m"]
+    quality = res.mesh.quality if res.mesh is not None else None
+    sicn = f"{quality.min_sicn:.3f}" if quality else "n/a"
+    measured = crank.notes.get("measured_first_torsional_hz")
+    paper_fe = crank.notes.get("paper_fe_first_torsional_hz")
+    t = res.timings_s
+    lines = ["## 3D FE modal analysis (Gmsh + scikit-fem, curved P2 tetrahedra)", "",
+             f"Mesh: {res.elements} ten-node tetrahedra, {res.nodes} nodes, {res.dofs} DOF, global size "
+             f"{size * 1e3:g} mm (finer at fillets and drillings), minimum SICN {sicn}. Solver "
+             f"{res.backend}/{res.method}; assembly {t.get('assembly', 0):.1f} s, factorisation "
+             f"{t.get('factorize', 0):.1f} s, eigen-solve {t.get('eigensolve', 0):.1f} s.", "",
+             f"**First torsional mode: {_with_error(res.first_torsional(), measured)} Hz**"
+             + (f" (paper's ANSYS: {paper_fe:g} Hz)" if paper_fe else "")
+             + (f"; measured {measured:g} Hz." if measured else "."), "",
+             "| mode | f (Hz) | kind | torsion | bending | axial |", "|---|---|---|---|---|---|"]
+    lines += [f"| {j + 1} | {f:.1f} | {k} | {fr[0]:.2f} | {fr[1]:.2f} | {fr[2]:.2f} |"
+              for j, (f, k, fr) in enumerate(zip(res.frequencies_hz, res.kinds, res.fractions))]
+    lines += ["", "Rigid-body roots (Hz): " + ", ".join(f"{f:.1e}" for f in res.rigid_body_hz), ""]
+    return lines + [f"![]({img})" for img in outcome["images"]] + [""]
+
+
+def campbell_section(crank: Crank, outcome: dict | None) -> list[str]:
+    """Crossings by severity, the diagram, and the forced response."""
+    if outcome is None:
+        return ["## Campbell diagram", "", "Not run: the description has no `[excitation]` table.", ""]
+    camp, resp = outcome["campbell"], outcome["response"]
+    a, b = outcome["images"]
+    return ["## Campbell diagram and forced response", "",
+            f"Crossings inside the operating range, most severe first ({camp.source}; severity = resonant "
+            f"vibratory angle at the pulley for ζ = {camp.damping_ratio:g}):", "", "```", camp.table(), "```", "",
+            f"![]({a})", "", "```", resp.table(), "```", "", f"![]({b})", ""]
+
+
+def sensitivity_section(crank: Crank, outcome: dict | None) -> list[str]:
+    """One-at-a-time sensitivities, the band, where the measurement falls, the FE check."""
+    if outcome is None:
+        return ["## Sensitivity", "", "Not run: the description has no `[uncertainty]` table.", ""]
+    sens, checks = outcome["sensitivity"], outcome["fe_check"]
+    verdict = ""
+    if sens.measured_hz is not None:
+        verdict = (f"The measured {sens.measured_hz:g} Hz is **{'inside' if sens.measured_inside else 'outside'}** "
+                   f"the band {sens.band_hz[0]:.0f}–{sens.band_hz[1]:.0f} Hz.")
+    lines = ["## Sensitivity of f1 to the reconstructed geometry", "",
+             "Each input of the description's `[uncertainty]` table at its bounds, one at a time, then all "
+             "at the bounds that lower (raise) f1 together: the band's ends are model results.", "",
+             "```", sens.table(), "```", "", verdict, ""]
+    if checks:
+        lines += ["FE check of the three most influential inputs (change of f1 from the low to the high bound; "
+                  "FE on the crank without fillets and drillings, 25 mm mesh):", "",
+                  "| input | lumped | FE |", "|---|---|---|"]
+        lines += [f"| {c['field']} | {c['lumped_change_percent']:+.1f} % | {c['fe_change_percent']:+.1f} % |"
+                  for c in checks] + [""]
+    return lines + [f"![]({outcome['image']})", ""]
+
+
+SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("campbell", campbell_section),
+            ("sensitivity", sensitivity_section))
+
+
+def report_markdown(crank: Crank, path, sections: dict, timings_s: dict) -> str:
+    """The whole report: a title, each section whose step ran, in pipeline order, the timings."""
+    lines = [f"# {crank.name}", "", f"Description: `{path}`", ""]
+    for key, render in SECTIONS:
+        if key in sections:
+            lines += render(crank, sections[key])
+    lines += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in timings_s.items()], ""]
+    return "\n".join(lines)
