@@ -38,3 +38,27 @@ def simple_crank_raw(cylinders: int = 4) -> dict:
         "front": [{"diameter": 40.0, "length": 50.0}],
         "rear": [{"diameter": 80.0, "length": 15.0}],
     })
+
+
+def plain(crank_or_path):
+    """A crank (or the one in a reference file) without fillets, oil holes and uncertainty
+    ranges: what eq. 14-17 and the web outline describe, and cheap to mesh coarsely."""
+    import fetorsion
+
+    crank = fetorsion.load(GEOMETRY / crank_or_path) if isinstance(crank_or_path, (str, Path)) else crank_or_path
+    return fetorsion.with_values(crank, {}, details=False)
+
+
+def assert_picture(path, min_ink: float = 0.005, min_colours: int = 3) -> None:
+    """``path`` is a PNG that shows something: enough pixels differ from its background
+    (the most common colour) and it holds several colours, so a blank or one-colour image fails."""
+    import numpy as np
+    from PIL import Image
+
+    with open(path, "rb") as fh:
+        assert fh.read(8) == b"\x89PNG\r\n\x1a\n", f"{path} is not a PNG"
+    pixels = np.asarray(Image.open(path).convert("RGB")).reshape(-1, 3)
+    colours, counts = np.unique(pixels, axis=0, return_counts=True)
+    ink = 1.0 - counts.max() / len(pixels)
+    assert ink >= min_ink, f"{path}: only {ink:.2%} of the pixels differ from the background"
+    assert len(colours) >= min_colours, f"{path}: {len(colours)} colours"

@@ -315,6 +315,7 @@ def _strays(parent):
     return [p.name for p in parent.iterdir() if TMP_TAG in p.name]
 
 
+@pytest.mark.fe
 def test_sigkill_midway_leaves_the_earlier_report_and_the_next_run_cleans_up(tmp_path):
     """SIGKILL during the FE step: the earlier report is intact; the next run removes the
     killed run's temporary folder and leaves no stray of its own; no meshing child lives on."""

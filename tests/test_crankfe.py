@@ -14,15 +14,9 @@ from fetorsion.description.crank import parse_crank
 from fetorsion.fe.crankfe import attachment_bodies, extrapolate_refinement, run_modal
 from fetorsion.solid.mesh import mesh_crank, read_mesh, write_mesh
 
-from conftest import GEOMETRY, ROOT
+from conftest import GEOMETRY, ROOT, plain
 
-
-def plain(name):
-    """A reference crank without fillets and drillings, so a coarse mesh is cheap."""
-    raw = copy.deepcopy(fetorsion.load(GEOMETRY / name).raw)
-    for key in ("fillets", "oil_holes", "uncertainty"):
-        raw.pop(key, None)
-    return parse_crank(raw, source=name)
+pytestmark = [pytest.mark.fe]
 
 
 @pytest.fixture(scope="module")

@@ -16,13 +16,11 @@ from fetorsion.solid.geometry import GeometryError, build_solid, crank_mass_prop
 from fetorsion.lumped_model.parts import build_parts, cylinder_inertia
 from fetorsion.solid.outline import mass_properties as web_mass
 
-ROOT = Path(__file__).resolve().parents[1]
-REFERENCE = [ROOT / "geometry" / "peugeot_glx.toml", ROOT / "geometry" / "renault21.toml"]
+from conftest import GEOMETRY, plain
 
+pytestmark = [pytest.mark.fe]
 
-def plain(crank):
-    """The crank without fillets and oil drillings: what eq. 14-17 and the web outline describe."""
-    return dataclasses.replace(crank, fillets=Fillets(), oil_holes=OilHoles())
+REFERENCE = [GEOMETRY / "peugeot_glx.toml", GEOMETRY / "renault21.toml"]
 
 
 def analytic_mass(crank) -> float:

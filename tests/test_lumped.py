@@ -14,7 +14,7 @@ from fetorsion.webs.classical import carter, ker_wilson
 from fetorsion.webs.sections import effective_web_width
 from fetorsion.solid.outline import mass_properties
 
-from conftest import simple_crank_raw
+from conftest import GEOMETRY, simple_crank_raw
 
 
 def uniform_shaft(n, length=1.0, d=0.05, E=210e9, nu=0.3, rho=7850.0):
@@ -106,21 +106,26 @@ def test_partitions_conserve_inertia_and_give_paper_sizes(dof, renault_raw):
     assert len(inertias) == dof == len(labels) and len(springs) == dof - 1
     total = sum(p.inertia + p.attached_inertia for p in chain.parts) + chain.front_inertia + chain.rear_inertia
     assert inertias.sum() == pytest.approx(total, rel=1e-12)
-    # Springs in series over the whole shaft = compliance between the outermost anchors.
+    # Springs in series over the whole shaft = compliance between the outermost anchors, summed
+    # here part by part (each part's compliance spread uniformly along it), not by the model's
+    # cumulative interpolation.
     assert np.all(np.diff(anchors) > 0)
+    a0, a1 = anchors[0], anchors[-1]
+    between = sum(p.compliance * max(0.0, min(p.x1, a1) - max(p.x0, a0)) / (p.x1 - p.x0) for p in chain.parts)
+    assert np.sum(1.0 / springs) == pytest.approx(between, rel=1e-12)
 
 
 def test_rigid_station_merge_stiffens_17_vs_19():
     # 17 DOF lumps nose and flange rigidly into the end journals; 19 DOF gives them their
     # own compliance, so its first frequency cannot be higher (Rayleigh: added flexibility).
-    crank = fetorsion.load("geometry/renault21.toml")
+    crank = fetorsion.load(str(GEOMETRY / "renault21.toml"))
     f17 = fetorsion.lumped(crank, 17).frequencies_hz[0]
     f19 = fetorsion.lumped(crank, 19).frequencies_hz[0]
     assert f19 <= f17
 
 
 def test_chain_file_matches_equivalent_crank(tmp_path):
-    crank = fetorsion.load("geometry/renault21.toml")
+    crank = fetorsion.load(str(GEOMETRY / "renault21.toml"))
     res = fetorsion.lumped(crank, dof=5)
     text = "[chain]\nname = 'r21 5dof'\n"
     text += "inertias_kgm2 = [" + ", ".join(repr(float(v)) for v in res.inertias_kgm2) + "]\n"
@@ -165,8 +170,8 @@ def test_oil_hole_inertia_matches_eq17_and_corrected_eq15():
 
 def test_mode_shapes_as_paper_figs_13_14():
     # Seed 003: with a flywheel its end barely moves; crank alone, the flywheel end swings most.
-    r21 = fetorsion.lumped(fetorsion.load("geometry/renault21.toml"), 17)
-    glx = fetorsion.lumped(fetorsion.load("geometry/peugeot_glx.toml"), 17)
+    r21 = fetorsion.lumped(fetorsion.load(str(GEOMETRY / "renault21.toml")), 17)
+    glx = fetorsion.lumped(fetorsion.load(str(GEOMETRY / "peugeot_glx.toml")), 17)
     assert r21.mode_shapes[0, 0] == pytest.approx(1.0) and glx.mode_shapes[0, 0] == pytest.approx(1.0)
     # Qualitative in the paper; "barely moves" read as under half the pulley-end swing.
     assert abs(r21.mode_shapes[0, -1]) < 0.5
@@ -174,7 +179,7 @@ def test_mode_shapes_as_paper_figs_13_14():
 
 
 def test_mode_shapes_are_eigenvectors():
-    res = fetorsion.lumped(fetorsion.load("geometry/peugeot_glx.toml"), 21)
+    res = fetorsion.lumped(fetorsion.load(str(GEOMETRY / "peugeot_glx.toml")), 21)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     w2 = (2 * np.pi * res.frequencies_hz) ** 2
     resid = K @ res.mode_shapes.T - M @ res.mode_shapes.T * w2

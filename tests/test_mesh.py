@@ -15,9 +15,11 @@ from fetorsion.cli import main
 from fetorsion.description.model import Material
 from fetorsion.solid.geometry import crank_mass_properties, gmsh_session
 from fetorsion.solid.mesh import inp_text, mesh_crank, mesh_model, write_mesh
+from conftest import GEOMETRY, assert_picture
 
-ROOT = Path(__file__).resolve().parents[1]
-REFERENCE = [ROOT / "geometry" / "peugeot_glx.toml", ROOT / "geometry" / "renault21.toml"]
+pytestmark = [pytest.mark.fe]
+
+REFERENCE = [GEOMETRY / "peugeot_glx.toml", GEOMETRY / "renault21.toml"]
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 
 # Edges of a 10-node tet in VTK / CalculiX order: midside node 4 + k sits on EDGES[k].
@@ -170,4 +172,4 @@ def test_cli_png_is_a_picture(tmp_path):
     pytest.importorskip("pyvista")
     out = tmp_path / "glx.png"
     assert main(["mesh", str(REFERENCE[0]), "--png", str(out)]) == 0
-    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 20_000
+    assert_picture(out, min_ink=0.05)

@@ -15,6 +15,8 @@ from fetorsion.fe.modal import modal
 from fetorsion.fe.rigid import RigidBody, from_attachment, reduction, rigid_rows
 from fetorsion.fe.tetmesh import TetMesh, cylinder_mesh
 
+pytestmark = [pytest.mark.fe]
+
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 L, D, H = 0.5, 0.05, 0.0167  # slender bar (L/D = 10), ~3 P2 elements across the diameter
 C_SHEAR = np.sqrt(STEEL.shear_modulus / STEEL.density)

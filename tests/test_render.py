@@ -5,6 +5,8 @@ import pytest
 
 from fetorsion.report.render import mode_scale, render_gif, render_mode
 
+pytestmark = [pytest.mark.fe]
+
 
 def twisted_bar(n=(13, 4, 4)):
     """A tetrahedral bar along x and a twist displacement about the x axis."""

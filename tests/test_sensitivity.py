@@ -10,7 +10,7 @@ from fetorsion.description.crank import parse_crank
 from fetorsion.errors import DescriptionError
 from fetorsion.studies.sensitivity import run_sensitivity, with_values
 
-from conftest import read_raw
+from conftest import GEOMETRY, read_raw
 
 
 def only(raw, uncertainty):
@@ -20,7 +20,7 @@ def only(raw, uncertainty):
 
 
 def test_with_values_changes_only_the_named_field():
-    crank = fetorsion.load("geometry/peugeot_glx.toml")
+    crank = fetorsion.load(str(GEOMETRY / "peugeot_glx.toml"))
     changed = with_values(crank, {"webs.*.thickness": 21.0, "pins.2.length": 25.0})
     assert all(w.thickness == pytest.approx(0.021) for w in changed.webs)
     assert changed.pins[1].length == pytest.approx(0.025) and changed.pins[0].length == crank.pins[0].length
@@ -42,7 +42,7 @@ def test_f1_scales_with_inverse_sqrt_of_density_without_attachments():
 
 
 def test_group_moves_members_together_and_band_brackets_each_input():
-    crank = fetorsion.load("geometry/renault21.toml")
+    crank = fetorsion.load(str(GEOMETRY / "renault21.toml"))
     s = run_sensitivity(crank)
     material = next(r for r in s.rows if r["field"] == "material")
     # Cast iron: E/ρ falls from 210/7850 to 165/7100, so f1 falls by about √ of that ratio.
@@ -61,6 +61,7 @@ def test_group_member_rules():
     assert "uncertainty.mat.material.density_kgm3" in str(info.value)
 
 
+@pytest.mark.fe
 def test_fe_check_material_follows_exact_scaling():
     # Crank alone, same geometry and mesh: FE f1 ∝ √(E/ρ) exactly, as in the lumped model.
     from fetorsion.studies.sensitivity import fe_check

@@ -17,6 +17,8 @@ from fetorsion.webs.throwfe import static_torsion, stepped_shaft_mesh, throw_of
 
 from conftest import GEOMETRY, simple_crank_raw
 
+pytestmark = [pytest.mark.fe]
+
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 G = STEEL.shear_modulus
 
@@ -89,7 +91,6 @@ def test_fe_method_runs_fe_once_per_distinct_throw(monkeypatch, tmp_path):
     monkeypatch.setattr(throwfe, "torsional_stiffness_fe", lambda *a, **k: calls.append(1) or real(*a, **k))
     monkeypatch.setattr(throwfe, "_CACHE", {})
     monkeypatch.setenv(throwfe.CACHE_ENV, str(tmp_path / "cache.json"))
-    assert "fe" in WEB_METHODS
     d_e = crank.journals[0].diameter
     values = [web_equivalent_length(crank, w, d_e, "fe") for w in range(4)]
     assert len(calls) == 1  # both throws alike

@@ -1,6 +1,5 @@
 """The computed web chart (issue 8): family geometry, shipped table, held-out FE point, range."""
 
-import math
 
 import pytest
 
@@ -28,6 +27,7 @@ def test_richardson_recovers_a_power_law():
     assert wc.richardson(f(1 / 8), f(1 / 12), 1 / 8, 1 / 12, 1.4) == pytest.approx(2.0, rel=1e-12)
 
 
+@pytest.mark.fe
 def test_chart_reproduces_a_held_out_fe_point_within_its_stated_error():
     chart = wc.load_chart()
     v = chart["validity"]
@@ -51,7 +51,6 @@ def test_chart_refuses_points_outside_its_range():
 @pytest.mark.parametrize("name", ["peugeot_glx", "renault21"])
 def test_chart_method_on_the_reference_cranks(name):
     crank = fetorsion.load(GEOMETRY / f"{name}.toml")
-    assert "chart" in WEB_METHODS
     d_e = crank.journals[0].diameter
     le = web_equivalent_length(crank, 0, d_e, "chart")
     c, q = wc.chart_coordinates(crank, 0)
@@ -60,4 +59,7 @@ def test_chart_method_on_the_reference_cranks(name):
     assert le == pytest.approx(base, rel=0.15)
     # Same order as the elementary beam bound and the classical formulas.
     assert WEB_METHODS["beam"](crank, 0, d_e) < le < 2 * WEB_METHODS["carter"](crank, 0, d_e)
-    assert math.isfinite(fetorsion.lumped(crank, 17, "chart").frequencies_hz[0])
+    # The chart interpolates FE throws of a family without counterweights: the 17-DOF f1 it gives
+    # stays within 2 % of the one from the crank's own FE throws (README: 0.4 % and 0.9 %).
+    assert fetorsion.lumped(crank, 17, "chart").frequencies_hz[0] == pytest.approx(
+        fetorsion.lumped(crank, 17, "fe").frequencies_hz[0], rel=0.02)
