@@ -62,3 +62,30 @@ def assert_picture(path, min_ink: float = 0.005, min_colours: int = 3) -> None:
     ink = 1.0 - counts.max() / len(pixels)
     assert ink >= min_ink, f"{path}: only {ink:.2%} of the pixels differ from the background"
     assert len(colours) >= min_colours, f"{path}: {len(colours)} colours"
+
+
+def toml_text(data: dict) -> str:
+    """A description dict as TOML (tables, arrays of tables, numbers, strings, lists): enough to
+    write the test cranks as files for the command line."""
+
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, str):
+            return '"' + v.replace("\\", "\\\\").replace('"', '\\"') + '"'
+        if isinstance(v, (list, tuple)):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        if isinstance(v, dict):
+            return "{ " + ", ".join(f'"{k}" = {value(x)}' for k, x in v.items()) + " }"
+        return repr(float(v)) if isinstance(v, float) else str(v)
+
+    lines = []
+    for key, v in data.items():
+        if isinstance(v, dict):
+            lines += [f"[{key}]"] + [f'"{k}" = {value(x)}' for k, x in v.items()] + [""]
+        elif isinstance(v, list) and v and all(isinstance(x, dict) for x in v):
+            for item in v:
+                lines += [f"[[{key}]]"] + [f'"{k}" = {value(x)}' for k, x in item.items()] + [""]
+        else:
+            lines.insert(0, f'"{key}" = {value(v)}')
+    return "\n".join(lines) + "\n"

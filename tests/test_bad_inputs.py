@@ -141,6 +141,8 @@ CASES = [
     ("json-suffix", "lumped {d}/crank.toml --json {d}/notes.txt", {}, 2, ["--json", "format"]),
     ("json-onto-input", "lumped {d}/crank.toml --json {d}/crank.toml", {}, 2, ["--json"]),
     ("json-under-file", "lumped {d}/crank.toml --json {d}/notes.txt/out.json", {}, 2, ["--json", "not a folder"]),
+    ("html-suffix", "campbell {d}/crank.toml --html {d}/notes.txt", {}, 2, ["--html", ".txt"]),
+    ("html-folder", "modal {d}/crank.toml --html {d}/report", {}, 2, ["--html", "is a folder"]),
     ("plot-xyz", "sensitivity {d}/crank.toml --plot {d}/out.xyz", {}, 2, ["--plot", ".xyz"]),
     ("plot-folder", "campbell {d}/crank.toml --plot {d}/report", {}, 2, ["--plot"]),
     ("speeds-order", "campbell {d}/crank.toml --speed-range 5000 1000", {}, 2, ["--speed-range", "below"]),

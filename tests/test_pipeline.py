@@ -45,6 +45,14 @@ def test_full_run_with_fe_and_mode_images(tmp_path):
     assert images and Image.open(images[0]).size == (1400, 600)
     assert "FE (" in data["campbell"]["source"]  # the Campbell diagram used the FE modes
     assert "## 3D FE modal analysis" in (out / "report.md").read_text()
+    # The web page beside it: the same sections, interactive figures, no still picture left
+    # where one replaces it, nothing fetched from the network.
+    page = (out / "report.html").read_text()
+    assert "3D FE modal analysis" in page and "Campbell diagram" in page
+    for div in ('id="modes"', 'id="campbell"', 'id="response"'):
+        assert div in page, div
+    assert 'src="campbell.png"' not in page and "<script src=" not in page
+    assert (out / "report.html").stat().st_size < 25 * 2**20
 
 
 def test_broken_description_fails_cleanly_and_writes_nothing(tmp_path):

@@ -166,6 +166,14 @@ def cmd_modal(args) -> int:
               f"extrapolated {refinement['extrapolated']:.1f} Hz, error estimate {refinement['error_estimate']:.1f} Hz",
               file=out)
     _emit_json(payload, args.json)
+    if args.html:
+        from ..report.html import mode_view, page
+
+        picks = [j for j, k in enumerate(res.kinds) if k in ("torsional", "bending")][:6] or [0]
+        view = mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],
+                         [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
+        text = f"# {crank.name}: free-free FE modes\n\n![](modes.png)\n\n```\n{res.table()}\n```\n"
+        write_text_atomic(args.html, page(crank.name, text, {"modes.png": view}, Path(args.html).parent))
     return 0
 
 
@@ -236,7 +244,14 @@ def cmd_campbell(args) -> int:
                        speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
-    return _report(res, head + "\n" + res.table(), args)
+    _report(res, head + "\n" + res.table(), args)
+    if args.html:
+        from ..report.html import campbell_figure, page
+
+        text = f"# {res.name}: Campbell diagram\n\n![](campbell.png)\n\n```\n{head}\n{res.table()}\n```\n"
+        write_text_atomic(args.html, page(res.name, text, {"campbell.png": campbell_figure(res, "campbell")},
+                                          Path(args.html).parent))
+    return 0
 
 
 def cmd_response(args) -> int:
@@ -301,7 +316,7 @@ def cmd_run(args) -> int:
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size}
     for file, out in jobs:
-        folder = run(file, out, options=options, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
+        folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
         print(f"report: {folder / 'report.md'}")
     return 0
 
@@ -354,6 +369,7 @@ def build_parser() -> argparse.ArgumentParser:
     cp.add_argument("--modes", type=integer(1, 50), default=3, help="number of lowest modes (default %(default)s)")
     cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size for --source fe (default {DEFAULT_MESH_SIZE / MM:g})")
+    cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
     cp.set_defaults(func=cmd_campbell)
 
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
@@ -378,6 +394,7 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
     up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")
     up.set_defaults(func=cmd_run)
@@ -405,12 +422,13 @@ def build_parser() -> argparse.ArgumentParser:
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
     fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    fp.add_argument("--html", metavar="PATH", help="write the mode shapes as an interactive 3D web page (.html)")
     fp.set_defaults(func=cmd_modal)
     return p
 
 
 # Output options: (attribute, option name, accepted suffixes); "-" means standard output.
-OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS),
+OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS), ("html", "--html", (".html",)),
                   ("output", "-o", None), ("png", "--png", (".png",)))
 
 

@@ -182,6 +182,10 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
             _progress(f"{name}: done in {ctx.timings_s[name]:.1f} s")
         ctx.results["timings_s"] = ctx.timings_s
         write_text_atomic(work / "report.md", report_markdown(crank, path, ctx.sections, ctx.timings_s))
+        if ctx.options.get("html", True):
+            from .html import report_html
+
+            write_text_atomic(work / "report.html", report_html(crank, path, ctx.sections, ctx.timings_s, work))
         write_text_atomic(work / "results.json", json.dumps(_jsonable(ctx.results), indent=1) + "\n")
     return out
 

@@ -1,0 +1,251 @@
+"""The report as one self-contained web page: the Markdown report's sections and tables, with
+interactive figures in place of the still pictures.
+
+Everything is embedded (plotly.js, the data, the remaining PNGs as data URIs), so the file
+opens offline anywhere. Plotly draws every figure: the Campbell diagram, the forced
+response and the sensitivity with hover text, and each FE mode shape as a 3D surface that
+turns and zooms, coloured by displacement, with a deformation-scale slider and an animation
+of the oscillation (a few lines of glue that move the surface by ``scale * sin(phase)`` of
+the mode shape through ``Plotly.restyle``; the rendering is Plotly's).
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+import re
+from pathlib import Path
+
+import numpy as np
+
+# The faces of a tetrahedron by its corner indices (VTK order: corners 0-3).
+_TET_FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+
+
+def surface(tets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The boundary of a tet mesh: (used node indices, triangles into them), corners only.
+
+    A face lies on the boundary when no second tetrahedron shares it.
+    """
+    faces = tets[:, :4][:, _TET_FACES].reshape(-1, 3)
+    key = np.sort(faces, axis=1)
+    _, first, counts = np.unique(key, axis=0, return_index=True, return_counts=True)
+    outer = faces[first[counts == 1]]
+    used, tri = np.unique(outer, return_inverse=True)
+    return used, tri.reshape(-1, 3)
+
+
+def _b64(array) -> str:
+    return base64.b64encode(np.ascontiguousarray(array, dtype=np.float32).tobytes()).decode()
+
+
+def mode_view(nodes: np.ndarray, tets: np.ndarray, shapes: list[np.ndarray], titles: list[str], div: str) -> str:
+    """HTML of one interactive 3D view of several mode shapes (one mode shown at a time).
+
+    Parameters
+    ----------
+    nodes : ndarray (N, 3)
+        Mesh node coordinates, m (shown in mm).
+    tets : ndarray (M, 10 or 4)
+        Tetrahedra.
+    shapes : list of ndarray (N, 3)
+        Mode shapes at the nodes (any scaling: each is shown with its largest displacement
+        at 8 % of the crank length times the slider's scale).
+    titles : list of str
+        One label per mode.
+    div : str
+        The HTML id of the view.
+    """
+    import plotly.graph_objects as go
+
+    used, tri = surface(tets)
+    xyz = nodes[used] * 1e3
+    extent = float(np.ptp(xyz[:, 0]))
+    modes = []
+    for u in shapes:
+        u = u[used] * 1e3
+        peak = float(np.linalg.norm(u, axis=1).max()) or 1.0
+        u = u * (0.08 * extent / peak)
+        modes.append({"u": _b64(u), "mag": _b64(np.linalg.norm(u, axis=1) / (0.08 * extent))})
+    fig = go.Figure(go.Mesh3d(x=xyz[:, 0], y=xyz[:, 1], z=xyz[:, 2], i=tri[:, 0], j=tri[:, 1], k=tri[:, 2],
+                              intensity=np.zeros(len(xyz)), intensitymode="vertex", colorscale="Turbo",
+                              cmin=0.0, cmax=1.0, colorbar={"title": "|u| / max"}, flatshading=False,
+                              lighting={"ambient": 0.55, "diffuse": 0.7, "specular": 0.2},
+                              hoverinfo="skip"))
+    fig.update_layout(scene={"aspectmode": "data", "xaxis_title": "x [mm]", "yaxis_title": "y [mm]",
+                             "zaxis_title": "z [mm]"}, margin={"l": 0, "r": 0, "t": 30, "b": 0}, height=520,
+                      title=titles[0] if titles else "")
+    plot = fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+    options = "".join(f'<option value="{j}">{html.escape(t)}</option>' for j, t in enumerate(titles))
+    data = json.dumps({"base": _b64(xyz), "modes": modes, "titles": titles})
+    return f"""<div class="modeview">
+<label>mode <select id="{div}-mode">{options}</select></label>
+<label>deformation scale <input id="{div}-scale" type="range" min="0" max="3" step="0.1" value="1"></label>
+<button id="{div}-play">play</button>
+{plot}
+<script>fetorsionModeView("{div}", {data});</script>
+</div>"""
+
+
+# The glue: decode the embedded arrays once, then restyle the mesh's coordinates each frame.
+_MODE_VIEW_JS = """
+function fetorsionDecode(b64) {
+  const bytes = Uint8Array.from(atob(b64), c => c.charCodeAt(0));
+  return new Float32Array(bytes.buffer);
+}
+function fetorsionModeView(div, data) {
+  const base = fetorsionDecode(data.base), n = base.length / 3;
+  const modes = data.modes.map(m => ({u: fetorsionDecode(m.u), mag: fetorsionDecode(m.mag)}));
+  const sel = document.getElementById(div + "-mode"), scale = document.getElementById(div + "-scale");
+  const play = document.getElementById(div + "-play");
+  let mode = 0, phase = Math.PI / 2, running = false;  // still at full deflection until played
+  function draw() {
+    const u = modes[mode].u, s = Number(scale.value) * Math.sin(phase);
+    const x = new Float32Array(n), y = new Float32Array(n), z = new Float32Array(n);
+    for (let i = 0; i < n; i++) {
+      x[i] = base[3 * i] + s * u[3 * i];
+      y[i] = base[3 * i + 1] + s * u[3 * i + 1];
+      z[i] = base[3 * i + 2] + s * u[3 * i + 2];
+    }
+    Plotly.restyle(div, {x: [x], y: [y], z: [z], intensity: [modes[mode].mag]}, [0]);
+  }
+  sel.onchange = () => { mode = Number(sel.value); Plotly.relayout(div, {title: data.titles[mode]}); draw(); };
+  scale.oninput = draw;
+  play.onclick = () => { running = !running; play.textContent = running ? "pause" : "play"; };
+  setInterval(() => { if (running) { phase += Math.PI / 8; draw(); } }, 120);
+  draw();
+}
+"""
+
+
+def campbell_figure(camp, div: str) -> str:
+    """The Campbell diagram: mode lines, order lines, crossings sized by severity (hover: mode,
+    order, rpm, severity)."""
+    import plotly.graph_objects as go
+
+    lo, hi = camp.speed_range_rpm
+    top = 1.15 * hi
+    fig = go.Figure()
+    rpm = np.array([0.0, top])
+    for q in camp.orders:
+        fig.add_trace(go.Scatter(x=rpm, y=q * rpm / 60.0, mode="lines", line={"color": "#bbbbbb", "width": 1},
+                                 name=f"order {q:g}", hovertemplate=f"order {q:g}<extra></extra>", showlegend=False))
+    for j, f in enumerate(camp.frequencies_hz):
+        fig.add_trace(go.Scatter(x=rpm, y=[f, f], mode="lines", name=f"mode {j + 1}: {f:.1f} Hz"))
+    rows = [r for r in camp.crossings if r["in_range"]]
+    if rows:
+        sev = np.array([r["severity"] for r in rows])
+        size = 6 + 30 * np.sqrt(sev / sev.max()) if sev.max() > 0 else np.full(len(rows), 8.0)
+        fig.add_trace(go.Scatter(
+            x=[r["rpm"] for r in rows], y=[camp.frequencies_hz[r["mode"] - 1] for r in rows], mode="markers",
+            marker={"size": size, "color": sev, "colorscale": "Reds", "line": {"width": 1, "color": "black"}},
+            name="crossings", customdata=[[r["mode"], r["order"], r["rpm"], r["severity"]] for r in rows],
+            hovertemplate="mode %{customdata[0]}<br>order %{customdata[1]}<br>%{customdata[2]:.0f} rpm"
+                          "<br>severity %{customdata[3]:.4g} deg<extra></extra>"))
+    fig.add_vrect(x0=lo, x1=hi, fillcolor="#2a9d8f", opacity=0.08, line_width=0)
+    fig.update_layout(title=f"{camp.name}: Campbell diagram ({camp.source})", xaxis_title="engine speed [rpm]",
+                      yaxis_title="frequency [Hz]", xaxis_range=[0, top],
+                      yaxis_range=[0, 1.1 * float(np.max(camp.frequencies_hz))], height=520)
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+def response_figure(resp, div: str) -> str:
+    """Pulley angle and twist, and the most loaded section's torque, against speed."""
+    import plotly.graph_objects as go
+    from plotly.subplots import make_subplots
+
+    fig = make_subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08)
+    fig.add_trace(go.Scatter(x=resp.rpm, y=resp.pulley_angle_deg, name="pulley angle (absolute)"), 1, 1)
+    fig.add_trace(go.Scatter(x=resp.rpm, y=resp.pulley_twist_deg, name="pulley twist against flywheel end"), 1, 1)
+    worst = int(np.argmax(resp.section_torque_nm.max(axis=0)))
+    fig.add_trace(go.Scatter(x=resp.rpm, y=resp.section_torque_nm[:, worst],
+                             name=f"torque, section {resp.labels[worst]}–{resp.labels[worst + 1]}"), 2, 1)
+    fig.update_yaxes(title_text="vibratory angle [deg]", row=1, col=1)
+    fig.update_yaxes(title_text="vibratory torque [N m]", row=2, col=1)
+    fig.update_xaxes(title_text="engine speed [rpm]", row=2, col=1)
+    fig.update_layout(title=f"{resp.name}: forced response, ζ = {resp.damping_ratio:g}", height=620,
+                      hovermode="x unified")
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+def sensitivity_figure(sens, div: str) -> str:
+    """Tornado chart: f1 at each input's bounds, largest swing on top."""
+    import plotly.graph_objects as go
+
+    rows = sorted(sens.rows, key=lambda r: abs(r["f1_high_hz"] - r["f1_low_hz"]))
+    names = [r["field"] for r in rows]
+    fig = go.Figure()
+    for key, label in (("f1_low_hz", "input at its low bound"), ("f1_high_hz", "input at its high bound")):
+        fig.add_trace(go.Bar(y=names, x=[r[key] - sens.f1_hz for r in rows], base=sens.f1_hz, orientation="h",
+                             name=label, customdata=[[r["low"], r["high"], r[key]] for r in rows],
+                             hovertemplate="%{y}<br>range %{customdata[0]:g} .. %{customdata[1]:g}"
+                                           "<br>f1 %{customdata[2]:.1f} Hz<extra></extra>"))
+    if sens.measured_hz is not None:
+        fig.add_vline(x=sens.measured_hz, line_dash="dash", annotation_text=f"measured {sens.measured_hz:g} Hz")
+    fig.update_layout(barmode="overlay", title=f"{sens.name}: f1 = {sens.f1_hz:.1f} Hz ({sens.model})",
+                      xaxis_title="first torsional frequency [Hz]", height=120 + 28 * len(rows))
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+_IMAGE = re.compile(r'<img alt="[^"]*" src="([^"]+\.png)"\s*/?>')
+
+
+def page(title: str, markdown_text: str, figures: dict[str, str], folder: Path) -> str:
+    """The whole page: the Markdown converted, each ``![](NAME.png)`` replaced by the figure
+    ``figures[NAME.png]`` when there is one, else the PNG from ``folder`` as a data URI."""
+    import markdown
+    from plotly.offline import get_plotlyjs
+
+    body = markdown.markdown(markdown_text, extensions=["tables", "fenced_code"])
+
+    def replace(m):
+        name = m.group(1)
+        if name in figures:
+            return figures[name]
+        path = folder / name
+        if not path.exists():
+            return m.group(0)
+        data = base64.b64encode(path.read_bytes()).decode()
+        return f'<img alt="{html.escape(name)}" src="data:image/png;base64,{data}">'
+
+    body = _IMAGE.sub(replace, body)
+    return f"""<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>{html.escape(title)}</title>
+<style>
+body {{ font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; padding: 0 1em; color: #222; }}
+table {{ border-collapse: collapse; margin: 1em 0; }} td, th {{ border: 1px solid #ccc; padding: 0.25em 0.6em; }}
+pre {{ background: #f6f6f6; padding: 0.8em; overflow-x: auto; }} img {{ max-width: 100%; }}
+.modeview label {{ margin-right: 1.5em; }}
+</style>
+<script>{get_plotlyjs()}</script>
+<script>{_MODE_VIEW_JS}</script>
+</head><body>
+{body}
+</body></html>
+"""
+
+
+def report_html(crank, path, sections: dict, timings_s: dict, folder: Path) -> str:
+    """The run's report as a web page: the Markdown report with its pictures made interactive
+    (Campbell, forced response, sensitivity, the FE mode shapes in one 3D view)."""
+    from .markdown import report_markdown
+
+    figures = {}
+    camp = sections.get("campbell")
+    if camp:
+        figures["campbell.png"] = campbell_figure(camp["campbell"], "campbell")
+        figures["response.png"] = response_figure(camp["response"], "response")
+    sens = sections.get("sensitivity")
+    if sens:
+        figures["sensitivity.png"] = sensitivity_figure(sens["sensitivity"], "sensitivity")
+    fe = sections.get("fe")
+    if fe and fe["images"]:
+        res = fe["modal"]
+        picks = [int(name[5:7]) - 1 for name in fe["images"]]  # mode_NN_kind.png
+        view = mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],
+                         [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
+        figures[fe["images"][0]] = view
+        for name in fe["images"][1:]:
+            figures[name] = ""  # all modes are in the one 3D view
+    return page(crank.name, report_markdown(crank, path, sections, timings_s), figures, folder)
