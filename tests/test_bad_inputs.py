@@ -26,6 +26,26 @@ inertias_kgm2 = [0.1, 0.2]
 stiffnesses_nm_per_rad = [1.0e4]
 """
 
+# A chain with an engine (issue 18): two inertias, one cylinder on the first.
+ENGINE_CHAIN = CHAIN + """cylinder_stations = [1]
+loss_factors = 0.05
+[units]
+length = "mm"
+[engine]
+cylinders = 1
+stroke = 90.0
+rod_length = 150.0
+bore = 85.0
+crank_angles_deg = [0.0]
+firing_order = [1]
+[excitation]
+reciprocating_mass_kg = 0.6
+speed_range_rpm = [1000.0, 5000.0]
+compression_ratio = 16.0
+imep_pa = 1.0e6
+"""
+CURVE = "# unit = N m\n1000, 10\n2000, 30\n3000, 20\n"
+
 
 def edit(old: str, new: str, text: str = RENAULT) -> str:
     assert old in text, old
@@ -132,6 +152,45 @@ CASES = [
     ("chain-labels", "lumped {d}/c.toml", {"c.toml": CHAIN + 'labels = ["a", 3]\n'}, 2, ["chain.labels"]),
     ("chain-springs", "lumped {d}/c.toml", {"c.toml": CHAIN.replace("[1.0e4]", "[1.0e4, 2.0e4]")}, 2,
      ["chain.stiffnesses_nm_per_rad"]),
+    # --- chain files with an engine (issue 18)
+    ("chain-loss-count", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace("loss_factors = 0.05", "loss_factors = [0.1, 0.2]")},
+     2, ["chain.loss_factors", "one per spring"]),
+    ("chain-loss-negative", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace("loss_factors = 0.05", "loss_factors = -0.1")},
+     2, ["chain.loss_factors[1]", ">= 0"]),
+    ("chain-stations-no-engine", "lumped {d}/c.toml", {"c.toml": CHAIN + "cylinder_stations = [1]\n"}, 2,
+     ["chain.cylinder_stations", "[engine]"]),
+    ("chain-excitation-no-engine", "campbell {d}/c.toml",
+     {"c.toml": ENGINE_CHAIN.split("[engine]")[0].replace("cylinder_stations = [1]\n", "")
+      + "[excitation]" + ENGINE_CHAIN.split("[excitation]")[1]}, 2, ["excitation", "[engine]"]),
+    ("chain-station-count", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace("[1]\nloss", "[1, 2]\nloss")}, 2,
+     ["chain.cylinder_stations", "one station"]),
+    ("chain-no-stations", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace("cylinder_stations = [1]\n", "")}, 2,
+     ["chain.cylinder_stations", "one station"]),
+    ("chain-undamped", "response {d}/c.toml",
+     {"c.toml": ENGINE_CHAIN.replace("loss_factors = 0.05", "").replace("imep_pa = 1.0e6", "imep_pa = 1.0e6\nmodal_damping_ratio = 0.0")},
+     2, ["excitation.modal_damping_ratio", "no absolute"]),
+    ("chain-source-fe", "campbell {d}/c.toml --source fe", {"c.toml": ENGINE_CHAIN}, 2, ["--source fe", "chain file"]),
+    ("chain-no-units", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace('[units]\nlength = "mm"\n', "")}, 2,
+     ["units"]),
+    # --- --compare (issue 18)
+    ("compare-missing", "response {d}/c.toml --compare {d}/none.csv", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--compare", "none.csv", "not a file"]),
+    ("compare-no-unit", "response {d}/c.toml --compare {d}/k.csv", {"c.toml": ENGINE_CHAIN, "k.csv": "1000, 1\n2000, 2\n3000, 1\n"},
+     2, ["--compare-unit"]),
+    ("compare-bad-unit", "response {d}/c.toml --compare {d}/k.csv",
+     {"c.toml": ENGINE_CHAIN, "k.csv": CURVE.replace("N m", "lbf ft")}, 2, ["--compare-unit", "lbf ft"]),
+    ("compare-text", "response {d}/c.toml --compare {d}/k.csv", {"c.toml": ENGINE_CHAIN, "k.csv": CURVE + "x, y\n"}, 2,
+     ["--compare", "k.csv", "rpm, value"]),
+    ("compare-descending", "response {d}/c.toml --compare {d}/k.csv",
+     {"c.toml": ENGINE_CHAIN, "k.csv": "# unit = deg\n3000, 1\n2000, 2\n1000, 1\n"}, 2, ["--compare", "ascending"]),
+    ("compare-nan", "response {d}/c.toml --compare {d}/k.csv",
+     {"c.toml": ENGINE_CHAIN, "k.csv": CURVE + "4000, nan\n"}, 2, ["--compare", "row 4", "non-finite"]),
+    ("compare-name-alone", "response {d}/c.toml --compare-name paper", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--compare-name", "need --compare"]),
+    ("compare-section-big", "response {d}/c.toml --compare {d}/k.csv --compare-section 5",
+     {"c.toml": ENGINE_CHAIN, "k.csv": CURVE}, 2, ["--compare-section 5", "1 shaft sections"]),
+    ("compare-no-overlap", "response {d}/c.toml --compare {d}/k.csv",
+     {"c.toml": ENGINE_CHAIN, "k.csv": "# unit = N m\n8000, 1\n9000, 2\n9500, 1\n"}, 2, ["--compare", "overlap"]),
     ("mech-strokes", "flywheel {d}/m.toml", {"m.toml": BASE["mech.toml"].replace("[flywheel]", "[flywheel]\ncycle_strokes = 3")},
      2, ["flywheel.cycle_strokes"]),
     # --- options
@@ -179,7 +238,8 @@ CASES = [
     ("run-out-holds-input", "run {d}/crank.toml --out {d} --force", {}, 2, ["--out", "crank.toml"]),
     ("run-all-file", "run --all {d}/crank.toml", {}, 2, ["--all"]),
     ("run-tiny-mesh", "run {d}/crank.toml --out {d}/new --mesh-size 0.01", {}, 2, ["--mesh-size", "GiB"]),
-    ("run-chain", "run {d}/chain.toml --out {d}/new", {}, 2, ["chain.toml", "chain file"]),
+    ("run-chain-fe-option", "run {d}/c.toml --out {d}/new", {"c.toml": ENGINE_CHAIN.replace("[1]\nloss", "[3]\nloss")},
+     2, ["chain.cylinder_stations"]),
     ("kinematics-step-0", "kinematics {d}/mech.toml --step 0", {}, 2, ["--step", "> 0"]),
     ("kinematics-step-big", "kinematics {d}/mech.toml --step 400", {}, 2, ["--step", "<= 360"]),
     ("kinematics-rpm-0", "kinematics {d}/mech.toml --rpm 0", {}, 2, ["--rpm"]),

@@ -13,6 +13,7 @@ CASES = [
     ["examples/lumped_vs_fe.py", "geometry/peugeot_glx.toml", "30"],
     ["examples/web_thickness_study.py", "40"],
     ["examples/campbell_renault.py"],
+    ["examples/mendes2008_six_cylinder.py"],
 ]
 
 

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import mechanics as cli_mechanics
-from .options import MM, integer, millimetres, real
+from .options import MM, integer, millimetres, read_compare_csv, real
 from ..description.crank import load
 from ..description.model import Chain
 from ..description.plausibility import plausibility_warnings
@@ -20,6 +20,7 @@ from ..solid.isolate import call_isolated
 from ..io import check_output_file, check_report_folder, save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..lumped_model.parts import build_parts
+from ..response.forced import COMPARE_UNITS
 from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 from ..webs.methods import WEB_METHODS
 
@@ -226,12 +227,22 @@ def _report(res, text: str, args) -> int:
     return 0
 
 
+def _load_excited(path: str, source: str):
+    """A crank description or chain file with an [excitation] table (a chain: lumped modes only)."""
+    model = load_description(path)
+    if isinstance(model, Chain) and source == "fe":
+        raise FetorsionError(f"--source fe: {path} is a chain file, it has no geometry to mesh; leave --source out")
+    if model.excitation is None:
+        raise FetorsionError(f"{path}: the description has no [excitation] table"
+                             + (" (a chain file needs [engine], [excitation] and chain.cylinder_stations)"
+                                if isinstance(model, Chain) else ""))
+    return model
+
+
 def cmd_campbell(args) -> int:
     from ..excitation.campbell import lumped_modes, run_campbell
 
-    crank = _load_crank(args.file, "[excitation]")
-    if crank.excitation is None:
-        raise FetorsionError(f"{args.file}: the description has no [excitation] table")
+    crank = _load_excited(args.file, args.source)
     if args.source == "fe":
         from ..fe.crankfe import run_modal
 
@@ -259,12 +270,20 @@ def cmd_response(args) -> int:
 
     if args.source == "fe":
         raise FetorsionError("--source fe: the forced response uses a lumped model; choose --source lumpedN")
-    crank = _load_crank(args.file, "[excitation]")
-    if crank.excitation is None:
-        raise FetorsionError(f"{args.file}: the description has no [excitation] table")
+    crank = _load_excited(args.file, args.source)
+    if args.compare_section is not None:  # checked on the model's springs before the response is computed
+        springs = len(lumped(crank, _partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
+        if args.compare_section > springs:
+            raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
                        web_method=args.stiffness)
+    if args.compare is not None:
+        from ..response.forced import compare_curve
+
+        rpm_c, value, name, unit = args.compare_curve
+        compare_curve(res, rpm_c, value, name, unit,
+                      None if args.compare_section is None else args.compare_section - 1)
     return _report(res, res.table(), args)
 
 
@@ -311,8 +330,8 @@ def cmd_run(args) -> int:
     jobs = run_jobs(args)
     for file, out in jobs:  # every destination and description is checked before any work
         check_report_folder(out, "--out", force=args.force, inputs=[file])
-        crank = _load_crank(str(file), "geometry")
-        if not args.no_fe:
+        crank = load_description(str(file))
+        if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size}
     for file, out in jobs:
@@ -332,7 +351,7 @@ def _orders(text: str) -> list[float]:
 
 
 def _add_excitation_options(p: argparse.ArgumentParser) -> None:
-    p.add_argument("file", help="crank description with an [excitation] table (.toml)")
+    p.add_argument("file", help="crank description or chain file with an [excitation] table (.toml)")
     p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe"],
                    help="which model gives the modes (default %(default)s; fe: campbell only)")
     p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
@@ -375,6 +394,15 @@ def build_parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
+                    "comments, '# name = ...' and '# unit = ...' read), drawn over the response; the table gives "
+                    "the difference at its peak")
+    rp.add_argument("--compare-name", metavar="TEXT", help="what the --compare curve is (default the CSV's '# name')")
+    rp.add_argument("--compare-unit", choices=sorted(COMPARE_UNITS),
+                    help="its unit: a torque is compared with a section's torque, an angle with the pulley angle "
+                         "(default the CSV's '# unit')")
+    rp.add_argument("--compare-section", type=integer(1), metavar="N",
+                    help="1-based shaft section (spring) whose torque is compared (default the most loaded)")
     rp.set_defaults(func=cmd_response)
 
     sp = sub.add_parser("sensitivity", help="f1 against each reconstructed input, and the f1 band")
@@ -388,7 +416,8 @@ def build_parser() -> argparse.ArgumentParser:
     cli_mechanics.add_parsers(sub, _emit_json)
 
     up = sub.add_parser("run", help="the main job: every analysis of a crank into one report folder")
-    up.add_argument("file", nargs="?", help="crank description (default geometry/renault21.toml)")
+    up.add_argument("file", nargs="?", help="crank description or chain file (default geometry/renault21.toml; "
+                                            "a chain gets the report without the FE sections)")
     up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
     up.add_argument("--all", action="store_true", help="both reference cranks into results/<name>/")
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
@@ -446,6 +475,11 @@ def check_options(args) -> None:
     speeds = getattr(args, "speed_range", None)
     if speeds is not None and not speeds[0] < speeds[1]:
         raise FetorsionError(f"--speed-range {speeds[0]:g} {speeds[1]:g}: LOW must be below HIGH (rpm)")
+    if getattr(args, "compare", None) is not None:
+        args.compare_curve = read_compare_csv(args.compare, args.compare_name, args.compare_unit)
+    elif getattr(args, "compare_name", None) or getattr(args, "compare_unit", None) or getattr(
+            args, "compare_section", None):
+        raise FetorsionError("--compare-name, --compare-unit and --compare-section need --compare CSV")
     mesh = getattr(args, "mesh", None)
     if mesh is not None and not Path(mesh).is_file():
         raise FetorsionError(f"--mesh {mesh}: no such file")

@@ -12,6 +12,7 @@ Validation collects every violated rule (field, value, rule) and raises one
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
@@ -61,9 +62,15 @@ def load(path) -> Crank | Chain:
 
 
 def parse_chain(data: dict, source: str = "<chain>") -> Chain:
-    """Build a :class:`Chain` from a parsed TOML mapping with a ``[chain]`` table."""
+    """Build a :class:`Chain` from a parsed TOML mapping with a ``[chain]`` table.
+
+    A chain may carry ``[engine]`` and ``[excitation]`` (read exactly as for a crank
+    description, lengths in ``[units] length``) with ``chain.cylinder_stations`` saying which
+    station (1-based) carries each cylinder.
+    """
     problems: list[Problem] = []
     root = Table(data, "", problems)
+    unit = read_length_unit(root, source) if ("engine" in data or "units" in data) else "m"
     t = root.table("chain")
     root.used.add("meta")  # free-form notes, not checked
     name = t.text("name", default=Path(source).stem)
@@ -72,8 +79,9 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     labels = t.get("labels", [])
     absolute = t.numbers("absolute_damping_nms_per_rad", required=False)
     relative = t.numbers("relative_damping_nms_per_rad", required=False)
+    loss = _per_spring(t, "loss_factors", len(stiffnesses))
+    stations = t.get("cylinder_stations", [])
     t.finish()
-    root.finish()
     n = len(inertias)
     if inertias and n < 2:
         problems.append(Problem("chain.inertias_kgm2", list(inertias), "needs at least 2 inertias"))
@@ -92,7 +100,8 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     if relative and len(relative) != n - 1:
         problems.append(Problem("chain.relative_damping_nms_per_rad", list(relative),
                                 f"must have one value per spring ({n - 1})"))
-    for key, values in (("absolute_damping_nms_per_rad", absolute), ("relative_damping_nms_per_rad", relative)):
+    for key, values in (("absolute_damping_nms_per_rad", absolute), ("relative_damping_nms_per_rad", relative),
+                        ("loss_factors", loss)):
         for i, v in enumerate(values):
             if v < 0:
                 problems.append(Problem(f"chain.{key}[{i + 1}]", v, "must be >= 0"))
@@ -101,10 +110,54 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     ):
         problems.append(Problem("chain.labels", labels, f"must be a list of {n} strings"))
         labels = []
+
+    engine = read_engine(root) if "engine" in data else None
+    cylinders = engine.cylinders if engine else 0
+    if not (isinstance(stations, list) and all(isinstance(c, int) and not isinstance(c, bool) and 1 <= c <= max(n, 1)
+                                              for c in stations)):
+        problems.append(Problem("chain.cylinder_stations", stations,
+                                f"must be a list of station numbers 1..{n}, one per cylinder"))
+        stations = []
+    elif engine is not None and cylinders and len(stations) != cylinders:
+        problems.append(Problem("chain.cylinder_stations", stations,
+                                f"must name one station (1..{n}) per cylinder ({cylinders})"))
+    elif engine is None and stations:
+        problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    excitation = None
+    if "excitation" in data:
+        if engine is None:
+            problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
+        ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
+        excitation = _excitation(root.table("excitation"), Path(source).parent,
+                                 engine.strokes_per_cycle if engine else 4, zero_damping_ok=True)
+        has_dampers = any(v > 0 for v in (*absolute, *relative, *loss))
+        if "modal_damping_ratio" not in ex_table and has_dampers:
+            # The chain states its damping; a default modal ratio on top would count it twice.
+            excitation = replace(excitation, modal_damping_ratio=0.0)
+        elif not excitation.modal_damping_ratio > 0 and not has_dampers:
+            problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
+                                    "must be > 0 when the chain states no absolute, relative or hysteretic damping "
+                                    "(an undamped resonance has no finite response)"))
+    root.finish()
     if problems:
-        raise DescriptionError(source, problems)
+        raise DescriptionError(source, _unique(problems))
     labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
-    return Chain(name, inertias, stiffnesses, labels, absolute, relative, source)
+    return Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
+                 tuple(c - 1 for c in stations), engine, excitation, unit, data)
+
+
+def _per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:
+    """One value per spring: a list, or one number for every spring."""
+    raw = t.get(key, None)
+    if raw is None:
+        return ()
+    if finite_number(raw):
+        return (float(raw),) * springs
+    values = t.numbers(key)
+    if values and len(values) != springs:
+        t.problems.append(Problem(f"{t.path}.{key}", list(values), f"must be one number or one per spring ({springs})"))
+        return ()
+    return values
 
 
 def _attach_point(text: str) -> AttachPoint:
@@ -137,6 +190,37 @@ def _web(t: Table) -> Web:
     return Web(h, b_max, b_min, r_cw, math.radians(a_cw))
 
 
+
+def read_engine(root: Table) -> Engine:
+    """The ``[engine]`` table (cylinders, cycle, stroke, rod, bore, crank angles, firing order), lengths
+    in the file's unit converted to m; shared by crank descriptions and chain files."""
+    problems = root.problems
+    et = root.table("engine")
+    n = et.integer("cylinders")
+    strokes = et.choice("cycle_strokes", (2, 4), 4)
+    stroke = et.number("stroke", length=True, positive=True)
+    rod = et.number("rod_length", length=True, positive=True)
+    bore = et.number("bore", 0.0, length=True, nonnegative=True)
+    angles = et.numbers("crank_angles_deg")
+    firing = et.raw("firing_order")
+    et.finish()
+    if firing is None:
+        firing = []
+    elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
+              and (not n or sorted(firing) == list(range(1, n + 1)))):
+        problems.append(Problem("engine.firing_order", firing,
+                                f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
+        firing = []
+    if n and angles and len(angles) != n:
+        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
+    if rod <= 0.5 * stroke:
+        problems.append(Problem("engine.rod_length", rod / root.scale,
+                                f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
+    engine = Engine(n, strokes, stroke, rod,
+                    tuple(math.radians(a) for a in angles), tuple(firing), bore)
+    return engine
+
+
 def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = True) -> Crank:
     """Build a :class:`Crank` from a parsed TOML mapping; see :func:`load`.
 
@@ -162,29 +246,8 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     mt.used.add("source")
     mt.finish()
 
-    et = root.table("engine")
-    n = et.integer("cylinders")
-    strokes = et.choice("cycle_strokes", (2, 4), 4)
-    stroke = et.number("stroke", length=True, positive=True)
-    rod = et.number("rod_length", length=True, positive=True)
-    bore = et.number("bore", 0.0, length=True, nonnegative=True)
-    angles = et.numbers("crank_angles_deg")
-    firing = et.raw("firing_order")
-    et.finish()
-    if firing is None:
-        firing = []
-    elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
-              and (not n or sorted(firing) == list(range(1, n + 1)))):
-        problems.append(Problem("engine.firing_order", firing,
-                                f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
-        firing = []
-    if n and angles and len(angles) != n:
-        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
-    if rod <= 0.5 * stroke:
-        problems.append(Problem("engine.rod_length", rod / root.scale,
-                                f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
-    engine = Engine(n, strokes, stroke, rod,
-                    tuple(math.radians(a) for a in angles), tuple(firing), bore)
+    engine = read_engine(root)
+    n = engine.cylinders
 
     journals = tuple(_cylinder(t) for t in root.tables("journals"))
     pins = tuple(_cylinder(t) for t in root.tables("pins"))
@@ -235,14 +298,16 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
 EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
 
 
-def _excitation(t: Table, folder: Path, strokes: int) -> Excitation:
-    """The ``[excitation]`` table; a pressure CSV path is relative to the description file."""
+def _excitation(t: Table, folder: Path, strokes: int, zero_damping_ok: bool = False) -> Excitation:
+    """The ``[excitation]`` table; a pressure CSV path is relative to the description file. A chain
+    that states its own dampers may set ``modal_damping_ratio = 0`` (``zero_damping_ok``)."""
     mass = t.number("reciprocating_mass_kg", nonnegative=True)
     speeds = t.numbers("speed_range_rpm")
     if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
         t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
         speeds = (1.0, 2.0)
-    zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=True, below=1.0)
+    zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=not zero_damping_ok,
+                    nonnegative=zero_damping_ok, below=1.0)
     common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta)
     given = [k for k in EXCITATION_SOURCES if k in t.data]
     if len(given) != 1:

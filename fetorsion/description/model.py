@@ -192,8 +192,13 @@ class Crank:
 class Chain:
     """A torsional chain given directly: inertias (kg·m²), springs (N·m/rad), dampers.
 
-    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground) and
-    ``relative_damping`` (N·m·s/rad, one per spring) are optional.
+    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground), ``relative_damping``
+    (N·m·s/rad, one per spring) and ``loss_factors`` (hysteretic η, one per spring: the spring
+    is k (1 + iη) in a steady-state solve) are optional. With ``engine`` and ``excitation``
+    the chain can be excited like a crank: ``cylinder_stations[c]`` is the 0-based station that
+    carries cylinder c + 1 (its inertia must already hold that cylinder's rotating and mean
+    reciprocating inertia; the reciprocating mass that makes the inertia torque is
+    ``excitation.reciprocating_mass``).
     """
 
     name: str
@@ -203,3 +208,14 @@ class Chain:
     absolute_damping: tuple[float, ...] = ()
     relative_damping: tuple[float, ...] = ()
     source: str = ""
+    loss_factors: tuple[float, ...] = ()
+    cylinder_stations: tuple[int, ...] = ()
+    engine: Engine | None = None
+    excitation: Excitation | None = None
+    length_unit: str = "m"
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def has_dampers(self) -> bool:
+        """Whether the file states any absolute, relative or hysteretic damping."""
+        return any(v > 0 for v in (*self.absolute_damping, *self.relative_damping, *self.loss_factors))

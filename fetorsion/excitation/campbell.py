@@ -22,16 +22,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..description.model import Crank
+from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
-from ..lumped_model.lumped import lumped
+from ..lumped_model.lumped import chain_damping, lumped, modal_damping_ratios
 from ..modes import TorsionalModes
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
 
-def lumped_modes(crank: Crank, partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD) -> TorsionalModes:
-    """Torsional modes of a lumped partition in the form the Campbell analysis uses."""
+def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
+                 web_method: str = DEFAULT_WEB_METHOD) -> TorsionalModes:
+    """Torsional modes of a lumped partition (or of a chain file) in the form the Campbell analysis uses."""
     return lumped(crank, partition, web_method).torsional_modes()
 
 
@@ -52,14 +53,15 @@ class CampbellResult:
     frequencies_hz: np.ndarray
     orders: np.ndarray
     speed_range_rpm: tuple[float, float]
-    damping_ratio: float
+    damping_ratio: float | tuple[float, ...]
     crossings: list[dict]
     harmonics_table: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
         return {"name": self.name, "source": self.source, "frequencies_hz": self.frequencies_hz.tolist(),
                 "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
-                "modal_damping_ratio": self.damping_ratio,
+                "modal_damping_ratio": (list(self.damping_ratio) if isinstance(self.damping_ratio, tuple)
+                                        else self.damping_ratio),
                 "severity_unit": "deg: resonant vibratory angle at the pulley", "crossings": self.crossings,
                 "torque_harmonics": self.harmonics_table}
 
@@ -100,10 +102,15 @@ class CampbellResult:
         ax.set_ylim(0, fmax)
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
-        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {self.damping_ratio:g}", fontsize=10)
+        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {zeta_text(self.damping_ratio)}", fontsize=10)
         ax.legend(fontsize=7, loc="upper left")
         ax.figure.tight_layout()
         return ax
+
+
+def zeta_text(zeta) -> str:
+    """A damping ratio, or one per mode, as text."""
+    return ", ".join(f"{z:.3g}" for z in zeta) if isinstance(zeta, tuple) else f"{zeta:g}"
 
 
 def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
@@ -118,8 +125,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
 
     Parameters
     ----------
-    crank : Crank
-        With an ``[excitation]`` table.
+    crank : Crank or Chain
+        With an ``[excitation]`` table (a chain also with ``[engine]`` and ``cylinder_stations``).
     modes : TorsionalModes, optional
         Default: the 17-DOF lumped model (:func:`lumped_modes`).
     orders : array_like, optional
@@ -129,7 +136,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     n_modes : int
         How many of the lowest modes to include.
     damping_ratio : float, optional
-        Modal damping ratio ζ for the severity; default the description's.
+        Modal damping ratio ζ for the severity; default the description's. A chain's stated
+        dampers add their equivalent ratio per mode (:func:`modal_damping_ratios`).
 
     Examples
     --------
@@ -149,6 +157,13 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio
     k = min(n_modes, len(modes.frequencies_hz))
     f = modes.frequencies_hz[:k]
+    zeta_modes = np.full(k, zeta)
+    if isinstance(crank, Chain) and crank.has_dampers:
+        res = lumped(crank)
+        C, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping, crank.relative_damping,
+                             crank.loss_factors)
+        zeta_modes = zeta + modal_damping_ratios(res.frequencies_hz[:k], res.mode_shapes[:k], res.inertias_kgm2, C, H)
+        zeta = tuple(float(z) for z in zeta_modes)
     rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)
     phi = firing_angles(crank.engine)
     phasors = np.exp(-1j * orders[:, None] * phi[None, :])  # (orders, cylinders)
@@ -161,7 +176,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
             Tq[j, i] = harmonics(cylinder_torque(crank, rpm[j, i])["total"], period).at([q])[0]
     omega = 2 * np.pi * f[:, None]
     theta = (np.abs(modes.pulley_amplitude[:k, None]) * np.abs(Tq) * np.abs(S)
-             / (2 * zeta * omega**2 * modes.modal_inertia[:k, None]))
+             / (2 * zeta_modes[:, None] * omega**2 * modes.modal_inertia[:k, None]))
     crossings = [
         {"mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(rpm[j, i]),
          "in_range": bool(lo <= rpm[j, i] <= hi), "torque_harmonic_nm": float(abs(Tq[j, i])),

@@ -184,10 +184,12 @@ class LumpedResult:
     def torsional_modes(self) -> TorsionalModes:
         """The modes in the form the Campbell analysis uses (needs the pin weights of a crank)."""
         if self.pin_weights is None:
-            raise FetorsionError(f"{self.name}: a chain file does not say where the cylinders act")
+            raise FetorsionError(f"{self.name}: the chain file does not say where the cylinders act "
+                                 "(give [engine] and chain.cylinder_stations)")
         shapes = self.mode_shapes
         return TorsionalModes(
-            source=f"lumped {self.dof} DOF ({self.inputs.get('stiffness_method')})",
+            source=(f"lumped {self.dof} DOF ({self.inputs.get('stiffness_method')})" if self.partition
+                    else f"chain of {self.dof} inertias"),
             frequencies_hz=self.frequencies_hz,
             pin_amplitudes=shapes @ self.pin_weights.T,
             pulley_amplitude=shapes[:, 0],
@@ -260,9 +262,14 @@ def lumped(model: Crank | Chain, dof: int = 17, stiffness: str = DEFAULT_WEB_MET
     """
     if isinstance(model, Chain):
         rigid, hz, shapes = solve_chain(model.inertias, model.stiffnesses)
+        weights = None
+        if model.cylinder_stations:
+            # One-hot: each cylinder's torque acts wholly on the station the file names for it.
+            weights = np.zeros((len(model.cylinder_stations), len(model.inertias)))
+            weights[np.arange(len(model.cylinder_stations)), list(model.cylinder_stations)] = 1.0
         return LumpedResult(model.name, None, list(model.labels), np.full(len(model.inertias), np.nan),
                             np.array(model.inertias), np.array(model.stiffnesses), hz, shapes, rigid,
-                            {"source": model.source})
+                            {"source": model.source}, weights)
     chain = build_parts(model, stiffness)
     inertias, springs, labels, anchors = partition_matrices(chain, dof)
     rigid, hz, shapes = solve_chain(inertias, springs)
@@ -284,3 +291,48 @@ def pin_weights(chain: PartChain, partition: int) -> np.ndarray:
     x1 = np.array([p.x1 for p in pins])[:, None]
     overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
     return overlap / (x1 - x0)
+
+
+def chain_damping(n: int, stiffnesses, absolute=(), relative=(), loss_factors=()):
+    """Damping matrices of a chain of ``n`` inertias as engineers state it.
+
+    Parameters
+    ----------
+    n : int
+        Number of inertias.
+    stiffnesses : array_like
+        Spring stiffnesses, N·m/rad (n − 1).
+    absolute : array_like, optional
+        Viscous dampers to ground, N·m·s/rad, one per inertia.
+    relative : array_like, optional
+        Viscous dampers across each spring, N·m·s/rad.
+    loss_factors : array_like, optional
+        Hysteretic loss factor η of each spring (-).
+
+    Returns
+    -------
+    C : ndarray (n, n)
+        Viscous damping matrix, N·m·s/rad.
+    H : ndarray (n, n)
+        Hysteretic matrix, N·m/rad: the imaginary part of the complex stiffness K + iH,
+        H assembled from the springs η_i k_i (independent of frequency).
+    """
+    C = np.diag(np.zeros(n) if len(absolute) == 0 else np.asarray(absolute, dtype=float))
+    if len(relative):
+        C = C + chain_matrices(np.zeros(n), relative)[1]
+    eta = np.zeros(n - 1) if len(loss_factors) == 0 else np.asarray(loss_factors, dtype=float)
+    H = chain_matrices(np.zeros(n), eta * np.asarray(stiffnesses, dtype=float))[1]
+    return C, H
+
+
+def modal_damping_ratios(frequencies_hz, shapes, inertias, C, H) -> np.ndarray:
+    """Equivalent damping ratio of each mode from stated dampers (modal diagonal, coupling ignored).
+
+    At resonance ω_j the mode dissipates as 2 ζ_j ω_j m_j = φ_jᵀ C φ_j + φ_jᵀ H φ_j / ω_j, so
+    ζ_j = (ω_j φᵀCφ + φᵀHφ) / (2 ω_j² m_j), m_j = φᵀ M φ.
+    """
+    omega = 2 * np.pi * np.asarray(frequencies_hz, dtype=float)
+    m = np.einsum("js,s,js->j", shapes, inertias, shapes)
+    c = np.einsum("js,st,jt->j", shapes, C, shapes)
+    h = np.einsum("js,st,jt->j", shapes, H, shapes)
+    return (omega * c + h) / (2 * omega**2 * m)

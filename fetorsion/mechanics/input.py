@@ -182,9 +182,7 @@ def parse_mechanics(data: dict, source: str = "<mechanics>") -> MechanicsInput:
                                     "give overbalance_k and overbalance_alpha_deg together"))
     if "flywheel" in data:
         t = root.table("flywheel")
-        strokes = t._get("cycle_strokes", 4)
-        if strokes not in (2, 4):
-            problems.append(Problem("flywheel.cycle_strokes", strokes, "must be 2 or 4"))
+        strokes = t.choice("cycle_strokes", (2, 4), 4)
         material = t.text("material", default="", choices=tuple(RIM_SPEED_LIMITS)) if "material" in t.data else None
         t.used.add("material")
         out["flywheel"] = FlywheelSpec(t.number("power_w", positive=True), t.number("speed_rpm", positive=True),
@@ -193,7 +191,7 @@ def parse_mechanics(data: dict, source: str = "<mechanics>") -> MechanicsInput:
                                        _optional(t, "inner_diameter", length=True, nonnegative=True),
                                        material, _optional(t, "stroke", length=True, positive=True),
                                        _optional(t, "other_inertia_kgm2", positive=True),
-                                       strokes if strokes in (2, 4) else 4)
+                                       strokes)
         t.finish()
         f = out["flywheel"]
         if (f.outer_diameter is None) != (f.inner_diameter is None):

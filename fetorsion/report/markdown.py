@@ -8,7 +8,8 @@ taking the same outcomes.
 
 from __future__ import annotations
 
-from ..description.model import Crank
+from ..description.model import Chain, Crank
+from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
 
 
@@ -17,7 +18,12 @@ def _with_error(f: float, measured) -> str:
 
 
 def lumped_section(crank: Crank, outcome: dict) -> list[str]:
-    """f1 of every partition and web method against the measurement; the 17-DOF shapes."""
+    """f1 of every partition and web method against the measurement; the 17-DOF shapes (a chain: its modes)."""
+    if isinstance(crank, Chain):
+        res = outcome["chain"]
+        return ["## Torsional chain (inertias and stiffnesses from the file)", "",
+                f"{res.dof} inertias, free-free.", "", "```", res.table(), "```", "",
+                f"Mode shapes, unit twist at the first station: ![]({outcome['image']})", ""]
     table, skipped = outcome["table"], outcome["skipped"]
     measured = crank.notes.get("measured_first_torsional_hz")
     paper = crank.notes.get("paper_lumped_first_torsional_hz", {})
@@ -66,7 +72,7 @@ def campbell_section(crank: Crank, outcome: dict | None) -> list[str]:
     a, b = outcome["images"]
     return ["## Campbell diagram and forced response", "",
             f"Crossings inside the operating range, most severe first ({camp.source}; severity = resonant "
-            f"vibratory angle at the pulley for ζ = {camp.damping_ratio:g}):", "", "```", camp.table(), "```", "",
+            f"vibratory angle at the pulley for ζ = {zeta_text(camp.damping_ratio)}):", "", "```", camp.table(), "```", "",
             f"![]({a})", "", "```", resp.table(), "```", "", f"![]({b})", ""]
 
 

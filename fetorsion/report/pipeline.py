@@ -55,10 +55,15 @@ def _progress(message: str) -> None:
 
 
 def step_lumped(ctx: RunContext) -> None:
-    """All five partitions with every web method; mode-shape plots of the 17-DOF model."""
+    """All five partitions with every web method; mode-shape plots of the 17-DOF model (a chain: its modes)."""
     import matplotlib
 
     matplotlib.use("Agg")
+    if isinstance(ctx.crank, Chain):
+        res = lumped(ctx.crank)
+        ctx.results["lumped"] = {"chain": res.to_dict()}
+        ctx.sections["lumped"] = {"chain": res, "image": ctx.save(res.plot().figure, "chain_modes.png")}
+        return
     table, skipped = {}, {}
     for method in WEB_METHODS:
         try:
@@ -123,7 +128,7 @@ def step_sensitivity(ctx: RunContext) -> None:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty])."""
     from ..studies.sensitivity import fe_check, run_sensitivity
 
-    if not ctx.crank.uncertainty:
+    if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
         ctx.sections["sensitivity"] = None
         return
     sens = run_sensitivity(ctx.crank)
@@ -151,7 +156,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     Parameters
     ----------
     path : str or Path
-        Crank description (.toml).
+        Crank description or chain file (.toml); a chain gets the report without the FE steps.
     out : str or Path
         Report folder. It may be new, empty, or an earlier fetorsion report (replaced only
         once the whole run has succeeded); anything else is refused unless ``force``.
@@ -170,8 +175,8 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
-    if isinstance(crank, Chain):
-        raise FetorsionError(f"{path}: 'run' needs a crank description, not a chain file")
+    if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
+        steps = tuple(s for s in steps if s[1] is not step_fe)
     with atomic_folder(out) as work:
         ctx = RunContext(crank, work, dict(options or {}))
         for name, fn in steps:

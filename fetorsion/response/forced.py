@@ -6,9 +6,12 @@ the pins, F_q = Wᵀ (T_q e^{−i q φ_c}), and
     (K − (qΩ)² M + i qΩ C) Θ_q = F_q
 
 is solved for all speeds and orders at once (batched dense solves: the chains are small).
+A chain file's hysteretic springs enter as the complex stiffness K + iH (H assembled from
+η_i k_i), the same for every frequency, so the solve stays one batched call.
 The angle of station s over a cycle is Σ_q Re(Θ_q,s e^{i q θ}); its vibratory amplitude
 is half its peak-to-peak. Damping: a modal damping ratio ζ on every elastic mode,
-C = M Φ diag(2 ζ ω_j / m_j) Φᵀ M, plus a chain file's absolute and relative dampers.
+C = M Φ diag(2 ζ ω_j / m_j) Φᵀ M, plus a chain file's absolute and relative dampers. The
+section torque is the elastic torque k Δθ of each spring (what a strain gauge on the shaft reads).
 """
 
 from __future__ import annotations
@@ -19,10 +22,10 @@ import numpy as np
 import scipy.linalg
 
 from ..excitation.campbell import default_orders
-from ..description.model import Crank
+from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
-from ..lumped_model.lumped import chain_matrices, lumped
+from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
 
@@ -71,6 +74,8 @@ class ResponseResult:
     section_torque_nm: np.ndarray
     order_pulley_deg: np.ndarray
     damping_ratio: float
+    damping: str = ""
+    compare: dict | None = None
 
     def to_dict(self) -> dict:
         return {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
@@ -78,18 +83,24 @@ class ResponseResult:
                 "pulley_angle_deg": self.pulley_angle_deg.tolist(),
                 "pulley_twist_deg": self.pulley_twist_deg.tolist(),
                 "section_torque_nm": self.section_torque_nm.tolist(),
-                "order_pulley_deg": self.order_pulley_deg.tolist()}
+                "order_pulley_deg": self.order_pulley_deg.tolist(), "damping": self.damping_text(),
+                "compare": self.compare}
+
+    def damping_text(self) -> str:
+        """How the response is damped, in words."""
+        modal = f"zeta = {self.damping_ratio:g}"
+        return f"{self.damping}, {modal}" if self.damping else modal
 
     def table(self) -> str:
         """The largest pulley angle and twist and section torque, with where they occur."""
         i, a = self.pulley_twist_deg.argmax(), self.pulley_angle_deg.argmax()
         s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
         return "\n".join([
-            f"{self.name}: forced response {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, zeta = {self.damping_ratio:g}",
+            f"{self.name}: forced response {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, {self.damping_text()}",
             f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
             f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
             f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
-            f"({self.labels[k]}-{self.labels[k + 1]})"])
+            f"({self.labels[k]}-{self.labels[k + 1]})"] + compare_lines(self.compare))
 
     def plot(self, ax=None):
         """Pulley angle and twist, and the most loaded section's torque, against speed.
@@ -108,11 +119,18 @@ class ResponseResult:
         a1.plot(self.rpm, self.pulley_twist_deg, label="pulley twist against flywheel end")
         a1.set_ylabel("vibratory angle [deg]")
         a1.legend(fontsize=8)
-        a1.set_title(f"{self.name}\nforced response, ζ = {self.damping_ratio:g}", fontsize=10)
+        a1.set_title(f"{self.name}\nforced response, {self.damping_text().replace('zeta', 'ζ')}", fontsize=10)
+        c = self.compare
+        if c and c["quantity"] == "pulley_angle_deg":
+            a1.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
+            a1.legend(fontsize=8)
         if a2 is None:
             a1.set_xlabel("engine speed [rpm]")
             return a1
         worst = np.argmax(self.section_torque_nm.max(axis=0))
+        if c and c["quantity"] == "section_torque_nm":
+            worst = c["section"]
+            a2.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
         a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
                 label=f"section {self.labels[worst]}–{self.labels[worst + 1]}")
         a2.set_ylabel("vibratory torque [N m]")
@@ -122,22 +140,23 @@ class ResponseResult:
         return a1
 
 
-def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, orders=None, damping_ratio: float | None = None,
-                 web_method: str = DEFAULT_WEB_METHOD) -> ResponseResult:
-    """Forced torsional response of a lumped crank model over the operating range.
+def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
+                 damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD) -> ResponseResult:
+    """Forced torsional response of a lumped crank model, or of a chain file, over the operating range.
 
     Parameters
     ----------
-    crank : Crank
-        With an ``[excitation]`` table.
+    crank : Crank or Chain
+        With an ``[excitation]`` table (a chain also with ``[engine]`` and ``cylinder_stations``).
     partition : int
-        Lumped partition (5, 6, 17, 19, 21).
+        Lumped partition (5, 6, 17, 19, 21); ignored for a chain.
     rpm : array_like, optional
         Speeds, rpm; default :data:`DEFAULT_SPEED_STEPS` steps over the description's speed range.
     orders : array_like, optional
         Orders summed; default 0.5 … 12 (4-stroke).
     damping_ratio : float, optional
-        Modal damping ratio; default the description's.
+        Modal damping ratio; default the description's. A chain's absolute, relative and
+        hysteretic dampers act in addition.
 
     Examples
     --------
@@ -157,6 +176,14 @@ def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, ord
     res = lumped(crank, partition, web_method)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     C = modal_damping_matrix(M, K, zeta)
+    stated = ""
+    if isinstance(crank, Chain):
+        C_stated, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping,
+                                    crank.relative_damping, crank.loss_factors)
+        C, K = C + C_stated, K + 1j * H
+        stated = "stated dampers of the chain" if crank.has_dampers else ""
+    if res.pin_weights is None:
+        res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
     period = cycle_angle(crank.engine)
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
@@ -181,5 +208,74 @@ def run_response(crank: Crank, partition: int = DEFAULT_PARTITION, rpm=None, ord
         pulley_twist_deg=np.degrees(amplitude(theta[:, :, 0] - theta[:, :, -1])),
         section_torque_nm=0.5 * (section.max(axis=-1) - section.min(axis=-1)),
         order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
-        damping_ratio=zeta,
+        damping_ratio=zeta, damping=stated,
     )
+
+
+# Units a compared curve may carry: (quantity of ResponseResult it is compared with, factor to that quantity's unit).
+COMPARE_UNITS = {"N m": ("section_torque_nm", 1.0), "Nm": ("section_torque_nm", 1.0),
+                 "kN m": ("section_torque_nm", 1e3), "kNm": ("section_torque_nm", 1e3),
+                 "deg": ("pulley_angle_deg", 1.0), "mrad": ("pulley_angle_deg", np.degrees(1e-3)),
+                 "rad": ("pulley_angle_deg", np.degrees(1.0))}
+
+
+def compare_curve(result: ResponseResult, rpm, value, name: str, unit: str, section: int | None = None) -> dict:
+    """Set a published or measured curve beside a response and measure the difference at the peaks.
+
+    Parameters
+    ----------
+    result : ResponseResult
+    rpm, value : array_like
+        The curve: engine speed (rpm) and its value in ``unit``.
+    name : str
+        What the curve is (shown in the plot legend and table).
+    unit : str
+        A key of :data:`COMPARE_UNITS`: a torque is compared with a section's vibratory torque, an
+        angle with the pulley's vibratory angle.
+    section : int, optional
+        0-based spring whose torque is compared; default the most loaded one.
+
+    Returns
+    -------
+    dict
+        The curve and both peaks: ``curve_peak_rpm``, ``curve_peak`` (in the quantity's unit),
+        ``model_peak_rpm``, ``model_peak``, ``peak_difference_percent`` (model against curve) and
+        ``model_at_curve_peak_rpm``; stored on ``result.compare``.
+    """
+    quantity, to_si = COMPARE_UNITS[unit]
+    rpm, value = np.asarray(rpm, dtype=float), np.asarray(value, dtype=float)
+    if quantity == "section_torque_nm":
+        section = int(np.argmax(result.section_torque_nm.max(axis=0))) if section is None else section
+        model = result.section_torque_nm[:, section]
+        where = f"section {result.labels[section]}-{result.labels[section + 1]}"
+    else:
+        model, where = result.pulley_angle_deg, "pulley angle"
+    # Peaks compared inside the speeds both cover, so a curve reaching past the model's range is not misread.
+    both = (rpm >= result.rpm.min()) & (rpm <= result.rpm.max())
+    mine = (result.rpm >= rpm.min()) & (result.rpm <= rpm.max())
+    if not both.any() or not mine.any():
+        raise FetorsionError(f"--compare {name}: the curve ({rpm.min():.0f}-{rpm.max():.0f} rpm) does not overlap "
+                             f"the response's speeds ({result.rpm.min():.0f}-{result.rpm.max():.0f} rpm)")
+    c = int(np.flatnonzero(both)[np.argmax(value[both])])
+    m = int(np.flatnonzero(mine)[np.argmax(model[mine])])
+    curve_peak = float(value[c] * to_si)
+    out = {"name": name, "unit": unit, "quantity": quantity, "to_si": float(to_si), "where": where,
+           "section": section, "rpm": rpm.tolist(), "value": value.tolist(),
+           "curve_peak_rpm": float(rpm[c]), "curve_peak": curve_peak,
+           "model_peak_rpm": float(result.rpm[m]), "model_peak": float(model[m]),
+           "peak_difference_percent": float(100 * (model[m] - curve_peak) / curve_peak),
+           "model_at_curve_peak_rpm": float(np.interp(rpm[c], result.rpm, model))}
+    result.compare = out
+    return out
+
+
+def compare_lines(c: dict | None) -> list[str]:
+    """Table lines of a comparison (none without one)."""
+    if not c:
+        return []
+    unit = "N m" if c["quantity"] == "section_torque_nm" else "deg"
+    return [f"  compared with {c['name']} ({c['where']}):",
+            f"    curve peak {c['curve_peak']:.4g} {unit} at {c['curve_peak_rpm']:.0f} rpm; model peak "
+            f"{c['model_peak']:.4g} {unit} at {c['model_peak_rpm']:.0f} rpm: {c['peak_difference_percent']:+.1f} % "
+            f"and {c['model_peak_rpm'] - c['curve_peak_rpm']:+.0f} rpm; model at the curve's peak speed "
+            f"{c['model_at_curve_peak_rpm']:.4g} {unit}"]
