@@ -9,7 +9,7 @@ is solved for all speeds and orders at once (batched dense solves: the chains ar
 A chain file's hysteretic springs enter as the complex stiffness K + iH (H assembled from
 η_i k_i), the same for every frequency, so the solve stays one batched call.
 The angle of station s over a cycle is Σ_q Re(Θ_q,s e^{i q θ}); its vibratory amplitude
-is half its peak-to-peak. Damping: a modal damping ratio ζ on every elastic mode,
+is half its peak-to-peak, found exactly by :mod:`fetorsion.response.synthesis`. Damping: a modal damping ratio ζ on every elastic mode,
 C = M Φ diag(2 ζ ω_j / m_j) Φᵀ M, plus a chain file's absolute and relative dampers. The
 section torque is the elastic torque k Δθ of each spring (what a strain gauge on the shaft reads).
 """
@@ -26,6 +26,7 @@ from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
+from .synthesis import half_peak_to_peak
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
 
@@ -192,21 +193,17 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
     theta = steady_state(M, K, C, forces, omegas)  # (speeds, orders, stations)
 
-    cycle = np.linspace(0.0, period, 721)[:-1]
-    waves = np.exp(1j * orders[:, None] * cycle[None, :])  # (orders, angles)
-
-    def amplitude(z):  # z: (speeds, orders) complex -> half peak-to-peak over a cycle
-        x = np.real(z @ waves)
-        return 0.5 * (x.max(axis=-1) - x.min(axis=-1))
+    def amplitude(z):  # z: (..., orders) complex -> half peak-to-peak over a cycle
+        return half_peak_to_peak(z, orders, period)
 
     k = res.stiffnesses_nm_per_rad
     twist = theta[:, :, :-1] - theta[:, :, 1:]  # (speeds, orders, springs)
-    section = np.real(np.einsum("soj,oa->sja", twist * k, waves))
+    section = np.moveaxis(np.real(k) * twist, 1, 2)  # (speeds, springs, orders): each section's torque
     return ResponseResult(
         name=crank.name, labels=res.labels, orders=orders, rpm=rpm,
         pulley_angle_deg=np.degrees(amplitude(theta[:, :, 0])),
         pulley_twist_deg=np.degrees(amplitude(theta[:, :, 0] - theta[:, :, -1])),
-        section_torque_nm=0.5 * (section.max(axis=-1) - section.min(axis=-1)),
+        section_torque_nm=amplitude(section),
         order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
         damping_ratio=zeta, damping=stated,
     )
