@@ -1,6 +1,5 @@
 """FE modal analysis of whole cranks: attachments, journals, torsional modes, refinement."""
 
-import copy
 import json
 import re
 import subprocess
@@ -10,7 +9,6 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.description.crank import parse_crank
 from fetorsion.fe.crankfe import attachment_bodies, extrapolate_refinement, run_modal
 from fetorsion.solid.mesh import mesh_crank, read_mesh, write_mesh
 

@@ -4,14 +4,13 @@ import copy
 import dataclasses
 import math
 import tomllib
-from pathlib import Path
 
 import gmsh
 import pytest
 
 import fetorsion
 from fetorsion.description.crank import parse_crank
-from fetorsion.description.model import Cylinder, Fillets, OilHoles
+from fetorsion.description.model import Cylinder, OilHoles
 from fetorsion.solid.geometry import GeometryError, build_solid, crank_mass_properties, gmsh_session, solid_mass_properties
 from fetorsion.lumped_model.parts import build_parts, cylinder_inertia
 from fetorsion.solid.outline import mass_properties as web_mass

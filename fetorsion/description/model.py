@@ -6,7 +6,6 @@ from a file and checks every rule.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 

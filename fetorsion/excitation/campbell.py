@@ -191,5 +191,4 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table)
 
 
-__all__ = ["CampbellResult", "TorsionalModes", "default_orders", "lumped_modes",
-           "pin_weights", "run_campbell"]
+__all__ = ["CampbellResult", "TorsionalModes", "default_orders", "lumped_modes", "run_campbell"]

@@ -8,8 +8,6 @@ eq. (6) is a named web method (:mod:`fetorsion.webs.methods`).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ..description.model import Crank, Cylinder, Web
