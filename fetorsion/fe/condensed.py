@@ -1,0 +1,349 @@
+"""The crank condensed to master points (Craig–Bampton), in its bearings or free.
+
+Masters, 6 DOF each, in axial order: ``front`` (pulley end face centre), ``J1`` (main-journal
+centre), ``P1`` (pin centre), ``J2``, … , ``rear`` (flywheel flange face centre). Each is tied
+by a distributing coupling (:mod:`fetorsion.fe.couplings`) to
+
+* a main journal's bearing surface: the journal's cylindrical surface nodes within the
+  bearing width (``[bearings] width``, default the journal length) centred on the journal;
+* a pin's cylindrical surface (where the big end bears);
+* an end face.
+
+Attachments act on the masters as rigid masses (pulley/damper hub at ``front``, flywheel at
+``rear``, each with its offset; piston + rod as a point mass I/R² at every pin centre, as in
+:mod:`fetorsion.fe.crankfe`); bearings as radial springs and dampers on the journal masters'
+y, z translations, a rigid bearing by holding them, a thrust bearing on one journal's x.
+The reduced matrices are those of the bare crank: supports and attachments are added on the
+masters for each analysis, so one reduction serves free-free and every bearing case.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..description.defaults import DEFAULT_MESH_SIZE
+from ..description.model import AttachPoint, Crank
+from ..errors import FetorsionError
+from ..solid.mesh import CrankMesh, mesh_crank
+from . import assembly, modeshape
+from .couplings import DOF_NAMES, Master, coupling_matrix, point_mass_block
+from .modal import default_shift
+from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, interface, reduced_modes, supported_modes
+from .tetmesh import TetMesh
+
+SUPPORTS = ("free", "bearings")
+#: Elastic modes the reduction is checked on (issue 13: the first 10 within 0.1 %).
+CHECKED_MODES = 10
+#: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
+#: nominal cylinder belong to the bearing surface.
+SURFACE_TOL = 0.005
+
+
+def _surface(cm: CrankMesh, part: str, axis_yz, diameter: float, x_mid: float, width: float) -> np.ndarray:
+    k = cm.part_names.index(part)
+    nodes = np.unique(cm.tets[cm.part == k])
+    p = cm.nodes[nodes]
+    r = np.hypot(p[:, 1] - axis_yz[0], p[:, 2] - axis_yz[1])
+    on = (np.abs(r - 0.5 * diameter) <= SURFACE_TOL * diameter) & (np.abs(p[:, 0] - x_mid) <= 0.5 * width * (1 + 1e-9))
+    if on.sum() < 12:
+        raise FetorsionError(f"{part}: too few surface nodes for its coupling; refine the mesh")
+    return nodes[on]
+
+
+def _part_mid(cm: CrankMesh, part: str) -> float:
+    k = cm.part_names.index(part)
+    x = cm.nodes[np.unique(cm.tets[cm.part == k]), 0]
+    return 0.5 * (x.min() + x.max())
+
+
+def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
+    """The masters of a crank mesh, in axial order (see the module docstring)."""
+    bearings = crank.main_bearings
+    R = crank.engine.crank_radius
+    face = lambda name: cm.node_sets[f"{name}_face"]  # noqa: E731
+    masters = [Master("front", np.array([cm.nodes[face("front"), 0].mean(), 0.0, 0.0]), face("front"))]
+    for j, journal in enumerate(crank.journals):
+        xm = _part_mid(cm, f"journal_{j + 1}")
+        masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
+                              _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
+        if j < crank.cylinders:
+            pin, a = crank.pins[j], crank.engine.crank_angles[j]
+            yz = (R * math.cos(a), R * math.sin(a))
+            xp = _part_mid(cm, f"pin_{j + 1}")
+            masters.append(Master(f"P{j + 1}", np.array([xp, *yz]),
+                                  _surface(cm, f"pin_{j + 1}", yz, pin.diameter, xp, pin.length)))
+    masters.append(Master("rear", np.array([cm.nodes[face("rear"), 0].mean(), 0.0, 0.0]), face("rear")))
+    return masters
+
+
+def attachment_masses(crank: Crank, labels: list[str], positions: np.ndarray) -> np.ndarray:
+    """Master-level mass matrix (6·masters square) of the description's attachments."""
+    m = len(labels)
+    Dm = np.zeros((6 * m, 6 * m))
+    for at, label, outward in ((AttachPoint.FRONT, "front", -1.0), (AttachPoint.REAR, "rear", 1.0)):
+        atts = crank.attachments_at(at)
+        if not atts:
+            continue
+        mass = sum(a.mass for a in atts)
+        offset = sum(a.mass * a.offset for a in atts) / mass if mass > 0 else 0.0
+        diametral = sum(a.diametral_inertia + a.mass * (a.offset - offset) ** 2 for a in atts)
+        polar = sum(a.polar_inertia for a in atts)
+        k = labels.index(label)
+        centre = positions[k] + np.array([outward * offset, 0.0, 0.0])
+        Dm[6 * k:6 * k + 6, 6 * k:6 * k + 6] += point_mass_block(mass, np.diag([polar, diametral, diametral]),
+                                                                  centre, positions[k])
+    pistons = crank.attachments_at(AttachPoint.PINS)
+    if pistons:
+        inertia = sum(a.polar_inertia for a in pistons)
+        for c in range(crank.cylinders):
+            k = labels.index(f"P{c + 1}")
+            r2 = float(positions[k, 1] ** 2 + positions[k, 2] ** 2)
+            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += inertia / r2 * np.eye(3)
+    return Dm
+
+
+def bearing_matrices(crank: Crank, labels: list[str]):
+    """(K_b N/m, C_b N·s/m, held master DOF) of the main bearings on the journal masters."""
+    b = crank.main_bearings
+    n = 6 * len(labels)
+    Kb, Cb, held = np.zeros((n, n)), np.zeros((n, n)), []
+    for j in range(len(crank.journals)):
+        k = labels.index(f"J{j + 1}")
+        for d in (1, 2):
+            i = 6 * k + d
+            if math.isinf(b.radial_stiffness[j]):
+                held.append(i)
+            else:
+                Kb[i, i] = b.radial_stiffness[j]
+                Cb[i, i] = b.radial_damping[j]
+    if b.axial_stiffness > 0:
+        i = 6 * labels.index(f"J{b.thrust_journal + 1}")
+        if math.isinf(b.axial_stiffness):
+            held.append(i)
+        else:
+            Kb[i, i] = b.axial_stiffness
+    return Kb, Cb, np.array(sorted(held), dtype=np.int64)
+
+
+@dataclass
+class CondensedModes:
+    """Modes of the condensed crank in one support condition.
+
+    Attributes
+    ----------
+    support : str
+        ``free`` or ``bearings``.
+    frequencies_hz : ndarray
+        Elastic modes, Hz (the zero-frequency motions the support leaves are in ``free_motions``).
+    vectors : ndarray (r, k)
+        Reduced coordinates of each elastic mode (held DOF zero), unit modal mass.
+    fractions : ndarray (k, 3)
+        Torsion, bending, axial shares of the journals' (and end bodies') kinetic energy.
+    kinds : list of str
+        ``torsional``, ``bending``, ``axial`` when one share exceeds one half, else ``coupled``.
+    free_motions : int
+        Zero-frequency modes (6 free-free; 1 or 2 in bearings: rotation, and axial motion
+        without a thrust bearing).
+    """
+
+    support: str
+    frequencies_hz: np.ndarray
+    vectors: np.ndarray
+    fractions: np.ndarray
+    kinds: list[str]
+    free_motions: int
+
+    def first_torsional(self) -> float:
+        idx = [i for i, k in enumerate(self.kinds) if k == "torsional"]
+        if not idx:
+            raise FetorsionError(f"no torsional mode among the {len(self.kinds)} condensed-crank modes ({self.support})")
+        return float(self.frequencies_hz[idx[0]])
+
+
+@dataclass
+class CondensedCrank:
+    """A crank reduced to masters: see the module docstring and :func:`run_condensed`.
+
+    Attributes
+    ----------
+    crank : Crank
+    labels : list of str
+        Master labels in axial order.
+    positions : ndarray (masters, 3)
+        m.
+    reduced : ReducedModel
+        Bare crank: K, M over (q, η); q = 6 DOF per master (tx, ty, tz, rx, ry, rz).
+    attachment_mass : ndarray (6m, 6m)
+        Attachments on the masters, kg / kg·m / kg·m².
+    bearing_stiffness, bearing_damping : ndarray (6m, 6m)
+        N/m, N·s/m.
+    held : ndarray of int
+        Master DOF held by rigid bearings.
+    full_dofs : int
+        DOF of the 3D FE model it was reduced from.
+    """
+
+    crank: Crank
+    labels: list[str]
+    positions: np.ndarray
+    reduced: ReducedModel
+    attachment_mass: np.ndarray
+    bearing_stiffness: np.ndarray
+    bearing_damping: np.ndarray
+    held: np.ndarray
+    full_dofs: int
+    timings_s: dict = field(default_factory=dict)
+    mesh: CrankMesh | None = field(default=None, repr=False)
+    interface: Interface | None = field(default=None, repr=False)
+
+    @property
+    def n_master_dofs(self) -> int:
+        return 6 * len(self.labels)
+
+    def dof(self, label: str, name: str) -> int:
+        """Reduced index of master ``label``'s DOF ``name`` (tx, ty, tz, rx, ry, rz)."""
+        return 6 * self.labels.index(label) + DOF_NAMES.index(name)
+
+    def support_terms(self, support: str):
+        """(D_k, D_m, held) on the masters for ``support``."""
+        if support not in SUPPORTS:
+            raise FetorsionError(f"unknown support {support!r}; choose from {', '.join(SUPPORTS)}")
+        if support == "free":
+            return np.zeros_like(self.attachment_mass), self.attachment_mass, np.zeros(0, np.int64)
+        return self.bearing_stiffness, self.attachment_mass, self.held
+
+    def modes(self, support: str = "bearings", count: int | None = None) -> CondensedModes:
+        """Elastic modes of the reduced model in ``support`` (all of them unless ``count``)."""
+        Dk, Dm, held = self.support_terms(support)
+        w2, V, keep = reduced_modes(self.reduced, Dk, Dm, held)
+        scale = max(float(np.abs(w2).max()), 1.0)
+        free = int((np.abs(w2) < 1e-8 * scale).sum())
+        w2, V = w2[free:], V[:, free:]
+        if count is not None:
+            w2, V = w2[:count], V[:, :count]
+        full = np.zeros((self.reduced.size, V.shape[1]))
+        full[keep] = V
+        fractions, kinds = self.classify(full)
+        return CondensedModes(support, np.sqrt(np.abs(w2)) / (2 * np.pi), full, fractions, kinds, free)
+
+    def classify(self, Z: np.ndarray):
+        """Torsion/bending/axial fractions and labels of reduced vectors Z (r × k) from the
+        journal masters (weighted as the journal slabs) and the end bodies."""
+        rho = self.crank.material.density
+        energies = np.zeros((Z.shape[1], 3))
+        for j, c in enumerate(self.crank.journals):
+            k = self.labels.index(f"J{j + 1}")
+            m = rho * math.pi * c.diameter**2 / 4 * c.length
+            J = np.diag([m * c.diameter**2 / 8] + [m * (3 * c.diameter**2 / 16 + c.length**2 / 12)] * 2)
+            energies += modeshape.energy_split(Z[6 * k:6 * k + 6].T, m, J)
+        for label in ("front", "rear"):
+            k = self.labels.index(label)
+            B = self.attachment_mass[6 * k:6 * k + 6, 6 * k:6 * k + 6]
+            if B[0, 0] > 0:
+                energies += modeshape.energy_split(Z[6 * k:6 * k + 6].T, B[0, 0], B[3:, 3:])
+        total = energies.sum(axis=1, keepdims=True)
+        fractions = energies / np.where(total > 0, total, 1.0)
+        kinds = [modeshape.KINDS[int(f.argmax())] if f.max() > modeshape.DOMINANT else "coupled" for f in fractions]
+        return fractions, kinds
+
+    def full_modes(self, support: str, count: int) -> np.ndarray:
+        """Frequencies (Hz) of the lowest ``count`` elastic modes of the FULL 3D model with the same
+        couplings, supports and attachments (the reference the reduction is checked against)."""
+        if self.interface is None:
+            raise FetorsionError("the full model is not kept with this condensed crank (loaded from a file?)")
+        Dk, Dm, held = self.support_terms(support)
+        free = 6 if support == "free" else self.modes(support, 1).free_motions
+        w2, _ = supported_modes(self.interface, count + free, Dk, Dm, held)
+        return np.sqrt(np.abs(w2[free:])) / (2 * np.pi)
+
+    def to_dict(self) -> dict:
+        out = {"masters": [{"label": lb, "position_m": [float(v) for v in p]} for lb, p in zip(self.labels, self.positions)],
+               "reduced_dofs": int(self.reduced.size), "master_dofs": self.n_master_dofs,
+               "interior_vectors": len(self.reduced.fixed_interface_hz),
+               "interior_max_hz": float(self.reduced.fixed_interface_hz.max(initial=0.0)),
+               "full_dofs": int(self.full_dofs), "timings_s": {k: float(v) for k, v in self.timings_s.items()}}
+        for s in SUPPORTS:
+            md = self.modes(s, CHECKED_MODES)
+            out[s] = [{"frequency_hz": float(f), "kind": k, "torsional_fraction": float(fr[0]),
+                       "bending_fraction": float(fr[1]), "axial_fraction": float(fr[2])}
+                      for f, k, fr in zip(md.frequencies_hz, md.kinds, md.fractions)]
+        return out
+
+    def table(self) -> str:
+        lines = [f"condensed crank: {len(self.labels)} masters ({', '.join(self.labels)}), {self.reduced.size} DOF "
+                 f"({len(self.reduced.fixed_interface_hz)} interior vectors up to "
+                 f"{self.reduced.fixed_interface_hz.max(initial=0.0):.0f} Hz) from {self.full_dofs} FE DOF",
+                 f"{'mode':>4} {'free [Hz]':>10} {'kind':>10} {'bearings [Hz]':>14} {'kind':>10} {'torsion':>8}"]
+        a, b = self.modes("free", CHECKED_MODES), self.modes("bearings", CHECKED_MODES)
+        for j in range(min(len(a.frequencies_hz), len(b.frequencies_hz))):
+            lines.append(f"{j + 1:>4} {a.frequencies_hz[j]:10.1f} {a.kinds[j]:>10} {b.frequencies_hz[j]:14.1f} "
+                         f"{b.kinds[j]:>10} {b.fractions[j, 0]:8.3f}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Torsion share of each mode against frequency, free and in bearings."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 4))
+        for s, mk in (("free", "o"), ("bearings", "s")):
+            md = self.modes(s, CHECKED_MODES)
+            ax.plot(md.frequencies_hz, md.fractions[:, 0], mk, label=f"{s}")
+        ax.set_xlabel("frequency (Hz)")
+        ax.set_ylabel("torsion share of journal kinetic energy")
+        ax.set_ylim(-0.02, 1.02)
+        ax.legend()
+        ax.figure.tight_layout()
+        return ax
+
+
+def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
+                  fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
+                  keep_basis: bool = False, backend: str = "auto") -> CondensedCrank:
+    """Mesh the crank, assemble its bare K and M, and condense it to its masters.
+
+    Parameters
+    ----------
+    crank : Crank
+    mesh_size : float
+        Global element size, m (ignored when ``mesh`` is given).
+    ritz_blocks : int
+        Blocks of interface Ritz vectors (6 per master each; see
+        :func:`fetorsion.fe.substructure.craig_bampton`).
+    fixed_interface_modes : int
+        With ``ritz_blocks=0``: fixed-interface eigenmodes kept instead (classical Craig–Bampton).
+    mesh : CrankMesh, optional
+    keep_full : bool
+        Keep the full model's factor (for :meth:`CondensedCrank.full_modes`).
+    keep_basis : bool
+        Keep the recovery basis [Ψ Φ] (n × r, large) to expand solutions onto the mesh.
+    backend : str
+        Factorisation backend.
+    """
+    t0 = time.perf_counter()
+    cm = mesh or mesh_crank(crank, mesh_size)
+    t1 = time.perf_counter()
+    tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
+    m, dof_of_node = assembly.skfem_mesh(tm)
+    basis = assembly.p2_basis(m)
+    pat = assembly.block_pattern(basis)
+    mat = crank.material
+    K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
+    M = assembly.mass(basis, mat.density, pat)
+    masters = crank_masters(crank, cm)
+    G = coupling_matrix(masters, dof_of_node, m.doflocs.T)
+    t2 = time.perf_counter()
+    itf = interface(K, M, G, default_shift(tm, mat), backend)
+    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=keep_basis)
+    t3 = time.perf_counter()
+    labels = [mst.label for mst in masters]
+    positions = np.array([mst.position for mst in masters])
+    Kb, Cb, held = bearing_matrices(crank, labels)
+    timings = {"meshing": (cm.quality.seconds if cm.quality and mesh is None else t1 - t0), "assembly": t2 - t1,
+               **itf.timings_s, **red.timings_s, "total": time.perf_counter() - t0}
+    return CondensedCrank(crank, labels, positions, red, attachment_masses(crank, labels, positions), Kb, Cb, held,
+                          K.shape[0], timings, cm, itf if keep_full else None)
