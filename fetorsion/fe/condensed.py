@@ -24,6 +24,7 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.sparse as sp
 
 from ..description.defaults import DEFAULT_MESH_SIZE
 from ..description.model import AttachPoint, Crank
@@ -129,6 +130,35 @@ def bearing_matrices(crank: Crank, labels: list[str]):
     return Kb, Cb, np.array(sorted(held), dtype=np.int64)
 
 
+def section_rows(K, basis: np.ndarray, cm: CrankMesh, dof_of_node: np.ndarray, dof_xyz: np.ndarray,
+                 cuts: list[tuple[float, np.ndarray]]) -> np.ndarray:
+    """Recovery rows of the internal force resultant through each cut: (cuts, 6, r).
+
+    A cut at x = x_c splits the tetrahedra by their centroid. Let w be a rigid motion (unit
+    translation or rotation about the cut centre) of the nodes that belong to left elements
+    only, zero elsewhere: K w is then the left elements' stiffness acting across the cut only
+    (no right element touches those nodes, and the left elements alone do not resist a rigid
+    motion), so the resultant that the right part exerts on the left, by virtual work, is
+    −(K w)ᵀ u. In reduced coordinates u = [Ψ Φ] z: rows −(K W)ᵀ [Ψ Φ], exact for any z.
+    Components: forces x, y, z (N) and moments about x, y, z through the cut centre (N·m).
+    """
+    from .rigid import rigid_rows
+
+    centroid_x = cm.nodes[cm.tets[:, :4], 0].mean(axis=1)
+    out = np.empty((len(cuts), 6, basis.shape[1]))
+    n = 3 * len(dof_xyz)
+    for c, (x_cut, centre) in enumerate(cuts):
+        left = centroid_x < x_cut
+        only = np.setdiff1d(np.unique(cm.tets[left]), np.unique(cm.tets[~left]))
+        d = dof_of_node[only]
+        d = d[d >= 0]
+        R = rigid_rows(dof_xyz[d], centre)  # (nodes, 3, 6)
+        W = sp.csr_array((R.reshape(-1, 6).ravel(), (np.repeat((3 * d[:, None] + np.arange(3)).ravel(), 6),
+                                                      np.tile(np.arange(6), 3 * len(d)))), shape=(n, 6))
+        out[c] = -np.asarray((K @ W).T @ basis)
+    return out
+
+
 @dataclass
 class CondensedModes:
     """Modes of the condensed crank in one support condition.
@@ -183,6 +213,10 @@ class CondensedCrank:
         N/m, N·s/m.
     held : ndarray of int
         Master DOF held by rigid bearings.
+    sections : ndarray (masters, 6, r)
+        Recovery rows of the internal forces (N) and moments (N·m, about the master point)
+        through the plane x = x_master of every master (:func:`section_rows`); the end
+        masters' rows are zero (nothing lies beyond them).
     full_dofs : int
         DOF of the 3D FE model it was reduced from.
     """
@@ -197,6 +231,7 @@ class CondensedCrank:
     held: np.ndarray
     full_dofs: int
     timings_s: dict = field(default_factory=dict)
+    sections: np.ndarray | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
     interface: Interface | None = field(default=None, repr=False)
 
@@ -338,12 +373,17 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     G = coupling_matrix(masters, dof_of_node, m.doflocs.T)
     t2 = time.perf_counter()
     itf = interface(K, M, G, default_shift(tm, mat), backend)
-    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=keep_basis)
-    t3 = time.perf_counter()
+    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
     labels = [mst.label for mst in masters]
     positions = np.array([mst.position for mst in masters])
+    inner = [(p[0], p) for p in positions[1:-1]]
+    sections = np.zeros((len(labels), 6, red.size))
+    sections[1:-1] = section_rows(K, red.basis, cm, dof_of_node, m.doflocs.T, inner)
+    if not keep_basis:
+        red.basis = None
+    t3 = time.perf_counter()
     Kb, Cb, held = bearing_matrices(crank, labels)
     timings = {"meshing": (cm.quality.seconds if cm.quality and mesh is None else t1 - t0), "assembly": t2 - t1,
                **itf.timings_s, **red.timings_s, "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, attachment_masses(crank, labels, positions), Kb, Cb, held,
-                          K.shape[0], timings, cm, itf if keep_full else None)
+                          K.shape[0], timings, sections, cm, itf if keep_full else None)
