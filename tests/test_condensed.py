@@ -90,9 +90,11 @@ def test_shaft_pinned_pinned(shaft):
         a, b, c = RHO**2 * I / (kap * G), -(RHO * A + RHO * I * k**2 * (1 + E / (kap * G))), E * I * k**4
         exact.append(np.sqrt((-b - np.sqrt(b * b - 4 * a * c)) / (2 * a)) / (2 * np.pi))
     np.testing.assert_allclose(f[:4], np.repeat(exact, 2), rtol=1e-3)
-    # and the reduced model equals the full one with the same supports (a Ritz approximation)
+    # and the reduced model approaches the full one with the same supports from above (a Ritz
+    # approximation; with only two masters 1 m apart its sixth mode is 4e-6 high)
     w2f, _ = ss.supported_modes(itf, 6, held=held)
-    np.testing.assert_allclose(f[:6], hz(w2f), rtol=1e-6)
+    assert np.all(f[:6] >= hz(w2f) * (1 - 1e-9))
+    np.testing.assert_allclose(f[:6], hz(w2f), rtol=1e-4)
 
 
 def test_couplings_add_no_stiffness(shaft):
