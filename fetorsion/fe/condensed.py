@@ -7,7 +7,8 @@ by a distributing coupling (:mod:`fetorsion.fe.couplings`) to
 * a main journal's bearing surface: the journal's cylindrical surface nodes within the
   bearing width (``[bearings] width``, default the journal length) centred on the journal;
 * a pin's cylindrical surface (where the big end bears);
-* an end face.
+* an end face (by default rigidly: the pulley hub and the flywheel flange; see
+  :func:`run_condensed`).
 
 Attachments act on the masters as rigid masses (pulley/damper hub at ``front``, flywheel at
 ``rear``, each with its offset; piston + rod as a point mass I/R² at every pin centre, as in
@@ -34,6 +35,7 @@ from . import assembly, modeshape
 from .couplings import DOF_NAMES, Master, coupling_matrix, point_mass_block
 from .modal import default_shift
 from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, interface, reduced_modes, supported_modes
+from .rigid import RigidBody, reduction
 from .tetmesh import TetMesh
 
 SUPPORTS = ("free", "bearings")
@@ -338,7 +340,7 @@ class CondensedCrank:
 
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
-                  keep_basis: bool = False, backend: str = "auto") -> CondensedCrank:
+                  keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid") -> CondensedCrank:
     """Mesh the crank, assemble its bare K and M, and condense it to its masters.
 
     Parameters
@@ -358,6 +360,11 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
         Keep the recovery basis [Ψ Φ] (n × r, large) to expand solutions onto the mesh.
     backend : str
         Factorisation backend.
+    end_ties : str
+        ``rigid`` (default): the end faces move with the pulley hub and the flywheel as rigid
+        bodies, as in the free-free FE (:mod:`fetorsion.fe.crankfe`) that is compared with the
+        measured frequencies (a distributing coupling lets the flange face deform under the
+        flywheel: Renault 21 free-free f1 −2.5 %); ``distributing``: RBE3 couplings there too.
     """
     t0 = time.perf_counter()
     cm = mesh or mesh_crank(crank, mesh_size)
@@ -370,15 +377,34 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
     M = assembly.mass(basis, mat.density, pat)
     masters = crank_masters(crank, cm)
-    G = coupling_matrix(masters, dof_of_node, m.doflocs.T)
+    xyz = m.doflocs.T
+    G = coupling_matrix(masters, dof_of_node, xyz)
+    T = None
+    Kc, Mc = K, M
+    if end_ties == "rigid":
+        # The flange and pulley-hub faces move with their rigid bodies (as in fetorsion.fe.crankfe):
+        # eliminate them exactly; their masters are then the bodies' own six DOF.
+        ends = [RigidBody(mst.label, dof_of_node[mst.nodes], 0.0, np.zeros((3, 3)), mst.position)
+                for mst in (masters[0], masters[-1])]
+        red_t = reduction(K.shape[0], ends, xyz)
+        T = red_t.T
+        Kc, Mc = red_t.reduce(K), red_t.reduce(M)
+        nf = red_t.n_free
+        pick = lambda first: sp.csr_array((np.ones(6), (np.arange(6), nf + first + np.arange(6))),  # noqa: E731
+                                          shape=(6, Kc.shape[0]))
+        G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
+    elif end_ties != "distributing":
+        raise FetorsionError(f"unknown end_ties {end_ties!r}; choose rigid or distributing")
     t2 = time.perf_counter()
-    itf = interface(K, M, G, default_shift(tm, mat), backend)
+    itf = interface(Kc, Mc, G, default_shift(tm, mat), backend)
     red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
+    if T is not None:
+        red.basis = np.asarray(T @ red.basis)
     labels = [mst.label for mst in masters]
     positions = np.array([mst.position for mst in masters])
     inner = [(p[0], p) for p in positions[1:-1]]
     sections = np.zeros((len(labels), 6, red.size))
-    sections[1:-1] = section_rows(K, red.basis, cm, dof_of_node, m.doflocs.T, inner)
+    sections[1:-1] = section_rows(K, red.basis, cm, dof_of_node, xyz, inner)
     if not keep_basis:
         red.basis = None
     t3 = time.perf_counter()
@@ -387,3 +413,59 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
                **itf.timings_s, **red.timings_s, "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, attachment_masses(crank, labels, positions), Kb, Cb, held,
                           K.shape[0], timings, sections, cm, itf if keep_full else None)
+
+
+#: Layout tag of the saved file; bump when the layout changes.
+NPZ_FORMAT = "fetorsion-condensed-1"
+
+
+def save_condensed(cc: CondensedCrank, path) -> None:
+    """Write ``cc`` to an ``.npz`` file atomically (layout in docs/condensed-crank.md).
+
+    Arrays: ``K``, ``M`` (r × r, bare crank, SI), ``n_master_dofs``, ``labels``, ``positions``
+    (m), ``dof_names``, ``attachment_mass``, ``bearing_stiffness`` (N/m), ``bearing_damping``
+    (N·s/m), ``held``, ``sections`` (masters × 6 × r), ``interior_hz``, ``full_dofs``,
+    ``description_json`` (the description it came from) and ``format``. With the recovery
+    basis kept: ``shape_nodes`` (mesh vertices, m), ``shape_tets`` (their tetrahedra) and
+    ``shape_basis`` (vertices × 3 × r, float32): u(vertex) = shape_basis @ z.
+    """
+    import json
+
+    from ..io import atomic_output
+
+    arrays = dict(format=NPZ_FORMAT, K=cc.reduced.K, M=cc.reduced.M, n_master_dofs=cc.n_master_dofs,
+                  labels=np.array(cc.labels), positions=cc.positions, dof_names=np.array(DOF_NAMES),
+                  attachment_mass=cc.attachment_mass, bearing_stiffness=cc.bearing_stiffness,
+                  bearing_damping=cc.bearing_damping, held=cc.held, sections=cc.sections,
+                  interior_hz=cc.reduced.fixed_interface_hz, full_dofs=cc.full_dofs,
+                  description_json=json.dumps(cc.crank.raw))
+    if cc.reduced.basis is not None and cc.mesh is not None:
+        _, dof_of_node = assembly.skfem_mesh(TetMesh(cc.mesh.nodes, cc.mesh.tets))
+        corners = cc.mesh.tets[:, :4]
+        vertices, local = np.unique(corners, return_inverse=True)
+        d = dof_of_node[vertices]
+        rows = (3 * d[:, None] + np.arange(3)).ravel()
+        arrays.update(shape_nodes=cc.mesh.nodes[vertices], shape_tets=local.reshape(corners.shape),
+                      shape_basis=cc.reduced.basis[rows].reshape(len(vertices), 3, -1).astype(np.float32))
+    with atomic_output(path) as tmp:
+        with open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
+
+
+def load_condensed(path) -> CondensedCrank:
+    """Read a file written by :func:`save_condensed`."""
+    import json
+
+    from ..description.crank import parse_crank
+
+    try:
+        data = np.load(path, allow_pickle=False)
+        if str(data["format"]) != NPZ_FORMAT:
+            raise FetorsionError(f"{path}: layout {str(data['format'])!r}, this fetorsion reads {NPZ_FORMAT!r}")
+        crank = parse_crank(json.loads(str(data["description_json"])), str(path), check_uncertainty=False)
+        red = ReducedModel(data["K"], data["M"], int(data["n_master_dofs"]), data["interior_hz"])
+        return CondensedCrank(crank, [str(s) for s in data["labels"]], data["positions"], red, data["attachment_mass"],
+                              data["bearing_stiffness"], data["bearing_damping"], data["held"], int(data["full_dofs"]),
+                              sections=data["sections"])
+    except (OSError, ValueError, KeyError) as exc:
+        raise FetorsionError(f"{path}: not a condensed crank written by fetorsion ({exc})") from None
