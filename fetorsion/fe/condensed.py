@@ -30,6 +30,7 @@ import scipy.sparse as sp
 from ..description.defaults import DEFAULT_MESH_SIZE
 from ..description.model import AttachPoint, Crank
 from ..errors import FetorsionError
+from ..modes import TorsionalModes
 from ..solid.mesh import CrankMesh, mesh_crank
 from . import assembly, modeshape
 from .couplings import DOF_NAMES, Master, coupling_matrix, point_mass_block
@@ -266,6 +267,21 @@ class CondensedCrank:
         full[keep] = V
         fractions, kinds = self.classify(full)
         return CondensedModes(support, np.sqrt(np.abs(w2)) / (2 * np.pi), full, fractions, kinds, free)
+
+    def torsional_modes(self, support: str = "bearings", n: int = 3) -> TorsionalModes:
+        """The lowest ``n`` elastic modes in ``support``, whatever their kind, for the Campbell
+        analysis: a pin's twist is its centre's tangential displacement over the crank radius
+        (the work of a tangential pin force), the pulley's the front master's θx; unit modal mass.
+        Each mode carries its torsion/bending share as its label, so a coupled mode shows."""
+        md = self.modes(support, n)
+        R = self.crank.engine.crank_radius
+        pins = np.empty((len(md.frequencies_hz), self.crank.cylinders))
+        for c, a in enumerate(self.crank.engine.crank_angles):
+            ty, tz = md.vectors[self.dof(f"P{c + 1}", "ty")], md.vectors[self.dof(f"P{c + 1}", "tz")]
+            pins[:, c] = (-math.sin(a) * ty + math.cos(a) * tz) / R
+        labels = tuple(f"{k} ({f[0]:.2f}/{f[1]:.2f})" for k, f in zip(md.kinds, md.fractions))
+        return TorsionalModes(f"condensed FE crank, {support} ({self.reduced.size} DOF)", md.frequencies_hz, pins,
+                              md.vectors[self.dof("front", "rx")], np.ones(len(md.frequencies_hz)), labels)
 
     def classify(self, Z: np.ndarray):
         """Torsion/bending/axial fractions and labels of reduced vectors Z (r × k) from the
