@@ -43,7 +43,11 @@ def test_full_run_with_fe_and_mode_images(tmp_path):
     assert 0.9 < f1 / data["lumped"]["carter"][2]["frequencies_hz"][0] < 1.1
     images = sorted(out.glob("mode_*_torsional.png"))
     assert images and Image.open(images[0]).size == (1400, 600)
-    assert "FE (" in data["campbell"]["source"]  # the Campbell diagram used the FE modes
+    # the Campbell diagram used the FE crank's modes in its bearings (the condensed crank)
+    assert "condensed FE crank, bearings" in data["campbell"]["source"]
+    b = data["bearings"]
+    assert b["reduced_dofs"] <= 400 and b["f1_free_hz"] == pytest.approx(f1, rel=1e-3)  # same mesh, same ties
+    assert "## The crank in its bearings" in (out / "report.md").read_text()
     assert "## 3D FE modal analysis" in (out / "report.md").read_text()
     # The web page beside it: the same sections, interactive figures, no still picture left
     # where one replaces it, nothing fetched from the network.

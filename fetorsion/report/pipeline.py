@@ -43,6 +43,7 @@ class RunContext:
     results: dict = field(default_factory=dict)
     sections: dict = field(default_factory=dict)
     fe: object = None  # the CrankModal once the FE step has run
+    condensed: object = None  # the CondensedCrank once the bearings step has run
     timings_s: dict = field(default_factory=dict)
 
     def save(self, fig, name: str) -> str:
@@ -107,6 +108,39 @@ def step_fe(ctx: RunContext) -> None:
     ctx.sections["fe"] = {"modal": fe, "mesh_size_m": size, "images": images}
 
 
+def step_bearings(ctx: RunContext) -> None:
+    """The crank condensed to its journal and pin centres (on the FE step's mesh), free and in
+    its bearings: modes with torsion/bending shares, the lumped chain against each, and the
+    coupled forced response (gas, inertia, tangential and radial pin forces; bearing forces)."""
+    from ..fe.condensed import run_condensed
+    from ..response.coupled import run_coupled_response
+    from ..webs.throwfe import held_throw_stiffnesses
+
+    if ctx.fe is None:
+        return
+    size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
+    cc = run_condensed(ctx.crank, size, mesh=ctx.fe.mesh)
+    ctx.condensed = cc
+    free, held = cc.modes("free"), cc.modes("bearings")
+    f_free, f_held = free.first_torsional(), held.first_torsional()
+    held_throw_stiffnesses(ctx.crank, size, condensed=cc)  # the fe-held web method then reuses this reduction
+    chain = {}
+    for method in ("carter", "fe", "fe-held"):
+        f17 = float(lumped(ctx.crank, 17, method).frequencies_hz[0])
+        chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
+    out = {"condensed": cc, "free": free, "bearings": held, "chain": chain, "f1_free_hz": f_free,
+           "f1_bearings_hz": f_held, "images": [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]}
+    ctx.results["bearings"] = {**cc.to_dict(), "f1_free_hz": f_free, "f1_bearings_hz": f_held, "lumped_17dof": chain,
+                               "support": {"radial_stiffness_n_per_m": list(ctx.crank.main_bearings.radial_stiffness),
+                                           "from_description": ctx.crank.main_bearings.given}}
+    if ctx.crank.excitation is not None:
+        coupled = run_coupled_response(cc, "bearings")
+        out["coupled"] = coupled
+        out["images"].append(ctx.save(coupled.plot().figure, "coupled_response.png"))
+        ctx.results["bearings"]["coupled_response"] = coupled.to_dict()
+    ctx.sections["bearings"] = out
+
+
 def step_campbell(ctx: RunContext) -> None:
     """Campbell diagram (FE torsional modes when the FE step ran) and forced response."""
     from ..excitation.campbell import run_campbell
@@ -115,7 +149,10 @@ def step_campbell(ctx: RunContext) -> None:
     if ctx.crank.excitation is None:
         ctx.sections["campbell"] = None
         return
-    camp = run_campbell(ctx.crank, ctx.fe.torsional_modes(3) if ctx.fe is not None else None)
+    # In its bearings when the condensed crank exists (the engine as it runs), else the free-free FE.
+    modes = (ctx.condensed.torsional_modes("bearings", 3) if ctx.condensed is not None
+             else ctx.fe.torsional_modes(3) if ctx.fe is not None else None)
+    camp = run_campbell(ctx.crank, modes)
     resp = run_response(ctx.crank)
     ctx.results["campbell"] = camp.to_dict()
     ctx.results["response"] = resp.to_dict()
@@ -143,11 +180,12 @@ def step_sensitivity(ctx: RunContext) -> None:
 DEFAULT_STEPS: tuple[tuple[str, Callable[[RunContext], None]], ...] = (
     ("lumped models", step_lumped),
     ("mesh and FE modal analysis", step_fe),
+    ("condensed crank in its bearings", step_bearings),
     ("Campbell diagram and forced response", step_campbell),
     ("sensitivity of f1", step_sensitivity),
 )
 # ``fetorsion run --no-fe``: the same report without the mesh and the FE modal analysis.
-FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[1] is not step_fe)
+FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[1] not in (step_fe, step_bearings))
 
 
 def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool = False) -> Path:
@@ -176,7 +214,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
     if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
-        steps = tuple(s for s in steps if s[1] is not step_fe)
+        steps = tuple(s for s in steps if s[1] not in (step_fe, step_bearings))
     with atomic_folder(out) as work:
         ctx = RunContext(crank, work, dict(options or {}))
         for name, fn in steps:

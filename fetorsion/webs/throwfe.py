@@ -380,7 +380,7 @@ def held_key(crank: Crank, mesh_size: float) -> str:
     return hashlib.sha256(json.dumps(fields, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
 
-def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None) -> np.ndarray:
+def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None, condensed=None) -> np.ndarray:
     """Torsional stiffness (N·m/rad) of each throw (journal centre to journal centre) inside the
     whole crank with every main journal held radially by a rigid bearing (distributing
     couplings over the bearing surfaces, tilt free), from one static FE solve: the front end's
@@ -388,7 +388,9 @@ def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None) -> np.n
 
     Unlike a single throw loaded by a couple (statically determinate: holding its ends
     sideways changes nothing), the crank in five bearings is statically indeterminate: the
-    bearings resist the throws' bending under torque. Cached like :func:`throw_torsion`.
+    bearings resist the throws' bending under torque. Cached like :func:`throw_torsion`;
+    ``condensed`` (a :class:`fetorsion.fe.condensed.CondensedCrank` of this crank at
+    ``mesh_size``) saves the reduction when one exists.
     """
     from ..description.defaults import DEFAULT_MESH_SIZE
     from ..fe.condensed import run_condensed
@@ -398,25 +400,30 @@ def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None) -> np.n
     if key not in _CACHE:
         entry = _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
         if entry is None:
-            bare = dataclasses.replace(crank, attachments=(), excitation=None,
-                                       bearings=dataclasses.replace(crank.main_bearings,
-                                                                    radial_stiffness=(math.inf,) * len(crank.journals)))
-            cc = run_condensed(bare, size)
-            K = cc.reduced.K
-            held = np.r_[cc.held, cc.dof("front", "rx"), cc.dof("front", "tx")]
-            keep = np.setdiff1d(np.arange(K.shape[0]), held)
-            f = np.zeros(K.shape[0])
-            f[cc.dof("rear", "rx")] = TORQUE
-            z = np.zeros(K.shape[0])
-            z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], f[keep])
-            twist = np.array([z[cc.dof(f"J{j + 1}", "rx")] for j in range(len(crank.journals))])
-            entry = {"stiffness": (TORQUE / np.diff(twist)).tolist(), "mesh_size": size, "full_dofs": cc.full_dofs}
+            cc = condensed or run_condensed(dataclasses.replace(crank, attachments=(), excitation=None), size)
+            entry = {"stiffness": static_throw_stiffnesses(cc).tolist(), "mesh_size": size, "full_dofs": cc.full_dofs}
             _save_disk(key, entry)
         _CACHE[key] = entry
     k = np.array(_CACHE[key]["stiffness"])
     if not np.all(k > 0):
         raise FetorsionError("in-bearing throw stiffness: a non-positive value (singular model?)")
     return k
+
+
+def static_throw_stiffnesses(cc) -> np.ndarray:
+    """Each throw's stiffness (N·m/rad) from a static solve of the condensed crank ``cc`` with its
+    journal centres held in y and z (rigid bearings, whatever ``cc``'s own bearings are)."""
+    K = cc.reduced.K
+    n_j = len(cc.crank.journals)
+    held = [cc.dof(f"J{j + 1}", d) for j in range(n_j) for d in ("ty", "tz")] + [cc.dof("front", "rx"),
+                                                                                 cc.dof("front", "tx")]
+    keep = np.setdiff1d(np.arange(K.shape[0]), held)
+    f = np.zeros(K.shape[0])
+    f[cc.dof("rear", "rx")] = TORQUE
+    z = np.zeros(K.shape[0])
+    z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], f[keep])
+    twist = np.array([z[cc.dof(f"J{j + 1}", "rx")] for j in range(n_j)])
+    return TORQUE / np.diff(twist)
 
 
 def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float) -> float:
