@@ -13,7 +13,7 @@ from pathlib import Path
 
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
-from ..studies.engine import (SCHEDULER_ENV, SampleStore, check_scheduler, check_store, default_store, open_client,
+from ..studies.engine import (SCHEDULER_ENV, SampleStore, ClusterOnDemand, check_scheduler, check_store, default_store,
                               scheduler_address)
 from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
 from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
@@ -102,10 +102,7 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
           f"samples kept in {store_dir}", file=sys.stderr, flush=True)
     measured = crank.notes.get("measured_first_torsional_hz")
     try:
-        with open_client(address, args.workers) as client:
-            workers = client.scheduler_info().get("workers", {})
-            print(f"[fetorsion] cluster: {client.scheduler.address if address else 'local'}, "
-                  f"{len(workers)} workers", file=sys.stderr, flush=True)
+        with ClusterOnDemand(address, args.workers) as client:
             res = run_study(model, inputs, args.method, n, seed=args.seed, client=client, store=SampleStore(store_dir),
                             batch_size=args.batch, name=crank.name, measured_hz=float(measured) if measured else None,
                             held=held, retry_failed=args.retry_failed)

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import numbers
 import os
 import sys
 import time
@@ -32,7 +33,7 @@ from pathlib import Path
 from typing import Callable, Iterable
 
 from ..errors import FetorsionError
-from ..io import write_text_atomic
+from ..io import remove_stale_temporaries, write_small_atomic
 
 #: Environment of each local worker process: one BLAS/OpenMP thread, the worker's one core.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -86,6 +87,7 @@ class SampleStore:
 
     def __init__(self, folder):
         self.folder = Path(folder)
+        remove_stale_temporaries(self.folder)  # what a killed study was writing
 
     def path(self, key: str) -> Path:
         return self.folder / key[:2] / f"{key}.json"
@@ -97,7 +99,7 @@ class SampleStore:
             return None
 
     def put(self, key: str, record: dict) -> None:
-        write_text_atomic(self.path(key), json.dumps(record, allow_nan=True))
+        write_small_atomic(self.path(key), json.dumps(record).encode())
 
 
 def check_store(folder, option: str = "--store") -> None:
@@ -179,33 +181,77 @@ def open_client(scheduler: str | None = None, workers: int | None = None, timeou
         cluster.close()
 
 
+class ClusterOnDemand:
+    """A client that is opened (cluster started) only when some sample must be computed: a
+    study whose every sample is stored costs no cluster start. Use as a context manager and
+    pass it where a client goes; arguments as :func:`open_client`."""
+
+    def __init__(self, scheduler: str | None = None, workers: int | None = None):
+        self.scheduler, self.workers = scheduler, workers
+        self._stack = None
+        self._client = None
+
+    def get(self):
+        if self._client is None:
+            from contextlib import ExitStack
+
+            self._stack = ExitStack()
+            self._client = self._stack.enter_context(open_client(self.scheduler, self.workers))
+            info = self._client.scheduler_info()
+            print(f"[fetorsion] Dask cluster: scheduler {info.get('address', '?')}"
+                  f"{'' if scheduler_address(self.scheduler)[0] else ' (local)'}, {len(info.get('workers', {}))} workers",
+                  file=sys.stderr, flush=True)
+        return self._client
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self._stack is not None:
+            self._stack.close()
+        self._stack = self._client = None
+        return False
+
+
+def auto_batch(runs: int, client, expensive: bool) -> int:
+    """Samples per task: one for an expensive model; else about eight tasks per worker, at
+    most 500 samples each (a cheap sample is a millisecond; a task costs the scheduler ~1 ms)."""
+    if expensive or client is None:
+        return 1
+    workers = max(1, sum(client.nthreads().values()))
+    return int(min(500, max(1, -(-runs // (8 * workers)))))
+
+
 # ---------------------------------------------------------------------------
 # Running samples
 
 
 def run_batch(model, batch: list[tuple[str, dict]]) -> list[tuple[str, dict]]:
-    """Run ``model`` on each (key, values) of ``batch`` on one worker, one BLAS thread; a
-    sample's exception becomes its record's ``error``, and the batch goes on."""
+    """Run ``model`` on each (key, values) of ``batch`` on a worker, with one BLAS thread."""
     from threadpoolctl import threadpool_limits
 
-    out = []
     with threadpool_limits(limits=1):
-        for key, values in batch:
-            t0 = time.perf_counter()
-            try:
-                record = {"outputs": _jsonable_outputs(model(values))}
-            except Exception as exc:  # the sample's failure is its result
-                record = {"error": f"{type(exc).__name__}: {exc}",
-                          "traceback": "".join(traceback.format_exception(exc)[-3:])}
-            record.update(values=values, model=model.key, seconds=time.perf_counter() - t0,
-                          worker=f"{os.uname().nodename}:{os.getpid()}")
-            out.append((key, record))
-    return out
+        return list(run_each(model, batch))
+
+
+def run_each(model, batch):
+    """Yield (key, record) for each (key, values) of ``batch``: the model's ``outputs``, or the
+    ``error`` its exception gave (the batch goes on), with the values, time and worker."""
+    for key, values in batch:
+        t0 = time.perf_counter()
+        try:
+            record = {"outputs": _jsonable_outputs(model(values))}
+        except Exception as exc:  # the sample's failure is its result
+            record = {"error": f"{type(exc).__name__}: {exc}",
+                      "traceback": "".join(traceback.format_exception(exc)[-3:])}
+        record.update(values=values, model=model.key, seconds=time.perf_counter() - t0,
+                      worker=f"{os.uname().nodename}:{os.getpid()}")
+        yield key, record
 
 
 def _jsonable_outputs(outputs: dict) -> dict:
-    return {k: (float(v) if isinstance(v, (int, float)) or hasattr(v, "__float__") and not isinstance(v, dict)
-                else v) for k, v in outputs.items()}
+    """Numbers as floats (numpy scalars too), anything else as the model gave it (JSON-ready)."""
+    return {k: float(v) if isinstance(v, numbers.Real) else v for k, v in outputs.items()}
 
 
 @dataclass
@@ -252,7 +298,7 @@ def batches(items: list, size: int) -> Iterable[list]:
         yield items[i:i + size]
 
 
-def run_samples(model, samples: list[dict], store: SampleStore, client=None, batch_size: int = 1,
+def run_samples(model, samples: list[dict], store: SampleStore, client=None, batch_size: int | None = None,
                 retry_failed: bool = False, label: str = "study",
                 on_record: Callable[[str, dict], None] | None = None, progress: bool = True) -> tuple[list[dict], RunSummary]:
     """Every sample's record (``outputs`` or ``error``), computing only those not stored.
@@ -266,10 +312,10 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
         Input values of each sample (JSON-ready; floats are hashed exactly).
     store : SampleStore
         Where records are found and written.
-    client : distributed.Client, optional
+    client : distributed.Client or ClusterOnDemand, optional
         Runs the tasks; None runs them here, one after the other (same store, same records).
-    batch_size : int
-        Samples per task: 1 for expensive models (FE), tens to hundreds for cheap ones.
+    batch_size : int, optional
+        Samples per task (default :func:`auto_batch`; the model's ``expensive`` attribute says).
     retry_failed : bool
         Compute again the samples stored with an error.
     on_record : callable, optional
@@ -304,9 +350,11 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
             on_record(key, record)
 
     if todo and client is None:
-        for key, values in todo:
-            keep(*run_batch(model, [(key, values)])[0])
+        for key, record in run_each(model, todo):
+            keep(key, record)
     elif todo:
+        client = client.get() if isinstance(client, ClusterOnDemand) else client
+        batch_size = batch_size or auto_batch(len(todo), client, getattr(model, "expensive", False))
         _run_on_cluster(client, model, todo, batch_size, keep)
     summary = RunSummary(len(set(keys)), stored_before, len(todo), failed, time.perf_counter() - t0)
     return [records[k] for k in keys], summary

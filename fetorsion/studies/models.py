@@ -18,7 +18,7 @@ from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..lumped_model.lumped import PARTITIONS, lumped
-from .sensitivity import with_values
+from .variants import with_values
 
 #: What each kind of model gives (Hz; ``severity``: the largest Campbell severity in the
 #: operating range, degrees of vibratory angle at the pulley).

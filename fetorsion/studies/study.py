@@ -210,15 +210,6 @@ def sensitivity_indices(method: str, inputs: list[StudyInput], X: np.ndarray, y:
     return {k: [float(v) for v in np.asarray(s[k])] for k in keys}
 
 
-def auto_batch(runs: int, client, expensive: bool) -> int:
-    """Samples per task: one for an expensive model; else about eight tasks per worker, at
-    most 500 samples each (a cheap sample is a millisecond; a task costs the scheduler ~1 ms)."""
-    if expensive or client is None:
-        return 1
-    workers = max(1, sum(client.nthreads().values()))
-    return int(min(500, max(1, math.ceil(runs / (8 * workers)))))
-
-
 def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, seed: int = 0, client=None,
               store: SampleStore | None = None, batch_size: int | None = None, name: str = "",
               measured_hz: float | None = None, held=(), retry_failed: bool = False, on_record=None,
@@ -239,12 +230,12 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
         See ``method``.
     seed : int
         Seed of the sampler and of the bootstrap.
-    client : distributed.Client, optional
+    client : distributed.Client or ClusterOnDemand, optional
         Where the runs go (see :func:`fetorsion.studies.engine.open_client`); None: here, serially.
     store : SampleStore, optional
         Stored results (default :func:`fetorsion.studies.engine.default_store`).
     batch_size : int, optional
-        Samples per task (default :func:`auto_batch`).
+        Samples per task (default :func:`fetorsion.studies.engine.auto_batch`).
     measured_hz : float, optional
         The measured f1, Hz: its place in the f1 distribution is reported.
     held : sequence of str
@@ -253,8 +244,6 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
     X = sample_matrix(method, inputs, samples, seed)
     values = samples_of(inputs, X)
     store = store or SampleStore(default_store())
-    if batch_size is None:
-        batch_size = auto_batch(len(values), client, getattr(model, "expensive", False))
     records, summary = run_samples(model, values, store, client, batch_size, retry_failed=retry_failed,
                                    label=f"{name or 'study'} ({method})", on_record=on_record, progress=progress)
     outputs = list(getattr(model, "outputs", ())) or _output_names(records)
