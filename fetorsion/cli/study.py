@@ -13,11 +13,10 @@ from pathlib import Path
 
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
-from ..studies.engine import (SCHEDULER_ENV, SampleStore, ClusterOnDemand, check_scheduler, check_store, default_store,
-                              scheduler_address)
+from ..studies.engine import SCHEDULER_ENV, SampleStore, check_scheduler, check_store, default_store, scheduler_address
 from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
 from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
-from ..studies.study import run_study, write_study_folder
+from ..studies.study import run_crank_study, write_study_folder
 from ..webs.methods import WEB_METHODS
 from .options import MM, integer, millimetres
 
@@ -97,15 +96,14 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
     check_samples(args.method, n, len(inputs))
     if args.model == "fe":
         check_mesh_size(crank, args.mesh_size, "modal")
-    runs = runs_for(args.method, n, len(inputs))
-    print(f"[fetorsion] {crank.name}: {args.method} study of {len(inputs)} inputs, {runs} runs of {model.label}; "
-          f"samples kept in {store_dir}", file=sys.stderr, flush=True)
-    measured = crank.notes.get("measured_first_torsional_hz")
+    print(f"[fetorsion] {crank.name}: {args.method} study of {len(inputs)} inputs, "
+          f"{runs_for(args.method, n, len(inputs))} runs of {model.label}; samples kept in {store_dir}",
+          file=sys.stderr, flush=True)
     try:
-        with ClusterOnDemand(address, args.workers) as client:
-            res = run_study(model, inputs, args.method, n, seed=args.seed, client=client, store=SampleStore(store_dir),
-                            batch_size=args.batch, name=crank.name, measured_hz=float(measured) if measured else None,
-                            held=held, retry_failed=args.retry_failed)
+        res = run_crank_study(crank, args.method, n, args.model, args.outputs, args.inputs, seed=args.seed,
+                              stiffness=args.stiffness, mesh_size=args.mesh_size, scheduler=address,
+                              workers=args.workers, store=SampleStore(store_dir), batch_size=args.batch,
+                              retry_failed=args.retry_failed)
     except KeyboardInterrupt:
         print(f"\nfetorsion: interrupted; the finished samples are kept in {store_dir}: the same command resumes "
               "the study", file=sys.stderr)

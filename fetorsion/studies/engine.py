@@ -285,10 +285,14 @@ class Progress:
             self._write(final=self.done == self.total)
 
     def _write(self, final: bool) -> None:
-        rate = (self.done - self.start_done) / max(time.perf_counter() - self.t0, 1e-9)
+        elapsed = time.perf_counter() - self.t0
+        rate = (self.done - self.start_done) / max(elapsed, 1e-9)
+        speed = f"{rate:.0f} samples/s" if rate >= 10 else f"{elapsed / max(self.done - self.start_done, 1):.1f} s/sample"
+        eta = (self.total - self.done) / rate if rate > 0 else 0.0
         line = (f"[fetorsion] {self.label}: {self.done}/{self.total} samples"
                 + (f" ({self.start_done} stored before)" if self.start_done else "")
-                + (f", {self.failed} failed" if self.failed else "") + f", {rate:.0f}/s")
+                + (f", {self.failed} failed" if self.failed else "") + f", {speed}"
+                + (f", about {eta:.0f} s left" if not final and eta >= 1 else ""))
         self.stream.write(("\r" + line + ("\n" if final else "")) if self.tty else line + "\n")
         self.stream.flush()
 

@@ -255,6 +255,58 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
                        list(held), X, Y, errors, percentile_bands(Y), indices, measured_hz, summary, values)
 
 
+def run_crank_study(crank, method: str = "montecarlo", samples: int = 2000, model: str = "lumped17",
+                    outputs=("f1",), inputs=None, *, seed: int = 0, stiffness: str | None = None,
+                    mesh_size: float | None = None, scheduler: str | None = None, workers: int | None = None,
+                    client=None, store: SampleStore | None = None, **kwargs) -> StudyResult:
+    """A study of a crank's ``[uncertainty]`` inputs: the composition ``fetorsion study`` runs.
+
+    Parameters
+    ----------
+    crank : Crank
+        A description with an ``[uncertainty]`` table.
+    method, samples, seed
+        See :func:`run_study`.
+    model : str
+        ``lumpedN`` (N = 5, 6, 17, 19, 21) or ``fe`` (3D FE without fillets and drillings at
+        ``mesh_size``, m; their inputs are then held at nominal).
+    outputs : sequence of str
+        ``f1``, ``f2``, ``f3``, ``severity`` (lumped) or ``f1``, ``f2`` (fe); Hz, degrees.
+    inputs : sequence of str, optional
+        Names of ``[uncertainty]`` entries to sample (default all).
+    scheduler, workers
+        An existing Dask scheduler's address, or the local cluster's worker count (started
+        only if some sample is not stored). ``client`` overrides both (None of the three:
+        a local cluster).
+    **kwargs
+        To :func:`run_study` (``batch_size``, ``retry_failed``, ``on_record``, ``progress``).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")
+    >>> res = fetorsion.run_crank_study(crank, "montecarlo", 20, client=False, progress=False)
+    >>> res.bands["f1"]["p5"] < res.bands["f1"]["p95"]
+    True
+    """
+    from .engine import ClusterOnDemand
+    from .models import FE_LEFT_OUT, make_model
+    from .sampling import study_inputs
+
+    if not crank.uncertainty:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [uncertainty] table")
+    options = {k: v for k, v in (("stiffness", stiffness), ("mesh_size", mesh_size)) if v is not None}
+    m = make_model(crank, model, tuple(outputs), **options)
+    chosen, held = study_inputs(crank, inputs, FE_LEFT_OUT if model == "fe" else ())
+    measured = crank.notes.get("measured_first_torsional_hz")
+    common = dict(seed=seed, store=store, name=crank.name, measured_hz=float(measured) if measured else None,
+                  held=held, **kwargs)
+    if client is not None:  # False: here, serially
+        return run_study(m, chosen, method, samples, client=client or None, **common)
+    with ClusterOnDemand(scheduler, workers) as on_demand:
+        return run_study(m, chosen, method, samples, client=on_demand, **common)
+
+
 def _output_names(records: list[dict]) -> list[str]:
     for r in records:
         if "outputs" in r:
