@@ -184,3 +184,28 @@ def test_group_members_move_together_and_fe_leaves_out_details():
     for value in x:  # the same fraction of each member's range
         v = material.values(value)
         assert (v[r_path] - r_lo) / (r_hi - r_lo) == pytest.approx((v[e_path] - e_lo) / (e_hi - e_lo), rel=1e-12)
+
+
+def test_cli_study_on_an_existing_scheduler_writes_the_table(tmp_path, monkeypatch, capsys):
+    # A cluster the study did not start, found by its address in DASK_SCHEDULER_ADDRESS.
+    import csv
+
+    from distributed import LocalCluster
+
+    from fetorsion.cli import main
+    from fetorsion.lumped_model.lumped import lumped
+    from fetorsion.studies.variants import with_values
+
+    geometry = Path(__file__).resolve().parents[1] / "geometry" / "peugeot_glx.toml"
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", cluster.scheduler_address)
+        out = tmp_path / "glx"
+        assert main(["study", str(geometry), "--samples", "40", "--out", str(out), "--store", str(tmp_path / "s")]) == 0
+    assert {p.name for p in out.iterdir()} >= {"samples.csv", "study.json", "study.txt", "histogram_f1.png"}
+    rows = list(csv.DictReader(open(out / "samples.csv")))
+    assert len(rows) == 40 and all(r["error"] == "" for r in rows)
+    crank = fetorsion.load(geometry)
+    for r in rows[:3]:  # each row's f1 is the lumped model of that row's inputs
+        values = {k: float(v) for k, v in r.items() if k not in ("run", "f1", "error")}
+        assert float(r["f1"]) == lumped(with_values(crank, values), 17).frequencies_hz[0]
+    assert "measured f1 905.9 Hz" in capsys.readouterr().out
