@@ -113,7 +113,7 @@ def studies_lines(sens, studies: dict | None, images: dict) -> list[str]:
     pct = mc.measured_percentile()
     if pct is not None:
         inside = b["p5"] <= mc.measured_hz <= b["p95"]
-        lines[-1] += (f" The measured {mc.measured_hz:g} Hz lies at the **{pct:.1f} th percentile**: "
+        lines[-1] += (f" The measured {mc.measured_hz:g} Hz has **{pct:.1f} % of the runs below it**: "
                       f"{'inside' if inside else 'outside'} the 5–95 % band.")
     if mc.errors:
         lines[-1] += f" {len(mc.errors)} runs failed (first: {mc.errors[0]['error']})."
