@@ -250,6 +250,26 @@ CASES = [
     ("flywheel-rpm-negative", "flywheel {d}/crank.toml --rpm -1", {}, 2, ["--rpm"]),
     ("balance-crank", "balance {d}/crank.toml", {}, 2, ["mechanics file"]),
     ("balance-json-txt", "balance {d}/mech.toml --json {d}/out.txt", {}, 2, ["--json"]),
+    # --- [distributions] of the [uncertainty] inputs (issue 15)
+    ("dist-unknown-entry", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\n"webs.*.width" = "normal"\n'},
+     2, ["distributions.webs.*.width", "no [uncertainty] entry"]),
+    ("dist-kind", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\n"webs.*.thickness" = "gamma"\n'},
+     2, ["distributions.webs.*.thickness", "triangular"]),
+    ("dist-normal-no-sd", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal" }\n'},
+     2, ["distributions.material.sd", "sd > 0"]),
+    ("dist-normal-sd-negative", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal", sd = -1.0e9 }\n'}, 2,
+     ["distributions.material.sd"]),
+    ("dist-triangular-sd", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "triangular", sd = 1.0e9 }\n'}, 2,
+     ["distributions.material.sd", "only a normal"]),
+    ("dist-extra-key", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal", sd = 1.0e9, mean = 2.0e11 }\n'}, 2,
+     ["distributions.material", "mean"]),
+    ("dist-triangular-at-high", "lumped {d}/x.toml",  # the webs' nominal 22 mm made the high bound
+     {"x.toml": edit('"webs.*.thickness" = [19.0, 25.0]', '"webs.*.thickness" = [19.0, 22.0]')
+      + '\n[distributions]\n"webs.*.thickness" = "triangular"\n'}, 2,
+     ["distributions.webs.*.thickness", "below the high bound"]),
     # --- fetorsion study (issue 15): every option refused before the cluster starts
     ("study-method", "study {d}/crank.toml --method latin", {}, 2, ["--method", "latin"]),
     ("study-samples-0", "study {d}/crank.toml --samples 0", {}, 2, ["--samples"]),

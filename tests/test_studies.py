@@ -197,7 +197,7 @@ def test_cli_study_on_an_existing_scheduler_writes_the_table(tmp_path, monkeypat
     from fetorsion.studies.variants import with_values
 
     geometry = Path(__file__).resolve().parents[1] / "geometry" / "peugeot_glx.toml"
-    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster:
         monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", cluster.scheduler_address)
         out = tmp_path / "glx"
         assert main(["study", str(geometry), "--samples", "40", "--out", str(out), "--store", str(tmp_path / "s")]) == 0
@@ -209,3 +209,30 @@ def test_cli_study_on_an_existing_scheduler_writes_the_table(tmp_path, monkeypat
         values = {k: float(v) for k, v in r.items() if k not in ("run", "f1", "error")}
         assert float(r["f1"]) == lumped(with_values(crank, values), 17).frequencies_hz[0]
     assert "measured f1 905.9 Hz" in capsys.readouterr().out
+
+
+def test_distributions_from_the_file_shape_the_monte_carlo_samples():
+    from scipy import stats
+
+    raw = copy.deepcopy(read_raw("renault21.toml"))
+    raw["distributions"] = {"webs.*.thickness": "triangular", "material": {"kind": "normal", "sd": 10e9}}
+    crank = parse_crank(raw)
+    inputs, _ = study_inputs(crank, ["webs.*.thickness", "material", "pins.*.length"])
+    inputs = sorted(inputs, key=lambda i: ["webs.*.thickness", "material", "pins.*.length"].index(i.name))  # else file order
+    thick, material, pin = inputs
+    n = 20000
+    X = sample_matrix("montecarlo", inputs, n, seed=0)
+    # Means in closed form: triangular (a + b + c)/3 with the peak at the nominal 22 mm; normal
+    # around the nominal 210 GPa truncated to [165, 212] GPa; uniform (a + b)/2. Tolerance: five
+    # standard errors of a mean of n samples.
+    expect = [(stats.triang(c=(22 - 19) / 6, loc=19, scale=6)), stats.truncnorm((165 - 210) / 10, (212 - 210) / 10,
+              loc=210e9, scale=10e9), stats.uniform(loc=20, scale=6)]
+    for j, dist in enumerate(expect):
+        assert abs(X[:, j].mean() - dist.mean()) < 5 * dist.std() / math.sqrt(n), (j, X[:, j].mean(), dist.mean())
+        assert inputs[j].bounds[0] <= X[:, j].min() and X[:, j].max() <= inputs[j].bounds[1]
+    assert (thick.distribution, material.distribution, pin.distribution) == ("triangular", "normal", "uniform")
+    # The grid spans the ranges whatever the distributions.
+    assert np.array_equal(np.unique(sample_matrix("grid", inputs, 2)[:, 1]), [165e9, 212e9])
+    # The variant a sample makes carries no ranges nor distributions: a new design.
+    from fetorsion.studies.variants import with_values
+    assert with_values(crank, {"webs.*.thickness": 20.0}).distributions == ()

@@ -47,7 +47,7 @@ def add_parser(sub, load_crank, check_mesh_size) -> None:
                          + ", ".join(f"{m} {n}" for m, n in DEFAULT_SAMPLES.items()))
     sp.add_argument("--model", choices=MODEL_CHOICES, default="lumped17",
                     help="lumpedN: the N-DOF lumped chain; fe: 3D FE without fillets and drillings at "
-                         f"--mesh-size (default %(default)s)")
+                         "--mesh-size (default %(default)s)")
     sp.add_argument("--outputs", type=_names("--outputs"), default=["f1"],
                     help="comma-separated: f1, f2, f3, severity (lumped) or f1, f2 (fe); default f1")
     sp.add_argument("--inputs", type=_names("--inputs"), help="only these [uncertainty] entries (others nominal)")

@@ -170,6 +170,9 @@ class Crank:
     uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
     excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
+    #: ``[distributions]``: (uncertainty entry, kind, standard deviation or None); an entry not
+    #: named is uniform over its range.
+    distributions: tuple[tuple[str, str, float | None], ...] = ()
 
     @property
     def cylinders(self) -> int:

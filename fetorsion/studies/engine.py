@@ -170,7 +170,7 @@ def open_client(scheduler: str | None = None, workers: int | None = None, timeou
     with dask.config.set({"distributed.nanny.pre-spawn-environ": {**dask.config.get(
             "distributed.nanny.pre-spawn-environ", {}), **WORKER_ENV}}):
         cluster = LocalCluster(n_workers=workers or machine_workers(), threads_per_worker=1, processes=True,
-                               dashboard_address=None, silence_logs=logging.ERROR, env=dict(WORKER_ENV))
+                               dashboard_address=":0", silence_logs=logging.ERROR, env=dict(WORKER_ENV))
     try:
         client = Client(cluster)
         try:

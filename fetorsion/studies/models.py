@@ -35,7 +35,7 @@ FE_MODES = 12
 def description_hash(crank: Crank) -> str:
     """Hash of what a variant is built from: the file's data (without its ranges) and the
     parsed excitation (a pressure CSV's content lives there, not in the file's data)."""
-    raw = {k: v for k, v in crank.raw.items() if k != "uncertainty"}
+    raw = {k: v for k, v in crank.raw.items() if k not in ("uncertainty", "distributions")}
     h = hashlib.sha256(json.dumps(raw, sort_keys=True, default=str).encode())
     h.update(pickle.dumps(crank.excitation))
     return h.hexdigest()[:24]

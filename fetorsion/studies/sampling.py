@@ -1,6 +1,8 @@
 """The inputs of a study and their samples: Sobol', Morris (SALib), Monte Carlo, grid.
 
-Each entry of a description's ``[uncertainty]`` table is one input, uniform over its range.
+Each entry of a description's ``[uncertainty]`` table is one input, uniform over its range
+unless the description's ``[distributions]`` table gives it a triangular or truncated normal
+distribution (SALib's inverse-CDF scaling, the same for every sampling method but the grid).
 A group (inputs that move together, low with low) is one input too: its first member's value
 is sampled and every other member sits at the same fraction of its own range. A sample is a
 dict ``{field path: value}`` in file units, what :func:`~fetorsion.studies.sensitivity.with_values`
@@ -25,10 +27,24 @@ MAX_GRID_RUNS = 1_000_000
 @dataclass(frozen=True)
 class StudyInput:
     """One sampled input: ``name`` (the ``[uncertainty]`` entry), ``members`` (path, low, high)
-    in file units; the sampled value is the first member's."""
+    in file units; the sampled value is the first member's. ``distribution``: ``uniform``
+    over the range, ``triangular`` (peak at ``nominal``) or ``normal`` (mean ``nominal``,
+    standard deviation ``sd``, truncated to the range)."""
 
     name: str
     members: tuple[tuple[str, float, float], ...]
+    distribution: str = "uniform"
+    nominal: float | None = None
+    sd: float | None = None
+
+    def salib(self) -> tuple[str, list[float]]:
+        """SALib's name and parameters of the distribution."""
+        lo, hi = self.bounds
+        if self.distribution == "triangular":
+            return "triang", [lo, hi, (self.nominal - lo) / (hi - lo)]
+        if self.distribution == "normal":
+            return "truncnorm", [lo, hi, self.nominal, self.sd]
+        return "unif", [lo, hi]
 
     @property
     def bounds(self) -> tuple[float, float]:
@@ -45,7 +61,16 @@ def study_inputs(crank, names=None, exclude_prefixes=()) -> tuple[list[StudyInpu
     """The ``[uncertainty]`` entries as inputs: all, or those in ``names``; entries whose
     paths start with one of ``exclude_prefixes`` (details a model leaves out) are returned
     apart, as the second list, held at their nominal values."""
-    entries = [StudyInput(n, tuple(m)) for n, m in crank.uncertainty]
+    from ..description.reader import resolve_field
+
+    dists = {name: (kind, sd) for name, kind, sd in getattr(crank, "distributions", ())}
+
+    def entry(name, members):
+        kind, sd = dists.get(name, ("uniform", None))
+        values = [v for _, v in resolve_field(crank.raw, members[0][0])]
+        return StudyInput(name, tuple(members), kind, float(sum(values) / len(values)), sd)
+
+    entries = [entry(n, m) for n, m in crank.uncertainty]
     if names is not None:
         known = {e.name for e in entries}
         unknown = [n for n in names if n not in known]
@@ -59,9 +84,13 @@ def study_inputs(crank, names=None, exclude_prefixes=()) -> tuple[list[StudyInpu
     return kept, left
 
 
-def salib_problem(inputs: list[StudyInput]) -> dict:
-    """SALib's problem dict: names and uniform bounds."""
-    return {"num_vars": len(inputs), "names": [i.name for i in inputs], "bounds": [list(i.bounds) for i in inputs]}
+def salib_problem(inputs: list[StudyInput], distributions: bool = True) -> dict:
+    """SALib's problem dict: names, and the bounds (uniform) or each input's distribution
+    (``dists``, when any is not uniform and ``distributions``)."""
+    problem = {"num_vars": len(inputs), "names": [i.name for i in inputs], "bounds": [list(i.bounds) for i in inputs]}
+    if distributions and any(i.distribution != "uniform" for i in inputs):
+        problem["dists"], problem["bounds"] = map(list, zip(*(i.salib() for i in inputs)))
+    return problem
 
 
 def runs_for(method: str, n: int, d: int) -> int:
@@ -88,10 +117,12 @@ def sample_matrix(method: str, inputs: list[StudyInput], n: int, seed: int = 0) 
 
     ``sobol``: Saltelli's scheme over a scrambled Sobol' sequence, ``n`` base samples
     (power of 2), first and total order: ``n·(d + 2)`` rows. ``morris``: ``n`` trajectories of
-    ``d + 1`` points on a 4-level grid. ``montecarlo``: ``n`` independent uniform points.
-    ``grid``: ``n`` evenly spaced levels per input (ends included), full factorial: ``n**d``.
+    ``d + 1`` points on a 4-level grid. ``montecarlo``: ``n`` independent points. Each input
+    follows its distribution (uniform unless ``[distributions]`` says otherwise) in ``sobol``
+    and ``montecarlo``; Morris's levels and the grid span the ranges. ``grid``: ``n`` evenly spaced levels of each range (ends included), full factorial: ``n**d``.
     """
-    problem = salib_problem(inputs)
+    # The grid and Morris's levels span each range: distributions are for the random designs.
+    problem = salib_problem(inputs, distributions=method not in ("grid", "morris"))
     check_samples(method, n, len(inputs))
     if method == "sobol":
         from SALib.sample import sobol
@@ -101,10 +132,12 @@ def sample_matrix(method: str, inputs: list[StudyInput], n: int, seed: int = 0) 
         from SALib.sample import morris
 
         return morris.sample(problem, n, num_levels=MORRIS_LEVELS, seed=seed)
-    lo, hi = np.array(problem["bounds"]).T
     if method == "montecarlo":
-        return lo + (hi - lo) * np.random.default_rng(seed).random((n, len(inputs)))
+        from SALib.util import scale_samples
+
+        return scale_samples(np.random.default_rng(seed).random((n, len(inputs))), problem)
     if method == "grid":
+        lo, hi = np.array(problem["bounds"]).T
         axes = np.linspace(lo, hi, n).T
         return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(inputs))
     raise FetorsionError(f"--method {method}: choose from {', '.join(METHODS)}")

@@ -71,7 +71,8 @@ class StudyResult:
     def to_dict(self) -> dict:
         return {"name": self.name, "method": self.method, "model": self.model, "samples": self.samples,
                 "seed": self.seed, "runs": len(self.X), "failed": len(self.errors),
-                "inputs": [{"name": i.name, "members": [list(m) for m in i.members]} for i in self.inputs],
+                "inputs": [{"name": i.name, "members": [list(m) for m in i.members], "distribution": i.distribution,
+                            "nominal": i.nominal, "sd": i.sd} for i in self.inputs],
                 "held_at_nominal": self.held, "bands": self.bands, "indices": self.indices,
                 "confidence_level": CONF_LEVEL, "measured_hz": self.measured_hz,
                 "measured_percentile": self.measured_percentile(), "errors": self.errors[:100],
@@ -84,6 +85,10 @@ class StudyResult:
                  f"{len(self.errors)} failed, {self.summary.wall_s:.1f} s)"]
         if self.held:
             lines.append(f"held at nominal (not in this model): {', '.join(self.held)}")
+        shaped = [f"{i.name} {i.distribution}" + (f" (sd {i.sd:g})" if i.sd else "") for i in self.inputs
+                  if i.distribution != "uniform"]
+        lines.append("inputs uniform over their ranges" + (f", except {', '.join(shaped)}" if shaped else "")
+                     + (" (the design spans the ranges)" if shaped and self.method in ("grid", "morris") else ""))
         head = f"{'output':<10} {'p5':>10} {'p50':>10} {'p95':>10} {'mean':>10} {'std':>10} {'runs':>6}"
         lines += ["", head, "-" * len(head)]
         for out, b in self.bands.items():
@@ -194,7 +199,7 @@ def sensitivity_indices(method: str, inputs: list[StudyInput], X: np.ndarray, y:
     if not np.isfinite(y).all():
         return {"not_computed": f"{int((~np.isfinite(y)).sum())} runs failed; SALib's {method} estimators need "
                                 "every run of the design"}
-    problem = salib_problem(inputs)
+    problem = salib_problem(inputs, distributions=method == "sobol")
     if method == "sobol":
         from SALib.analyze import sobol
 

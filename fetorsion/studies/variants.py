@@ -12,12 +12,14 @@ from ..description.reader import resolve_field
 def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
     """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
 
-    The variant is a new design, so the original's ``[uncertainty]`` ranges are dropped.
+    The variant is a new design, so the original's ``[uncertainty]`` ranges (and their
+    ``[distributions]``) are dropped.
     ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
     checks, where those details would dominate the element count.
     """
     raw = copy.deepcopy(crank.raw)
     raw.pop("uncertainty", None)
+    raw.pop("distributions", None)
     if not details:
         for key in ("fillets", "oil_holes"):
             raw.pop(key, None)
