@@ -236,3 +236,31 @@ def test_distributions_from_the_file_shape_the_monte_carlo_samples():
     # The variant a sample makes carries no ranges nor distributions: a new design.
     from fetorsion.studies.variants import with_values
     assert with_values(crank, {"webs.*.thickness": 20.0}).distributions == ()
+
+
+class KillsItsWorker(Ishi):
+    """Ends its worker process outright (as a native abort would) on one sample."""
+
+    def __init__(self, culprit):
+        super().__init__()
+        self.culprit, self.key = culprit, f"ishigami/kills-at={culprit}"
+
+    def __call__(self, v):
+        if v["x1"] == self.culprit:
+            os._exit(1)
+        return super().__call__(v)
+
+
+@pytest.mark.slow
+def test_a_sample_that_kills_its_worker_is_recorded_and_its_batch_mates_are_not(tmp_path):
+    # Dask's own policy: a task is given up after its worker was lost under it 4 times
+    # (allowed-failures 3): the batch of 4 dies 4 times, then its culprit alone 4 times (~20 s).
+    samples = [{"x1": float(x), "x2": 0.0, "x3": 0.0} for x in range(8)]
+    with open_client(workers=2) as c:
+        records, summary = run_samples(KillsItsWorker(5.0), samples, SampleStore(tmp_path), c, batch_size=4,
+                                       progress=False)
+    failed = [s["x1"] for s, r in zip(samples, records) if "error" in r]
+    assert failed == [5.0] and "died" in records[5]["error"]
+    assert [r["outputs"]["y"] for i, r in enumerate(records) if i != 5] == pytest.approx(
+        Ishigami.evaluate(np.array([[s["x1"], 0.0, 0.0] for i, s in enumerate(samples) if i != 5]), A, B).tolist(),
+        rel=1e-15)

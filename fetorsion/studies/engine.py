@@ -368,11 +368,12 @@ def _run_on_cluster(client, model, todo, batch_size, keep) -> None:
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
 
-    [model_future] = client.scatter([model], broadcast=True, hash=False)
+    # The model travels inside each task (a few kB), not scattered once: scattered data lost
+    # with a worker cannot be recomputed, and every task needing it would be cancelled.
     pending = {}
 
     def submit(batch):
-        fut = client.submit(run_batch, model_future, batch, retries=TASK_RETRIES, pure=False)
+        fut = client.submit(run_batch, model, batch, retries=TASK_RETRIES, pure=False)
         pending[fut] = batch
         return fut
 
