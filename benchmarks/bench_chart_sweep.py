@@ -39,7 +39,8 @@ def main(argv=None) -> int:
     if not args.all:
         rows = {f"{c:g}" for c in web_chart.C_GRID[:args.rows]}
         points = [(k, kw) for k, kw in points if k.startswith("grid:") and k.split(":")[1].split(",")[0] in rows]
-    runs = web_chart.fe_runs(points)
+    runs = [dict(c=web_chart.CENTRE[0], q=web_chart.CENTRE[1], mesh_share=s) for s in web_chart.RATE_SHARES]
+    runs += [dict(kw, mesh_share=s) for _, kw in points for s in web_chart.wc.MESH_SHARES]
     distinct = len({tuple(sorted(r.items())) for r in runs})
     print(f"{len(points)} chart points: {len(runs)} FE runs ({distinct} distinct); load average {os.getloadavg()[0]:.2f}")
     walls, tables = {}, {}

@@ -7,7 +7,8 @@
 #                                           (scripts/fe_band.py: 2 x 24 coarse FE runs on the local
 #                                           Dask cluster, ~3 min on 2 cores)
 # With --chart it first recomputes the FE web chart itself (109 FE runs on the local Dask cluster,
-# ~11 min serial before), resuming from the sample store (~/.cache/fetorsion/samples).
+# ~11 min serial before), resuming from results/chart/points.json (delete it, or run
+# scripts/web_chart.py --fresh, to recompute) and the sample store (~/.cache/fetorsion/samples).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 py=.venv/bin/python

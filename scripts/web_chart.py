@@ -6,7 +6,7 @@ is stored as it finishes, so an interrupted sweep resumes where it stopped and a
 shared by two uses (the convergence study's two finer meshes are the centre point's) is
 computed once. Run from the repository root (one FE job per worker, one BLAS thread each):
 
-    nice -n 10 python scripts/web_chart.py                          # resumes from the sample store
+    nice -n 10 python scripts/web_chart.py                          # resumes from points.json and the sample store
     nice -n 10 python scripts/web_chart.py --fresh                  # recompute every point
     nice -n 10 python scripts/web_chart.py --scheduler tcp://host:8786   # on an existing cluster
 
@@ -88,28 +88,28 @@ def jobs() -> list[tuple[str, dict]]:
     return out
 
 
-def fe_runs(points: list[tuple[str, dict]]) -> list[dict]:
-    """The samples: the convergence study's three meshes at the centre, then each point on the
-    chart's two meshes (duplicates, such as the centre's, are computed once)."""
-    rate = [dict(c=CENTRE[0], q=CENTRE[1], mesh_share=s) for s in RATE_SHARES]
-    return rate + [dict(kw, mesh_share=s) for _, kw in points for s in wc.MESH_SHARES]
-
-
-def sweep(points: list[tuple[str, dict]], store: SampleStore, client) -> tuple[dict, float]:
-    """Run every FE mesh of ``points`` (and the convergence study) as study samples; the
-    points.json table and the FE seconds summed over the runs."""
-    samples = fe_runs(points)
-    records, summary = run_samples(ChartMesh(), samples, store, client, batch_size=1, label="web chart")
+def sweep(points: list[tuple[str, dict]], store: SampleStore, client, known: dict | None = None) -> tuple[dict, float]:
+    """Run every FE mesh of ``points`` (and the convergence study) as study samples, except the
+    points (and the convergence study, ``"rate"``) already in ``known`` (an earlier points.json);
+    the points.json table and the FE seconds summed over the runs made or found stored."""
+    known = dict(known or {})
+    todo = [(k, kw) for k, kw in points if k not in known]
+    rate_runs = [] if "rate" in known else [dict(c=CENTRE[0], q=CENTRE[1], mesh_share=s) for s in RATE_SHARES]
+    samples = rate_runs + [dict(kw, mesh_share=s) for _, kw in todo for s in wc.MESH_SHARES]
+    records, _ = run_samples(ChartMesh(), samples, store, client, batch_size=1, label="web chart")
     failed = [(s, r["error"]) for s, r in zip(samples, records) if "error" in r]
     if failed:
         raise SystemExit(f"web chart: {len(failed)} FE runs failed; first {failed[0][0]}: {failed[0][1]}")
     out = [r["outputs"] for r in records]
-    rate = out[:len(RATE_SHARES)]
-    p = wc.convergence_rate([v["le_dt"] for v in rate], RATE_SHARES)
-    done = {"rate": {"shares": RATE_SHARES, "le_dt": [v["le_dt"] for v in rate], "p": p,
-                     "seconds": sum(v["seconds"] for v in rate)}}
-    for n, (k, kw) in enumerate(points):
-        a, b = out[len(RATE_SHARES) + 2 * n:len(RATE_SHARES) + 2 * n + 2]
+    done = known
+    if rate_runs:
+        rate = out[:len(RATE_SHARES)]
+        done["rate"] = {"shares": RATE_SHARES, "le_dt": [v["le_dt"] for v in rate],
+                        "p": wc.convergence_rate([v["le_dt"] for v in rate], RATE_SHARES),
+                        "seconds": sum(v["seconds"] for v in rate)}
+    p = done["rate"]["p"]
+    for n, (k, kw) in enumerate(todo):
+        a, b = out[len(rate_runs) + 2 * n:len(rate_runs) + 2 * n + 2]
         done[k] = {**kw, "le_dt": richardson(a["le_dt"], b["le_dt"], *wc.MESH_SHARES, p),
                    "le_dt_meshes": [a["le_dt"], b["le_dt"]], "dofs": [a["dofs"], b["dofs"]],
                    "seconds": a["seconds"] + b["seconds"]}
@@ -119,16 +119,20 @@ def sweep(points: list[tuple[str, dict]], store: SampleStore, client) -> tuple[d
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fresh", action="store_true", help="recompute every point (a new, temporary sample store)")
+    ap.add_argument("--fresh", action="store_true",
+                    help="recompute every point (ignore results/chart/points.json, a new temporary sample store)")
     ap.add_argument("--store", help="sample store (default $FETORSION_STORE, else ~/.cache/fetorsion/samples)")
     ap.add_argument("--scheduler", help="an existing Dask scheduler (default $DASK_SCHEDULER_ADDRESS, else local)")
     ap.add_argument("--workers", type=int, help="local cluster's worker processes (default one per core)")
     args = ap.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
     t_start = time.perf_counter()
+    known = {} if args.fresh or not POINTS.exists() else json.loads(POINTS.read_text())
     with tempfile.TemporaryDirectory() as tmp, ClusterOnDemand(args.scheduler, args.workers) as client:
         store = SampleStore(tmp if args.fresh else args.store or default_store())
-        done, fe_seconds = sweep(jobs(), store, client)
+        done, fe_seconds = sweep(jobs(), store, client, known)
+    if known:  # points taken from points.json: their FE time is the one recorded there
+        fe_seconds = done["rate"]["seconds"] + sum(v["seconds"] for k, v in done.items() if k != "rate")
     wall = time.perf_counter() - t_start
     p = done["rate"]["p"]
     print(f"observed order p = {p:.3f}", flush=True)
