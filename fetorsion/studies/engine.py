@@ -343,9 +343,10 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
     bar = Progress(len(set(keys)), stored_before, label) if progress else None
     failed = 0
 
-    def keep(key: str, record: dict) -> None:
+    def keep(key: str, record: dict, persist: bool = True) -> None:
         nonlocal failed
-        store.put(key, record)
+        if persist:
+            store.put(key, record)
         records[key] = record
         failed += "error" in record
         if bar:
@@ -364,9 +365,26 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
     return [records[k] for k in keys], summary
 
 
+def check_worker_code(client) -> None:
+    """Every worker must run the fetorsion the client runs: sample keys hash the client's
+    source, so a worker with other code would store its numbers under this code's keys."""
+    mine = code_hash()
+    try:
+        theirs = client.run(code_hash)
+    except Exception as exc:  # e.g. a worker machine without fetorsion installed
+        raise FetorsionError(f"the Dask workers could not run fetorsion ({type(exc).__name__}: {exc}); "
+                             "install it on every worker machine") from None
+    other = sorted(w for w, h in theirs.items() if h != mine)
+    if other:
+        raise FetorsionError(f"{len(other)} of {len(theirs)} Dask workers ({', '.join(other[:3])}) run a fetorsion "
+                             "whose source differs from this one; install the same version on every worker")
+
+
 def _run_on_cluster(client, model, todo, batch_size, keep) -> None:
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
+
+    check_worker_code(client)
 
     # The model travels inside each task (a few kB), not scattered once: scattered data lost
     # with a worker cannot be recomputed, and every task needing it would be cancelled.
@@ -390,9 +408,13 @@ def _run_on_cluster(client, model, todo, batch_size, keep) -> None:
                     continue
                 results = [(batch[0][0], {"error": f"the worker running this sample died repeatedly ({exc})",
                                           "values": batch[0][1], "model": model.key})]
-            except Exception as exc:  # the task itself failed after its retries
-                results = [(k, {"error": f"{type(exc).__name__}: {exc}", "values": v, "model": model.key})
-                           for k, v in batch]
+            except Exception as exc:  # the task itself failed after its retries: the cluster's
+                # fault, not the samples' (a worker without fetorsion, a lost connection), so they
+                # are reported but not stored: the next run computes them
+                for k, v in batch:
+                    keep(k, {"error": f"{type(exc).__name__}: {exc} (not stored: computed again next run)",
+                             "values": v, "model": model.key}, persist=False)
+                continue
             for key, record in results:
                 keep(key, record)
     finally:
