@@ -264,3 +264,19 @@ def test_a_sample_that_kills_its_worker_is_recorded_and_its_batch_mates_are_not(
     assert [r["outputs"]["y"] for i, r in enumerate(records) if i != 5] == pytest.approx(
         Ishigami.evaluate(np.array([[s["x1"], 0.0, 0.0] for i, s in enumerate(samples) if i != 5]), A, B).tolist(),
         rel=1e-15)
+
+
+@pytest.mark.slow
+@pytest.mark.fe
+def test_fe_study_on_the_cluster_equals_direct_fe_runs(client, tmp_path):
+    # Two FE samples on the workers (one BLAS thread each) against the same variants solved
+    # here: the same mesh and solver, so the same f1 up to the solver's round-off (1e-8).
+    from fetorsion.studies.variants import with_values
+
+    crank = fetorsion.load(Path(__file__).resolve().parents[1] / "geometry" / "peugeot_glx.toml")
+    res = fetorsion.run_crank_study(crank, "montecarlo", 2, "fe", inputs=["webs.*.thickness", "material"],
+                                    mesh_size=0.03, client=client, store=SampleStore(tmp_path), progress=False)
+    assert not res.errors and res.held == []
+    for values, f1 in zip(res.values, res.Y["f1"]):
+        direct = fetorsion.run_modal(with_values(crank, values, details=False), 0.03, modes=12).first_torsional()
+        assert f1 == pytest.approx(direct, rel=1e-8)
