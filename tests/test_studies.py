@@ -208,7 +208,9 @@ def test_cli_study_on_an_existing_scheduler_writes_the_table(tmp_path, monkeypat
     for r in rows[:3]:  # each row's f1 is the lumped model of that row's inputs
         values = {k: float(v) for k, v in r.items() if k not in ("run", "f1", "error")}
         assert float(r["f1"]) == lumped(with_values(crank, values), 17).frequencies_hz[0]
-    assert "measured f1 905.9 Hz" in capsys.readouterr().out
+    printed = capsys.readouterr()
+    assert "measured f1 905.9 Hz" in printed.out
+    assert "40/40 samples" in printed.err and "1 workers" in printed.err  # progress on the terminal (stderr)
 
 
 def test_distributions_from_the_file_shape_the_monte_carlo_samples():
