@@ -34,6 +34,8 @@ def test_run_writes_report_consistent_with_the_api(tmp_path):
     swing = {r["field"]: abs(r["f1_high_hz"] - r["f1_low_hz"]) for r in sens["rows"]}
     st = dict(zip([i["name"] for i in sob["inputs"]], sob["indices"]["f1"]["ST"]))
     assert max(st, key=st.get) == max(swing, key=swing.get) and "### Sobol' indices of f1" in report
+    page = (out / "report.html").read_text()
+    assert 'id="f1_montecarlo"' in page and 'id="f1_sobol"' in page  # interactive in the web page
 
 
 @pytest.mark.fe
