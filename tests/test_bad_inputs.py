@@ -532,6 +532,12 @@ def test_study_scheduler_from_the_environment_is_checked_by_name(tmp_path, capsy
     _check(case, tmp_path, capsys, monkeypatch)
 
 
+def test_run_checks_the_scheduler_from_the_environment_before_any_work(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", "tcp://host:port")
+    case = ("run-env-scheduler", "run {d}/crank.toml --out {d}/new --no-fe", {}, 2, ["DASK_SCHEDULER_ADDRESS"])
+    _check(case, tmp_path, capsys, monkeypatch)
+
+
 def test_unreachable_scheduler_is_one_message():
     from fetorsion.errors import FetorsionError
     from fetorsion.studies.engine import open_client

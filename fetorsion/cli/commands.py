@@ -485,6 +485,13 @@ def check_options(args) -> None:
     mesh = getattr(args, "mesh", None)
     if mesh is not None and not Path(mesh).is_file():
         raise FetorsionError(f"--mesh {mesh}: no such file")
+    if args.command in ("run", "study") and not getattr(args, "scheduler", None):
+        # Both run their studies on the cluster this names, if it is set.
+        from ..studies.engine import SCHEDULER_ENV, check_scheduler, scheduler_address
+
+        address, _ = scheduler_address(None)
+        if address:
+            check_scheduler(address, SCHEDULER_ENV)
 
 
 def main(argv=None) -> int:
