@@ -15,6 +15,7 @@ from .errors import DescriptionError, FetorsionError
 from .lumped_model.lumped import PARTITIONS, LumpedResult, lumped
 from .response.forced import run_response
 from .studies.sensitivity import run_sensitivity, with_values
+from .studies.study import run_crank_study
 
 
 def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, **kwargs):
@@ -29,5 +30,5 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
 
 
 __all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "PARTITIONS", "load", "lumped",
-           "run_campbell", "run_modal", "run_response", "run_sensitivity", "with_values"]
+           "run_campbell", "run_crank_study", "run_modal", "run_response", "run_sensitivity", "with_values"]
 __version__ = "0.1.0"

@@ -13,6 +13,7 @@ anything else is refused unless the user forces it (:func:`check_report_folder`)
 from __future__ import annotations
 
 import glob
+import itertools
 import json
 import os
 import shutil
@@ -99,6 +100,48 @@ def save_figure_atomic(fig, path, close: bool = False, **kwargs) -> None:
             import matplotlib.pyplot as plt
 
             plt.close(fig)
+
+
+_SMALL_COUNTER = itertools.count()
+
+
+def write_small_atomic(path, data: bytes) -> None:
+    """Write ``data`` to ``path`` atomically, for many small files (a study's sample store).
+
+    The same temporary naming as :func:`atomic_output` (so :func:`remove_stale_siblings`
+    recognises a killed writer's leftover), without its per-write search for stale siblings:
+    the caller sweeps a whole tree once with :func:`remove_stale_temporaries`.
+    """
+    path = Path(path)
+    tmp = path.parent / f"{_tmp_prefix(path)}{next(_SMALL_COUNTER)}"
+    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
+    try:
+        fd = os.open(tmp, flags, 0o666)
+    except FileNotFoundError:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd = os.open(tmp, flags, 0o666)
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+
+
+def remove_stale_temporaries(folder) -> int:
+    """Remove, anywhere below ``folder``, the temporaries of fetorsion writers that no longer
+    run; returns how many."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        return 0
+    stale = 0
+    for entry in folder.rglob(f".*{TMP_TAG}*"):
+        pid = entry.name.split(TMP_TAG, 1)[1].split("-", 1)[0]
+        if pid.isdigit() and not _pid_alive(int(pid)) and entry.is_file():
+            entry.unlink(missing_ok=True)
+            stale += 1
+    return stale
 
 
 def _umask() -> int:

@@ -1,9 +1,14 @@
 """Compute the web chart (issue 8): FE L_e0/D_t over (c, q) plus fillet and oil-hole sweeps.
 
-Run from the repository root (about 10 minutes on 2 shared cores, one FE job at a time):
+Every FE run (one throw, one mesh) is a sample of a study on the local Dask cluster
+(issue 15, :mod:`fetorsion.studies.engine`): runs go to the workers in parallel and each
+is stored as it finishes, so an interrupted sweep resumes where it stopped and a point
+shared by two uses (the convergence study's two finer meshes are the centre point's) is
+computed once. Run from the repository root (one FE job per worker, one BLAS thread each):
 
-    nice -n 10 python scripts/web_chart.py            # resumes from results/chart/points.json
-    nice -n 10 python scripts/web_chart.py --fresh    # recompute every point
+    nice -n 10 python scripts/web_chart.py                          # resumes from points.json and the sample store
+    nice -n 10 python scripts/web_chart.py --fresh                  # recompute every point
+    nice -n 10 python scripts/web_chart.py --scheduler tcp://host:8786   # on an existing cluster
 
 Writes ``fetorsion/data/web_chart.json`` (the table the ``chart`` web method interpolates),
 ``results/chart/points.json`` (every FE point, both meshes, timings),
@@ -16,6 +21,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -29,8 +35,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from fetorsion.webs import chart as wc  # noqa: E402
+from fetorsion.extrapolation import richardson  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
+from fetorsion.studies.engine import ClusterOnDemand, SampleStore, default_store, run_samples  # noqa: E402
+from fetorsion.webs import chart as wc  # noqa: E402
 
 OUT = ROOT / "results" / "chart"
 POINTS = OUT / "points.json"
@@ -47,57 +55,93 @@ OIL_HOLES = [0.05, 0.08, 0.12]      # φ / D_t, journals and pin drilled
 #: Where the corrections are checked away from the centre (r/D_t = 0.045, φ/D_t = 0.08).
 CORRECTION_CHECKS = [(0.1, 1.4), (0.5, 0.7)]
 D_T = 0.06
+#: The convergence study's meshes at the centre: the chart's two and a finer one.
+RATE_SHARES = [*wc.MESH_SHARES, 1.0 / 16.0]
 
 
 def key(kind, *args) -> str:
     return kind + ":" + ",".join(f"{a:g}" for a in args)
 
 
+class ChartMesh:
+    """One FE run of the chart family's throw on one mesh: a sample ``{c, q, mesh_share, and
+    split / fillet / oil_hole}`` in, ``le_dt``, ``dofs``, ``seconds`` out."""
+
+    key = f"web-chart-mesh/d_t={D_T!r}"
+    expensive = True
+
+    def __call__(self, v: dict) -> dict:
+        v = dict(v)
+        return wc.chart_point_fe(v.pop("c"), v.pop("q"), v.pop("mesh_share"), d_t=D_T, **v)
+
+
+def jobs() -> list[tuple[str, dict]]:
+    """Every chart point: (its key in points.json, its throw's parameters)."""
+    out = [(key("grid", c, q), dict(c=c, q=q)) for c in C_GRID for q in Q_GRID]
+    out += [(key("held", c, q), dict(c=c, q=q)) for c, q in HELD_OUT]
+    out += [(key("split", c, q, s), dict(c=c, q=q, split=s)) for c, q, s in SPLITS]
+    out += [(key("fillet", *CENTRE, r), dict(c=CENTRE[0], q=CENTRE[1], fillet=r * D_T)) for r in FILLETS]
+    out += [(key("oil", *CENTRE, h), dict(c=CENTRE[0], q=CENTRE[1], oil_hole=h * D_T)) for h in OIL_HOLES]
+    out += [(key("base", c, q), dict(c=c, q=q)) for c, q in CORRECTION_CHECKS]
+    out += [(key("fillet", c, q, 0.045), dict(c=c, q=q, fillet=0.045 * D_T)) for c, q in CORRECTION_CHECKS]
+    out += [(key("oil", c, q, 0.08), dict(c=c, q=q, oil_hole=0.08 * D_T)) for c, q in CORRECTION_CHECKS]
+    return out
+
+
+def sweep(points: list[tuple[str, dict]], store: SampleStore, client, known: dict | None = None) -> tuple[dict, float]:
+    """Run every FE mesh of ``points`` (and the convergence study) as study samples, except the
+    points (and the convergence study, ``"rate"``) already in ``known`` (an earlier points.json);
+    the points.json table and the FE seconds summed over the runs made or found stored."""
+    known = dict(known or {})
+    todo = [(k, kw) for k, kw in points if k not in known]
+    rate_runs = [] if "rate" in known else [dict(c=CENTRE[0], q=CENTRE[1], mesh_share=s) for s in RATE_SHARES]
+    samples = rate_runs + [dict(kw, mesh_share=s) for _, kw in todo for s in wc.MESH_SHARES]
+    records, _ = run_samples(ChartMesh(), samples, store, client, batch_size=1, label="web chart")
+    failed = [(s, r["error"]) for s, r in zip(samples, records) if "error" in r]
+    if failed:
+        raise SystemExit(f"web chart: {len(failed)} FE runs failed; first {failed[0][0]}: {failed[0][1]}")
+    out = [r["outputs"] for r in records]
+    done = known
+    if rate_runs:
+        rate = out[:len(RATE_SHARES)]
+        done["rate"] = {"shares": RATE_SHARES, "le_dt": [v["le_dt"] for v in rate],
+                        "p": wc.convergence_rate([v["le_dt"] for v in rate], RATE_SHARES),
+                        "seconds": sum(v["seconds"] for v in rate)}
+    p = done["rate"]["p"]
+    for n, (k, kw) in enumerate(todo):
+        a, b = out[len(rate_runs) + 2 * n:len(rate_runs) + 2 * n + 2]
+        done[k] = {**kw, "le_dt": richardson(a["le_dt"], b["le_dt"], *wc.MESH_SHARES, p),
+                   "le_dt_meshes": [a["le_dt"], b["le_dt"]], "dofs": [a["dofs"], b["dofs"]],
+                   "seconds": a["seconds"] + b["seconds"]}
+    unique = {id(r): r for r in records}.values()  # a shared run is one record
+    return done, sum(r.get("seconds", 0.0) for r in unique)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--fresh", action="store_true", help="ignore results/chart/points.json")
+    ap.add_argument("--fresh", action="store_true",
+                    help="recompute every point (ignore results/chart/points.json, a new temporary sample store)")
+    ap.add_argument("--store", help="sample store (default $FETORSION_STORE, else ~/.cache/fetorsion/samples)")
+    ap.add_argument("--scheduler", help="an existing Dask scheduler (default $DASK_SCHEDULER_ADDRESS, else local)")
+    ap.add_argument("--workers", type=int, help="local cluster's worker processes (default one per core)")
     args = ap.parse_args(argv)
     OUT.mkdir(parents=True, exist_ok=True)
-    done = {} if args.fresh or not POINTS.exists() else json.loads(POINTS.read_text())
     t_start = time.perf_counter()
-
-    def save():
-        write_text_atomic(POINTS, json.dumps(done, indent=1))
-
-    # 1. Observed convergence order at the centre, three meshes.
-    if "rate" not in done:
-        shares = [*wc.MESH_SHARES, 1.0 / 16.0]
-        vals = [wc.chart_point_fe(*CENTRE, s, d_t=D_T) for s in shares]
-        done["rate"] = {"shares": shares, "le_dt": [v["le_dt"] for v in vals],
-                        "p": wc.convergence_rate([v["le_dt"] for v in vals], shares),
-                        "seconds": sum(v["seconds"] for v in vals)}
-        save()
+    known = {} if args.fresh or not POINTS.exists() else json.loads(POINTS.read_text())
+    with tempfile.TemporaryDirectory() as tmp, ClusterOnDemand(args.scheduler, args.workers) as client:
+        store = SampleStore(tmp if args.fresh else args.store or default_store())
+        done, fe_seconds = sweep(jobs(), store, client, known)
+    if known:  # points taken from points.json: their FE time is the one recorded there
+        fe_seconds = done["rate"]["seconds"] + sum(v["seconds"] for k, v in done.items() if k != "rate")
+    wall = time.perf_counter() - t_start
     p = done["rate"]["p"]
     print(f"observed order p = {p:.3f}", flush=True)
-
-    jobs = [(key("grid", c, q), dict(c=c, q=q)) for c in C_GRID for q in Q_GRID]
-    jobs += [(key("held", c, q), dict(c=c, q=q)) for c, q in HELD_OUT]
-    jobs += [(key("split", c, q, s), dict(c=c, q=q, split=s)) for c, q, s in SPLITS]
-    jobs += [(key("fillet", *CENTRE, r), dict(c=CENTRE[0], q=CENTRE[1], fillet=r * D_T)) for r in FILLETS]
-    jobs += [(key("oil", *CENTRE, h), dict(c=CENTRE[0], q=CENTRE[1], oil_hole=h * D_T)) for h in OIL_HOLES]
-    jobs += [(key("base", c, q), dict(c=c, q=q)) for c, q in CORRECTION_CHECKS]
-    jobs += [(key("fillet", c, q, 0.045), dict(c=c, q=q, fillet=0.045 * D_T)) for c, q in CORRECTION_CHECKS]
-    jobs += [(key("oil", c, q, 0.08), dict(c=c, q=q, oil_hole=0.08 * D_T)) for c, q in CORRECTION_CHECKS]
-    for n, (k, kw) in enumerate(jobs):
-        if k in done:
-            continue
-        c, q = kw.pop("c"), kw.pop("q")
-        done[k] = wc.chart_point(c, q, p, d_t=D_T, **kw)
-        save()
-        print(f"[{n + 1}/{len(jobs)}] {k}: L_e0/D_t = {done[k]['le_dt']:.4f} ({done[k]['seconds']:.1f} s)", flush=True)
-    wall = time.perf_counter() - t_start
-
+    write_text_atomic(POINTS, json.dumps(done, indent=1))
     table = build_table(done, p)
     write_text_atomic(wc.CHART_FILE, json.dumps(table, indent=1))
-    fe_seconds = done["rate"]["seconds"] + sum(v["seconds"] for k, v in done.items() if k != "rate")
     write_text_atomic(OUT / "web_chart.md", markdown(table, done, fe_seconds))
     plot(table, done)
-    print(f"{len(jobs)} points, FE time {fe_seconds:.0f} s, wall this run {wall:.0f} s", flush=True)
+    print(f"{len(done) - 1} points, FE time {fe_seconds:.0f} s, wall this run {wall:.0f} s", flush=True)
     return 0
 
 
@@ -193,9 +237,10 @@ def markdown(table: dict, done: dict, fe_seconds: float) -> str:
     lines += [f"| {k['kind']} ΔL | {k['c']:g} | {k['q']:g} | {k['fe']:+.4f} | {k['chart']:+.4f} |"
               for k in v["correction_checks"]]
     n = len([k for k in done if k != "rate"])
-    lines += ["", f"Sweep: {n} chart points (two meshes each) plus a three-mesh convergence study; "
-              f"{fe_seconds:.0f} s of FE wall time in all (meshing included, one job at a time on 2 CPU cores "
-              "shared with other work).", ""]
+    lines += ["", f"Sweep: {n} chart points (two meshes each) plus a three-mesh convergence study (its two coarser "
+              f"meshes are the centre point's); {fe_seconds:.0f} s of FE time summed over the runs (meshing "
+              "included; each run a sample on a Dask cluster, one BLAS thread per worker, 2 CPU cores shared with "
+              "other work).", ""]
     return "\n".join(lines)
 
 

@@ -1,4 +1,8 @@
+import atexit
 import copy
+import os
+import shutil
+import tempfile
 import tomllib
 from pathlib import Path
 
@@ -6,6 +10,11 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 GEOMETRY = ROOT / "geometry"
+
+# Studies keep every sample's result in a store (default ~/.cache/fetorsion/samples): the tests,
+# and the command lines they start, use a store of their own that lives as long as the session.
+os.environ["FETORSION_STORE"] = tempfile.mkdtemp(prefix="fetorsion-test-store-")
+atexit.register(shutil.rmtree, os.environ["FETORSION_STORE"], ignore_errors=True)
 
 
 def read_raw(name: str) -> dict:

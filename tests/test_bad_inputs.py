@@ -270,6 +270,51 @@ CASES = [
     ("flywheel-rpm-negative", "flywheel {d}/crank.toml --rpm -1", {}, 2, ["--rpm"]),
     ("balance-crank", "balance {d}/crank.toml", {}, 2, ["mechanics file"]),
     ("balance-json-txt", "balance {d}/mech.toml --json {d}/out.txt", {}, 2, ["--json"]),
+    # --- [distributions] of the [uncertainty] inputs (issue 15)
+    ("dist-unknown-entry", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\n"webs.*.width" = "normal"\n'},
+     2, ["distributions.webs.*.width", "no [uncertainty] entry"]),
+    ("dist-kind", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\n"webs.*.thickness" = "gamma"\n'},
+     2, ["distributions.webs.*.thickness", "triangular"]),
+    ("dist-normal-no-sd", "lumped {d}/x.toml", {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal" }\n'},
+     2, ["distributions.material.sd", "sd > 0"]),
+    ("dist-normal-sd-negative", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal", sd = -1.0e9 }\n'}, 2,
+     ["distributions.material.sd"]),
+    ("dist-triangular-sd", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "triangular", sd = 1.0e9 }\n'}, 2,
+     ["distributions.material.sd", "only a normal"]),
+    ("dist-extra-key", "lumped {d}/x.toml",
+     {"x.toml": RENAULT + '\n[distributions]\nmaterial = { kind = "normal", sd = 1.0e9, mean = 2.0e11 }\n'}, 2,
+     ["distributions.material", "mean"]),
+    ("dist-triangular-at-high", "lumped {d}/x.toml",  # the webs' nominal 22 mm made the high bound
+     {"x.toml": edit('"webs.*.thickness" = [19.0, 25.0]', '"webs.*.thickness" = [19.0, 22.0]')
+      + '\n[distributions]\n"webs.*.thickness" = "triangular"\n'}, 2,
+     ["distributions.webs.*.thickness", "below the high bound"]),
+    # --- fetorsion study (issue 15): every option refused before the cluster starts
+    ("study-method", "study {d}/crank.toml --method latin", {}, 2, ["--method", "latin"]),
+    ("study-samples-0", "study {d}/crank.toml --samples 0", {}, 2, ["--samples"]),
+    ("study-sobol-not-pow2", "study {d}/crank.toml --method sobol --samples 100", {}, 2, ["--samples", "power of 2"]),
+    ("study-grid-too-big", "study {d}/crank.toml --method grid --samples 10", {}, 2, ["--samples", "--inputs"]),
+    ("study-output-unknown", "study {d}/crank.toml --outputs f1,f9", {}, 2, ["--outputs", "f9"]),
+    ("study-output-empty", "study {d}/crank.toml --outputs f1,,f2", {}, 2, ["--outputs"]),
+    ("study-fe-severity", "study {d}/crank.toml --model fe --outputs severity", {}, 2, ["--outputs", "severity"]),
+    ("study-severity-no-excitation", "study {d}/x.toml --outputs severity",
+     {"x.toml": RENAULT.split("[excitation]")[0] + "[uncertainty]" + RENAULT.split("[uncertainty]")[1]}, 2,
+     ["--outputs severity", "[excitation]"]),
+    ("study-input-unknown", "study {d}/crank.toml --inputs webs.*.thickness,bore", {}, 2, ["--inputs", "bore"]),
+    ("study-fe-fillets", "study {d}/crank.toml --model fe --inputs fillets.pin", {}, 2, ["--inputs", "fillets.pin"]),
+    ("study-model", "study {d}/crank.toml --model lumped7", {}, 2, ["--model"]),
+    ("study-workers-0", "study {d}/crank.toml --workers 0", {}, 2, ["--workers"]),
+    ("study-workers-scheduler", "study {d}/crank.toml --workers 2 --scheduler tcp://127.0.0.1:8786", {}, 2,
+     ["--workers", "--scheduler"]),
+    ("study-scheduler-port", "study {d}/crank.toml --scheduler tcp://host:port", {}, 2, ["--scheduler", "host:port"]),
+    ("study-seed", "study {d}/crank.toml --seed -1", {}, 2, ["--seed"]),
+    ("study-no-uncertainty", "study {d}/x.toml", {"x.toml": CERTAIN}, 2, ["x.toml", "[uncertainty]"]),
+    ("study-chain", "study {d}/chain.toml", {}, 2, ["chain.toml", "chain file"]),
+    ("study-out-user-folder", "study {d}/crank.toml --out {d}/report", {}, 2, ["--out", "not a fetorsion report"]),
+    ("study-out-holds-input", "study {d}/crank.toml --out {d} --force", {}, 2, ["--out", "crank.toml"]),
+    ("study-store-file", "study {d}/crank.toml --store {d}/notes.txt", {}, 2, ["--store", "not a folder"]),
+    ("study-fe-tiny-mesh", "study {d}/crank.toml --model fe --mesh-size 0.01", {}, 2, ["--mesh-size", "GiB"]),
     ("no-command", "", {}, 2, ["command"]),
     ("unknown-command", "frobnicate {d}/crank.toml", {}, 2, ["frobnicate"]),
 ]
@@ -499,3 +544,24 @@ def test_native_abort_in_isolated_call_is_an_ordinary_error():
     with pytest.raises(FetorsionError, match="SIGABRT"):
         call_isolated(os.abort, what="Gmsh")
     assert call_isolated(sum, [1, 2, 3]) == 6
+
+
+def test_study_scheduler_from_the_environment_is_checked_by_name(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", "tcp://host:port")
+    case = ("study-env-scheduler", "study {d}/crank.toml", {}, 2, ["DASK_SCHEDULER_ADDRESS", "host:port"])
+    _check(case, tmp_path, capsys, monkeypatch)
+
+
+def test_run_checks_the_scheduler_from_the_environment_before_any_work(tmp_path, capsys, monkeypatch):
+    monkeypatch.setenv("DASK_SCHEDULER_ADDRESS", "tcp://host:port")
+    case = ("run-env-scheduler", "run {d}/crank.toml --out {d}/new --no-fe", {}, 2, ["DASK_SCHEDULER_ADDRESS"])
+    _check(case, tmp_path, capsys, monkeypatch)
+
+
+def test_unreachable_scheduler_is_one_message():
+    from fetorsion.errors import FetorsionError
+    from fetorsion.studies.engine import open_client
+
+    with pytest.raises(FetorsionError, match="--scheduler tcp://127.0.0.1:1: no scheduler answered"):
+        with open_client("tcp://127.0.0.1:1", timeout_s=1.0):
+            pass

@@ -22,9 +22,20 @@ def test_run_writes_report_consistent_with_the_api(tmp_path):
     f17 = data["lumped"]["carter"][2]["frequencies_hz"][0]
     assert f17 == pytest.approx(fetorsion.lumped(fetorsion.load(GEOMETRY / "peugeot_glx.toml"), 17).frequencies_hz[0],
                                 rel=1e-12)
-    for img in ("lumped_modes_17dof.png", "sensitivity.png"):
+    for img in ("lumped_modes_17dof.png", "sensitivity.png", "f1_montecarlo.png", "f1_sobol.png"):
         assert_picture(out / img)
     assert [p.name for p in tmp_path.iterdir()] == ["glx"]  # no temporary folder left
+    # Monte Carlo band against the corner band (f1 is monotone in each input, so the corners
+    # bound every sample), and the Sobol' ranking against the one-at-a-time swings.
+    mc, sob, sens = data["studies"]["montecarlo"], data["studies"]["sobol"], data["sensitivity"]
+    assert mc["runs"] == 2000 and mc["failed"] == 0 and "### Monte Carlo distribution of f1" in report
+    lo, hi = sens["band_hz"]
+    assert lo < mc["bands"]["f1"]["p5"] < mc["bands"]["f1"]["p50"] < mc["bands"]["f1"]["p95"] < hi
+    swing = {r["field"]: abs(r["f1_high_hz"] - r["f1_low_hz"]) for r in sens["rows"]}
+    st = dict(zip([i["name"] for i in sob["inputs"]], sob["indices"]["f1"]["ST"]))
+    assert max(st, key=st.get) == max(swing, key=swing.get) and "### Sobol' indices of f1" in report
+    page = (out / "report.html").read_text()
+    assert 'id="f1_montecarlo"' in page and 'id="f1_sobol"' in page  # interactive in the web page
 
 
 @pytest.mark.fe

@@ -21,6 +21,9 @@ from fetorsion.fe.tetmesh import cylinder_mesh  # noqa: E402
 from fetorsion.mechanics.balance import minmax_overbalance, residual_locus  # noqa: E402
 from fetorsion.mechanics.flywheel import size_flywheel  # noqa: E402
 from fetorsion.mechanics.planetary import planetary  # noqa: E402
+from fetorsion.studies.models import make_model  # noqa: E402
+from fetorsion.studies.sampling import study_inputs  # noqa: E402
+from fetorsion.studies.study import run_study  # noqa: E402
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
 
@@ -31,6 +34,8 @@ def _results():
     yield "campbell", lambda: fetorsion.run_campbell(RENAULT)
     yield "response", lambda: fetorsion.run_response(RENAULT, rpm=[1000.0, 2000.0, 3000.0])
     yield "sensitivity", lambda: fetorsion.run_sensitivity(RENAULT)
+    yield "study", lambda: run_study(make_model(RENAULT, "lumped17"), study_inputs(RENAULT)[0], "sobol", 8,
+                                     progress=False)
     yield "kinematics", lambda: kinematics(np.radians(np.arange(0, 361, 30.0)), 0.04, 0.14, 300.0, name="k")
     yield "flywheel", lambda: size_flywheel(7000.0, 3000.0, 0.04, 0.27, 0.21, 0.085)
     yield "planetary", lambda: planetary("epicycloid", 0.06, 0.02, 0.2)

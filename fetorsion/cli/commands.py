@@ -11,6 +11,7 @@ from pathlib import Path
 import numpy as np
 
 from . import mechanics as cli_mechanics
+from . import study as cli_study
 from .options import MM, integer, millimetres, read_compare_csv, real
 from ..description.crank import load
 from ..description.model import Chain
@@ -472,6 +473,7 @@ def build_parser() -> argparse.ArgumentParser:
     sp.set_defaults(func=cmd_sensitivity)
 
     cli_mechanics.add_parsers(sub, _emit_json)
+    cli_study.add_parser(sub, _load_crank, check_mesh_size)
 
     up = sub.add_parser("run", help="the main job: every analysis of a crank into one report folder")
     up.add_argument("file", nargs="?", help="crank description or chain file (default geometry/renault21.toml; "
@@ -556,6 +558,13 @@ def check_options(args) -> None:
     mesh = getattr(args, "mesh", None)
     if mesh is not None and not Path(mesh).is_file():
         raise FetorsionError(f"--mesh {mesh}: no such file")
+    if args.command in ("run", "study") and not getattr(args, "scheduler", None):
+        # Both run their studies on the cluster this names, if it is set.
+        from ..studies.engine import SCHEDULER_ENV, check_scheduler, scheduler_address
+
+        address, _ = scheduler_address(None)
+        if address:
+            check_scheduler(address, SCHEDULER_ENV)
 
 
 def main(argv=None) -> int:

@@ -340,13 +340,14 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
         t.finish()
     bearings = _bearings(root.table("bearings"), journals) if "bearings" in data else None
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
+    distributions = _distributions(root.table("distributions", required=False), uncertainty, data, problems)
     excitation = None
     if "excitation" in data:
         excitation = _excitation(root.table("excitation"), Path(source).parent, engine.strokes_per_cycle)
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
-                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings)
+                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings, distributions)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(_uncertainty_bound_problems(crank))
@@ -474,6 +475,52 @@ def _uncertainty(t: Table, data: dict, problems: list[Problem]):
     return tuple(out)
 
 
+#: Distributions an ``[uncertainty]`` input may have (``fetorsion study`` samples them; the
+#: one-at-a-time sensitivity and the grid use the range alone).
+DISTRIBUTIONS = ("uniform", "triangular", "normal")
+
+
+def _distributions(t: Table, uncertainty, data: dict, problems: list[Problem]):
+    """``[distributions]``: ``name = "uniform" | "triangular"`` or ``name = { kind = "normal",
+    sd = S }`` for an ``[uncertainty]`` entry (a group: its first member). Triangular peaks
+    at the nominal value, which must lie below the high bound; normal is centred on the
+    nominal value with standard deviation S (the member's file units), truncated to the range."""
+    entries = dict(uncertainty)
+    out = []
+    for name, spec in t.data.items():
+        t.used.add(name)
+        where = f"distributions.{name}"
+        if name not in entries:
+            problems.append(Problem(where, spec, "names no [uncertainty] entry"
+                                    + (f" (entries: {', '.join(entries)})" if entries else "")))
+            continue
+        kind, sd = (spec, None) if isinstance(spec, str) else (
+            (spec.get("kind"), spec.get("sd")) if isinstance(spec, dict) else (None, None))
+        extra = sorted(set(spec) - {"kind", "sd"}) if isinstance(spec, dict) else []
+        if kind not in DISTRIBUTIONS or extra:
+            problems.append(Problem(where, spec, f"must be one of {', '.join(DISTRIBUTIONS)}, or "
+                                                 "{ kind = \"normal\", sd = S }" + (f"; unknown key {extra[0]}" if extra else "")))
+            continue
+        if not entries[name]:  # the range itself was refused
+            continue
+        path, low, high = entries[name][0]
+        values = [v for _, v in resolve_field(data, path)]
+        nominal = sum(values) / len(values)
+        if kind == "normal" and not (finite_number(sd) and sd > 0):
+            problems.append(Problem(f"{where}.sd", sd, "a normal distribution needs sd > 0 (file units of "
+                                                         f"{path})"))
+            continue
+        if kind != "normal" and sd is not None:
+            problems.append(Problem(f"{where}.sd", sd, f"only a normal distribution takes sd, not {kind}"))
+            continue
+        if kind == "triangular" and not low <= nominal < high:
+            problems.append(Problem(where, spec, f"a triangular distribution peaks at the nominal {path} = "
+                                                 f"{nominal:g}, which must lie below the high bound {high:g}"))
+            continue
+        out.append((name, kind, float(sd) if kind == "normal" else None))
+    return tuple(out)
+
+
 def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
     """Rules that relate parts to each other. They run even when other fields are bad: a
     field that did not parse is NaN, and every comparison with NaN is false, so only rules
@@ -542,6 +589,7 @@ def _uncertainty_bound_problems(crank: Crank) -> list[Problem]:
         for which, pick in (("low", 1), ("high", 2)):
             raw = copy.deepcopy(crank.raw)
             raw.pop("uncertainty", None)
+            raw.pop("distributions", None)
             for member in members:
                 parent_path, _, key = member[0].rpartition(".")
                 for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):

@@ -204,6 +204,9 @@ class Crank:
     excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     bearings: Bearings | None = None
+    #: ``[distributions]``: (uncertainty entry, kind, standard deviation or None); an entry not
+    #: named is uniform over its range.
+    distributions: tuple[tuple[str, str, float | None], ...] = ()
 
     @property
     def cylinders(self) -> int:

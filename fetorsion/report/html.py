@@ -3,7 +3,7 @@ interactive figures in place of the still pictures.
 
 Everything is embedded (plotly.js, the data, the remaining PNGs as data URIs), so the file
 opens offline anywhere. Plotly draws every figure: the Campbell diagram, the forced
-response and the sensitivity with hover text, and each FE mode shape as a 3D surface that
+response, the sensitivity and the f1 studies (Monte Carlo histogram, Sobol' indices) with hover text, and each FE mode shape as a 3D surface that
 turns and zooms, coloured by displacement, with a deformation-scale slider and an animation
 of the oscillation (a few lines of glue that move the surface by ``scale * sin(phase)`` of
 the mode shape through ``Plotly.restyle``; the rendering is Plotly's).
@@ -188,6 +188,42 @@ def sensitivity_figure(sens, div: str) -> str:
     return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
 
 
+def montecarlo_figure(study, div: str) -> str:
+    """Histogram of f1 over the Monte Carlo runs, its 5-95 % band and the measured value."""
+    import plotly.graph_objects as go
+
+    y = study.Y["f1"][np.isfinite(study.Y["f1"])]
+    b = study.bands["f1"]
+    fig = go.Figure(go.Histogram(x=y, nbinsx=min(60, max(10, int(np.sqrt(len(y))))), name="runs",
+                                 hovertemplate="f1 %{x} Hz<br>%{y} runs<extra></extra>"))
+    fig.add_vrect(x0=b["p5"], x1=b["p95"], fillcolor="#1f77b4", opacity=0.12, line_width=0,
+                  annotation_text=f"5-95 %: {b['p5']:.0f}-{b['p95']:.0f} Hz")
+    if study.measured_hz is not None:
+        fig.add_vline(x=study.measured_hz, line_dash="dash", line_color="crimson",
+                      annotation_text=f"measured {study.measured_hz:g} Hz ({study.measured_percentile():.0f} % below)")
+    fig.update_layout(title=f"{study.name}: f1 over {len(y)} Monte Carlo runs ({study.model})",
+                      xaxis_title="first torsional frequency [Hz]", yaxis_title="runs", height=420, showlegend=False)
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+def sobol_figure(study, div: str) -> str:
+    """First-order and total Sobol' indices of f1 with their confidence half-widths."""
+    import plotly.graph_objects as go
+
+    idx = study.indices["f1"]
+    order = np.argsort(idx["ST"])
+    names = [study.input_names[j] for j in order]
+    fig = go.Figure()
+    for key, label in (("S1", "first order S1"), ("ST", "total ST")):
+        fig.add_trace(go.Bar(y=names, x=np.array(idx[key])[order], orientation="h", name=label,
+                             error_x={"type": "data", "array": np.array(idx[f"{key}_conf"])[order]},
+                             hovertemplate="%{y}<br>%{x:.3f} ± %{error_x.array:.3f}<extra>" + label + "</extra>"))
+    fig.update_layout(barmode="group", title=f"{study.name}: Sobol' indices of f1 ({len(study.X)} runs, "
+                                             "bars: 95 % confidence)",
+                      xaxis_title="share of the variance of f1", height=160 + 30 * len(names))
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
 _IMAGE = re.compile(r'<img alt="[^"]*" src="([^"]+\.png)"\s*/?>')
 
 
@@ -239,6 +275,11 @@ def report_html(crank, path, sections: dict, timings_s: dict, folder: Path) -> s
     sens = sections.get("sensitivity")
     if sens:
         figures["sensitivity.png"] = sensitivity_figure(sens["sensitivity"], "sensitivity")
+        studies, images = sens.get("studies"), sens.get("study_images", {})
+        if studies:
+            figures[images["montecarlo"]] = montecarlo_figure(studies["montecarlo"], "f1_montecarlo")
+            if "not_computed" not in studies["sobol"].indices["f1"]:
+                figures[images["sobol"]] = sobol_figure(studies["sobol"], "f1_sobol")
     fe = sections.get("fe")
     if fe and fe["images"]:
         res = fe["modal"]

@@ -133,7 +133,39 @@ def sensitivity_section(crank: Crank, outcome: dict | None) -> list[str]:
                   "| input | lumped | FE |", "|---|---|---|"]
         lines += [f"| {c['field']} | {c['lumped_change_percent']:+.1f} % | {c['fe_change_percent']:+.1f} % |"
                   for c in checks] + [""]
-    return lines + [f"![]({outcome['image']})", ""]
+    lines += [f"![]({outcome['image']})", ""]
+    return lines + studies_lines(sens, outcome.get("studies"), outcome.get("study_images", {}))
+
+
+def studies_lines(sens, studies: dict | None, images: dict) -> list[str]:
+    """The Monte Carlo band of f1 beside the one-at-a-time band, and the Sobol' indices."""
+    if not studies:
+        return []
+    mc, sob = studies["montecarlo"], studies["sobol"]
+    b = mc.bands["f1"]
+    lines = ["### Monte Carlo distribution of f1", "",
+             f"{len(mc.X)} runs of the {mc.model} model, every `[uncertainty]` input drawn uniformly over its range, "
+             f"independently (groups move together), seed {mc.seed}: f1 5–95 % **{b['p5']:.0f}–{b['p95']:.0f} Hz**, "
+             f"median {b['p50']:.0f} Hz (the one-at-a-time band above, every input at its worst bound at once, is "
+             f"{sens.band_hz[0]:.0f}–{sens.band_hz[1]:.0f} Hz: a bound, not a probability)."]
+    pct = mc.measured_percentile()
+    if pct is not None:
+        inside = b["p5"] <= mc.measured_hz <= b["p95"]
+        lines[-1] += (f" The measured {mc.measured_hz:g} Hz has **{pct:.1f} % of the runs below it**: "
+                      f"{'inside' if inside else 'outside'} the 5–95 % band.")
+    if mc.errors:
+        lines[-1] += f" {len(mc.errors)} runs failed (first: {mc.errors[0]['error']})."
+    lines += ["", f"![]({images['montecarlo']})", "", "### Sobol' indices of f1", ""]
+    idx = sob.indices["f1"]
+    if "not_computed" in idx:
+        return lines + [f"Not computed: {idx['not_computed']}", ""]
+    lines += [f"{len(sob.X)} runs ({sob.samples} base samples, Saltelli's scheme, SALib); ± the 95 % bootstrap "
+              "confidence half-width. S1: the share of f1's variance an input explains alone; ST: with its "
+              "interactions.", "", "| input | S1 | ST |", "|---|---|---|"]
+    order = sorted(range(len(sob.inputs)), key=lambda j: -idx["ST"][j])
+    lines += [f"| {sob.input_names[j]} | {idx['S1'][j]:.3f} ± {idx['S1_conf'][j]:.3f} | "
+              f"{idx['ST'][j]:.3f} ± {idx['ST_conf'][j]:.3f} |" for j in order]
+    return lines + ["", f"![]({images['sobol']})", ""]
 
 
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),

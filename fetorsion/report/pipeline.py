@@ -161,20 +161,42 @@ def step_campbell(ctx: RunContext) -> None:
                                            ctx.save(resp.plot().figure, "response.png")]}
 
 
+#: The report's studies of f1 (lumped 17 DOF, default web method): Monte Carlo runs, and
+#: Sobol' base samples (N·(inputs + 2) runs; 512 gives intervals of a few hundredths).
+REPORT_MONTECARLO_RUNS = 2000
+REPORT_SOBOL_BASE = 512
+
+
 def step_sensitivity(ctx: RunContext) -> None:
-    """f1 against each reconstructed input and the resulting band (needs [uncertainty])."""
+    """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
+    Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
+    The studies run on an embedded Dask cluster, each sample stored as it finishes."""
+    from ..studies.engine import ClusterOnDemand
+    from ..studies.models import make_model
+    from ..studies.sampling import study_inputs
     from ..studies.sensitivity import fe_check, run_sensitivity
+    from ..studies.study import run_study
 
     if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
         ctx.sections["sensitivity"] = None
         return
     sens = run_sensitivity(ctx.crank)
     ctx.results["sensitivity"] = sens.to_dict()
-    checks = fe_check(ctx.crank, sens) if ctx.fe is not None else []
+    inputs, _ = study_inputs(ctx.crank)
+    model = make_model(ctx.crank, "lumped17")
+    measured = sens.measured_hz
+    with ClusterOnDemand(workers=ctx.options.get("workers")) as client:  # started only for samples not stored
+        studies = {method: run_study(model, inputs, method, n, client=client, name=ctx.crank.name, measured_hz=measured)
+                   for method, n in (("montecarlo", REPORT_MONTECARLO_RUNS), ("sobol", REPORT_SOBOL_BASE))}
+        checks = fe_check(ctx.crank, sens, client=client) if ctx.fe is not None else []
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks
-    ctx.sections["sensitivity"] = {"sensitivity": sens, "fe_check": checks,
-                                   "image": ctx.save(sens.plot().figure, "sensitivity.png")}
+    ctx.results["studies"] = {m: r.to_dict() for m, r in studies.items()}
+    ctx.sections["sensitivity"] = {
+        "sensitivity": sens, "fe_check": checks, "image": ctx.save(sens.plot().figure, "sensitivity.png"),
+        "studies": studies,
+        "study_images": {"montecarlo": ctx.save(studies["montecarlo"].plot(kind="histogram").figure, "f1_montecarlo.png"),
+                         "sobol": ctx.save(studies["sobol"].plot(kind="indices").figure, "f1_sobol.png")}}
 
 
 DEFAULT_STEPS: tuple[tuple[str, Callable[[RunContext], None]], ...] = (

@@ -10,6 +10,9 @@ model and the FE model see the same web.
 
 from __future__ import annotations
 
+from dataclasses import replace
+from functools import lru_cache
+
 import numpy as np
 
 from ..description.model import Web
@@ -67,8 +70,17 @@ def radial_function(web: Web, crank_radius: float, phi: np.ndarray) -> np.ndarra
 def section_properties(web: Web, crank_radius: float) -> dict[str, float]:
     """Area (m²), centroid offset towards the pin (m), and polar second moment about the
     crank axis (m⁴) of the web outline."""
+    # The outline does not depend on the thickness: webs alike but for it share one quadrature
+    # (a study's lumped runs compute the same outline for every web of a crank).
+    outline = replace(web, thickness=1.0)
+    return dict(_section_properties(outline, float(crank_radius)))
+
+
+@lru_cache(maxsize=4096)
+def _section_properties(web: Web, crank_radius: float) -> tuple[tuple[str, float], ...]:
     kinks = _kinks(web, crank_radius)
-    edges = np.concatenate([np.linspace(a, b, _SPLIT + 1)[:-1] for a, b in zip(kinks[:-1], kinks[1:])] + [[np.pi]])
+    steps = np.arange(_SPLIT) / _SPLIT
+    edges = np.append((kinks[:-1, None] + np.diff(kinks)[:, None] * steps).ravel(), np.pi)
     x, w = _GAUSS
     half = 0.5 * np.diff(edges)[:, None]
     phi = (0.5 * (edges[:-1] + edges[1:])[:, None] + half * x).ravel()
@@ -77,7 +89,7 @@ def section_properties(web: Web, crank_radius: float) -> dict[str, float]:
     area = 0.5 * np.sum(weights * rho**2)
     first_x = np.sum(weights * rho**3 * np.cos(phi)) / 3.0
     polar = 0.25 * np.sum(weights * rho**4)
-    return {"area": area, "centroid": first_x / area, "polar_moment": polar}
+    return (("area", float(area)), ("centroid", float(first_x / area)), ("polar_moment", float(polar)))
 
 
 def mass_properties(web: Web, crank_radius: float, density: float) -> dict[str, float]:

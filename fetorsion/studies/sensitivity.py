@@ -11,37 +11,15 @@ once more, so the band's ends are real model results, interactions included.
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
-
-from ..description.crank import parse_crank
 
 from ..description.model import Crank
 
 from ..description.reader import resolve_field
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
+from .variants import with_values
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
-
-
-def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
-    """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
-
-    The variant is a new design, so the original's ``[uncertainty]`` ranges are dropped.
-    ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
-    checks, where those details would dominate the element count.
-    """
-    raw = copy.deepcopy(crank.raw)
-    raw.pop("uncertainty", None)
-    if not details:
-        for key in ("fillets", "oil_holes"):
-            raw.pop(key, None)
-    for path, value in changes.items():
-        parent_path, _, key = path.rpartition(".")
-        parents = resolve_field(raw, parent_path) if parent_path else [("", raw)]
-        for _, parent in parents:
-            parent[key] = value
-    return parse_crank(raw, source=crank.source)
 
 
 @dataclass
@@ -107,24 +85,35 @@ class SensitivityResult:
         return ax
 
 
-def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size: float = CHECK_MESH_SIZE) -> list[dict]:
+def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size: float = CHECK_MESH_SIZE,
+             client=None, store=None) -> list[dict]:
     """FE first torsional frequency at the bounds of the ``count`` most influential inputs.
 
     Runs on the crank without fillets and drillings at a coarse mesh (a few seconds per
-    run): what is compared is the change of f1, which those details barely affect.
+    run): what is compared is the change of f1, which those details barely affect. The
+    ``1 + 2 count`` FE runs are samples of a study (:mod:`fetorsion.studies.engine`): on
+    ``client``'s cluster when given (else here, one after the other), each stored as it
+    finishes in ``store`` (default the sample store), so a second report computes none.
     """
-    from ..fe.crankfe import run_modal
-
-    def f1(changes):
-        return run_modal(with_values(crank, changes, details=False), mesh_size, modes=12).first_torsional()
+    from .engine import SampleStore, default_store, run_samples
+    from .models import FEModel
 
     groups = dict(crank.uncertainty)
-    nominal = f1({})
-    out = []
-    for row in sorted(result.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"]))[:count]:
+    rows = sorted(result.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"]))[:count]
+    samples = [{}]
+    for row in rows:
         members = groups[row["field"]]
-        lo = f1({p: low for p, low, _ in members})
-        hi = f1({p: high for p, _, high in members})
+        samples += [{p: low for p, low, _ in members}, {p: high for p, _, high in members}]
+    records, _ = run_samples(FEModel(crank, mesh_size), samples, store or SampleStore(default_store()), client,
+                             label=f"{crank.name}: FE checks", progress=client is not None)
+    failed = [r for r in records if "error" in r]
+    if failed:
+        raise FetorsionError(f"FE check of the sensitivity: {failed[0]['error']}")
+    f1 = [r["outputs"]["f1"] for r in records]
+    nominal = f1[0]
+    out = []
+    for k, row in enumerate(rows):
+        lo, hi = f1[1 + 2 * k], f1[2 + 2 * k]
         out.append({"field": row["field"], "fe_f1_nominal_hz": nominal, "fe_f1_low_hz": lo, "fe_f1_high_hz": hi,
                     "fe_change_percent": 100 * (hi - lo) / nominal,
                     "lumped_change_percent": 100 * (row["f1_high_hz"] - row["f1_low_hz"]) / result.f1_hz})

@@ -1,0 +1,114 @@
+"""``fetorsion study``: an uncertainty or sensitivity study of a crank on a Dask cluster.
+
+Every option and the description are checked before the cluster starts; the samples are
+stored as they finish (``--store``), so an interrupted study resumes when the same command
+is run again, and the report folder (``--out``) is written atomically at the end.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
+from ..errors import FetorsionError
+from ..studies.engine import SCHEDULER_ENV, SampleStore, check_scheduler, check_store, default_store, scheduler_address
+from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
+from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
+from ..studies.study import run_crank_study, write_study_folder
+from ..webs.methods import WEB_METHODS
+from .options import MM, integer, millimetres
+
+#: --samples when not given: enough for a 5-95 % band (Monte Carlo), indices with
+#: confidence intervals of a few hundredths (Sobol'), a screening (Morris), a coarse grid.
+DEFAULT_SAMPLES = {"sobol": 512, "morris": 20, "montecarlo": 2000, "grid": 5}
+
+
+def _names(option: str):
+    def parse(text: str) -> list[str]:
+        names = [t.strip() for t in text.split(",")]
+        if not all(names):
+            raise argparse.ArgumentTypeError(f"{text!r}: give comma-separated names, e.g. f1,f2")
+        return names
+
+    return parse
+
+
+def add_parser(sub, load_crank, check_mesh_size) -> None:
+    """Register ``study`` on an argparse subparsers object."""
+    sp = sub.add_parser("study", help="Monte Carlo, Sobol', Morris or grid study of a crank's [uncertainty] inputs, "
+                                      "on a Dask cluster (local by default)")
+    sp.add_argument("file", help="crank description with an [uncertainty] table (.toml)")
+    sp.add_argument("--method", choices=METHODS, default="montecarlo", help="sampling and analysis (default %(default)s)")
+    sp.add_argument("--samples", type=integer(1, 10_000_000), metavar="N",
+                    help="montecarlo: runs; sobol: base samples, a power of 2 (N·(inputs+2) runs); morris: "
+                         "trajectories (N·(inputs+1) runs); grid: levels per input. Default: "
+                         + ", ".join(f"{m} {n}" for m, n in DEFAULT_SAMPLES.items()))
+    sp.add_argument("--model", choices=MODEL_CHOICES, default="lumped17",
+                    help="lumpedN: the N-DOF lumped chain; fe: 3D FE without fillets and drillings at "
+                         "--mesh-size (default %(default)s)")
+    sp.add_argument("--outputs", type=_names("--outputs"), default=["f1"],
+                    help="comma-separated: f1, f2, f3, severity (lumped) or f1, f2 (fe); default f1")
+    sp.add_argument("--inputs", type=_names("--inputs"), help="only these [uncertainty] entries (others nominal)")
+    sp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD,
+                    help="web stiffness method of the lumped model (default %(default)s)")
+    sp.add_argument("--mesh-size", type=millimetres(), default=CHECK_MESH_SIZE, metavar="MM",
+                    help=f"--model fe: global element size in mm (default {CHECK_MESH_SIZE / MM:g})")
+    sp.add_argument("--scheduler", metavar="ADDRESS",
+                    help=f"an existing Dask scheduler, e.g. tcp://host:8786 (default ${SCHEDULER_ENV}, "
+                         "else a local cluster)")
+    sp.add_argument("--workers", type=integer(1, 4096), metavar="N",
+                    help="worker processes of the local cluster (default one per core)")
+    sp.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="seed of the sampling (default %(default)s)")
+    sp.add_argument("--batch", type=integer(1, 100_000), metavar="N",
+                    help="samples per task (default: 1 for fe, else about 8 tasks per worker)")
+    sp.add_argument("--out", metavar="DIR", help="report folder (default out/<file>-<method>)")
+    sp.add_argument("--store", metavar="DIR",
+                    help="where each sample's result is kept (default $FETORSION_STORE, else ~/.cache/fetorsion/samples)")
+    sp.add_argument("--retry-failed", action="store_true", help="compute again the samples stored with an error")
+    sp.add_argument("--force", action="store_true", help="replace --out even if it is not an earlier fetorsion report")
+    sp.set_defaults(func=lambda args: cmd_study(args, load_crank, check_mesh_size))
+
+
+def cmd_study(args, load_crank, check_mesh_size) -> int:
+    from ..io import check_report_folder
+
+    # Options that need no file first, then the description, then what needs both.
+    if args.scheduler and args.workers:
+        raise FetorsionError("--workers sizes the local cluster; an existing cluster (--scheduler) has its own workers")
+    address, where = scheduler_address(args.scheduler)
+    if address:
+        check_scheduler(address, where)
+    n = args.samples or DEFAULT_SAMPLES[args.method]
+    out = Path(args.out) if args.out else Path("out") / f"{Path(args.file).stem}-{args.method}"
+    check_report_folder(out, "--out", force=args.force, inputs=[args.file])
+    store_dir = Path(args.store) if args.store else default_store()
+    check_store(store_dir, "--store" if args.store else "the sample store")
+    crank = load_crank(args.file, "an [uncertainty] table")
+    if not crank.uncertainty:
+        raise FetorsionError(f"{args.file}: the description has no [uncertainty] table")
+    model = make_model(crank, args.model, args.outputs, args.stiffness, args.mesh_size)
+    inputs, held = study_inputs(crank, args.inputs, FE_LEFT_OUT if args.model == "fe" else ())
+    if not inputs:
+        raise FetorsionError(f"--inputs: none of {', '.join(args.inputs or [])} can be sampled by --model {args.model} "
+                             f"({', '.join(FE_LEFT_OUT)} are left out of its variant)")
+    check_samples(args.method, n, len(inputs))
+    if args.model == "fe":
+        check_mesh_size(crank, args.mesh_size, "modal")
+    print(f"[fetorsion] {crank.name}: {args.method} study of {len(inputs)} inputs, "
+          f"{runs_for(args.method, n, len(inputs))} runs of {model.label}; samples kept in {store_dir}",
+          file=sys.stderr, flush=True)
+    try:
+        res = run_crank_study(crank, args.method, n, args.model, args.outputs, args.inputs, seed=args.seed,
+                              stiffness=args.stiffness, mesh_size=args.mesh_size, scheduler=address,
+                              workers=args.workers, store=SampleStore(store_dir), batch_size=args.batch,
+                              retry_failed=args.retry_failed)
+    except KeyboardInterrupt:
+        print(f"\nfetorsion: interrupted; the finished samples are kept in {store_dir}: the same command resumes "
+              "the study", file=sys.stderr)
+        return 130
+    write_study_folder(res, out, force=args.force, inputs=[args.file])
+    print(res.table())
+    print(f"report folder -> {out}")
+    return 0
