@@ -4,5 +4,7 @@ the crank's FE job (:mod:`.crankfe`).
 
 Takes a :class:`~fetorsion.solid.mesh.CrankMesh`; hands a
 :class:`~fetorsion.fe.modal.ModalResult` and :class:`~fetorsion.modes.TorsionalModes` to
-the excitation stage. Later: bearings and the condensed (reduced) crank.
+the excitation stage. Bearings and the condensed crank: :mod:`.couplings` (distributing
+couplings), :mod:`.substructure` (Craig–Bampton from one factorisation, the full model in
+supports), :mod:`.condensed` (the crank's masters, attachments and bearings on them, ``.npz``).
 """
