@@ -386,7 +386,7 @@ def cmd_run(args) -> int:
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
-    options = {"mesh_size": args.mesh_size}
+    options = {"mesh_size": args.mesh_size, "support": args.support}
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
         print(f"report: {folder / 'report.md'}")
@@ -483,6 +483,9 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
     up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
+                    help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
+                         "free-free FE; the report shows both")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

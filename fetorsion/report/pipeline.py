@@ -150,7 +150,8 @@ def step_campbell(ctx: RunContext) -> None:
         ctx.sections["campbell"] = None
         return
     # In its bearings when the condensed crank exists (the engine as it runs), else the free-free FE.
-    modes = (ctx.condensed.torsional_modes("bearings", 3) if ctx.condensed is not None
+    in_bearings = ctx.condensed is not None and ctx.options.get("support", "bearings") == "bearings"
+    modes = (ctx.condensed.torsional_modes("bearings", 3) if in_bearings
              else ctx.fe.torsional_modes(3) if ctx.fe is not None else None)
     camp = run_campbell(ctx.crank, modes)
     resp = run_response(ctx.crank)
