@@ -16,7 +16,7 @@ section torque is the elastic torque k Δθ of each spring (what a strain gauge 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
@@ -26,7 +26,8 @@ from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
-from .synthesis import half_peak_to_peak
+from .dampers import DampedSystem
+from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
 
@@ -64,6 +65,16 @@ class ResponseResult:
         Vibratory torque (half peak-to-peak) in each shaft section, N·m.
     order_pulley_deg : ndarray, shape (speeds, orders)
         Each order's own pulley amplitude, degrees.
+    section_torque_peak_nm : ndarray, shape (speeds, springs)
+        Largest |vibratory torque| over the cycle (the orders summed with their phases), N·m.
+    pulley_angle_peak_deg : ndarray
+        The same for the pulley angle, degrees.
+    theta : ndarray, shape (speeds, orders, DOF), complex
+        Each order's complex angle amplitude of every station (and damper ring), rad.
+    damper_power_w : ndarray, shape (speeds, dampers, orders)
+        Mean power each damper dissipates, per order (orders add: they are orthogonal), W.
+    misfire : int or None
+        0-based cylinder that does not fire, if any.
     """
 
     name: str
@@ -77,15 +88,42 @@ class ResponseResult:
     damping_ratio: float
     damping: str = ""
     compare: dict | None = None
+    section_torque_peak_nm: np.ndarray | None = None
+    pulley_angle_peak_deg: np.ndarray | None = None
+    theta: np.ndarray | None = None
+    stiffnesses_nm_per_rad: np.ndarray | None = None
+    cycle_rad: float = 4 * np.pi
+    damper_names: list = field(default_factory=list)
+    damper_power_w: np.ndarray | None = None
+    misfire: int | None = None
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
-                "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
-                "pulley_angle_deg": self.pulley_angle_deg.tolist(),
-                "pulley_twist_deg": self.pulley_twist_deg.tolist(),
-                "section_torque_nm": self.section_torque_nm.tolist(),
-                "order_pulley_deg": self.order_pulley_deg.tolist(), "damping": self.damping_text(),
-                "compare": self.compare}
+        out = {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
+               "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
+               "pulley_angle_deg": self.pulley_angle_deg.tolist(),
+               "pulley_twist_deg": self.pulley_twist_deg.tolist(),
+               "section_torque_nm": self.section_torque_nm.tolist(),
+               "order_pulley_deg": self.order_pulley_deg.tolist(), "damping": self.damping_text(),
+               "compare": self.compare, "misfire_cylinder": None if self.misfire is None else self.misfire + 1}
+        if self.section_torque_peak_nm is not None:
+            out.update(section_torque_peak_nm=self.section_torque_peak_nm.tolist(),
+                       section_torque_peak_to_peak_nm=(2 * self.section_torque_nm).tolist(),
+                       pulley_angle_peak_deg=self.pulley_angle_peak_deg.tolist(),
+                       pulley_angle_peak_to_peak_deg=(2 * self.pulley_angle_deg).tolist())
+        if self.damper_names:
+            out.update(dampers=self.damper_names, damper_power_w=self.damper_power_w.sum(axis=2).tolist(),
+                       damper_power_per_order_w=self.damper_power_w.tolist())
+        return out
+
+    def waveform(self, speed: int, samples: int = 720) -> dict:
+        """The synthesised signals over one cycle at ``rpm[speed]``: ``angle_deg`` (crank angle),
+        ``pulley_deg`` (pulley vibratory angle) and ``section_torque_nm`` (springs × angles)."""
+        theta = np.linspace(0.0, self.cycle_rad, samples, endpoint=False)
+        z = self.theta[speed]  # (orders, DOF)
+        n = len(self.labels)
+        torque = self.stiffnesses_nm_per_rad[:, None] * (z[:, : n - 1] - z[:, 1:n]).T  # (springs, orders)
+        return {"angle_deg": np.degrees(theta), "pulley_deg": np.degrees(waveform(z[:, 0], self.orders, theta)),
+                "section_torque_nm": waveform(torque, self.orders, theta)}
 
     def damping_text(self) -> str:
         """How the response is damped, in words."""
@@ -101,7 +139,20 @@ class ResponseResult:
             f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
             f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
             f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
-            f"({self.labels[k]}-{self.labels[k + 1]})"] + compare_lines(self.compare))
+            f"({self.labels[k]}-{self.labels[k + 1]})"] + self._extra_lines() + compare_lines(self.compare))
+
+    def _extra_lines(self) -> list[str]:
+        lines = []
+        if self.section_torque_peak_nm is not None:
+            s, k = np.unravel_index(self.section_torque_peak_nm.argmax(), self.section_torque_peak_nm.shape)
+            lines.append(f"  largest section torque peak {self.section_torque_peak_nm[s, k]:.1f} N m (peak-to-peak "
+                         f"{2 * self.section_torque_nm[s, k]:.1f}) at {self.rpm[s]:.0f} rpm")
+        if self.misfire is not None:
+            lines.append(f"  misfire: cylinder {self.misfire + 1} does not fire (compression and expansion only)")
+        for j, name in enumerate(self.damper_names):
+            p = self.damper_power_w[:, j].sum(axis=1)
+            lines.append(f"  damper '{name}': dissipates up to {p.max():.1f} W (at {self.rpm[p.argmax()]:.0f} rpm)")
+        return lines
 
     def plot(self, ax=None):
         """Pulley angle and twist, and the most loaded section's torque, against speed.
@@ -142,7 +193,8 @@ class ResponseResult:
 
 
 def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
-                 damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD) -> ResponseResult:
+                 damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
+                 dampers=None, misfire: int | None = None) -> ResponseResult:
     """Forced torsional response of a lumped crank model, or of a chain file, over the operating range.
 
     Parameters
@@ -158,6 +210,11 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     damping_ratio : float, optional
         Modal damping ratio; default the description's. A chain's absolute, relative and
         hysteretic dampers act in addition.
+    dampers : sequence of Damper, optional
+        Torsional dampers (:class:`fetorsion.description.model.Damper`); default the
+        description's ``[[dampers]]``; ``()`` for none.
+    misfire : int, optional
+        0-based cylinder that does not fire (compression and expansion only).
 
     Examples
     --------
@@ -174,15 +231,24 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
+    dampers = crank.dampers if dampers is None else tuple(dampers)
+    if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
+        raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
     res = lumped(crank, partition, web_method)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    # The modal damping ratio stands for the crank's own losses: it is set on the chain's modes
+    # without the dampers, which bring their own damping.
     C = modal_damping_matrix(M, K, zeta)
     stated = ""
     if isinstance(crank, Chain):
         C_stated, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping,
                                     crank.relative_damping, crank.loss_factors)
         C, K = C + C_stated, K + 1j * H
-        stated = "stated dampers of the chain" if crank.has_dampers else ""
+        stated = "stated dampers of the chain" if any(v > 0 for v in (*crank.absolute_damping, *crank.relative_damping,
+                                                                      *crank.loss_factors)) else ""
+    system = DampedSystem(M, K, C, dampers)
+    if dampers:
+        stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
     if res.pin_weights is None:
         res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
@@ -190,22 +256,34 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
+    if misfire is not None:  # that cylinder's firing torque replaced by its motored one
+        Tm = np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
+        forces = forces + (Tm - Tq)[:, :, None] * (phasors[:, misfire, None] * W[misfire][None, :])[None]
+    N = len(system.M)
+    forces = np.concatenate([forces, np.zeros(forces.shape[:2] + (N - res.dof,))], axis=2)
     omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
-    theta = steady_state(M, K, C, forces, omegas)  # (speeds, orders, stations)
+    theta = np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0]  # (speeds, orders, DOF)
 
-    def amplitude(z):  # z: (..., orders) complex -> half peak-to-peak over a cycle
-        return half_peak_to_peak(z, orders, period)
+    def synth(z):  # z: (..., orders) complex -> (half peak-to-peak, largest |value|) over a cycle
+        top, bottom = extremes(z, orders, period)
+        return 0.5 * (top - bottom), np.maximum(top, -bottom)
 
     k = res.stiffnesses_nm_per_rad
-    twist = theta[:, :, :-1] - theta[:, :, 1:]  # (speeds, orders, springs)
+    n = res.dof
+    twist = theta[:, :, : n - 1] - theta[:, :, 1:n]  # (speeds, orders, springs)
     section = np.moveaxis(np.real(k) * twist, 1, 2)  # (speeds, springs, orders): each section's torque
+    torque_amp, torque_peak = synth(section)
+    pulley_amp, pulley_peak = synth(theta[:, :, 0])
     return ResponseResult(
         name=crank.name, labels=res.labels, orders=orders, rpm=rpm,
-        pulley_angle_deg=np.degrees(amplitude(theta[:, :, 0])),
-        pulley_twist_deg=np.degrees(amplitude(theta[:, :, 0] - theta[:, :, -1])),
-        section_torque_nm=amplitude(section),
+        pulley_angle_deg=np.degrees(pulley_amp),
+        pulley_twist_deg=np.degrees(synth(theta[:, :, 0] - theta[:, :, n - 1])[0]),
+        section_torque_nm=torque_amp,
         order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
         damping_ratio=zeta, damping=stated,
+        section_torque_peak_nm=torque_peak, pulley_angle_peak_deg=np.degrees(pulley_peak), theta=theta,
+        stiffnesses_nm_per_rad=np.real(k), cycle_rad=period, damper_names=[d.name for d in dampers],
+        damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=misfire,
     )
 
 
