@@ -23,6 +23,8 @@ from ..lumped_model.parts import build_parts
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 from ..webs.methods import WEB_METHODS
+from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
+from ..studies.damper_tuning import OBJECTIVES
 
 PLOT_FORMATS = (".png", ".pdf", ".svg")
 
@@ -249,10 +251,11 @@ def cmd_campbell(args) -> int:
         check_mesh_size(crank, args.mesh_size, "modal")
 
         modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
-    else:
-        modes = lumped_modes(crank, _partition_of(args.source), args.stiffness)
-    res = run_campbell(crank, modes, orders=args.orders,
-                       speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
+    else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
+        modes = None if crank.dampers else lumped_modes(crank, _partition_of(args.source), args.stiffness)
+    res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
+                       damping_ratio=args.damping, partition=_partition_of(args.source) if args.source != "fe" else 17,
+                       web_method=args.stiffness)
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
     _report(res, head + "\n" + res.table(), args)
@@ -284,6 +287,27 @@ def cmd_response(args) -> int:
         rpm_c, value, name, unit = args.compare_curve
         compare_curve(res, rpm_c, value, name, unit,
                       None if args.compare_section is None else args.compare_section - 1)
+    return _report(res, res.table(), args)
+
+
+def cmd_damper(args) -> int:
+    from ..studies.damper_tuning import run_damper
+
+    if args.source == "fe":
+        raise FetorsionError("--source fe: the damper is tuned on a lumped model; choose --source lumpedN")
+    crank = _load_excited(args.file, args.source)
+    if args.objective == "stress" and isinstance(crank, Chain):
+        raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
+                             "use --objective twist")
+    if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+        raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
+                             "SCF); give [fillets] or use --objective twist")
+    rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
+    if rpm is None:
+        rpm = np.linspace(*crank.excitation.speed_range, args.steps)
+    res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
+                     rpm=rpm, partition=_partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
+                     web_method=args.stiffness)
     return _report(res, res.table(), args)
 
 
@@ -333,7 +357,7 @@ def cmd_run(args) -> int:
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
-    options = {"mesh_size": args.mesh_size}
+    options = {"mesh_size": args.mesh_size, "inertia_ratio": args.inertia_ratio}
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
         print(f"report: {folder / 'report.md'}")
@@ -391,6 +415,22 @@ def build_parser() -> argparse.ArgumentParser:
     cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
     cp.set_defaults(func=cmd_campbell)
 
+    dp = sub.add_parser("damper", help="torsional damper: Den Hartog start, optimised on the whole crank")
+    _add_excitation_options(dp)
+    dp.add_argument("--type", choices=DAMPER_TYPES, default="rubber", help="damper type (default %(default)s)")
+    dp.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+                    help="ring inertia over the damped mode's equivalent inertia at the station, 0 < MU < 2 "
+                         "(default %(default)s)")
+    dp.add_argument("--optimise", action="store_true", help="optimise stiffness and damping on the whole crank "
+                    "over the speed range after the Den Hartog start (ring inertia held)")
+    dp.add_argument("--objective", choices=OBJECTIVES, default="stress",
+                    help="what the optimiser minimises: the largest fillet shear stress or the pulley twist")
+    dp.add_argument("--at", choices=DAMPER_STATIONS, default="front", help="pulley end (front) or flywheel side")
+    dp.add_argument("--hub-inertia", type=real(0.0, 10.0, low_open=False, unit="kg m^2"), default=0.0,
+                    metavar="KGM2", help="hub or housing inertia, kg m^2 (default 0)")
+    dp.add_argument("--steps", type=integer(2, 2000), default=100, help="speeds in the range (default %(default)s)")
+    dp.set_defaults(func=cmd_damper)
+
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
@@ -423,6 +463,8 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
     up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+                    help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

@@ -25,9 +25,16 @@ import numpy as np
 from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
+from ..lumped_model.damped import damped_modes
 from ..lumped_model.lumped import chain_damping, lumped, modal_damping_ratios
 from ..modes import TorsionalModes
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+
+
+def lumped_modes_source(res) -> str:
+    """How a lumped result's modes are named in the Campbell diagram."""
+    return (f"lumped {res.dof} DOF ({res.inputs.get('stiffness_method')})" if res.partition
+            else f"chain of {res.dof} inertias")
 
 
 def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
@@ -120,7 +127,8 @@ def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
 
 
 def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
-                 n_modes: int = 3, damping_ratio: float | None = None) -> CampbellResult:
+                 n_modes: int = 3, damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
+                 web_method: str = DEFAULT_WEB_METHOD) -> CampbellResult:
     """Crossings of the first ``n_modes`` torsional modes with each order, and their severity.
 
     Parameters
@@ -138,6 +146,10 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     damping_ratio : float, optional
         Modal damping ratio ζ for the severity; default the description's. A chain's stated
         dampers add their equivalent ratio per mode (:func:`modal_damping_ratios`).
+    partition, web_method : int, str
+        The lumped model when ``modes`` is not given. The description's ``[[dampers]]`` then
+        join the modes and add their damping per mode
+        (:func:`fetorsion.lumped_model.damped.damped_modes`); given ``modes`` are taken as they are.
 
     Examples
     --------
@@ -149,7 +161,12 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     """
     if crank.excitation is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
-    modes = modes or lumped_modes(crank)
+    gained = None
+    if modes is None and crank.dampers:
+        res = lumped(crank, partition, web_method)
+        modes, gained = damped_modes(res.inertias_kgm2, res.stiffnesses_nm_per_rad, res.pin_weights, crank.dampers,
+                                     source=f"{lumped_modes_source(res)} with {len(crank.dampers)} damper(s)")
+    modes = modes or lumped_modes(crank, partition, web_method)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     if np.any(orders <= 0):
         raise FetorsionError(f"orders must be > 0, got {orders.tolist()}")
@@ -163,6 +180,9 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
         C, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping, crank.relative_damping,
                              crank.loss_factors)
         zeta_modes = zeta + modal_damping_ratios(res.frequencies_hz[:k], res.mode_shapes[:k], res.inertias_kgm2, C, H)
+        zeta = tuple(float(z) for z in zeta_modes)
+    if gained is not None:
+        zeta_modes = zeta_modes + gained[:k]
         zeta = tuple(float(z) for z in zeta_modes)
     rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)
     phi = firing_angles(crank.engine)

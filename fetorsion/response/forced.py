@@ -26,7 +26,7 @@ from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
-from .dampers import DampedSystem
+from ..lumped_model.damped import DampedSystem
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
@@ -96,6 +96,7 @@ class ResponseResult:
     damper_names: list = field(default_factory=list)
     damper_power_w: np.ndarray | None = None
     misfire: int | None = None
+    positions_m: np.ndarray | None = None
 
     def to_dict(self) -> dict:
         out = {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
@@ -224,6 +225,36 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     >>> r.pulley_angle_deg.shape
     (2,)
     """
+    setup = response_setup(crank, partition, rpm, orders, damping_ratio, web_method, misfire)
+    return solve_response(setup, crank.dampers if dampers is None else tuple(dampers))
+
+
+@dataclass
+class ResponseSetup:
+    """What a forced response needs before its dampers are chosen: the chain's matrices, the
+    forces of every speed and order, and the damping text (:func:`response_setup`); solving it
+    with any set of dampers (:func:`solve_response`) reuses the costly torque harmonics."""
+
+    name: str
+    labels: list
+    positions_m: np.ndarray
+    stiffnesses: np.ndarray
+    M: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    forces: np.ndarray  # (speeds, orders, stations)
+    rpm: np.ndarray
+    orders: np.ndarray
+    period: float
+    zeta: float
+    stated: str
+    misfire: int | None
+
+
+def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
+                   damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
+                   misfire: int | None = None) -> ResponseSetup:
+    """The chain, its damping and the cylinders' forces for :func:`run_response` (arguments as there)."""
     ex = crank.excitation
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
@@ -231,7 +262,6 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
-    dampers = crank.dampers if dampers is None else tuple(dampers)
     if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
         raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
     res = lumped(crank, partition, web_method)
@@ -244,11 +274,7 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
         C_stated, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping,
                                     crank.relative_damping, crank.loss_factors)
         C, K = C + C_stated, K + 1j * H
-        stated = "stated dampers of the chain" if any(v > 0 for v in (*crank.absolute_damping, *crank.relative_damping,
-                                                                      *crank.loss_factors)) else ""
-    system = DampedSystem(M, K, C, dampers)
-    if dampers:
-        stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
+        stated = "stated dampers of the chain" if crank.has_dampers else ""
     if res.pin_weights is None:
         res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
@@ -259,31 +285,43 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         Tm = np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
         forces = forces + (Tm - Tq)[:, :, None] * (phasors[:, misfire, None] * W[misfire][None, :])[None]
+    return ResponseSetup(crank.name, res.labels, res.positions_m, res.stiffnesses_nm_per_rad, M, K, C, forces, rpm,
+                         orders, period, zeta, stated, misfire)
+
+
+def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
+    """The forced response of a :func:`response_setup` with ``dampers`` on the chain."""
+    system = DampedSystem(setup.M, setup.K, setup.C, dampers)
+    stated = setup.stated
+    if dampers:
+        stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
+    n = len(setup.labels)
     N = len(system.M)
-    forces = np.concatenate([forces, np.zeros(forces.shape[:2] + (N - res.dof,))], axis=2)
-    omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
+    forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
+    orders, period = setup.orders, setup.period
+    omegas = orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     theta = np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0]  # (speeds, orders, DOF)
 
     def synth(z):  # z: (..., orders) complex -> (half peak-to-peak, largest |value|) over a cycle
         top, bottom = extremes(z, orders, period)
         return 0.5 * (top - bottom), np.maximum(top, -bottom)
 
-    k = res.stiffnesses_nm_per_rad
-    n = res.dof
+    k = np.real(setup.stiffnesses)
     twist = theta[:, :, : n - 1] - theta[:, :, 1:n]  # (speeds, orders, springs)
-    section = np.moveaxis(np.real(k) * twist, 1, 2)  # (speeds, springs, orders): each section's torque
+    section = np.moveaxis(k * twist, 1, 2)  # (speeds, springs, orders): each section's torque
     torque_amp, torque_peak = synth(section)
     pulley_amp, pulley_peak = synth(theta[:, :, 0])
     return ResponseResult(
-        name=crank.name, labels=res.labels, orders=orders, rpm=rpm,
+        name=setup.name, labels=setup.labels, orders=orders, rpm=setup.rpm,
         pulley_angle_deg=np.degrees(pulley_amp),
         pulley_twist_deg=np.degrees(synth(theta[:, :, 0] - theta[:, :, n - 1])[0]),
         section_torque_nm=torque_amp,
         order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
-        damping_ratio=zeta, damping=stated,
+        damping_ratio=setup.zeta, damping=stated,
         section_torque_peak_nm=torque_peak, pulley_angle_peak_deg=np.degrees(pulley_peak), theta=theta,
-        stiffnesses_nm_per_rad=np.real(k), cycle_rad=period, damper_names=[d.name for d in dampers],
-        damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=misfire,
+        stiffnesses_nm_per_rad=k, cycle_rad=period, damper_names=[d.name for d in dampers],
+        damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=setup.misfire,
+        positions_m=setup.positions_m,
     )
 
 
