@@ -184,13 +184,14 @@ def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", op
         notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
     elif misfire:
         best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
-        worst = None
+        worst = {"without damper": None, best_name: None}
         for c in range(crank.engine.cylinders):
             ms = response_setup(crank, rpm=setup.rpm, misfire=c)
-            case = _case(f"misfire of cylinder {c + 1}, {best_name}", crank, solve_response(ms, (best,)), scf, limits)
-            if worst is None or case.value.max() > worst.value.max():
-                worst = case
-        cases.append(worst)
+            for name, dampers in (("without damper", ()), (best_name, (best,))):
+                case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits)
+                if worst[name] is None or case.value.max() > worst[name].value.max():
+                    worst[name] = case
+        cases += list(worst.values())
         notes.append("misfire: the cylinder's pressure is the motored cycle (compression and expansion only); "
                      "the worst cylinder is shown")
     return VerdictResult(crank.name, limits, cases, notes)

@@ -157,7 +157,11 @@ def stepped_shaft_scf(d: float, D: float, fillet: float, size: float, fillet_siz
     material = material or Material(210e9, 0.3, 7850.0, "steel")
     t0 = time.perf_counter()
     l_small, l_large = 3 * d, 2 * D
-    mesh = stepped_shaft_mesh(d, D, l_small, l_large, fillet, size, fillet_size)
+    from ..solid.isolate import call_isolated
+
+    # Gmsh in a child process: a mesher abort becomes a message, not the end of the caller.
+    mesh = call_isolated(stepped_shaft_mesh, d, D, l_small, l_large, fillet, size, fillet_size,
+                         what="Gmsh, stepped shaft")
     sol = torsion_solution(mesh, material)
     tau = _shear(sol, material)
     xyz = sol.skfem_mesh.doflocs.T
