@@ -249,7 +249,18 @@ class ResponseSetup:
     zeta: float
     stated: str
     misfire: int | None
+    torque_harmonics: np.ndarray | None = None  # (speeds, orders): one firing cylinder's T_q, N·m
+    phasors: np.ndarray | None = None  # (orders, cylinders): e^{−i q φ_c}
+    pin_weights: np.ndarray | None = None  # (cylinders, stations)
 
+    def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
+        """The same engine with ``cylinder`` (0-based) not firing: its torque harmonics replaced by
+        ``motored`` (speeds, orders; :func:`motored_harmonics`), the others' unchanged."""
+        from dataclasses import replace
+
+        W = self.pin_weights
+        delta = (motored - self.torque_harmonics)[:, :, None] * (self.phasors[:, cylinder, None] * W[cylinder][None, :])[None]
+        return replace(self, forces=self.forces + delta, misfire=cylinder)
 
 def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
                    damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
@@ -282,34 +293,52 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
+    setup = ResponseSetup(crank.name, res.labels, res.positions_m, res.stiffnesses_nm_per_rad, M, K, C, forces, rpm,
+                          orders, period, zeta, stated, None, Tq, phasors, W)
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
-        Tm = np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
-        forces = forces + (Tm - Tq)[:, :, None] * (phasors[:, misfire, None] * W[misfire][None, :])[None]
-    return ResponseSetup(crank.name, res.labels, res.positions_m, res.stiffnesses_nm_per_rad, M, K, C, forces, rpm,
-                         orders, period, zeta, stated, misfire)
+        return setup.with_misfire(misfire, motored_harmonics(crank, rpm, orders))
+    return setup
+
+
+def motored_harmonics(crank, rpm, orders) -> np.ndarray:
+    """(speeds, orders) torque harmonics of a cylinder that does not fire (compression and
+    expansion only, plus its reciprocating inertia), N·m."""
+    period = cycle_angle(crank.engine)
+    return np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
+
+
+def solve_theta(setup: ResponseSetup, dampers=()):
+    """(theta (speeds, orders, DOF) complex rad, ω (speeds, orders) rad/s, the DampedSystem) of a
+    :func:`response_setup` with ``dampers``: the solve without the synthesis."""
+    system = DampedSystem(setup.M, setup.K, setup.C, dampers)
+    n = len(setup.labels)
+    N = len(system.M)
+    forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
+    omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
+    return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
+
+
+def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:
+    """(speeds, springs, orders) complex torque of each shaft section, N·m."""
+    n = len(setup.labels)
+    return np.moveaxis(np.real(setup.stiffnesses) * (theta[:, :, : n - 1] - theta[:, :, 1:n]), 1, 2)
 
 
 def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
     """The forced response of a :func:`response_setup` with ``dampers`` on the chain."""
-    system = DampedSystem(setup.M, setup.K, setup.C, dampers)
     stated = setup.stated
     if dampers:
         stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
     n = len(setup.labels)
-    N = len(system.M)
-    forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
     orders, period = setup.orders, setup.period
-    omegas = orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
-    theta = np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0]  # (speeds, orders, DOF)
+    theta, omegas, system = solve_theta(setup, dampers)
 
     def synth(z):  # z: (..., orders) complex -> (half peak-to-peak, largest |value|) over a cycle
         top, bottom = extremes(z, orders, period)
         return 0.5 * (top - bottom), np.maximum(top, -bottom)
 
     k = np.real(setup.stiffnesses)
-    twist = theta[:, :, : n - 1] - theta[:, :, 1:n]  # (speeds, orders, springs)
-    section = np.moveaxis(k * twist, 1, 2)  # (speeds, springs, orders): each section's torque
-    torque_amp, torque_peak = synth(section)
+    torque_amp, torque_peak = synth(section_torques(setup, theta))
     pulley_amp, pulley_peak = synth(theta[:, :, 0])
     return ResponseResult(
         name=setup.name, labels=setup.labels, orders=orders, rpm=setup.rpm,

@@ -29,7 +29,8 @@ import scipy.optimize
 from ..description.model import Chain, Crank, Damper
 from ..errors import FetorsionError
 from ..response.dampers import tuned_optimum, viscous_optimum
-from ..response.forced import response_setup, solve_response
+from ..response.forced import response_setup, section_torques, solve_theta
+from ..response.synthesis import half_peak_to_peak
 
 OBJECTIVES = ("stress", "twist")
 
@@ -64,14 +65,6 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
         return Damper("rubber", at, hub_inertia, ring, stiffness=k, loss_factor=2 * zeta / f,
                       name=f"Den Hartog rubber, mu = {mu:g}")
     raise FetorsionError(f"--type {kind!r}: choose viscous, rubber or tuned")
-
-
-def objective_curve(response, objective: str, weights: np.ndarray | None = None) -> np.ndarray:
-    """The objective against speed: the largest fillet shear stress (Pa: section torque × each
-    spring's ``weights``, Pa per N·m) or the pulley twist (deg)."""
-    if objective == "twist":
-        return response.pulley_twist_deg
-    return (response.section_torque_nm * weights[None, :]).max(axis=1)
 
 
 def stress_weights(crank: Crank, positions_m, scf: dict) -> np.ndarray:
@@ -207,8 +200,12 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, opt
 
         weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf)
 
-    def curve(dampers):
-        return objective_curve(solve_response(setup, dampers), objective, weights)
+    def curve(dampers):  # only the objective's synthesis: the optimiser calls this some 80 times
+        theta, _, _ = solve_theta(setup, dampers)
+        if objective == "twist":
+            return np.degrees(half_peak_to_peak(theta[:, :, 0] - theta[:, :, n - 1], setup.orders, setup.period))
+        torque = half_peak_to_peak(section_torques(setup, theta), setup.orders, setup.period)
+        return (torque * weights[None, :]).max(axis=1)
 
     res = DamperResult(crank.name, kind, mu, objective, omega_n / (2 * np.pi), J_eq, start, None, setup.rpm)
     for key, dampers in (("none", ()), ("den_hartog", (start,))):

@@ -155,7 +155,7 @@ def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", op
     objective: the limited quantity); and the misfire of the cylinder that makes it worst, with
     the best of those dampers.
     """
-    from ..response.forced import response_setup, solve_response
+    from ..response.forced import motored_harmonics, response_setup, solve_response
     from .damper_tuning import run_damper
 
     limits = crank.limits
@@ -185,8 +185,9 @@ def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", op
     elif misfire:
         best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
         worst = {"without damper": None, best_name: None}
+        motored = motored_harmonics(crank, setup.rpm, setup.orders)
         for c in range(crank.engine.cylinders):
-            ms = response_setup(crank, rpm=setup.rpm, misfire=c)
+            ms = setup.with_misfire(c, motored)
             for name, dampers in (("without damper", ()), (best_name, (best,))):
                 case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits)
                 if worst[name] is None or case.value.max() > worst[name].value.max():
