@@ -79,3 +79,27 @@ def test_verdict_rows_by_hand():
     assert rows[0]["margin"] == pytest.approx(1 - 80 / 100) and rows[0]["worst_section"] == "c"
     assert rows[1]["barred_ranges"][0]["from_rpm"] == pytest.approx(1000 + 1000 * 90 / 110)
     assert rows[2]["margin"] == pytest.approx(1 - 160 / 100)
+
+
+def test_a_chain_files_dampers_and_limits_reach_campbell_response_and_verdict(tmp_path):
+    from fetorsion.excitation.campbell import run_campbell
+    from fetorsion.studies.verdict import run_verdict
+
+    text = (GEOMETRY.parent / "examples" / "mendes2008" / "mwm6_chain.toml").read_text()
+    text += ('\n[[dampers]]\ntype = "viscous"\nhousing_inertia_kgm2 = 0.05\nring_inertia_kgm2 = 0.3\n'
+             'damping_nms_per_rad = 60.0\n\n[limits]\ncontinuous_torque_nm = 4000.0\nsource = "test"\n')
+    path = tmp_path / "chain.toml"
+    path.write_text(text)
+    chain = fetorsion.load(path)
+    rpm = np.linspace(1000.0, 2600.0, 40)
+    with_d, without = run_response(chain, rpm=rpm), run_response(chain, rpm=rpm, dampers=())
+    assert with_d.damper_names == ["viscous"] and with_d.damper_power_w.shape == (40, 1, len(with_d.orders))
+    # Measured, not a theorem (the ring also moves the modes): here the damper lowers the worst torque.
+    assert with_d.section_torque_nm.max() < without.section_torque_nm.max()
+    camp = run_campbell(chain)
+    assert "damper" in camp.source and isinstance(camp.damping_ratio, tuple)
+    v = run_verdict(chain, optimise=False, rpm=rpm)
+    row = v.rows()[1]  # the description's damper
+    # The torque verdict reads the worst section torque of the same response.
+    assert row["value"] == pytest.approx(with_d.section_torque_nm.max(), rel=1e-12)
+    assert row["limit"] == 4000.0 and v.limits.kind == "torque"
