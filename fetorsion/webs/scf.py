@@ -16,9 +16,16 @@ surface, where quadrature points never are).
 The check against a published value is the stepped round bar in torsion: the curve fit of
 Peterson's chart for a shoulder fillet in torsion (Pilkey & Pilkey, *Peterson's Stress
 Concentration Factors*, 3rd ed., Wiley 2008, chapter 3, stepped bar of circular cross
-section in torsion), as printed by AMES Web, "Stepped shaft with shoulder fillet"
-(amesweb.info/StressConcentrationFactor/SteppedShaftWithShoulderFillet.aspx, torsion,
-0.25 ≤ h/r ≤ 4) — see :func:`peterson_stepped_torsion`.
+section in torsion), as printed by eng-calculations.com ("Peterson's Stress Concentration
+Factors / Shoulder fillets / Torsion of a shaft with a shoulder fillet", 0.25 ≤ t/r ≤ 4) and by
+AMES Web ("Stepped shaft with shoulder fillet", torsion) — see :func:`peterson_stepped_torsion`.
+
+The classification societies' empirical crank fillet factors (IACS UR M53, "Calculation of
+crankshafts for I.C. engines", Rev.1 Dec 2004 / Rev.2 Jan 2011: §2.2 alternating torsional
+stresses, §3.2–3.3 SCFs of crankpin and journal fillets, §3.4 oil bore outlet, Appendix III an
+FE procedure for the SCFs) are not implemented: no readable text of their formulas was found
+(the copies seen give the table of contents or a garbled extraction), and they are not
+reconstructed from memory.
 """
 
 from __future__ import annotations
@@ -47,11 +54,10 @@ def peterson_stepped_torsion(D: float, d: float, r: float) -> float:
 
     Kts = C1 + C2 (2h/D) + C3 (2h/D)² + C4 (2h/D)³, h = (D − d)/2, with C_i = a + b √(h/r) + c h/r
     from Pilkey & Pilkey, *Peterson's Stress Concentration Factors* (3rd ed., 2008), shoulder
-    fillets, stepped bar of circular cross section in torsion, as printed on AMES Web's "Stepped
-    shaft with shoulder fillet" page (torsion, 0.25 ≤ h/r ≤ 4.0). That page's text lost its
-    minus signs in extraction; the signs used are the ones the fit needs to give Kts = 1 for a
-    vanishing step and are those of the same fit as reproduced in several public shaft-design
-    codes. Nominal stress τ_nom = 16 T / (π d³).
+    fillets, stepped bar of circular cross section in torsion, as printed (with its signs) on
+    eng-calculations.com, "Torsion of a shaft with a shoulder fillet" (0.25 ≤ t/r ≤ 4.0; the same
+    coefficients on AMES Web's "Stepped shaft with shoulder fillet"). Nominal stress
+    τ_nom = 16 T / (π d³).
 
     Parameters
     ----------
