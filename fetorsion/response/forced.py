@@ -185,7 +185,10 @@ class ResponseResult:
             worst = c["section"]
             a2.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
         a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
-                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}")
+                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}: amplitude (½ peak-to-peak)")
+        if self.section_torque_peak_nm is not None:
+            a2.plot(self.rpm, self.section_torque_peak_nm[:, worst], color="C3", ls=":",
+                    label="largest |torque| over the cycle (orders summed with phases)")
         a2.set_ylabel("vibratory torque [N m]")
         a2.set_xlabel("engine speed [rpm]")
         a2.legend(fontsize=8)
