@@ -140,3 +140,16 @@ def test_crank_optimiser_finds_den_hartogs_tuned_optimum_from_a_poor_start():
     assert peak(best) == pytest.approx(height, rel=5e-3) and peak(best) >= height * (1 - 1e-6)
     assert f == pytest.approx(f_opt, rel=1e-2)  # equal fixed points need f_opt; the peak is flat near it
     assert count < 200
+
+
+def test_rubber_table_read_at_the_operating_temperature_by_hand():
+    from fetorsion.description.crank import table_at_temperature
+
+    groups = {20.0: [[300.0, 3.0e4, 0.20], [600.0, 3.6e4, 0.25]], 80.0: [[300.0, 2.0e4, 0.30], [500.0, 2.4e4, 0.32]]}
+    rows = table_at_temperature(groups, 60.0)
+    # 60 °C is 2/3 of the way from 20 to 80: at 500 Hz the 20 °C table reads 3.4e4 (linear
+    # 300→600 Hz), the 80 °C one 2.4e4 → 3.4e4/3 + 2.4e4·2/3; at 600 Hz the 80 °C table holds 2.4e4.
+    assert [r[0] for r in rows] == [300.0, 500.0, 600.0]
+    np.testing.assert_allclose([r[1] for r in rows], [70e3 / 3, 3.4e4 / 3 + 1.6e4, 1.2e4 + 1.6e4], rtol=1e-12)
+    np.testing.assert_allclose(rows[0][2], 0.2 / 3 + 0.2, rtol=1e-12)
+    assert table_at_temperature(groups, 100.0) == tuple(tuple(r) for r in groups[80.0])  # held, not extrapolated

@@ -343,16 +343,64 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
 
 
 def _dynamic_table(t: Table) -> tuple[tuple[float, float, float], ...]:
+    """``dynamic_table`` rows [frequency Hz, stiffness N m/rad, loss factor], or [temperature °C,
+    frequency Hz, stiffness, loss factor] with ``temperature_c`` (the operating temperature) to
+    read the table at: reduced here to the frequency table at that temperature
+    (:func:`table_at_temperature`)."""
     raw = t.get("dynamic_table")
-    ok = (isinstance(raw, list) and len(raw) >= 2
-          and all(isinstance(r, list) and len(r) == 3 and all(finite_number(v) for v in r) and r[0] > 0 and r[1] > 0
-                  and r[2] >= 0 for r in raw)
-          and all(a[0] < b[0] for a, b in zip(raw, raw[1:])))
+    temperature = t.get("temperature_c", None)
+    width = len(raw[0]) if isinstance(raw, list) and raw and isinstance(raw[0], list) else 0
+    rule = ("must be >= 2 rows [frequency_hz > 0, stiffness_nm_per_rad > 0, loss_factor >= 0] with frequency "
+            "ascending, or rows [temperature_c, frequency_hz, stiffness_nm_per_rad, loss_factor] with frequency "
+            "ascending within each temperature (>= 2 per temperature) and temperature_c given")
+    rows = raw if isinstance(raw, list) else []
+    ok = (width in (3, 4) and len(rows) >= 2
+          and all(isinstance(r, list) and len(r) == width and all(finite_number(v) for v in r) for r in rows))
+    if ok:
+        body = [r[-3:] for r in rows]
+        ok = all(f > 0 and k > 0 and e >= 0 for f, k, e in body)
+    groups: dict = {}
+    if ok:
+        for r in rows:
+            groups.setdefault(r[0] if width == 4 else None, []).append(r[-3:])
+        ok = all(len(g) >= 2 and all(a[0] < b[0] for a, b in zip(g, g[1:])) for g in groups.values())
     if not ok:
-        t.problems.append(Problem(f"{t.path}.dynamic_table", raw, "must be >= 2 rows [frequency_hz > 0, stiffness_nm_per_rad "
-                                                                   "> 0, loss_factor >= 0] with frequency ascending"))
+        t.problems.append(Problem(f"{t.path}.dynamic_table", raw, rule))
         return ()
-    return tuple((float(f), float(k), float(e)) for f, k, e in raw)
+    if width == 3:
+        if temperature is not None:
+            t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                      "needs dynamic_table rows with a temperature column [temperature_c, frequency_hz, "
+                                      "stiffness_nm_per_rad, loss_factor]"))
+        return tuple((float(f), float(k), float(e)) for f, k, e in rows)
+    if not finite_number(temperature):
+        t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                  "a dynamic_table with a temperature column needs the operating temperature_c "
+                                  "(a finite number, °C)"))
+        return ()
+    return table_at_temperature(groups, float(temperature))
+
+
+def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float, float, float], ...]:
+    """A frequency table (f, k, η) at ``temperature`` from tables at several temperatures
+    (``groups``: temperature -> rows [f, k, η], f ascending): linear in temperature between the two
+    nearest, each read linearly in frequency on the union of their frequencies; the end
+    temperature's table outside the range (no extrapolation of a measured property)."""
+    import numpy as np
+
+    temps = sorted(groups)
+    lo = max([T for T in temps if T <= temperature], default=temps[0])
+    hi = min([T for T in temps if T >= temperature], default=temps[-1])
+    w = 0.0 if hi == lo else (temperature - lo) / (hi - lo)
+    f = np.union1d([r[0] for r in groups[lo]], [r[0] for r in groups[hi]])
+
+    def at(T, col):
+        g = groups[T]
+        return np.interp(f, [r[0] for r in g], [r[col] for r in g])
+
+    k = (1 - w) * at(lo, 1) + w * at(hi, 1)
+    eta = (1 - w) * at(lo, 2) + w * at(hi, 2)
+    return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
 
 
 def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
