@@ -79,6 +79,7 @@ def test_verdict_rows_by_hand():
     assert rows[0]["margin"] == pytest.approx(1 - 80 / 100) and rows[0]["worst_section"] == "c"
     assert rows[1]["barred_ranges"][0]["from_rpm"] == pytest.approx(1000 + 1000 * 90 / 110)
     assert rows[2]["margin"] == pytest.approx(1 - 160 / 100)
+    assert [b["passable"] for r in rows[1:] for b in r["barred_ranges"]] == [True, False, False]
 
 
 def test_a_chain_files_dampers_and_limits_reach_campbell_response_and_verdict(tmp_path):

@@ -105,7 +105,7 @@ def verdict_section(crank: Crank, outcome: dict) -> list[str]:
     v = outcome["verdict"]
     unit, scale = v.unit
     lim = v.limits
-    lines = ["## Fillet stress, dampers and verdict", ""]
+    lines = [f"## {'Fillet stress' if lim.kind == 'stress' else 'Section torque'}, dampers and verdict", ""]
     if "stress" in outcome:
         scf = outcome["scf"]
         lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "
@@ -124,7 +124,9 @@ def verdict_section(crank: Crank, outcome: dict) -> list[str]:
               "damper heat (W) | verdict |", "|---|---|---|---|---|---|---|---|---|---|"]
     for r in v.rows():
         bars = "; ".join(f"{b['from_rpm']:.0f}-{b['to_rpm']:.0f} (peak {b['peak'] / scale:.4g} {unit}"
-                         + (", passable" if lim.transient and b["peak"] <= lim.transient else ", not passable")
+                         + (", passable" if b["passable"] else ", at the end of the speed range" if
+                            b["from_rpm"] <= r["speed_range_rpm"][0] or b["to_rpm"] >= r["speed_range_rpm"][1]
+                            else ", above the passing-through limit")
                          + ")" for b in r["barred_ranges"]) or "none"
         heat = f"{r['damper_power_w']:.1f}" if r["damper_power_w"] else "-"
         lines.append(f"| {r['case']} | {r['speed_range_rpm'][0]:.0f}-{r['speed_range_rpm'][1]:.0f} | "

@@ -69,13 +69,10 @@ class VerdictResult:
         for c in self.cases:
             i = c.worst()
             bars = barred_ranges(c.rpm, c.value, self.limits.continuous)
-            passable = all(self.limits.transient and b["peak"] <= self.limits.transient for b in bars)
-            if not bars:
-                verdict = "pass"
-            elif passable and all(b["from_rpm"] > c.rpm[0] and b["to_rpm"] < c.rpm[-1] for b in bars):
-                verdict = "pass with barred ranges"
-            else:
-                verdict = "fail"
+            for b in bars:  # a range at an end of the speed range is where the engine runs, not one it passes
+                b["passable"] = bool(self.limits.transient and b["peak"] <= self.limits.transient
+                                     and b["from_rpm"] > c.rpm[0] and b["to_rpm"] < c.rpm[-1])
+            verdict = "pass" if not bars else ("pass with barred ranges" if all(b["passable"] for b in bars) else "fail")
             out.append({"case": c.name, "speed_range_rpm": [float(c.rpm[0]), float(c.rpm[-1])],
                         "worst_section": c.where[i], "worst_rpm": float(c.rpm[i]), "value": float(c.value[i]),
                         "limit": self.limits.continuous, "margin": 1.0 - float(c.value[i]) / self.limits.continuous,
