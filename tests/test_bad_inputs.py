@@ -59,6 +59,10 @@ housing_inertia_kgm2 = 1.0e-3
 ring_inertia_kgm2 = 3.0e-3
 damping_nms_per_rad = 5.0
 """
+# The Renault crank driven by a measured pressure curve (p.csv) instead of the synthetic cycle.
+MEASURED = (RENAULT.split("[excitation]")[0] + '[excitation]\nreciprocating_mass_kg = 0.65\n'
+            'speed_range_rpm = [750.0, 6500.0]\npressure_csv = "p.csv"\n\n[[attachments]]'
+            + RENAULT.split("[[attachments]]", 1)[1])
 # The Renault crank with a [limits] table of round numbers (the reference file's own may change).
 LIMITED = RENAULT.split("[limits]")[0] + """[limits]
 fatigue_strength_shear_pa = 230.9e6
@@ -242,6 +246,10 @@ CASES = [
                                                                    LIMITED)}, 2, ["limits.transient_shear_pa", "continuous"]),
     ("chain-limits-stress", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + '[limits]\ncontinuous_shear_pa = 1e8\nsource = "x"\n'},
      2, ["limits", "chain file", "continuous_torque_nm"]),
+    ("misfire-9", "response {d}/crank.toml --misfire 9", {}, 2, ["--misfire 9", "1..4"]),
+    ("misfire-0", "response {d}/crank.toml --misfire 0", {}, 2, ["--misfire"]),
+    ("misfire-csv", "response {d}/x.toml --misfire 1", {"x.toml": MEASURED, "p.csv": csv_rows(range(0, 720, 10))}, 2,
+     ["--misfire", "pressure_csv"]),
     ("damper-mu-0", "damper {d}/crank.toml --inertia-ratio 0", {}, 2, ["--inertia-ratio", "> 0"]),
     ("damper-mu-nan", "damper {d}/crank.toml --inertia-ratio nan", {}, 2, ["--inertia-ratio", "finite"]),
     ("damper-type-option", "damper {d}/crank.toml --type hydraulic", {}, 2, ["--type", "hydraulic"]),

@@ -278,9 +278,14 @@ def cmd_response(args) -> int:
         springs = len(lumped(crank, _partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
         if args.compare_section > springs:
             raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
+    if args.misfire is not None and args.misfire > crank.engine.cylinders:
+        raise FetorsionError(f"--misfire {args.misfire}: the engine has cylinders 1..{crank.engine.cylinders}")
+    if args.misfire is not None and crank.excitation.pressure_curve is not None:
+        raise FetorsionError(f"--misfire: {args.file} gives a measured pressure_csv; the motored cycle of a misfiring "
+                             "cylinder needs the synthetic cycle (compression_ratio)")
     rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
-                       web_method=args.stiffness)
+                       web_method=args.stiffness, misfire=None if args.misfire is None else args.misfire - 1)
     if args.compare is not None:
         from ..response.forced import compare_curve
 
@@ -434,6 +439,8 @@ def build_parser() -> argparse.ArgumentParser:
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--misfire", type=integer(1), metavar="CYL",
+                    help="cylinder CYL (1-based) does not fire: compression and expansion only")
     rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
                     "comments, '# name = ...' and '# unit = ...' read), drawn over the response; the table gives "
                     "the difference at its peak")
