@@ -18,7 +18,9 @@ class TorsionalModes:
     """What the Campbell severity needs of a set of torsional modes, SI units.
 
     ``pin_amplitudes[j, c]`` is mode j's twist at the pin of cylinder c, ``pulley_amplitude[j]``
-    its twist at the pulley, ``modal_inertia[j]`` = φ_jᵀ M φ_j with the same scaling.
+    its twist at the pulley, ``modal_inertia[j]`` = φ_jᵀ M φ_j with the same scaling;
+    ``labels[j]``, when given, says what kind of mode it is (a coupled model's torsion and
+    bending shares).
     """
 
     source: str
@@ -26,3 +28,4 @@ class TorsionalModes:
     pin_amplitudes: np.ndarray
     pulley_amplitude: np.ndarray
     modal_inertia: np.ndarray
+    labels: tuple[str, ...] = ()

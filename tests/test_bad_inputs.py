@@ -98,6 +98,26 @@ BASE = {
 
 # (id, argv with {d} for the folder, extra files, expected exit status, texts the message must hold)
 CASES = [
+    # [bearings] (issue 13)
+    ("bearings-negative", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\nradial_stiffness_n_per_m = -1e8\n\n[uncertainty]")},
+     2, ["bearings.radial_stiffness_n_per_m", "rigid"]),
+    ("bearings-count", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\nradial_stiffness_n_per_m = [1e8, 1e8]\n\n[uncertainty]")},
+     2, ["bearings.radial_stiffness_n_per_m", "one per main journal (5)"]),
+    ("bearings-word", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", '[bearings]\nradial_stiffness_n_per_m = "soft"\n\n[uncertainty]')},
+     2, ["bearings.radial_stiffness_n_per_m", "soft"]),
+    ("bearings-wide", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\nwidth = 40.0\n\n[uncertainty]")},
+     2, ["bearings.width", "journal 1's length (23)"]),
+    ("bearings-no-thrust", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\naxial_stiffness_n_per_m = 1e8\n\n[uncertainty]")},
+     2, ["bearings.thrust_journal", "is required"]),
+    ("bearings-thrust-9", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\naxial_stiffness_n_per_m = 1e8\nthrust_journal = 9\n\n[uncertainty]")},
+     2, ["bearings.thrust_journal", "1 to 5"]),
+    ("bearings-typo", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\nradial_stifness = 1e8\n\n[uncertainty]")},
+     2, ["bearings.radial_stifness", "not a known field"]),
+    ("condense-shapes-no-npz", "condense {d}/crank.toml --with-shapes", {}, 2, ["--with-shapes", "--npz"]),
+    ("condense-npz-suffix", "condense {d}/crank.toml --npz {d}/out.txt", {}, 2, ["--npz", "out.txt", ".npz"]),
+    ("modal-bearings-refine", "modal {d}/crank.toml --support bearings --refine", {}, 2, ["--support bearings", "--refine"]),
+    ("support-wall", "campbell {d}/crank.toml --support wall", {}, 2, ["--support", "wall"]),
+    ("response-fe", "response {d}/crank.toml --source fe", {}, 2, ["--source fe", "condensed"]),
     # --- the description file itself
     ("binary", "lumped {d}/bin.toml", {"bin.toml": bytes(range(256))}, 2, ["bin.toml", "not UTF-8"]),
     ("latin1", "lumped {d}/l1.toml", {"l1.toml": "[meta]\nname = 'Citro\xebn'\n".encode("latin-1")}, 2,

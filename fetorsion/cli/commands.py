@@ -27,6 +27,7 @@ from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..studies.damper_tuning import OBJECTIVES
 
 PLOT_FORMATS = (".png", ".pdf", ".svg")
+SUPPORT_CHOICES = ("free", "bearings")
 
 
 def _dof_list(text: str) -> list[int]:
@@ -146,9 +147,15 @@ def cmd_modal(args) -> int:
     if args.refine and args.mesh:
         raise FetorsionError("--refine meshes the crank three times; it cannot use --mesh")
     crank = _load_crank(args.file, "geometry")
+    if args.support == "bearings" and (args.refine or args.html):
+        raise FetorsionError("--support bearings: the modes in bearings come from the condensed crank; "
+                             "--refine and --html work with --support free")
     if not args.mesh:
         check_mesh_size(crank, args.mesh_size * (REFINE_RATIO**2 if args.refine else 1.0), "modal", args.purpose,
                         None if args.fillet_size is None else args.fillet_size * (REFINE_RATIO**2 if args.refine else 1.0))
+    if args.support == "bearings":
+        cc = _condensed(crank, args.mesh_size, read_mesh(args.mesh, crank) if args.mesh else None)
+        return _report(cc, f"{crank.name}\n{cc.table()}", args)
     refinement = None
     if args.refine:
         runs, refinement = run_refinement(crank, args.mesh_size, args.modes, args.fillet_size, args.purpose)
@@ -169,6 +176,8 @@ def cmd_modal(args) -> int:
               f"extrapolated {refinement['extrapolated']:.1f} Hz, error estimate {refinement['error_estimate']:.1f} Hz",
               file=out)
     _emit_json(payload, args.json)
+    if args.plot:
+        _save_plot(res, args.plot)
     if args.html:
         from ..report.html import mode_view, page
 
@@ -177,6 +186,21 @@ def cmd_modal(args) -> int:
                          [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
         text = f"# {crank.name}: free-free FE modes\n\n![](modes.png)\n\n```\n{res.table()}\n```\n"
         write_text_atomic(args.html, page(crank.name, text, {"modes.png": view}, Path(args.html).parent))
+    return 0
+
+
+def cmd_condense(args) -> int:
+    from ..fe.condensed import run_condensed, save_condensed
+
+    if args.with_shapes and not args.npz:
+        raise FetorsionError("--with-shapes is saved in the --npz file; give --npz PATH")
+    crank = _load_crank(args.file, "geometry")
+    check_mesh_size(crank, args.mesh_size, "modal")
+    cc = run_condensed(crank, args.mesh_size, keep_basis=args.with_shapes)
+    _report(cc, f"{crank.name}\n{cc.table()}", args)
+    if args.npz:
+        save_condensed(cc, args.npz)
+        print(f"condensed crank -> {args.npz}", file=sys.stderr if args.json == "-" else sys.stdout)
     return 0
 
 
@@ -232,8 +256,8 @@ def _report(res, text: str, args) -> int:
 def _load_excited(path: str, source: str):
     """A crank description or chain file with an [excitation] table (a chain: lumped modes only)."""
     model = load_description(path)
-    if isinstance(model, Chain) and source == "fe":
-        raise FetorsionError(f"--source fe: {path} is a chain file, it has no geometry to mesh; leave --source out")
+    if isinstance(model, Chain) and source in ("fe", "condensed"):
+        raise FetorsionError(f"--source {source}: {path} is a chain file, it has no geometry to mesh; leave --source out")
     if model.excitation is None:
         raise FetorsionError(f"{path}: the description has no [excitation] table"
                              + (" (a chain file needs [engine], [excitation] and chain.cylinder_stations)"
@@ -241,21 +265,42 @@ def _load_excited(path: str, source: str):
     return model
 
 
+def _condensed(crank, mesh_size: float, mesh=None):
+    """The condensed crank (meshing in this process: the FE job needs the mesh's arrays)."""
+    from ..fe.condensed import run_condensed
+
+    return run_condensed(crank, mesh_size, mesh=mesh)
+
+
+def _stiffness_for(args) -> str:
+    """The web method in the support condition asked for (``fe`` in bearings is ``fe-held``)."""
+    from ..webs.methods import IN_BEARINGS
+
+    return IN_BEARINGS.get(args.stiffness, args.stiffness) if args.support == "bearings" else args.stiffness
+
+
 def cmd_campbell(args) -> int:
     from ..excitation.campbell import lumped_modes, run_campbell
 
     crank = _load_excited(args.file, args.source)
-    if args.source == "fe":
+    if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
+        print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the FE modes yet "
+              "(lumped sources include them)", file=sys.stderr)
+    if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
+        check_mesh_size(crank, args.mesh_size, "modal")
+        modes = _condensed(crank, args.mesh_size).torsional_modes(args.support, args.modes)
+    elif args.source == "fe":
         from ..fe.crankfe import run_modal
 
         check_mesh_size(crank, args.mesh_size, "modal")
 
         modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
     else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
-        modes = None if crank.dampers else lumped_modes(crank, _partition_of(args.source), args.stiffness)
+        modes = None if crank.dampers else lumped_modes(crank, _partition_of(args.source), _stiffness_for(args))
     res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
-                       damping_ratio=args.damping, partition=_partition_of(args.source) if args.source != "fe" else 17,
-                       web_method=args.stiffness)
+                       damping_ratio=args.damping,
+                       partition=_partition_of(args.source) if args.source.startswith("lumped") else 17,
+                       web_method=_stiffness_for(args))
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
     _report(res, head + "\n" + res.table(), args)
@@ -272,8 +317,25 @@ def cmd_response(args) -> int:
     from ..response.forced import run_response
 
     if args.source == "fe":
-        raise FetorsionError("--source fe: the forced response uses a lumped model; choose --source lumpedN")
+        raise FetorsionError("--source fe: the forced response uses a lumped model or the condensed crank; "
+                             "choose --source lumpedN or condensed")
     crank = _load_excited(args.file, args.source)
+    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    if args.source == "condensed":
+        from ..response.coupled import run_coupled_response
+
+        if args.compare is not None:
+            raise FetorsionError("--compare works with a lumped source (its section torques); "
+                                 "leave --source condensed out")
+        if args.misfire is not None:
+            raise FetorsionError("--misfire works with a lumped source; leave --source condensed out")
+        if getattr(crank, "dampers", ()):
+            print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the condensed crank yet "
+                  "(lumped sources include them)", file=sys.stderr)
+        check_mesh_size(crank, args.mesh_size, "modal")
+        res = run_coupled_response(_condensed(crank, args.mesh_size), args.support, rpm=rpm, orders=args.orders,
+                                   damping_ratio=args.damping)
+        return _report(res, res.table(), args)
     if args.compare_section is not None:  # checked on the model's springs before the response is computed
         springs = len(lumped(crank, _partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
         if args.compare_section > springs:
@@ -283,9 +345,8 @@ def cmd_response(args) -> int:
     if args.misfire is not None and crank.excitation.pressure_curve is not None:
         raise FetorsionError(f"--misfire: {args.file} gives a measured pressure_csv; the motored cycle of a misfiring "
                              "cylinder needs the synthetic cycle (compression_ratio)")
-    rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
-                       web_method=args.stiffness, misfire=None if args.misfire is None else args.misfire - 1)
+                       web_method=_stiffness_for(args), misfire=None if args.misfire is None else args.misfire - 1)
     if args.compare is not None:
         from ..response.forced import compare_curve
 
@@ -298,8 +359,8 @@ def cmd_response(args) -> int:
 def cmd_damper(args) -> int:
     from ..studies.damper_tuning import run_damper
 
-    if args.source == "fe":
-        raise FetorsionError("--source fe: the damper is tuned on a lumped model; choose --source lumpedN")
+    if args.source in ("fe", "condensed"):
+        raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
     crank = _load_excited(args.file, args.source)
     if args.objective == "stress" and isinstance(crank, Chain):
         raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
@@ -307,12 +368,10 @@ def cmd_damper(args) -> int:
     if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
                              "SCF); give [fillets] or use --objective twist")
-    rpm = None if args.speed_range is None else np.linspace(*args.speed_range, args.steps)
-    if rpm is None:
-        rpm = np.linspace(*crank.excitation.speed_range, args.steps)
+    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
     res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
                      rpm=rpm, partition=_partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
-                     web_method=args.stiffness)
+                     web_method=_stiffness_for(args))
     return _report(res, res.table(), args)
 
 
@@ -381,8 +440,12 @@ def _orders(text: str) -> list[float]:
 
 def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", help="crank description or chain file with an [excitation] table (.toml)")
-    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe"],
-                   help="which model gives the modes (default %(default)s; fe: campbell only)")
+    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
+                   help="which model gives the modes (default %(default)s; fe: campbell only; condensed: the 3D FE "
+                        "crank condensed to its journal and pin centres, torsion and bending coupled)")
+    p.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
+                   help="the crank in its main bearings (default, as it runs) or free-free (as on a modal test "
+                        "bench); lumped: the fe web method becomes fe-held")
     p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     p.add_argument("--speed-range", nargs=2, type=real(0.0, unit="rpm"), metavar=("LOW", "HIGH"),
                    help="rpm, 0 < LOW < HIGH")
@@ -441,6 +504,8 @@ def build_parser() -> argparse.ArgumentParser:
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
     rp.add_argument("--misfire", type=integer(1), metavar="CYL",
                     help="cylinder CYL (1-based) does not fire: compression and expansion only")
+    rp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size for --source condensed (default {DEFAULT_MESH_SIZE / MM:g})")
     rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
                     "comments, '# name = ...' and '# unit = ...' read), drawn over the response; the table gives "
                     "the difference at its peak")
@@ -497,17 +562,32 @@ def build_parser() -> argparse.ArgumentParser:
     fp.add_argument("--mesh", metavar="MESHFILE", help="use a .msh written by 'fetorsion mesh' instead of meshing")
     _add_purpose_options(fp)
     fp.add_argument("--modes", type=integer(1, 200), default=DEFAULT_MODES, help="elastic modes to compute (default %(default)s)")
+    fp.add_argument("--support", choices=SUPPORT_CHOICES, default="free",
+                    help="free-free (default: what a modal test measures) or in the main bearings of [bearings] "
+                         "(the condensed crank's modes, torsion and bending shares; plot: shares against frequency)")
+    fp.add_argument("--plot", metavar="PATH", help="with --support bearings: save the plot (.png, .pdf, .svg)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
     fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
     fp.add_argument("--html", metavar="PATH", help="write the mode shapes as an interactive 3D web page (.html)")
     fp.set_defaults(func=cmd_modal)
+
+    kp = sub.add_parser("condense", help="the 3D FE crank condensed (Craig-Bampton) to journal, pin and end masters")
+    kp.add_argument("file", help="crank description (.toml)")
+    kp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"global element size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
+    kp.add_argument("--npz", metavar="PATH", help="save the reduced model (.npz; layout in docs/condensed-crank.md)")
+    kp.add_argument("--with-shapes", action="store_true",
+                    help="with --npz: also the recovery basis at the mesh vertices (for pictures; tens of MB)")
+    kp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    kp.add_argument("--plot", metavar="PATH", help="save the torsion share of each mode, free and in bearings")
+    kp.set_defaults(func=cmd_condense)
     return p
 
 
 # Output options: (attribute, option name, accepted suffixes); "-" means standard output.
 OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS), ("html", "--html", (".html",)),
-                  ("output", "-o", None), ("png", "--png", (".png",)))
+                  ("output", "-o", None), ("png", "--png", (".png",)), ("npz", "--npz", (".npz",)))
 
 
 def check_options(args) -> None:

@@ -17,8 +17,8 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_RATIO
-from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Chain, Crank, Cylinder,
-                    Damper, Engine, Excitation, Fillets, Limits, Material, OilHoles, Web)
+from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
+                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilHoles, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
 
 # Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
@@ -167,6 +167,65 @@ def _attach_point(text: str) -> AttachPoint:
     return AttachPoint(text) if text in ATTACH_POINTS else AttachPoint.FRONT
 
 
+RIGID = "rigid"
+
+
+def _per_journal(t: Table, key: str, n: int, default: float, *, rigid: bool = False, length: bool = False,
+                 positive: bool = False) -> tuple[float, ...]:
+    """One value or one per journal; ``"rigid"`` (→ inf) where allowed."""
+    raw = t.get(key, None)
+    if raw is None:
+        return (default,) * n
+    values = raw if isinstance(raw, list) else [raw]
+    if isinstance(raw, list) and len(raw) != n:
+        t.problems.append(Problem(f"{t.path}.{key}", raw, f"must be one value or one per main journal ({n})"))
+        return (default,) * n
+    out = []
+    for v in values:
+        if rigid and v == RIGID:
+            out.append(math.inf)
+        elif finite_number(v) and (v > 0 if positive else v >= 0):
+            out.append(float(v) * (t.scale if length else 1.0))
+        else:
+            what = "a finite number" + (" > 0" if positive else " >= 0") + (' or "rigid"' if rigid else "")
+            t.problems.append(Problem(f"{t.path}.{key}", raw, f"must be {what}" + (", or a list of them" if n > 1 else "")))
+            return (default,) * n
+    return tuple(out) * (n if len(out) == 1 else 1)
+
+
+def _bearings(t: Table, journals) -> Bearings:
+    """``[bearings]``: radial stiffness (N/m or "rigid") and damping (N·s/m) per journal, widths,
+    a thrust journal with its axial stiffness."""
+    n = len(journals)
+    radial = _per_journal(t, "radial_stiffness_n_per_m", n, math.inf, rigid=True, positive=True)
+    damping = _per_journal(t, "radial_damping_ns_per_m", n, 0.0)
+    width = _per_journal(t, "width", n, math.nan, length=True, positive=True)
+    width = tuple(j.length if math.isnan(w) else w for w, j in zip(width, journals))
+    for i, (w, j) in enumerate(zip(width, journals)):
+        if w > j.length * (1 + 1e-9):
+            t.problems.append(Problem(f"{t.path}.width", w / t.scale,
+                                      f"must not exceed journal {i + 1}'s length ({j.length / t.scale:g})"))
+    axial_raw = t.get("axial_stiffness_n_per_m", 0.0)
+    if axial_raw == RIGID:
+        axial = math.inf
+    elif finite_number(axial_raw) and axial_raw >= 0:
+        axial = float(axial_raw)
+    else:
+        t.problems.append(Problem(f"{t.path}.axial_stiffness_n_per_m", axial_raw, 'must be a finite number >= 0 or "rigid"'))
+        axial = 0.0
+    thrust = 1
+    if "thrust_journal" in t.data:
+        thrust = t.integer("thrust_journal")
+        if thrust > n:
+            t.problems.append(Problem(f"{t.path}.thrust_journal", thrust, f"must be a main journal number (1 to {n})"))
+            thrust = 1
+    elif axial > 0:
+        t.problems.append(Problem(f"{t.path}.thrust_journal", None, "is required with axial_stiffness_n_per_m"))
+    t.used.add("source")
+    t.finish()
+    return Bearings(radial, damping, width, axial, max(thrust, 1) - 1)
+
+
 def _cylinder(t: Table) -> Cylinder:
     d = t.number("diameter", length=True, positive=True)
     length = t.number("length", length=True, positive=True)
@@ -281,6 +340,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
         ))
         t.used.add("source")
         t.finish()
+    bearings = _bearings(root.table("bearings"), journals) if "bearings" in data else None
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
     dampers = read_dampers(root)
     limits = read_limits(root)
@@ -290,7 +350,8 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
-                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, dampers, limits)
+                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, dampers=dampers,
+                  limits=limits, bearings=bearings)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(_uncertainty_bound_problems(crank))

@@ -6,6 +6,8 @@ from a file and checks every rule.
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 from enum import StrEnum
 
@@ -208,6 +210,37 @@ class Limits:
 
 
 @dataclass(frozen=True)
+class Bearings:
+    """Main bearings, acting radially on each main journal's bearing surface.
+
+    Stiffness N/m and damping N·s/m per journal (``inf`` = rigid), axial stiffness N/m at the
+    thrust journal (0: none, the crank is then free axially; ``inf``: rigid), bearing widths m
+    per journal (centred on the journal; by default the journal's length).
+
+    Without a ``[bearings]`` table the bearings are rigid radially and there is no thrust
+    bearing (:func:`default_bearings`): no source gives the oil-film stiffness of the
+    reference engines, and the rigid limit is where a torsion-only chain belongs.
+    """
+
+    radial_stiffness: tuple[float, ...]
+    radial_damping: tuple[float, ...]
+    width: tuple[float, ...]
+    axial_stiffness: float = 0.0
+    thrust_journal: int = 0
+    given: bool = True
+
+    @property
+    def rigid(self) -> bool:
+        return all(math.isinf(k) for k in self.radial_stiffness)
+
+
+def default_bearings(journals) -> Bearings:
+    """Rigid radial bearings as wide as the journals, no thrust bearing (see :class:`Bearings`)."""
+    n = len(journals)
+    return Bearings((math.inf,) * n, (0.0,) * n, tuple(j.length for j in journals), given=False)
+
+
+@dataclass(frozen=True)
 class Crank:
     """A complete crankshaft description in SI units.
 
@@ -235,10 +268,16 @@ class Crank:
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     dampers: tuple[Damper, ...] = ()
     limits: Limits | None = None
+    bearings: Bearings | None = None
 
     @property
     def cylinders(self) -> int:
         return self.engine.cylinders
+
+    @property
+    def main_bearings(self) -> Bearings:
+        """The ``[bearings]`` table, or :func:`default_bearings`."""
+        return self.bearings if self.bearings is not None else default_bearings(self.journals)
 
     def throw_of_web(self, web_index: int) -> int:
         """0-based throw index of 0-based web ``web_index``."""

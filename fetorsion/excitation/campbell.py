@@ -75,10 +75,13 @@ class CampbellResult:
     def table(self, only_in_range: bool = True) -> str:
         rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
         rows.sort(key=lambda c: -c["severity"])
+        kinds = any("mode_kind" in c for c in self.crossings)
         head = f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} {'severity [deg]':>15}"
+        head += f"  {'kind (torsion/bending share)'}" if kinds else ""
         lines = [head, "-" * len(head)]
         lines += [f"{c['mode']:>4} {c['frequency_hz']:8.1f} {c['order']:6.1f} {c['rpm']:7.0f} "
-                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity']:15.4g}" for c in rows]
+                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity']:15.4g}"
+                  + (f"  {c.get('mode_kind', '')}" if kinds else "") for c in rows]
         return "\n".join(lines)
 
     def plot(self, ax=None, max_rpm: float | None = None):
@@ -200,7 +203,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     crossings = [
         {"mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(rpm[j, i]),
          "in_range": bool(lo <= rpm[j, i] <= hi), "torque_harmonic_nm": float(abs(Tq[j, i])),
-         "phase_sum": float(phase_sum[j, i]), "severity": float(np.degrees(theta[j, i]))}
+         "phase_sum": float(phase_sum[j, i]), "severity": float(np.degrees(theta[j, i])),
+         **({"mode_kind": modes.labels[j]} if modes.labels else {})}
         for j in range(k) for i, q in enumerate(orders)
     ]
     table = {}

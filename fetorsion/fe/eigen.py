@@ -250,7 +250,7 @@ def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = 1e-10):
 
 
 def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | None = None,
-                  max_dim: int | None = None, max_restarts: int = 20):
+                  max_dim: int | None = None, max_restarts: int = 20, project=None):
     """The ``k`` largest eigenpairs θ of the M-self-adjoint operator A = S⁻¹M.
 
     Block Lanczos with full reorthogonalisation in the M inner product: each step applies A
@@ -279,6 +279,9 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | Non
         Block width (default :data:`BLOCK_WIDTH`, at least 6 for the six rigid-body modes).
     max_dim : int, optional
         Krylov space cap, columns (default max(3k, k + 4·width), at most n).
+    project : callable, optional
+        Maps a block of random vectors into the space the operator works in (a constrained
+        operator's range, e.g. ``lambda V: solve(M @ V)``); default: none needed.
 
     Returns
     -------
@@ -297,7 +300,7 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | Non
     Q = np.empty((n, cap + b), order="F")
     MQ = np.empty((n, cap + b), order="F")
     T = np.zeros((cap + b, cap + b))
-    V, MV, _ = _random_block(M, rng, b, Q[:, :0], MQ[:, :0])
+    V, MV, _ = _random_block(M, rng, b, Q[:, :0], MQ[:, :0], project)
     m = 0  # basis columns whose image under A is in T
     for _ in range(max_restarts + 1):
         while True:
@@ -319,7 +322,7 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | Non
             if m >= k and np.all(resid <= tol * np.abs(theta[:k])):
                 return theta[:k], Qm @ S[:, :k]
             if V.shape[1] == 0:  # an invariant subspace: go on from fresh directions
-                V, MV, R = _random_block(M, rng, b, Q[:, :m], MQ[:, :m])
+                V, MV, R = _random_block(M, rng, b, Q[:, :m], MQ[:, :m], project)
                 R = np.zeros((V.shape[1], p))
             if m + V.shape[1] > cap:
                 break
@@ -335,9 +338,11 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | Non
     raise FetorsionError(f"block Lanczos did not converge to tol {tol:g} in {max_restarts} restarts")
 
 
-def _random_block(M, rng, b, Q, MQ):
+def _random_block(M, rng, b, Q, MQ, project=None):
     """``b`` random directions, M-orthogonal to Q (MQ = M Q) and M-orthonormal: (V, MV, R)."""
     V = rng.standard_normal((M.shape[0], b))
+    if project is not None:
+        V = np.asarray(project(V))
     for _ in range(2):
         V -= Q @ (MQ.T @ V)
     return m_orthonormalize(V, M @ V)

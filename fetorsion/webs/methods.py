@@ -24,6 +24,14 @@ def fe(crank: Crank, web_index: int, d_e: float) -> float:
     return web_equivalent_length_fe(crank, web_index, d_e)
 
 
+def fe_held(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web term of the throw's stiffness inside the whole crank held by rigid bearings
+    (:func:`fetorsion.webs.throwfe.held_throw_stiffnesses`), per web, m."""
+    from .throwfe import web_equivalent_length_held
+
+    return web_equivalent_length_held(crank, web_index, d_e)
+
+
 def chart(crank: Crank, web_index: int, d_e: float) -> float:
     """Web term from fetorsion's computed BICERA-style chart (:mod:`fetorsion.webs.chart`), m."""
     from .chart import web_equivalent_length_chart
@@ -33,9 +41,13 @@ def chart(crank: Crank, web_index: int, d_e: float) -> float:
 
 WebMethod = Callable[[Crank, int, float], float]
 
-WEB_METHODS: dict[str, WebMethod] = {"carter": carter, "ker-wilson": ker_wilson, "beam": beam, "fe": fe, "chart": chart}
+WEB_METHODS: dict[str, WebMethod] = {"carter": carter, "ker-wilson": ker_wilson, "beam": beam, "fe": fe,
+                                     "fe-held": fe_held, "chart": chart}
+#: What each method becomes with the crank in its bearings (``--support bearings``); the
+#: classical formulas and the chart have no support condition.
+IN_BEARINGS = {"fe": "fe-held"}
 
-__all__ = ["DEFAULT_WEB_METHOD", "WEB_METHODS", "WebMethod", "web_equivalent_length"]
+__all__ = ["DEFAULT_WEB_METHOD", "IN_BEARINGS", "WEB_METHODS", "WebMethod", "web_equivalent_length"]
 
 
 def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str = DEFAULT_WEB_METHOD) -> float:

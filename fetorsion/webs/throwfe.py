@@ -386,3 +386,68 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
         fine = (0.5 * fillet if fillet_size is None else fillet_size) if fillet > 0 else size
         cm = mesh_model({"shaft": [vol]}, ends, size * s, fine * s, fine_faces, name="stepped shaft")
     return TetMesh(cm.nodes, cm.tets, cm.node_sets)
+
+
+# ---------------------------------------------------------------------------
+# Throws inside the whole crank held by rigid bearings (issue 13)
+
+
+def held_key(crank: Crank, mesh_size: float) -> str:
+    """A stable key of what the in-bearing throw stiffnesses depend on."""
+    fields = {"material": dataclasses.asdict(crank.material), "engine": dataclasses.asdict(crank.engine),
+              "journals": [dataclasses.asdict(j) for j in crank.journals],
+              "pins": [dataclasses.asdict(p) for p in crank.pins],
+              "webs": [dataclasses.asdict(w) for w in crank.webs],
+              "front": [dataclasses.asdict(c) for c in crank.front], "rear": [dataclasses.asdict(c) for c in crank.rear],
+              "fillets": dataclasses.asdict(crank.fillets), "oil_holes": dataclasses.asdict(crank.oil_holes),
+              "widths": list(crank.main_bearings.width), "mesh_size": mesh_size, "model": MODEL_VERSION + "-held"}
+    fields["material"].pop("name", None)
+    return hashlib.sha256(json.dumps(fields, sort_keys=True, default=repr).encode()).hexdigest()[:20]
+
+
+def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None) -> np.ndarray:
+    """Torsional stiffness (N·m/rad) of each throw (journal centre to journal centre) inside the
+    whole crank with every main journal held radially by a rigid bearing (distributing
+    couplings over the bearing surfaces, tilt free), from one static FE solve: the front end's
+    twist held, a torque on the flywheel end, k_i = T / (θ_{J i+1} − θ_{J i}).
+
+    Unlike a single throw loaded by a couple (statically determinate: holding its ends
+    sideways changes nothing), the crank in five bearings is statically indeterminate: the
+    bearings resist the throws' bending under torque. Cached like :func:`throw_torsion`.
+    """
+    from ..description.defaults import DEFAULT_MESH_SIZE
+    from ..fe.condensed import run_condensed
+
+    size = DEFAULT_MESH_SIZE if mesh_size is None else mesh_size
+    key = held_key(crank, size)
+    if key not in _CACHE:
+        entry = _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
+        if entry is None:
+            bare = dataclasses.replace(crank, attachments=(), excitation=None,
+                                       bearings=dataclasses.replace(crank.main_bearings,
+                                                                    radial_stiffness=(math.inf,) * len(crank.journals)))
+            cc = run_condensed(bare, size)
+            K = cc.reduced.K
+            held = np.r_[cc.held, cc.dof("front", "rx"), cc.dof("front", "tx")]
+            keep = np.setdiff1d(np.arange(K.shape[0]), held)
+            f = np.zeros(K.shape[0])
+            f[cc.dof("rear", "rx")] = TORQUE
+            z = np.zeros(K.shape[0])
+            z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], f[keep])
+            twist = np.array([z[cc.dof(f"J{j + 1}", "rx")] for j in range(len(crank.journals))])
+            entry = {"stiffness": (TORQUE / np.diff(twist)).tolist(), "mesh_size": size, "full_dofs": cc.full_dofs}
+            _save_disk(key, entry)
+        _CACHE[key] = entry
+    k = np.array(_CACHE[key]["stiffness"])
+    if not np.all(k > 0):
+        raise FetorsionError("in-bearing throw stiffness: a non-positive value (singular model?)")
+    return k
+
+
+def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float) -> float:
+    """Web method ``fe-held``: L_eb (m, at D_e) of web ``web_index`` from its throw's stiffness
+    inside the whole crank in rigid bearings (:func:`held_throw_stiffnesses`)."""
+    i = crank.throw_of_web(web_index)
+    k = held_throw_stiffnesses(crank)[i]
+    l_throw = crank.material.shear_modulus * math.pi * d_e**4 / (32.0 * k)
+    return web_term(throw_of(crank, i), l_throw, d_e)

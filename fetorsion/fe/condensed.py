@@ -1,0 +1,487 @@
+"""The crank condensed to master points (Craig–Bampton), in its bearings or free.
+
+Masters, 6 DOF each, in axial order: ``front`` (pulley end face centre), ``J1`` (main-journal
+centre), ``P1`` (pin centre), ``J2``, … , ``rear`` (flywheel flange face centre). Each is tied
+by a distributing coupling (:mod:`fetorsion.fe.couplings`) to
+
+* a main journal's bearing surface: the journal's cylindrical surface nodes within the
+  bearing width (``[bearings] width``, default the journal length) centred on the journal;
+* a pin's cylindrical surface (where the big end bears);
+* an end face (by default rigidly: the pulley hub and the flywheel flange; see
+  :func:`run_condensed`).
+
+Attachments act on the masters as rigid masses (pulley/damper hub at ``front``, flywheel at
+``rear``, each with its offset; piston + rod as a point mass I/R² at every pin centre, as in
+:mod:`fetorsion.fe.crankfe`); bearings as radial springs and dampers on the journal masters'
+y, z translations, a rigid bearing by holding them, a thrust bearing on one journal's x.
+The reduced matrices are those of the bare crank: supports and attachments are added on the
+masters for each analysis, so one reduction serves free-free and every bearing case.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..description.defaults import DEFAULT_MESH_SIZE
+from ..description.model import AttachPoint, Crank
+from ..errors import FetorsionError
+from ..modes import TorsionalModes
+from ..solid.mesh import CrankMesh, mesh_crank
+from . import assembly, modeshape
+from .couplings import DOF_NAMES, Master, coupling_matrix, point_mass_block
+from .modal import default_shift
+from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, interface, reduced_modes, supported_modes
+from .rigid import RigidBody, reduction
+from .tetmesh import TetMesh
+
+SUPPORTS = ("free", "bearings")
+#: Elastic modes the reduction is checked on (issue 13: the first 10 within 0.1 %).
+CHECKED_MODES = 10
+#: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
+#: nominal cylinder belong to the bearing surface.
+SURFACE_TOL = 0.005
+
+
+def _surface(cm: CrankMesh, part: str, axis_yz, diameter: float, x_mid: float, width: float) -> np.ndarray:
+    k = cm.part_names.index(part)
+    nodes = np.unique(cm.tets[cm.part == k])
+    p = cm.nodes[nodes]
+    r = np.hypot(p[:, 1] - axis_yz[0], p[:, 2] - axis_yz[1])
+    on = (np.abs(r - 0.5 * diameter) <= SURFACE_TOL * diameter) & (np.abs(p[:, 0] - x_mid) <= 0.5 * width * (1 + 1e-9))
+    if on.sum() < 12:
+        raise FetorsionError(f"{part}: too few surface nodes for its coupling; refine the mesh")
+    return nodes[on]
+
+
+def _part_mid(cm: CrankMesh, part: str) -> float:
+    k = cm.part_names.index(part)
+    x = cm.nodes[np.unique(cm.tets[cm.part == k]), 0]
+    return 0.5 * (x.min() + x.max())
+
+
+def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
+    """The masters of a crank mesh, in axial order (see the module docstring)."""
+    bearings = crank.main_bearings
+    R = crank.engine.crank_radius
+    face = lambda name: cm.node_sets[f"{name}_face"]  # noqa: E731
+    masters = [Master("front", np.array([cm.nodes[face("front"), 0].mean(), 0.0, 0.0]), face("front"))]
+    for j, journal in enumerate(crank.journals):
+        xm = _part_mid(cm, f"journal_{j + 1}")
+        masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
+                              _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
+        if j < crank.cylinders:
+            pin, a = crank.pins[j], crank.engine.crank_angles[j]
+            yz = (R * math.cos(a), R * math.sin(a))
+            xp = _part_mid(cm, f"pin_{j + 1}")
+            masters.append(Master(f"P{j + 1}", np.array([xp, *yz]),
+                                  _surface(cm, f"pin_{j + 1}", yz, pin.diameter, xp, pin.length)))
+    masters.append(Master("rear", np.array([cm.nodes[face("rear"), 0].mean(), 0.0, 0.0]), face("rear")))
+    return masters
+
+
+def attachment_masses(crank: Crank, labels: list[str], positions: np.ndarray) -> np.ndarray:
+    """Master-level mass matrix (6·masters square) of the description's attachments."""
+    m = len(labels)
+    Dm = np.zeros((6 * m, 6 * m))
+    for at, label, outward in ((AttachPoint.FRONT, "front", -1.0), (AttachPoint.REAR, "rear", 1.0)):
+        atts = crank.attachments_at(at)
+        if not atts:
+            continue
+        mass = sum(a.mass for a in atts)
+        offset = sum(a.mass * a.offset for a in atts) / mass if mass > 0 else 0.0
+        diametral = sum(a.diametral_inertia + a.mass * (a.offset - offset) ** 2 for a in atts)
+        polar = sum(a.polar_inertia for a in atts)
+        k = labels.index(label)
+        centre = positions[k] + np.array([outward * offset, 0.0, 0.0])
+        Dm[6 * k:6 * k + 6, 6 * k:6 * k + 6] += point_mass_block(mass, np.diag([polar, diametral, diametral]),
+                                                                  centre, positions[k])
+    pistons = crank.attachments_at(AttachPoint.PINS)
+    if pistons:
+        inertia = sum(a.polar_inertia for a in pistons)
+        for c in range(crank.cylinders):
+            k = labels.index(f"P{c + 1}")
+            r2 = float(positions[k, 1] ** 2 + positions[k, 2] ** 2)
+            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += inertia / r2 * np.eye(3)
+    return Dm
+
+
+def bearing_matrices(crank: Crank, labels: list[str]):
+    """(K_b N/m, C_b N·s/m, held master DOF) of the main bearings on the journal masters."""
+    b = crank.main_bearings
+    n = 6 * len(labels)
+    Kb, Cb, held = np.zeros((n, n)), np.zeros((n, n)), []
+    for j in range(len(crank.journals)):
+        k = labels.index(f"J{j + 1}")
+        for d in (1, 2):
+            i = 6 * k + d
+            if math.isinf(b.radial_stiffness[j]):
+                held.append(i)
+            else:
+                Kb[i, i] = b.radial_stiffness[j]
+                Cb[i, i] = b.radial_damping[j]
+    if b.axial_stiffness > 0:
+        i = 6 * labels.index(f"J{b.thrust_journal + 1}")
+        if math.isinf(b.axial_stiffness):
+            held.append(i)
+        else:
+            Kb[i, i] = b.axial_stiffness
+    return Kb, Cb, np.array(sorted(held), dtype=np.int64)
+
+
+def section_rows(K, basis: np.ndarray, cm: CrankMesh, dof_of_node: np.ndarray, dof_xyz: np.ndarray,
+                 cuts: list[tuple[float, np.ndarray]]) -> np.ndarray:
+    """Recovery rows of the internal force resultant through each cut: (cuts, 6, r).
+
+    A cut at x = x_c splits the tetrahedra by their centroid. Let w be a rigid motion (unit
+    translation or rotation about the cut centre) of the nodes that belong to left elements
+    only, zero elsewhere: K w is then the left elements' stiffness acting across the cut only
+    (no right element touches those nodes, and the left elements alone do not resist a rigid
+    motion), so the resultant that the right part exerts on the left, by virtual work, is
+    −(K w)ᵀ u. In reduced coordinates u = [Ψ Φ] z: rows −(K W)ᵀ [Ψ Φ], exact for any z.
+    Components: forces x, y, z (N) and moments about x, y, z through the cut centre (N·m).
+    """
+    from .rigid import rigid_rows
+
+    centroid_x = cm.nodes[cm.tets[:, :4], 0].mean(axis=1)
+    out = np.empty((len(cuts), 6, basis.shape[1]))
+    n = 3 * len(dof_xyz)
+    for c, (x_cut, centre) in enumerate(cuts):
+        left = centroid_x < x_cut
+        only = np.setdiff1d(np.unique(cm.tets[left]), np.unique(cm.tets[~left]))
+        d = dof_of_node[only]
+        d = d[d >= 0]
+        R = rigid_rows(dof_xyz[d], centre)  # (nodes, 3, 6)
+        W = sp.csr_array((R.reshape(-1, 6).ravel(), (np.repeat((3 * d[:, None] + np.arange(3)).ravel(), 6),
+                                                      np.tile(np.arange(6), 3 * len(d)))), shape=(n, 6))
+        out[c] = -np.asarray((K @ W).T @ basis)
+    return out
+
+
+@dataclass
+class CondensedModes:
+    """Modes of the condensed crank in one support condition.
+
+    Attributes
+    ----------
+    support : str
+        ``free`` or ``bearings``.
+    frequencies_hz : ndarray
+        Elastic modes, Hz (the zero-frequency motions the support leaves are in ``free_motions``).
+    vectors : ndarray (r, k)
+        Reduced coordinates of each elastic mode (held DOF zero), unit modal mass.
+    fractions : ndarray (k, 3)
+        Torsion, bending, axial shares of the journals' (and end bodies') kinetic energy.
+    kinds : list of str
+        ``torsional``, ``bending``, ``axial`` when one share exceeds one half, else ``coupled``.
+    free_motions : int
+        Zero-frequency modes (6 free-free; 1 or 2 in bearings: rotation, and axial motion
+        without a thrust bearing).
+    """
+
+    support: str
+    frequencies_hz: np.ndarray
+    vectors: np.ndarray
+    fractions: np.ndarray
+    kinds: list[str]
+    free_motions: int
+
+    def first_torsional(self) -> float:
+        idx = [i for i, k in enumerate(self.kinds) if k == "torsional"]
+        if not idx:
+            raise FetorsionError(f"no torsional mode among the {len(self.kinds)} condensed-crank modes ({self.support})")
+        return float(self.frequencies_hz[idx[0]])
+
+
+@dataclass
+class CondensedCrank:
+    """A crank reduced to masters: see the module docstring and :func:`run_condensed`.
+
+    Attributes
+    ----------
+    crank : Crank
+    labels : list of str
+        Master labels in axial order.
+    positions : ndarray (masters, 3)
+        m.
+    reduced : ReducedModel
+        Bare crank: K, M over (q, η); q = 6 DOF per master (tx, ty, tz, rx, ry, rz).
+    attachment_mass : ndarray (6m, 6m)
+        Attachments on the masters, kg / kg·m / kg·m².
+    bearing_stiffness, bearing_damping : ndarray (6m, 6m)
+        N/m, N·s/m.
+    held : ndarray of int
+        Master DOF held by rigid bearings.
+    sections : ndarray (masters, 6, r)
+        Recovery rows of the internal forces (N) and moments (N·m, about the master point)
+        through the plane x = x_master of every master (:func:`section_rows`); the end
+        masters' rows are zero (nothing lies beyond them).
+    full_dofs : int
+        DOF of the 3D FE model it was reduced from.
+    """
+
+    crank: Crank
+    labels: list[str]
+    positions: np.ndarray
+    reduced: ReducedModel
+    attachment_mass: np.ndarray
+    bearing_stiffness: np.ndarray
+    bearing_damping: np.ndarray
+    held: np.ndarray
+    full_dofs: int
+    timings_s: dict = field(default_factory=dict)
+    sections: np.ndarray | None = field(default=None, repr=False)
+    mesh: CrankMesh | None = field(default=None, repr=False)
+    interface: Interface | None = field(default=None, repr=False)
+
+    @property
+    def n_master_dofs(self) -> int:
+        return 6 * len(self.labels)
+
+    def dof(self, label: str, name: str) -> int:
+        """Reduced index of master ``label``'s DOF ``name`` (tx, ty, tz, rx, ry, rz)."""
+        return 6 * self.labels.index(label) + DOF_NAMES.index(name)
+
+    def support_terms(self, support: str):
+        """(D_k, D_m, held) on the masters for ``support``."""
+        if support not in SUPPORTS:
+            raise FetorsionError(f"unknown support {support!r}; choose from {', '.join(SUPPORTS)}")
+        if support == "free":
+            return np.zeros_like(self.attachment_mass), self.attachment_mass, np.zeros(0, np.int64)
+        return self.bearing_stiffness, self.attachment_mass, self.held
+
+    def modes(self, support: str = "bearings", count: int | None = None) -> CondensedModes:
+        """Elastic modes of the reduced model in ``support`` (all of them unless ``count``)."""
+        Dk, Dm, held = self.support_terms(support)
+        w2, V, keep = reduced_modes(self.reduced, Dk, Dm, held)
+        scale = max(float(np.abs(w2).max()), 1.0)
+        free = int((np.abs(w2) < 1e-8 * scale).sum())
+        w2, V = w2[free:], V[:, free:]
+        if count is not None:
+            w2, V = w2[:count], V[:, :count]
+        full = np.zeros((self.reduced.size, V.shape[1]))
+        full[keep] = V
+        fractions, kinds = self.classify(full)
+        return CondensedModes(support, np.sqrt(np.abs(w2)) / (2 * np.pi), full, fractions, kinds, free)
+
+    def torsional_modes(self, support: str = "bearings", n: int = 3) -> TorsionalModes:
+        """The lowest ``n`` elastic modes in ``support``, whatever their kind, for the Campbell
+        analysis: a pin's twist is its centre's tangential displacement over the crank radius
+        (the work of a tangential pin force), the pulley's the front master's θx; unit modal mass.
+        Each mode carries its torsion/bending share as its label, so a coupled mode shows."""
+        md = self.modes(support, n)
+        R = self.crank.engine.crank_radius
+        pins = np.empty((len(md.frequencies_hz), self.crank.cylinders))
+        for c, a in enumerate(self.crank.engine.crank_angles):
+            ty, tz = md.vectors[self.dof(f"P{c + 1}", "ty")], md.vectors[self.dof(f"P{c + 1}", "tz")]
+            pins[:, c] = (-math.sin(a) * ty + math.cos(a) * tz) / R
+        labels = tuple(f"{k} ({f[0]:.2f}/{f[1]:.2f})" for k, f in zip(md.kinds, md.fractions))
+        return TorsionalModes(f"condensed FE crank, {support} ({self.reduced.size} DOF)", md.frequencies_hz, pins,
+                              md.vectors[self.dof("front", "rx")], np.ones(len(md.frequencies_hz)), labels)
+
+    def classify(self, Z: np.ndarray):
+        """Torsion/bending/axial fractions and labels of reduced vectors Z (r × k) from the
+        journal masters (weighted as the journal slabs) and the end bodies."""
+        rho = self.crank.material.density
+        energies = np.zeros((Z.shape[1], 3))
+        for j, c in enumerate(self.crank.journals):
+            k = self.labels.index(f"J{j + 1}")
+            m = rho * math.pi * c.diameter**2 / 4 * c.length
+            J = np.diag([m * c.diameter**2 / 8] + [m * (3 * c.diameter**2 / 16 + c.length**2 / 12)] * 2)
+            energies += modeshape.energy_split(Z[6 * k:6 * k + 6].T, m, J)
+        for label in ("front", "rear"):
+            k = self.labels.index(label)
+            B = self.attachment_mass[6 * k:6 * k + 6, 6 * k:6 * k + 6]
+            if B[0, 0] > 0:
+                energies += modeshape.energy_split(Z[6 * k:6 * k + 6].T, B[0, 0], B[3:, 3:])
+        total = energies.sum(axis=1, keepdims=True)
+        fractions = energies / np.where(total > 0, total, 1.0)
+        kinds = [modeshape.KINDS[int(f.argmax())] if f.max() > modeshape.DOMINANT else "coupled" for f in fractions]
+        return fractions, kinds
+
+    def full_modes(self, support: str, count: int) -> np.ndarray:
+        """Frequencies (Hz) of the lowest ``count`` elastic modes of the FULL 3D model with the same
+        couplings, supports and attachments (the reference the reduction is checked against)."""
+        if self.interface is None:
+            raise FetorsionError("the full model is not kept with this condensed crank (loaded from a file?)")
+        Dk, Dm, held = self.support_terms(support)
+        free = 6 if support == "free" else self.modes(support, 1).free_motions
+        w2, _ = supported_modes(self.interface, count + free, Dk, Dm, held)
+        return np.sqrt(np.abs(w2[free:])) / (2 * np.pi)
+
+    def to_dict(self) -> dict:
+        out = {"masters": [{"label": lb, "position_m": [float(v) for v in p]} for lb, p in zip(self.labels, self.positions)],
+               "reduced_dofs": int(self.reduced.size), "master_dofs": self.n_master_dofs,
+               "interior_vectors": len(self.reduced.fixed_interface_hz),
+               "interior_max_hz": float(self.reduced.fixed_interface_hz.max(initial=0.0)),
+               "full_dofs": int(self.full_dofs), "timings_s": {k: float(v) for k, v in self.timings_s.items()}}
+        for s in SUPPORTS:
+            md = self.modes(s, CHECKED_MODES)
+            out[s] = [{"frequency_hz": float(f), "kind": k, "torsional_fraction": float(fr[0]),
+                       "bending_fraction": float(fr[1]), "axial_fraction": float(fr[2])}
+                      for f, k, fr in zip(md.frequencies_hz, md.kinds, md.fractions)]
+        return out
+
+    def table(self) -> str:
+        lines = [f"condensed crank: {len(self.labels)} masters ({', '.join(self.labels)}), {self.reduced.size} DOF "
+                 f"({len(self.reduced.fixed_interface_hz)} interior vectors up to "
+                 f"{self.reduced.fixed_interface_hz.max(initial=0.0):.0f} Hz) from {self.full_dofs} FE DOF",
+                 f"{'mode':>4} {'free [Hz]':>10} {'kind':>10} {'bearings [Hz]':>14} {'kind':>10} {'torsion':>8}"]
+        a, b = self.modes("free", CHECKED_MODES), self.modes("bearings", CHECKED_MODES)
+        for j in range(min(len(a.frequencies_hz), len(b.frequencies_hz))):
+            lines.append(f"{j + 1:>4} {a.frequencies_hz[j]:10.1f} {a.kinds[j]:>10} {b.frequencies_hz[j]:14.1f} "
+                         f"{b.kinds[j]:>10} {b.fractions[j, 0]:8.3f}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Torsion share of each mode against frequency, free and in bearings."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 4))
+        for s, mk in (("free", "o"), ("bearings", "s")):
+            md = self.modes(s, CHECKED_MODES)
+            ax.plot(md.frequencies_hz, md.fractions[:, 0], mk, label=f"{s}")
+        ax.set_xlabel("frequency (Hz)")
+        ax.set_ylabel("torsion share of journal kinetic energy")
+        ax.set_ylim(-0.02, 1.02)
+        ax.legend()
+        ax.figure.tight_layout()
+        return ax
+
+
+def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
+                  fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
+                  keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid") -> CondensedCrank:
+    """Mesh the crank, assemble its bare K and M, and condense it to its masters.
+
+    Parameters
+    ----------
+    crank : Crank
+    mesh_size : float
+        Global element size, m (ignored when ``mesh`` is given).
+    ritz_blocks : int
+        Blocks of interface Ritz vectors (6 per master each; see
+        :func:`fetorsion.fe.substructure.craig_bampton`).
+    fixed_interface_modes : int
+        With ``ritz_blocks=0``: fixed-interface eigenmodes kept instead (classical Craig–Bampton).
+    mesh : CrankMesh, optional
+    keep_full : bool
+        Keep the full model's factor (for :meth:`CondensedCrank.full_modes`).
+    keep_basis : bool
+        Keep the recovery basis [Ψ Φ] (n × r, large) to expand solutions onto the mesh.
+    backend : str
+        Factorisation backend.
+    end_ties : str
+        ``rigid`` (default): the end faces move with the pulley hub and the flywheel as rigid
+        bodies, as in the free-free FE (:mod:`fetorsion.fe.crankfe`) that is compared with the
+        measured frequencies (a distributing coupling lets the flange face deform under the
+        flywheel: Renault 21 free-free f1 −2.5 %); ``distributing``: RBE3 couplings there too.
+    """
+    t0 = time.perf_counter()
+    cm = mesh or mesh_crank(crank, mesh_size)
+    t1 = time.perf_counter()
+    tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
+    m, dof_of_node = assembly.skfem_mesh(tm)
+    basis = assembly.p2_basis(m)
+    pat = assembly.block_pattern(basis)
+    mat = crank.material
+    K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
+    M = assembly.mass(basis, mat.density, pat)
+    masters = crank_masters(crank, cm)
+    xyz = m.doflocs.T
+    G = coupling_matrix(masters, dof_of_node, xyz)
+    T = None
+    Kc, Mc = K, M
+    if end_ties == "rigid":
+        # The flange and pulley-hub faces move with their rigid bodies (as in fetorsion.fe.crankfe):
+        # eliminate them exactly; their masters are then the bodies' own six DOF.
+        ends = [RigidBody(mst.label, dof_of_node[mst.nodes], 0.0, np.zeros((3, 3)), mst.position)
+                for mst in (masters[0], masters[-1])]
+        red_t = reduction(K.shape[0], ends, xyz)
+        T = red_t.T
+        Kc, Mc = red_t.reduce(K), red_t.reduce(M)
+        nf = red_t.n_free
+        pick = lambda first: sp.csr_array((np.ones(6), (np.arange(6), nf + first + np.arange(6))),  # noqa: E731
+                                          shape=(6, Kc.shape[0]))
+        G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
+    elif end_ties != "distributing":
+        raise FetorsionError(f"unknown end_ties {end_ties!r}; choose rigid or distributing")
+    t2 = time.perf_counter()
+    itf = interface(Kc, Mc, G, default_shift(tm, mat), backend)
+    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
+    if T is not None:
+        red.basis = np.asarray(T @ red.basis)
+    labels = [mst.label for mst in masters]
+    positions = np.array([mst.position for mst in masters])
+    inner = [(p[0], p) for p in positions[1:-1]]
+    sections = np.zeros((len(labels), 6, red.size))
+    sections[1:-1] = section_rows(K, red.basis, cm, dof_of_node, xyz, inner)
+    if not keep_basis:
+        red.basis = None
+    t3 = time.perf_counter()
+    Kb, Cb, held = bearing_matrices(crank, labels)
+    timings = {"meshing": (cm.quality.seconds if cm.quality and mesh is None else t1 - t0), "assembly": t2 - t1,
+               **itf.timings_s, **red.timings_s, "total": time.perf_counter() - t0}
+    return CondensedCrank(crank, labels, positions, red, attachment_masses(crank, labels, positions), Kb, Cb, held,
+                          K.shape[0], timings, sections, cm, itf if keep_full else None)
+
+
+#: Layout tag of the saved file; bump when the layout changes.
+NPZ_FORMAT = "fetorsion-condensed-1"
+
+
+def save_condensed(cc: CondensedCrank, path) -> None:
+    """Write ``cc`` to an ``.npz`` file atomically (layout in docs/condensed-crank.md).
+
+    Arrays: ``K``, ``M`` (r × r, bare crank, SI), ``n_master_dofs``, ``labels``, ``positions``
+    (m), ``dof_names``, ``attachment_mass``, ``bearing_stiffness`` (N/m), ``bearing_damping``
+    (N·s/m), ``held``, ``sections`` (masters × 6 × r), ``interior_hz``, ``full_dofs``,
+    ``description_json`` (the description it came from) and ``format``. With the recovery
+    basis kept: ``shape_nodes`` (mesh vertices, m), ``shape_tets`` (their tetrahedra) and
+    ``shape_basis`` (vertices × 3 × r, float32): u(vertex) = shape_basis @ z.
+    """
+    import json
+
+    from ..io import atomic_output
+
+    arrays = dict(format=NPZ_FORMAT, K=cc.reduced.K, M=cc.reduced.M, n_master_dofs=cc.n_master_dofs,
+                  labels=np.array(cc.labels), positions=cc.positions, dof_names=np.array(DOF_NAMES),
+                  attachment_mass=cc.attachment_mass, bearing_stiffness=cc.bearing_stiffness,
+                  bearing_damping=cc.bearing_damping, held=cc.held, sections=cc.sections,
+                  interior_hz=cc.reduced.fixed_interface_hz, full_dofs=cc.full_dofs,
+                  description_json=json.dumps(cc.crank.raw))
+    if cc.reduced.basis is not None and cc.mesh is not None:
+        _, dof_of_node = assembly.skfem_mesh(TetMesh(cc.mesh.nodes, cc.mesh.tets))
+        corners = cc.mesh.tets[:, :4]
+        vertices, local = np.unique(corners, return_inverse=True)
+        d = dof_of_node[vertices]
+        rows = (3 * d[:, None] + np.arange(3)).ravel()
+        arrays.update(shape_nodes=cc.mesh.nodes[vertices], shape_tets=local.reshape(corners.shape),
+                      shape_basis=cc.reduced.basis[rows].reshape(len(vertices), 3, -1).astype(np.float32))
+    with atomic_output(path) as tmp:
+        with open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
+
+
+def load_condensed(path) -> CondensedCrank:
+    """Read a file written by :func:`save_condensed`."""
+    import json
+
+    from ..description.crank import parse_crank
+
+    try:
+        data = np.load(path, allow_pickle=False)
+        if str(data["format"]) != NPZ_FORMAT:
+            raise FetorsionError(f"{path}: layout {str(data['format'])!r}, this fetorsion reads {NPZ_FORMAT!r}")
+        crank = parse_crank(json.loads(str(data["description_json"])), str(path), check_uncertainty=False)
+        red = ReducedModel(data["K"], data["M"], int(data["n_master_dofs"]), data["interior_hz"])
+        return CondensedCrank(crank, [str(s) for s in data["labels"]], data["positions"], red, data["attachment_mass"],
+                              data["bearing_stiffness"], data["bearing_damping"], data["held"], int(data["full_dofs"]),
+                              sections=data["sections"])
+    except (OSError, ValueError, KeyError) as exc:
+        raise FetorsionError(f"{path}: not a condensed crank written by fetorsion ({exc})") from None
