@@ -182,7 +182,7 @@ def damped_modes(inertias, stiffnesses, pin_weights, dampers, source: str = "cha
     m = np.einsum("js,st,jt->j", shapes, Mn, shapes)
     loss = np.einsum("js,st,jt->j", shapes, C, shapes) * omega
     for j, w in enumerate(omega):
-        H = np.imag(system.nominal(w)[3] if springy else np.zeros_like(Mn))
+        H = system.nominal(w)[3] if springy else np.zeros_like(Mn)
         loss[j] += shapes[j] @ H @ shapes[j]
         for d in dampers:
             if d.kind == "viscous":

@@ -25,18 +25,10 @@ from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
-from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
+from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
 from ..lumped_model.damped import DampedSystem
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
-
-
-def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
-    """C with damping ratio ``ratio`` on every elastic mode and none on the rigid-body mode."""
-    lam, Phi = scipy.linalg.eigh(K, M)  # Φᵀ M Φ = I, eigenvalues ascending
-    omega = np.sqrt(np.clip(lam, 0.0, None))
-    omega[0] = 0.0  # the free-free rigid-body mode stays undamped
-    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M
 
 
 def steady_state(M, K, C, forces, omegas) -> np.ndarray:
