@@ -19,7 +19,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
 
 from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank
