@@ -133,6 +133,11 @@ def verdict_section(crank: Crank, outcome: dict) -> list[str]:
                      f"{r['worst_section']} | {r['worst_rpm']:.0f} | {r['value'] / scale:.4g} {unit} | "
                      f"{r['limit'] / scale:.4g} {unit} | {100 * r['margin']:+.1f} % | {bars} | {heat} | "
                      f"**{r['verdict']}** |")
+    for r in v.rows():
+        if r["damper_power_by_order_w"]:
+            top = sorted(r["damper_power_by_order_w"].items(), key=lambda kv: -kv[1])[:4]
+            lines += ["", f"Damper heat, {r['case']}: {r['damper_power_w']:.1f} W in total at its worst speed, of which "
+                      + ", ".join(f"order {q}: {p:.1f} W" for q, p in top) + "."]
     lines += [""] + [f"- {n}" for n in v.notes] + [f"- every row's limit: {limit_text}; source: {lim.source}", ""]
     return lines + [f"![]({outcome['image']})", ""]
 
