@@ -10,7 +10,7 @@ interpolated curve crosses the limit. The margin is 1 − value / limit.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -193,8 +193,3 @@ def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", op
         notes.append("misfire: the cylinder's pressure is the motored cycle (compression and expansion only); "
                      "the worst cylinder is shown")
     return VerdictResult(crank.name, limits, cases, notes)
-
-
-def with_limits(crank, **changes):
-    """``crank`` with its ``[limits]`` changed (tests and studies)."""
-    return replace(crank, limits=replace(crank.limits or Limits(), **changes))
