@@ -26,7 +26,7 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
-from ..description.model import Chain, Crank, Damper
+from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
 from ..errors import FetorsionError
 from ..response.dampers import tuned_optimum, viscous_optimum
 from ..response.forced import response_setup, section_torques, solve_theta
@@ -187,6 +187,8 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, opt
     """
     if objective not in OBJECTIVES:
         raise FetorsionError(f"--objective {objective!r}: choose {' or '.join(OBJECTIVES)}")
+    if at not in DAMPER_STATIONS:
+        raise FetorsionError(f"--at {at!r}: choose {' or '.join(DAMPER_STATIONS)}")
     if objective == "stress" and isinstance(crank, Chain):
         raise FetorsionError("--objective stress: a chain file has no shaft sections; use --objective twist")
     setup = response_setup(crank, partition, rpm, **setup_options)
