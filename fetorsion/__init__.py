@@ -14,6 +14,9 @@ from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
 from .lumped_model.lumped import PARTITIONS, LumpedResult, lumped
 from .response.forced import run_response
+from .response.stress import run_stress
+from .studies.damper_tuning import run_damper
+from .studies.verdict import run_verdict
 from .studies.sensitivity import run_sensitivity, with_values
 from .studies.study import run_crank_study
 
@@ -30,5 +33,6 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
 
 
 __all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "PARTITIONS", "load", "lumped",
-           "run_campbell", "run_crank_study", "run_modal", "run_response", "run_sensitivity", "with_values"]
+           "run_campbell", "run_crank_study", "run_damper", "run_modal", "run_response", "run_sensitivity", "run_stress",
+           "run_verdict", "with_values"]
 __version__ = "0.1.0"

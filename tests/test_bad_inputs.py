@@ -44,6 +44,32 @@ speed_range_rpm = [1000.0, 5000.0]
 compression_ratio = 16.0
 imep_pa = 1.0e6
 """
+DAMPER = """
+[[dampers]]
+type = "rubber"
+hub_inertia_kgm2 = 1.0e-3
+ring_inertia_kgm2 = 3.0e-3
+stiffness_nm_per_rad = 2.6e4
+loss_factor = 0.2
+"""
+VISCOUS = """
+[[dampers]]
+type = "viscous"
+housing_inertia_kgm2 = 1.0e-3
+ring_inertia_kgm2 = 3.0e-3
+damping_nms_per_rad = 5.0
+"""
+# The Renault crank driven by a measured pressure curve (p.csv) instead of the synthetic cycle.
+MEASURED = (RENAULT.split("[excitation]")[0] + '[excitation]\nreciprocating_mass_kg = 0.65\n'
+            'speed_range_rpm = [750.0, 6500.0]\npressure_csv = "p.csv"\n\n[[attachments]]'
+            + RENAULT.split("[[attachments]]", 1)[1])
+# The Renault crank with a [limits] table of round numbers (the reference file's own may change).
+LIMITED = RENAULT.split("[limits]")[0] + """[limits]
+fatigue_strength_shear_pa = 230.9e6
+safety_factor = 2.0
+transient_shear_pa = 230.9e6
+source = "test"
+"""
 CURVE = "# unit = N m\n1000, 10\n2000, 30\n3000, 20\n"
 
 
@@ -192,6 +218,69 @@ CASES = [
     ("chain-source-fe", "campbell {d}/c.toml --source fe", {"c.toml": ENGINE_CHAIN}, 2, ["--source fe", "chain file"]),
     ("chain-no-units", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace('[units]\nlength = "mm"\n', "")}, 2,
      ["units"]),
+    # --- [[dampers]] and [limits] (issue 14)
+    ("damper-type", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace('"rubber"', '"hydraulic"')}, 2,
+     ["dampers.1.type", "viscous, rubber, tuned"]),
+    ("damper-no-ring", "campbell {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace("ring_inertia_kgm2 = 3.0e-3\n", "")},
+     2, ["dampers.1.ring_inertia_kgm2", "required"]),
+    ("damper-ring-negative", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace("3.0e-3", "-3.0e-3")}, 2,
+     ["dampers.1.ring_inertia_kgm2", "> 0"]),
+    ("damper-at", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER + 'at = "middle"\n'}, 2, ["dampers.1.at", "front, rear"]),
+    ("damper-eta-negative", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace("loss_factor = 0.2", "loss_factor = -0.2")},
+     2, ["dampers.1.loss_factor", "> 0"]),
+    ("damper-viscous-no-c", "response {d}/x.toml",
+     {"x.toml": RENAULT + VISCOUS.replace("damping_nms_per_rad = 5.0\n", "")}, 2,
+     ["dampers.1.damping_nms_per_rad", "required"]),
+    ("damper-viscous-hub-key", "response {d}/x.toml",
+     {"x.toml": RENAULT + VISCOUS.replace("housing_inertia_kgm2", "hub_inertia_kgm2")}, 2,
+     ["dampers.1.hub_inertia_kgm2", "not a known field"]),
+    ("damper-table-descending", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "dynamic_table = [[400.0, 2.6e4, 0.2], [300.0, 2.4e4, 0.2]]\n")}, 2,
+     ["dampers.1.dynamic_table", "ascending"]),
+    ("damper-table-and-k", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER + "dynamic_table = [[300.0, 2.4e4, 0.2], [400.0, 2.6e4, 0.2]]\n"}, 2,
+     ["dampers.1.stiffness_nm_per_rad", "not a known field"]),
+    ("damper-table-no-temperature", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "dynamic_table = [[20.0, 300.0, 2.4e4, 0.2], [20.0, 400.0, 2.6e4, 0.2]]\n")}, 2,
+     ["dampers.1.temperature_c", "operating"]),
+    ("damper-temperature-no-column", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "temperature_c = 60.0\ndynamic_table = [[300.0, 2.4e4, 0.2], [400.0, 2.6e4, 0.2]]\n")},
+     2, ["dampers.1.temperature_c", "temperature column"]),
+    ("damper-table-one-row-per-temperature", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "temperature_c = 60.0\ndynamic_table = [[20.0, 300.0, 2.4e4, 0.2], "
+                                         "[80.0, 400.0, 2.6e4, 0.2]]\n")}, 2, ["dampers.1.dynamic_table", ">= 2 per temperature"]),
+    ("chain-damper", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + DAMPER.replace("2.6e4", "nan")}, 2,
+     ["dampers.1.stiffness_nm_per_rad", "finite"]),
+    ("limits-nothing", "run {d}/x.toml --out {d}/new --no-fe", {"x.toml": edit("[limits]", "[limits]\nfatigue_was = 1\n",
+                                                                               LIMITED).replace("fatigue_strength_shear_pa", "strength")},
+     2, ["limits", "exactly one of"]),
+    ("limits-no-source", "run {d}/x.toml --out {d}/new --no-fe", {"x.toml": edit('source = "test"', "", LIMITED)}, 2,
+     ["limits.source"]),
+    ("limits-safety-below-1", "response {d}/x.toml", {"x.toml": edit("safety_factor = 2.0", "safety_factor = 0.5", LIMITED)},
+     2, ["limits.safety_factor", "> 1"]),
+    ("limits-transient-low", "response {d}/x.toml", {"x.toml": edit("transient_shear_pa = 230.9e6", "transient_shear_pa = 1.0e6",
+                                                                   LIMITED)}, 2, ["limits.transient_shear_pa", "continuous"]),
+    ("chain-limits-stress", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + '[limits]\ncontinuous_shear_pa = 1e8\nsource = "x"\n'},
+     2, ["limits", "chain file", "continuous_torque_nm"]),
+    ("misfire-9", "response {d}/crank.toml --misfire 9", {}, 2, ["--misfire 9", "1..4"]),
+    ("misfire-0", "response {d}/crank.toml --misfire 0", {}, 2, ["--misfire"]),
+    ("misfire-csv", "response {d}/x.toml --misfire 1", {"x.toml": MEASURED, "p.csv": csv_rows(range(0, 720, 10))}, 2,
+     ["--misfire", "pressure_csv"]),
+    ("damper-mu-0", "damper {d}/crank.toml --inertia-ratio 0", {}, 2, ["--inertia-ratio", "> 0"]),
+    ("damper-mu-nan", "damper {d}/crank.toml --inertia-ratio nan", {}, 2, ["--inertia-ratio", "finite"]),
+    ("damper-type-option", "damper {d}/crank.toml --type hydraulic", {}, 2, ["--type", "hydraulic"]),
+    ("damper-objective", "damper {d}/crank.toml --objective mass", {}, 2, ["--objective"]),
+    ("damper-hub-negative", "damper {d}/crank.toml --hub-inertia -1", {}, 2, ["--hub-inertia", ">= 0"]),
+    ("damper-chain-stress", "damper {d}/c.toml", {"c.toml": ENGINE_CHAIN}, 2, ["--objective stress", "chain file"]),
+    ("damper-sharp-stress", "damper {d}/x.toml", {"x.toml": CERTAIN.replace("journal = 2.5", "journal = 0.0")}, 2,
+     ["--objective stress", "fillet"]),
+    ("damper-json-txt", "damper {d}/crank.toml --json {d}/notes.txt", {}, 2, ["--json"]),
+    ("damper-fe", "damper {d}/crank.toml --source fe", {}, 2, ["--source fe"]),
+    ("run-mu-negative", "run {d}/crank.toml --out {d}/new --inertia-ratio -1", {}, 2, ["--inertia-ratio"]),
     # --- --compare (issue 18)
     ("compare-missing", "response {d}/c.toml --compare {d}/none.csv", {"c.toml": ENGINE_CHAIN}, 2,
      ["--compare", "none.csv", "not a file"]),

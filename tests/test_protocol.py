@@ -24,8 +24,29 @@ from fetorsion.mechanics.planetary import planetary  # noqa: E402
 from fetorsion.studies.models import make_model  # noqa: E402
 from fetorsion.studies.sampling import study_inputs  # noqa: E402
 from fetorsion.studies.study import run_study  # noqa: E402
+from fetorsion.response.stress import run_stress  # noqa: E402
+from fetorsion.studies.damper_tuning import run_damper  # noqa: E402
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
+SCF = {"pin": 2.0, "journal": 2.2, "source": "given"}
+MWM6 = GEOMETRY.parent / "examples" / "mendes2008" / "mwm6_chain.toml"
+
+
+def _verdict():
+    from dataclasses import replace
+
+    from fetorsion.description.model import Limits
+    from fetorsion.studies.verdict import run_verdict
+
+    chain = replace(fetorsion.load(MWM6), limits=Limits(continuous_torque=3000.0, transient_torque=6000.0, source="t"))
+    return run_verdict(chain, rpm=np.linspace(1000.0, 2600.0, 20))
+
+
+def _fillet_scf():
+    from fetorsion.webs.scf import FilletSCFResult
+
+    rows = json.loads((GEOMETRY.parent / "results" / "scf" / "renault21.json").read_text())["rows"]
+    return FilletSCFResult("Renault 21", 0, rows)
 
 
 def _results():
@@ -36,6 +57,10 @@ def _results():
     yield "sensitivity", lambda: fetorsion.run_sensitivity(RENAULT)
     yield "study", lambda: run_study(make_model(RENAULT, "lumped17"), study_inputs(RENAULT)[0], "sobol", 8,
                                      progress=False)
+    yield "stress", lambda: run_stress(RENAULT, scf=SCF, rpm=[2000.0, 4000.0, 6000.0])
+    yield "damper", lambda: run_damper(RENAULT, "tuned", 0.2, optimise=False, scf=SCF, rpm=[2000.0, 4000.0, 6000.0])
+    yield "verdict", _verdict
+    yield "fillet scf", _fillet_scf
     yield "kinematics", lambda: kinematics(np.radians(np.arange(0, 361, 30.0)), 0.04, 0.14, 300.0, name="k")
     yield "flywheel", lambda: size_flywheel(7000.0, 3000.0, 0.04, 0.27, 0.21, 0.085)
     yield "planetary", lambda: planetary("epicycloid", 0.06, 0.02, 0.2)

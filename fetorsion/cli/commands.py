@@ -24,6 +24,8 @@ from ..lumped_model.parts import build_parts
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 from ..webs.methods import WEB_METHODS
+from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
+from ..studies.damper_tuning import OBJECTIVES
 
 PLOT_FORMATS = (".png", ".pdf", ".svg")
 SUPPORT_CHOICES = ("free", "bearings")
@@ -282,6 +284,9 @@ def cmd_campbell(args) -> int:
     from ..excitation.campbell import lumped_modes, run_campbell
 
     crank = _load_excited(args.file, args.source)
+    if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
+        print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the FE modes yet "
+              "(lumped sources include them)", file=sys.stderr)
     if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
         check_mesh_size(crank, args.mesh_size, "modal")
         modes = _condensed(crank, args.mesh_size).torsional_modes(args.support, args.modes)
@@ -291,10 +296,12 @@ def cmd_campbell(args) -> int:
         check_mesh_size(crank, args.mesh_size, "modal")
 
         modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
-    else:
-        modes = lumped_modes(crank, _partition_of(args.source), _stiffness_for(args))
-    res = run_campbell(crank, modes, orders=args.orders,
-                       speed_range=args.speed_range, n_modes=args.modes, damping_ratio=args.damping)
+    else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
+        modes = None if crank.dampers else lumped_modes(crank, _partition_of(args.source), _stiffness_for(args))
+    res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
+                       damping_ratio=args.damping,
+                       partition=_partition_of(args.source) if args.source.startswith("lumped") else 17,
+                       web_method=_stiffness_for(args))
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
     _report(res, head + "\n" + res.table(), args)
@@ -321,6 +328,11 @@ def cmd_response(args) -> int:
         if args.compare is not None:
             raise FetorsionError("--compare works with a lumped source (its section torques); "
                                  "leave --source condensed out")
+        if args.misfire is not None:
+            raise FetorsionError("--misfire works with a lumped source; leave --source condensed out")
+        if getattr(crank, "dampers", ()):
+            print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the condensed crank yet "
+                  "(lumped sources include them)", file=sys.stderr)
         check_mesh_size(crank, args.mesh_size, "modal")
         res = run_coupled_response(_condensed(crank, args.mesh_size), args.support, rpm=rpm, orders=args.orders,
                                    damping_ratio=args.damping)
@@ -329,14 +341,38 @@ def cmd_response(args) -> int:
         springs = len(lumped(crank, _partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
         if args.compare_section > springs:
             raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
+    if args.misfire is not None and args.misfire > crank.engine.cylinders:
+        raise FetorsionError(f"--misfire {args.misfire}: the engine has cylinders 1..{crank.engine.cylinders}")
+    if args.misfire is not None and crank.excitation.pressure_curve is not None:
+        raise FetorsionError(f"--misfire: {args.file} gives a measured pressure_csv; the motored cycle of a misfiring "
+                             "cylinder needs the synthetic cycle (compression_ratio)")
     res = run_response(crank, _partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
-                       web_method=_stiffness_for(args))
+                       web_method=_stiffness_for(args), misfire=None if args.misfire is None else args.misfire - 1)
     if args.compare is not None:
         from ..response.forced import compare_curve
 
         rpm_c, value, name, unit = args.compare_curve
         compare_curve(res, rpm_c, value, name, unit,
                       None if args.compare_section is None else args.compare_section - 1)
+    return _report(res, res.table(), args)
+
+
+def cmd_damper(args) -> int:
+    from ..studies.damper_tuning import run_damper
+
+    if args.source in ("fe", "condensed"):
+        raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
+    crank = _load_excited(args.file, args.source)
+    if args.objective == "stress" and isinstance(crank, Chain):
+        raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
+                             "use --objective twist")
+    if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+        raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
+                             "SCF); give [fillets] or use --objective twist")
+    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
+                     rpm=rpm, partition=_partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
+                     web_method=_stiffness_for(args))
     return _report(res, res.table(), args)
 
 
@@ -386,9 +422,10 @@ def cmd_run(args) -> int:
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
-    options = {"mesh_size": args.mesh_size, "support": args.support}
+    options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio}
     for file, out in jobs:
-        folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force, **({"steps": FAST_STEPS} if args.no_fe else {}))
+        folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,
+                     **({"steps": FAST_STEPS} if args.no_fe else {}))
         print(f"report: {folder / 'report.md'}")
     return 0
 
@@ -448,9 +485,27 @@ def build_parser() -> argparse.ArgumentParser:
     cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
     cp.set_defaults(func=cmd_campbell)
 
+    dp = sub.add_parser("damper", help="torsional damper: Den Hartog start, optimised on the whole crank")
+    _add_excitation_options(dp)
+    dp.add_argument("--type", choices=DAMPER_TYPES, default="rubber", help="damper type (default %(default)s)")
+    dp.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+                    help="ring inertia over the damped mode's equivalent inertia at the station, 0 < MU < 2 "
+                         "(default %(default)s)")
+    dp.add_argument("--optimise", action="store_true", help="optimise stiffness and damping on the whole crank "
+                    "over the speed range after the Den Hartog start (ring inertia held)")
+    dp.add_argument("--objective", choices=OBJECTIVES, default="stress",
+                    help="what the optimiser minimises: the largest fillet shear stress or the pulley twist")
+    dp.add_argument("--at", choices=DAMPER_STATIONS, default="front", help="pulley end (front) or flywheel side")
+    dp.add_argument("--hub-inertia", type=real(0.0, 10.0, low_open=False, unit="kg m^2"), default=0.0,
+                    metavar="KGM2", help="hub or housing inertia, kg m^2 (default 0)")
+    dp.add_argument("--steps", type=integer(2, 2000), default=100, help="speeds in the range (default %(default)s)")
+    dp.set_defaults(func=cmd_damper)
+
     rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--misfire", type=integer(1), metavar="CYL",
+                    help="cylinder CYL (1-based) does not fire: compression and expansion only")
     rp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size for --source condensed (default {DEFAULT_MESH_SIZE / MM:g})")
     rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
@@ -486,6 +541,8 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
                     help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
                          "free-free FE; the report shows both")
+    up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+                    help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

@@ -17,8 +17,8 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_RATIO
-from .model import (ATTACH_POINTS, Attachment, AttachPoint, Bearings, Chain, Crank, Cylinder, Engine, Excitation, Fillets,
-                    Material, OilHoles, Web)
+from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
+                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilHoles, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
 
 # Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
@@ -123,6 +123,8 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
                                 f"must name one station (1..{n}) per cylinder ({cylinders})"))
     elif engine is None and stations:
         problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    dampers = read_dampers(root)
+    limits = read_limits(root, torque_only=True)
     excitation = None
     if "excitation" in data:
         if engine is None:
@@ -143,7 +145,7 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
         raise DescriptionError(source, _unique(problems))
     labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
     return Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
-                 tuple(c - 1 for c in stations), engine, excitation, unit, data)
+                 tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits)
 
 
 def _per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:
@@ -341,19 +343,175 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     bearings = _bearings(root.table("bearings"), journals) if "bearings" in data else None
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
     distributions = _distributions(root.table("distributions", required=False), uncertainty, data, problems)
+    dampers = read_dampers(root)
+    limits = read_limits(root)
     excitation = None
     if "excitation" in data:
         excitation = _excitation(root.table("excitation"), Path(source).parent, engine.strokes_per_cycle)
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
-                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings, distributions)
+                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings=bearings,
+                  distributions=distributions, dampers=dampers, limits=limits)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(_uncertainty_bound_problems(crank))
     if problems:
         raise DescriptionError(source, _unique(problems))
     return crank
+
+
+# The inertia key of each damper type: a viscous damper's housing, a rubber or tuned damper's hub.
+_HUB_KEY = {"viscous": "housing_inertia_kgm2", "rubber": "hub_inertia_kgm2", "tuned": "hub_inertia_kgm2"}
+
+
+def read_dampers(root: Table) -> tuple[Damper, ...]:
+    """The ``[[dampers]]`` tables (crank descriptions and chain files): one problem per bad field.
+
+    Every type needs ``ring_inertia_kgm2`` > 0; ``viscous`` needs ``damping_nms_per_rad`` > 0 and
+    takes ``housing_inertia_kgm2``; ``rubber`` needs ``stiffness_nm_per_rad`` and ``loss_factor``
+    (or a ``dynamic_table`` of [frequency Hz, stiffness N m/rad, loss factor] rows, frequency
+    ascending) and takes ``hub_inertia_kgm2``; ``tuned`` needs ``stiffness_nm_per_rad`` and takes
+    ``hub_inertia_kgm2`` and ``damping_nms_per_rad``. ``at``: ``front`` (pulley end, default) or
+    ``rear`` (flywheel side).
+    """
+    out = []
+    for t in root.tables("dampers", required=False):
+        kind = t.text("type", choices=DAMPER_TYPES)
+        at = t.text("at", "front", choices=DAMPER_STATIONS)
+        ring = t.number("ring_inertia_kgm2", positive=True)
+        hub_key = _HUB_KEY.get(kind)
+        hub = t.number(hub_key, 0.0, nonnegative=True) if hub_key else 0.0
+        k = eta = c = 0.0
+        table: tuple = ()
+        if kind == "viscous":
+            c = t.number("damping_nms_per_rad", positive=True)
+        elif kind == "rubber":
+            if "dynamic_table" in t.data:
+                table = _dynamic_table(t)
+                k, eta = (table[0][1], table[0][2]) if table else (math.nan, math.nan)
+            else:
+                k = t.number("stiffness_nm_per_rad", positive=True)
+                eta = t.number("loss_factor", positive=True)
+        elif kind == "tuned":
+            k = t.number("stiffness_nm_per_rad", positive=True)
+            c = t.number("damping_nms_per_rad", 0.0, nonnegative=True)
+        name = t.text("name", default=kind)
+        t.used.add("source")
+        t.finish()
+        if kind in DAMPER_TYPES and at in DAMPER_STATIONS:
+            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", ""))))
+    return tuple(out)
+
+
+def _dynamic_table(t: Table) -> tuple[tuple[float, float, float], ...]:
+    """``dynamic_table`` rows [frequency Hz, stiffness N m/rad, loss factor], or [temperature °C,
+    frequency Hz, stiffness, loss factor] with ``temperature_c`` (the operating temperature) to
+    read the table at: reduced here to the frequency table at that temperature
+    (:func:`table_at_temperature`)."""
+    raw = t.get("dynamic_table")
+    temperature = t.get("temperature_c", None)
+    width = len(raw[0]) if isinstance(raw, list) and raw and isinstance(raw[0], list) else 0
+    rule = ("must be >= 2 rows [frequency_hz > 0, stiffness_nm_per_rad > 0, loss_factor >= 0] with frequency "
+            "ascending, or rows [temperature_c, frequency_hz, stiffness_nm_per_rad, loss_factor] with frequency "
+            "ascending within each temperature (>= 2 per temperature) and temperature_c given")
+    rows = raw if isinstance(raw, list) else []
+    ok = (width in (3, 4) and len(rows) >= 2
+          and all(isinstance(r, list) and len(r) == width and all(finite_number(v) for v in r) for r in rows))
+    if ok:
+        body = [r[-3:] for r in rows]
+        ok = all(f > 0 and k > 0 and e >= 0 for f, k, e in body)
+    groups: dict = {}
+    if ok:
+        for r in rows:
+            groups.setdefault(r[0] if width == 4 else None, []).append(r[-3:])
+        ok = all(len(g) >= 2 and all(a[0] < b[0] for a, b in zip(g, g[1:])) for g in groups.values())
+    if not ok:
+        t.problems.append(Problem(f"{t.path}.dynamic_table", raw, rule))
+        return ()
+    if width == 3:
+        if temperature is not None:
+            t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                      "needs dynamic_table rows with a temperature column [temperature_c, frequency_hz, "
+                                      "stiffness_nm_per_rad, loss_factor]"))
+        return tuple((float(f), float(k), float(e)) for f, k, e in rows)
+    if not finite_number(temperature):
+        t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                  "a dynamic_table with a temperature column needs the operating temperature_c "
+                                  "(a finite number, °C)"))
+        return ()
+    return table_at_temperature(groups, float(temperature))
+
+
+def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float, float, float], ...]:
+    """A frequency table (f, k, η) at ``temperature`` from tables at several temperatures
+    (``groups``: temperature -> rows [f, k, η], f ascending): linear in temperature between the two
+    nearest, each read linearly in frequency on the union of their frequencies; the end
+    temperature's table outside the range (no extrapolation of a measured property)."""
+    import numpy as np
+
+    temps = sorted(groups)
+    lo = max([T for T in temps if T <= temperature], default=temps[0])
+    hi = min([T for T in temps if T >= temperature], default=temps[-1])
+    w = 0.0 if hi == lo else (temperature - lo) / (hi - lo)
+    f = np.union1d([r[0] for r in groups[lo]], [r[0] for r in groups[hi]])
+
+    def at(T, col):
+        g = groups[T]
+        return np.interp(f, [r[0] for r in g], [r[col] for r in g])
+
+    k = (1 - w) * at(lo, 1) + w * at(hi, 1)
+    eta = (1 - w) * at(lo, 2) + w * at(hi, 2)
+    return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
+
+
+def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
+    """The ``[limits]`` table: permissible vibratory shear stress (Pa) for continuous running
+    (``continuous_shear_pa``, or ``fatigue_strength_shear_pa`` / ``safety_factor``) and for passing
+    through (``transient_shear_pa``), or the same as torques (``continuous_torque_nm``,
+    ``transient_torque_nm``; the only kind for a chain file, which has no sections). ``source``
+    (required) says where the numbers come from."""
+    if "limits" not in root.data:
+        return None
+    t = root.table("limits")
+    stress_keys = ("continuous_shear_pa", "fatigue_strength_shear_pa")
+    given = [k for k in (*stress_keys, "continuous_torque_nm") if k in t.data]
+    source = t.text("source")
+    if not source.strip():
+        t.problems.append(Problem(f"{t.path}.source", t.data.get("source"), "must say where the limits come from"))
+    if torque_only and any(k in t.data for k in (*stress_keys, "transient_shear_pa")):
+        t.problems.append(Problem(t.path, sorted(t.data), "a chain file has no shaft sections: give "
+                                                         "continuous_torque_nm (and transient_torque_nm)"))
+        t.used.update((*stress_keys, "transient_shear_pa", "safety_factor"))
+        t.finish()
+        return None
+    if len(given) != 1:
+        t.problems.append(Problem(t.path, given or None,
+                                  "give exactly one of continuous_shear_pa, fatigue_strength_shear_pa (with "
+                                  "safety_factor), continuous_torque_nm"))
+        t.used.update((*stress_keys, "continuous_torque_nm", "transient_shear_pa", "transient_torque_nm",
+                       "safety_factor"))
+        t.finish()
+        return None
+    lim = Limits(source=source)
+    if given[0] == "continuous_torque_nm":
+        c = t.number("continuous_torque_nm", positive=True)
+        tr = t.number("transient_torque_nm", 0.0, nonnegative=True)
+        lim = Limits(continuous_torque=c, transient_torque=tr, source=source)
+    else:
+        strength = t.number("fatigue_strength_shear_pa", positive=True) if given[0] != "continuous_shear_pa" else 0.0
+        factor = t.number("safety_factor", above=1.0) if strength else 0.0
+        c = t.number("continuous_shear_pa", positive=True) if not strength else strength / factor
+        tr = t.number("transient_shear_pa", 0.0, nonnegative=True)
+        lim = Limits(continuous_shear=c, transient_shear=tr, fatigue_strength=strength, safety_factor=factor,
+                     source=source)
+    t.finish()
+    if lim.transient and lim.continuous and lim.transient < lim.continuous:
+        key = "transient_torque_nm" if lim.kind == "torque" else "transient_shear_pa"
+        t.problems.append(Problem(f"{t.path}.{key}", lim.transient,
+                                  f"must be >= the continuous limit ({lim.continuous:g}): passing through a "
+                                  "resonance is allowed more, not less"))
+    return lim
 
 
 EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")

@@ -146,6 +146,69 @@ class Excitation:
     modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
 
 
+DAMPER_TYPES = ("viscous", "rubber", "tuned")
+DAMPER_STATIONS = ("front", "rear")
+
+
+@dataclass(frozen=True)
+class Damper:
+    """A torsional damper: a seismic ring joined to the pulley-end (``front``) or flywheel-side
+    (``rear``) station of the chain.
+
+    ``kind`` is ``"viscous"`` (Houdaille: housing + ring in silicone fluid, ``damping`` only),
+    ``"rubber"`` (hub + ring on a rubber spring of ``stiffness`` with hysteretic
+    ``loss_factor``, optionally ``table`` rows (frequency Hz, dynamic stiffness N·m/rad, loss
+    factor) interpolated linearly in frequency, held constant outside) or ``"tuned"`` (a plain
+    tuned absorber: spring ``stiffness`` and an optional viscous ``damping``). Inertias kg·m²;
+    ``hub_inertia`` is the housing (viscous) or hub (rubber, tuned), added to the station.
+    """
+
+    kind: str
+    at: str = "front"
+    hub_inertia: float = 0.0
+    ring_inertia: float = 0.0
+    stiffness: float = 0.0
+    damping: float = 0.0
+    loss_factor: float = 0.0
+    table: tuple[tuple[float, float, float], ...] = ()
+    name: str = ""
+    source: str = ""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Permissible vibratory values (amplitudes: half peak-to-peak) and where they come from.
+
+    Stress limits in Pa (``continuous_shear``, ``transient_shear``) or torque limits in N·m
+    (``continuous_torque``, ``transient_torque``); a fatigue strength in shear and a safety
+    factor give ``continuous_shear`` = strength / factor. 0 means not given. ``source`` says
+    where every number comes from.
+    """
+
+    continuous_shear: float = 0.0
+    transient_shear: float = 0.0
+    continuous_torque: float = 0.0
+    transient_torque: float = 0.0
+    fatigue_strength: float = 0.0
+    safety_factor: float = 0.0
+    source: str = ""
+
+    @property
+    def kind(self) -> str:
+        """``"stress"`` or ``"torque"``: what the limits bound."""
+        return "torque" if self.continuous_torque > 0 else "stress"
+
+    @property
+    def continuous(self) -> float:
+        """The continuous-running limit, Pa (stress) or N·m (torque)."""
+        return self.continuous_torque if self.kind == "torque" else self.continuous_shear
+
+    @property
+    def transient(self) -> float:
+        """The passing-through limit (0: none given)."""
+        return self.transient_torque if self.kind == "torque" else self.transient_shear
+
+
 @dataclass(frozen=True)
 class Bearings:
     """Main bearings, acting radially on each main journal's bearing surface.
@@ -203,6 +266,8 @@ class Crank:
     uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
     excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
+    dampers: tuple[Damper, ...] = ()
+    limits: Limits | None = None
     bearings: Bearings | None = None
     #: ``[distributions]``: (uncertainty entry, kind, standard deviation or None); an entry not
     #: named is uniform over its range.
@@ -255,6 +320,8 @@ class Chain:
     excitation: Excitation | None = None
     length_unit: str = "m"
     raw: dict = field(default_factory=dict, compare=False, repr=False)
+    dampers: tuple[Damper, ...] = ()
+    limits: Limits | None = None
 
     @property
     def has_dampers(self) -> bool:

@@ -97,14 +97,20 @@ def _imep(theta, p, engine: Engine, ex: Excitation) -> float:
     return work / (math.pi / 4 * engine.bore**2 * engine.stroke)
 
 
-def cylinder_pressure(crank: Crank, rpm: float, theta=None) -> tuple[np.ndarray, np.ndarray]:
+def cylinder_pressure(crank: Crank, rpm: float, theta=None, misfire: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """Absolute cylinder pressure (Pa) over one cycle at ``rpm``: (θ rad, p Pa).
 
     From the description's pressure CSV if it has one (interpolated periodically), else
-    the synthetic cycle scaled to the load at ``rpm``.
+    the synthetic cycle scaled to the load at ``rpm``. ``misfire``: the cylinder does not
+    fire: the synthetic cycle's compression and expansion alone (the motored pressure).
     """
     engine, ex = crank.engine, _excitation_of(crank)
     theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
+    if misfire:
+        if not (ex.compression_ratio > 1 and engine.bore > 0):
+            raise FetorsionError("a misfire needs the synthetic cycle (excitation.compression_ratio and engine.bore): "
+                                 "the motored pressure of a measured pressure_csv is not known")
+        return theta, _closed_cycle_parts(theta, engine, ex)[0]
     if ex.pressure_curve is not None:
         ang, p = (np.asarray(v) for v in ex.pressure_curve)
         return theta, np.interp(theta, ang, p, period=cycle_angle(engine))
@@ -132,15 +138,16 @@ def _excitation_of(crank: Crank) -> Excitation:
     return crank.excitation
 
 
-def cylinder_torque(crank: Crank, rpm: float, theta=None) -> dict[str, np.ndarray]:
+def cylinder_torque(crank: Crank, rpm: float, theta=None, misfire: bool = False) -> dict[str, np.ndarray]:
     """Torque of one cylinder on the crank over a cycle at constant ``rpm``, N·m.
 
     Returns ``theta`` (rad from firing TDC), ``gas``, ``inertia`` and ``total`` torque: the
     gas force A (p − p_intake) and the reciprocating inertia force m S̈ act together on the
-    pin through the exact rod geometry, T = r F sin(θ + β)/cos β.
+    pin through the exact rod geometry, T = r F sin(θ + β)/cos β. ``misfire``: the cylinder
+    does not fire (compression and expansion only, :func:`cylinder_pressure`).
     """
     engine, ex = crank.engine, _excitation_of(crank)
-    theta, p = cylinder_pressure(crank, rpm, theta)
+    theta, p = cylinder_pressure(crank, rpm, theta, misfire)
     r, l = engine.crank_radius, engine.rod_length
     omega = rpm * 2 * np.pi / 60
     gas_force = math.pi / 4 * engine.bore**2 * (p - ex.intake_pressure)

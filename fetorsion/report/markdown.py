@@ -168,8 +168,54 @@ def studies_lines(sens, studies: dict | None, images: dict) -> list[str]:
     return lines + ["", f"![]({images['sobol']})", ""]
 
 
+
+
+def verdict_section(crank: Crank, outcome: dict) -> list[str]:
+    """Fillet stresses and the verdict table: without a damper, with Den Hartog's and the optimised one."""
+    if "skipped" in outcome:
+        return ["## Verdict", "", f"Not run: {outcome['skipped']}.", ""]
+    v = outcome["verdict"]
+    unit, scale = v.unit
+    lim = v.limits
+    lines = [f"## {'Fillet stress' if lim.kind == 'stress' else 'Section torque'}, dampers and verdict", ""]
+    if "stress" in outcome:
+        scf = outcome["scf"]
+        lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "
+                  f"**{scf['journal']:.3f}** ({scf['source']}). Vibratory shear stress = SCF x 16 T D / (pi (D^4 - d^4)) "
+                  "of the synthesised section torque (all orders summed with their phases; amplitude = half "
+                  "peak-to-peak), without a damper:", "", "```", outcome["stress"].table(), "```", ""]
+    limit_text = (f"continuous running **{lim.continuous / scale:.4g} {unit}**"
+                  + (f", passing through **{lim.transient / scale:.4g} {unit}**" if lim.transient else "")
+                  + (f" (fatigue strength {lim.fatigue_strength / scale:.4g} {unit} / safety factor "
+                     f"{lim.safety_factor:g})" if lim.fatigue_strength else ""))
+    lines += [f"Limits: {limit_text}. Source: {lim.source}.", "",
+              f"Damper designs: Den Hartog's optimum for the first mode seen from the pulley, inertia ratio "
+              f"**mu = {outcome['mu']:g}** (chosen by the user: `fetorsion run --inertia-ratio`), then optimised "
+              "on the whole crank over the speed range (its stiffness and damping; ring inertia held).", "",
+              "| case | speed range (rpm) | worst section | at rpm | value | limit | margin | barred ranges | "
+              "damper heat (W) | verdict |", "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in v.rows():
+        bars = "; ".join(f"{b['from_rpm']:.0f}-{b['to_rpm']:.0f} (peak {b['peak'] / scale:.4g} {unit}"
+                         + (", passable" if b["passable"] else ", at the end of the speed range" if
+                            b["from_rpm"] <= r["speed_range_rpm"][0] or b["to_rpm"] >= r["speed_range_rpm"][1]
+                            else ", above the passing-through limit")
+                         + ")" for b in r["barred_ranges"]) or "none"
+        heat = f"{r['damper_power_w']:.1f}" if r["damper_power_w"] else "-"
+        lines.append(f"| {r['case']} | {r['speed_range_rpm'][0]:.0f}-{r['speed_range_rpm'][1]:.0f} | "
+                     f"{r['worst_section']} | {r['worst_rpm']:.0f} | {r['value'] / scale:.4g} {unit} | "
+                     f"{r['limit'] / scale:.4g} {unit} | {100 * r['margin']:+.1f} % | {bars} | {heat} | "
+                     f"**{r['verdict']}** |")
+    for r in v.rows():
+        if r["damper_power_by_order_w"]:
+            top = sorted(r["damper_power_by_order_w"].items(), key=lambda kv: -kv[1])[:4]
+            lines += ["", f"Damper heat, {r['case']}: {r['damper_power_w']:.1f} W in total at its worst speed, of which "
+                      + ", ".join(f"order {q}: {p:.1f} W" for q, p in top) + "."]
+    lines += [""] + [f"- {n}" for n in v.notes] + [f"- every row's limit: {limit_text}; source: {lim.source}", ""]
+    return lines + [f"![]({outcome['image']})", ""]
+
+
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),
-            ("sensitivity", sensitivity_section))
+            ("sensitivity", sensitivity_section), ("verdict", verdict_section))
 
 
 def report_markdown(crank: Crank, path, sections: dict, timings_s: dict) -> str:

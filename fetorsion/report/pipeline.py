@@ -168,6 +168,41 @@ REPORT_MONTECARLO_RUNS = 2000
 REPORT_SOBOL_BASE = 512
 
 
+def step_verdict(ctx: RunContext) -> None:
+    """Fillet stresses, the damper designs and the verdict against the description's [limits]."""
+    from ..studies.verdict import run_verdict
+
+    crank = ctx.crank
+    if crank.excitation is None or crank.limits is None:
+        ctx.sections["verdict"] = {"skipped": "the description has no [excitation] and [limits] tables"
+                                   if crank.excitation is None else "the description has no [limits] table"}
+        return
+    scf = None
+    if crank.limits.kind == "stress":
+        if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+            ctx.sections["verdict"] = {"skipped": "stress limits need fillet radii (a sharp corner has no finite SCF)"}
+            return
+        from ..webs.scf import SHIPPED_SCF, fillet_scfs, scf_key
+
+        shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
+        if scf_key(crank) not in shipped and ctx.options.get("no_fe"):
+            scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: --no-fe and no stored FE SCF)"}
+        else:
+            _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
+            scf = fillet_scfs(crank)
+    mu = ctx.options.get("inertia_ratio", 0.25)
+    verdict = run_verdict(crank, mu=mu, scf=scf)
+    ctx.results["verdict"] = verdict.to_dict()
+    outcome = {"verdict": verdict, "mu": mu, "scf": scf, "image": ctx.save(verdict.plot().figure, "verdict.png")}
+    if scf is not None:
+        from ..response.stress import fillet_stress
+
+        stress = fillet_stress(crank, ctx.sections["campbell"]["response"], scf)
+        ctx.results["stress"] = stress.to_dict()
+        outcome["stress"] = stress
+    ctx.sections["verdict"] = outcome
+
+
 def step_sensitivity(ctx: RunContext) -> None:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
     Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
@@ -206,6 +241,7 @@ DEFAULT_STEPS: tuple[tuple[str, Callable[[RunContext], None]], ...] = (
     ("condensed crank in its bearings", step_bearings),
     ("Campbell diagram and forced response", step_campbell),
     ("sensitivity of f1", step_sensitivity),
+    ("fillet stress, dampers and verdict", step_verdict),
 )
 # ``fetorsion run --no-fe``: the same report without the mesh and the FE modal analysis.
 FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[1] not in (step_fe, step_bearings))
@@ -239,7 +275,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[1] not in (step_fe, step_bearings))
     with atomic_folder(out) as work:
-        ctx = RunContext(crank, work, dict(options or {}))
+        ctx = RunContext(crank, work, {"no_fe": not any(s[1] is step_fe for s in steps), **(options or {})})
         for name, fn in steps:
             _progress(f"{name} ...")
             t0 = time.perf_counter()

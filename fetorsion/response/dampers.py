@@ -21,7 +21,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.optimize
 
-from ..errors import FetorsionError
+from ..lumped_model.damped import DampedSystem, attach, damper_spring, damper_station  # noqa: F401 (re-exported)
 
 
 def viscous_optimum(mu: float) -> tuple[float, float]:
@@ -33,51 +33,6 @@ def tuned_optimum(mu: float) -> tuple[float, float, float]:
     """Den Hartog's tuned absorber: (ring frequency / ω_n, optimum ζ = c/(2 J_ring ω_n),
     height of the fixed points = peak amplification at the optimum)."""
     return 1.0 / (1.0 + mu), np.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3)), np.sqrt(1.0 + 2.0 / mu)
-
-
-def attach(M, K, C, station: int, ring_inertia: float, stiffness: float = 0.0, damping: float = 0.0,
-           loss_factor: float = 0.0, housing_inertia: float = 0.0):
-    """The chain's matrices with a damper on ``station``: its ring becomes a last degree of freedom.
-
-    Parameters
-    ----------
-    M, K, C : ndarray (n, n)
-        Inertia (kg·m²), stiffness (N·m/rad, may be complex: hysteretic springs) and damping
-        (N·m·s/rad) of the chain.
-    station : int
-        0-based station that carries the damper.
-    ring_inertia : float
-        Seismic ring, kg·m².
-    stiffness : float
-        Spring between station and ring, N·m/rad (0: a viscous damper).
-    damping : float
-        Viscous coefficient between station and ring, N·m·s/rad.
-    loss_factor : float
-        Hysteretic loss factor of the spring (rubber), on ``stiffness``.
-    housing_inertia : float
-        Housing or hub, added to the station, kg·m².
-
-    Returns
-    -------
-    M, K, C : ndarray (n + 1, n + 1)
-    """
-    if not ring_inertia > 0:
-        raise FetorsionError(f"damper ring inertia {ring_inertia!r}: must be > 0 kg m^2")
-    n = len(M)
-    joint = np.zeros((n + 1, n + 1))
-    joint[[station, n], [station, n]] = 1.0
-    joint[[station, n], [n, station]] = -1.0
-
-    def grow(A):
-        out = np.zeros((n + 1, n + 1), dtype=np.result_type(A, float))
-        out[:n, :n] = A
-        return out
-
-    M2 = grow(M)
-    M2[station, station] += housing_inertia
-    M2[n, n] = ring_inertia
-    spring = stiffness * (1.0 + 1j * loss_factor) if loss_factor else stiffness
-    return M2, grow(K) + spring * joint, grow(C) + damping * joint
 
 
 def amplification(M, K, C, station: int, omegas) -> np.ndarray:

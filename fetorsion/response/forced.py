@@ -16,26 +16,18 @@ section torque is the elastic torque k Δθ of each spring (what a strain gauge 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg
 
 from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
-from ..lumped_model.lumped import chain_damping, chain_matrices, lumped
-from .synthesis import half_peak_to_peak
+from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
+from ..lumped_model.damped import DampedSystem
+from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
-
-
-def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
-    """C with damping ratio ``ratio`` on every elastic mode and none on the rigid-body mode."""
-    lam, Phi = scipy.linalg.eigh(K, M)  # Φᵀ M Φ = I, eigenvalues ascending
-    omega = np.sqrt(np.clip(lam, 0.0, None))
-    omega[0] = 0.0  # the free-free rigid-body mode stays undamped
-    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M
 
 
 def steady_state(M, K, C, forces, omegas) -> np.ndarray:
@@ -64,6 +56,16 @@ class ResponseResult:
         Vibratory torque (half peak-to-peak) in each shaft section, N·m.
     order_pulley_deg : ndarray, shape (speeds, orders)
         Each order's own pulley amplitude, degrees.
+    section_torque_peak_nm : ndarray, shape (speeds, springs)
+        Largest |vibratory torque| over the cycle (the orders summed with their phases), N·m.
+    pulley_angle_peak_deg : ndarray
+        The same for the pulley angle, degrees.
+    theta : ndarray, shape (speeds, orders, DOF), complex
+        Each order's complex angle amplitude of every station (and damper ring), rad.
+    damper_power_w : ndarray, shape (speeds, dampers, orders)
+        Mean power each damper dissipates, per order (orders add: they are orthogonal), W.
+    misfire : int or None
+        0-based cylinder that does not fire, if any.
     """
 
     name: str
@@ -77,15 +79,43 @@ class ResponseResult:
     damping_ratio: float
     damping: str = ""
     compare: dict | None = None
+    section_torque_peak_nm: np.ndarray | None = None
+    pulley_angle_peak_deg: np.ndarray | None = None
+    theta: np.ndarray | None = None
+    stiffnesses_nm_per_rad: np.ndarray | None = None
+    cycle_rad: float = 4 * np.pi
+    damper_names: list = field(default_factory=list)
+    damper_power_w: np.ndarray | None = None
+    misfire: int | None = None
+    positions_m: np.ndarray | None = None
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
-                "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
-                "pulley_angle_deg": self.pulley_angle_deg.tolist(),
-                "pulley_twist_deg": self.pulley_twist_deg.tolist(),
-                "section_torque_nm": self.section_torque_nm.tolist(),
-                "order_pulley_deg": self.order_pulley_deg.tolist(), "damping": self.damping_text(),
-                "compare": self.compare}
+        out = {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
+               "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
+               "pulley_angle_deg": self.pulley_angle_deg.tolist(),
+               "pulley_twist_deg": self.pulley_twist_deg.tolist(),
+               "section_torque_nm": self.section_torque_nm.tolist(),
+               "order_pulley_deg": self.order_pulley_deg.tolist(), "damping": self.damping_text(),
+               "compare": self.compare, "misfire_cylinder": None if self.misfire is None else self.misfire + 1}
+        if self.section_torque_peak_nm is not None:
+            out.update(section_torque_peak_nm=self.section_torque_peak_nm.tolist(),
+                       section_torque_peak_to_peak_nm=(2 * self.section_torque_nm).tolist(),
+                       pulley_angle_peak_deg=self.pulley_angle_peak_deg.tolist(),
+                       pulley_angle_peak_to_peak_deg=(2 * self.pulley_angle_deg).tolist())
+        if self.damper_names:
+            out.update(dampers=self.damper_names, damper_power_w=self.damper_power_w.sum(axis=2).tolist(),
+                       damper_power_per_order_w=self.damper_power_w.tolist())
+        return out
+
+    def waveform(self, speed: int, samples: int = 720) -> dict:
+        """The synthesised signals over one cycle at ``rpm[speed]``: ``angle_deg`` (crank angle),
+        ``pulley_deg`` (pulley vibratory angle) and ``section_torque_nm`` (springs × angles)."""
+        theta = np.linspace(0.0, self.cycle_rad, samples, endpoint=False)
+        z = self.theta[speed]  # (orders, DOF)
+        n = len(self.labels)
+        torque = self.stiffnesses_nm_per_rad[:, None] * (z[:, : n - 1] - z[:, 1:n]).T  # (springs, orders)
+        return {"angle_deg": np.degrees(theta), "pulley_deg": np.degrees(waveform(z[:, 0], self.orders, theta)),
+                "section_torque_nm": waveform(torque, self.orders, theta)}
 
     def damping_text(self) -> str:
         """How the response is damped, in words."""
@@ -101,7 +131,20 @@ class ResponseResult:
             f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
             f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
             f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
-            f"({self.labels[k]}-{self.labels[k + 1]})"] + compare_lines(self.compare))
+            f"({self.labels[k]}-{self.labels[k + 1]})"] + self._extra_lines() + compare_lines(self.compare))
+
+    def _extra_lines(self) -> list[str]:
+        lines = []
+        if self.section_torque_peak_nm is not None:
+            s, k = np.unravel_index(self.section_torque_peak_nm.argmax(), self.section_torque_peak_nm.shape)
+            lines.append(f"  largest section torque peak {self.section_torque_peak_nm[s, k]:.1f} N m (peak-to-peak "
+                         f"{2 * self.section_torque_nm[s, k]:.1f}) at {self.rpm[s]:.0f} rpm")
+        if self.misfire is not None:
+            lines.append(f"  misfire: cylinder {self.misfire + 1} does not fire (compression and expansion only)")
+        for j, name in enumerate(self.damper_names):
+            p = self.damper_power_w[:, j].sum(axis=1)
+            lines.append(f"  damper '{name}': dissipates up to {p.max():.1f} W (at {self.rpm[p.argmax()]:.0f} rpm)")
+        return lines
 
     def plot(self, ax=None):
         """Pulley angle and twist, and the most loaded section's torque, against speed.
@@ -133,7 +176,10 @@ class ResponseResult:
             worst = c["section"]
             a2.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
         a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
-                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}")
+                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}: amplitude (½ peak-to-peak)")
+        if self.section_torque_peak_nm is not None:
+            a2.plot(self.rpm, self.section_torque_peak_nm[:, worst], color="C3", ls=":",
+                    label="largest |torque| over the cycle (orders summed with phases)")
         a2.set_ylabel("vibratory torque [N m]")
         a2.set_xlabel("engine speed [rpm]")
         a2.legend(fontsize=8)
@@ -142,7 +188,8 @@ class ResponseResult:
 
 
 def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
-                 damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD) -> ResponseResult:
+                 damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
+                 dampers=None, misfire: int | None = None) -> ResponseResult:
     """Forced torsional response of a lumped crank model, or of a chain file, over the operating range.
 
     Parameters
@@ -158,6 +205,11 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     damping_ratio : float, optional
         Modal damping ratio; default the description's. A chain's absolute, relative and
         hysteretic dampers act in addition.
+    dampers : sequence of Damper, optional
+        Torsional dampers (:class:`fetorsion.description.model.Damper`); default the
+        description's ``[[dampers]]``; ``()`` for none.
+    misfire : int, optional
+        0-based cylinder that does not fire (compression and expansion only).
 
     Examples
     --------
@@ -167,6 +219,47 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     >>> r.pulley_angle_deg.shape
     (2,)
     """
+    setup = response_setup(crank, partition, rpm, orders, damping_ratio, web_method, misfire)
+    return solve_response(setup, crank.dampers if dampers is None else tuple(dampers))
+
+
+@dataclass
+class ResponseSetup:
+    """What a forced response needs before its dampers are chosen: the chain's matrices, the
+    forces of every speed and order, and the damping text (:func:`response_setup`); solving it
+    with any set of dampers (:func:`solve_response`) reuses the costly torque harmonics."""
+
+    name: str
+    labels: list
+    positions_m: np.ndarray
+    stiffnesses: np.ndarray
+    M: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    forces: np.ndarray  # (speeds, orders, stations)
+    rpm: np.ndarray
+    orders: np.ndarray
+    period: float
+    zeta: float
+    stated: str
+    misfire: int | None
+    torque_harmonics: np.ndarray | None = None  # (speeds, orders): one firing cylinder's T_q, N·m
+    phasors: np.ndarray | None = None  # (orders, cylinders): e^{−i q φ_c}
+    pin_weights: np.ndarray | None = None  # (cylinders, stations)
+
+    def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
+        """The same engine with ``cylinder`` (0-based) not firing: its torque harmonics replaced by
+        ``motored`` (speeds, orders; :func:`motored_harmonics`), the others' unchanged."""
+        from dataclasses import replace
+
+        W = self.pin_weights
+        delta = (motored - self.torque_harmonics)[:, :, None] * (self.phasors[:, cylinder, None] * W[cylinder][None, :])[None]
+        return replace(self, forces=self.forces + delta, misfire=cylinder)
+
+def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
+                   damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
+                   misfire: int | None = None) -> ResponseSetup:
+    """The chain, its damping and the cylinders' forces for :func:`run_response` (arguments as there)."""
     ex = crank.excitation
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
@@ -174,8 +267,12 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
+    if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
+        raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
     res = lumped(crank, partition, web_method)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    # The modal damping ratio stands for the crank's own losses: it is set on the chain's modes
+    # without the dampers, which bring their own damping.
     C = modal_damping_matrix(M, K, zeta)
     stated = ""
     if isinstance(crank, Chain):
@@ -190,22 +287,64 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
-    omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
-    theta = steady_state(M, K, C, forces, omegas)  # (speeds, orders, stations)
+    setup = ResponseSetup(crank.name, res.labels, res.positions_m, res.stiffnesses_nm_per_rad, M, K, C, forces, rpm,
+                          orders, period, zeta, stated, None, Tq, phasors, W)
+    if misfire is not None:  # that cylinder's firing torque replaced by its motored one
+        return setup.with_misfire(misfire, motored_harmonics(crank, rpm, orders))
+    return setup
 
-    def amplitude(z):  # z: (..., orders) complex -> half peak-to-peak over a cycle
-        return half_peak_to_peak(z, orders, period)
 
-    k = res.stiffnesses_nm_per_rad
-    twist = theta[:, :, :-1] - theta[:, :, 1:]  # (speeds, orders, springs)
-    section = np.moveaxis(np.real(k) * twist, 1, 2)  # (speeds, springs, orders): each section's torque
+def motored_harmonics(crank, rpm, orders) -> np.ndarray:
+    """(speeds, orders) torque harmonics of a cylinder that does not fire (compression and
+    expansion only, plus its reciprocating inertia), N·m."""
+    period = cycle_angle(crank.engine)
+    return np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
+
+
+def solve_theta(setup: ResponseSetup, dampers=()):
+    """(theta (speeds, orders, DOF) complex rad, ω (speeds, orders) rad/s, the DampedSystem) of a
+    :func:`response_setup` with ``dampers``: the solve without the synthesis."""
+    system = DampedSystem(setup.M, setup.K, setup.C, dampers)
+    n = len(setup.labels)
+    N = len(system.M)
+    forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
+    omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
+    return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
+
+
+def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:
+    """(speeds, springs, orders) complex torque of each shaft section, N·m."""
+    n = len(setup.labels)
+    return np.moveaxis(np.real(setup.stiffnesses) * (theta[:, :, : n - 1] - theta[:, :, 1:n]), 1, 2)
+
+
+def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
+    """The forced response of a :func:`response_setup` with ``dampers`` on the chain."""
+    stated = setup.stated
+    if dampers:
+        stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
+    n = len(setup.labels)
+    orders, period = setup.orders, setup.period
+    theta, omegas, system = solve_theta(setup, dampers)
+
+    def synth(z):  # z: (..., orders) complex -> (half peak-to-peak, largest |value|) over a cycle
+        top, bottom = extremes(z, orders, period)
+        return 0.5 * (top - bottom), np.maximum(top, -bottom)
+
+    k = np.real(setup.stiffnesses)
+    torque_amp, torque_peak = synth(section_torques(setup, theta))
+    pulley_amp, pulley_peak = synth(theta[:, :, 0])
     return ResponseResult(
-        name=crank.name, labels=res.labels, orders=orders, rpm=rpm,
-        pulley_angle_deg=np.degrees(amplitude(theta[:, :, 0])),
-        pulley_twist_deg=np.degrees(amplitude(theta[:, :, 0] - theta[:, :, -1])),
-        section_torque_nm=amplitude(section),
+        name=setup.name, labels=setup.labels, orders=orders, rpm=setup.rpm,
+        pulley_angle_deg=np.degrees(pulley_amp),
+        pulley_twist_deg=np.degrees(synth(theta[:, :, 0] - theta[:, :, n - 1])[0]),
+        section_torque_nm=torque_amp,
         order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
-        damping_ratio=zeta, damping=stated,
+        damping_ratio=setup.zeta, damping=stated,
+        section_torque_peak_nm=torque_peak, pulley_angle_peak_deg=np.degrees(pulley_peak), theta=theta,
+        stiffnesses_nm_per_rad=k, cycle_rad=period, damper_names=[d.name for d in dampers],
+        damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=setup.misfire,
+        positions_m=setup.positions_m,
     )
 
 

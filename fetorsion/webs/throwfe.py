@@ -157,6 +157,28 @@ def static_torsion(mesh: TetMesh, material, fixed: str = "front_face", loaded: s
     dofs : int
         Size of the solved system.
     """
+    sol = torsion_solution(mesh, material, fixed, loaded, backend)
+    return TORQUE / sol.twist, sol.dofs
+
+
+@dataclass
+class TorsionSolution:
+    """The static torsion field: scikit-fem mesh and scalar P2 basis, the full interleaved
+    displacement ``u`` (m, 3 per DOF-numbered node) under :data:`TORQUE`, the loaded face's twist
+    (rad), the solved system's size, and ``dof_of_node`` (mesh node -> DOF-numbered node)."""
+
+    skfem_mesh: object
+    basis: object
+    u: np.ndarray
+    twist: float
+    dofs: int
+    dof_of_node: np.ndarray
+
+
+def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded: str = "rear_face",
+                     backend: str = "auto") -> TorsionSolution:
+    """Solve the static torsion of :func:`static_torsion` and keep the whole displacement field
+    (for stresses: :mod:`fetorsion.webs.scf`). Arguments as for :func:`static_torsion`."""
     m, dof_of_node = assembly.skfem_mesh(mesh)
     basis = assembly.p2_basis(m)
     K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio)
@@ -178,10 +200,13 @@ def static_torsion(mesh: TetMesh, material, fixed: str = "front_face", loaded: s
     f = np.zeros(len(keep))
     f[n + 3] = TORQUE  # θx of the loaded body
     solve = factorize(Kk.tocsc(), backend)
-    phi = float(solve(f)[n + 3])
+    q_kept = solve(f)
+    phi = float(q_kept[n + 3])
     if not phi > 0:
         raise FetorsionError(f"static torsion: non-positive twist {phi:.3g} rad (singular model?)")
-    return TORQUE / phi, len(keep)
+    q = np.zeros(Kr.shape[0])
+    q[keep] = q_kept
+    return TorsionSolution(m, basis, red.T @ q, phi, len(keep), dof_of_node)
 
 
 def torsional_stiffness_fe(description: Crank, mesh_size: float | None = None,

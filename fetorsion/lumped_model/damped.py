@@ -1,0 +1,193 @@
+"""A chain's matrices with torsional dampers attached (issue 14): one extra degree of freedom
+per damper ring, the hub or housing added to its station. Here, before the excitation stage,
+so that the Campbell analysis and the forced response see the same damped system; the
+classical optima and the tuning live in :mod:`fetorsion.response.dampers`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import FetorsionError
+
+
+def attach(M, K, C, station: int, ring_inertia: float, stiffness: float = 0.0, damping: float = 0.0,
+           loss_factor: float = 0.0, housing_inertia: float = 0.0):
+    """The chain's matrices with a damper on ``station``: its ring becomes a last degree of freedom.
+
+    Parameters
+    ----------
+    M, K, C : ndarray (n, n)
+        Inertia (kg·m²), stiffness (N·m/rad, may be complex: hysteretic springs) and damping
+        (N·m·s/rad) of the chain.
+    station : int
+        0-based station that carries the damper.
+    ring_inertia : float
+        Seismic ring, kg·m².
+    stiffness : float
+        Spring between station and ring, N·m/rad (0: a viscous damper).
+    damping : float
+        Viscous coefficient between station and ring, N·m·s/rad.
+    loss_factor : float
+        Hysteretic loss factor of the spring (rubber), on ``stiffness``.
+    housing_inertia : float
+        Housing or hub, added to the station, kg·m².
+
+    Returns
+    -------
+    M, K, C : ndarray (n + 1, n + 1)
+    """
+    if not ring_inertia > 0:
+        raise FetorsionError(f"damper ring inertia {ring_inertia!r}: must be > 0 kg m^2")
+    n = len(M)
+    joint = np.zeros((n + 1, n + 1))
+    joint[[station, n], [station, n]] = 1.0
+    joint[[station, n], [n, station]] = -1.0
+
+    def grow(A):
+        out = np.zeros((n + 1, n + 1), dtype=np.result_type(A, float))
+        out[:n, :n] = A
+        return out
+
+    M2 = grow(M)
+    M2[station, station] += housing_inertia
+    M2[n, n] = ring_inertia
+    spring = stiffness * (1.0 + 1j * loss_factor) if loss_factor else stiffness
+    return M2, grow(K) + spring * joint, grow(C) + damping * joint
+
+
+def damper_station(damper, n: int) -> int:
+    """0-based station carrying ``damper`` on a chain of ``n`` stations: the first (pulley end,
+    ``at = "front"``) or the last (flywheel side, ``"rear"``)."""
+    return 0 if damper.at == "front" else n - 1
+
+
+def damper_spring(damper, omegas) -> np.ndarray:
+    """Complex spring k(ω)(1 + iη(ω)) of ``damper`` (N·m/rad) at ``omegas`` (rad/s).
+
+    A rubber damper's ``table`` (frequency Hz, dynamic stiffness, loss factor) is interpolated
+    linearly in frequency and held at its end values outside it (no extrapolation of a
+    measured property); without a table the stiffness and loss factor are constant.
+    """
+    omegas = np.asarray(omegas, dtype=float)
+    if damper.table:
+        f, k, eta = (np.asarray(c) for c in zip(*damper.table))
+        hz = omegas / (2 * np.pi)
+        return np.interp(hz, f, k) * (1 + 1j * np.interp(hz, f, eta))
+    return np.full(omegas.shape, damper.stiffness * (1 + 1j * damper.loss_factor))
+
+
+class DampedSystem:
+    """A chain's matrices with its dampers' rings appended as the last degrees of freedom.
+
+    ``M``, ``C`` and ``K`` hold the chain, the hubs (added to their stations), the rings and
+    the viscous dashpots; the damper springs, which may depend on frequency, are added per
+    frequency by :meth:`matrix`. ``stations`` (the chain's size) and ``rings`` (index of each
+    damper's ring) locate the DOF. Works for any reduced matrices (a lumped chain or a
+    condensed FE crank): only (M, K, C, station) are used.
+    """
+
+    def __init__(self, M, K, C, dampers=(), stations: int | None = None, at=None):
+        n = len(M) if stations is None else stations
+        self.stations, self.dampers, self.rings, self.carriers, self.joints = n, tuple(dampers), [], [], []
+        for d in self.dampers:
+            s = damper_station(d, n) if at is None else at
+            M, K, C = attach(M, K, C, s, d.ring_inertia, 0.0, d.damping, 0.0, d.hub_inertia)
+            ring = len(M) - 1
+            self.rings.append(ring)
+            self.carriers.append(s)
+            self.joints.append((s, ring))
+        self.M, self.K, self.C = M, K, C
+
+    def _spring_terms(self, omegas):
+        """Σ_d k_d(ω) J_d, shape omegas.shape + (N, N)."""
+        omegas = np.asarray(omegas, dtype=float)
+        N = len(self.M)
+        out = np.zeros(omegas.shape + (N, N), dtype=complex)
+        for d, (s, r) in zip(self.dampers, self.joints):
+            k = damper_spring(d, omegas)
+            out[..., s, s] += k
+            out[..., r, r] += k
+            out[..., s, r] -= k
+            out[..., r, s] -= k
+        return out
+
+    def matrix(self, omegas) -> np.ndarray:
+        """K − ω²M + iωC + Σ k_d(ω)(1 + iη_d(ω)) J_d for every ω (rad/s): shape omegas.shape + (N, N)."""
+        w = np.asarray(omegas, dtype=float)[..., None, None]
+        return self.K - w**2 * self.M + 1j * w * self.C + self._spring_terms(omegas)
+
+    def nominal(self, omega: float = 0.0):
+        """(M, real K, C, H): the springs' real stiffness and hysteretic part at ``omega`` (rad/s),
+        for undamped modes and their equivalent damping."""
+        S = self._spring_terms(np.asarray(omega))
+        K = self.K + S
+        return self.M, np.real(K), self.C, np.imag(K)
+
+    def dissipated_power(self, theta, omegas) -> np.ndarray:
+        """Mean power each damper turns into heat, W: ½ ω (ω c + Im k(ω)) |θ_station − θ_ring|².
+
+        ``theta`` (..., N) complex amplitudes at ``omegas`` (...) rad/s; returns (..., dampers).
+        """
+        omegas = np.asarray(omegas, dtype=float)
+        out = []
+        for d, (s, r) in zip(self.dampers, self.joints):
+            rel = np.abs(theta[..., s] - theta[..., r]) ** 2
+            out.append(0.5 * omegas * (omegas * d.damping + np.imag(damper_spring(d, omegas))) * rel)
+        return np.stack(out, axis=-1) if out else np.zeros(omegas.shape + (0,))
+
+
+def viscous_impedance(damper, omega) -> complex:
+    """Dynamic stiffness a viscous damper's ring adds to its station at ω (rad/s), N·m/rad:
+    the ring J_r on the dashpot c gives D(ω) = iωc (−ω²J_r) / (iωc − ω²J_r); its imaginary part
+    is the damping the station feels, its real part the ring inertia it drags along."""
+    iwc = 1j * omega * damper.damping
+    return iwc * (-(omega**2) * damper.ring_inertia) / (iwc - omega**2 * damper.ring_inertia)
+
+
+def damped_modes(inertias, stiffnesses, pin_weights, dampers, source: str = "chain"):
+    """Undamped modes of a chain with its dampers, and the damping ratio each mode gains from them.
+
+    A rubber or tuned damper's ring is a degree of freedom on its spring (stiffness at 0 Hz,
+    the first row of a dynamic table); a viscous damper's ring, held by fluid only, has no
+    undamped mode of its own: its housing adds to the station and its ring acts through
+    :func:`viscous_impedance`. The gained damping ratio of mode j (frequency ω_j, shape φ_j,
+    modal inertia m_j) is the modal diagonal of the dampers' losses at ω_j:
+    ζ_j = (ω_j φᵀCφ + φᵀ Im K(ω_j) φ + φ_s² Im D(ω_j)) / (2 ω_j² m_j).
+
+    Returns
+    -------
+    (TorsionalModes, ndarray)
+        The modes (pin amplitudes over the chain's stations, pulley at station 0) and the
+        gained damping ratio per mode.
+    """
+    import scipy.linalg
+
+    from ..modes import TorsionalModes
+    from .lumped import chain_matrices
+
+    M, K = chain_matrices(inertias, stiffnesses)
+    n = len(M)
+    springy = [d for d in dampers if d.kind != "viscous"]
+    system = DampedSystem(M, K, np.zeros_like(M), springy, stations=n)
+    Mn, Kn, C, _ = system.nominal(0.0)
+    Mn = Mn.copy()
+    for d in dampers:
+        if d.kind == "viscous":
+            Mn[damper_station(d, n), damper_station(d, n)] += d.hub_inertia
+    lam, vec = scipy.linalg.eigh(Kn, Mn)
+    shapes = vec[:, 1:].T  # the rigid-body mode first
+    shapes = shapes / np.where(np.abs(shapes[:, 0]) > 1e-9, shapes[:, 0], 1.0)[:, None]
+    omega = np.sqrt(np.clip(lam[1:], 0.0, None))
+    m = np.einsum("js,st,jt->j", shapes, Mn, shapes)
+    loss = np.einsum("js,st,jt->j", shapes, C, shapes) * omega
+    for j, w in enumerate(omega):
+        H = system.nominal(w)[3] if springy else np.zeros_like(Mn)
+        loss[j] += shapes[j] @ H @ shapes[j]
+        for d in dampers:
+            if d.kind == "viscous":
+                loss[j] += shapes[j, damper_station(d, n)] ** 2 * np.imag(viscous_impedance(d, w))
+    modes = TorsionalModes(source=source, frequencies_hz=omega / (2 * np.pi),
+                           pin_amplitudes=shapes[:, :n] @ np.asarray(pin_weights).T,
+                           pulley_amplitude=shapes[:, 0], modal_inertia=m)
+    return modes, loss / (2 * omega**2 * m)

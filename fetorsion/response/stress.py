@@ -1,0 +1,161 @@
+"""Vibratory shear stress at the pin and journal fillets, from the synthesised section torques (issue 14).
+
+Each fillet (a journal–web or pin–web junction at axial position x) lies between two anchors of
+the lumped chain, so it carries that spring's torque (the lumped model has no inertia between
+anchors). Its vibratory shear stress is the nominal stress of the synthesised torque amplitude
+(half peak-to-peak, all orders summed with their phases) in the journal or pin section,
+
+    τ = SCF · 16 T D / (π (D⁴ − d_i⁴)),
+
+with the fillet's torsional SCF from fetorsion's static 3D FE of the throw
+(:func:`fetorsion.webs.scf.fillet_scfs`). A chain file has no sections: its limits are torques.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..description.model import Crank
+from ..errors import FetorsionError
+from ..webs.scf import nominal_shear
+
+
+@dataclass(frozen=True)
+class Fillet:
+    """One journal–web or pin–web fillet: ``kind`` (``journal``/``pin``), 0-based ``index`` of
+    that journal or pin, axial position ``x`` (m), section ``diameter`` and ``bore`` (m)."""
+
+    kind: str
+    index: int
+    x: float
+    diameter: float
+    bore: float
+
+    @property
+    def label(self) -> str:
+        return f"{'J' if self.kind == 'journal' else 'P'}{self.index + 1} fillet at x = {self.x * 1e3:.1f} mm"
+
+
+def fillets_of(crank: Crank) -> list[Fillet]:
+    """Every journal–web and pin–web junction of ``crank``, front to rear."""
+    from ..lumped_model.parts import build_parts
+
+    parts = sorted((p for p in build_parts(crank, "carter").parts if p.kind in ("journal", "pin", "web")),
+                   key=lambda p: p.x0)
+    out = []
+    for a, b in zip(parts, parts[1:]):
+        if (a.kind == "web") == (b.kind == "web"):
+            continue
+        shaft = b if a.kind == "web" else a
+        c = (crank.journals if shaft.kind == "journal" else crank.pins)[shaft.index]
+        out.append(Fillet(shaft.kind, shaft.index, a.x1, c.diameter, c.bore))
+    return out
+
+
+def fillet_springs(fillets: list[Fillet], anchors) -> np.ndarray:
+    """The 0-based spring (between anchors i and i + 1, m) that carries each fillet's torque."""
+    anchors = np.asarray(anchors, dtype=float)
+    if np.any(np.isnan(anchors)):
+        raise FetorsionError("fillet stresses need a lumped crank model (a chain file has no sections)")
+    return np.clip(np.searchsorted(anchors, [f.x for f in fillets]) - 1, 0, len(anchors) - 2)
+
+
+@dataclass
+class StressResult:
+    """Vibratory shear stress at every fillet against speed.
+
+    Attributes
+    ----------
+    rpm : ndarray
+    fillets : list of Fillet
+    springs : ndarray of int
+        The chain spring whose torque each fillet carries.
+    scf : ndarray
+        Torsional SCF of each fillet.
+    nominal_pa, stress_pa : ndarray, shape (speeds, fillets)
+        Nominal and concentrated vibratory shear stress (amplitude: half peak-to-peak), Pa.
+    """
+
+    name: str
+    rpm: np.ndarray
+    fillets: list
+    springs: np.ndarray
+    scf: np.ndarray
+    nominal_pa: np.ndarray
+    stress_pa: np.ndarray
+    scf_source: str = ""
+
+    def worst(self) -> tuple[int, int]:
+        """(speed index, fillet index) of the largest stress."""
+        s, f = np.unravel_index(np.argmax(self.stress_pa), self.stress_pa.shape)
+        return int(s), int(f)
+
+    def to_dict(self) -> dict:
+        s, f = self.worst()
+        return {"name": self.name, "rpm": self.rpm.tolist(), "fillets": [x.label for x in self.fillets],
+                "springs": self.springs.tolist(), "scf": self.scf.tolist(), "scf_source": self.scf_source,
+                "nominal_shear_pa": self.nominal_pa.tolist(), "shear_pa": self.stress_pa.tolist(),
+                "worst": {"rpm": float(self.rpm[s]), "fillet": self.fillets[f].label,
+                          "shear_pa": float(self.stress_pa[s, f])}}
+
+    def table(self) -> str:
+        lines = [f"{self.name}: vibratory shear stress at the fillets (amplitude, SCF from {self.scf_source})",
+                 f"{'fillet':<28} {'SCF':>6} {'max nominal [MPa]':>18} {'max at fillet [MPa]':>20} {'at rpm':>7}"]
+        for j, f in enumerate(self.fillets):
+            i = int(np.argmax(self.stress_pa[:, j]))
+            lines.append(f"{f.label:<28} {self.scf[j]:6.3f} {self.nominal_pa[i, j] / 1e6:18.2f} "
+                         f"{self.stress_pa[i, j] / 1e6:20.2f} {self.rpm[i]:7.0f}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """The largest fillet stress of journals and of pins against speed. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 4.5))
+        for kind, style in (("journal", "-"), ("pin", "--")):
+            cols = [j for j, f in enumerate(self.fillets) if f.kind == kind]
+            if cols:
+                ax.plot(self.rpm, self.stress_pa[:, cols].max(axis=1) / 1e6, style, label=f"worst {kind} fillet")
+        ax.set_xlabel("engine speed [rpm]")
+        ax.set_ylabel("vibratory shear stress [MPa]")
+        ax.set_title(f"{self.name}: fillet shear stress (SCF × nominal)", fontsize=10)
+        ax.legend(fontsize=8)
+        return ax
+
+
+def fillet_stress(crank: Crank, response, scf: dict) -> StressResult:
+    """Fillet stresses of ``response`` (a :class:`~fetorsion.response.forced.ResponseResult` of a
+    lumped crank model) with the SCFs ``scf`` (``pin``, ``journal``, ``source``)."""
+    fillets = fillets_of(crank)
+    springs = fillet_springs(fillets, response.positions_m)
+    torque = response.section_torque_nm[:, springs]  # (speeds, fillets)
+    D = np.array([f.diameter for f in fillets])
+    bore = np.array([f.bore for f in fillets])
+    nominal = nominal_shear(torque, D, bore)
+    factors = np.array([scf[f.kind] for f in fillets])
+    return StressResult(response.name, response.rpm, fillets, springs, factors, nominal, nominal * factors,
+                        scf.get("source", ""))
+
+
+def run_stress(crank: Crank, response=None, scf: dict | None = None, **response_options) -> StressResult:
+    """Vibratory shear stress at the fillets of a crank over its speed range.
+
+    Parameters
+    ----------
+    crank : Crank
+        With ``[excitation]`` and fillet radii.
+    response : ResponseResult, optional
+        Default :func:`fetorsion.response.forced.run_response` of ``crank`` (with
+        ``response_options``).
+    scf : dict, optional
+        ``pin`` and ``journal`` SCFs and their ``source``; default
+        :func:`fetorsion.webs.scf.fillet_scfs` (shipped reference values or one static FE).
+    """
+    from ..webs.scf import fillet_scfs
+    from .forced import run_response
+
+    response = run_response(crank, **response_options) if response is None else response
+    return fillet_stress(crank, response, fillet_scfs(crank) if scf is None else scf)

@@ -1,0 +1,252 @@
+"""Damper tuning on the whole crank (issue 14): Den Hartog's optimum as the start, then a numeric
+optimisation of the damper on the full forced response over the speed range.
+
+The crank's mode to damp (the first, by default) is reduced to the single-degree-of-freedom
+system Den Hartog's optima assume: with its shape φ scaled to 1 at the damper's station, the
+equivalent inertia is the modal inertia J_eq = φᵀMφ and ω_n its frequency. For a ring of
+inertia μ J_eq (the inertia limit the user gives through μ):
+
+* viscous: c = 2 ζ_opt J_ring ω_n, ζ_opt = 1/√(2(1 + μ)(2 + μ));
+* tuned: ring frequency f_opt ω_n = ω_n/(1 + μ), c = 2 ζ_opt J_ring ω_n, ζ_opt = √(3μ/(8(1 + μ)³));
+* rubber: the tuned stiffness, and the loss factor that dissipates as the tuned optimum's
+  dashpot at the ring frequency, η = c ω_a / k = 2 ζ_opt / f_opt.
+
+The numeric optimisation then varies the stiffness and the damping (log scale, Nelder–Mead;
+a viscous damper: its coefficient, bounded scalar search) with the ring inertia held, to
+minimise the objective over every speed of the response: the largest vibratory shear stress
+at any fillet (``stress``) or the largest pulley twist (``twist``). Each evaluation reuses the
+cylinders' forces (:func:`fetorsion.response.forced.response_setup`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+import scipy.linalg
+import scipy.optimize
+
+from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
+from ..errors import FetorsionError
+from ..response.dampers import tuned_optimum, viscous_optimum
+from ..response.forced import response_setup, section_torques, solve_theta
+from ..response.synthesis import half_peak_to_peak
+
+OBJECTIVES = ("stress", "twist")
+
+
+def equivalent_sdof(M: np.ndarray, K: np.ndarray, station: int, mode: int = 0) -> tuple[float, float]:
+    """(J_eq kg·m², ω_n rad/s) of elastic mode ``mode`` (0-based) seen from ``station``: the modal
+    inertia with the shape scaled to 1 there, and the mode's frequency."""
+    lam, vec = scipy.linalg.eigh(np.real(K), M)
+    phi = vec[:, mode + 1]  # the free-free rigid-body mode first
+    if abs(phi[station]) < 1e-9 * np.abs(phi).max():
+        raise FetorsionError(f"mode {mode + 1} has a node at the damper's station: a damper there cannot act on it")
+    phi = phi / phi[station]
+    return float(phi @ M @ phi), float(np.sqrt(lam[mode + 1]))
+
+
+def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str = "front",
+                      hub_inertia: float = 0.0) -> Damper:
+    """Den Hartog's optimum damper of ``kind`` (viscous, tuned, rubber) for ring inertia μ J_eq."""
+    if not mu > 0:
+        raise FetorsionError(f"--inertia-ratio {mu!r}: must be > 0")
+    ring = mu * J_eq
+    if kind == "viscous":
+        zeta, _ = viscous_optimum(mu)
+        return Damper("viscous", at, hub_inertia, ring, damping=2 * zeta * ring * omega_n,
+                      name=f"Den Hartog viscous, mu = {mu:g}")
+    f, zeta, _ = tuned_optimum(mu)
+    k = ring * (f * omega_n) ** 2
+    c = 2 * zeta * ring * omega_n
+    if kind == "tuned":
+        return Damper("tuned", at, hub_inertia, ring, stiffness=k, damping=c, name=f"Den Hartog tuned, mu = {mu:g}")
+    if kind == "rubber":
+        return Damper("rubber", at, hub_inertia, ring, stiffness=k, loss_factor=2 * zeta / f,
+                      name=f"Den Hartog rubber, mu = {mu:g}")
+    raise FetorsionError(f"--type {kind!r}: choose viscous, rubber or tuned")
+
+
+def stress_weights(crank: Crank, positions_m, scf: dict) -> np.ndarray:
+    """Pa of fillet shear per N·m of each spring's torque: SCF · 16 D / (π (D⁴ − d_i⁴)) of the most
+    stressed fillet the spring carries (0 for a spring that carries none)."""
+    from ..response.stress import fillet_springs, fillets_of
+    from ..webs.scf import nominal_shear
+
+    fillets = fillets_of(crank)
+    springs = fillet_springs(fillets, positions_m)
+    w = np.zeros(len(positions_m) - 1)
+    for f, s in zip(fillets, springs):
+        w[s] = max(w[s], scf[f.kind] * float(nominal_shear(1.0, f.diameter, f.bore)))
+    return w
+
+
+@dataclass
+class DamperResult:
+    """A damper tuned on the whole crank.
+
+    Attributes
+    ----------
+    den_hartog, optimised : Damper
+        The classical start and the numeric optimum (``optimised`` None without ``--optimise``).
+    rpm : ndarray
+    curves : dict of str to ndarray
+        The objective against speed without a damper, with Den Hartog's and with the optimised one.
+    peaks : dict of str to float
+        The largest value of each curve.
+    """
+
+    name: str
+    kind: str
+    mu: float
+    objective: str
+    mode_hz: float
+    equivalent_inertia_kgm2: float
+    den_hartog: Damper
+    optimised: Damper | None
+    rpm: np.ndarray
+    curves: dict = field(default_factory=dict)
+    peaks: dict = field(default_factory=dict)
+    evaluations: int = 0
+
+    @property
+    def unit(self) -> str:
+        return "MPa" if self.objective == "stress" else "deg"
+
+    def _scaled(self, v):
+        return v / 1e6 if self.objective == "stress" else v
+
+    def to_dict(self) -> dict:
+        def damper(d):
+            return None if d is None else {"type": d.kind, "at": d.at, "hub_inertia_kgm2": d.hub_inertia,
+                                           "ring_inertia_kgm2": d.ring_inertia, "stiffness_nm_per_rad": d.stiffness,
+                                           "damping_nms_per_rad": d.damping, "loss_factor": d.loss_factor}
+        unit = "pa" if self.objective == "stress" else "deg"
+        return {"name": self.name, "type": self.kind, "inertia_ratio": self.mu, "objective": self.objective,
+                "mode_hz": self.mode_hz, "equivalent_inertia_kgm2": self.equivalent_inertia_kgm2,
+                "den_hartog": damper(self.den_hartog), "optimised": damper(self.optimised),
+                "rpm": self.rpm.tolist(), **{f"{k}_{unit}": v.tolist() for k, v in self.curves.items()},
+                **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations}
+
+    def table(self) -> str:
+        what = "largest fillet shear stress" if self.objective == "stress" else "largest pulley twist"
+        lines = [f"{self.name}: {self.kind} damper, mu = {self.mu:g} of J_eq = {self.equivalent_inertia_kgm2:.4g} kg m^2 "
+                 f"(mode at {self.mode_hz:.1f} Hz seen from the {self.den_hartog.at})",
+                 f"  objective: {what} over the speed range [{self.unit}]"]
+        for key, d in (("none", None), ("den_hartog", self.den_hartog), ("optimised", self.optimised)):
+            if key not in self.peaks:
+                continue
+            text = "" if d is None else (f"  ring {d.ring_inertia:.4g} kg m^2, k {d.stiffness:.4g} N m/rad, "
+                                         f"c {d.damping:.4g} N m s/rad, eta {d.loss_factor:.3g}")
+            lines.append(f"  {key.replace('_', ' '):<11} {self._scaled(self.peaks[key]):10.4g}{text}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """The objective against speed without and with each damper. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 4.5))
+        labels = {"none": "no damper", "den_hartog": "Den Hartog start", "optimised": "optimised"}
+        for key, curve in self.curves.items():
+            ax.plot(self.rpm, self._scaled(curve), label=labels[key])
+        ax.set_xlabel("engine speed [rpm]")
+        ax.set_ylabel(("fillet shear stress" if self.objective == "stress" else "pulley twist") + f" [{self.unit}]")
+        ax.set_title(f"{self.name}: {self.kind} damper, μ = {self.mu:g}", fontsize=10)
+        ax.legend(fontsize=8)
+        return ax
+
+
+def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, optimise: bool = True,
+               objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
+               scf: dict | None = None, rpm=None, partition: int = 17, **setup_options) -> DamperResult:
+    """Den Hartog start and numeric optimum of a damper on the whole crank.
+
+    Parameters
+    ----------
+    crank : Crank or Chain
+        With ``[excitation]``; its own ``[[dampers]]`` are left out (this designs one).
+    kind : str
+        ``viscous``, ``rubber`` or ``tuned``.
+    mu : float
+        Ring inertia over the equivalent inertia of the damped mode at the station (-).
+    optimise : bool
+        Run the numeric optimisation after the Den Hartog start.
+    objective : str
+        ``stress`` (largest fillet shear stress, Pa; a crank only) or ``twist`` (pulley twist, deg).
+    at : str
+        ``front`` (pulley end) or ``rear``.
+    hub_inertia : float
+        Hub or housing inertia, kg·m².
+    mode : int
+        0-based elastic mode the Den Hartog start tunes to.
+    scf : dict, optional
+        Fillet SCFs for ``stress`` (default :func:`fetorsion.webs.scf.fillet_scfs`).
+    rpm : array_like, optional
+        Speeds, rpm (default the response's).
+    """
+    if objective not in OBJECTIVES:
+        raise FetorsionError(f"--objective {objective!r}: choose {' or '.join(OBJECTIVES)}")
+    if at not in DAMPER_STATIONS:
+        raise FetorsionError(f"--at {at!r}: choose {' or '.join(DAMPER_STATIONS)}")
+    if objective == "stress" and isinstance(crank, Chain):
+        raise FetorsionError("--objective stress: a chain file has no shaft sections; use --objective twist")
+    setup = response_setup(crank, partition, rpm, **setup_options)
+    n = len(setup.labels)
+    station = 0 if at == "front" else n - 1
+    J_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, mode)
+    start = den_hartog_damper(kind, mu, J_eq, omega_n, at, hub_inertia)
+    weights = None
+    if objective == "stress":
+        from ..webs.scf import fillet_scfs
+
+        weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf)
+
+    def curve(dampers):  # only the objective's synthesis: the optimiser calls this some 80 times
+        theta, _, _ = solve_theta(setup, dampers)
+        if objective == "twist":
+            return np.degrees(half_peak_to_peak(theta[:, :, 0] - theta[:, :, n - 1], setup.orders, setup.period))
+        torque = half_peak_to_peak(section_torques(setup, theta), setup.orders, setup.period)
+        return (torque * weights[None, :]).max(axis=1)
+
+    res = DamperResult(crank.name, kind, mu, objective, omega_n / (2 * np.pi), J_eq, start, None, setup.rpm)
+    for key, dampers in (("none", ()), ("den_hartog", (start,))):
+        res.curves[key] = curve(dampers)
+        res.peaks[key] = float(res.curves[key].max())
+    if optimise:
+        best, count = optimise_damper(lambda d: float(curve((d,)).max()), start)
+        best = replace(best, name=f"optimised {kind}, mu = {mu:g}")
+        res.optimised, res.evaluations = best, count
+        res.curves["optimised"] = curve((best,))
+        res.peaks["optimised"] = float(res.curves["optimised"].max())
+    return res
+
+
+def optimise_damper(peak, start: Damper, span: float = 30.0) -> tuple[Damper, int]:
+    """The damper minimising ``peak(damper)``, its ring inertia held: a viscous damper's coefficient
+    by a bounded scalar search over start/``span`` … start·``span`` (log scale); a tuned or rubber
+    damper's stiffness and damping (c, or η) by Nelder–Mead in log scale from ``start``. Returns the
+    damper and the number of evaluations."""
+    calls = [0]
+
+    def counted(d):
+        calls[0] += 1
+        return peak(d)
+
+    if start.kind == "viscous":
+        c0 = start.damping
+        r = scipy.optimize.minimize_scalar(lambda x: counted(replace(start, damping=c0 * np.exp(x))),
+                                           bounds=(-np.log(span), np.log(span)), method="bounded",
+                                           options={"xatol": 1e-3})
+        return replace(start, damping=c0 * float(np.exp(r.x))), calls[0]
+    loss_key = "loss_factor" if start.kind == "rubber" else "damping"
+    k0, l0 = start.stiffness, getattr(start, loss_key)
+
+    def make(x):
+        x = np.clip(x, -np.log(span), np.log(span))
+        return replace(start, stiffness=k0 * float(np.exp(x[0])), **{loss_key: l0 * float(np.exp(x[1]))})
+
+    r = scipy.optimize.minimize(lambda x: counted(make(x)), np.zeros(2), method="Nelder-Mead",
+                                options={"xatol": 1e-3, "fatol": 1e-6 * counted(start), "initial_simplex":
+                                         np.array([[0.0, 0.0], [0.1, 0.0], [0.0, 0.3]]), "maxfev": 200})
+    return make(r.x), calls[0]

@@ -1,0 +1,195 @@
+"""The design verdict (issue 14): the worst vibratory stress (or torque) over the speed range against
+the description's ``[limits]``, without a damper, with Den Hartog's damper and with the optimised
+one, the barred speed ranges and the misfire case.
+
+A speed is barred where the worst fillet stress (a chain file: the worst section torque)
+exceeds the continuous-running limit; a barred range may be passed through only if its peak
+stays under the passing-through (transient) limit. Range edges are where the linearly
+interpolated curve crosses the limit. The margin is 1 − value / limit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..description.model import Chain, Crank, Limits
+from ..errors import FetorsionError
+
+
+def barred_ranges(rpm, value, limit: float) -> list[dict]:
+    """Speed ranges where ``value`` (sampled at ``rpm``) exceeds ``limit``: ``from_rpm``, ``to_rpm``
+    (linear crossings of the limit, or the sampled ends), ``peak`` and ``peak_rpm``."""
+    rpm, value = np.asarray(rpm, dtype=float), np.asarray(value, dtype=float)
+    over = value > limit
+    out = []
+    edges = np.flatnonzero(np.diff(np.r_[False, over, False].astype(int)))
+    for a, b in zip(edges[::2], edges[1::2]):  # samples a .. b-1 exceed
+        def cross(i, j):  # where the line from sample i to j meets the limit
+            return rpm[i] + (limit - value[i]) * (rpm[j] - rpm[i]) / (value[j] - value[i])
+        lo = cross(a - 1, a) if a > 0 else rpm[0]
+        hi = cross(b - 1, b) if b < len(rpm) else rpm[-1]
+        k = a + int(np.argmax(value[a:b]))
+        out.append({"from_rpm": float(lo), "to_rpm": float(hi), "peak": float(value[k]), "peak_rpm": float(rpm[k])})
+    return out
+
+
+@dataclass
+class VerdictCase:
+    """One configuration checked against the limits."""
+
+    name: str
+    rpm: np.ndarray
+    value: np.ndarray  # worst over sections, against speed (Pa or N·m)
+    where: list  # the worst section's label at each speed
+    damper_power_w: float = 0.0
+    damper_power_by_order_w: dict = field(default_factory=dict)
+
+    def worst(self) -> int:
+        return int(np.argmax(self.value))
+
+
+@dataclass
+class VerdictResult:
+    """Cases (no damper, Den Hartog, optimised, misfire ...) against one set of limits."""
+
+    name: str
+    limits: Limits
+    cases: list
+    notes: list = field(default_factory=list)
+
+    @property
+    def unit(self) -> tuple[str, float]:
+        return ("MPa", 1e6) if self.limits.kind == "stress" else ("N m", 1.0)
+
+    def rows(self) -> list[dict]:
+        """One row per case: speed range, worst section, value, limit, margin, barred ranges, verdict."""
+        out = []
+        for c in self.cases:
+            i = c.worst()
+            bars = barred_ranges(c.rpm, c.value, self.limits.continuous)
+            for b in bars:  # a range at an end of the speed range is where the engine runs, not one it passes
+                b["passable"] = bool(self.limits.transient and b["peak"] <= self.limits.transient
+                                     and b["from_rpm"] > c.rpm[0] and b["to_rpm"] < c.rpm[-1])
+            verdict = "pass" if not bars else ("pass with barred ranges" if all(b["passable"] for b in bars) else "fail")
+            out.append({"case": c.name, "speed_range_rpm": [float(c.rpm[0]), float(c.rpm[-1])],
+                        "worst_section": c.where[i], "worst_rpm": float(c.rpm[i]), "value": float(c.value[i]),
+                        "limit": self.limits.continuous, "margin": 1.0 - float(c.value[i]) / self.limits.continuous,
+                        "barred_ranges": bars, "transient_limit": self.limits.transient, "verdict": verdict,
+                        "damper_power_w": c.damper_power_w, "damper_power_by_order_w": c.damper_power_by_order_w})
+        return out
+
+    def to_dict(self) -> dict:
+        unit = "pa" if self.limits.kind == "stress" else "nm"
+        return {"name": self.name, "limit_kind": self.limits.kind, "unit": unit,
+                "continuous_limit": self.limits.continuous, "transient_limit": self.limits.transient,
+                "limits_source": self.limits.source, "rows": self.rows(), "notes": self.notes,
+                "curves": {c.name: {"rpm": c.rpm.tolist(), "value": c.value.tolist()} for c in self.cases}}
+
+    def table(self) -> str:
+        u, s = self.unit
+        what = "fillet shear stress" if self.limits.kind == "stress" else "section torque"
+        lines = [f"{self.name}: verdict on the vibratory {what} (amplitude) against the continuous limit "
+                 f"{self.limits.continuous / s:.4g} {u}"
+                 + (f", passing-through limit {self.limits.transient / s:.4g} {u}" if self.limits.transient else "")
+                 + f" (source: {self.limits.source})"]
+        for r in self.rows():
+            bars = ", ".join(f"{b['from_rpm']:.0f}-{b['to_rpm']:.0f} rpm (peak {b['peak'] / s:.4g})"
+                             for b in r["barred_ranges"]) or "none"
+            lines.append(f"  {r['case']}: worst {r['value'] / s:.4g} {u} at {r['worst_rpm']:.0f} rpm in "
+                         f"{r['worst_section']}, margin {100 * r['margin']:+.1f} %, barred: {bars}; {r['verdict']}"
+                         + (f"; damper heat up to {r['damper_power_w']:.1f} W" if r["damper_power_w"] else ""))
+        return "\n".join(lines + [f"  note: {n}" for n in self.notes])
+
+    def plot(self, ax=None):
+        """Each case's worst value against speed with the limits. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(9, 5))
+        u, s = self.unit
+        for c in self.cases:
+            ax.plot(c.rpm, c.value / s, label=c.name)
+        ax.axhline(self.limits.continuous / s, color="crimson", ls="--", label="continuous limit")
+        if self.limits.transient:
+            ax.axhline(self.limits.transient / s, color="crimson", ls=":", label="passing-through limit")
+        ax.set_xlabel("engine speed [rpm]")
+        ax.set_ylabel(("worst fillet shear stress" if self.limits.kind == "stress" else "worst section torque") + f" [{u}]")
+        ax.set_title(f"{self.name}: verdict", fontsize=10)
+        ax.legend(fontsize=7)
+        return ax
+
+
+def _case(name: str, crank, response, scf, limits: Limits) -> VerdictCase:
+    """The worst value over sections against speed for one response."""
+    if limits.kind == "stress":
+        from ..response.stress import fillet_stress
+
+        st = fillet_stress(crank, response, scf)
+        j = np.argmax(st.stress_pa, axis=1)
+        value, where = st.stress_pa.max(axis=1), [st.fillets[k].label for k in j]
+    else:
+        j = np.argmax(response.section_torque_nm, axis=1)
+        value = response.section_torque_nm.max(axis=1)
+        where = [f"section {response.labels[k]}-{response.labels[k + 1]}" for k in j]
+    power, by_order = 0.0, {}
+    if response.damper_names:
+        total = response.damper_power_w.sum(axis=(1, 2))  # (speeds,)
+        s = int(np.argmax(total))
+        power = float(total[s])
+        by_order = {f"{q:g}": float(p) for q, p in zip(response.orders, response.damper_power_w[s].sum(axis=0))}
+    return VerdictCase(name, response.rpm, value, where, power, by_order)
+
+
+def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", optimise: bool = True,
+                misfire: bool = True, scf: dict | None = None, rpm=None) -> VerdictResult:
+    """The verdict table of a crank (or chain file) with ``[limits]``.
+
+    Cases: without damper; with the description's ``[[dampers]]`` if it has any; with Den
+    Hartog's ``kind`` damper of inertia ratio ``mu`` on the first mode at the pulley; with that
+    damper optimised on the whole crank (:func:`fetorsion.studies.damper_tuning.run_damper`,
+    objective: the limited quantity); and the misfire of the cylinder that makes it worst, with
+    the best of those dampers.
+    """
+    from ..response.forced import motored_harmonics, response_setup, solve_response
+    from .damper_tuning import run_damper
+
+    limits = crank.limits
+    if limits is None:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [limits] table")
+    if limits.kind == "stress" and scf is None:
+        from ..webs.scf import fillet_scfs
+
+        scf = fillet_scfs(crank)
+    setup = response_setup(crank, rpm=rpm)
+    # The damper is tuned on 100 speeds (the optimiser's many responses), then checked on all.
+    coarse = np.linspace(setup.rpm[0], setup.rpm[-1], min(100, len(setup.rpm)))
+    cases = [_case("without damper", crank, solve_response(setup, ()), scf, limits)]
+    if crank.dampers:
+        cases.append(_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits))
+    objective = "stress" if limits.kind == "stress" else "twist"
+    tuned = run_damper(crank, kind, mu, optimise, objective, scf=scf, rpm=coarse)
+    options = [("Den Hartog " + kind + f" damper (mu = {mu:g})", tuned.den_hartog)]
+    if tuned.optimised is not None:
+        options.append((f"optimised {kind} damper (mu = {mu:g})", tuned.optimised))
+    for name, d in options:
+        cases.append(_case(name, crank, solve_response(setup, (d,)), scf, limits))
+    notes = [f"Den Hartog start on mode 1 ({tuned.mode_hz:.1f} Hz) seen from the pulley: J_eq = "
+             f"{tuned.equivalent_inertia_kgm2:.4g} kg m^2, ring {tuned.den_hartog.ring_inertia:.4g} kg m^2"]
+    if misfire and crank.excitation.pressure_curve is not None:
+        notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    elif misfire:
+        best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
+        worst = {"without damper": None, best_name: None}
+        motored = motored_harmonics(crank, setup.rpm, setup.orders)
+        for c in range(crank.engine.cylinders):
+            ms = setup.with_misfire(c, motored)
+            for name, dampers in (("without damper", ()), (best_name, (best,))):
+                case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits)
+                if worst[name] is None or case.value.max() > worst[name].value.max():
+                    worst[name] = case
+        cases += list(worst.values())
+        notes.append("misfire: the cylinder's pressure is the motored cycle (compression and expansion only); "
+                     "the worst cylinder is shown")
+    return VerdictResult(crank.name, limits, cases, notes)

@@ -1,0 +1,128 @@
+"""Synthesis against speed, fillet stress and the verdict (issue 14): hand-checkable cases."""
+
+import math
+
+import numpy as np
+import pytest
+
+import fetorsion
+from conftest import GEOMETRY
+from fetorsion.description.model import Limits
+from fetorsion.response.forced import run_response
+from fetorsion.response.stress import fillet_stress, fillets_of
+from fetorsion.response.synthesis import waveform
+from fetorsion.studies.verdict import VerdictCase, VerdictResult, barred_ranges
+
+RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
+SPEEDS = np.linspace(1000.0, 6500.0, 12)
+
+
+def test_single_order_response_is_that_orders_amplitude_at_every_speed():
+    r = run_response(RENAULT, rpm=SPEEDS, orders=[2.0])
+    k = r.stiffnesses_nm_per_rad
+    per_order = np.abs(k * (r.theta[:, 0, :-1] - r.theta[:, 0, 1:]))  # |k Δθ_q| of each section
+    # One order: half the peak-to-peak and the peak of the synthesis are its amplitude (round-off).
+    np.testing.assert_allclose(r.section_torque_nm, per_order, rtol=1e-10)
+    np.testing.assert_allclose(r.section_torque_peak_nm, per_order, rtol=1e-10)
+    np.testing.assert_allclose(r.pulley_angle_deg, np.degrees(np.abs(r.theta[:, 0, 0])), rtol=1e-10)
+
+
+def test_synthesised_extremes_match_a_dense_waveform_at_every_speed():
+    r = run_response(RENAULT, rpm=SPEEDS)
+    for s in range(len(SPEEDS)):
+        w = r.waveform(s, samples=14400)["section_torque_nm"]  # (springs, angles)
+        half = 0.5 * (w.max(axis=1) - w.min(axis=1))
+        # Sampling misses an extreme by at most ½ x'' Δθ² ≤ ½ (q_max Δθ)² of the amplitude
+        # (q_max = 12, Δθ = 4π/14400): 5.5e-5; the exact extremes are never below the samples.
+        assert np.all(r.section_torque_nm[s] >= half * (1 - 1e-12))
+        np.testing.assert_allclose(r.section_torque_nm[s], half, rtol=1e-4)
+        np.testing.assert_allclose(r.section_torque_peak_nm[s], np.abs(w).max(axis=1), rtol=1e-4)
+    # Orders add with their phases: the synthesis never exceeds the sum of the order amplitudes.
+    k = r.stiffnesses_nm_per_rad
+    bound = np.abs(k * (r.theta[:, :, :-1] - r.theta[:, :, 1:])).sum(axis=1)
+    assert np.all(r.section_torque_peak_nm <= bound * (1 + 1e-12))
+
+
+def test_fillet_stress_is_the_nominal_formula_of_its_springs_torque():
+    r = run_response(RENAULT, rpm=SPEEDS)
+    st = fillet_stress(RENAULT, r, {"pin": 2.0, "journal": 3.0, "source": "test"})
+    fillets = fillets_of(RENAULT)
+    assert [f.kind for f in fillets[:4]] == ["journal", "pin", "pin", "journal"] and len(fillets) == 16
+    # By hand for the last fillet (pin 4, web 8 side, d = 48 mm, solid): 16 T / (π d³) x 2.
+    T = r.section_torque_nm[:, st.springs[-2]]
+    np.testing.assert_allclose(st.stress_pa[:, -2], 2.0 * 16 * T / (math.pi * 0.048**3), rtol=1e-12)
+    # Each fillet lies between the anchors of the spring it reads.
+    a = r.positions_m
+    assert all(a[s] < f.x < a[s + 1] for f, s in zip(fillets, st.springs))
+
+
+def test_barred_ranges_by_hand():
+    rpm = np.array([1000.0, 2000.0, 3000.0, 4000.0, 5000.0, 6000.0])
+    value = np.array([1.0, 2.0, 4.0, 2.0, 1.0, 5.0])
+    bars = barred_ranges(rpm, value, 3.0)
+    # 2→4 crosses 3 half-way (2500), 4→2 at 3500; 1→5 at 5500 and it runs to the end.
+    assert bars == [{"from_rpm": 2500.0, "to_rpm": 3500.0, "peak": 4.0, "peak_rpm": 3000.0},
+                    {"from_rpm": 5500.0, "to_rpm": 6000.0, "peak": 5.0, "peak_rpm": 6000.0}]
+    assert barred_ranges(rpm, value, 10.0) == []
+
+
+def test_verdict_rows_by_hand():
+    rpm = np.array([1000.0, 2000.0, 3000.0, 4000.0])
+    where = ["a", "b", "c", "d"]
+    limits = Limits(continuous_shear=100.0, transient_shear=150.0, source="hand")
+    cases = [VerdictCase("low", rpm, np.array([10.0, 50.0, 80.0, 20.0]), where),
+             VerdictCase("passable", rpm, np.array([10.0, 120.0, 60.0, 20.0]), where),
+             VerdictCase("too high", rpm, np.array([10.0, 160.0, 60.0, 20.0]), where),
+             VerdictCase("at the top", rpm, np.array([10.0, 20.0, 60.0, 120.0]), where)]
+    rows = VerdictResult("hand", limits, cases).rows()
+    assert [r["verdict"] for r in rows] == ["pass", "pass with barred ranges", "fail", "fail"]
+    assert rows[0]["margin"] == pytest.approx(1 - 80 / 100) and rows[0]["worst_section"] == "c"
+    assert rows[1]["barred_ranges"][0]["from_rpm"] == pytest.approx(1000 + 1000 * 90 / 110)
+    assert rows[2]["margin"] == pytest.approx(1 - 160 / 100)
+    assert [b["passable"] for r in rows[1:] for b in r["barred_ranges"]] == [True, False, False]
+
+
+def test_a_chain_files_dampers_and_limits_reach_campbell_response_and_verdict(tmp_path):
+    from fetorsion.excitation.campbell import run_campbell
+    from fetorsion.studies.verdict import run_verdict
+
+    text = (GEOMETRY.parent / "examples" / "mendes2008" / "mwm6_chain.toml").read_text()
+    text += ('\n[[dampers]]\ntype = "viscous"\nhousing_inertia_kgm2 = 0.05\nring_inertia_kgm2 = 0.3\n'
+             'damping_nms_per_rad = 60.0\n\n[limits]\ncontinuous_torque_nm = 4000.0\nsource = "test"\n')
+    path = tmp_path / "chain.toml"
+    path.write_text(text)
+    chain = fetorsion.load(path)
+    rpm = np.linspace(1000.0, 2600.0, 40)
+    with_d, without = run_response(chain, rpm=rpm), run_response(chain, rpm=rpm, dampers=())
+    assert with_d.damper_names == ["viscous"] and with_d.damper_power_w.shape == (40, 1, len(with_d.orders))
+    # Measured, not a theorem (the ring also moves the modes): here the damper lowers the worst torque.
+    assert with_d.section_torque_nm.max() < without.section_torque_nm.max()
+    camp = run_campbell(chain)
+    assert "damper" in camp.source and isinstance(camp.damping_ratio, tuple)
+    v = run_verdict(chain, optimise=False, rpm=rpm)
+    row = v.rows()[1]  # the description's damper
+    # The torque verdict reads the worst section torque of the same response.
+    assert row["value"] == pytest.approx(with_d.section_torque_nm.max(), rel=1e-12)
+    assert row["limit"] == 4000.0 and v.limits.kind == "torque"
+
+
+@pytest.mark.parametrize("damper", [
+    dict(kind="rubber", stiffness=3.5e4, loss_factor=0.1),
+    dict(kind="tuned", stiffness=3.5e4, damping=2.0),
+    dict(kind="viscous", damping=3.0)], ids=lambda d: d["kind"])
+def test_campbell_severity_with_a_damper_matches_the_forced_responses_peak(damper):
+    """Two methods: the Campbell crossing's pulley amplitude and the peak of the forced response of
+    that order alone scanned across the crossing speed (±10 %)."""
+    from dataclasses import replace
+
+    from fetorsion.description.model import Damper
+    from fetorsion.excitation.campbell import run_campbell
+
+    crank = replace(RENAULT, dampers=(Damper(at="front", hub_inertia=1e-3, ring_inertia=6e-3, **damper),))
+    camp = run_campbell(crank, n_modes=2)
+    x = max((c for c in camp.crossings if c["in_range"]), key=lambda c: c["severity"])
+    r = run_response(crank, rpm=np.linspace(0.9 * x["rpm"], 1.1 * x["rpm"], 201), orders=[x["order"]])
+    peak = r.pulley_angle_deg.max()
+    # The crossing speed is the undamped mode's; the damped peak lies within 1 % of it in speed
+    # (measured), where the response is flat: the two agree to 2 % and the scan's peak is the larger.
+    assert x["severity"] == pytest.approx(peak, rel=0.02) and x["severity"] <= peak * (1 + 1e-9)
