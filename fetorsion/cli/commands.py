@@ -285,8 +285,8 @@ def cmd_campbell(args) -> int:
 
     crank = _load_excited(args.file, args.source)
     if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
-        print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the FE modes yet "
-              "(lumped sources include them)", file=sys.stderr)
+        print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
+              "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
     if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
         check_mesh_size(crank, args.mesh_size, "modal")
         modes = _condensed(crank, args.mesh_size).torsional_modes(args.support, args.modes)
@@ -330,9 +330,6 @@ def cmd_response(args) -> int:
                                  "leave --source condensed out")
         if args.misfire is not None:
             raise FetorsionError("--misfire works with a lumped source; leave --source condensed out")
-        if getattr(crank, "dampers", ()):
-            print(f"fetorsion: warning: {args.file}: [[dampers]] are not attached to the condensed crank yet "
-                  "(lumped sources include them)", file=sys.stderr)
         check_mesh_size(crank, args.mesh_size, "modal")
         res = run_coupled_response(_condensed(crank, args.mesh_size), args.support, rpm=rpm, orders=args.orders,
                                    damping_ratio=args.damping)

@@ -91,7 +91,9 @@ class DampedSystem:
         n = len(M) if stations is None else stations
         self.stations, self.dampers, self.rings, self.carriers, self.joints = n, tuple(dampers), [], [], []
         for d in self.dampers:
-            s = damper_station(d, n) if at is None else at
+            # ``at``: one station for every damper, or a function of the damper (a condensed crank's
+            # front or rear master twist)
+            s = damper_station(d, n) if at is None else (at(d) if callable(at) else at)
             M, K, C = attach(M, K, C, s, d.ring_inertia, 0.0, d.damping, 0.0, d.hub_inertia)
             ring = len(M) - 1
             self.rings.append(ring)

@@ -91,6 +91,67 @@ def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omega
     return np.divide(P, den, out=np.zeros_like(P), where=~free) @ Vfull.T
 
 
+#: Modes kept for a damped solve: every undamped mode of the crank-and-rings system below this
+#: multiple of the highest excitation frequency (order × speed), at least MIN_MODES.
+DAMPED_CUTOFF = 3.0
+MIN_MODES = 30
+
+
+def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray, damping_ratio: float,
+                    dampers, modes: int | None = None):
+    """Reduced coordinates z (..., r) with torsional dampers (issue 14) on the front or rear master's
+    twist, and each damper's dissipated power (..., dampers) in W.
+
+    The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'
+    dampers stay as in :func:`harmonic_solution`; the dampers' rings are appended by
+    :class:`fetorsion.lumped_model.damped.DampedSystem` (a function of M, K, C and the carrying
+    DOF only). Non-proportional damping: the system is solved in the basis of the undamped modes
+    of crank + rings below :data:`DAMPED_CUTOFF` × the highest excitation frequency (``modes``
+    overrides the count), each frequency a small dense solve.
+    """
+    from ..lumped_model.damped import DampedSystem
+
+    Dk, Dm, held = cc.support_terms(support)
+    m = cc.n_master_dofs
+    K, M = cc.reduced.K.copy(), cc.reduced.M.copy()
+    K[:m, :m] += Dk
+    M[:m, :m] += Dm
+    keep = np.setdiff1d(np.arange(cc.reduced.size), held)
+    Kk, Mk = K[np.ix_(keep, keep)], M[np.ix_(keep, keep)]
+    w2, V, _ = reduced_modes(cc.reduced, Dk, Dm, held)
+    w = np.sqrt(np.clip(w2, 0.0, None))
+    MV = Mk @ V
+    Ck = MV @ np.diag(2 * damping_ratio * w) @ MV.T
+    if support == "bearings":
+        Cb = np.zeros_like(K)
+        Cb[:m, :m] = cc.bearing_damping
+        Ck = Ck + Cb[np.ix_(keep, keep)]
+    where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
+    system = DampedSystem(Mk, Kk, Ck, dampers, stations=len(keep), at=lambda d: where[d.at])
+    om = np.asarray(omegas, float)
+    Mn, Kn, Cn, _ = system.nominal(float(om.max()) / 2)
+    Linv = np.linalg.inv(np.linalg.cholesky(Mn))
+    lam, Y = np.linalg.eigh(Linv @ Kn @ Linv.T)
+    Phi = Linv.T @ Y  # M-orthonormal undamped modes of crank + rings
+    count = modes or max(MIN_MODES, int((np.sqrt(np.clip(lam, 0, None)) < DAMPED_CUTOFF * om.max()).sum()))
+    Phi = Phi[:, :count]
+    Kp, Mp, Cp = Phi.T @ system.K @ Phi, Phi.T @ system.M @ Phi, Phi.T @ system.C @ Phi
+    U = np.stack([Phi[s] - Phi[r] for s, r in system.joints], axis=0) if system.joints else np.zeros((0, count))
+    from ..lumped_model.damped import damper_spring
+
+    A = (Kp - om[..., None, None] ** 2 * Mp + 1j * om[..., None, None] * Cp).astype(complex)
+    for d, u in zip(system.dampers, U):
+        A = A + damper_spring(d, om)[..., None, None] * np.outer(u, u)
+    F = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
+    F[..., :m] = loads
+    P = F[..., keep] @ Phi[:len(keep)]
+    xi = np.linalg.solve(A, P[..., None])[..., 0]
+    x = xi @ Phi.T  # (..., kept + rings)
+    z = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
+    z[..., keep] = x[..., :len(keep)]
+    return z, system.dissipated_power(x, om)
+
+
 def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.ndarray, omegas: np.ndarray) -> np.ndarray:
     """Force of each main bearing on the crank (..., journals, 2: y, z), N.
 
@@ -139,6 +200,8 @@ class CoupledResponse:
     journal_bending_nm: np.ndarray  # (speeds, journals)
     bearing_force_n: np.ndarray  # (speeds, journals)
     timings_s: dict = field(default_factory=dict)
+    dampers: str = ""
+    damper_heat_w: np.ndarray | None = None  # (speeds, dampers), W
 
     def to_dict(self) -> dict:
         def worst(a):
@@ -149,15 +212,19 @@ class CoupledResponse:
                 "rpm": self.rpm.tolist(), "orders": self.orders.tolist(),
                 "pulley_angle_deg": self.pulley_angle_deg.tolist(), "pulley_twist_deg": self.pulley_twist_deg.tolist(),
                 "journal_torque_nm": self.journal_torque_nm.tolist(), "pin_bending_nm": self.pin_bending_nm.tolist(),
-                "bearing_force_n": self.bearing_force_n.tolist(),
+                "bearing_force_n": self.bearing_force_n.tolist(), "dampers": self.dampers,
+                "damper_heat_w": None if self.damper_heat_w is None else self.damper_heat_w.tolist(),
                 "worst": {"journal_torque_nm": worst(self.journal_torque_nm), "pin_bending_nm": worst(self.pin_bending_nm),
                           "journal_bending_nm": worst(self.journal_bending_nm), "bearing_force_n": worst(self.bearing_force_n),
                           "pulley_twist_deg": worst(self.pulley_twist_deg)}}
 
     def table(self) -> str:
         w = self.to_dict()["worst"]
-        lines = [f"coupled forced response of the condensed crank ({self.support}, ζ = {self.damping_ratio:g}, "
+        lines = [f"coupled forced response of the condensed crank ({self.support}, ζ = {self.damping_ratio:g}"
+                 + (f", {self.dampers}" if self.dampers else "") + ", "
                  f"{len(self.rpm)} speeds {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, orders {self.orders[0]:g}-{self.orders[-1]:g})",
+                 *([f"largest damper heat         {self.damper_heat_w.sum(axis=1).max():10.1f} W    at "
+                    f"{self.rpm[int(self.damper_heat_w.sum(axis=1).argmax())]:.0f} rpm"] if self.damper_heat_w is not None else []),
                  f"largest pulley twist        {w['pulley_twist_deg']['value']:10.4f} deg  at {w['pulley_twist_deg']['rpm']:.0f} rpm"]
         for key, what, unit in (("journal_torque_nm", "journal torque", "N m"), ("journal_bending_nm", "journal bending", "N m"),
                                 ("pin_bending_nm", "pin bending", "N m"), ("bearing_force_n", "bearing force", "N")):
@@ -215,7 +282,12 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     loads = master_loads(cc, rpm, orders)  # (speeds, orders, 6m)
     t1 = time.perf_counter()
     omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
-    z = harmonic_solution(cc, support, loads, omegas, zeta)  # (speeds, orders, r)
+    dampers = tuple(getattr(crank, "dampers", ()))
+    heat = None
+    if dampers:
+        z, heat = damped_solution(cc, support, loads, omegas, zeta, dampers)
+    else:
+        z = harmonic_solution(cc, support, loads, omegas, zeta)  # (speeds, orders, r)
     period = cycle_angle(crank.engine)
 
     def amp(x):  # (..., orders) -> (...)
@@ -241,4 +313,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
         bearing_force_n=largest_magnitude(np.moveaxis(fb, 1, -1)),
     )
     out.timings_s = {"loads": t1 - t0, "solve_and_synthesis": time.perf_counter() - t1}
+    if dampers:
+        out.dampers = ", ".join(f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers)
+        out.damper_heat_w = heat.sum(axis=1)  # (speeds, dampers): all orders together
     return out
