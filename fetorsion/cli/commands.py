@@ -568,7 +568,7 @@ def build_parser() -> argparse.ArgumentParser:
     fp.add_argument("--support", choices=SUPPORT_CHOICES, default="free",
                     help="free-free (default: what a modal test measures) or in the main bearings of [bearings] "
                          "(the condensed crank's modes, torsion and bending shares; plot: shares against frequency)")
-    fp.add_argument("--plot", metavar="PATH", help="with --support bearings: save the plot (.png, .pdf, .svg)")
+    fp.add_argument("--plot", metavar="PATH", help="save the modes' torsion/bending shares (.png, .pdf, .svg)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
     fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
