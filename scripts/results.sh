@@ -3,6 +3,7 @@
 #   results/renault21, results/peugeot_glx  the full reports (fetorsion run --all, ~2 min)
 #   results/mechanics                       balancing, flywheel, planetary figures (seconds)
 #   results/chart                           the web stiffness methods against 3D FE (~3 min)
+#   results/validation.*                    FE f1 and its [uncertainty] band against the measurements (~4 min)
 #   results/studies                         FE Monte Carlo of f1 against the lumped band, with --studies
 #                                           (scripts/fe_band.py: 2 x 24 coarse FE runs on the local
 #                                           Dask cluster, ~3 min on 2 cores)
@@ -21,4 +22,5 @@ for arg in "$@"; do
 done
 nice -n 10 $py scripts/stiffness_methods.py --modal 0.010
 $py scripts/mechanics_results.py
+nice -n 10 $py scripts/validation.py
 .venv/bin/fetorsion run --all
