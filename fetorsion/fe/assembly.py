@@ -92,7 +92,7 @@ def block_pattern(basis) -> BlockPattern:
     ed = basis.element_dofs.T.astype(np.int64)  # (E, 10)
     p, n = ed.shape[1], basis.N
     key = (np.repeat(ed, p, axis=1) * n + np.tile(ed, (1, p))).ravel()
-    uniq, slot = _unique_inverse(key)
+    uniq, slot = np.unique(key, return_inverse=True)
     rows, cols = np.divmod(uniq, n)
     indptr = np.searchsorted(rows, np.arange(n + 1))
     # Row 3s + i of the CSR holds block row s's blocks in column order, 3 entries each.
@@ -105,22 +105,6 @@ def block_pattern(basis) -> BlockPattern:
         for j in range(3):
             csr_indices[base + i * row3 + j] = 3 * cols + j
     return BlockPattern(n, indptr, cols.astype(np.int32), slot.ravel(), csr_indptr, csr_indices, base, row3)
-
-
-def _unique_inverse(key: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``np.unique(key, return_inverse=True)`` for a 1-D integer array, by one unstable argsort.
-
-    numpy's ``unique`` sorts twice (values, then a stable argsort for the inverse): at
-    6.7 M keys (342 k DOF) 0.99 s against 0.36 s here (numpy 2.4's SIMD argsort).
-    """
-    order = np.argsort(key)
-    ks = key[order]
-    new = np.empty(len(ks), dtype=bool)
-    new[:1] = True
-    np.not_equal(ks[1:], ks[:-1], out=new[1:])
-    slot = np.empty(len(key), dtype=np.int64)
-    slot[order] = np.cumsum(new) - 1
-    return ks[new], slot
 
 
 def _csr(pat: BlockPattern, blocks) -> sp.csr_array:
