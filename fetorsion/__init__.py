@@ -7,18 +7,32 @@
 True
 """
 
-from .excitation.campbell import run_campbell
 from .description.crank import load
 from .description.model import Chain, Crank
 from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
-from .lumped_model.lumped import PARTITIONS, LumpedResult, lumped
-from .response.forced import run_response
-from .response.stress import run_stress
-from .studies.damper_tuning import run_damper
-from .studies.verdict import run_verdict
-from .studies.sensitivity import run_sensitivity, with_values
-from .studies.study import run_crank_study
+
+#: Names imported on first use (PEP 562): the excitation stage pulls in scipy.integrate
+#: (0.3 s), which the FE modal path and the Gmsh child process (which imports this package
+#: too) never need; every ``import fetorsion.x`` paid it before issue 17.
+_LAZY = {
+    "run_campbell": "excitation.campbell",
+    "PARTITIONS": "lumped_model.lumped", "LumpedResult": "lumped_model.lumped", "lumped": "lumped_model.lumped",
+    "run_response": "response.forced",
+    "run_sensitivity": "studies.sensitivity", "with_values": "studies.sensitivity",
+    "run_crank_study": "studies.study",
+    "run_stress": "response.stress", "run_damper": "studies.damper_tuning", "run_verdict": "studies.verdict",
+}
+
+
+def __getattr__(name: str):
+    if name not in _LAZY:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    import importlib
+
+    value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+    globals()[name] = value  # later look-ups skip this function
+    return value
 
 
 def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, **kwargs):

@@ -17,8 +17,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.integrate
-import scipy.optimize
 
 from ..description.model import Crank, Engine, Excitation
 from ..errors import FetorsionError
@@ -82,6 +80,8 @@ def _closed_cycle_parts(theta, engine: Engine, ex: Excitation):
     x = np.clip((ph - ex.combustion_start) / ex.combustion_duration, 0.0, None)
     burned = 1.0 - np.exp(-ex.wiebe_a * x ** (ex.wiebe_m + 1.0))
     # p Vⁿ = p₀V₀ⁿ + (n−1) ∫ Vⁿ⁻¹ dQ, with Q = 1 J · burned fraction.
+    import scipy.integrate  # here, not at the top: 0.3 s that every CLI command paid at start-up
+
     integral = scipy.integrate.cumulative_trapezoid(V ** (n - 1.0), burned, initial=0.0)
     motored = ex.intake_pressure * (V0 / V) ** n
     per_joule = (n - 1.0) * integral / V**n
@@ -126,6 +126,8 @@ def cylinder_pressure(crank: Crank, rpm: float, theta=None, misfire: bool = Fals
         if motored.max() >= target:
             raise FetorsionError(f"excitation.peak_pressure_pa {target:.4g} Pa is below the motored peak "
                                  f"{motored.max():.4g} Pa")
+        import scipy.optimize  # see scipy.integrate above
+
         q = scipy.optimize.brentq(lambda h: (motored + h * per_joule).max() - target, 0.0, 1e7)
     if q < 0:
         raise FetorsionError(f"excitation.imep_pa {target:.4g} Pa is below the motored IMEP")
