@@ -276,14 +276,20 @@ def supported_modes(itf: Interface, count: int, Dk=None, Dm=None, held=(), tol: 
     return w2[order], X[:, order]
 
 
-def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
-    """All modes of the reduced model with the same supports: (ω² ascending, vectors r × k over the kept DOF, kept)."""
+def supported_matrices(red: ReducedModel, Dk=None, Dm=None):
+    """(K, M) of the reduced model with springs ``Dk`` and masses ``Dm`` added on the masters' DOF."""
     m = red.n_master_dofs
     K, M = red.K.copy(), red.M.copy()
     if Dk is not None:
         K[:m, :m] += Dk
     if Dm is not None:
         M[:m, :m] += Dm
+    return K, M
+
+
+def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
+    """All modes of the reduced model with the same supports: (ω² ascending, vectors r × k over the kept DOF, kept)."""
+    K, M = supported_matrices(red, Dk, Dm)
     keep = np.setdiff1d(np.arange(red.size), np.asarray(held, dtype=np.int64))
     w2, V = scipy.linalg.eigh(K[np.ix_(keep, keep)], M[np.ix_(keep, keep)])
     return w2, V, keep

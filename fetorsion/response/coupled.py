@@ -30,7 +30,7 @@ from ..excitation.campbell import default_orders
 from ..excitation.kinematics import piston_acceleration, pin_forces
 from ..excitation.torque import cycle_angle, cylinder_pressure, firing_angles, harmonics
 from ..fe.condensed import CondensedCrank
-from ..fe.substructure import reduced_modes
+from ..fe.substructure import reduced_modes, supported_matrices
 from .synthesis import half_peak_to_peak, waveform
 
 
@@ -109,13 +109,11 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     of crank + rings below :data:`DAMPED_CUTOFF` × the highest excitation frequency (``modes``
     overrides the count), each frequency a small dense solve.
     """
-    from ..lumped_model.damped import DampedSystem
+    from ..lumped_model.damped import DampedSystem, damper_spring
 
     Dk, Dm, held = cc.support_terms(support)
     m = cc.n_master_dofs
-    K, M = cc.reduced.K.copy(), cc.reduced.M.copy()
-    K[:m, :m] += Dk
-    M[:m, :m] += Dm
+    K, M = supported_matrices(cc.reduced, Dk, Dm)
     keep = np.setdiff1d(np.arange(cc.reduced.size), held)
     Kk, Mk = K[np.ix_(keep, keep)], M[np.ix_(keep, keep)]
     w2, V, _ = reduced_modes(cc.reduced, Dk, Dm, held)
@@ -137,8 +135,6 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     Phi = Phi[:, :count]
     Kp, Mp, Cp = Phi.T @ system.K @ Phi, Phi.T @ system.M @ Phi, Phi.T @ system.C @ Phi
     U = np.stack([Phi[s] - Phi[r] for s, r in system.joints], axis=0) if system.joints else np.zeros((0, count))
-    from ..lumped_model.damped import damper_spring
-
     A = (Kp - om[..., None, None] ** 2 * Mp + 1j * om[..., None, None] * Cp).astype(complex)
     for d, u in zip(system.dampers, U):
         A = A + damper_spring(d, om)[..., None, None] * np.outer(u, u)
@@ -160,10 +156,7 @@ def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.nd
     """
     Dk, Dm, held = cc.support_terms(support)
     m = cc.n_master_dofs
-    K = cc.reduced.K.copy()
-    M = cc.reduced.M.copy()
-    K[:m, :m] += Dk
-    M[:m, :m] += Dm
+    K, M = supported_matrices(cc.reduced, Dk, Dm)
     om = np.asarray(omegas)[..., None]
     F = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
     F[..., :m] = loads
