@@ -231,12 +231,14 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     bodies = [RigidBody(b.name, _map_nodes(dof_of_node, b.nodes, b.name), b.mass, b.inertia, b.centre)
               for b in attachments]
     red = reduction(K.shape[0], bodies, xyz) if bodies else None
+    groups = np.arange(0, K.shape[0] + 1, 3)  # a node's three displacements share their neighbours
     if red is not None:
         K, M = red.reduce(K), red.reduce(M) + red.body_mass
+        groups = red.groups()
     timings["attachments"] = time.perf_counter() - t
 
     sigma = default_shift(mesh, material) if shift is None else shift
-    res = eigen.lowest_modes(K, M, modes + 6, sigma, backend=backend, method=method)
+    res = eigen.lowest_modes(K, M, modes + 6, sigma, backend=backend, method=method, groups=groups)
     timings.update(res.timings_s)
     rigid, elastic = split_rigid(res.omega2, sigma)
 

@@ -127,17 +127,69 @@ class Reduction:
     """u = T q: the full interleaved displacement from the reduced DOF q.
 
     q holds the untied DOF (in their original order) then 6 DOF per body
-    (tx, ty, tz, θx, θy, θz at the body's centre of mass).
+    (tx, ty, tz, θx, θy, θz at the body's centre of mass). ``free`` and ``tied`` are the full
+    DOF indices of the two kinds, ``R`` (tied × 6 bodies) the rigid map of the tied ones.
     """
 
     T: sp.csr_array
     n_free: int
     body_mass: sp.csr_array  # reduced-size, the bodies' 6 × 6 blocks
+    free: np.ndarray = None
+    tied: np.ndarray = None
+    R: sp.csr_array = None
+
+    def groups(self) -> np.ndarray:
+        """Pointers of the reduced DOF groups (three per untied node, six per body), for
+        :func:`fetorsion.fe.eigen.factorize`."""
+        return np.concatenate([np.arange(0, self.n_free, 3), self.n_free + 6 * np.arange(self.R.shape[1] // 6 + 1)])
 
     def reduce(self, A: sp.csr_array) -> sp.csr_array:
-        """Tᵀ A T, kept symmetric against round-off."""
-        R = (self.T.T @ A @ self.T).tocsr()
-        return ((R + R.T) * 0.5).tocsr()
+        """Tᵀ A T, symmetric for a symmetric A.
+
+        By blocks, [[A_ff, A_ft R], [Rᵀ A_tf, Rᵀ A_tt R]]: A_ff is A's CSR arrays with the tied
+        rows and columns masked out and the few coupling entries A_ft R placed after each row's
+        own, written straight into CSR order (the sparse triple product and its symmetrisation
+        took 1.9 s per matrix at 320 k DOF, scipy's block stacking 1.6 s).
+        """
+        A = sp.csr_array(A)
+        A.sort_indices()
+        n, nf = A.shape[0], self.n_free
+        new = np.full(n, -1, dtype=A.indices.dtype)
+        new[self.free] = np.arange(nf)
+        row = np.repeat(new, np.diff(A.indptr))
+        col = new[A.indices]
+        keep = (row >= 0) & (col >= 0)
+        row, col, val = row[keep], col[keep], A.data[keep]
+        B = (self.R.T @ A[self.tied]).tocsr()  # bodies × n: Rᵀ A_t·
+        Bf = sp.csr_array(B[:, self.free])
+        Bf.sort_indices()
+        BfT = sp.csr_array(Bf.T)
+        BfT.sort_indices()
+        D = (B[:, self.tied] @ self.R).toarray()
+        D = 0.5 * (D + D.T)
+        # free rows: A_ff's entries (columns < nf, ascending), then A_ft R's (columns ≥ nf)
+        len_a = np.bincount(row, minlength=nf)
+        len_b = np.diff(BfT.indptr)
+        indptr = np.concatenate([[0], np.cumsum(len_a + len_b)])
+        pos_a = np.arange(len(row)) + np.concatenate([[0], np.cumsum(len_b)])[:-1][row]
+        row_b = np.repeat(np.arange(nf), len_b)
+        pos_b = indptr[row_b] + len_a[row_b] + (np.arange(BfT.nnz) - BfT.indptr[row_b])
+        top_nnz = indptr[-1]
+        indices = np.empty(top_nnz, dtype=np.int64)
+        data = np.empty(top_nnz)
+        indices[pos_a], data[pos_a] = col, val
+        indices[pos_b], data[pos_b] = BfT.indices + nf, BfT.data
+        # body rows: Rᵀ A_tf then Rᵀ A_tt R (dense, 6 per body)
+        nb = D.shape[0]
+        bottom_len = np.diff(Bf.indptr) + nb
+        b_indptr = top_nnz + np.cumsum(bottom_len)
+        b_indices = np.concatenate([np.concatenate([Bf.indices[Bf.indptr[i]:Bf.indptr[i + 1]], nf + np.arange(nb)])
+                                    for i in range(nb)]) if nb else np.zeros(0, np.int64)
+        b_data = np.concatenate([np.concatenate([Bf.data[Bf.indptr[i]:Bf.indptr[i + 1]], D[i]])
+                                 for i in range(nb)]) if nb else np.zeros(0)
+        idx = np.int32 if top_nnz + len(b_data) < 2**31 else np.int64
+        return sp.csr_array((np.concatenate([data, b_data]), np.concatenate([indices, b_indices]).astype(idx),
+                             np.concatenate([indptr, b_indptr]).astype(idx)), shape=(nf + nb, nf + nb))
 
 
 def reduction(n_dofs: int, bodies: list[RigidBody], node_xyz: np.ndarray) -> Reduction:
@@ -152,27 +204,37 @@ def reduction(n_dofs: int, bodies: list[RigidBody], node_xyz: np.ndarray) -> Red
     node_xyz : ndarray, shape (n_dofs / 3, 3)
         Coordinates of every DOF-numbered node, m.
     """
-    tied = np.concatenate([b.nodes for b in bodies]) if bodies else np.zeros(0, np.int64)
-    if len(np.unique(tied)) != len(tied):
+    tied_nodes = np.concatenate([b.nodes for b in bodies]) if bodies else np.zeros(0, np.int64)
+    if len(np.unique(tied_nodes)) != len(tied_nodes):
         raise FetorsionError("two attachments share mesh nodes; give each its own face or node set")
-    tied_dofs = (3 * tied[:, None] + np.arange(3)).ravel()
-    free = np.setdiff1d(np.arange(n_dofs), tied_dofs)
+    tied = (3 * tied_nodes[:, None] + np.arange(3)).ravel()
+    free = np.setdiff1d(np.arange(n_dofs), tied)
     n_free = len(free)
-    rows, cols, vals = [free], [np.arange(n_free)], [np.ones(n_free)]
+    rows, cols, vals = [], [], []
     blocks = []
     for k, b in enumerate(bodies):
         R = rigid_rows(node_xyz[b.nodes], b.centre)  # (n, 3, 6)
         r = np.broadcast_to((3 * b.nodes[:, None] + np.arange(3))[:, :, None], R.shape)
-        c = np.broadcast_to(n_free + 6 * k + np.arange(6), R.shape)
+        c = np.broadcast_to(6 * k + np.arange(6), R.shape)
         rows.append(r.ravel()), cols.append(c.ravel()), vals.append(R.ravel())
         Mb = np.zeros((6, 6))
         Mb[:3, :3] = b.mass * np.eye(3)
         Mb[3:, 3:] = b.inertia
         blocks.append(Mb)
-    n_red = n_free + 6 * len(bodies)
-    T = sp.coo_array((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                     shape=(n_dofs, n_red)).tocsr()
+    n_body = 6 * len(bodies)
+    rows = np.concatenate(rows) if bodies else np.zeros(0, np.int64)
+    cols = np.concatenate(cols) if bodies else np.zeros(0, np.int64)
+    vals = np.concatenate(vals) if bodies else np.zeros(0)
+    # tied DOF index -> its row in R (tied is the concatenation of the bodies' DOFs, in order)
+    position = np.empty(n_dofs, dtype=np.int64)
+    position[tied] = np.arange(len(tied))
+    R = sp.csr_array((vals, (position[rows], cols)), shape=(len(tied), n_body))
+    R.eliminate_zeros()
+    T = sp.csr_array((np.concatenate([np.ones(n_free), vals]),
+                      (np.concatenate([free, rows]), np.concatenate([np.arange(n_free), n_free + cols]))),
+                     shape=(n_dofs, n_free + n_body))
     T.eliminate_zeros()
+    n_red = n_free + n_body
     body_mass = sp.block_diag([sp.csr_array((n_free, n_free))] + blocks, format="csr") if bodies \
         else sp.csr_array((n_red, n_red))
-    return Reduction(T, n_free, sp.csr_array(body_mass))
+    return Reduction(T, n_free, sp.csr_array(body_mass), free, tied, R)

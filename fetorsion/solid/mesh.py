@@ -80,26 +80,35 @@ class CrankMesh:
     quality: MeshQuality | None = None
 
 
-def _size_fields(size: float, fine: float, fine_surfaces: list[int], growth: float = 1.0) -> None:
-    """Global size ``size`` with ``fine`` on (and growing away from) ``fine_surfaces``;
-    model units. ``growth``: element size gained per length travelled away from them."""
+def _size_fields(size: float, groups, growth: float = 1.0) -> None:
+    """Global size ``size``, with each ``(fine, surfaces)`` of ``groups`` setting ``fine`` on (and
+    growing away from) its surfaces; model units. ``growth``: element size gained per length
+    travelled away from them."""
     f = gmsh.model.mesh.field
     gmsh.option.setNumber("Mesh.MeshSizeMax", size)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
-    if not fine_surfaces or fine >= size:
+    groups = [(fine, list(surfaces)) for fine, surfaces in groups if surfaces and 0 < fine < size]
+    if not groups:
         return
-    dist = f.add("Distance")
-    f.setNumbers(dist, "SurfacesList", fine_surfaces)
-    f.setNumber(dist, "Sampling", 20)
-    thr = f.add("Threshold")
-    f.setNumber(thr, "InField", dist)
-    f.setNumber(thr, "SizeMin", fine)
-    f.setNumber(thr, "SizeMax", size)
-    f.setNumber(thr, "DistMin", 0.5 * fine)
-    # Size grows by about ``growth`` times the length travelled: graded, the refinement a thin
-    # skin around the fillets.
-    f.setNumber(thr, "DistMax", 0.5 * fine + (size - fine) / growth)
-    f.setAsBackgroundMesh(thr)
+    fields = []
+    for fine, surfaces in groups:
+        dist = f.add("Distance")
+        f.setNumbers(dist, "SurfacesList", surfaces)
+        f.setNumber(dist, "Sampling", 20)
+        thr = f.add("Threshold")
+        f.setNumber(thr, "InField", dist)
+        f.setNumber(thr, "SizeMin", fine)
+        f.setNumber(thr, "SizeMax", size)
+        f.setNumber(thr, "DistMin", 0.5 * fine)
+        # Size grows by about ``growth`` times the length travelled: graded, the refinement a thin
+        # skin around the fillets.
+        f.setNumber(thr, "DistMax", 0.5 * fine + (size - fine) / growth)
+        fields.append(thr)
+    if len(fields) > 1:
+        smallest = f.add("Min")
+        f.setNumbers(smallest, "FieldsList", fields)
+        fields = [smallest]
+    f.setAsBackgroundMesh(fields[0])
     # The background field decides alone; points and curvature would fight it.
     gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
     gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
@@ -107,7 +116,8 @@ def _size_fields(size: float, fine: float, fine_surfaces: list[int], growth: flo
 
 def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[int]], size: float,
                fine: float = 0.0, fine_surfaces: list[int] = (), name: str = "model",
-               material: Material | None = None, untangle: str = "optimize", growth: float = 1.0) -> CrankMesh:
+               material: Material | None = None, untangle: str = "optimize", growth: float = 1.0,
+               refine=()) -> CrankMesh:
     """Mesh the solid in the current (synchronised) Gmsh model with curved 10-node tets.
 
     Parameters
@@ -143,7 +153,7 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
         If Gmsh fails, or the curved mesh has an invalid element (SICN <= 0).
     """
     t0 = time.perf_counter()
-    _size_fields(size, fine, list(fine_surfaces), growth)
+    _size_fields(size, [(fine, fine_surfaces), *refine], growth)
     gmsh.option.setNumber("Mesh.ElementOrder", 2)
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
     try:
