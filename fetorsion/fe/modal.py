@@ -28,7 +28,7 @@ from . import modeshape
 from ..description.model import Material
 from ..description.defaults import DEFAULT_MODES
 from ..errors import FetorsionError
-from .rigid import RigidBody, reduction
+from .rigid import RigidBody, reduction, rigid_rows
 from .tetmesh import TetMesh
 
 #: A computed mode counts as rigid-body when ω² < RIGID_TOL · ω²(first elastic), i.e. its
@@ -232,15 +232,23 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
               for b in attachments]
     red = reduction(K.shape[0], bodies, xyz) if bodies else None
     groups = np.arange(0, K.shape[0] + 1, 3)  # a node's three displacements share their neighbours
+    rigid_motions = rigid_rows(xyz, np.zeros(3)).reshape(-1, 6)
     if red is not None:
         K, M = red.reduce(K), red.reduce(M) + red.body_mass
         groups = red.groups()
+        rigid_motions = red.rigid_motions(rigid_motions)
     timings["attachments"] = time.perf_counter() - t
 
     sigma = default_shift(mesh, material) if shift is None else shift
-    res = eigen.lowest_modes(K, M, modes + 6, sigma, backend=backend, method=method, groups=groups)
+    res = eigen.lowest_modes(K, M, modes + 6, sigma, backend=backend, method=method, groups=groups,
+                             null_space=rigid_motions)
     timings.update(res.timings_s)
-    rigid, elastic = split_rigid(res.omega2, sigma)
+    omega2 = res.omega2.copy()
+    # The rigid-body roots as K's Rayleigh quotients of the six lowest vectors: exactly zero in
+    # exact arithmetic, so their size shows the round-off of the assembly and the solve.
+    V6 = res.vectors[:, :6]
+    omega2[:6] = np.einsum("ij,ij->j", V6, K @ V6) / np.einsum("ij,ij->j", V6, M @ V6)
+    rigid, elastic = split_rigid(omega2, sigma)
 
     t = time.perf_counter()
     q = res.vectors[:, 6:]

@@ -143,6 +143,21 @@ class Reduction:
         :func:`fetorsion.fe.eigen.factorize`."""
         return np.concatenate([np.arange(0, self.n_free, 3), self.n_free + 6 * np.arange(self.R.shape[1] // 6 + 1)])
 
+    def rigid_motions(self, full: np.ndarray) -> np.ndarray:
+        """The reduced DOF of the rigid-body motions whose full DOF are ``full`` (n × 6, about
+        the origin): the untied DOF as they are, each body's (t, θ) at its centre."""
+        bodies = []
+        for k in range(self.R.shape[1] // 6):
+            bodies.append(self._body_motion(full, k))
+        return np.vstack([full[self.free], *bodies]) if bodies else full[self.free]
+
+    def _body_motion(self, full: np.ndarray, k: int) -> np.ndarray:
+        """(t, θ) at body k's centre for each rigid motion: least squares over its tied DOF
+        (exact for rigid motions, whose restriction to the body is R's column space)."""
+        Rk = self.R[:, 6 * k:6 * k + 6].toarray()
+        rows = np.flatnonzero(np.abs(Rk).sum(axis=1))
+        return np.linalg.lstsq(Rk[rows], full[self.tied[rows]], rcond=None)[0]
+
     def reduce(self, A: sp.csr_array) -> sp.csr_array:
         """Tᵀ A T, symmetric for a symmetric A.
 
