@@ -172,16 +172,52 @@ def stiffness(basis, youngs_modulus: float, poisson_ratio: float,
     return _csr(pat, lambda i, j: lam * Gg[i][j] + mu * Gg[j][i] + (mu * trace if i == j else 0.0))
 
 
-def mass(basis, density: float, pattern: BlockPattern | None = None) -> sp.csr_array:
-    """Consistent vector-P2 mass, kg, interleaved DOFs: ρ ∫ φ_a φ_b ⊗ I₃.
-
-    ``pattern`` (from :func:`block_pattern`) may be shared with :func:`stiffness`.
-    """
+def mass_blocks(basis, density: float, pattern: BlockPattern) -> np.ndarray:
+    """ρ ∫ φ_a φ_b per node pair of ``pattern`` (kg): the value every diagonal component of
+    the pair's 3 × 3 mass block holds."""
     phi = np.stack([np.asarray(b[0]) for b in basis.basis], axis=1)  # (E, 10, Q)
     Me = np.matmul(phi * (density * basis.dx)[:, None, :], phi.transpose(0, 2, 1))
+    return np.bincount(pattern.slot, Me.ravel(), minlength=len(pattern.indices))
+
+
+def mass(basis, density: float, pattern: BlockPattern | None = None, compact: bool = False) -> sp.csr_array:
+    """Consistent vector-P2 mass, kg, interleaved DOFs: ρ ∫ φ_a φ_b ⊗ I₃.
+
+    ``pattern`` (from :func:`block_pattern`) may be shared with :func:`stiffness`; the result
+    then has K's CSR structure (explicit zeros off the block diagonals), unless ``compact``:
+    only the diagonal components, a third of the entries (:func:`diagonal_block_matrix`).
+    """
     pat = block_pattern(basis) if pattern is None else pattern
-    d = np.bincount(pat.slot, Me.ravel(), minlength=len(pat.indices))
+    d = mass_blocks(basis, density, pat)
+    if compact:
+        return diagonal_block_matrix(pat, d)
     return _csr(pat, lambda i, j: d if i == j else None)
+
+
+def diagonal_block_matrix(pat: BlockPattern, d: np.ndarray) -> sp.csr_array:
+    """The 3n × 3n CSR with d[slot] · I₃ in every block of ``pat`` and nothing else stored."""
+    count = np.diff(pat.indptr)
+    first = pat.indptr[:-1]  # first slot of each block row
+    row = np.repeat(np.arange(pat.n), count)
+    # row 3r + i holds the blocks of block row r: it starts at 3·first[r] + i·count[r]
+    indptr = np.empty(3 * pat.n + 1, dtype=np.int64)
+    indptr[:-1] = (3 * first[:, None] + np.arange(3) * count[:, None]).ravel()
+    indptr[-1] = 3 * len(d)
+    offset = 2 * first[row] + np.arange(len(d))
+    data = np.empty(3 * len(d))
+    indices = np.empty(3 * len(d), dtype=np.int64)
+    for i in range(3):
+        data[offset + i * count[row]] = d
+        indices[offset + i * count[row]] = 3 * pat.indices + i
+    idx = np.int32 if 3 * len(d) < 2**31 else np.int64
+    return sp.csr_array((data, indices.astype(idx), indptr.astype(idx)), shape=(3 * pat.n, 3 * pat.n))
+
+
+def add_to_diagonal_blocks(A: sp.csr_array, pat: BlockPattern, d: np.ndarray, factor: float) -> None:
+    """A += factor · (d ⊗ I₃) in place, for A on ``pat``'s CSR structure (:func:`stiffness`):
+    K − σM without a second matrix of K's size."""
+    for i in range(3):
+        A.data[pat.csr_base + i * pat.csr_row3 + i] += factor * d
 
 
 def stiffness_generic(m, youngs_modulus: float, poisson_ratio: float, intorder: int = INTORDER):

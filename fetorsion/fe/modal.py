@@ -223,31 +223,38 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     t = time.perf_counter()
     pattern = assembly.block_pattern(basis)
     K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio, pattern)
-    M = assembly.mass(basis, material.density, pattern)
+    d = assembly.mass_blocks(basis, material.density, pattern)
+    M = assembly.diagonal_block_matrix(pattern, d)  # without K's explicit zeros: a third of the entries
     timings["assembly"] = time.perf_counter() - t
+    w = node_masses(basis, material.density)
+    del basis  # its shape-function tables (a tenth of the peak memory) are not needed any more
 
     t = time.perf_counter()
+    sigma = default_shift(mesh, material) if shift is None else shift
+    # S = K − σM in K's memory: K itself is not needed again (the rigid-body check reads S).
+    S = K
+    assembly.add_to_diagonal_blocks(S, pattern, d, -sigma)
+    del K, pattern
     xyz = m.doflocs.T  # position of each scalar DOF (node), m
     bodies = [RigidBody(b.name, _map_nodes(dof_of_node, b.nodes, b.name), b.mass, b.inertia, b.centre)
               for b in attachments]
-    red = reduction(K.shape[0], bodies, xyz) if bodies else None
-    groups = np.arange(0, K.shape[0] + 1, 3)  # a node's three displacements share their neighbours
+    red = reduction(S.shape[0], bodies, xyz) if bodies else None
+    groups = np.arange(0, S.shape[0] + 1, 3)  # a node's three displacements share their neighbours
     rigid_motions = rigid_rows(xyz, np.zeros(3)).reshape(-1, 6)
     if red is not None:
-        K, M = red.reduce(K), red.reduce(M) + red.body_mass
+        S, M = red.reduce(S, -sigma * red.body_blocks), red.reduce(M, red.body_blocks)
         groups = red.groups()
         rigid_motions = red.rigid_motions(rigid_motions)
     timings["attachments"] = time.perf_counter() - t
 
-    sigma = default_shift(mesh, material) if shift is None else shift
-    res = eigen.lowest_modes(K, M, modes + 6, sigma, backend=backend, method=method, groups=groups,
-                             null_space=rigid_motions)
+    res = eigen.lowest_modes(None, M, modes + 6, sigma, backend=backend, method=method, groups=groups,
+                             null_space=rigid_motions, S=S)
     timings.update(res.timings_s)
     omega2 = res.omega2.copy()
-    # The rigid-body roots as K's Rayleigh quotients of the six lowest vectors: exactly zero in
-    # exact arithmetic, so their size shows the round-off of the assembly and the solve.
+    # The rigid-body roots as Rayleigh quotients of the six lowest vectors, vᵀKv = vᵀSv + σ vᵀMv:
+    # zero in exact arithmetic, so their size shows the round-off of the assembly and the solve.
     V6 = res.vectors[:, :6]
-    omega2[:6] = np.einsum("ij,ij->j", V6, K @ V6) / np.einsum("ij,ij->j", V6, M @ V6)
+    omega2[:6] = np.einsum("ij,ij->j", V6, S @ V6) / np.einsum("ij,ij->j", V6, M @ V6) + sigma
     rigid, elastic = split_rigid(omega2, sigma)
 
     t = time.perf_counter()
@@ -255,7 +262,6 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     full = red.T @ q if red is not None else q
     U = full.T.reshape(len(elastic), -1, 3)  # (modes, dof-nodes, 3)
     body_motion = {b.name: q[red.n_free + 6 * i: red.n_free + 6 * i + 6].T for i, b in enumerate(bodies)}
-    w = node_masses(basis, material.density)
     if slabs is None:
         slab_idx = modeshape.axial_slabs(xyz, n_slabs)
     else:
@@ -274,7 +280,7 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
         shapes[:, used] = U[:, dof_of_node[used]]
     hz = lambda w2: np.sqrt(np.abs(w2)) / (2 * np.pi)  # noqa: E731
     return ModalResult(hz(elastic), kinds, fractions, fit, hz(rigid), int(m.nvertices + m.nedges),
-                       mesh.n_elements, K.shape[0], material, timings, shapes, body_motion,
+                       mesh.n_elements, S.shape[0], material, timings, shapes, body_motion,
                        res.backend, res.method)
 
 

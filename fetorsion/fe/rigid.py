@@ -137,6 +137,7 @@ class Reduction:
     free: np.ndarray = None
     tied: np.ndarray = None
     R: sp.csr_array = None
+    body_blocks: np.ndarray = None  # the bodies' 6 × 6 mass blocks as one dense diagonal block
 
     def groups(self) -> np.ndarray:
         """Pointers of the reduced DOF groups (three per untied node, six per body), for
@@ -158,8 +159,9 @@ class Reduction:
         rows = np.flatnonzero(np.abs(Rk).sum(axis=1))
         return np.linalg.lstsq(Rk[rows], full[self.tied[rows]], rcond=None)[0]
 
-    def reduce(self, A: sp.csr_array) -> sp.csr_array:
-        """Tᵀ A T, symmetric for a symmetric A.
+    def reduce(self, A: sp.csr_array, bodies: np.ndarray | None = None) -> sp.csr_array:
+        """Tᵀ A T, symmetric for a symmetric A, plus ``bodies`` (6 per body square, dense) on the
+        bodies' DOF when given (their masses: no second sparse matrix and addition).
 
         By blocks, [[A_ff, A_ft R], [Rᵀ A_tf, Rᵀ A_tt R]]: A_ff is A's CSR arrays with the tied
         rows and columns masked out and the few coupling entries A_ft R placed after each row's
@@ -182,6 +184,8 @@ class Reduction:
         BfT.sort_indices()
         D = (B[:, self.tied] @ self.R).toarray()
         D = 0.5 * (D + D.T)
+        if bodies is not None:
+            D = D + bodies
         # free rows: A_ff's entries (columns < nf, ascending), then A_ft R's (columns ≥ nf)
         len_a = np.bincount(row, minlength=nf)
         len_b = np.diff(BfT.indptr)
@@ -252,4 +256,5 @@ def reduction(n_dofs: int, bodies: list[RigidBody], node_xyz: np.ndarray) -> Red
     n_red = n_free + n_body
     body_mass = sp.block_diag([sp.csr_array((n_free, n_free))] + blocks, format="csr") if bodies \
         else sp.csr_array((n_red, n_red))
-    return Reduction(T, n_free, sp.csr_array(body_mass), free, tied, R)
+    return Reduction(T, n_free, sp.csr_array(body_mass), free, tied, R,
+                     body_mass[n_free:, n_free:].toarray() if bodies else np.zeros((0, 0)))
