@@ -222,3 +222,13 @@ def test_group_ordering_solves_the_same_system(bar):
     x_ref = eigen.factorize(S)(b)
     np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-10 * abs(x_ref).max())
     np.testing.assert_allclose(S @ x, b, rtol=0, atol=1e-8 * abs(b).max())
+
+
+def test_avx512_kernels_named_only_for_cpus_that_have_them():
+    zen5 = "processor\t: 0\nflags\t\t: fpu sse2 avx2 fma avx512f avx512dq avx512cd avx512bw avx512vl avx512_bf16\n"
+    haswell = "processor\t: 0\nflags\t\t: fpu sse2 avx avx2 fma\n"
+    knl = "flags\t\t: avx2 avx512f avx512cd avx512er avx512pf\n"  # no BW/DQ/VL: SkylakeX kernels would fault
+    assert eigen.avx512_coretype(zen5) == "SkylakeX"
+    assert eigen.avx512_coretype(haswell) is None
+    assert eigen.avx512_coretype(knl) is None
+    assert eigen.avx512_coretype("") is None

@@ -51,6 +51,40 @@ from ..errors import FetorsionError
 # a setting of the user's own is kept.
 os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
+#: CPU features of OpenBLAS's AVX-512 ("SkylakeX") kernels.
+AVX512_FLAGS = frozenset({"avx512f", "avx512cd", "avx512bw", "avx512dq", "avx512vl"})
+
+
+def avx512_coretype(cpuinfo: str) -> str | None:
+    """``"SkylakeX"`` when the CPU flags in ``cpuinfo`` (/proc/cpuinfo text) cover OpenBLAS's
+    AVX-512 kernels, else None.
+
+    Debian 12's OpenBLAS 0.3.21 predates AMD Zen 4/5 and runs them on its AVX2 ("Haswell")
+    kernels; named explicitly, the AVX-512 ones cut CHOLMOD's numeric factorisation at 969 k DOF
+    from 45.2 to 37.5 s (user time 46 → 32 s) on a Zen 5 (family 26), 2 cores.
+    """
+    for line in cpuinfo.splitlines():
+        if line.startswith("flags"):
+            return "SkylakeX" if AVX512_FLAGS <= set(line.split(":", 1)[1].split()) else None
+    return None
+
+
+def _choose_blas_kernels() -> None:
+    """Name the AVX-512 kernels for the system OpenBLAS under CHOLMOD where the CPU has them
+    (read when that library loads, lazily with CHOLMOD; a setting of the user's own is kept)."""
+    if "OPENBLAS_CORETYPE" in os.environ:
+        return
+    try:
+        with open("/proc/cpuinfo") as f:
+            core = avx512_coretype(f.read(200_000))
+    except OSError:
+        return
+    if core:
+        os.environ["OPENBLAS_CORETYPE"] = core
+
+
+_choose_blas_kernels()
+
 BACKENDS = ("cholmod", "superlu")
 METHODS = ("block", "lanczos", "lobpcg")
 
