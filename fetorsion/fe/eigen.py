@@ -147,7 +147,7 @@ def group_ordering(A, groups: np.ndarray) -> np.ndarray | None:
     Every DOF of a group has the same neighbours, so ordering the group graph (a third of the
     rows, a ninth of the entries for 3D solids) and keeping each group's DOFs together loses
     little: at 342 k DOF the ordering took 1.3 s instead of CHOLMOD's 3.0 s on A itself, for
-    about 3 % more fill. None when CHOLMOD has no METIS or the groups do not cover A.
+    2 % more fill (144 M against 141 M entries in L). None when CHOLMOD has no METIS or the groups do not cover A.
     """
     from sksparse.cholmod import analyze
 
