@@ -116,7 +116,7 @@ def _mesh_job(crank, size: float, outputs: list[str], fillet_size: float | None,
                 write_mesh(mesh, out, modes=modes)
             lines.append(f"mesh ({purpose}): {q.n_tets} curved 10-node tets, {q.n_nodes} nodes, size "
                          f"{q.size / MM:g} mm ({q.fillet_size / MM:g} mm at fillets and drillings, {q.straightened} "
-                         f"folded elements straightened), minimum SICN {q.min_sicn:.3f}, {q.seconds:.1f} s -> "
+                         f"folded elements straightened), minimum SICN {q.min_sicn:.2g}, {q.seconds:.1f} s -> "
                          f"{', '.join(outputs)}")
     return "\n".join(lines)
 

@@ -45,7 +45,10 @@ def fe_section(crank: Crank, outcome: dict) -> list[str]:
     """Mesh, solver and timings, f1 against the measurement, every mode with its label."""
     res, size = outcome["modal"], outcome["mesh_size_m"]
     quality = res.mesh.quality if res.mesh is not None else None
-    sicn = f"{quality.min_sicn:.3f}" if quality else "n/a"
+    # two significant digits: a valid but poor element (SICN 1e-4) must not read as 0.000
+    sicn = f"{quality.min_sicn:.2g}" if quality else "n/a"
+    if quality and quality.straightened:
+        sicn += f" ({quality.straightened} folded elements straightened)"
     measured = crank.notes.get("measured_first_torsional_hz")
     paper_fe = crank.notes.get("paper_fe_first_torsional_hz")
     t = res.timings_s
