@@ -34,7 +34,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import FetorsionError
-from .eigen import block_lanczos, factorize, numpy_blas_threads
+from .eigen import block_lanczos, factorize, numpy_blas_threads, shifted
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -91,7 +91,7 @@ def interface(K, M, G, sigma: float, backend: str = "auto") -> Interface:
     if sigma >= 0:
         raise ValueError("the shift must be negative")
     t0 = time.perf_counter()
-    solve = factorize((K - sigma * M).tocsr(), backend)
+    solve = factorize(shifted(K, M, sigma), backend)
     t1 = time.perf_counter()
     Y = np.asarray(solve(G.T.toarray()))
     C = np.asarray(G @ Y)
