@@ -137,7 +137,12 @@ class Reduction:
     free: np.ndarray = None
     tied: np.ndarray = None
     R: sp.csr_array = None
-    body_blocks: np.ndarray = None  # the bodies' 6 × 6 mass blocks as one dense diagonal block
+
+    @property
+    def body_blocks(self) -> np.ndarray:
+        """The bodies' 6 × 6 mass blocks as one dense block-diagonal array (``body_mass``'s
+        body rows and columns), for :meth:`reduce`."""
+        return self.body_mass[self.n_free:, self.n_free:].toarray()
 
     def groups(self) -> np.ndarray:
         """Pointers of the reduced DOF groups (three per untied node, six per body), for
@@ -256,5 +261,4 @@ def reduction(n_dofs: int, bodies: list[RigidBody], node_xyz: np.ndarray) -> Red
     n_red = n_free + n_body
     body_mass = sp.block_diag([sp.csr_array((n_free, n_free))] + blocks, format="csr") if bodies \
         else sp.csr_array((n_red, n_red))
-    return Reduction(T, n_free, sp.csr_array(body_mass), free, tied, R,
-                     body_mass[n_free:, n_free:].toarray() if bodies else np.zeros((0, 0)))
+    return Reduction(T, n_free, sp.csr_array(body_mass), free, tied, R)
