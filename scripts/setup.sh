@@ -44,4 +44,7 @@ if [ -e /usr/include/suitesparse/cholmod.h ]; then
 else
   echo "setup: no SuiteSparse headers; the modal solver will use SuperLU (slower)"
 fi
+.venv/bin/python -m pip install -q -e ".[mkl]" \
+  || echo "setup: MKL did not install; the modal solver will use CHOLMOD"
+.venv/bin/python -c "from fetorsion.fe import pardiso; print('setup: MKL PARDISO', 'found' if pardiso.available() else 'not found (x86-64 only): CHOLMOD is used')"
 echo "setup: done (.venv)"

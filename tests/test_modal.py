@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from beams import (euler_bernoulli_free_free_hz, shaft_with_end_disk_hz, timoshenko_free_free_hz)
-from fetorsion.fe import assembly, eigen, modeshape
+from fetorsion.fe import assembly, eigen, modeshape, pardiso
 from fetorsion.description.model import Attachment, Material
 from fetorsion.errors import FetorsionError
 from fetorsion.fe.modal import modal
@@ -151,10 +151,13 @@ def small_bar():
 
 
 @pytest.mark.parametrize("backend,method", [("cholmod", "lanczos"), ("cholmod", "lobpcg"),
-                                            ("cholmod", "block"), ("superlu", "lobpcg"), ("superlu", "block")])
+                                            ("cholmod", "block"), ("superlu", "lobpcg"), ("superlu", "block"),
+                                            ("pardiso", "lanczos"), ("pardiso", "block")])
 def test_backends_and_methods_agree(small_bar, backend, method):
     if backend == "cholmod" and not eigen.have_cholmod():
         pytest.skip("scikit-sparse not installed")
+    if backend == "pardiso" and not pardiso.available():
+        pytest.skip("MKL not installed")
     ref = modal(small_bar, STEEL, modes=8, backend="superlu", method="lanczos").frequencies_hz
     f = modal(small_bar, STEEL, modes=8, backend=backend, method=method).frequencies_hz
     # the same discrete problem: eigenvalue tolerance 1e-10 -> frequencies to ~1e-10
@@ -218,10 +221,47 @@ def test_group_ordering_solves_the_same_system(bar):
     perm = eigen.group_ordering(S, groups)
     assert sorted(perm) == list(range(K.shape[0]))
     b = np.random.default_rng(0).standard_normal((K.shape[0], 3))
-    x = eigen.factorize(S, groups=groups)(b)
-    x_ref = eigen.factorize(S)(b)
+    x = eigen.factorize(S, "cholmod", groups=groups)(b)
+    x_ref = eigen.factorize(S, "cholmod")(b)
     np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-10 * abs(x_ref).max())
     np.testing.assert_allclose(S @ x, b, rtol=0, atol=1e-8 * abs(b).max())
+
+
+def _shifted_bar(mesh, sigma=-1e6):
+    m, _ = assembly.skfem_mesh(mesh)
+    basis = assembly.p2_basis(m)
+    pattern = assembly.block_pattern(basis)
+    K = assembly.stiffness(basis, STEEL.youngs_modulus, STEEL.poisson_ratio, pattern)
+    M = assembly.mass(basis, STEEL.density, pattern)
+    return eigen.shifted(K, M, sigma)
+
+
+def test_pardiso_solves_like_superlu(small_bar):
+    # Two independent direct solvers on K − σM x = b (1-D and block right-hand sides, with
+    # and without the node-graph ordering): both exact, so equal to round-off of the
+    # solution's size (cond(S) ~ 1e8 here, so 1e-7 of max |x| has a margin of 1e3).
+    if not pardiso.available():
+        pytest.skip("MKL not installed")
+    S = _shifted_bar(small_bar)
+    n = S.shape[0]
+    b = np.random.default_rng(0).standard_normal((n, 5))
+    x_ref = eigen.factorize(S, "superlu")(b)
+    groups = np.arange(0, n + 1, 3)
+    for solve in (eigen.factorize(S, "pardiso", groups), pardiso.Factor(S)):
+        x = solve(b)
+        assert x.shape == b.shape and x.flags.c_contiguous
+        np.testing.assert_allclose(x, x_ref, rtol=0, atol=1e-7 * abs(x_ref).max())
+        np.testing.assert_allclose(solve(b[:, 2]), x[:, 2], rtol=0, atol=1e-12 * abs(x).max())
+        assert solve(np.asfortranarray(b)).flags.f_contiguous
+
+
+def test_pardiso_names_a_matrix_that_is_not_positive_definite(small_bar):
+    # A shift σ above the first elastic ω² (~3e8 rad²/s² here) makes K − σM indefinite: named, no crash.
+    if not pardiso.available():
+        pytest.skip("MKL not installed")
+    S = _shifted_bar(small_bar, sigma=1e12)
+    with pytest.raises(FetorsionError, match="not positive definite"):
+        pardiso.Factor(S)
 
 
 def test_avx512_kernels_named_only_for_cpus_that_have_them():

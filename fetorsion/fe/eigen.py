@@ -7,6 +7,11 @@ found together with the lowest elastic ones.
 
 Factorisations ("backends"):
 
+``pardiso``
+    MKL PARDISO's supernodal Cholesky (:mod:`fetorsion.fe.pardiso`; needs the ``mkl`` wheel,
+    ``scripts/setup.sh``), on the same node-graph METIS ordering as CHOLMOD: at 342 k DOF on 2
+    cores the numeric factorisation takes 4.1 s against 5.4–6.5 s, a block solve 0.33 s against
+    0.40 s. The default where installed.
 ``cholmod``
     CHOLMOD supernodal Cholesky from scikit-sparse (needs ``libsuitesparse-dev`` and an
     optimised BLAS such as Debian's ``libopenblas0-pthread``; see ``scripts/setup.sh``).
@@ -85,7 +90,7 @@ def _choose_blas_kernels() -> None:
 
 _choose_blas_kernels()
 
-BACKENDS = ("cholmod", "superlu")
+BACKENDS = ("pardiso", "cholmod", "superlu")
 METHODS = ("block", "lanczos", "lobpcg")
 
 
@@ -99,7 +104,9 @@ def have_cholmod() -> bool:
 
 
 def default_backend() -> str:
-    return "cholmod" if have_cholmod() else "superlu"
+    from . import pardiso
+
+    return "pardiso" if pardiso.available() else "cholmod" if have_cholmod() else "superlu"
 
 
 def factorize(A: sp.spmatrix, backend: str = "auto", groups: np.ndarray | None = None):
@@ -110,14 +117,19 @@ def factorize(A: sp.spmatrix, backend: str = "auto", groups: np.ndarray | None =
     A : sparse matrix
         Symmetric positive definite.
     backend : str
-        ``"cholmod"``, ``"superlu"`` or ``"auto"`` (CHOLMOD when installed).
+        ``"pardiso"``, ``"cholmod"``, ``"superlu"`` or ``"auto"`` (the first one installed).
     groups : ndarray of int, optional
         DOF groups that share one sparsity pattern (a mesh node's three displacements, a
         rigid body's six), as pointers: group j is DOFs ``groups[j]:groups[j + 1]``, covering
-        all of A. With CHOLMOD, the fill-reducing ordering is then computed on the graph of
-        the groups (:func:`group_ordering`) instead of on A's.
+        all of A. With CHOLMOD's METIS available, the fill-reducing ordering is then computed
+        on the graph of the groups (:func:`group_ordering`) instead of on A's.
     """
     backend = default_backend() if backend == "auto" else backend
+    if backend == "pardiso":
+        from . import pardiso
+
+        order = group_ordering(A, groups) if groups is not None and have_cholmod() else None
+        return pardiso.Factor(A, order)
     A = _as_csc_symmetric(A)
     if backend == "cholmod":
         from sksparse.cholmod import CholmodNotPositiveDefiniteError, cholesky
@@ -266,7 +278,7 @@ def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str 
     sigma : float
         Shift, rad²/s², negative.
     backend : str
-        ``"cholmod"``, ``"superlu"`` or ``"auto"``.
+        ``"pardiso"``, ``"cholmod"``, ``"superlu"`` or ``"auto"``.
     method : str
         ``"block"`` (block shift-invert Lanczos, default), ``"lanczos"`` (ARPACK
         shift-invert, one vector at a time) or ``"lobpcg"`` (factor as preconditioner).
