@@ -5,7 +5,7 @@ Each run is a fresh process (start-up, imports and meshing included), one after 
 (a shared machine: compare rows taken together only).
 
     python benchmarks/bench_modal_steps.py                       # this tree, Peugeot GLX, default mesh
-    python benchmarks/bench_modal_steps.py --tree /tmp/base      # another checkout's fetorsion (PYTHONPATH)
+    python benchmarks/bench_modal_steps.py --tree /tmp/base      # another checkout's fetorsion
 """
 
 from __future__ import annotations
@@ -21,15 +21,21 @@ import time
 def run_once(crank: str, tree: str | None, modes: int) -> dict:
     """One ``fetorsion modal --json -`` in a fresh interpreter: wall from before start-up to exit."""
     env = dict(os.environ)
-    if tree:
-        env["PYTHONPATH"] = tree
-    cmd = [sys.executable, "-c", "import sys; from fetorsion.cli import main; sys.exit(main())",
-           "modal", crank, "--modes", str(modes), "--json", "-"]
+    # The tree goes first on sys.path (PYTHONPATH comes after the current directory), and an
+    # editable install's import finder on sys.meta_path, which outranks sys.path, is dropped.
+    code = ("import sys; sys.meta_path[:] = [f for f in sys.meta_path if '__editable__' not in "
+            f"getattr(f, '__module__', '')]; sys.path.insert(0, {os.path.abspath(tree or '.')!r}); "
+            "import fetorsion; print('tree', fetorsion.__file__, file=sys.stderr); "
+            "from fetorsion.cli import main; sys.exit(main())")
+    cmd = [sys.executable, "-c", code, "modal", crank, "--modes", str(modes), "--json", "-"]
     t = time.perf_counter()
     out = subprocess.run(cmd, capture_output=True, text=True, env=env)
     wall = time.perf_counter() - t
     if out.returncode != 0:
         raise SystemExit(out.stderr)
+    used = next(line.split(" ", 1)[1] for line in out.stderr.splitlines() if line.startswith("tree "))
+    if not used.startswith(os.path.abspath(tree or ".")):
+        raise SystemExit(f"ran {used}, not the tree {tree}")
     text = out.stdout
     d = json.loads(text[text.index("{"):text.rindex("}") + 1])
     tim = d.get("timings_s", {})
