@@ -25,7 +25,7 @@ Eigen-methods:
 ``block`` (default)
     Block shift-invert Lanczos (:func:`block_lanczos`): the operator S⁻¹M, S = K - σM, is
     applied to a block of vectors at once, so each application is one multi-right-hand-side
-    CHOLMOD solve (dense matrix-matrix work over the supernodes, BLAS-3) instead of one
+    supernodal solve (dense matrix-matrix work over the supernodes, BLAS-3) instead of one
     memory-bound triangular sweep per vector; full M-reorthogonalisation, Rayleigh-Ritz on
     the whole block Krylov space, thick restart if it ever grows past its cap.
 ``lanczos``

@@ -7,7 +7,7 @@ Pipeline (SI units throughout):
 2. :func:`fetorsion.fe.rigid.reduction`: attachments (flywheel, pulley, pistons) as rigid
    bodies tied to node sets, exact master-DOF elimination u = T q.
 3. :func:`fetorsion.fe.eigen.lowest_modes`: block shift-invert Lanczos with a negative shift over
-   one sparse Cholesky (CHOLMOD, SuperLU fallback); the six rigid-body modes come out first, are
+   one sparse Cholesky (PARDISO or CHOLMOD, SuperLU fallback); the six rigid-body modes come out first, are
    checked (≈ 0 against the first elastic mode) and reported apart.
 4. :func:`fetorsion.fe.modeshape.identify`: rigid fits to axial slabs (crank: main journals)
    give torsional / bending / axial fractions and a label per mode.
@@ -192,7 +192,7 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     n_slabs : int
         Slices when ``slabs`` is None.
     backend : str
-        ``"cholmod"``, ``"superlu"`` or ``"auto"`` (CHOLMOD when installed).
+        ``"pardiso"``, ``"cholmod"``, ``"superlu"`` or ``"auto"`` (the first one installed).
     method : str
         ``"block"`` (block shift-invert Lanczos, default), ``"lanczos"`` (ARPACK, the
         reference) or ``"lobpcg"``; see :mod:`fetorsion.fe.eigen`.
