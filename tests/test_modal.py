@@ -187,14 +187,20 @@ def test_overlapping_attachments_are_refused(bar):
         modal(bar, STEEL, modes=4, attachments=bodies)
 
 
-def test_block_reduction_equals_triple_product(bar):
-    # Tᵀ A T by blocks (free rows kept by a mask, only tied rows multiplied) against the plain
-    # sparse triple product, for K and M with two bodies: the same sums, so to round-off.
-    m, dof_of_node = assembly.skfem_mesh(bar)
+def _stiffness_and_mass(mesh):
+    """K and M of ``mesh`` in steel on one CSR structure, and the scikit-fem mesh."""
+    m, dof_of_node = assembly.skfem_mesh(mesh)
     basis = assembly.p2_basis(m)
     pattern = assembly.block_pattern(basis)
     K = assembly.stiffness(basis, STEEL.youngs_modulus, STEEL.poisson_ratio, pattern)
     M = assembly.mass(basis, STEEL.density, pattern)
+    return K, M, m, dof_of_node
+
+
+def test_block_reduction_equals_triple_product(bar):
+    # Tᵀ A T by blocks (free rows kept by a mask, only tied rows multiplied) against the plain
+    # sparse triple product, for K and M with two bodies: the same sums, so to round-off.
+    K, M, m, dof_of_node = _stiffness_and_mass(bar)
     bodies = [RigidBody.axisymmetric(face, dof_of_node[bar.node_sets[face]], 1.0, 0.1, 0.05, (x, 0, 0))
               for face, x in (("front_face", 0.0), ("rear_face", L))]
     red = reduction(K.shape[0], bodies, m.doflocs.T)
@@ -210,11 +216,7 @@ def test_group_ordering_solves_the_same_system(bar):
     # is the same as with CHOLMOD's own ordering (both exact solves: to round-off).
     if not eigen.have_cholmod():
         pytest.skip("scikit-sparse not installed")
-    m, _ = assembly.skfem_mesh(bar)
-    basis = assembly.p2_basis(m)
-    pattern = assembly.block_pattern(basis)
-    K = assembly.stiffness(basis, STEEL.youngs_modulus, STEEL.poisson_ratio, pattern)
-    M = assembly.mass(basis, STEEL.density, pattern)
+    K, M, _, _ = _stiffness_and_mass(bar)
     S = eigen.shifted(K, M, -1e6)
     np.testing.assert_array_equal(S.toarray(), (K + 1e6 * M).toarray())
     groups = np.arange(0, K.shape[0] + 1, 3)
@@ -227,22 +229,14 @@ def test_group_ordering_solves_the_same_system(bar):
     np.testing.assert_allclose(S @ x, b, rtol=0, atol=1e-8 * abs(b).max())
 
 
-def _shifted_bar(mesh, sigma=-1e6):
-    m, _ = assembly.skfem_mesh(mesh)
-    basis = assembly.p2_basis(m)
-    pattern = assembly.block_pattern(basis)
-    K = assembly.stiffness(basis, STEEL.youngs_modulus, STEEL.poisson_ratio, pattern)
-    M = assembly.mass(basis, STEEL.density, pattern)
-    return eigen.shifted(K, M, sigma)
-
-
 def test_pardiso_solves_like_superlu(small_bar):
     # Two independent direct solvers on K − σM x = b (1-D and block right-hand sides, with
-    # and without the node-graph ordering): both exact, so equal to round-off of the
-    # solution's size (cond(S) ~ 1e8 here, so 1e-7 of max |x| has a margin of 1e3).
+    # and without the node-graph ordering): both backward stable, so they differ by about
+    # cond(S)·eps·|x| = 1.4e7 · 2.2e-16 ≈ 3e-9 of |x|; 1e-7 leaves a factor 30.
     if not pardiso.available():
         pytest.skip("MKL not installed")
-    S = _shifted_bar(small_bar)
+    K, M, _, _ = _stiffness_and_mass(small_bar)
+    S = eigen.shifted(K, M, -1e6)
     n = S.shape[0]
     b = np.random.default_rng(0).standard_normal((n, 5))
     x_ref = eigen.factorize(S, "superlu")(b)
@@ -255,13 +249,16 @@ def test_pardiso_solves_like_superlu(small_bar):
         assert solve(np.asfortranarray(b)).flags.f_contiguous
 
 
-def test_pardiso_names_a_matrix_that_is_not_positive_definite(small_bar):
+def test_pardiso_names_an_indefinite_matrix_and_a_bad_ordering(small_bar):
     # A shift σ above the first elastic ω² (~3e8 rad²/s² here) makes K − σM indefinite: named, no crash.
     if not pardiso.available():
         pytest.skip("MKL not installed")
-    S = _shifted_bar(small_bar, sigma=1e12)
+    K, M, _, _ = _stiffness_and_mass(small_bar)
+    S = eigen.shifted(K, M, 1e12)
     with pytest.raises(FetorsionError, match="not positive definite"):
         pardiso.Factor(S)
+    with pytest.raises(FetorsionError, match="not a permutation"):
+        pardiso.Factor(eigen.shifted(K, M, -1e6), np.zeros(S.shape[0], dtype=int))
 
 
 def test_avx512_kernels_named_only_for_cpus_that_have_them():

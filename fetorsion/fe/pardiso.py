@@ -112,13 +112,18 @@ class Factor:
         ip[34] = 1  # 0-based indices
         self._perm = np.zeros(self.n, np.int32)
         if order is not None:
+            order = np.asarray(order)
+            if order.shape != (self.n,) or not np.array_equal(np.sort(order), np.arange(self.n)):
+                # MKL does not check it, and reads out of bounds on a bad one
+                raise FetorsionError(f"PARDISO: the ordering is not a permutation of the {self.n} rows")
             # MKL reads perm as the elimination order itself (measured: 145 M factor entries at
             # 342 k DOF; its inverse ran out of memory).
             self._perm[:] = order
             ip[4] = 1
         self._lib = lib
-        self._call(_ANALYSE)
+        # Before the first call: a phase that fails releases what PARDISO holds so far.
         self._finalizer = weakref.finalize(self, _release, lib, self._pt, self._iparm, self.n)
+        self._call(_ANALYSE)
         self._call(_FACTOR)
 
     @property
