@@ -12,8 +12,6 @@ anything else is refused unless the user forces it (:func:`check_report_folder`)
 
 from __future__ import annotations
 
-import glob
-import itertools
 import json
 import os
 import shutil
@@ -31,29 +29,38 @@ def _tmp_prefix(path: Path) -> str:
     return f".{path.name}{TMP_TAG}{os.getpid()}-"
 
 
-def _pid_alive(pid: int) -> bool:
+def _writer_gone(pid: int, entry: Path) -> bool:
+    """Whether the fetorsion process ``pid`` that made ``entry`` has ended: no such process,
+    or one that started after ``entry`` was last written (the number was given out again)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
-        return False
-    except PermissionError:  # someone else's live process
         return True
-    return True
+    except PermissionError:  # someone else's live process: judged by its start below
+        pass
+    try:
+        import psutil
+
+        return psutil.Process(pid).create_time() > entry.lstat().st_mtime + 1.0
+    except Exception:  # psutil missing, or the process ended meanwhile: keep it this time
+        return False
 
 
-def remove_stale_siblings(path) -> list[Path]:
-    """Remove the temporary siblings of ``path`` left by fetorsion runs that no longer exist.
+def remove_stale_temporaries(folder) -> list[Path]:
+    """Remove, directly in ``folder``, the temporaries of fetorsion writers that no longer run.
 
     Only names made by :func:`atomic_output` / :func:`atomic_folder` (``.NAME`` + :data:`TMP_TAG`
-    + a process id) whose process is gone are removed; the removed paths are returned.
+    + a process id + ``-``) whose process is gone are removed, whatever NAME they were for;
+    the removed paths are returned. Every fetorsion write calls it on its own folder, so a
+    killed run's leftover goes with the next write there.
     """
-    path = Path(path)
-    if not path.parent.is_dir():
+    folder = Path(folder)
+    if not folder.is_dir():
         return []
     removed = []
-    for entry in path.parent.glob(glob.escape(f".{path.name}{TMP_TAG}") + "*"):
-        pid = entry.name[len(path.name) + 1 + len(TMP_TAG):].split("-", 1)[0]
-        if not pid.isdigit() or _pid_alive(int(pid)):
+    for entry in folder.glob(f".*{TMP_TAG}*"):
+        pid = entry.name.split(TMP_TAG, 1)[1].split("-", 1)[0]
+        if not pid.isdigit() or not _writer_gone(int(pid), entry):
             continue
         if entry.is_dir() and not entry.is_symlink():
             shutil.rmtree(entry, ignore_errors=True)
@@ -69,7 +76,7 @@ def atomic_output(path):
     replaces ``path`` in one rename, on failure it is removed."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    remove_stale_siblings(path)
+    remove_stale_temporaries(path.parent)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=_tmp_prefix(path), suffix=path.suffix)
     os.close(fd)
     tmp = Path(tmp)
@@ -100,48 +107,6 @@ def save_figure_atomic(fig, path, close: bool = False, **kwargs) -> None:
             import matplotlib.pyplot as plt
 
             plt.close(fig)
-
-
-_SMALL_COUNTER = itertools.count()
-
-
-def write_small_atomic(path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically, for many small files (a study's sample store).
-
-    The same temporary naming as :func:`atomic_output` (so :func:`remove_stale_siblings`
-    recognises a killed writer's leftover), without its per-write search for stale siblings:
-    the caller sweeps a whole tree once with :func:`remove_stale_temporaries`.
-    """
-    path = Path(path)
-    tmp = path.parent / f"{_tmp_prefix(path)}{next(_SMALL_COUNTER)}"
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
-    try:
-        fd = os.open(tmp, flags, 0o666)
-    except FileNotFoundError:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        fd = os.open(tmp, flags, 0o666)
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
-
-
-def remove_stale_temporaries(folder) -> int:
-    """Remove, anywhere below ``folder``, the temporaries of fetorsion writers that no longer
-    run; returns how many."""
-    folder = Path(folder)
-    if not folder.is_dir():
-        return 0
-    stale = 0
-    for entry in folder.rglob(f".*{TMP_TAG}*"):
-        pid = entry.name.split(TMP_TAG, 1)[1].split("-", 1)[0]
-        if pid.isdigit() and not _pid_alive(int(pid)) and entry.is_file():
-            entry.unlink(missing_ok=True)
-            stale += 1
-    return stale
 
 
 def _umask() -> int:
@@ -272,7 +237,7 @@ def atomic_folder(out):
     """
     out = Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    remove_stale_siblings(out)
+    remove_stale_temporaries(out.parent)
     work = Path(tempfile.mkdtemp(prefix=_tmp_prefix(out), dir=out.parent))
     os.chmod(work, 0o777 & ~_umask())  # mkdtemp makes it private (0700)
     try:

@@ -35,12 +35,13 @@ def renault_raw():
 def simple_crank_raw(cylinders: int = 4) -> dict:
     """A hand-made crank with round numbers (mm), every journal/pin/web alike."""
     n = cylinders
+    assert 1 <= n <= 4, "flat cranks of up to four throws"
     return copy.deepcopy({
         "units": {"length": "mm"},
         "material": {"youngs_modulus_pa": 200e9, "poisson_ratio": 0.25, "density_kgm3": 8000.0},
         "engine": {"cylinders": n, "stroke": 80.0, "rod_length": 140.0,
-                   "crank_angles_deg": [0.0, 180.0, 180.0, 0.0][:n] if n <= 4 else [0.0] * n,
-                   "firing_order": list(range(1, n + 1))},
+                   "crank_angles_deg": [0.0, 180.0, 180.0, 0.0][:n],
+                   "firing_order": [1, 3, 4, 2] if n == 4 else list(range(1, n + 1))},
         "journals": [{"diameter": 60.0, "length": 25.0}] * (n + 1),
         "pins": [{"diameter": 50.0, "length": 24.0}] * n,
         "webs": [{"thickness": 20.0, "width_journal": 90.0, "width_pin": 70.0}] * (2 * n),

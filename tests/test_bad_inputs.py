@@ -133,6 +133,9 @@ CASES = [
     # --- fields
     ("firing-mixed", "lumped {d}/x.toml", {"x.toml": edit("firing_order = [1, 3, 4, 2]", 'firing_order = [1, "3", 4, 2]')},
      2, ["engine.firing_order", "permutation"]),
+    # the Renault's crank angles are 0/180/180/0: 1-2-3-4 leaves cylinder 4 no TDC in the cycle
+    ("firing-impossible", "lumped {d}/x.toml", {"x.toml": edit("firing_order = [1, 3, 4, 2]", "firing_order = [1, 2, 3, 4]")},
+     2, ["engine.firing_order", "cannot be fired by crank_angles_deg"]),
     ("cylinders-float", "lumped {d}/x.toml", {"x.toml": edit("cylinders = 4", "cylinders = 4.0")}, 2,
      ["engine.cylinders", "integer"]),
     ("cylinders-text", "lumped {d}/x.toml", {"x.toml": edit("cylinders = 4", 'cylinders = "4"')}, 2,
@@ -532,6 +535,7 @@ def _strays(parent):
 
 
 @pytest.mark.fe
+@pytest.mark.slow
 def test_sigkill_midway_leaves_the_earlier_report_and_the_next_run_cleans_up(tmp_path):
     """SIGKILL during the FE step: the earlier report is intact; the next run removes the
     killed run's temporary folder and leaves no stray of its own; no meshing child lives on."""
@@ -592,6 +596,7 @@ def test_out_folder_of_user_files_is_refused_and_survives(tmp_path, capsys):
     assert code == 2 and snapshot(tmp_path) == before
 
 
+@pytest.mark.slow
 def test_earlier_report_is_replaced_but_not_one_the_user_added_to(tmp_path, capsys):
     out = tmp_path / "report"
     argv = ["run", str(GEOMETRY / "renault21.toml"), "--out", str(out), "--no-fe"]

@@ -198,6 +198,7 @@ def test_throw_harmonic_equals_full_fe(throw):
 
 
 @pytest.mark.fe
+@pytest.mark.slow
 def test_cli_condensed_end_to_end(tmp_path):
     """condense (npz + JSON), modal --support bearings, campbell and response from the condensed
     crank, on the Renault 21 without fillets at a coarse mesh."""

@@ -38,6 +38,8 @@ def test_length_unit_scales_everything():
     assert a.journals == b.journals and a.webs == b.webs and a.engine == b.engine
 
 
+SYNTHETIC = {"reciprocating_mass_kg": 0.5, "speed_range_rpm": [1000.0, 5000.0], "compression_ratio": 10.0,
+             "peak_pressure_pa": 60.0e5}
 CASES = [
     # (mutation, field named in the message, words of the rule)
     (lambda r: r["units"].update(length="furlong"), "units.length", "must be one of"),
@@ -49,7 +51,17 @@ CASES = [
      "webs.1.width_journal", "must lie inside its web"),
     (lambda r: r["webs"].pop(), "webs", "needs 8"),
     (lambda r: r["engine"].update(firing_order=[1, 2, 2, 4]), "engine.firing_order", "permutation"),
+    # A flat four (0/180/180/0) fires 1-3-4-2 or 1-2-4-3: after 1 and 2, cylinder 3's TDCs
+    # (180°, 540°) are taken or past and 4's next one (720°) is the next cycle's.
+    (lambda r: r["engine"].update(crank_angles_deg=[0.0, 180.0, 180.0, 0.0], firing_order=[1, 2, 3, 4]),
+     "engine.firing_order", "cannot be fired by crank_angles_deg"),
     (lambda r: r["engine"].update(crank_angles_deg=[0.0, 180.0]), "engine.crank_angles_deg", "one angle per cylinder"),
+    # The synthetic cycle against its engine: 1e5 Pa · 10^1.3 = 19.95 bar motored at TDC.
+    (lambda r: r.update(excitation=dict(SYNTHETIC, peak_pressure_pa=19.0e5)), "excitation.peak_pressure_pa",
+     "above the motored peak"),
+    (lambda r: r.update(excitation=SYNTHETIC), "engine.bore", "> 0 for the gas force"),
+    (lambda r: (r["engine"].update(bore=80.0, cycle_strokes=2), r.update(excitation=SYNTHETIC)),
+     "excitation.peak_pressure_pa", "4-stroke"),
     (lambda r: r["engine"].update(rod_length=30.0), "engine.rod_length", "longer than the crank radius"),
     (lambda r: r["material"].update(poisson_ratio=0.6), "material.poisson_ratio", "< 0.5"),
     (lambda r: r["material"].pop("density_kgm3"), "material.density_kgm3", "required"),

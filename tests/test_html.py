@@ -18,7 +18,7 @@ try:
     from playwright.sync_api import sync_playwright
 except ImportError:  # pragma: no cover - the test extra installs it
     sync_playwright = None
-pytestmark = [pytest.mark.fe,
+pytestmark = [pytest.mark.fe, pytest.mark.slow,  # a whole run with FE (~40 s) behind the page
               pytest.mark.skipif(BROWSER is None, reason="no chromium: scripts/setup.sh installs it with apt-get; "
                                  "without it the browser test of report.html cannot run"),
               pytest.mark.skipif(sync_playwright is None, reason="playwright is not installed (pip install -e '.[test]')")]

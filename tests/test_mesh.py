@@ -184,3 +184,43 @@ def test_modal_mesh_is_the_same_on_every_run():
     assert a.quality.straightened > 0
     np.testing.assert_array_equal(a.tets, b.tets)
     np.testing.assert_array_equal(a.nodes, b.nodes)
+
+
+def test_an_optimiser_abort_is_meshed_again_once_with_the_stated_change(monkeypatch, capsys):
+    # Gmsh's rare optimiser abort cannot be provoked at will: the first try is made to end as
+    # such an abort does (SIGABRT in the meshing child); the second is the real meshing child,
+    # with OPTIMISER_RETRY's options, and gives the same mesh as a plain first try would.
+    from fetorsion.errors import FetorsionError
+    from fetorsion.solid import mesh as mesh_module
+    from conftest import plain, simple_crank_raw
+    from fetorsion.description.crank import parse_crank
+
+    crank = plain(parse_crank(simple_crank_raw(1)))
+    real, calls = mesh_module.call_isolated, []
+
+    def first_aborts(fn, *args, what, **kwargs):
+        calls.append(args[-1])
+        if len(calls) == 1:
+            raise FetorsionError(f"{what} ended abnormally (signal SIGABRT): Failed to reach critical value")
+        return real(fn, *args, what=what, **kwargs)
+
+    monkeypatch.setattr(mesh_module, "call_isolated", first_aborts)
+    retried = mesh_crank(crank, 0.03, purpose="stress")
+    assert calls == [{}, mesh_module.OPTIMISER_RETRY]
+    assert "meshing again with Mesh.HighOrderNumLayers 12" in capsys.readouterr().err
+    monkeypatch.setattr(mesh_module, "call_isolated", real)
+    assert retried.tets.shape == mesh_crank(crank, 0.03, purpose="stress").tets.shape
+
+    # Not retried: an optimiser that did not run (modal meshes straighten), or a child killed
+    # from outside (out of memory: it would only be killed again).
+    for purpose, signal_name in (("modal", "SIGABRT"), ("stress", "SIGKILL")):
+        calls.clear()
+
+        def dies(fn, *args, what, **kwargs):
+            calls.append(args[-1])
+            raise FetorsionError(f"{what} ended abnormally (signal {signal_name})")
+
+        monkeypatch.setattr(mesh_module, "call_isolated", dies)
+        with pytest.raises(FetorsionError, match=signal_name):
+            mesh_crank(crank, 0.03, purpose=purpose)
+        assert calls == [{}]

@@ -14,6 +14,7 @@ from conftest import GEOMETRY, assert_picture
 NO_FE = tuple(step for step in DEFAULT_STEPS if "FE" not in step[0])
 
 
+@pytest.mark.slow
 def test_run_writes_report_consistent_with_the_api(tmp_path):
     out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE)
     report = (out / "report.md").read_text()
@@ -39,6 +40,7 @@ def test_run_writes_report_consistent_with_the_api(tmp_path):
 
 
 @pytest.mark.fe
+@pytest.mark.slow
 def test_full_run_with_fe_and_mode_images(tmp_path):
     # Every step, FE included, on the Renault crank without fillets and drillings (cheap mesh).
     import re

@@ -114,8 +114,9 @@ def test_interrupted_study_resumes_without_recomputing_what_is_stored(client, tm
     with pytest.raises(KeyboardInterrupt):
         run_samples(Ishi(sleep=0.005), samples, store, client, batch_size=4, on_record=interrupt, progress=False)
     keys = [sample_key(Ishi().key, s) for s in samples]
-    on_disk = {k for k in keys if store.path(k).exists()}
-    assert on_disk == set(stored) and len(on_disk) >= 25
+    on_disk = store.keys() & set(keys)
+    # Stored a task at a time, before the hook sees its records: everything seen is stored.
+    assert on_disk >= set(stored) and len(on_disk) >= 25 and len(on_disk) < len(samples)
 
     calls = tmp_path / "calls"
     calls.mkdir()
@@ -132,10 +133,11 @@ def test_killing_a_worker_mid_study_loses_no_sample(client, tmp_path):
     pids = list(client.run(os.getpid).values())
     assert len(pids) == 2
     samples = [{"x1": x, "x2": 1.0, "x3": 1.0} for x in np.linspace(-3, 3, 100)]
-    killed = []
+    killed, seen = [], []
 
     def kill_one(key, record):
-        if not killed and len(list(tmp_path.glob("store/*/*.json"))) >= 15:
+        seen.append(key)
+        if not killed and len(seen) >= 15:
             os.kill(pids[0], signal.SIGKILL)  # a worker process this test's cluster started
             killed.append(pids[0])
 

@@ -8,12 +8,14 @@ is run again, and the report folder (``--out``) is written atomically at the end
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from pathlib import Path
 
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
-from ..studies.engine import SCHEDULER_ENV, SampleStore, check_scheduler, check_store, default_store, scheduler_address
+from ..studies.engine import (SCHEDULER_ENV, STORE_ENV, STORE_MAX_ENV, check_scheduler, check_store, default_store,
+                              open_store, scheduler_address, store_max_bytes)
 from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
 from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
 from ..studies.study import run_crank_study, write_study_folder
@@ -70,6 +72,26 @@ def add_parser(sub, load_crank, check_mesh_size) -> None:
     sp.add_argument("--force", action="store_true", help="replace --out even if it is not an earlier fetorsion report")
     sp.set_defaults(func=lambda args: cmd_study(args, load_crank, check_mesh_size))
 
+    tp = sub.add_parser("store", help="where the studies' sample store is, how full; --clear empties it")
+    tp.add_argument("--store", metavar="DIR", help=f"the store's folder (default ${STORE_ENV}, else "
+                                                   "~/.cache/fetorsion/samples)")
+    tp.add_argument("--clear", action="store_true", help="remove every stored sample")
+    tp.set_defaults(func=cmd_store)
+
+
+def cmd_store(args) -> int:
+    """Print the store's location, sample count and size against its bound; empty it with --clear."""
+    folder = Path(args.store) if args.store else default_store()
+    if os.path.lexists(folder) and not folder.is_dir():
+        raise FetorsionError(f"--store {folder}: exists and is not a folder")
+    store_max_bytes()  # a bad $FETORSION_STORE_MAX_MB is named before anything is touched
+    store = open_store(folder)
+    if args.clear:
+        n = store.clear()
+        print(f"removed {n} samples from {store.file}")
+    print(store.describe().replace("sample store ", "", 1) + f"; bound set by ${STORE_MAX_ENV}")
+    return 0
+
 
 def cmd_study(args, load_crank, check_mesh_size) -> int:
     from ..io import check_report_folder
@@ -85,6 +107,7 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
     check_report_folder(out, "--out", force=args.force, inputs=[args.file])
     store_dir = Path(args.store) if args.store else default_store()
     check_store(store_dir, "--store" if args.store else "the sample store")
+    store_max_bytes()
     crank = load_crank(args.file, "an [uncertainty] table")
     if not crank.uncertainty:
         raise FetorsionError(f"{args.file}: the description has no [uncertainty] table")
@@ -97,12 +120,13 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
     if args.model == "fe":
         check_mesh_size(crank, args.mesh_size, "modal")
     print(f"[fetorsion] {crank.name}: {args.method} study of {len(inputs)} inputs, "
-          f"{runs_for(args.method, n, len(inputs))} runs of {model.label}; samples kept in {store_dir}",
-          file=sys.stderr, flush=True)
+          f"{runs_for(args.method, n, len(inputs))} runs of {model.label}", file=sys.stderr, flush=True)
+    store = open_store(store_dir)
+    print(f"[fetorsion] {store.describe()}", file=sys.stderr, flush=True)
     try:
         res = run_crank_study(crank, args.method, n, args.model, args.outputs, args.inputs, seed=args.seed,
                               stiffness=args.stiffness, mesh_size=args.mesh_size, scheduler=address,
-                              workers=args.workers, store=SampleStore(store_dir), batch_size=args.batch,
+                              workers=args.workers, store=store, batch_size=args.batch,
                               retry_failed=args.retry_failed)
     except KeyboardInterrupt:
         print(f"\nfetorsion: interrupted; the finished samples are kept in {store_dir}: the same command resumes "

@@ -130,8 +130,7 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
         if engine is None:
             problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
         ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
-        excitation = _excitation(root.table("excitation"), Path(source).parent,
-                                 engine.strokes_per_cycle if engine else 4, zero_damping_ok=True)
+        excitation = _excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
         has_dampers = any(v > 0 for v in (*absolute, *relative, *loss))
         if "modal_damping_ratio" not in ex_table and has_dampers:
             # The chain states its damping; a default modal ratio on top would count it twice.
@@ -279,6 +278,12 @@ def read_engine(root: Table) -> Engine:
                                 f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
     engine = Engine(n, strokes, stroke, rod,
                     tuple(math.radians(a) for a in angles), tuple(firing), bore)
+    if n and firing and angles and len(angles) == n:
+        try:
+            engine.firing_angles()
+        except ValueError as exc:
+            problems.append(Problem("engine.firing_order", list(firing),
+                                    f"cannot be fired by crank_angles_deg {list(angles)}: {exc}"))
     return engine
 
 
@@ -347,7 +352,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     limits = read_limits(root)
     excitation = None
     if "excitation" in data:
-        excitation = _excitation(root.table("excitation"), Path(source).parent, engine.strokes_per_cycle)
+        excitation = _excitation(root.table("excitation"), Path(source).parent, engine)
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
@@ -517,9 +522,12 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
 EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
 
 
-def _excitation(t: Table, folder: Path, strokes: int, zero_damping_ok: bool = False) -> Excitation:
+def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: bool = False) -> Excitation:
     """The ``[excitation]`` table; a pressure CSV path is relative to the description file. A chain
-    that states its own dampers may set ``modal_damping_ratio = 0`` (``zero_damping_ok``)."""
+    that states its own dampers may set ``modal_damping_ratio = 0`` (``zero_damping_ok``).
+    The synthetic cycle is checked against the ``engine`` it drives (a bore, four strokes, a
+    peak pressure above the motored one)."""
+    strokes = engine.strokes_per_cycle if engine else 4
     mass = t.number("reciprocating_mass_kg", nonnegative=True)
     speeds = t.numbers("speed_range_rpm")
     if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
@@ -561,6 +569,16 @@ def _excitation(t: Table, folder: Path, strokes: int, zero_damping_ok: bool = Fa
         **common,
     )
     t.finish()
+    if engine is not None and engine.strokes_per_cycle != 4:
+        t.problems.append(Problem(f"{t.path}.{given[0]}", raw, "the synthetic cycle is a 4-stroke cycle; give "
+                                  "pressure_csv for a 2-stroke engine"))
+    if engine is not None and not engine.bore > 0:
+        t.problems.append(Problem("engine.bore", engine.bore, f"must be > 0 for the gas force of {t.path}.{given[0]}"))
+    motored_peak = ex.intake_pressure * ex.compression_ratio ** ex.polytropic_exponent
+    if ex.load_kind == "peak" and ex.compression_ratio > 1 and min(p for _, p in ex.load) <= motored_peak:
+        # Polytropic compression from BDC at the intake pressure: the motored pressure at TDC.
+        t.problems.append(Problem(f"{t.path}.peak_pressure_pa", raw, f"must be above the motored peak "
+                                  f"p_intake·CR^n = {motored_peak:.4g} Pa at every speed"))
     return ex
 
 

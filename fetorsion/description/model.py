@@ -84,6 +84,36 @@ class Engine:
         """R = stroke / 2 in m."""
         return 0.5 * self.stroke
 
+    def firing_angles(self) -> tuple[float, ...]:
+        """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0.
+
+        ``crank_angles[c]`` is how far cylinder c's TDC lags cylinder 1's; each cylinder has
+        ``strokes_per_cycle / 2`` TDCs per cycle, and the firing order picks, cylinder by
+        cylinder, the first TDC after the previous firing.
+
+        Raises
+        ------
+        ValueError
+            If some cylinder has no TDC left in the cycle after the one before it fired: the
+            crank angles cannot produce this firing order.
+        """
+        period = math.pi * self.strokes_per_cycle
+        turn = 2 * math.pi
+        tdc = [(a - self.crank_angles[0]) % turn for a in self.crank_angles]
+        out = [0.0] * self.cylinders
+        order = list(self.firing_order)
+        start = order.index(1)
+        previous = 0.0
+        for c in order[start + 1:] + order[:start]:
+            t = tdc[c - 1]
+            if t <= previous + 1e-9:
+                t += turn * math.ceil((previous + 1e-9 - t) / turn)
+            if t >= period:
+                raise ValueError(f"cylinder {c} has no TDC left in the {math.degrees(period):.0f}° cycle after "
+                                 f"the cylinder before it fired at {math.degrees(previous):.1f}°")
+            out[c - 1] = previous = t
+        return tuple(out)
+
 
 @dataclass(frozen=True)
 class Fillets:

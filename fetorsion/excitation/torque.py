@@ -36,27 +36,14 @@ def cycle_grid(engine: Engine, samples: int = SAMPLES_PER_CYCLE) -> np.ndarray:
 
 
 def firing_angles(engine: Engine) -> np.ndarray:
-    """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0.
-
-    ``crank_angles[c]`` is how far cylinder c's TDC lags cylinder 1's; each cylinder has two
-    TDCs per 4-stroke cycle, and the firing order picks, cylinder by cylinder, the first
-    TDC after the previous firing.
-    """
-    period = cycle_angle(engine)
-    tdc = np.mod(np.array(engine.crank_angles) - engine.crank_angles[0], 2 * np.pi)
-    out = np.zeros(engine.cylinders)
-    previous = -1e-9
-    order = list(engine.firing_order)
-    start = order.index(1)
-    for c in order[start:] + order[:start]:
-        candidates = np.arange(tdc[c - 1], period, 2 * np.pi)
-        later = candidates[candidates > previous + 1e-9]
-        if c != 1 and len(later) == 0:
-            raise FetorsionError(f"engine.firing_order {order}: cylinder {c} cannot fire after the cylinder before it "
-                                 "within one cycle with these crank_angles_deg")
-        out[c - 1] = 0.0 if c == 1 else later[0]
-        previous = out[c - 1]
-    return out
+    """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0; see
+    :meth:`fetorsion.description.model.Engine.firing_angles` (a description is checked
+    against it when read, so only a hand-built Engine can fail here)."""
+    try:
+        return np.array(engine.firing_angles())
+    except ValueError as exc:
+        raise FetorsionError(f"engine.firing_order {list(engine.firing_order)}: {exc} "
+                             "with these crank_angles_deg") from None
 
 
 def cylinder_volume(theta, engine: Engine, compression_ratio: float) -> np.ndarray:

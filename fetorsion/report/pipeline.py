@@ -207,7 +207,7 @@ def step_sensitivity(ctx: RunContext) -> None:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
     Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
     The studies run on an embedded Dask cluster, each sample stored as it finishes."""
-    from ..studies.engine import ClusterOnDemand
+    from ..studies.engine import ClusterOnDemand, open_store
     from ..studies.models import make_model
     from ..studies.sampling import study_inputs
     from ..studies.sensitivity import fe_check, run_sensitivity
@@ -221,10 +221,13 @@ def step_sensitivity(ctx: RunContext) -> None:
     inputs, _ = study_inputs(ctx.crank)
     model = make_model(ctx.crank, "lumped17")
     measured = sens.measured_hz
+    store = open_store()
+    print(f"[fetorsion] {store.describe()}", file=sys.stderr, flush=True)
     with ClusterOnDemand(workers=ctx.options.get("workers")) as client:  # started only for samples not stored
-        studies = {method: run_study(model, inputs, method, n, client=client, name=ctx.crank.name, measured_hz=measured)
+        studies = {method: run_study(model, inputs, method, n, client=client, store=store, name=ctx.crank.name,
+                                     measured_hz=measured)
                    for method, n in (("montecarlo", REPORT_MONTECARLO_RUNS), ("sobol", REPORT_SOBOL_BASE))}
-        checks = fe_check(ctx.crank, sens, client=client) if ctx.fe is not None else []
+        checks = fe_check(ctx.crank, sens, client=client, store=store) if ctx.fe is not None else []
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks
     ctx.results["studies"] = {m: r.to_dict() for m, r in studies.items()}

@@ -30,6 +30,7 @@ cylinder check against CalculiX).
 from __future__ import annotations
 
 import os
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -158,14 +159,17 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
     try:
         gmsh.model.mesh.generate(3)
-        # Midside nodes snapped onto curved CAD can fold a few small elements (drillings,
-        # fillet edges); Gmsh's high-order optimiser then untangles just those, in well under
-        # a second. Running it always ("HighOrderOptimize") costs tens of seconds.
         elem_tags = np.concatenate(gmsh.model.mesh.getElements(3)[1])
-        if untangle == "optimize" and gmsh.model.mesh.getElementQualities(elem_tags, "minSICN").min() <= 0:
-            gmsh.model.mesh.optimize("HighOrder")
     except Exception as exc:
         raise FetorsionError(f"{name}: Gmsh could not mesh the solid at size {size:g} mm: {exc}") from None
+    # Midside nodes snapped onto curved CAD can fold a few small elements (drillings,
+    # fillet edges); Gmsh's high-order optimiser then untangles just those, in well under
+    # a second. Running it always ("HighOrderOptimize") costs tens of seconds.
+    if untangle == "optimize" and gmsh.model.mesh.getElementQualities(elem_tags, "minSICN").min() <= 0:
+        try:
+            gmsh.model.mesh.optimize("HighOrder")
+        except Exception as exc:
+            raise FetorsionError(f"{name}: {OPTIMISER_FAILED} at size {size:g} mm: {exc}") from None
 
     tags, coords, _ = gmsh.model.mesh.getNodes()
     lookup = np.full(int(tags.max()) + 1, -1, dtype=np.int64)
@@ -371,6 +375,14 @@ def mesh_solid(solid: CrankSolid, crank: Crank, size: float, fillet_size: float 
                       growth=MODAL_GROWTH if purpose == "modal" else 1.0)
 
 
+OPTIMISER_FAILED = "Gmsh's high-order optimiser failed"
+#: The second try of a mesh whose high-order optimiser failed or aborted (ScaledJac "Failed to
+#: reach critical value", seen at random under load): twice the layers of elements around each
+#: folded one that the optimiser may move (Gmsh's default 6) and twice its passes (default 25),
+#: so it has more room and time to untangle; the mesh itself is the same.
+OPTIMISER_RETRY = {"Mesh.HighOrderNumLayers": 12, "Mesh.HighOrderPassMax": 50}
+
+
 def mesh_crank(crank: Crank, size: float = DEFAULT_MESH_SIZE, fillet_size: float | None = None,
                purpose: str = "modal", untangle: str | None = None) -> CrankMesh:
     """Build and mesh ``crank`` in a private Gmsh session; see the module docstring.
@@ -390,13 +402,31 @@ def mesh_crank(crank: Crank, size: float = DEFAULT_MESH_SIZE, fillet_size: float
     untangle : str, optional
         Folded-element treatment; default :data:`UNTANGLE` of ``purpose``.
     """
-    return call_isolated(_mesh_crank_here, crank, size, fillet_size, purpose, untangle,
-                         what=f"{crank.name}: Gmsh, meshing at size {size * 1e3:g} mm")
+    what = f"{crank.name}: Gmsh, meshing at size {size * 1e3:g} mm"
+    try:
+        return call_isolated(_mesh_crank_here, crank, size, fillet_size, purpose, untangle, {}, what=what)
+    except FetorsionError as exc:
+        if (untangle or UNTANGLE[purpose]) != "optimize" or not optimiser_gave_up(exc):
+            raise
+        print(f"[fetorsion] {crank.name}: {exc}; meshing again with "
+              + ", ".join(f"{k} {v}" for k, v in OPTIMISER_RETRY.items()), file=sys.stderr, flush=True)
+    return call_isolated(_mesh_crank_here, crank, size, fillet_size, purpose, untangle, OPTIMISER_RETRY,
+                         what=what + " (second try, " + ", ".join(f"{k} {v}" for k, v in OPTIMISER_RETRY.items()) + ")")
+
+
+def optimiser_gave_up(exc: FetorsionError) -> bool:
+    """Whether a meshing error is the high-order optimiser's: its own exception, or the meshing
+    child ended by SIGABRT or SIGSEGV (Gmsh's C++ aborts past its API there; not SIGKILL, which is
+    the kernel's out-of-memory killer or the user, and would only come again)."""
+    text = str(exc)
+    return OPTIMISER_FAILED in text or any(f"ended abnormally (signal {s})" in text for s in ("SIGABRT", "SIGSEGV"))
 
 
 def _mesh_crank_here(crank: Crank, size: float, fillet_size: float | None, purpose: str,
-                     untangle: str | None) -> CrankMesh:
+                     untangle: str | None, options: dict) -> CrankMesh:
     with gmsh_session():
+        for name, value in options.items():
+            gmsh.option.setNumber(name, value)
         solid = build_solid(crank)
         return mesh_solid(solid, crank, size, fillet_size, purpose, untangle)
 

@@ -3,9 +3,10 @@
 A study is a list of samples (a dict of input values each) and a model, a picklable callable
 ``model(values) -> dict of outputs`` with a ``key`` string that says what it computes. Each
 sample is keyed by a hash of the model's key, the sample's values and fetorsion's own source
-(:func:`code_hash`), and its result is written to a :class:`SampleStore` as one small JSON
-file, atomically, the moment it comes back. So an interrupted study resumes where it stopped,
-a re-run computes nothing twice, and a change of fetorsion's code never serves stale numbers.
+(:func:`code_hash`), and its result is written to a :class:`SampleStore` (one SQLite file,
+bounded in size, least recently used records dropped first) the moment its task comes back.
+So an interrupted study resumes where it stopped, a re-run computes nothing twice, and a
+change of fetorsion's code never serves stale numbers.
 
 The engine is ``dask.distributed``: by default an embedded ``LocalCluster`` of worker
 processes sized to the machine, each with one thread and one BLAS thread (workers do not
@@ -14,14 +15,15 @@ study runs on an existing cluster. The client writes the store, so remote worker
 shared file system, only fetorsion installed. Cheap samples travel in batches (one task of
 many samples keeps the scheduler's per-task cost off the samples); a sample that raises is
 recorded with its error and the study goes on; a worker lost mid-task is replaced by the
-nanny and its tasks rescheduled, and a task that kills its worker again is split into single
-samples so that only the culprit is recorded as failed.
+nanny and its tasks rescheduled, and the samples of a task given up after its workers died
+run again one at a time, so that only the culprit is recorded as failed.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import math
 import numbers
 import os
 import sys
@@ -33,7 +35,6 @@ from pathlib import Path
 from typing import Callable, Iterable
 
 from ..errors import FetorsionError
-from ..io import remove_stale_temporaries, write_small_atomic
 
 #: Environment of each local worker process: one BLAS/OpenMP thread, the worker's one core.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -41,6 +42,8 @@ WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THRE
 #: worker's memory error); a sample's own exception is recorded, not retried.
 TASK_RETRIES = 2
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
+#: How long a named scheduler may take to answer before it is refused, s.
+SCHEDULER_TIMEOUT_S = 20.0
 STORE_ENV = "FETORSION_STORE"
 
 
@@ -81,25 +84,189 @@ def _exact(v):
     return float(v).hex() if isinstance(v, float) else v
 
 
+#: Default bound of the sample store, bytes (``$FETORSION_STORE_MAX_MB`` overrides): a full
+#: ``fetorsion run`` of one description adds about 11 000 lumped samples, ~4 MB.
+STORE_MAX_BYTES = 256 * 2**20
+STORE_MAX_ENV = "FETORSION_STORE_MAX_MB"
+STORE_FILE = "samples.sqlite"
+#: Keys per SQL statement (SQLite's default limit on host parameters is 32 766).
+_SQL_CHUNK = 900
+
+
+def store_max_bytes() -> int:
+    """The store's bound: ``$FETORSION_STORE_MAX_MB`` MiB, else :data:`STORE_MAX_BYTES`."""
+    env = os.environ.get(STORE_MAX_ENV)
+    if not env:
+        return STORE_MAX_BYTES
+    try:
+        mb = float(env)
+    except ValueError:
+        mb = -1.0
+    if not (mb > 0 and math.isfinite(mb)):
+        raise FetorsionError(f"{STORE_MAX_ENV}={env!r}: must be a positive number of MiB")
+    return int(mb * 2**20)
+
+
 class SampleStore:
-    """One JSON file per sample, ``FOLDER/ab/abcdef….json`` (sharded by the key's first two
-    hex digits so no folder grows large), each written atomically."""
+    """Every sample's record in one SQLite database, ``FOLDER/samples.sqlite``, bounded in size.
 
-    def __init__(self, folder):
+    One file however many samples (SQLite's transactions make each write atomic, and a killed
+    writer's journal is rolled back by the next reader). When the records pass ``max_bytes``
+    the least recently used go first, down to 90 % of it, and the freed pages are returned to
+    the file system: a cache, not an archive. Records of other fetorsion versions are never
+    read again (their keys hold another :func:`code_hash`), so they are the first to age out.
+
+    Parameters
+    ----------
+    folder : str or Path
+        The store's folder (created on first write).
+    max_bytes : int, optional
+        Bound on the records' total size, bytes (default :func:`store_max_bytes`).
+    """
+
+    def __init__(self, folder, max_bytes: int | None = None):
         self.folder = Path(folder)
-        remove_stale_temporaries(self.folder)  # what a killed study was writing
+        self.file = self.folder / STORE_FILE
+        self.max_bytes = store_max_bytes() if max_bytes is None else int(max_bytes)
 
-    def path(self, key: str) -> Path:
-        return self.folder / key[:2] / f"{key}.json"
+    @contextmanager
+    def _db(self, write: bool):
+        import sqlite3
+
+        if not write and not self.file.exists():
+            yield None
+            return
+        self.folder.mkdir(parents=True, exist_ok=True)
+        con = sqlite3.connect(self.file, timeout=60.0, isolation_level=None)
+        try:
+            # auto_vacuum must precede the first table: pages freed by a trim can then be given back.
+            con.execute("PRAGMA auto_vacuum = INCREMENTAL")
+            con.execute("PRAGMA synchronous = NORMAL")
+            con.execute("CREATE TABLE IF NOT EXISTS samples (key TEXT PRIMARY KEY, record TEXT NOT NULL, "
+                        "bytes INTEGER NOT NULL, used REAL NOT NULL) WITHOUT ROWID")
+            con.execute("CREATE INDEX IF NOT EXISTS samples_used ON samples (used)")
+            yield con
+        finally:
+            con.close()
+
+    def get_many(self, keys) -> dict[str, dict]:
+        """The stored records of ``keys`` (those present and readable), marked as used now."""
+        keys = list(dict.fromkeys(keys))
+        found: dict[str, dict] = {}
+        with self._db(write=False) as con:
+            if con is None:
+                return found
+            for i in range(0, len(keys), _SQL_CHUNK):
+                chunk = keys[i:i + _SQL_CHUNK]
+                marks = ",".join("?" * len(chunk))
+                for key, text in con.execute(f"SELECT key, record FROM samples WHERE key IN ({marks})", chunk):
+                    try:
+                        found[key] = json.loads(text)
+                    except ValueError:  # unreadable: computed again
+                        pass
+            now = time.time()
+            con.execute("BEGIN IMMEDIATE")
+            con.executemany("UPDATE samples SET used = ? WHERE key = ?", ((now, k) for k in found))
+            con.execute("COMMIT")
+        return found
 
     def get(self, key: str) -> dict | None:
-        try:
-            return json.loads(self.path(key).read_text(encoding="utf-8"))
-        except (OSError, ValueError):  # absent, or unreadable: computed again
-            return None
+        return self.get_many([key]).get(key)
+
+    def put_many(self, items) -> None:
+        """Store (key, record) pairs in one transaction, then keep the store within its bound."""
+        rows = [(k, text, len(text), time.time()) for k, text in ((k, json.dumps(r)) for k, r in items)]
+        if not rows:
+            return
+        with self._db(write=True) as con:
+            con.execute("BEGIN IMMEDIATE")
+            con.executemany("INSERT OR REPLACE INTO samples VALUES (?, ?, ?, ?)", rows)
+            con.execute("COMMIT")
+            self._trim(con)
 
     def put(self, key: str, record: dict) -> None:
-        write_small_atomic(self.path(key), json.dumps(record).encode())
+        self.put_many([(key, record)])
+
+    def _trim(self, con) -> None:
+        total = con.execute("SELECT COALESCE(SUM(bytes), 0) FROM samples").fetchone()[0]
+        if total <= self.max_bytes:
+            return
+        excess = total - int(0.9 * self.max_bytes)
+        con.execute("BEGIN IMMEDIATE")
+        cut = 0
+        doomed = []
+        for key, size in con.execute("SELECT key, bytes FROM samples ORDER BY used"):
+            if cut >= excess:
+                break
+            doomed.append((key,))
+            cut += size
+        con.executemany("DELETE FROM samples WHERE key = ?", doomed)
+        con.execute("COMMIT")
+        con.execute("PRAGMA incremental_vacuum")
+
+    def __contains__(self, key: str) -> bool:
+        with self._db(write=False) as con:
+            return con is not None and con.execute("SELECT 1 FROM samples WHERE key = ?", (key,)).fetchone() is not None
+
+    def keys(self) -> set[str]:
+        with self._db(write=False) as con:
+            return set() if con is None else {k for (k,) in con.execute("SELECT key FROM samples")}
+
+    def info(self) -> dict:
+        """``file``, ``samples`` (count), ``bytes`` (the file's size on disk) and ``max_bytes``."""
+        with self._db(write=False) as con:
+            count = 0 if con is None else con.execute("SELECT COUNT(*) FROM samples").fetchone()[0]
+        size = self.file.stat().st_size if self.file.exists() else 0
+        return {"file": str(self.file), "samples": int(count), "bytes": int(size), "max_bytes": self.max_bytes}
+
+    def describe(self) -> str:
+        """One line: where the store is, how full, and how to empty it."""
+        i = self.info()
+        return (f"sample store {i['file']}: {i['samples']} samples, {i['bytes'] / 2**20:.1f} MiB of at most "
+                f"{i['max_bytes'] / 2**20:.0f} MiB ('fetorsion store --clear' empties it)")
+
+    def clear(self) -> int:
+        """Remove the store's database (and a journal beside it); returns the samples it held."""
+        n = self.info()["samples"]
+        for path in (self.file, self.file.with_name(STORE_FILE + "-journal")):
+            path.unlink(missing_ok=True)
+        return n
+
+
+def remove_legacy_store(folder) -> int:
+    """Remove the one-JSON-file-per-sample store of earlier fetorsion versions from ``folder``:
+    only files named by a sample key (64 hex digits ``.json``) in two-hex-digit shard folders
+    (fetorsion's own naming), and those folders once empty. Returns the files removed."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        return 0
+    removed = 0
+    for shard in folder.iterdir():
+        if not (shard.is_dir() and not shard.is_symlink() and len(shard.name) == 2
+                and all(c in "0123456789abcdef" for c in shard.name)):
+            continue
+        for entry in shard.iterdir():
+            stem = entry.name.split(".fetorsion-tmp-")[0].lstrip(".").removesuffix(".json")
+            if (entry.is_file() and len(stem) == 64 and stem.startswith(shard.name)
+                    and all(c in "0123456789abcdef" for c in stem)):
+                entry.unlink(missing_ok=True)
+                removed += 1
+        try:
+            shard.rmdir()
+        except OSError:  # something else is in it: kept
+            pass
+    return removed
+
+
+def open_store(folder=None, max_bytes: int | None = None) -> SampleStore:
+    """The sample store in ``folder`` (default :func:`default_store`), after removing the
+    per-file store an earlier fetorsion left there (said on stderr)."""
+    folder = Path(folder) if folder is not None else default_store()
+    removed = remove_legacy_store(folder)
+    if removed:
+        print(f"[fetorsion] removed the {removed} one-file-per-sample records of an earlier fetorsion from {folder}",
+              file=sys.stderr, flush=True)
+    return SampleStore(folder, max_bytes)
 
 
 def check_store(folder, option: str = "--store") -> None:
@@ -143,7 +310,7 @@ def machine_workers() -> int:
 
 
 @contextmanager
-def open_client(scheduler: str | None = None, workers: int | None = None, timeout_s: float = 20.0):
+def open_client(scheduler: str | None = None, workers: int | None = None, timeout_s: float | None = None):
     """A ``distributed.Client``: on the scheduler at ``scheduler`` (or ``$DASK_SCHEDULER_ADDRESS``),
     else on an embedded ``LocalCluster`` of ``workers`` processes (default: one per core),
     one thread and one BLAS thread each. Closed (the local cluster shut down) on exit."""
@@ -154,6 +321,7 @@ def open_client(scheduler: str | None = None, workers: int | None = None, timeou
     address, where = scheduler_address(scheduler)
     if address is not None:
         check_scheduler(address, where)
+        timeout_s = SCHEDULER_TIMEOUT_S if timeout_s is None else timeout_s
         try:
             client = Client(address, timeout=timeout_s)
         except (OSError, TimeoutError) as exc:
@@ -182,9 +350,11 @@ def open_client(scheduler: str | None = None, workers: int | None = None, timeou
 
 
 class ClusterOnDemand:
-    """A client that is opened (cluster started) only when some sample must be computed: a
-    study whose every sample is stored costs no cluster start. Use as a context manager and
-    pass it where a client goes; arguments as :func:`open_client`."""
+    """A client whose local cluster is started only when some sample must be computed: a
+    study whose every sample is stored costs no cluster start. A named scheduler (argument or
+    ``$DASK_SCHEDULER_ADDRESS``) is contacted on entering, so a wrong address is refused even
+    then. Use as a context manager and pass it where a client goes; arguments as
+    :func:`open_client`."""
 
     def __init__(self, scheduler: str | None = None, workers: int | None = None):
         self.scheduler, self.workers = scheduler, workers
@@ -204,6 +374,8 @@ class ClusterOnDemand:
         return self._client
 
     def __enter__(self):
+        if scheduler_address(self.scheduler)[0] is not None:  # a named cluster is reached (or refused) now,
+            self.get()  # even if every sample turns out to be stored
         return self
 
     def __exit__(self, *exc):
@@ -333,30 +505,28 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
     """
     t0 = time.perf_counter()
     keys = [sample_key(model.key, s) for s in samples]
-    records: dict[str, dict] = {}
-    for k in dict.fromkeys(keys):
-        rec = store.get(k)
-        if rec is not None and ("outputs" in rec or not retry_failed):
-            records[k] = rec
+    records: dict[str, dict] = {k: r for k, r in store.get_many(keys).items()
+                                if "outputs" in r or not retry_failed}
     todo = [(k, s) for k, s in dict(zip(keys, samples)).items() if k not in records]
     stored_before = len(set(keys)) - len(todo)
     bar = Progress(len(set(keys)), stored_before, label) if progress else None
     failed = 0
 
-    def keep(key: str, record: dict, persist: bool = True) -> None:
+    def keep(results: list[tuple[str, dict]], persist: bool = True) -> None:
         nonlocal failed
-        if persist:
-            store.put(key, record)
-        records[key] = record
-        failed += "error" in record
-        if bar:
-            bar.update("error" in record)
-        if on_record:
-            on_record(key, record)
+        if persist:  # one transaction per task's results
+            store.put_many(results)
+        for key, record in results:
+            records[key] = record
+            failed += "error" in record
+            if bar:
+                bar.update("error" in record)
+            if on_record:
+                on_record(key, record)
 
     if todo and client is None:
-        for key, record in run_each(model, todo):
-            keep(key, record)
+        for item in run_each(model, todo):
+            keep([item])
     elif todo:
         client = client.get() if isinstance(client, ClusterOnDemand) else client
         batch_size = batch_size or auto_batch(len(todo), client, getattr(model, "expensive", False))
@@ -381,42 +551,53 @@ def check_worker_code(client) -> None:
 
 
 def _run_on_cluster(client, model, todo, batch_size, keep) -> None:
+    """Run ``todo`` in tasks of ``batch_size`` samples; then each sample of a task whose worker
+    died under it, alone.
+
+    Dask gives a task up (KilledWorker) once the workers it was *assigned to* died under it
+    ``allowed-failures + 1`` times, and a worker holds more tasks than it runs (one running,
+    others queued): an innocent task queued behind the culprit shares its fate by chance. So
+    a task lost that way is not judged in the first pass; its samples run afterwards one at a
+    time, the only task on the cluster, where a worker that dies can have died of nothing else.
+    """
+    check_worker_code(client)
+    suspects: list[tuple[str, dict]] = []
+    _run_tasks(client, model, list(batches(todo, batch_size)), keep, on_killed=suspects.extend)
+    for item in suspects:
+        _run_tasks(client, model, [[item]], keep, on_killed=None)
+
+
+def _run_tasks(client, model, tasks, keep, on_killed) -> None:
+    """Submit ``tasks`` (lists of (key, values)), hand each finished one's records to ``keep``.
+
+    A task given up after its workers died (KilledWorker) goes to ``on_killed``; with None,
+    its one sample is recorded as the culprit.
+    """
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
 
-    check_worker_code(client)
-
     # The model travels inside each task (a few kB), not scattered once: scattered data lost
     # with a worker cannot be recomputed, and every task needing it would be cancelled.
-    pending = {}
-
-    def submit(batch):
-        fut = client.submit(run_batch, model, batch, retries=TASK_RETRIES, pure=False)
-        pending[fut] = batch
-        return fut
-
-    ac = as_completed([submit(b) for b in batches(todo, batch_size)])
+    pending = {client.submit(run_batch, model, batch, retries=TASK_RETRIES, pure=False): batch for batch in tasks}
     try:
-        for fut in ac:
+        for fut in as_completed(list(pending)):
             batch = pending.pop(fut)
             try:
                 results = fut.result()
             except KilledWorker as exc:
-                if len(batch) > 1:  # find the one that kills its worker: the others still count
-                    for single in batches(batch, 1):
-                        ac.add(submit(single))
+                if on_killed is not None:
+                    on_killed(batch)
                     continue
-                results = [(batch[0][0], {"error": f"the worker running this sample died repeatedly ({exc})",
-                                          "values": batch[0][1], "model": model.key})]
+                (key, values), = batch
+                results = [(key, {"error": f"the worker running this sample alone died repeatedly ({exc})",
+                                  "values": values, "model": model.key})]
             except Exception as exc:  # the task itself failed after its retries: the cluster's
                 # fault, not the samples' (a worker without fetorsion, a lost connection), so they
                 # are reported but not stored: the next run computes them
-                for k, v in batch:
-                    keep(k, {"error": f"{type(exc).__name__}: {exc} (not stored: computed again next run)",
-                             "values": v, "model": model.key}, persist=False)
+                keep([(k, {"error": f"{type(exc).__name__}: {exc} (not stored: computed again next run)",
+                           "values": v, "model": model.key}) for k, v in batch], persist=False)
                 continue
-            for key, record in results:
-                keep(key, record)
+            keep(results)
     finally:
         if pending:  # interrupted: no task keeps a worker busy for nobody
             client.cancel(list(pending))

@@ -95,7 +95,7 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     ``client``'s cluster when given (else here, one after the other), each stored as it
     finishes in ``store`` (default the sample store), so a second report computes none.
     """
-    from .engine import SampleStore, default_store, run_samples
+    from .engine import open_store, run_samples
     from .models import FEModel
 
     groups = dict(crank.uncertainty)
@@ -104,7 +104,7 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     for row in rows:
         members = groups[row["field"]]
         samples += [{p: low for p, low, _ in members}, {p: high for p, _, high in members}]
-    records, _ = run_samples(FEModel(crank, mesh_size), samples, store or SampleStore(default_store()), client,
+    records, _ = run_samples(FEModel(crank, mesh_size), samples, store or open_store(), client,
                              label=f"{crank.name}: FE checks", progress=client is not None)
     failed = [r for r in records if "error" in r]
     if failed:

@@ -18,7 +18,7 @@ import numpy as np
 
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
-from .engine import RunSummary, SampleStore, default_store, run_samples
+from .engine import RunSummary, SampleStore, open_store, run_samples
 from .sampling import MORRIS_LEVELS, StudyInput, salib_problem, sample_matrix, samples_of
 
 PERCENTILES = (5.0, 50.0, 95.0)
@@ -251,7 +251,7 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
     """
     X = sample_matrix(method, inputs, samples, seed)
     values = samples_of(inputs, X)
-    store = store or SampleStore(default_store())
+    store = store or open_store()
     records, summary = run_samples(model, values, store, client, batch_size, retry_failed=retry_failed,
                                    label=f"{name or 'study'} ({method})", on_record=on_record, progress=progress)
     outputs = list(getattr(model, "outputs", ())) or _output_names(records)
