@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT / "scripts"))
 
 import web_chart  # noqa: E402
 
-from fetorsion.studies.engine import ClusterOnDemand, SampleStore  # noqa: E402
+from fetorsion.studies.runner import ClusterOnDemand, SampleStore  # noqa: E402
 
 
 def main(argv=None) -> int:

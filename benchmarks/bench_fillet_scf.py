@@ -10,7 +10,7 @@ from pathlib import Path
 
 import fetorsion
 from fetorsion.io import write_text_atomic
-from fetorsion.webs.scf import run_fillet_scf
+from fetorsion.design.scf import run_fillet_scf
 
 ROOT = Path(__file__).resolve().parents[1]
 

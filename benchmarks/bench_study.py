@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
 import fetorsion  # noqa: E402
-from fetorsion.studies.engine import SampleStore, open_client  # noqa: E402
+from fetorsion.studies.runner import SampleStore, open_client  # noqa: E402
 from fetorsion.studies.models import make_model  # noqa: E402
 from fetorsion.studies.sampling import study_inputs  # noqa: E402
 from fetorsion.studies.study import run_study  # noqa: E402

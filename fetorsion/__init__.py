@@ -21,7 +21,7 @@ _LAZY = {
     "run_response": "response.forced",
     "run_sensitivity": "studies.sensitivity", "with_values": "studies.sensitivity",
     "run_crank_study": "studies.study",
-    "run_stress": "response.stress", "run_damper": "studies.damper_tuning", "run_verdict": "studies.verdict",
+    "run_stress": "design.stress", "run_damper": "design.dampers", "run_verdict": "design.verdict",
 }
 
 

@@ -21,6 +21,22 @@ class FetorsionError(Exception):
     """A mistake in what the user asked for (input file, option); never a bug."""
 
 
+class ParameterError(FetorsionError):
+    """A bad argument of a fetorsion function, named by its parameter (``kind 'x': choose ...``).
+
+    The command line prints it with the option that set the parameter instead
+    (``--type 'x': choose ...``), so the stages below it never name a command-line flag.
+    """
+
+    def __init__(self, parameter: str, message: str):
+        self.parameter, self.message = parameter, message
+        super().__init__(self.named(parameter))
+
+    def named(self, name: str) -> str:
+        """The message with ``name`` (an option, an environment variable) for the parameter."""
+        return f"{name} {self.message}"
+
+
 class DescriptionError(FetorsionError, ValueError):
     """A crank or chain description breaks one or more rules.
 

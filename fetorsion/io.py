@@ -192,7 +192,8 @@ def write_report_manifest(folder) -> None:
         {"written_by": "fetorsion", "version": written_by, "files": files}, indent=1) + "\n")
 
 
-def check_report_folder(out, option: str = "--out", force: bool = False, inputs=()) -> None:
+def check_report_folder(out, option: str = "out", force: bool = False, inputs=(),
+                        force_option: str = "force=True") -> None:
     """Refuse, before any work, a report destination that would lose something of the user's.
 
     ``out`` may be new, an empty folder, or a folder that holds exactly a report fetorsion
@@ -216,7 +217,7 @@ def check_report_folder(out, option: str = "--out", force: bool = False, inputs=
             what = "is not a fetorsion report" if manifest is None else "holds files fetorsion did not write"
             shown = ", ".join(foreign[:5]) + (f" and {len(foreign) - 5} more" if len(foreign) > 5 else "")
             raise FetorsionError(f"{option} {out}: the folder exists and {what} ({shown}); "
-                                 "give a new folder, or --force to replace it")
+                                 f"give a new folder, or {force_option} to replace it")
     check_writable_location(out, option)
 
 

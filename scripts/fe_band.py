@@ -29,7 +29,7 @@ import numpy as np  # noqa: E402
 import fetorsion  # noqa: E402
 from fetorsion.description.defaults import CHECK_MESH_SIZE  # noqa: E402
 from fetorsion.io import write_text_atomic  # noqa: E402
-from fetorsion.studies.engine import ClusterOnDemand  # noqa: E402
+from fetorsion.studies.runner import ClusterOnDemand  # noqa: E402
 from fetorsion.studies.models import FE_LEFT_OUT, FEModel, LumpedModel  # noqa: E402
 from fetorsion.studies.sampling import study_inputs  # noqa: E402
 from fetorsion.studies.study import run_study  # noqa: E402

@@ -1,7 +1,7 @@
 """Compute the web chart (issue 8): FE L_e0/D_t over (c, q) plus fillet and oil-hole sweeps.
 
 Every FE run (one throw, one mesh) is a sample of a study on the local Dask cluster
-(issue 15, :mod:`fetorsion.studies.engine`): runs go to the workers in parallel and each
+(issue 15, :mod:`fetorsion.studies.runner`): runs go to the workers in parallel and each
 is stored as it finishes, so an interrupted sweep resumes where it stopped and a point
 shared by two uses (the convergence study's two finer meshes are the centre point's) is
 computed once. Run from the repository root (one FE job per worker, one BLAS thread each):
@@ -37,7 +37,7 @@ import numpy as np  # noqa: E402
 
 from fetorsion.extrapolation import richardson  # noqa: E402
 from fetorsion.io import save_figure_atomic, write_text_atomic  # noqa: E402
-from fetorsion.studies.engine import ClusterOnDemand, SampleStore, default_store, run_samples  # noqa: E402
+from fetorsion.studies.runner import ClusterOnDemand, SampleStore, default_store, run_samples  # noqa: E402
 from fetorsion.webs import chart as wc  # noqa: E402
 
 OUT = ROOT / "results" / "chart"

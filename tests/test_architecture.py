@@ -106,7 +106,114 @@ def test_the_package_is_subpackages_and_a_handful_of_modules():
     assert len(top) <= TOP_LEVEL_LIMIT, top
     packages = sorted(p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists())
     assert packages == sorted(["description", "solid", "fe", "webs", "lumped_model", "excitation", "response",
-                               "studies", "report", "mechanics", "cli"])
+                               "studies", "design", "report", "mechanics", "cli"])
     for name in packages:  # each stage says what it owns and hands on
         doc = ast.get_docstring(ast.parse((PACKAGE / name / "__init__.py").read_text()))
         assert doc and len(doc) > 80, name
+
+
+# ---------------------------------------------------------------------------
+# Defaults in one home, no dead public code, no CLI flag below the CLI
+
+
+def literal_defaults(sources=None):
+    """(parameter or option name, value) -> places, for every numeric literal default: function
+    parameters, and argparse options' ``default=``. 0, 1, 2 and -1 are not counted (neutral
+    values, not choices someone could change in one place and forget in another)."""
+    found: dict[tuple, list[str]] = {}
+
+    def note(name, node, where):
+        if (isinstance(node, ast.Constant) and isinstance(node.value, (int, float))
+                and not isinstance(node.value, bool) and node.value not in (0, 1, 2, -1)):
+            found.setdefault((name, node.value), []).append(where)
+
+    if sources is None:
+        sources = {name: path.read_text() for name, path in modules().items()}
+    for name, text in sources.items():
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                a = node.args
+                positional = a.posonlyargs + a.args
+                pairs = list(zip(positional[len(positional) - len(a.defaults):], a.defaults))
+                pairs += [(k, d) for k, d in zip(a.kwonlyargs, a.kw_defaults) if d is not None]
+                for arg, default in pairs:
+                    note(arg.arg, default, f"{name}.{node.name}")
+            elif isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "add_argument":
+                flags = [c.value for c in node.args if isinstance(c, ast.Constant)]
+                for kw in node.keywords:
+                    if kw.arg == "default" and flags:
+                        note(flags[0].lstrip("-").replace("-", "_"), kw.value, f"{name} {flags[0]}")
+    return found
+
+
+def test_literal_defaults_finder_finds_a_repeat():
+    found = literal_defaults({"a": "def f(x, mu=0.25, n=1):\n    pass\n",
+                              "b": "def g(*, mu=0.25):\n    pass\np.add_argument('--mu', default=0.25)\n"})
+    assert found == {("mu", 0.25): ["a.f", "b.g", "b --mu"]}
+
+
+def test_no_default_literal_is_written_twice():
+    repeated = {k: v for k, v in literal_defaults().items() if len(v) > 1}
+    assert not repeated, "name one constant for each: " + "; ".join(f"{k}: {v}" for k, v in repeated.items())
+
+
+#: Public names that nothing in the package uses but that are kept as API, each with why: a
+#: reader of what a command writes, and the independent checks the validation rests on.
+API_ONLY = {
+    "load_condensed": "reads the .npz that 'fetorsion condense --npz' writes",
+    "run_fillet_scf": "the SCF mesh-convergence study (benchmarks/bench_fillet_scf.py, docs/fillet-stress.md)",
+    "stepped_shaft_scf": "the SCF method on Peterson's stepped shaft: the validation of fillet_scfs",
+    "step_fillet_length": "Nestorides' fillet length: the check of the FE throw stiffness",
+    "chart_point": "one point of the computed web chart (scripts/web_chart.py builds the chart from it)",
+    "render_gif": "an animated mode shape for slides, beside the report's still images",
+    "peak_amplification": "a damped chain's peak amplification: the check of the optimiser on Den Hartog's system",
+}
+
+
+def public_definitions():
+    """(name, module) of every public module-level function, class and constant."""
+    for name, path in modules().items():
+        for node in ast.parse(path.read_text()).body:
+            targets = [node.name] if isinstance(node, (ast.FunctionDef, ast.ClassDef)) else \
+                [t.id for t in getattr(node, "targets", []) if isinstance(t, ast.Name)]
+            yield from ((t, name) for t in targets if not t.startswith("_"))
+
+
+def test_every_public_name_is_used():
+    import re
+
+    package = {n: p.read_text() for n, p in modules().items()}
+    outside = "\n".join(p.read_text() for folder in ("benchmarks", "scripts", "examples")
+                        for p in (ROOT / folder).rglob("*.py"))
+    unused = []
+    for name, module in public_definitions():
+        word = re.compile(rf"\b{re.escape(name)}\b")
+        uses = sum(len(word.findall(text)) for text in package.values()) - 1  # less its definition
+        if uses == 0 and not word.search(outside) and name not in API_ONLY:
+            unused.append(f"{module}.{name}")
+    assert not unused, f"defined but used nowhere (remove, or say why in API_ONLY): {unused}"
+    assert all(any(n == name for n, _ in public_definitions()) for name in API_ONLY), "stale API_ONLY entry"
+
+
+def flags_in_code(text: str) -> list[str]:
+    """Command-line flags (``--name``) in the string literals of a module, docstrings aside."""
+    import re
+
+    tree = ast.parse(text)
+    docs = {id(n.body[0].value) for n in ast.walk(tree)
+            if isinstance(n, (ast.Module, ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+            and n.body and isinstance(n.body[0], ast.Expr) and isinstance(n.body[0].value, ast.Constant)}
+    return [m for n in ast.walk(tree) if isinstance(n, ast.Constant) and isinstance(n.value, str)
+            and id(n) not in docs for m in re.findall(r"(?<![\w-])--[a-z][a-z-]*", n.value)]
+
+
+def test_flag_finder_skips_docstrings():
+    text = '"""Use --mesh-size."""\ndef f(x):\n    """--dof"""\n    raise E(f"--type {x}: bad")\n'
+    assert flags_in_code(text) == ["--type"]
+
+
+def test_no_module_below_the_command_line_names_a_flag():
+    # Compute code names its parameters (errors.ParameterError); cli/ translates them to options.
+    offenders = {name: flags for name, path in modules().items()
+                 if not name.startswith("fetorsion.cli") and (flags := flags_in_code(path.read_text()))}
+    assert not offenders, offenders

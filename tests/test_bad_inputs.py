@@ -386,7 +386,7 @@ CASES = [
     ("study-method", "study {d}/crank.toml --method latin", {}, 2, ["--method", "latin"]),
     ("study-samples-0", "study {d}/crank.toml --samples 0", {}, 2, ["--samples"]),
     ("study-sobol-not-pow2", "study {d}/crank.toml --method sobol --samples 100", {}, 2, ["--samples", "power of 2"]),
-    ("study-grid-too-big", "study {d}/crank.toml --method grid --samples 10", {}, 2, ["--samples", "--inputs"]),
+    ("study-grid-too-big", "study {d}/crank.toml --method grid --samples 10", {}, 2, ["--samples", "fewer inputs"]),
     ("study-output-unknown", "study {d}/crank.toml --outputs f1,f9", {}, 2, ["--outputs", "f9"]),
     ("study-output-empty", "study {d}/crank.toml --outputs f1,,f2", {}, 2, ["--outputs"]),
     ("study-fe-severity", "study {d}/crank.toml --model fe --outputs severity", {}, 2, ["--outputs", "severity"]),
@@ -653,9 +653,11 @@ def test_run_checks_the_scheduler_from_the_environment_before_any_work(tmp_path,
 
 
 def test_unreachable_scheduler_is_one_message():
-    from fetorsion.errors import FetorsionError
-    from fetorsion.studies.engine import open_client
+    from fetorsion.errors import ParameterError
+    from fetorsion.studies.runner import open_client
 
-    with pytest.raises(FetorsionError, match="--scheduler tcp://127.0.0.1:1: no scheduler answered"):
+    # Named by the API's parameter; the command line names its option (--scheduler) instead.
+    with pytest.raises(ParameterError, match="^scheduler tcp://127.0.0.1:1: no scheduler answered") as info:
         with open_client("tcp://127.0.0.1:1", timeout_s=1.0):
             pass
+    assert info.value.parameter == "scheduler"

@@ -14,7 +14,8 @@ from fetorsion.excitation.torque import (cycle_grid, cylinder_pressure, cylinder
                                   harmonics)
 from fetorsion.excitation.kinematics import piston_velocity
 from fetorsion.lumped_model.lumped import chain_matrices
-from fetorsion.response.forced import modal_damping_matrix, steady_state
+from fetorsion.lumped_model.damped import DampedSystem
+from fetorsion.response.forced import modal_damping_matrix
 
 from conftest import GEOMETRY, assert_picture, read_raw
 
@@ -106,7 +107,8 @@ def test_two_inertia_resonance_with_damping_matches_closed_form():
     # One elastic mode: modal damping is a relative damper c = 2 ζ k / ω_n, and nothing else.
     c = 2 * zeta * k / wn
     np.testing.assert_allclose(C, c * np.array([[1, -1], [-1, 1]]), rtol=1e-10, atol=1e-12 * c)
-    theta = steady_state(M, K, C, np.array([T, 0.0]), wn)
+    # solved as the forced response solves (DampedSystem's dynamic stiffness; no dampers here)
+    theta = np.linalg.solve(DampedSystem(M, K, C).matrix(np.array([wn])), np.array([[T, 0.0]])[..., None])[0, :, 0]
     # At ω_n the twist is T (1 + I1/I2) / (2 ζ ω_n² m), m = I1 (1 + I1/I2), in quadrature.
     ratio = I1 / I2
     expected = T * (1 + ratio) / (2 * zeta * wn**2 * I1 * (1 + ratio))

@@ -24,8 +24,8 @@ from fetorsion.mechanics.planetary import planetary  # noqa: E402
 from fetorsion.studies.models import make_model  # noqa: E402
 from fetorsion.studies.sampling import study_inputs  # noqa: E402
 from fetorsion.studies.study import run_study  # noqa: E402
-from fetorsion.response.stress import run_stress  # noqa: E402
-from fetorsion.studies.damper_tuning import run_damper  # noqa: E402
+from fetorsion.design.stress import run_stress  # noqa: E402
+from fetorsion.design.dampers import run_damper  # noqa: E402
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
 SCF = {"pin": 2.0, "journal": 2.2, "source": "given"}
@@ -36,14 +36,14 @@ def _verdict():
     from dataclasses import replace
 
     from fetorsion.description.model import Limits
-    from fetorsion.studies.verdict import run_verdict
+    from fetorsion.design.verdict import run_verdict
 
     chain = replace(fetorsion.load(MWM6), limits=Limits(continuous_torque=3000.0, transient_torque=6000.0, source="t"))
     return run_verdict(chain, rpm=np.linspace(1000.0, 2600.0, 20))
 
 
 def _fillet_scf():
-    from fetorsion.webs.scf import FilletSCFResult
+    from fetorsion.design.scf import FilletSCFResult
 
     rows = json.loads((GEOMETRY.parent / "results" / "scf" / "renault21.json").read_text())["rows"]
     return FilletSCFResult("Renault 21", 0, rows)

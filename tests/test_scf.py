@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from fetorsion.description.model import Material
-from fetorsion.webs.scf import nominal_shear, peterson_stepped_torsion, stepped_shaft_scf
+from fetorsion.design.scf import nominal_shear, peterson_stepped_torsion, stepped_shaft_scf
 
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 

@@ -13,8 +13,8 @@ import time
 import pytest
 
 import fetorsion
-from fetorsion.studies import engine
-from fetorsion.studies.engine import SampleStore, remove_legacy_store
+from fetorsion.studies import runner
+from fetorsion.studies.runner import SampleStore, remove_legacy_store
 
 from conftest import GEOMETRY
 
@@ -96,7 +96,7 @@ def free_port() -> int:
 def test_a_named_scheduler_is_refused_even_when_every_sample_is_stored(tmp_path, capsys, monkeypatch):
     from fetorsion.cli import main
 
-    monkeypatch.setattr(engine, "SCHEDULER_TIMEOUT_S", 2.0)
+    monkeypatch.setattr(runner, "SCHEDULER_TIMEOUT_S", 2.0)
     argv = ["study", str(GEOMETRY / "peugeot_glx.toml"), "--samples", "20", "--store", str(tmp_path / "store")]
     assert main(argv + ["--out", str(tmp_path / "a"), "--workers", "1"]) == 0
     capsys.readouterr()

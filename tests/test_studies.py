@@ -19,7 +19,7 @@ from SALib.test_functions import Ishigami
 
 import fetorsion
 from fetorsion.description.crank import parse_crank
-from fetorsion.studies.engine import SampleStore, open_client, run_samples, sample_key
+from fetorsion.studies.runner import SampleStore, open_client, run_samples, sample_key
 from fetorsion.studies.models import make_model
 from fetorsion.studies.sampling import StudyInput, sample_matrix, study_inputs
 from fetorsion.studies.study import run_study

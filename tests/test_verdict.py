@@ -9,9 +9,9 @@ import fetorsion
 from conftest import GEOMETRY
 from fetorsion.description.model import Limits
 from fetorsion.response.forced import run_response
-from fetorsion.response.stress import fillet_stress, fillets_of
+from fetorsion.design.stress import fillet_stress, fillets_of
 from fetorsion.response.synthesis import waveform
-from fetorsion.studies.verdict import VerdictCase, VerdictResult, barred_ranges
+from fetorsion.design.verdict import VerdictCase, VerdictResult, barred_ranges
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
 SPEEDS = np.linspace(1000.0, 6500.0, 12)
@@ -84,7 +84,7 @@ def test_verdict_rows_by_hand():
 
 def test_a_chain_files_dampers_and_limits_reach_campbell_response_and_verdict(tmp_path):
     from fetorsion.excitation.campbell import run_campbell
-    from fetorsion.studies.verdict import run_verdict
+    from fetorsion.design.verdict import run_verdict
 
     text = (GEOMETRY.parent / "examples" / "mendes2008" / "mwm6_chain.toml").read_text()
     text += ('\n[[dampers]]\ntype = "viscous"\nhousing_inertia_kgm2 = 0.05\nring_inertia_kgm2 = 0.3\n'

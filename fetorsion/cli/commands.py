@@ -12,20 +12,21 @@ import numpy as np
 
 from . import mechanics as cli_mechanics
 from . import study as cli_study
-from .options import MM, integer, millimetres, read_compare_csv, real
+from .options import MM, integer, millimetres, option_of, read_compare_csv, real
 from ..description.crank import load
 from ..description.model import Chain
 from ..description.plausibility import plausibility_warnings
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from ..solid.isolate import call_isolated
 from ..io import check_output_file, check_report_folder, save_figure_atomic, write_text_atomic
-from ..lumped_model.lumped import PARTITIONS, lumped
+from ..lumped_model.lumped import MODES_SHOWN, PARTITIONS, lumped
 from ..lumped_model.parts import build_parts
 from ..response.forced import COMPARE_UNITS
-from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
+from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
+                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
-from ..studies.damper_tuning import OBJECTIVES
+from ..design.dampers import OBJECTIVES
 
 PLOT_FORMATS = (".png", ".pdf", ".svg")
 SUPPORT_CHOICES = ("free", "bearings")
@@ -213,7 +214,7 @@ def format_mass_table(name: str, total, parts: dict) -> str:
     return "\n".join(lines)
 
 
-def format_lumped_table(results, modes: int = 4) -> str:
+def format_lumped_table(results, modes: int = MODES_SHOWN) -> str:
     """Plain-text table of the first ``modes`` elastic frequencies of each model."""
     name = results[0].name
     head = f"{'model':>8} " + " ".join(f"{'f' + str(j + 1) + ' [Hz]':>10}" for j in range(modes))
@@ -300,7 +301,7 @@ def cmd_campbell(args) -> int:
         modes = None if crank.dampers else lumped_modes(crank, _partition_of(args.source), _stiffness_for(args))
     res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
                        damping_ratio=args.damping,
-                       partition=_partition_of(args.source) if args.source.startswith("lumped") else 17,
+                       partition=_partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,
                        web_method=_stiffness_for(args))
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
@@ -355,7 +356,7 @@ def cmd_response(args) -> int:
 
 
 def cmd_damper(args) -> int:
-    from ..studies.damper_tuning import run_damper
+    from ..design.dampers import run_damper
 
     if args.source in ("fe", "condensed"):
         raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
@@ -415,7 +416,7 @@ def cmd_run(args) -> int:
 
     jobs = run_jobs(args)
     for file, out in jobs:  # every destination and description is checked before any work
-        check_report_folder(out, "--out", force=args.force, inputs=[file])
+        check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
@@ -468,7 +469,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     lp = sub.add_parser("lumped", help="BICERA-style equivalent-length lumped models (5/6/17/19/21 DOF)")
     lp.add_argument("file", help="crank description or chain file (.toml)")
-    lp.add_argument("--dof", type=_dof_list, default=[17], help="partition(s): 5, 6, 17, 19, 21, a list, or 'all'")
+    lp.add_argument("--dof", type=_dof_list, default=[DEFAULT_PARTITION], help="partition(s): 5, 6, 17, 19, 21, a list, or 'all'")
     lp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD,
                     help="web stiffness method (default %(default)s)")
     lp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
@@ -485,7 +486,7 @@ def build_parser() -> argparse.ArgumentParser:
     dp = sub.add_parser("damper", help="torsional damper: Den Hartog start, optimised on the whole crank")
     _add_excitation_options(dp)
     dp.add_argument("--type", choices=DAMPER_TYPES, default="rubber", help="damper type (default %(default)s)")
-    dp.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+    dp.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="ring inertia over the damped mode's equivalent inertia at the station, 0 < MU < 2 "
                          "(default %(default)s)")
     dp.add_argument("--optimise", action="store_true", help="optimise stiffness and damping on the whole crank "
@@ -518,7 +519,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     sp = sub.add_parser("sensitivity", help="f1 against each reconstructed input, and the f1 band")
     sp.add_argument("file", help="crank description with an [uncertainty] table (.toml)")
-    sp.add_argument("--dof", type=int, choices=PARTITIONS, default=17)
+    sp.add_argument("--dof", type=int, choices=PARTITIONS, default=DEFAULT_PARTITION)
     sp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     sp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
     sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .pdf, .svg)")
@@ -538,7 +539,7 @@ def build_parser() -> argparse.ArgumentParser:
     up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
                     help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
                          "free-free FE; the report shows both")
-    up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=0.25, metavar="MU",
+    up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
@@ -617,7 +618,7 @@ def check_options(args) -> None:
         raise FetorsionError(f"--mesh {mesh}: no such file")
     if args.command in ("run", "study") and not getattr(args, "scheduler", None):
         # Both run their studies on the cluster this names, if it is set.
-        from ..studies.engine import SCHEDULER_ENV, check_scheduler, scheduler_address
+        from ..studies.runner import SCHEDULER_ENV, check_scheduler, scheduler_address
 
         address, _ = scheduler_address(None)
         if address:
@@ -629,6 +630,9 @@ def main(argv=None) -> int:
     try:
         check_options(args)
         return args.func(args)
+    except ParameterError as exc:  # an argument of the API: named by the option that set it
+        print(f"fetorsion: error: {exc.named(option_of(exc.parameter))}", file=sys.stderr)
+        return 2
     except FetorsionError as exc:
         print(f"fetorsion: error: {exc}", file=sys.stderr)
         return 2

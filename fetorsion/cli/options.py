@@ -107,3 +107,12 @@ def read_compare_csv(path, name: str | None, unit: str | None):
     if unit not in COMPARE_UNITS:
         raise FetorsionError(f"--compare-unit: {path} says '# unit = {unit}'; use one of {', '.join(COMPARE_UNITS)}")
     return table[:, 0], table[:, 1], name or header.get("name") or path.stem, unit
+
+
+#: Parameters of the API whose command-line option is not ``--`` + the parameter's name.
+OPTION_OF = {"kind": "--type", "mu": "--inertia-ratio"}
+
+
+def option_of(parameter: str) -> str:
+    """The command-line option that sets the API's ``parameter`` (``mesh_size`` -> ``--mesh-size``)."""
+    return OPTION_OF.get(parameter, "--" + parameter.replace("_", "-"))

@@ -12,9 +12,9 @@ import os
 import sys
 from pathlib import Path
 
-from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
+from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
-from ..studies.engine import (SCHEDULER_ENV, STORE_ENV, STORE_MAX_ENV, check_scheduler, check_store, default_store,
+from ..studies.runner import (SCHEDULER_ENV, STORE_ENV, STORE_MAX_ENV, check_scheduler, check_store, default_store,
                               open_store, scheduler_address, store_max_bytes)
 from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
 from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
@@ -22,9 +22,6 @@ from ..studies.study import run_crank_study, write_study_folder
 from ..webs.methods import WEB_METHODS
 from .options import MM, integer, millimetres
 
-#: --samples when not given: enough for a 5-95 % band (Monte Carlo), indices with
-#: confidence intervals of a few hundredths (Sobol'), a screening (Morris), a coarse grid.
-DEFAULT_SAMPLES = {"sobol": 512, "morris": 20, "montecarlo": 2000, "grid": 5}
 
 
 def _names(option: str):
@@ -46,7 +43,7 @@ def add_parser(sub, load_crank, check_mesh_size) -> None:
     sp.add_argument("--samples", type=integer(1, 10_000_000), metavar="N",
                     help="montecarlo: runs; sobol: base samples, a power of 2 (N·(inputs+2) runs); morris: "
                          "trajectories (N·(inputs+1) runs); grid: levels per input. Default: "
-                         + ", ".join(f"{m} {n}" for m, n in DEFAULT_SAMPLES.items()))
+                         + ", ".join(f"{m} {n}" for m, n in DEFAULT_STUDY_SAMPLES.items()))
     sp.add_argument("--model", choices=MODEL_CHOICES, default="lumped17",
                     help="lumpedN: the N-DOF lumped chain; fe: 3D FE without fillets and drillings at "
                          "--mesh-size (default %(default)s)")
@@ -89,7 +86,7 @@ def cmd_store(args) -> int:
     if args.clear:
         n = store.clear()
         print(f"removed {n} samples from {store.file}")
-    print(store.describe().replace("sample store ", "", 1) + f"; bound set by ${STORE_MAX_ENV}")
+    print(store.describe().replace("sample store ", "", 1) + f" (the bound: ${STORE_MAX_ENV})")
     return 0
 
 
@@ -102,9 +99,9 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
     address, where = scheduler_address(args.scheduler)
     if address:
         check_scheduler(address, where)
-    n = args.samples or DEFAULT_SAMPLES[args.method]
+    n = args.samples or DEFAULT_STUDY_SAMPLES[args.method]
     out = Path(args.out) if args.out else Path("out") / f"{Path(args.file).stem}-{args.method}"
-    check_report_folder(out, "--out", force=args.force, inputs=[args.file])
+    check_report_folder(out, "--out", force=args.force, inputs=[args.file], force_option="--force")
     store_dir = Path(args.store) if args.store else default_store()
     check_store(store_dir, "--store" if args.store else "the sample store")
     store_max_bytes()
@@ -122,7 +119,7 @@ def cmd_study(args, load_crank, check_mesh_size) -> int:
     print(f"[fetorsion] {crank.name}: {args.method} study of {len(inputs)} inputs, "
           f"{runs_for(args.method, n, len(inputs))} runs of {model.label}", file=sys.stderr, flush=True)
     store = open_store(store_dir)
-    print(f"[fetorsion] {store.describe()}", file=sys.stderr, flush=True)
+    print(f"[fetorsion] {store.describe()} ('fetorsion store --clear' empties it)", file=sys.stderr, flush=True)
     try:
         res = run_crank_study(crank, args.method, n, args.model, args.outputs, args.inputs, seed=args.seed,
                               stiffness=args.stiffness, mesh_size=args.mesh_size, scheduler=address,

@@ -11,3 +11,10 @@ DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
 # an undamped steel crank (issue 5).
 DEFAULT_DAMPING_RATIO = 0.02
 DEFAULT_SPEED_STEPS = 300  # speeds across the operating range in the forced response
+# A damper's ring inertia over the equivalent inertia of the mode it damps (Den Hartog's μ): a
+# common pulley-damper size.
+DEFAULT_INERTIA_RATIO = 0.25
+DEFAULT_TORSIONAL_MODES = 3  # torsional modes labelled, tabulated and in the Campbell diagram
+# Runs of a study by method (Sobol': base samples, N·(inputs + 2) runs; Morris: trajectories;
+# grid: levels per input): a 5-95 % band, indices with confidence intervals of a few hundredths.
+DEFAULT_STUDY_SAMPLES = {"sobol": 512, "morris": 20, "montecarlo": 2000, "grid": 5}

@@ -28,7 +28,7 @@ from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.damped import DampedSystem, damped_modes
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix, modal_damping_ratios
 from ..modes import TorsionalModes
-from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
 
 
 def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.ndarray, phasors: np.ndarray):
@@ -148,7 +148,7 @@ def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
 
 
 def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
-                 n_modes: int = 3, damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
+                 n_modes: int = DEFAULT_TORSIONAL_MODES, damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
                  web_method: str = DEFAULT_WEB_METHOD) -> CampbellResult:
     """Crossings of the first ``n_modes`` torsional modes with each order, and their severity.
 

@@ -125,16 +125,6 @@ def _csr(pat: BlockPattern, blocks) -> sp.csr_array:
     return sp.csr_array((data, pat.csr_indices, pat.csr_indptr), shape=(3 * pat.n, 3 * pat.n))
 
 
-def gradient_blocks(basis) -> np.ndarray:
-    """G[e, i, a, j, b] = ∫_e ∂_i φ_a ∂_j φ_b dx, shape (E, 3, 10, 3, 10), m."""
-    # grads[e, i, a, q] = ∂_i φ_a at quadrature point q of element e
-    grads = np.stack([b[0].grad for b in basis.basis], axis=2).transpose(1, 0, 2, 3)
-    E, Q = basis.dx.shape
-    A = grads.reshape(E, 30, Q)
-    G = np.matmul(A * basis.dx[:, None, :], A.transpose(0, 2, 1))
-    return G.reshape(E, 3, 10, 3, 10)
-
-
 def stiffness(basis, youngs_modulus: float, poisson_ratio: float,
               pattern: BlockPattern | None = None) -> sp.csr_array:
     """Vector-P2 elasticity stiffness from scalar gradient blocks, N/m, interleaved DOFs.

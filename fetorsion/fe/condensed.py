@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from ..description.defaults import DEFAULT_MESH_SIZE
+from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_TORSIONAL_MODES
 from ..description.model import AttachPoint, Crank
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
@@ -268,7 +268,7 @@ class CondensedCrank:
         fractions, kinds = self.classify(full)
         return CondensedModes(support, np.sqrt(np.abs(w2)) / (2 * np.pi), full, fractions, kinds, free)
 
-    def torsional_modes(self, support: str = "bearings", n: int = 3) -> TorsionalModes:
+    def torsional_modes(self, support: str = "bearings", n: int = DEFAULT_TORSIONAL_MODES) -> TorsionalModes:
         """The lowest ``n`` elastic modes in ``support``, whatever their kind, for the Campbell
         analysis: a pin's twist is its centre's tangential displacement over the crank radius
         (the work of a tangential pin force), the pulley's the front master's θx; unit modal mass.

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..modes import TorsionalModes
 from ..description.model import Attachment, AttachPoint, Crank
-from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
+from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_TORSIONAL_MODES
 from ..errors import FetorsionError
 from ..extrapolation import richardson
 from ..solid.mesh import CrankMesh, mesh_crank
@@ -97,7 +97,7 @@ class CrankModal(ModalResult):
     crank: Crank | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
 
-    def torsional_modes(self, n: int = 3) -> TorsionalModes:
+    def torsional_modes(self, n: int = DEFAULT_TORSIONAL_MODES) -> TorsionalModes:
         """The first ``n`` torsional modes in the form the Campbell analysis uses.
 
         Pin twist and pulley twist are the rigid-fit rotations about x of each pin's nodes

@@ -50,6 +50,12 @@ import scipy.sparse.linalg as spla
 
 from ..errors import FetorsionError
 
+#: Relative residual at which an eigenpair is converged (block Lanczos, ARPACK).
+EIGEN_TOL = 1e-10
+#: Directions whose M-norm falls below this share of the block's largest are dropped as
+#: linearly dependent when a block is M-orthonormalised.
+ORTHO_DROP = 1e-10
+
 # CHOLMOD's OpenMP threads otherwise spin after each parallel region and take the core that
 # the BLAS thread of the factorisation needs: on 2 cores, 342 k DOF, passive waiting cut the
 # numeric factorisation from 6.5 to 5.4 s. Read when libgomp loads (with CHOLMOD, lazily);
@@ -264,7 +270,7 @@ def numpy_blas_threads(n: int | None):
 
 
 def lowest_modes(K, M, k: int, sigma: float, backend: str = "auto", method: str = "block",
-                 tol: float = 1e-10, seed: int = 0, iteration_threads: int | None = 1,
+                 tol: float = EIGEN_TOL, seed: int = 0, iteration_threads: int | None = 1,
                  groups: np.ndarray | None = None, null_space: np.ndarray | None = None,
                  S=None) -> EigenResult:
     """The ``k`` eigenpairs of K x = ω² M x nearest the negative shift ``sigma``.
@@ -352,7 +358,7 @@ def _iterate(S, M, k, sigma, solve, method, tol, rng, null_space=None):
 BLOCK_WIDTH = 8
 
 
-def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = 1e-10):
+def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = ORTHO_DROP):
     """M-orthonormal basis of the columns of W (given MW = M W) by SVQB (eigen-decomposition
     of the Gram matrix), dropping directions below ``drop`` of the largest.
 
@@ -368,7 +374,7 @@ def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = 1e-10):
     return W @ C, MW @ C, (U * s).T
 
 
-def block_lanczos(solve, M, k: int, rng, *, tol: float = 1e-10, width: int | None = None,
+def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int | None = None,
                   max_dim: int | None = None, max_restarts: int = 20, project=None, known=None):
     """The ``k`` largest eigenpairs θ of the M-self-adjoint operator A = S⁻¹M.
 

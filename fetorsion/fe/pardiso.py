@@ -126,11 +126,6 @@ class Factor:
         self._call(_ANALYSE)
         self._call(_FACTOR)
 
-    @property
-    def factor_entries(self) -> int:
-        """Entries of the Cholesky factor (PARDISO's count)."""
-        return int(self._iparm[17])
-
     def _call(self, phase: int, b: np.ndarray | None = None) -> np.ndarray | None:
         nrhs = 1 if b is None else b.shape[1]
         x = None if b is None else np.empty_like(b)

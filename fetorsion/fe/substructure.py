@@ -34,7 +34,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import FetorsionError
-from .eigen import block_lanczos, factorize, numpy_blas_threads, shifted
+from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, factorize, numpy_blas_threads, shifted
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -133,7 +133,7 @@ def constraint_modes(itf: Interface, tol: float = PSI_TOL, iterations: int | Non
                          "the shift is too close to the fixed-interface frequencies")
 
 
-def fixed_interface_modes(itf: Interface, count: int, tol: float = 1e-10, seed: int = 0):
+def fixed_interface_modes(itf: Interface, count: int, tol: float = EIGEN_TOL, seed: int = 0):
     """The ``count`` lowest modes with every master held: (ω² rad²/s², Φ n × count, M-orthonormal)."""
     solve = prescribed_solver(itf)
     rng = np.random.default_rng(seed)
@@ -257,7 +257,7 @@ def supported_solver(itf: Interface, Dk: np.ndarray, Dm: np.ndarray, held: np.nd
     return solve
 
 
-def supported_modes(itf: Interface, count: int, Dk=None, Dm=None, held=(), tol: float = 1e-10, seed: int = 0):
+def supported_modes(itf: Interface, count: int, Dk=None, Dm=None, held=(), tol: float = EIGEN_TOL, seed: int = 0):
     """Lowest ``count`` modes of the FULL model with springs D_k (N/m …), masses D_m and held
     DOF on the masters: (ω² rad²/s² ascending, vectors n × count, M-orthonormal in M + GᵀD_mG).
 
@@ -295,7 +295,7 @@ def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
     return w2, V, keep
 
 
-def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = 1e-10):
+def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = ORTHO_DROP):
     """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
     G x = 0; then rotated to the Ritz pairs of (K, M) in that space: (ω² ascending, Φ n × k).

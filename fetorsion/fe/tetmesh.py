@@ -67,13 +67,6 @@ class TetMesh:
         x, y, z = self.nodes[used].T
         return used[np.asarray(predicate(x, y, z), dtype=bool)]
 
-    @classmethod
-    def from_meshio(cls, m, node_sets: dict | None = None) -> "TetMesh":
-        """From a meshio Mesh holding ``tetra10`` cells (meshio already uses VTK order)."""
-        if "tetra10" not in m.cells_dict:
-            raise FetorsionError(f"the mesh has no ten-node tetrahedra (cells: {sorted(m.cells_dict)})")
-        return cls(np.asarray(m.points)[:, :3], m.cells_dict["tetra10"], node_sets or {})
-
 
 def cylinder_mesh(length: float, diameter: float, size: float, *, x0: float = 0.0,
                   face_tol: float | None = None) -> TetMesh:

@@ -36,12 +36,16 @@ import numpy as np
 import scipy.linalg
 
 from ..description.model import Chain, Crank
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from ..modes import TorsionalModes
 from .parts import PartChain, build_parts
-from ..description.defaults import DEFAULT_WEB_METHOD
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
 PARTITIONS = (5, 6, 17, 19, 21)
+
+#: Elastic modes a lumped model's table and mode-shape plot show.
+MODES_SHOWN = 4
+
 
 
 @dataclass(frozen=True)
@@ -69,7 +73,7 @@ def stations(chain: PartChain, partition: int) -> list[Station]:
         labels = ["front"] + [f"throw {p.index + 1}" for p in pins] + ["rear"]
         return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors)]
     if partition not in PARTITIONS:
-        raise FetorsionError(f"--dof {partition!r} is not a partition; choose from {PARTITIONS} or 'all'")
+        raise ParameterError("dof", f"{partition!r} is not a partition; choose from {PARTITIONS}")
     inner = sorted(journals + webs + pins, key=lambda p: p.x0)
     body = [Station(p.label, p.x0, p.x1, mid(p)) for p in inner]
     if partition == 17:
@@ -196,7 +200,7 @@ class LumpedResult:
             modal_inertia=np.einsum("js,s,js->j", shapes, self.inertias_kgm2, shapes),
         )
 
-    def plot(self, modes: int = 4, ax=None):
+    def plot(self, modes: int = MODES_SHOWN, ax=None):
         """Mode shapes against station (unit at the pulley end, as in the paper's fig. 13–14).
 
         Returns the matplotlib Axes.
@@ -234,7 +238,7 @@ def solve_chain(inertias, stiffnesses):
     return float(hz[0]), hz[1:], shapes
 
 
-def lumped(model: Crank | Chain, dof: int = 17, stiffness: str = DEFAULT_WEB_METHOD) -> LumpedResult:
+def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD) -> LumpedResult:
     """Free-free lumped torsional model of a crank (one partition) or of a chain file.
 
     Parameters

@@ -51,6 +51,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+#: Points of a residual-force locus over one revolution (every half degree, both ends).
+LOCUS_POINTS = 721
+#: Refinement rounds of the min-max overbalance search, each on a grid around the last best.
+MINMAX_ROUNDS = 4
+
 __all__ = [
     "BalanceShaft", "CrankMasses", "MinMaxResult", "ResidualLocus", "counterweight_mass",
     "crank_equivalent_mass", "ellipse_orientation", "ellipse_pmax", "four_shaft_arrangement",
@@ -406,7 +411,7 @@ class ResidualLocus:
         return ax
 
 
-def residual_locus(k, alpha, lam, n_theta=721, j_newton=None, name="") -> ResidualLocus:
+def residual_locus(k, alpha, lam, n_theta=LOCUS_POINTS, j_newton=None, name="") -> ResidualLocus:
     """Residual-force locus over one revolution and its maximum.
 
     Parameters
@@ -470,7 +475,7 @@ class MinMaxResult:
                 "grid_k": self.grid_k, "grid_alpha_deg": float(np.degrees(self.grid_alpha_rad)),
                 "grid_p_max_over_j": self.grid_p_max}
 
-    def locus(self, n_theta=721) -> ResidualLocus:
+    def locus(self, n_theta=LOCUS_POINTS) -> ResidualLocus:
         return residual_locus(self.k, self.alpha_rad, self.lam, n_theta)
 
     def table(self) -> str:
@@ -490,7 +495,7 @@ def _pmax_exact(k, alpha, lam):
 
 
 def minmax_overbalance(lam, k_range=(0.0, 1.5), alpha_range_deg=(0.0, 45.0), k_step=0.005,
-                       alpha_step_deg=0.25, n_theta_grid=360, rounds=4, tol=1e-6) -> MinMaxResult:
+                       alpha_step_deg=0.25, n_theta_grid=360, rounds=MINMAX_ROUNDS, tol=1e-6) -> MinMaxResult:
     """Minimise over (k, α) the largest residual force max_θ P(θ) of seed 001 eq. 37–39.
 
     Parameters

@@ -31,6 +31,7 @@ __all__ = [
     "speed_fluctuation_coefficient", "triangular_torque",
 ]
 
+FOUR_STROKE = 4  # strokes per cycle of the engines these sizings assume unless told
 RIM_SPEED_LIMITS = {"cast_iron": (25.0, 30.0), "steel": (40.0, 45.0)}   # m/s, seed 000 eq. 14
 
 
@@ -76,7 +77,7 @@ def speed_fluctuation_coefficient(n_max, n_min):
     return 2.0 * (n_max - n_min) / (n_max + n_min)
 
 
-def cycle_work(power, speed_rpm, strokes=4):
+def cycle_work(power, speed_rpm, strokes=FOUR_STROKE):
     """Work per cycle W = P·60/n, J, with n = N/2 cycles per minute for a 4-stroke, N for a 2-stroke."""
     cycles_per_min = speed_rpm / 2.0 if strokes == 4 else speed_rpm
     return power * 60.0 / cycles_per_min
@@ -222,7 +223,7 @@ class FlywheelSizing:
 
 
 def size_flywheel(power, speed_rpm, speed_fluctuation, d_outer=None, d_inner=None, stroke=None,
-                  material=None, i_rest=None, strokes=4, name="") -> FlywheelSizing:
+                  material=None, i_rest=None, strokes=FOUR_STROKE, name="") -> FlywheelSizing:
     """Seed 000's flywheel sizing from power and speed.
 
     Parameters

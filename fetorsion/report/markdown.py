@@ -193,7 +193,7 @@ def verdict_section(crank: Crank, outcome: dict) -> list[str]:
                      f"{lim.safety_factor:g})" if lim.fatigue_strength else ""))
     lines += [f"Limits: {limit_text}. Source: {lim.source}.", "",
               f"Damper designs: Den Hartog's optimum for the first mode seen from the pulley, inertia ratio "
-              f"**mu = {outcome['mu']:g}** (chosen by the user: `fetorsion run --inertia-ratio`), then optimised "
+              f"**mu = {outcome['mu']:g}** (the run's inertia ratio), then optimised "
               "on the whole crank over the speed range (its stiffness and damping; ring inertia held).", "",
               "| case | speed range (rpm) | worst section | at rpm | value | limit | margin | barred ranges | "
               "damper heat (W) | verdict |", "|---|---|---|---|---|---|---|---|---|---|"]

@@ -24,7 +24,8 @@ from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
-from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_WEB_METHOD
+from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_PARTITION,
+                                    DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from .markdown import report_markdown
 
@@ -73,7 +74,7 @@ def step_lumped(ctx: RunContext) -> None:
             skipped[method] = str(exc)
     ctx.results["lumped"] = {m: [r.to_dict() for r in rs] for m, rs in table.items()}
     ctx.results["lumped_skipped"] = skipped
-    main = table[DEFAULT_WEB_METHOD][PARTITIONS.index(17)]
+    main = table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
     image = ctx.save(main.plot().figure, "lumped_modes_17dof.png")
     ctx.sections["lumped"] = {"table": table, "skipped": skipped, "image": image}
 
@@ -126,7 +127,7 @@ def step_bearings(ctx: RunContext) -> None:
     held_throw_stiffnesses(ctx.crank, size, condensed=cc)  # the fe-held web method then reuses this reduction
     chain = {}
     for method in ("carter", "fe", "fe-held"):
-        f17 = float(lumped(ctx.crank, 17, method).frequencies_hz[0])
+        f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method).frequencies_hz[0])
         chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
     out = {"condensed": cc, "free": free, "bearings": held, "chain": chain, "f1_free_hz": f_free,
            "f1_bearings_hz": f_held, "images": [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]}
@@ -162,15 +163,13 @@ def step_campbell(ctx: RunContext) -> None:
                                            ctx.save(resp.plot().figure, "response.png")]}
 
 
-#: The report's studies of f1 (lumped 17 DOF, default web method): Monte Carlo runs, and
-#: Sobol' base samples (N·(inputs + 2) runs; 512 gives intervals of a few hundredths).
-REPORT_MONTECARLO_RUNS = 2000
-REPORT_SOBOL_BASE = 512
+#: The report's studies of f1 (lumped 17 DOF, default web method), each of the default size.
+REPORT_STUDIES = ("montecarlo", "sobol")
 
 
 def step_verdict(ctx: RunContext) -> None:
     """Fillet stresses, the damper designs and the verdict against the description's [limits]."""
-    from ..studies.verdict import run_verdict
+    from ..design.verdict import run_verdict
 
     crank = ctx.crank
     if crank.excitation is None or crank.limits is None:
@@ -182,20 +181,20 @@ def step_verdict(ctx: RunContext) -> None:
         if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
             ctx.sections["verdict"] = {"skipped": "stress limits need fillet radii (a sharp corner has no finite SCF)"}
             return
-        from ..webs.scf import SHIPPED_SCF, fillet_scfs, scf_key
+        from ..design.scf import SHIPPED_SCF, fillet_scfs, scf_key
 
         shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
         if scf_key(crank) not in shipped and ctx.options.get("no_fe"):
-            scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: --no-fe and no stored FE SCF)"}
+            scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: no FE step in this run and no stored FE SCF)"}
         else:
             _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
             scf = fillet_scfs(crank)
-    mu = ctx.options.get("inertia_ratio", 0.25)
+    mu = ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO)
     verdict = run_verdict(crank, mu=mu, scf=scf)
     ctx.results["verdict"] = verdict.to_dict()
     outcome = {"verdict": verdict, "mu": mu, "scf": scf, "image": ctx.save(verdict.plot().figure, "verdict.png")}
     if scf is not None:
-        from ..response.stress import fillet_stress
+        from ..design.stress import fillet_stress
 
         stress = fillet_stress(crank, ctx.sections["campbell"]["response"], scf)
         ctx.results["stress"] = stress.to_dict()
@@ -207,7 +206,7 @@ def step_sensitivity(ctx: RunContext) -> None:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
     Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
     The studies run on an embedded Dask cluster, each sample stored as it finishes."""
-    from ..studies.engine import ClusterOnDemand, open_store
+    from ..studies.runner import ClusterOnDemand, open_store
     from ..studies.models import make_model
     from ..studies.sampling import study_inputs
     from ..studies.sensitivity import fe_check, run_sensitivity
@@ -226,7 +225,7 @@ def step_sensitivity(ctx: RunContext) -> None:
     with ClusterOnDemand(workers=ctx.options.get("workers")) as client:  # started only for samples not stored
         studies = {method: run_study(model, inputs, method, n, client=client, store=store, name=ctx.crank.name,
                                      measured_hz=measured)
-                   for method, n in (("montecarlo", REPORT_MONTECARLO_RUNS), ("sobol", REPORT_SOBOL_BASE))}
+                   for method, n in ((m, DEFAULT_STUDY_SAMPLES[m]) for m in REPORT_STUDIES)}
         checks = fe_check(ctx.crank, sens, client=client, store=store) if ctx.fe is not None else []
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks

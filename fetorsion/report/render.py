@@ -18,6 +18,8 @@ from ..io import atomic_output
 os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 
 BACKGROUND = "white"
+#: A mode is drawn with its largest displacement this share of the model's size.
+MODE_SCALE_FRACTION = 0.08
 
 
 def _pyvista():
@@ -41,14 +43,14 @@ def surface(nodes: np.ndarray, tets: np.ndarray):
     return grid.extract_surface(algorithm="dataset_surface")
 
 
-def mode_scale(nodes: np.ndarray, displacement: np.ndarray, fraction: float = 0.08) -> float:
+def mode_scale(nodes: np.ndarray, displacement: np.ndarray, fraction: float = MODE_SCALE_FRACTION) -> float:
     """Scale factor that makes the largest displacement ``fraction`` of the model's size."""
     size = np.ptp(nodes, axis=0).max()
     peak = np.linalg.norm(displacement, axis=1).max()
     return fraction * size / peak if peak > 0 else 0.0
 
 
-def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1400, 600), fraction: float = 0.08):
+def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1400, 600), fraction: float = MODE_SCALE_FRACTION):
     """Write a PNG of one mode: deformed shape coloured by |u|, undeformed outline, two views.
 
     Parameters
@@ -103,7 +105,7 @@ def _screenshot(plotter, path) -> Path:
 
 
 def render_gif(nodes, tets, displacement, path, title: str = "", frames: int = 16, window_size=(800, 500),
-               fraction: float = 0.08):
+               fraction: float = MODE_SCALE_FRACTION):
     """Write an animated GIF of one mode swinging through a period (Pillow writes the GIF)."""
     from PIL import Image
 

@@ -22,22 +22,12 @@ import numpy as np
 
 from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
 from ..lumped_model.damped import DampedSystem
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
-
-
-def steady_state(M, K, C, forces, omegas) -> np.ndarray:
-    """Complex amplitudes Θ solving (K − ω²M + iωC) Θ = F for stacks of ω and F.
-
-    ``forces`` has shape (..., n) and ``omegas`` the matching shape (...).
-    """
-    omegas = np.asarray(omegas, dtype=float)[..., None, None]
-    A = K - omegas**2 * M + 1j * omegas * C
-    return np.linalg.solve(A, forces[..., None])[..., 0]
 
 
 @dataclass
@@ -390,7 +380,7 @@ def compare_curve(result: ResponseResult, rpm, value, name: str, unit: str, sect
     both = (rpm >= result.rpm.min()) & (rpm <= result.rpm.max())
     mine = (result.rpm >= rpm.min()) & (result.rpm <= rpm.max())
     if not both.any() or not mine.any():
-        raise FetorsionError(f"--compare {name}: the curve ({rpm.min():.0f}-{rpm.max():.0f} rpm) does not overlap "
+        raise ParameterError("compare", f"{name}: the curve ({rpm.min():.0f}-{rpm.max():.0f} rpm) does not overlap "
                              f"the response's speeds ({result.rpm.min():.0f}-{result.rpm.max():.0f} rpm)")
     c = int(np.flatnonzero(both)[np.argmax(value[both])])
     m = int(np.flatnonzero(mine)[np.argmax(model[mine])])

@@ -40,13 +40,12 @@ import numpy as np
 
 from ..description.model import Crank, Material
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from .geometry import MODEL_UNIT, CrankSolid, build_solid, gmsh_session
 from ..io import atomic_output
 from .isolate import call_isolated
 
 GMSH_TET10 = 11
-GMSH_TRI6 = 9
 # Gmsh numbers the last two midside nodes of a 10-node tet on edges 2-3 and 1-3; VTK,
 # meshio and CalculiX put edge 1-3 first.
 GMSH_TO_VTK_TET10 = np.array([0, 1, 2, 3, 4, 5, 6, 7, 9, 8])
@@ -214,10 +213,14 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
                      np.concatenate(part), tuple(volumes_by_part), sets, material, quality)
     if quality.min_sicn <= 0:
         raise FetorsionError(f"{name}: the curved mesh at size {size:g} mm has inverted elements "
-                             f"(minimum SICN {quality.min_sicn:.3f}); try another --mesh-size")
+                             f"(minimum SICN {quality.min_sicn:.3f}); try another mesh size")
     return mesh
 
 
+#: Rounds of straightening: a straightened element can fold a neighbour, which the next round takes.
+STRAIGHTEN_ROUNDS = 4
+#: Order of the barycentric lattice at which a curved tet's Jacobian is checked (35 points).
+JACOBIAN_LATTICE = 4
 #: VTK tet10 midside node k lies on the edge between vertices TET10_EDGES[k].
 TET10_EDGES = np.array([[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]])
 
@@ -235,7 +238,7 @@ def _p2_gradients(xi: np.ndarray) -> np.ndarray:
     return np.concatenate([vert, edge], axis=1)
 
 
-def _sample_points(order: int = 4) -> np.ndarray:
+def _sample_points(order: int = JACOBIAN_LATTICE) -> np.ndarray:
     """Barycentric lattice of the given order on the reference tet (vertices, edges, faces, inside)."""
     g = np.arange(order + 1)
     a, b, c = np.meshgrid(g, g, g, indexing="ij")
@@ -243,7 +246,7 @@ def _sample_points(order: int = 4) -> np.ndarray:
     return np.column_stack([a[keep], b[keep], c[keep]]) / order
 
 
-def jacobian_positive(coords: np.ndarray, tets: np.ndarray, order: int = 4) -> np.ndarray:
+def jacobian_positive(coords: np.ndarray, tets: np.ndarray, order: int = JACOBIAN_LATTICE) -> np.ndarray:
     """Whether each curved ten-node tet's Jacobian determinant is positive at a lattice of points.
 
     det J of a quadratic tet is a cubic polynomial; the order-4 lattice (35 points, vertices,
@@ -264,7 +267,7 @@ def jacobian_positive(coords: np.ndarray, tets: np.ndarray, order: int = 4) -> n
     return (np.linalg.det(J) > 0).all(axis=1)
 
 
-def straighten_folded(coords: np.ndarray, tets: np.ndarray, folded: np.ndarray, rounds: int = 4):
+def straighten_folded(coords: np.ndarray, tets: np.ndarray, folded: np.ndarray, rounds: int = STRAIGHTEN_ROUNDS):
     """Move the midside nodes of folded elements to their edge midpoints.
 
     A straight-edged tet with positive vertex orientation is valid, so each folded element
@@ -617,13 +620,13 @@ def read_mesh(path, crank: Crank) -> CrankMesh:
 
     path = Path(path)
     if path.suffix.lower() != ".msh":
-        raise FetorsionError(f"--mesh {path}: give a .msh file written by 'fetorsion mesh' (it carries the part names)")
+        raise ParameterError("mesh", f"{path}: give a .msh file written by fetorsion (it carries the part names)")
     try:
         m = meshio.read(path)
     except Exception as exc:  # meshio raises many kinds of errors for a bad file
-        raise FetorsionError(f"--mesh {path}: could not be read ({exc})") from None
+        raise ParameterError("mesh", f"{path}: could not be read ({exc})") from None
     if "tetra10" not in m.cells_dict or "gmsh:physical" not in m.cell_data_dict:
-        raise FetorsionError(f"--mesh {path}: needs ten-node tetrahedra with physical groups")
+        raise ParameterError("mesh", f"{path}: needs ten-node tetrahedra with physical groups")
     names = {int(v[0]): k for k, v in m.field_data.items() if int(v[1]) == 3}
     tags = np.asarray(m.cell_data_dict["gmsh:physical"]["tetra10"], dtype=int)
     part_names = tuple(names[t] for t in sorted(names))

@@ -4,8 +4,8 @@
 - :mod:`.sampling`: the ``[uncertainty]`` inputs and their samples (SALib's Sobol' and
   Morris designs, Monte Carlo, grid).
 - :mod:`.models`: the model a sample runs (lumped chain or coarse 3D FE of the variant).
-- :mod:`.engine`: the runs on a Dask cluster (local by default), each result stored as it
-  finishes, keyed by a hash of the sample.
+- :mod:`.runner`: the runs on a Dask cluster (local by default), each result stored as it
+  finishes in a bounded SQLite store, keyed by a hash of the sample.
 - :mod:`.study`: ``run_study`` / ``run_crank_study``: bands, SALib's indices, the report folder.
 - :mod:`.variants`: ``with_values``, a description with some fields changed.
 """

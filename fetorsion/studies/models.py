@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..description.model import Crank
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from .variants import with_values
 
@@ -44,7 +44,7 @@ def description_hash(crank: Crank) -> str:
 def _check_outputs(outputs, allowed, what) -> tuple[str, ...]:
     bad = [o for o in outputs if o not in allowed]
     if bad or not outputs:
-        raise FetorsionError(f"--outputs {bad[0] if bad else ''}: the {what} model gives {', '.join(allowed)}")
+        raise ParameterError("outputs", f"{bad[0] if bad else ''}: the {what} model gives {', '.join(allowed)}")
     return tuple(outputs)
 
 
@@ -62,7 +62,7 @@ class LumpedModel:
     def __post_init__(self):
         _check_outputs(self.outputs, LUMPED_OUTPUTS, f"lumped{self.dof}")
         if "severity" in self.outputs and self.crank.excitation is None:
-            raise FetorsionError(f"--outputs severity: {self.crank.source} has no [excitation] table")
+            raise ParameterError("outputs", f"severity: {self.crank.source} has no [excitation] table")
 
     expensive = False
 
@@ -132,4 +132,4 @@ def make_model(crank: Crank, model: str, outputs=("f1",), stiffness: str = DEFAU
     if model.removeprefix("lumped").isdigit() and int(model.removeprefix("lumped")) in PARTITIONS:
         return LumpedModel(crank, int(model.removeprefix("lumped")), stiffness, tuple(outputs),
                            True if details is None else details)
-    raise FetorsionError(f"--model {model}: choose from {', '.join(MODEL_CHOICES)}")
+    raise ParameterError("model", f"{model}: choose from {', '.join(MODEL_CHOICES)}")

@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 
 METHODS = ("sobol", "morris", "montecarlo", "grid")
 #: Levels of the Morris grid (SALib's default; the trajectories' step is 2/3 of each range).
@@ -75,7 +75,7 @@ def study_inputs(crank, names=None, exclude_prefixes=()) -> tuple[list[StudyInpu
         known = {e.name for e in entries}
         unknown = [n for n in names if n not in known]
         if unknown:
-            raise FetorsionError(f"--inputs {unknown[0]}: not an [uncertainty] entry of {crank.source}; "
+            raise ParameterError("inputs", f"{unknown[0]}: not an [uncertainty] entry of {crank.source}; "
                                  f"choose from {', '.join(sorted(known))}")
         entries = [e for e in entries if e.name in names]
     kept = [e for e in entries if not any(p.startswith(exclude_prefixes) for p, _, _ in e.members)] \
@@ -98,18 +98,18 @@ def runs_for(method: str, n: int, d: int) -> int:
     return {"sobol": n * (d + 2), "morris": n * (d + 1), "montecarlo": n, "grid": n**d}[method]
 
 
-def check_samples(method: str, n: int, d: int, option: str = "--samples") -> None:
-    """Refuse a sample count the method cannot use, naming the option."""
+def check_samples(method: str, n: int, d: int) -> None:
+    """Refuse a sample count the method cannot use (a :class:`ParameterError` of ``samples``)."""
     if d == 0:
         raise FetorsionError("the study has no input to sample")
     if method == "sobol" and (n < 2 or n & (n - 1)):
-        raise FetorsionError(f"{option} {n}: Sobol' sampling needs a power of 2 (base samples; "
+        raise ParameterError("samples", f"{n}: Sobol' sampling needs a power of 2 (base samples; "
                              f"the study runs N·(inputs + 2) = {runs_for(method, max(n, 1), d)} models)")
     if method in ("morris", "montecarlo", "grid") and n < 2:
-        raise FetorsionError(f"{option} {n}: the {method} method needs at least 2")
+        raise ParameterError("samples", f"{n}: the {method} method needs at least 2")
     if method == "grid" and n**d > MAX_GRID_RUNS:
-        raise FetorsionError(f"{option} {n}: a grid of {n} levels over {d} inputs is {n}^{d} runs "
-                             f"(over {MAX_GRID_RUNS:,}); choose fewer inputs (--inputs) or --method montecarlo")
+        raise ParameterError("samples", f"{n}: a grid of {n} levels over {d} inputs is {n}^{d} runs "
+                             f"(over {MAX_GRID_RUNS:,}); choose fewer inputs or the montecarlo method")
 
 
 def sample_matrix(method: str, inputs: list[StudyInput], n: int, seed: int = 0) -> np.ndarray:
@@ -140,7 +140,7 @@ def sample_matrix(method: str, inputs: list[StudyInput], n: int, seed: int = 0) 
         lo, hi = np.array(problem["bounds"]).T
         axes = np.linspace(lo, hi, n).T
         return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(inputs))
-    raise FetorsionError(f"--method {method}: choose from {', '.join(METHODS)}")
+    raise ParameterError("method", f"{method}: choose from {', '.join(METHODS)}")
 
 
 def samples_of(inputs: list[StudyInput], X: np.ndarray) -> list[dict]:

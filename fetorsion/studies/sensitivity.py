@@ -19,7 +19,7 @@ from ..description.reader import resolve_field
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
 from .variants import with_values
-from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
+from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
 
 @dataclass
@@ -91,11 +91,11 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
 
     Runs on the crank without fillets and drillings at a coarse mesh (a few seconds per
     run): what is compared is the change of f1, which those details barely affect. The
-    ``1 + 2 count`` FE runs are samples of a study (:mod:`fetorsion.studies.engine`): on
+    ``1 + 2 count`` FE runs are samples of a study (:mod:`fetorsion.studies.runner`): on
     ``client``'s cluster when given (else here, one after the other), each stored as it
     finishes in ``store`` (default the sample store), so a second report computes none.
     """
-    from .engine import open_store, run_samples
+    from .runner import open_store, run_samples
     from .models import FEModel
 
     groups = dict(crank.uncertainty)
@@ -120,7 +120,7 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     return out
 
 
-def run_sensitivity(crank: Crank, dof: int = 17, stiffness: str = DEFAULT_WEB_METHOD) -> SensitivityResult:
+def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD) -> SensitivityResult:
     """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band.
 
     Examples

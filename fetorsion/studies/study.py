@@ -1,5 +1,5 @@
 """Uncertainty and sensitivity studies: sample the inputs, run the model on each sample (on a
-Dask cluster, :mod:`fetorsion.studies.engine`), and summarise the outputs.
+Dask cluster, :mod:`fetorsion.studies.runner`), and summarise the outputs.
 
 Every output gets its percentile band (5, 50, 95 %) over the runs that succeeded; a Sobol'
 study gives first- and total-order indices, a Morris study μ* and σ, each with SALib's
@@ -16,9 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..description.defaults import DEFAULT_STUDY_SAMPLES
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
-from .engine import RunSummary, SampleStore, open_store, run_samples
+from .runner import RunSummary, SampleStore, open_store, run_samples
 from .sampling import MORRIS_LEVELS, StudyInput, salib_problem, sample_matrix, samples_of
 
 PERCENTILES = (5.0, 50.0, 95.0)
@@ -195,7 +196,7 @@ def percentile_bands(Y: dict[str, np.ndarray]) -> dict:
 def sensitivity_indices(method: str, inputs: list[StudyInput], X: np.ndarray, y: np.ndarray, seed: int) -> dict:
     """SALib's indices of one output, with confidence half-widths at :data:`CONF_LEVEL`."""
     if method not in ("sobol", "morris"):
-        return {"not_computed": f"the {method} design gives bands, not indices (use --method sobol or morris)"}
+        return {"not_computed": f"the {method} design gives bands, not indices (a sobol or morris study gives them)"}
     if not np.isfinite(y).all():
         return {"not_computed": f"{int((~np.isfinite(y)).sum())} runs failed; SALib's {method} estimators need "
                                 "every run of the design"}
@@ -239,11 +240,11 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
     seed : int
         Seed of the sampler and of the bootstrap.
     client : distributed.Client or ClusterOnDemand, optional
-        Where the runs go (see :func:`fetorsion.studies.engine.open_client`); None: here, serially.
+        Where the runs go (see :func:`fetorsion.studies.runner.open_client`); None: here, serially.
     store : SampleStore, optional
-        Stored results (default :func:`fetorsion.studies.engine.default_store`).
+        Stored results (default :func:`fetorsion.studies.runner.default_store`).
     batch_size : int, optional
-        Samples per task (default :func:`fetorsion.studies.engine.auto_batch`).
+        Samples per task (default :func:`fetorsion.studies.runner.auto_batch`).
     measured_hz : float, optional
         The measured f1, Hz: its place in the f1 distribution is reported.
     held : sequence of str
@@ -263,7 +264,7 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
                        list(held), X, Y, errors, percentile_bands(Y), indices, measured_hz, summary, values)
 
 
-def run_crank_study(crank, method: str = "montecarlo", samples: int = 2000, model: str = "lumped17",
+def run_crank_study(crank, method: str = "montecarlo", samples: int | None = None, model: str = "lumped17",
                     outputs=("f1",), inputs=None, *, seed: int = 0, stiffness: str | None = None,
                     mesh_size: float | None = None, scheduler: str | None = None, workers: int | None = None,
                     client=None, store: SampleStore | None = None, **kwargs) -> StudyResult:
@@ -274,7 +275,8 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int = 2000, mode
     crank : Crank
         A description with an ``[uncertainty]`` table.
     method, samples, seed
-        See :func:`run_study`.
+        See :func:`run_study`; ``samples`` defaults to the method's
+        :data:`~fetorsion.description.defaults.DEFAULT_STUDY_SAMPLES`.
     model : str
         ``lumpedN`` (N = 5, 6, 17, 19, 21) or ``fe`` (3D FE without fillets and drillings at
         ``mesh_size``, m; their inputs are then held at nominal).
@@ -297,7 +299,7 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int = 2000, mode
     >>> res.bands["f1"]["p5"] < res.bands["f1"]["p95"]
     True
     """
-    from .engine import ClusterOnDemand
+    from .runner import ClusterOnDemand
     from .models import FE_LEFT_OUT, make_model
     from .sampling import study_inputs
 
@@ -306,6 +308,7 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int = 2000, mode
     options = {k: v for k, v in (("stiffness", stiffness), ("mesh_size", mesh_size)) if v is not None}
     m = make_model(crank, model, tuple(outputs), **options)
     chosen, held = study_inputs(crank, inputs, FE_LEFT_OUT if model == "fe" else ())
+    samples = DEFAULT_STUDY_SAMPLES[method] if samples is None else samples
     measured = crank.notes.get("measured_first_torsional_hz")
     common = dict(seed=seed, store=store, name=crank.name, measured_hz=float(measured) if measured else None,
                   held=held, **kwargs)
@@ -330,7 +333,7 @@ def write_study_folder(res: StudyResult, out, force: bool = False, inputs=()) ->
 
     matplotlib.use("Agg")
     out = Path(out)
-    check_report_folder(out, "--out", force=force, inputs=inputs)
+    check_report_folder(out, "out", force=force, inputs=inputs)
     with atomic_folder(out) as work:
         write_samples_csv(res, work / "samples.csv")
         write_text_atomic(work / "study.json", json.dumps(res.to_dict(), indent=1) + "\n")

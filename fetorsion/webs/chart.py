@@ -45,6 +45,7 @@ PIN_LENGTH = 0.38         # L_m / D_t
 WIDTH_RATIO = 0.78        # B_min / B_max
 REF_THICKNESS = 0.38      # L_b0 / D_t
 REF_WIDTH = 1.22          # B_e0 / D_t
+WEB_SPLIT = 0.5           # share of a stiffness change the chart's family takes in thickness (the rest in width)
 STEEL = Material(210e9, 0.3, 7850.0, "steel")
 
 
@@ -58,7 +59,7 @@ def crank_radius(c: float, d_t: float = 1.0) -> float:
     return 0.5 * (PIN_DIAMETER + 1.0) * d_t / (1.0 + c)
 
 
-def web_dimensions(c: float, q: float, split: float = 0.5, d_t: float = 1.0) -> tuple[float, float]:
+def web_dimensions(c: float, q: float, split: float = WEB_SPLIT, d_t: float = 1.0) -> tuple[float, float]:
     """(L_b, B_e) of the family's web at chart point (c, q), units of d_t.
 
     From the reference web (L_b0, B_e0), q0 = R D_t³/(L_b0 B_e0³); then
@@ -70,7 +71,7 @@ def web_dimensions(c: float, q: float, split: float = 0.5, d_t: float = 1.0) -> 
     return REF_THICKNESS * f**split * d_t, REF_WIDTH * f ** ((1.0 - split) / 3.0) * d_t
 
 
-def chart_throw(c: float, q: float, d_t: float = 0.06, split: float = 0.5, fillet: float = 0.0,
+def chart_throw(c: float, q: float, d_t: float = 0.06, split: float = WEB_SPLIT, fillet: float = 0.0,
                 oil_hole: float = 0.0, material: Material = STEEL) -> Crank:
     """The family's throw at chart point (c, q) as a 1-cylinder description (SI units).
 

@@ -178,7 +178,7 @@ class TorsionSolution:
 def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded: str = "rear_face",
                      backend: str = "auto") -> TorsionSolution:
     """Solve the static torsion of :func:`static_torsion` and keep the whole displacement field
-    (for stresses: :mod:`fetorsion.webs.scf`). Arguments as for :func:`static_torsion`."""
+    (for stresses: :mod:`fetorsion.design.scf`). Arguments as for :func:`static_torsion`."""
     m, dof_of_node = assembly.skfem_mesh(mesh)
     basis = assembly.p2_basis(m)
     K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio)

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..description.model import Chain, Crank, Limits
 from ..errors import FetorsionError
 
@@ -124,7 +125,7 @@ class VerdictResult:
 def _case(name: str, crank, response, scf, limits: Limits) -> VerdictCase:
     """The worst value over sections against speed for one response."""
     if limits.kind == "stress":
-        from ..response.stress import fillet_stress
+        from .stress import fillet_stress
 
         st = fillet_stress(crank, response, scf)
         j = np.argmax(st.stress_pa, axis=1)
@@ -142,24 +143,24 @@ def _case(name: str, crank, response, scf, limits: Limits) -> VerdictCase:
     return VerdictCase(name, response.rpm, value, where, power, by_order)
 
 
-def run_verdict(crank: Crank | Chain, mu: float = 0.25, kind: str = "rubber", optimise: bool = True,
+def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
                 misfire: bool = True, scf: dict | None = None, rpm=None) -> VerdictResult:
     """The verdict table of a crank (or chain file) with ``[limits]``.
 
     Cases: without damper; with the description's ``[[dampers]]`` if it has any; with Den
     Hartog's ``kind`` damper of inertia ratio ``mu`` on the first mode at the pulley; with that
-    damper optimised on the whole crank (:func:`fetorsion.studies.damper_tuning.run_damper`,
+    damper optimised on the whole crank (:func:`fetorsion.design.dampers.run_damper`,
     objective: the limited quantity); and the misfire of the cylinder that makes it worst, with
     the best of those dampers.
     """
     from ..response.forced import motored_harmonics, response_setup, solve_response
-    from .damper_tuning import run_damper
+    from .dampers import run_damper
 
     limits = crank.limits
     if limits is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [limits] table")
     if limits.kind == "stress" and scf is None:
-        from ..webs.scf import fillet_scfs
+        from .scf import fillet_scfs
 
         scf = fillet_scfs(crank)
     setup = response_setup(crank, rpm=rpm)

@@ -42,7 +42,7 @@ from ..description.model import Crank
 from ..errors import FetorsionError
 from ..fe.assembly import lame
 from ..fe.tetmesh import TetMesh
-from .throwfe import TORQUE, default_mesh_size, stepped_shaft_mesh, throw_of, torsion_solution
+from ..webs.throwfe import TORQUE, default_mesh_size, stepped_shaft_mesh, throw_of, torsion_solution
 
 #: Nodes within this share of the fillet radius outside the fillet's nominal zone still count
 #: as the fillet (the curved mesh's nodes sit on the true surface up to round-off).
@@ -323,7 +323,7 @@ DEFAULT_FILLET_SHARE = 0.5
 
 def scf_key(crank: Crank, throw: int = 0) -> str:
     """The key of a throw's SCFs: its stiffness key (geometry, material) tagged for stress."""
-    from .throwfe import throw_key
+    from ..webs.throwfe import throw_key
 
     return throw_key(throw_of(crank, throw), "fillet-scf")
 

@@ -1,5 +1,10 @@
-"""Damper tuning on the whole crank (issue 14): Den Hartog's optimum as the start, then a numeric
-optimisation of the damper on the full forced response over the speed range.
+"""Torsional damper design: Den Hartog's classical optima, the amplification of a damped chain,
+and the tuning of a damper on the whole crank — Den Hartog's optimum as the start, then a
+numeric optimisation on the full forced response over the speed range.
+
+A damper's element (its ring as one more degree of freedom, its spring and loss in the chain's
+matrices) is part of the model, :mod:`fetorsion.lumped_model.damped`, since the Campbell
+diagram and the forced response below this stage see it; its design is here.
 
 The crank's mode to damp (the first, by default) is reduced to the single-degree-of-freedom
 system Den Hartog's optima assume: with its shape φ scaled to 1 at the damper's station, the
@@ -26,13 +31,50 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_PARTITION
 from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
-from ..errors import FetorsionError
-from ..response.dampers import tuned_optimum, viscous_optimum
+from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
 from ..response.synthesis import half_peak_to_peak
 
 OBJECTIVES = ("stress", "twist")
+
+
+def viscous_optimum(mu: float) -> tuple[float, float]:
+    """Den Hartog's untuned viscous damper: (optimum ζ = c/(2 J_ring ω_n), peak amplification)."""
+    return 1.0 / np.sqrt(2.0 * (1.0 + mu) * (2.0 + mu)), 1.0 + 2.0 / mu
+
+
+def tuned_optimum(mu: float) -> tuple[float, float, float]:
+    """Den Hartog's tuned absorber: (ring frequency / ω_n, optimum ζ = c/(2 J_ring ω_n),
+    height of the fixed points = peak amplification at the optimum)."""
+    return 1.0 / (1.0 + mu), np.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3)), np.sqrt(1.0 + 2.0 / mu)
+
+
+def amplification(M, K, C, station: int, omegas) -> np.ndarray:
+    """|θ_station| per unit static deflection under a unit harmonic torque on ``station``:
+    |(K − ω²M + iωC)⁻¹|_ss · K_static, where the static deflection is that of the system
+    without its dampers' dynamics, 1/(K⁻¹)_ss⁻¹ with the ring free to follow (ω = 0)."""
+    omegas = np.atleast_1d(np.asarray(omegas, dtype=float))
+    force = np.zeros(len(M))
+    force[station] = 1.0
+    A = K[None] - omegas[:, None, None] ** 2 * M[None] + 1j * omegas[:, None, None] * C[None]
+    theta = np.linalg.solve(A, np.broadcast_to(force, (len(omegas), len(M)))[..., None])[..., station, 0]
+    static = np.linalg.lstsq(np.real(K), force, rcond=None)[0][station]
+    return np.abs(theta) / abs(static)
+
+
+def peak_amplification(M, K, C, station: int, omega_range: tuple[float, float], samples: int = 2001) -> tuple[float, float]:
+    """Largest :func:`amplification` in ``omega_range`` (rad/s): a dense sweep, then the best
+    sample refined by a bounded scalar search between its neighbours. Returns (peak, ω)."""
+    omegas = np.linspace(*omega_range, samples)
+    amp = amplification(M, K, C, station, omegas)
+    j = int(np.argmax(amp))
+    lo, hi = omegas[max(j - 1, 0)], omegas[min(j + 1, samples - 1)]
+    res = scipy.optimize.minimize_scalar(lambda w: -amplification(M, K, C, station, w)[0], bounds=(lo, hi),
+                                         method="bounded", options={"xatol": 1e-10 * hi})
+    return float(-res.fun), float(res.x)
+
 
 
 def equivalent_sdof(M: np.ndarray, K: np.ndarray, station: int, mode: int = 0) -> tuple[float, float]:
@@ -50,7 +92,7 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
                       hub_inertia: float = 0.0) -> Damper:
     """Den Hartog's optimum damper of ``kind`` (viscous, tuned, rubber) for ring inertia μ J_eq."""
     if not mu > 0:
-        raise FetorsionError(f"--inertia-ratio {mu!r}: must be > 0")
+        raise ParameterError("mu", f"{mu!r}: must be > 0")
     ring = mu * J_eq
     if kind == "viscous":
         zeta, _ = viscous_optimum(mu)
@@ -64,14 +106,14 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
     if kind == "rubber":
         return Damper("rubber", at, hub_inertia, ring, stiffness=k, loss_factor=2 * zeta / f,
                       name=f"Den Hartog rubber, mu = {mu:g}")
-    raise FetorsionError(f"--type {kind!r}: choose viscous, rubber or tuned")
+    raise ParameterError("kind", f"{kind!r}: choose viscous, rubber or tuned")
 
 
 def stress_weights(crank: Crank, positions_m, scf: dict) -> np.ndarray:
     """Pa of fillet shear per N·m of each spring's torque: SCF · 16 D / (π (D⁴ − d_i⁴)) of the most
     stressed fillet the spring carries (0 for a spring that carries none)."""
-    from ..response.stress import fillet_springs, fillets_of
-    from ..webs.scf import nominal_shear
+    from .stress import fillet_springs, fillets_of
+    from .scf import nominal_shear
 
     fillets = fillets_of(crank)
     springs = fillet_springs(fillets, positions_m)
@@ -157,9 +199,9 @@ class DamperResult:
         return ax
 
 
-def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, optimise: bool = True,
+def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,
                objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
-               scf: dict | None = None, rpm=None, partition: int = 17, **setup_options) -> DamperResult:
+               scf: dict | None = None, rpm=None, partition: int = DEFAULT_PARTITION, **setup_options) -> DamperResult:
     """Den Hartog start and numeric optimum of a damper on the whole crank.
 
     Parameters
@@ -181,16 +223,16 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, opt
     mode : int
         0-based elastic mode the Den Hartog start tunes to.
     scf : dict, optional
-        Fillet SCFs for ``stress`` (default :func:`fetorsion.webs.scf.fillet_scfs`).
+        Fillet SCFs for ``stress`` (default :func:`fetorsion.design.scf.fillet_scfs`).
     rpm : array_like, optional
         Speeds, rpm (default the response's).
     """
     if objective not in OBJECTIVES:
-        raise FetorsionError(f"--objective {objective!r}: choose {' or '.join(OBJECTIVES)}")
+        raise ParameterError("objective", f"{objective!r}: choose {' or '.join(OBJECTIVES)}")
     if at not in DAMPER_STATIONS:
-        raise FetorsionError(f"--at {at!r}: choose {' or '.join(DAMPER_STATIONS)}")
+        raise ParameterError("at", f"{at!r}: choose {' or '.join(DAMPER_STATIONS)}")
     if objective == "stress" and isinstance(crank, Chain):
-        raise FetorsionError("--objective stress: a chain file has no shaft sections; use --objective twist")
+        raise ParameterError("objective", "stress: a chain file has no shaft sections; use twist")
     setup = response_setup(crank, partition, rpm, **setup_options)
     n = len(setup.labels)
     station = 0 if at == "front" else n - 1
@@ -198,7 +240,7 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = 0.25, opt
     start = den_hartog_damper(kind, mu, J_eq, omega_n, at, hub_inertia)
     weights = None
     if objective == "stress":
-        from ..webs.scf import fillet_scfs
+        from .scf import fillet_scfs
 
         weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf)
 

@@ -34,7 +34,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable
 
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 
 #: Environment of each local worker process: one BLAS/OpenMP thread, the worker's one core.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -220,10 +220,10 @@ class SampleStore:
         return {"file": str(self.file), "samples": int(count), "bytes": int(size), "max_bytes": self.max_bytes}
 
     def describe(self) -> str:
-        """One line: where the store is, how full, and how to empty it."""
+        """One line: where the store is and how full."""
         i = self.info()
         return (f"sample store {i['file']}: {i['samples']} samples, {i['bytes'] / 2**20:.1f} MiB of at most "
-                f"{i['max_bytes'] / 2**20:.0f} MiB ('fetorsion store --clear' empties it)")
+                f"{i['max_bytes'] / 2**20:.0f} MiB")
 
     def clear(self) -> int:
         """Remove the store's database (and a journal beside it); returns the samples it held."""
@@ -269,7 +269,7 @@ def open_store(folder=None, max_bytes: int | None = None) -> SampleStore:
     return SampleStore(folder, max_bytes)
 
 
-def check_store(folder, option: str = "--store") -> None:
+def check_store(folder, option: str = "store") -> None:
     """Refuse, before any work, a store that is a file or cannot be written."""
     from ..io import check_writable_location
 
@@ -286,9 +286,15 @@ def check_store(folder, option: str = "--store") -> None:
 def scheduler_address(scheduler: str | None) -> tuple[str | None, str]:
     """The address to connect to (None: an embedded local cluster) and where it came from."""
     if scheduler:
-        return scheduler, "--scheduler"
+        return scheduler, "scheduler"
     env = os.environ.get(SCHEDULER_ENV)
     return (env, SCHEDULER_ENV) if env else (None, "")
+
+
+def _address_error(where: str, message: str) -> FetorsionError:
+    """The error of an address given as the ``scheduler`` argument (a :class:`ParameterError`,
+    which the command line names by its option) or read from the environment."""
+    return ParameterError("scheduler", message) if where == "scheduler" else FetorsionError(f"{where} {message}")
 
 
 def check_scheduler(address: str, option: str) -> None:
@@ -301,7 +307,7 @@ def check_scheduler(address: str, option: str) -> None:
         if proto in ("tcp", "tls"):
             parse_host_port(loc)
     except (ValueError, TypeError) as exc:
-        raise FetorsionError(f"{option} {address!r}: not a scheduler address such as tcp://host:8786 ({exc})") from None
+        raise _address_error(option, f"{address!r}: not a scheduler address such as tcp://host:8786 ({exc})") from None
 
 
 def machine_workers() -> int:
@@ -325,7 +331,7 @@ def open_client(scheduler: str | None = None, workers: int | None = None, timeou
         try:
             client = Client(address, timeout=timeout_s)
         except (OSError, TimeoutError) as exc:
-            raise FetorsionError(f"{where} {address}: no scheduler answered within {timeout_s:g} s ({exc})") from None
+            raise _address_error(where, f"{address}: no scheduler answered within {timeout_s:g} s ({exc})") from None
         try:
             yield client
         finally:

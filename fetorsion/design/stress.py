@@ -8,7 +8,7 @@ anchors). Its vibratory shear stress is the nominal stress of the synthesised to
     τ = SCF · 16 T D / (π (D⁴ − d_i⁴)),
 
 with the fillet's torsional SCF from fetorsion's static 3D FE of the throw
-(:func:`fetorsion.webs.scf.fillet_scfs`). A chain file has no sections: its limits are torques.
+(:func:`fetorsion.design.scf.fillet_scfs`). A chain file has no sections: its limits are torques.
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ import numpy as np
 
 from ..description.model import Crank
 from ..errors import FetorsionError
-from ..webs.scf import nominal_shear
+from .scf import nominal_shear
 
 
 @dataclass(frozen=True)
@@ -152,10 +152,10 @@ def run_stress(crank: Crank, response=None, scf: dict | None = None, **response_
         ``response_options``).
     scf : dict, optional
         ``pin`` and ``journal`` SCFs and their ``source``; default
-        :func:`fetorsion.webs.scf.fillet_scfs` (shipped reference values or one static FE).
+        :func:`fetorsion.design.scf.fillet_scfs` (shipped reference values or one static FE).
     """
-    from ..webs.scf import fillet_scfs
-    from .forced import run_response
+    from .scf import fillet_scfs
+    from ..response.forced import run_response
 
     response = run_response(crank, **response_options) if response is None else response
     return fillet_stress(crank, response, fillet_scfs(crank) if scf is None else scf)
