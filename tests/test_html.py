@@ -119,3 +119,9 @@ def test_page_is_self_contained_and_small(report):
 def test_modal_and_campbell_write_their_own_pages(tmp_path):
     assert main(["campbell", str(GEOMETRY / "renault21.toml"), "--html", str(tmp_path / "c.html")]) == 0
     assert 'id="campbell"' in (tmp_path / "c.html").read_text()
+    crank = plain_copy(tmp_path)
+    assert main(["modal", str(crank), "--mesh-size", "30", "--modes", "8", "--html", str(tmp_path / "m.html")]) == 0
+    page = (tmp_path / "m.html").read_text()
+    # the 3D mode view with its controls, offering each torsional and bending mode of the table
+    assert 'id="modes-mode"' in page and 'id="modes-play"' in page and "fetorsionModeView(\"modes\"" in page
+    assert page.count("<option") >= 2 and "torsional" in page

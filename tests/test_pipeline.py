@@ -6,7 +6,7 @@ import pytest
 
 import fetorsion
 from fetorsion.errors import DescriptionError
-from fetorsion.report.pipeline import DEFAULT_STEPS, run
+from fetorsion.app.run import DEFAULT_STEPS, run
 
 from conftest import GEOMETRY, assert_picture
 
@@ -89,7 +89,7 @@ def test_failing_step_keeps_the_previous_report(tmp_path):
         raise RuntimeError("step failed")
 
     with pytest.raises(RuntimeError):
-        run(GEOMETRY / "renault21.toml", tmp_path / "r", steps=DEFAULT_STEPS[:1] + (("broken", broken),))
+        run(GEOMETRY / "renault21.toml", tmp_path / "r", steps=DEFAULT_STEPS[:1] + (("broken", "verdict", broken),))
     assert (out / "report.md").read_text() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r"]
     assert not (out / "partial.txt").exists()

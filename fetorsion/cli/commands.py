@@ -412,7 +412,7 @@ def run_jobs(args) -> list[tuple[Path, Path]]:
 
 
 def cmd_run(args) -> int:
-    from ..report.pipeline import FAST_STEPS, run
+    from ..app.run import FAST_STEPS, run
 
     jobs = run_jobs(args)
     for file, out in jobs:  # every destination and description is checked before any work

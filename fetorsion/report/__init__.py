@@ -1,4 +1,5 @@
-"""Stage 7, the report: ``fetorsion run`` (:mod:`.pipeline`, every analysis of a crank into
-one folder, written atomically), its Markdown (:mod:`.markdown`) and off-screen pictures
-(:mod:`.render`). Computes nothing of its own: it calls the stages and presents results.
+"""Stage 7, the report: presents what a run computed, computes nothing. The typed outcome of
+each analysis (:mod:`.outcomes`), the Markdown (:mod:`.markdown`), the self-contained web page
+(:mod:`.html`) and off-screen mode pictures (:mod:`.render`). The run itself, which calls the
+stages and fills the outcomes, is :mod:`fetorsion.app.run`.
 """

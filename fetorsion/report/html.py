@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .outcomes import CampbellOutcome, RunOutcome, SensitivityOutcome
+
 # The faces of a tetrahedron by its corner indices (VTK order: corners 0-3).
 _TET_FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
 
@@ -262,31 +264,31 @@ pre {{ background: #f6f6f6; padding: 0.8em; overflow-x: auto; }} img {{ max-widt
 """
 
 
-def report_html(crank, path, sections: dict, timings_s: dict, folder: Path) -> str:
+def report_html(run: RunOutcome, folder: Path) -> str:
     """The run's report as a web page: the Markdown report with its pictures made interactive
     (Campbell, forced response, sensitivity, the FE mode shapes in one 3D view)."""
     from .markdown import report_markdown
 
     figures = {}
-    camp = sections.get("campbell")
-    if camp:
-        figures["campbell.png"] = campbell_figure(camp["campbell"], "campbell")
-        figures["response.png"] = response_figure(camp["response"], "response")
-    sens = sections.get("sensitivity")
-    if sens:
-        figures["sensitivity.png"] = sensitivity_figure(sens["sensitivity"], "sensitivity")
-        studies, images = sens.get("studies"), sens.get("study_images", {})
+    camp = run.campbell
+    if isinstance(camp, CampbellOutcome):
+        figures[camp.campbell_image] = campbell_figure(camp.campbell, "campbell")
+        figures[camp.response_image] = response_figure(camp.response, "response")
+    sens = run.sensitivity
+    if isinstance(sens, SensitivityOutcome):
+        figures[sens.image] = sensitivity_figure(sens.sensitivity, "sensitivity")
+        studies, images = sens.studies, sens.study_images
         if studies:
             figures[images["montecarlo"]] = montecarlo_figure(studies["montecarlo"], "f1_montecarlo")
             if "not_computed" not in studies["sobol"].indices["f1"]:
                 figures[images["sobol"]] = sobol_figure(studies["sobol"], "f1_sobol")
-    fe = sections.get("fe")
-    if fe and fe["images"]:
-        res = fe["modal"]
-        picks = [int(name[5:7]) - 1 for name in fe["images"]]  # mode_NN_kind.png
+    fe = run.fe
+    if fe is not None and fe.images:
+        res = fe.modal
+        picks = [img.mode for img in fe.images]
         view = mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],
                          [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
-        figures[fe["images"][0]] = view
-        for name in fe["images"][1:]:
-            figures[name] = ""  # all modes are in the one 3D view
-    return page(crank.name, report_markdown(crank, path, sections, timings_s), figures, folder)
+        figures[fe.images[0].file] = view
+        for img in fe.images[1:]:
+            figures[img.file] = ""  # all modes are in the one 3D view
+    return page(run.crank.name, report_markdown(run), figures, folder)

@@ -1,30 +1,32 @@
-"""The report as Markdown: presents what the pipeline's steps computed, computes nothing.
+"""The report as Markdown: presents what the run's steps computed, computes nothing.
 
-Each section function takes a step's outcome (results objects and picture file names, see
-:mod:`fetorsion.report.pipeline`) and returns its lines; :func:`report_markdown` puts the
-sections of a run together. A second format (a web page) is another module beside this one
-taking the same outcomes.
+Each section function takes a step's typed outcome (:mod:`fetorsion.report.outcomes`: results
+objects and picture file names) and returns its lines; :func:`report_markdown` puts the
+sections of a run together. A second format (the web page, :mod:`.html`) takes the same
+outcomes.
 """
 
 from __future__ import annotations
 
-from ..description.model import Chain, Crank
+from ..description.model import Crank
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
+from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
+                       SensitivityOutcome, Skipped, VerdictOutcome)
 
 
 def _with_error(f: float, measured) -> str:
     return f"{f:.1f}" + (f" ({100 * (f / measured - 1):+.1f} %)" if measured else "")
 
 
-def lumped_section(crank: Crank, outcome: dict) -> list[str]:
+def lumped_section(crank: Crank, outcome: LumpedOutcome | ChainOutcome) -> list[str]:
     """f1 of every partition and web method against the measurement; the 17-DOF shapes (a chain: its modes)."""
-    if isinstance(crank, Chain):
-        res = outcome["chain"]
+    if isinstance(outcome, ChainOutcome):
+        res = outcome.chain
         return ["## Torsional chain (inertias and stiffnesses from the file)", "",
                 f"{res.dof} inertias, free-free.", "", "```", res.table(), "```", "",
-                f"Mode shapes, unit twist at the first station: ![]({outcome['image']})", ""]
-    table, skipped = outcome["table"], outcome["skipped"]
+                f"Mode shapes, unit twist at the first station: ![]({outcome.image})", ""]
+    table, skipped = outcome.table, outcome.skipped
     measured = crank.notes.get("measured_first_torsional_hz")
     paper = crank.notes.get("paper_lumped_first_torsional_hz", {})
     lines = ["## Lumped models (BICERA-style equivalent lengths)", "",
@@ -37,13 +39,13 @@ def lumped_section(crank: Crank, outcome: dict) -> list[str]:
     if measured:
         lines += ["", f"Measured (free-free modal test): **{measured:g} Hz**."]
     lines += [f"Web method `{m}` not used: {why}" for m, why in skipped.items()]
-    lines += ["", f"17-DOF mode shapes (Carter webs), unit twist at the pulley end: ![]({outcome['image']})", ""]
+    lines += ["", f"17-DOF mode shapes (Carter webs), unit twist at the pulley end: ![]({outcome.image})", ""]
     return lines
 
 
-def fe_section(crank: Crank, outcome: dict) -> list[str]:
+def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     """Mesh, solver and timings, f1 against the measurement, every mode with its label."""
-    res, size = outcome["modal"], outcome["mesh_size_m"]
+    res, size = outcome.modal, outcome.mesh_size_m
     quality = res.mesh.quality if res.mesh is not None else None
     # two significant digits: a valid but poor element (SICN 1e-4) must not read as 0.000
     sicn = f"{quality.min_sicn:.2g}" if quality else "n/a"
@@ -64,12 +66,12 @@ def fe_section(crank: Crank, outcome: dict) -> list[str]:
     lines += [f"| {j + 1} | {f:.1f} | {k} | {fr[0]:.2f} | {fr[1]:.2f} | {fr[2]:.2f} |"
               for j, (f, k, fr) in enumerate(zip(res.frequencies_hz, res.kinds, res.fractions))]
     lines += ["", "Rigid-body roots (Hz): " + ", ".join(f"{f:.1e}" for f in res.rigid_body_hz), ""]
-    return lines + [f"![]({img})" for img in outcome["images"]] + [""]
+    return lines + [f"![]({img.file})" for img in outcome.images] + [""]
 
 
-def bearings_section(crank: Crank, outcome: dict) -> list[str]:
+def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     """The condensed crank free and in its bearings; the lumped chain against both; the coupled response."""
-    cc, free, held = outcome["condensed"], outcome["free"], outcome["bearings"]
+    cc, free, held = outcome.condensed, outcome.free, outcome.bearings
     b = crank.main_bearings
     support = ("rigid main bearings (no `[bearings]` table: the default)" if not b.given else
                "main bearings of the `[bearings]` table: " + ", ".join("rigid" if k == float("inf") else f"{k:.3g} N/m"
@@ -82,8 +84,8 @@ def bearings_section(crank: Crank, outcome: dict) -> list[str]:
              f"In the engine: {support}. Free-free is what a modal test measures"
              + (f" (measured {measured:g} Hz)" if measured else "") + "; the Campbell diagram below uses the "
              "modes in bearings.", "",
-             f"**First torsional mode: free-free {outcome['f1_free_hz']:.1f} Hz, in bearings "
-             f"{outcome['f1_bearings_hz']:.1f} Hz ({100 * (outcome['f1_bearings_hz'] / outcome['f1_free_hz'] - 1):+.1f} %).**",
+             f"**First torsional mode: free-free {outcome.f1_free_hz:.1f} Hz, in bearings "
+             f"{outcome.f1_bearings_hz:.1f} Hz ({100 * (outcome.f1_bearings_hz / outcome.f1_free_hz - 1):+.1f} %).**",
              "", "| mode | free (Hz) | kind (torsion/bending) | in bearings (Hz) | kind (torsion/bending) |",
              "|---|---|---|---|---|"]
     for j in range(min(8, len(free.frequencies_hz), len(held.frequencies_hz))):
@@ -95,33 +97,33 @@ def bearings_section(crank: Crank, outcome: dict) -> list[str]:
               "throw loaded by a couple (statically determinate: holding it sideways changes nothing).", "",
               "| web method | 17-DOF f1 (Hz) | vs free-free FE | vs FE in bearings |", "|---|---|---|---|"]
     lines += [f"| {m} | {c['f1_hz']:.1f} | {100 * c['vs_free']:+.1f} % | {100 * c['vs_bearings']:+.1f} % |"
-              for m, c in outcome["chain"].items()]
+              for m, c in outcome.chain.items()]
     lines += ["", "A torsion-only chain cannot carry the inertia of the throws bending between the bearings: the "
               "in-bearing torsional mode still has a bending share (table above).", ""]
-    if "coupled" in outcome:
+    if outcome.coupled is not None:
         lines += ["Forced response of the condensed crank in its bearings (all orders synthesised; vibratory "
                   "amplitudes; bearing forces and bending moments: the largest vibratory magnitude over the cycle):",
-                  "", "```", outcome["coupled"].table(), "```", ""]
-    return lines + [f"![]({img})" for img in outcome["images"]] + [""]
+                  "", "```", outcome.coupled.table(), "```", ""]
+    return lines + [f"![]({img})" for img in outcome.images] + [""]
 
 
-def campbell_section(crank: Crank, outcome: dict | None) -> list[str]:
+def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[str]:
     """Crossings by severity, the diagram, and the forced response."""
-    if outcome is None:
-        return ["## Campbell diagram", "", "Not run: the description has no `[excitation]` table.", ""]
-    camp, resp = outcome["campbell"], outcome["response"]
-    a, b = outcome["images"]
+    if isinstance(outcome, Skipped):
+        return ["## Campbell diagram", "", f"Not run: {outcome.reason}.", ""]
+    camp, resp = outcome.campbell, outcome.response
+    a, b = outcome.campbell_image, outcome.response_image
     return ["## Campbell diagram and forced response", "",
             f"Crossings inside the operating range, most severe first ({camp.source}; severity = resonant "
             f"vibratory angle at the pulley for ζ = {zeta_text(camp.damping_ratio)}):", "", "```", camp.table(), "```", "",
             f"![]({a})", "", "```", resp.table(), "```", "", f"![]({b})", ""]
 
 
-def sensitivity_section(crank: Crank, outcome: dict | None) -> list[str]:
+def sensitivity_section(crank: Crank, outcome: SensitivityOutcome | Skipped) -> list[str]:
     """One-at-a-time sensitivities, the band, where the measurement falls, the FE check."""
-    if outcome is None:
-        return ["## Sensitivity", "", "Not run: the description has no `[uncertainty]` table.", ""]
-    sens, checks = outcome["sensitivity"], outcome["fe_check"]
+    if isinstance(outcome, Skipped):
+        return ["## Sensitivity", "", f"Not run: {outcome.reason}.", ""]
+    sens, checks = outcome.sensitivity, outcome.fe_check
     verdict = ""
     if sens.measured_hz is not None:
         verdict = (f"The measured {sens.measured_hz:g} Hz is **{'inside' if sens.measured_inside else 'outside'}** "
@@ -136,8 +138,8 @@ def sensitivity_section(crank: Crank, outcome: dict | None) -> list[str]:
                   "| input | lumped | FE |", "|---|---|---|"]
         lines += [f"| {c['field']} | {c['lumped_change_percent']:+.1f} % | {c['fe_change_percent']:+.1f} % |"
                   for c in checks] + [""]
-    lines += [f"![]({outcome['image']})", ""]
-    return lines + studies_lines(sens, outcome.get("studies"), outcome.get("study_images", {}))
+    lines += [f"![]({outcome.image})", ""]
+    return lines + studies_lines(sens, outcome.studies, outcome.study_images)
 
 
 def studies_lines(sens, studies: dict | None, images: dict) -> list[str]:
@@ -173,27 +175,27 @@ def studies_lines(sens, studies: dict | None, images: dict) -> list[str]:
 
 
 
-def verdict_section(crank: Crank, outcome: dict) -> list[str]:
+def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str]:
     """Fillet stresses and the verdict table: without a damper, with Den Hartog's and the optimised one."""
-    if "skipped" in outcome:
-        return ["## Verdict", "", f"Not run: {outcome['skipped']}.", ""]
-    v = outcome["verdict"]
+    if isinstance(outcome, Skipped):
+        return ["## Verdict", "", f"Not run: {outcome.reason}.", ""]
+    v = outcome.verdict
     unit, scale = v.unit
     lim = v.limits
     lines = [f"## {'Fillet stress' if lim.kind == 'stress' else 'Section torque'}, dampers and verdict", ""]
-    if "stress" in outcome:
-        scf = outcome["scf"]
+    if outcome.stress is not None:
+        scf = outcome.scf
         lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "
                   f"**{scf['journal']:.3f}** ({scf['source']}). Vibratory shear stress = SCF x 16 T D / (pi (D^4 - d^4)) "
                   "of the synthesised section torque (all orders summed with their phases; amplitude = half "
-                  "peak-to-peak), without a damper:", "", "```", outcome["stress"].table(), "```", ""]
+                  "peak-to-peak), without a damper:", "", "```", outcome.stress.table(), "```", ""]
     limit_text = (f"continuous running **{lim.continuous / scale:.4g} {unit}**"
                   + (f", passing through **{lim.transient / scale:.4g} {unit}**" if lim.transient else "")
                   + (f" (fatigue strength {lim.fatigue_strength / scale:.4g} {unit} / safety factor "
                      f"{lim.safety_factor:g})" if lim.fatigue_strength else ""))
     lines += [f"Limits: {limit_text}. Source: {lim.source}.", "",
               f"Damper designs: Den Hartog's optimum for the first mode seen from the pulley, inertia ratio "
-              f"**mu = {outcome['mu']:g}** (the run's inertia ratio), then optimised "
+              f"**mu = {outcome.mu:g}** (the run's inertia ratio), then optimised "
               "on the whole crank over the speed range (its stiffness and damping; ring inertia held).", "",
               "| case | speed range (rpm) | worst section | at rpm | value | limit | margin | barred ranges | "
               "damper heat (W) | verdict |", "|---|---|---|---|---|---|---|---|---|---|"]
@@ -214,18 +216,19 @@ def verdict_section(crank: Crank, outcome: dict) -> list[str]:
             lines += ["", f"Damper heat, {r['case']}: {r['damper_power_w']:.1f} W in total at its worst speed, of which "
                       + ", ".join(f"order {q}: {p:.1f} W" for q, p in top) + "."]
     lines += [""] + [f"- {n}" for n in v.notes] + [f"- every row's limit: {limit_text}; source: {lim.source}", ""]
-    return lines + [f"![]({outcome['image']})", ""]
+    return lines + [f"![]({outcome.image})", ""]
 
 
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),
             ("sensitivity", sensitivity_section), ("verdict", verdict_section))
 
 
-def report_markdown(crank: Crank, path, sections: dict, timings_s: dict) -> str:
+def report_markdown(run: RunOutcome) -> str:
     """The whole report: a title, each section whose step ran, in pipeline order, the timings."""
-    lines = [f"# {crank.name}", "", f"Description: `{path}`", ""]
+    lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""]
     for key, render in SECTIONS:
-        if key in sections:
-            lines += render(crank, sections[key])
-    lines += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in timings_s.items()], ""]
+        outcome = getattr(run, key)
+        if outcome is not None:
+            lines += render(run.crank, outcome)
+    lines += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in (run.timings_s or {}).items()], ""]
     return "\n".join(lines)

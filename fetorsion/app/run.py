@@ -3,9 +3,10 @@
 The folder is built under a temporary name beside the target and renamed into place only
 when every step has succeeded, so a failed run leaves nothing behind and a reader never
 sees a half-written report. An existing target is replaced only when it is an earlier
-report (:func:`fetorsion.io.check_report_folder`). Each step is a small function ``step(ctx) -> None`` that
-computes, saves its pictures and records its outcome in ``ctx.sections`` (and its numbers in
-``ctx.results``); :mod:`fetorsion.report.markdown` then presents the outcomes.
+report (:func:`fetorsion.io.check_report_folder`). Each step is a small function
+``step(ctx) -> outcome`` that computes, saves its pictures and returns its typed outcome
+(:mod:`fetorsion.report.outcomes`; its numbers also go to ``ctx.results``, the JSON beside the
+report); :mod:`fetorsion.report.markdown` and :mod:`fetorsion.report.html` present the outcomes.
 """
 
 from __future__ import annotations
@@ -27,25 +28,23 @@ from ..lumped_model.lumped import PARTITIONS, lumped
 from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_PARTITION,
                                     DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
-from .markdown import report_markdown
+from ..report.markdown import report_markdown
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, ModeImage,
+                               RunOutcome, SensitivityOutcome, Skipped, VerdictOutcome)
 
 
 @dataclass
 class RunContext:
-    """What the steps share: the crank, options, the working folder, and what each step found.
-
-    ``sections`` maps a step's name to its outcome (results objects, image file names), which
-    :mod:`fetorsion.report.markdown` presents; ``results`` is the JSON written beside it.
+    """What the steps share: the crank, options, the working folder, and the run's outcome so
+    far (``outcome``: each step's typed result, which later steps build on); ``results`` is the
+    JSON written beside the report.
     """
 
     crank: Crank
     folder: Path
     options: dict
+    outcome: RunOutcome
     results: dict = field(default_factory=dict)
-    sections: dict = field(default_factory=dict)
-    fe: object = None  # the CrankModal once the FE step has run
-    condensed: object = None  # the CondensedCrank once the bearings step has run
-    timings_s: dict = field(default_factory=dict)
 
     def save(self, fig, name: str) -> str:
         save_figure_atomic(fig, self.folder / name, close=True, dpi=120)
@@ -56,7 +55,7 @@ def _progress(message: str) -> None:
     print(f"[fetorsion] {message}", file=sys.stderr, flush=True)
 
 
-def step_lumped(ctx: RunContext) -> None:
+def step_lumped(ctx: RunContext) -> LumpedOutcome | ChainOutcome:
     """All five partitions with every web method; mode-shape plots of the 17-DOF model (a chain: its modes)."""
     import matplotlib
 
@@ -64,8 +63,7 @@ def step_lumped(ctx: RunContext) -> None:
     if isinstance(ctx.crank, Chain):
         res = lumped(ctx.crank)
         ctx.results["lumped"] = {"chain": res.to_dict()}
-        ctx.sections["lumped"] = {"chain": res, "image": ctx.save(res.plot().figure, "chain_modes.png")}
-        return
+        return ChainOutcome(res, ctx.save(res.plot().figure, "chain_modes.png"))
     table, skipped = {}, {}
     for method in WEB_METHODS:
         try:
@@ -75,15 +73,14 @@ def step_lumped(ctx: RunContext) -> None:
     ctx.results["lumped"] = {m: [r.to_dict() for r in rs] for m, rs in table.items()}
     ctx.results["lumped_skipped"] = skipped
     main = table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
-    image = ctx.save(main.plot().figure, "lumped_modes_17dof.png")
-    ctx.sections["lumped"] = {"table": table, "skipped": skipped, "image": image}
+    return LumpedOutcome(table, skipped, ctx.save(main.plot().figure, "lumped_modes_17dof.png"))
 
 
-def step_fe(ctx: RunContext) -> None:
+def step_fe(ctx: RunContext) -> FEOutcome:
     """3D FE modal analysis with attachments; images of the torsional and first bending modes."""
     from ..fe.crankfe import run_modal
     from ..solid.mesh import mesh_crank
-    from .render import render_mode
+    from ..report.render import render_mode
 
     size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
     _progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
@@ -94,7 +91,6 @@ def step_fe(ctx: RunContext) -> None:
     t = fe.timings_s
     _progress(f"  assembly {t.get('assembly', 0):.1f} s, factorisation {t.get('factorize', 0):.1f} s, "
               f"eigen-solve {t.get('eigensolve', 0):.1f} s; rendering mode images ...")
-    ctx.fe = fe
     cm = fe.mesh
     ctx.results["fe"] = {**fe.to_dict(), "first_torsional_hz": fe.first_torsional(), "mesh_size_m": size,
                          "min_sicn": cm.quality.min_sicn if cm.quality else None}
@@ -105,11 +101,11 @@ def step_fe(ctx: RunContext) -> None:
         name = f"mode_{j + 1:02d}_{fe.kinds[j]}.png"
         render_mode(cm.nodes, cm.tets, fe.shapes[j], ctx.folder / name,
                     title=f"mode {j + 1}: {fe.frequencies_hz[j]:.1f} Hz, {fe.kinds[j]}")
-        images.append(name)
-    ctx.sections["fe"] = {"modal": fe, "mesh_size_m": size, "images": images}
+        images.append(ModeImage(j, name))
+    return FEOutcome(fe, size, tuple(images))
 
 
-def step_bearings(ctx: RunContext) -> None:
+def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     """The crank condensed to its journal and pin centres (on the FE step's mesh), free and in
     its bearings: modes with torsion/bending shares, the lumped chain against each, and the
     coupled forced response (gas, inertia, tangential and radial pin forces; bearing forces)."""
@@ -117,11 +113,10 @@ def step_bearings(ctx: RunContext) -> None:
     from ..response.coupled import run_coupled_response
     from ..webs.throwfe import held_throw_stiffnesses
 
-    if ctx.fe is None:
-        return
+    if ctx.outcome.fe is None:
+        return None
     size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
-    cc = run_condensed(ctx.crank, size, mesh=ctx.fe.mesh)
-    ctx.condensed = cc
+    cc = run_condensed(ctx.crank, size, mesh=ctx.outcome.fe.modal.mesh)
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
     held_throw_stiffnesses(ctx.crank, size, condensed=cc)  # the fe-held web method then reuses this reduction
@@ -129,58 +124,54 @@ def step_bearings(ctx: RunContext) -> None:
     for method in ("carter", "fe", "fe-held"):
         f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method).frequencies_hz[0])
         chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
-    out = {"condensed": cc, "free": free, "bearings": held, "chain": chain, "f1_free_hz": f_free,
-           "f1_bearings_hz": f_held, "images": [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]}
+    images = [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]
+    coupled = None
     ctx.results["bearings"] = {**cc.to_dict(), "f1_free_hz": f_free, "f1_bearings_hz": f_held, "lumped_17dof": chain,
                                "support": {"radial_stiffness_n_per_m": list(ctx.crank.main_bearings.radial_stiffness),
                                            "from_description": ctx.crank.main_bearings.given}}
     if ctx.crank.excitation is not None:
         coupled = run_coupled_response(cc, "bearings")
-        out["coupled"] = coupled
-        out["images"].append(ctx.save(coupled.plot().figure, "coupled_response.png"))
+        images.append(ctx.save(coupled.plot().figure, "coupled_response.png"))
         ctx.results["bearings"]["coupled_response"] = coupled.to_dict()
-    ctx.sections["bearings"] = out
+    return BearingsOutcome(cc, free, held, chain, f_free, f_held, tuple(images), coupled)
 
 
-def step_campbell(ctx: RunContext) -> None:
+def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
     """Campbell diagram (FE torsional modes when the FE step ran) and forced response."""
     from ..excitation.campbell import run_campbell
     from ..response.forced import run_response
 
     if ctx.crank.excitation is None:
-        ctx.sections["campbell"] = None
-        return
+        return Skipped("the description has no `[excitation]` table")
     # In its bearings when the condensed crank exists (the engine as it runs), else the free-free FE.
-    in_bearings = ctx.condensed is not None and ctx.options.get("support", "bearings") == "bearings"
-    modes = (ctx.condensed.torsional_modes("bearings", 3) if in_bearings
-             else ctx.fe.torsional_modes(3) if ctx.fe is not None else None)
+    bearings, fe = ctx.outcome.bearings, ctx.outcome.fe
+    in_bearings = bearings is not None and ctx.options.get("support", "bearings") == "bearings"
+    modes = (bearings.condensed.torsional_modes("bearings") if in_bearings
+             else fe.modal.torsional_modes() if fe is not None else None)
     camp = run_campbell(ctx.crank, modes)
     resp = run_response(ctx.crank)
     ctx.results["campbell"] = camp.to_dict()
     ctx.results["response"] = resp.to_dict()
-    ctx.sections["campbell"] = {"campbell": camp, "response": resp,
-                                "images": [ctx.save(camp.plot().figure, "campbell.png"),
-                                           ctx.save(resp.plot().figure, "response.png")]}
+    return CampbellOutcome(camp, resp, ctx.save(camp.plot().figure, "campbell.png"),
+                           ctx.save(resp.plot().figure, "response.png"))
 
 
 #: The report's studies of f1 (lumped 17 DOF, default web method), each of the default size.
 REPORT_STUDIES = ("montecarlo", "sobol")
 
 
-def step_verdict(ctx: RunContext) -> None:
+def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     """Fillet stresses, the damper designs and the verdict against the description's [limits]."""
     from ..design.verdict import run_verdict
 
     crank = ctx.crank
     if crank.excitation is None or crank.limits is None:
-        ctx.sections["verdict"] = {"skipped": "the description has no [excitation] and [limits] tables"
-                                   if crank.excitation is None else "the description has no [limits] table"}
-        return
+        return Skipped("the description has no [excitation] and [limits] tables" if crank.excitation is None
+                       else "the description has no [limits] table")
     scf = None
     if crank.limits.kind == "stress":
         if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
-            ctx.sections["verdict"] = {"skipped": "stress limits need fillet radii (a sharp corner has no finite SCF)"}
-            return
+            return Skipped("stress limits need fillet radii (a sharp corner has no finite SCF)")
         from ..design.scf import SHIPPED_SCF, fillet_scfs, scf_key
 
         shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
@@ -192,17 +183,16 @@ def step_verdict(ctx: RunContext) -> None:
     mu = ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO)
     verdict = run_verdict(crank, mu=mu, scf=scf)
     ctx.results["verdict"] = verdict.to_dict()
-    outcome = {"verdict": verdict, "mu": mu, "scf": scf, "image": ctx.save(verdict.plot().figure, "verdict.png")}
+    stress = None
     if scf is not None:
         from ..design.stress import fillet_stress
 
-        stress = fillet_stress(crank, ctx.sections["campbell"]["response"], scf)
+        stress = fillet_stress(crank, ctx.outcome.campbell.response, scf)
         ctx.results["stress"] = stress.to_dict()
-        outcome["stress"] = stress
-    ctx.sections["verdict"] = outcome
+    return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress)
 
 
-def step_sensitivity(ctx: RunContext) -> None:
+def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
     Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
     The studies run on an embedded Dask cluster, each sample stored as it finishes."""
@@ -213,8 +203,7 @@ def step_sensitivity(ctx: RunContext) -> None:
     from ..studies.study import run_study
 
     if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
-        ctx.sections["sensitivity"] = None
-        return
+        return Skipped("the description has no `[uncertainty]` table")
     sens = run_sensitivity(ctx.crank)
     ctx.results["sensitivity"] = sens.to_dict()
     inputs, _ = study_inputs(ctx.crank)
@@ -226,27 +215,27 @@ def step_sensitivity(ctx: RunContext) -> None:
         studies = {method: run_study(model, inputs, method, n, client=client, store=store, name=ctx.crank.name,
                                      measured_hz=measured)
                    for method, n in ((m, DEFAULT_STUDY_SAMPLES[m]) for m in REPORT_STUDIES)}
-        checks = fe_check(ctx.crank, sens, client=client, store=store) if ctx.fe is not None else []
+        checks = fe_check(ctx.crank, sens, client=client, store=store) if ctx.outcome.fe is not None else []
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks
     ctx.results["studies"] = {m: r.to_dict() for m, r in studies.items()}
-    ctx.sections["sensitivity"] = {
-        "sensitivity": sens, "fe_check": checks, "image": ctx.save(sens.plot().figure, "sensitivity.png"),
-        "studies": studies,
-        "study_images": {"montecarlo": ctx.save(studies["montecarlo"].plot(kind="histogram").figure, "f1_montecarlo.png"),
-                         "sobol": ctx.save(studies["sobol"].plot(kind="indices").figure, "f1_sobol.png")}}
+    return SensitivityOutcome(
+        sens, checks, ctx.save(sens.plot().figure, "sensitivity.png"), studies,
+        {"montecarlo": ctx.save(studies["montecarlo"].plot(kind="histogram").figure, "f1_montecarlo.png"),
+         "sobol": ctx.save(studies["sobol"].plot(kind="indices").figure, "f1_sobol.png")})
 
 
-DEFAULT_STEPS: tuple[tuple[str, Callable[[RunContext], None]], ...] = (
-    ("lumped models", step_lumped),
-    ("mesh and FE modal analysis", step_fe),
-    ("condensed crank in its bearings", step_bearings),
-    ("Campbell diagram and forced response", step_campbell),
-    ("sensitivity of f1", step_sensitivity),
-    ("fillet stress, dampers and verdict", step_verdict),
+#: (what the progress line says, the RunOutcome field its outcome fills, the step), in order.
+DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
+    ("lumped models", "lumped", step_lumped),
+    ("mesh and FE modal analysis", "fe", step_fe),
+    ("condensed crank in its bearings", "bearings", step_bearings),
+    ("Campbell diagram and forced response", "campbell", step_campbell),
+    ("sensitivity of f1", "sensitivity", step_sensitivity),
+    ("fillet stress, dampers and verdict", "verdict", step_verdict),
 )
 # ``fetorsion run --no-fe``: the same report without the mesh and the FE modal analysis.
-FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[1] not in (step_fe, step_bearings))
+FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[2] not in (step_fe, step_bearings))
 
 
 def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool = False) -> Path:
@@ -259,8 +248,9 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     out : str or Path
         Report folder. It may be new, empty, or an earlier fetorsion report (replaced only
         once the whole run has succeeded); anything else is refused unless ``force``.
-    steps : sequence of (name, function)
-        The analyses, in order.
+    steps : sequence of (name, field, function)
+        The analyses, in order: ``function(ctx)`` returns the outcome of the
+        :class:`~fetorsion.report.outcomes.RunOutcome` field ``field``.
     options : dict, optional
         Passed to the steps (mesh size and such).
     force : bool
@@ -275,21 +265,22 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
     if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
-        steps = tuple(s for s in steps if s[1] not in (step_fe, step_bearings))
+        steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
     with atomic_folder(out) as work:
-        ctx = RunContext(crank, work, {"no_fe": not any(s[1] is step_fe for s in steps), **(options or {})})
-        for name, fn in steps:
+        outcome = RunOutcome(crank, str(path), timings_s={})
+        ctx = RunContext(crank, work, {"no_fe": not any(s[2] is step_fe for s in steps), **(options or {})}, outcome)
+        for name, key, fn in steps:
             _progress(f"{name} ...")
             t0 = time.perf_counter()
-            fn(ctx)
-            ctx.timings_s[name] = time.perf_counter() - t0
-            _progress(f"{name}: done in {ctx.timings_s[name]:.1f} s")
-        ctx.results["timings_s"] = ctx.timings_s
-        write_text_atomic(work / "report.md", report_markdown(crank, path, ctx.sections, ctx.timings_s))
+            setattr(outcome, key, fn(ctx))
+            outcome.timings_s[name] = time.perf_counter() - t0
+            _progress(f"{name}: done in {outcome.timings_s[name]:.1f} s")
+        ctx.results["timings_s"] = outcome.timings_s
+        write_text_atomic(work / "report.md", report_markdown(outcome))
         if ctx.options.get("html", True):
-            from .html import report_html
+            from ..report.html import report_html
 
-            write_text_atomic(work / "report.html", report_html(crank, path, ctx.sections, ctx.timings_s, work))
+            write_text_atomic(work / "report.html", report_html(outcome, work))
         write_text_atomic(work / "results.json", json.dumps(_jsonable(ctx.results), indent=1) + "\n")
     return out
 

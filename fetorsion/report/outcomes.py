@@ -1,0 +1,122 @@
+"""What a report presents: one typed outcome per analysis of a run, filled by the run
+(:mod:`fetorsion.app.run`) and read field by field by the Markdown and the web page.
+
+An outcome holds the analysis' results objects (each with ``table()``, ``plot()`` and
+``to_dict()``) and the file names of the pictures the run saved for it. A section whose
+analysis was not part of the run is ``None`` (left out of the report); one whose analysis had
+nothing to work on is :class:`Skipped`, with the reason the report prints.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Skipped:
+    """An analysis of the run that had nothing to work on, and why (a sentence)."""
+
+    reason: str
+
+
+@dataclass(frozen=True)
+class ChainOutcome:
+    """A chain file's modes: its :class:`~fetorsion.lumped_model.lumped.LumpedResult` and their plot."""
+
+    chain: object
+    image: str
+
+
+@dataclass(frozen=True)
+class LumpedOutcome:
+    """Every partition with every web method: ``table[method]`` lists the LumpedResults in the
+    order of :data:`~fetorsion.lumped_model.lumped.PARTITIONS`; ``skipped[method]`` says why a
+    method could not be used; ``image`` the default model's mode shapes."""
+
+    table: dict
+    skipped: dict
+    image: str
+
+
+@dataclass(frozen=True)
+class ModeImage:
+    """The picture of one FE mode: its index in the modal result (0-based) and its file."""
+
+    mode: int
+    file: str
+
+
+@dataclass(frozen=True)
+class FEOutcome:
+    """The 3D FE modal analysis (a :class:`~fetorsion.fe.crankfe.CrankModal`), its global
+    element size (m) and the pictures of its torsional and first bending modes."""
+
+    modal: object
+    mesh_size_m: float
+    images: tuple[ModeImage, ...]
+
+
+@dataclass(frozen=True)
+class BearingsOutcome:
+    """The condensed crank free-free and in its bearings (``free``, ``bearings``: its modes),
+    the 17-DOF chain against both (``chain[web method]``: ``f1_hz``, ``vs_free``,
+    ``vs_bearings``), the coupled forced response when the crank is excited, the pictures."""
+
+    condensed: object
+    free: object
+    bearings: object
+    chain: dict
+    f1_free_hz: float
+    f1_bearings_hz: float
+    images: tuple[str, ...]
+    coupled: object = None
+
+
+@dataclass(frozen=True)
+class CampbellOutcome:
+    """The Campbell diagram and the forced response, with their pictures."""
+
+    campbell: object
+    response: object
+    campbell_image: str
+    response_image: str
+
+
+@dataclass(frozen=True)
+class SensitivityOutcome:
+    """f1 against each uncertain input, the FE check of the largest, the Monte Carlo and Sobol'
+    studies (``studies[method]``) and their pictures (``study_images[method]``)."""
+
+    sensitivity: object
+    fe_check: list
+    image: str
+    studies: dict
+    study_images: dict
+
+
+@dataclass(frozen=True)
+class VerdictOutcome:
+    """The verdict against the description's limits with the damper inertia ratio ``mu`` and the
+    fillet SCFs it used (``scf``: ``pin``, ``journal``, ``source``; None for torque limits),
+    the fillet stress without a damper, and the picture."""
+
+    verdict: object
+    mu: float
+    scf: dict | None
+    image: str
+    stress: object = None
+
+
+@dataclass
+class RunOutcome:
+    """Every section of one run, in pipeline order, and each step's wall time (s)."""
+
+    crank: object
+    path: str
+    lumped: LumpedOutcome | ChainOutcome | None = None
+    fe: FEOutcome | None = None
+    bearings: BearingsOutcome | None = None
+    campbell: CampbellOutcome | Skipped | None = None
+    sensitivity: SensitivityOutcome | Skipped | None = None
+    verdict: VerdictOutcome | Skipped | None = None
+    timings_s: dict | None = None
