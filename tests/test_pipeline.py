@@ -105,3 +105,38 @@ def test_report_files_are_readable_by_others(tmp_path):
         mode = stat.S_IMODE(p.stat().st_mode)
         expected = (0o777 if p.is_dir() else 0o666) & ~mask
         assert mode == expected, (p, oct(mode))
+
+
+def test_a_run_builds_what_its_steps_share_once(tmp_path, monkeypatch):
+    # Every step that needs the crank's parts (per web method), the forced response's setup or
+    # the fillet list gets the one the run built; studies' variants are other cranks and build
+    # their own. Counted by wrapping each builder wherever a module holds it.
+    import sys
+    from collections import Counter
+
+    from fetorsion.design import stress
+    from fetorsion.lumped_model import parts
+    from fetorsion.response import forced
+
+    nominal = json.dumps(fetorsion.load(GEOMETRY / "renault21.toml").raw, sort_keys=True, default=str)
+    calls = Counter()
+
+    def counting(name, original):
+        def wrapper(crank, *args, **kwargs):
+            if json.dumps(crank.raw, sort_keys=True, default=str) == nominal:
+                method = args[0] if name == "build_parts" and args else kwargs.get("web_method", "")
+                calls[name, method if name == "build_parts" else ""] += 1
+            return original(crank, *args, **kwargs)
+        return wrapper
+
+    for module, name in ((parts, "build_parts"), (forced, "response_setup"), (stress, "fillets_of")):
+        original = getattr(module, name)
+        wrapper = counting(name, original)
+        for m in list(sys.modules.values()):
+            if m is not None and m.__name__.startswith("fetorsion") and getattr(m, name, None) is original:
+                monkeypatch.setattr(m, name, wrapper)
+    run(GEOMETRY / "renault21.toml", tmp_path / "r", steps=NO_FE)
+    from fetorsion.webs.methods import WEB_METHODS
+
+    assert calls == Counter({**{("build_parts", m): 1 for m in WEB_METHODS}, ("response_setup", ""): 1,
+                             ("fillets_of", ""): 1})

@@ -45,6 +45,35 @@ class RunContext:
     options: dict
     outcome: RunOutcome
     results: dict = field(default_factory=dict)
+    #: What several steps derive from the crank, built once by the first that needs it: the
+    #: crank's parts by web method, the forced response's setup, the fillets.
+    built: dict = field(default_factory=dict)
+
+    def parts(self, method: str = DEFAULT_WEB_METHOD):
+        """The crank cut into its parts with ``method``'s web stiffness (built once)."""
+        from ..lumped_model.parts import build_parts
+
+        if ("parts", method) not in self.built:
+            self.built["parts", method] = build_parts(self.crank, method)
+        return self.built["parts", method]
+
+    def setup(self):
+        """The forced response's setup of the crank (its chain, damping, the cylinders' forces at
+        every speed and order; built once): the response and every verdict case derive from it."""
+        from ..response.forced import response_setup
+
+        if "setup" not in self.built:
+            parts = None if isinstance(self.crank, Chain) else self.parts()
+            self.built["setup"] = response_setup(self.crank, parts=parts)
+        return self.built["setup"]
+
+    def fillets(self):
+        """Every fillet of the crank (built once)."""
+        from ..design.stress import fillets_of
+
+        if "fillets" not in self.built:
+            self.built["fillets"] = fillets_of(self.crank, self.parts())
+        return self.built["fillets"]
 
     def save(self, fig, name: str) -> str:
         save_figure_atomic(fig, self.folder / name, close=True, dpi=120)
@@ -67,7 +96,8 @@ def step_lumped(ctx: RunContext) -> LumpedOutcome | ChainOutcome:
     table, skipped = {}, {}
     for method in WEB_METHODS:
         try:
-            table[method] = [lumped(ctx.crank, d, method) for d in PARTITIONS]
+            parts = ctx.parts(method)
+            table[method] = [lumped(ctx.crank, d, method, parts=parts) for d in PARTITIONS]
         except FetorsionError as exc:  # e.g. a web outside the computed chart's range
             skipped[method] = str(exc)
     ctx.results["lumped"] = {m: [r.to_dict() for r in rs] for m, rs in table.items()}
@@ -122,7 +152,7 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     held_throw_stiffnesses(ctx.crank, size, condensed=cc)  # the fe-held web method then reuses this reduction
     chain = {}
     for method in ("carter", "fe", "fe-held"):
-        f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method).frequencies_hz[0])
+        f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method, parts=ctx.parts(method)).frequencies_hz[0])
         chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
     images = [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]
     coupled = None
@@ -139,7 +169,7 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
 def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
     """Campbell diagram (FE torsional modes when the FE step ran) and forced response."""
     from ..excitation.campbell import run_campbell
-    from ..response.forced import run_response
+    from ..response.forced import solve_response
 
     if ctx.crank.excitation is None:
         return Skipped("the description has no `[excitation]` table")
@@ -148,8 +178,8 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
     in_bearings = bearings is not None and ctx.options.get("support", "bearings") == "bearings"
     modes = (bearings.condensed.torsional_modes("bearings") if in_bearings
              else fe.modal.torsional_modes() if fe is not None else None)
-    camp = run_campbell(ctx.crank, modes)
-    resp = run_response(ctx.crank)
+    camp = run_campbell(ctx.crank, modes, parts=None if isinstance(ctx.crank, Chain) else ctx.parts())
+    resp = solve_response(ctx.setup(), ctx.crank.dampers)
     ctx.results["campbell"] = camp.to_dict()
     ctx.results["response"] = resp.to_dict()
     return CampbellOutcome(camp, resp, ctx.save(camp.plot().figure, "campbell.png"),
@@ -181,13 +211,14 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
             _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
             scf = fillet_scfs(crank)
     mu = ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO)
-    verdict = run_verdict(crank, mu=mu, scf=scf)
+    fillets = ctx.fillets() if scf is not None else None
+    verdict = run_verdict(crank, mu=mu, scf=scf, setup=ctx.setup(), fillets=fillets)
     ctx.results["verdict"] = verdict.to_dict()
     stress = None
     if scf is not None:
         from ..design.stress import fillet_stress
 
-        stress = fillet_stress(crank, ctx.outcome.campbell.response, scf)
+        stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets)
         ctx.results["stress"] = stress.to_dict()
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress)
 
@@ -204,7 +235,7 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
 
     if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
         return Skipped("the description has no `[uncertainty]` table")
-    sens = run_sensitivity(ctx.crank)
+    sens = run_sensitivity(ctx.crank, parts=ctx.parts())
     ctx.results["sensitivity"] = sens.to_dict()
     inputs, _ = study_inputs(ctx.crank)
     model = make_model(ctx.crank, "lumped17")

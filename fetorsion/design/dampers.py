@@ -109,13 +109,14 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
     raise ParameterError("kind", f"{kind!r}: choose viscous, rubber or tuned")
 
 
-def stress_weights(crank: Crank, positions_m, scf: dict) -> np.ndarray:
+def stress_weights(crank: Crank, positions_m, scf: dict, fillets=None) -> np.ndarray:
     """Pa of fillet shear per N·m of each spring's torque: SCF · 16 D / (π (D⁴ − d_i⁴)) of the most
-    stressed fillet the spring carries (0 for a spring that carries none)."""
+    stressed fillet the spring carries (0 for a spring that carries none); ``fillets`` as
+    :func:`fetorsion.design.stress.fillets_of` gives them, when the caller has them."""
     from .stress import fillet_springs, fillets_of
     from .scf import nominal_shear
 
-    fillets = fillets_of(crank)
+    fillets = fillets_of(crank) if fillets is None else fillets
     springs = fillet_springs(fillets, positions_m)
     w = np.zeros(len(positions_m) - 1)
     for f, s in zip(fillets, springs):
@@ -201,7 +202,8 @@ class DamperResult:
 
 def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,
                objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
-               scf: dict | None = None, rpm=None, partition: int = DEFAULT_PARTITION, **setup_options) -> DamperResult:
+               scf: dict | None = None, rpm=None, partition: int = DEFAULT_PARTITION, setup=None, fillets=None,
+               **setup_options) -> DamperResult:
     """Den Hartog start and numeric optimum of a damper on the whole crank.
 
     Parameters
@@ -226,6 +228,11 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         Fillet SCFs for ``stress`` (default :func:`fetorsion.design.scf.fillet_scfs`).
     rpm : array_like, optional
         Speeds, rpm (default the response's).
+    setup : ResponseSetup, optional
+        The crank's :func:`~fetorsion.response.forced.response_setup` when the caller has it
+        (then ``rpm``, ``partition`` and ``setup_options`` are its own).
+    fillets : list of Fillet, optional
+        :func:`fetorsion.design.stress.fillets_of` the crank, when the caller has them.
     """
     if objective not in OBJECTIVES:
         raise ParameterError("objective", f"{objective!r}: choose {' or '.join(OBJECTIVES)}")
@@ -233,7 +240,7 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         raise ParameterError("at", f"{at!r}: choose {' or '.join(DAMPER_STATIONS)}")
     if objective == "stress" and isinstance(crank, Chain):
         raise ParameterError("objective", "stress: a chain file has no shaft sections; use twist")
-    setup = response_setup(crank, partition, rpm, **setup_options)
+    setup = response_setup(crank, partition, rpm, **setup_options) if setup is None else setup
     n = len(setup.labels)
     station = 0 if at == "front" else n - 1
     J_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, mode)
@@ -242,7 +249,7 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
     if objective == "stress":
         from .scf import fillet_scfs
 
-        weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf)
+        weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf, fillets)
 
     def curve(dampers):  # only the objective's synthesis: the optimiser calls this some 80 times
         theta, _, _ = solve_theta(setup, dampers)

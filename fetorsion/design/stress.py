@@ -38,12 +38,14 @@ class Fillet:
         return f"{'J' if self.kind == 'journal' else 'P'}{self.index + 1} fillet at x = {self.x * 1e3:.1f} mm"
 
 
-def fillets_of(crank: Crank) -> list[Fillet]:
-    """Every journal–web and pin–web junction of ``crank``, front to rear."""
+def fillets_of(crank: Crank, parts=None) -> list[Fillet]:
+    """Every journal–web and pin–web junction of ``crank``, front to rear (``parts``: its
+    :class:`~fetorsion.lumped_model.parts.PartChain` by any web method, when the caller has it:
+    the positions do not depend on the method)."""
     from ..lumped_model.parts import build_parts
 
-    parts = sorted((p for p in build_parts(crank, "carter").parts if p.kind in ("journal", "pin", "web")),
-                   key=lambda p: p.x0)
+    chain = build_parts(crank, "carter") if parts is None else parts
+    parts = sorted((p for p in chain.parts if p.kind in ("journal", "pin", "web")), key=lambda p: p.x0)
     out = []
     for a, b in zip(parts, parts[1:]):
         if (a.kind == "web") == (b.kind == "web"):
@@ -126,10 +128,11 @@ class StressResult:
         return ax
 
 
-def fillet_stress(crank: Crank, response, scf: dict) -> StressResult:
+def fillet_stress(crank: Crank, response, scf: dict, fillets: list[Fillet] | None = None) -> StressResult:
     """Fillet stresses of ``response`` (a :class:`~fetorsion.response.forced.ResponseResult` of a
-    lumped crank model) with the SCFs ``scf`` (``pin``, ``journal``, ``source``)."""
-    fillets = fillets_of(crank)
+    lumped crank model) with the SCFs ``scf`` (``pin``, ``journal``, ``source``); ``fillets``:
+    :func:`fillets_of` the crank, when the caller has them."""
+    fillets = fillets_of(crank) if fillets is None else fillets
     springs = fillet_springs(fillets, response.positions_m)
     torque = response.section_torque_nm[:, springs]  # (speeds, fillets)
     D = np.array([f.diameter for f in fillets])

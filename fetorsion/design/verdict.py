@@ -122,12 +122,12 @@ class VerdictResult:
         return ax
 
 
-def _case(name: str, crank, response, scf, limits: Limits) -> VerdictCase:
+def _case(name: str, crank, response, scf, limits: Limits, fillets) -> VerdictCase:
     """The worst value over sections against speed for one response."""
     if limits.kind == "stress":
         from .stress import fillet_stress
 
-        st = fillet_stress(crank, response, scf)
+        st = fillet_stress(crank, response, scf, fillets)
         j = np.argmax(st.stress_pa, axis=1)
         value, where = st.stress_pa.max(axis=1), [st.fillets[k].label for k in j]
     else:
@@ -144,7 +144,7 @@ def _case(name: str, crank, response, scf, limits: Limits) -> VerdictCase:
 
 
 def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
-                misfire: bool = True, scf: dict | None = None, rpm=None) -> VerdictResult:
+                misfire: bool = True, scf: dict | None = None, rpm=None, setup=None, fillets=None) -> VerdictResult:
     """The verdict table of a crank (or chain file) with ``[limits]``.
 
     Cases: without damper; with the description's ``[[dampers]]`` if it has any; with Den
@@ -152,6 +152,10 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     damper optimised on the whole crank (:func:`fetorsion.design.dampers.run_damper`,
     objective: the limited quantity); and the misfire of the cylinder that makes it worst, with
     the best of those dampers.
+
+    ``setup`` (the crank's :func:`~fetorsion.response.forced.response_setup`; then ``rpm`` is
+    its own) and ``fillets`` (:func:`fetorsion.design.stress.fillets_of`) are built here unless
+    the caller has them; every case, the damper tuning and the misfires are derived from them.
     """
     from ..response.forced import motored_harmonics, response_setup, solve_response
     from .dampers import run_damper
@@ -163,19 +167,25 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
         from .scf import fillet_scfs
 
         scf = fillet_scfs(crank)
-    setup = response_setup(crank, rpm=rpm)
-    # The damper is tuned on 100 speeds (the optimiser's many responses), then checked on all.
-    coarse = np.linspace(setup.rpm[0], setup.rpm[-1], min(100, len(setup.rpm)))
-    cases = [_case("without damper", crank, solve_response(setup, ()), scf, limits)]
+    setup = response_setup(crank, rpm=rpm) if setup is None else setup
+    if limits.kind == "stress" and fillets is None:
+        from .stress import fillets_of
+
+        fillets = fillets_of(crank)
+    # The damper is tuned on every k-th speed, at most 100 (the optimiser's many responses),
+    # then checked on all.
+    coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // 100)))
+    cases = [_case("without damper", crank, solve_response(setup, ()), scf, limits, fillets)]
     if crank.dampers:
-        cases.append(_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits))
+        cases.append(_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits,
+                           fillets))
     objective = "stress" if limits.kind == "stress" else "twist"
-    tuned = run_damper(crank, kind, mu, optimise, objective, scf=scf, rpm=coarse)
+    tuned = run_damper(crank, kind, mu, optimise, objective, scf=scf, setup=coarse, fillets=fillets)
     options = [("Den Hartog " + kind + f" damper (mu = {mu:g})", tuned.den_hartog)]
     if tuned.optimised is not None:
         options.append((f"optimised {kind} damper (mu = {mu:g})", tuned.optimised))
     for name, d in options:
-        cases.append(_case(name, crank, solve_response(setup, (d,)), scf, limits))
+        cases.append(_case(name, crank, solve_response(setup, (d,)), scf, limits, fillets))
     notes = [f"Den Hartog start on mode 1 ({tuned.mode_hz:.1f} Hz) seen from the pulley: J_eq = "
              f"{tuned.equivalent_inertia_kgm2:.4g} kg m^2, ring {tuned.den_hartog.ring_inertia:.4g} kg m^2"]
     if misfire and crank.excitation.pressure_curve is not None:
@@ -187,7 +197,8 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
         for c in range(crank.engine.cylinders):
             ms = setup.with_misfire(c, motored)
             for name, dampers in (("without damper", ()), (best_name, (best,))):
-                case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits)
+                case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits,
+                             fillets)
                 if worst[name] is None or case.value.max() > worst[name].value.max():
                     worst[name] = case
         cases += list(worst.values())

@@ -56,9 +56,10 @@ def lumped_modes_source(res) -> str:
 
 
 def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
-                 web_method: str = DEFAULT_WEB_METHOD) -> TorsionalModes:
-    """Torsional modes of a lumped partition (or of a chain file) in the form the Campbell analysis uses."""
-    return lumped(crank, partition, web_method).torsional_modes()
+                 web_method: str = DEFAULT_WEB_METHOD, parts=None) -> TorsionalModes:
+    """Torsional modes of a lumped partition (or of a chain file) in the form the Campbell analysis
+    uses (``parts``: the crank's PartChain for ``web_method``, when the caller has it)."""
+    return lumped(crank, partition, web_method, parts=parts).torsional_modes()
 
 
 @dataclass
@@ -149,7 +150,7 @@ def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
 
 def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
                  n_modes: int = DEFAULT_TORSIONAL_MODES, damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
-                 web_method: str = DEFAULT_WEB_METHOD) -> CampbellResult:
+                 web_method: str = DEFAULT_WEB_METHOD, parts=None) -> CampbellResult:
     """Crossings of the first ``n_modes`` torsional modes with each order, and their severity.
 
     Parameters
@@ -167,8 +168,9 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     damping_ratio : float, optional
         Modal damping ratio ζ for the severity; default the description's. A chain's stated
         dampers add their equivalent ratio per mode (:func:`modal_damping_ratios`).
-    partition, web_method : int, str
-        The lumped model when ``modes`` is not given. The description's ``[[dampers]]`` then
+    partition, web_method, parts : int, str, PartChain
+        The lumped model when ``modes`` is not given (``parts``: the crank's, when the caller
+        has them). The description's ``[[dampers]]`` then
         join the modes and add their damping per mode
         (:func:`fetorsion.lumped_model.damped.damped_modes`); given ``modes`` are taken as they are.
 
@@ -184,10 +186,10 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
     gained = None
     if modes is None and crank.dampers:
-        res = lumped(crank, partition, web_method)
+        res = lumped(crank, partition, web_method, parts=parts)
         modes, gained = damped_modes(res.inertias_kgm2, res.stiffnesses_nm_per_rad, res.pin_weights, crank.dampers,
                                      source=f"{lumped_modes_source(res)} with {len(crank.dampers)} damper(s)")
-    modes = modes or lumped_modes(crank, partition, web_method)
+    modes = modes or lumped_modes(crank, partition, web_method, parts)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     if np.any(orders <= 0):
         raise FetorsionError(f"orders must be > 0, got {orders.tolist()}")

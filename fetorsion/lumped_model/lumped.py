@@ -238,7 +238,8 @@ def solve_chain(inertias, stiffnesses):
     return float(hz[0]), hz[1:], shapes
 
 
-def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD) -> LumpedResult:
+def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
+           parts: PartChain | None = None) -> LumpedResult:
     """Free-free lumped torsional model of a crank (one partition) or of a chain file.
 
     Parameters
@@ -251,6 +252,9 @@ def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = 
     stiffness : str
         Web stiffness method, a key of :data:`fetorsion.webs.sections.WEB_METHODS`: ``"carter"``,
         ``"ker-wilson"``, ``"beam"``, ``"fe"`` (static FE of each throw, cached) or ``"chart"``.
+    parts : PartChain, optional
+        ``build_parts(model, stiffness)`` when the caller has it already (every partition of
+        one crank and method comes from the same parts).
 
     Returns
     -------
@@ -274,7 +278,7 @@ def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = 
         return LumpedResult(model.name, None, list(model.labels), np.full(len(model.inertias), np.nan),
                             np.array(model.inertias), np.array(model.stiffnesses), hz, shapes, rigid,
                             {"source": model.source}, weights)
-    chain = build_parts(model, stiffness)
+    chain = build_parts(model, stiffness) if parts is None else parts
     inertias, springs, labels, anchors = partition_matrices(chain, dof)
     rigid, hz, shapes = solve_chain(inertias, springs)
     return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,

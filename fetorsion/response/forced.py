@@ -237,6 +237,14 @@ class ResponseSetup:
     phasors: np.ndarray | None = None  # (orders, cylinders): e^{−i q φ_c}
     pin_weights: np.ndarray | None = None  # (cylinders, stations)
 
+    def at_speeds(self, index) -> "ResponseSetup":
+        """The same setup at a subset of its speeds (``index`` into ``rpm``: a slice or indices),
+        exactly: each speed's forces are its own."""
+        from dataclasses import replace
+
+        Tq = None if self.torque_harmonics is None else self.torque_harmonics[index]
+        return replace(self, rpm=self.rpm[index], forces=self.forces[index], torque_harmonics=Tq)
+
     def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
         """The same engine with ``cylinder`` (0-based) not firing: its torque harmonics replaced by
         ``motored`` (speeds, orders; :func:`motored_harmonics`), the others' unchanged."""
@@ -248,8 +256,10 @@ class ResponseSetup:
 
 def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
                    damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
-                   misfire: int | None = None) -> ResponseSetup:
-    """The chain, its damping and the cylinders' forces for :func:`run_response` (arguments as there)."""
+                   misfire: int | None = None, parts=None) -> ResponseSetup:
+    """The chain, its damping and the cylinders' forces for :func:`run_response` (arguments as there;
+    ``parts``: the crank's :class:`~fetorsion.lumped_model.parts.PartChain` for ``web_method``
+    when the caller has it)."""
     ex = crank.excitation
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
@@ -259,7 +269,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
         raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
-    res = lumped(crank, partition, web_method)
+    res = lumped(crank, partition, web_method, parts=parts)
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     # The modal damping ratio stands for the crank's own losses: it is set on the chain's modes
     # without the dampers, which bring their own damping.

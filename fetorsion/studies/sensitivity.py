@@ -120,8 +120,10 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     return out
 
 
-def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD) -> SensitivityResult:
-    """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band.
+def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
+                    parts=None) -> SensitivityResult:
+    """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band (``parts``:
+    the nominal crank's PartChain for ``stiffness``, when the caller has it).
 
     Examples
     --------
@@ -137,7 +139,7 @@ def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str =
     def f1(c: Crank) -> float:
         return float(lumped(c, dof, stiffness).frequencies_hz[0])
 
-    nominal = f1(crank)
+    nominal = float(lumped(crank, dof, stiffness, parts=parts).frequencies_hz[0])
     rows, lower, upper = [], {}, {}
     for name, members in crank.uncertainty:
         lows = {path: low for path, low, _ in members}
