@@ -14,7 +14,7 @@ from .errors import DescriptionError, FetorsionError
 
 #: Names imported on first use (PEP 562): the excitation stage pulls in scipy.integrate
 #: (0.3 s), which the FE modal path and the Gmsh child process (which imports this package
-#: too) never need; every ``import fetorsion.x`` paid it before issue 17.
+#: too) never need; without the laziness every ``import fetorsion.x`` paid it.
 _LAZY = {
     "run_campbell": "excitation.campbell",
     "PARTITIONS": "lumped_model.lumped", "LumpedResult": "lumped_model.lumped", "lumped": "lumped_model.lumped",

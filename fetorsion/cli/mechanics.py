@@ -157,7 +157,7 @@ def add_parsers(sub, emit_json) -> None:
         p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
         p.add_argument("--plot", metavar="PATH", help="write a figure (PNG, PDF or SVG by suffix)")
 
-    kp = sub.add_parser("kinematics", help="slider-crank or planetary-crank kinematics (seeds 002, 004)")
+    kp = sub.add_parser("kinematics", help="slider-crank or planetary-crank kinematics ([Ismailov], [Kazemi])")
     kp.add_argument("file", help="mechanics file (.toml) with [slider_crank] or [planetary], or a crank description")
     kp.add_argument("--rpm", type=real(0.0, unit="rpm"), help="crank speed, rev/min (overrides the file's)")
     kp.add_argument("--step", type=real(0.0, 360.0, high_open=False, unit="deg"), default=30.0,
@@ -165,15 +165,15 @@ def add_parsers(sub, emit_json) -> None:
     common(kp)
     kp.set_defaults(func=lambda a: cmd_kinematics(a, emit_json))
 
-    bp = sub.add_parser("balance", help="single-cylinder balancing: masses, counterweight, shafts, over-balancing (seeds 000, 001)")
+    bp = sub.add_parser("balance", help="single-cylinder balancing: masses, counterweight, shafts, over-balancing ([Asgari], [Wang])")
     bp.add_argument("file", help="mechanics file (.toml) with [slider_crank], [masses], [balance]")
     common(bp)
     bp.set_defaults(func=lambda a: cmd_balance(a, emit_json))
 
-    fp = sub.add_parser("flywheel", help="flywheel sizing by the energy method (seed 000)")
+    fp = sub.add_parser("flywheel", help="flywheel sizing by the energy method ([Asgari])")
     fp.add_argument("file", help="mechanics file (.toml) with [flywheel], or a crank description with [excitation]")
     fp.add_argument("--rpm", type=real(0.0, unit="rpm"), help="speed for a crank description, rev/min")
     fp.add_argument("--speed-fluctuation", type=real(0.0, 1.0), default=0.04,
-                    help="C_s = 2 (N1 − N2)/(N1 + N2) for a crank description (default %(default)s, seed 000)")
+                    help="C_s = 2 (N1 − N2)/(N1 + N2) for a crank description (default %(default)s, [Asgari])")
     common(fp)
     fp.set_defaults(func=lambda a: cmd_flywheel(a, emit_json))

@@ -8,7 +8,7 @@ CHECK_MESH_SIZE = 0.025  # m
 DEFAULT_MODES = 20  # elastic FE modes
 DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
 # Modal damping ratio when the description's [excitation] gives none: a design-rule value for
-# an undamped steel crank (issue 5).
+# an undamped steel crank.
 DEFAULT_DAMPING_RATIO = 0.02
 DEFAULT_SPEED_STEPS = 300  # speeds across the operating range in the forced response
 # A damper's ring inertia over the equivalent inertia of the mode it damps (Den Hartog's μ): a

@@ -1,4 +1,4 @@
-"""Torsional stress concentration factors at fillets from fetorsion's own static 3D FE (issue 14).
+"""Torsional stress concentration factors at fillets from fetorsion's own static 3D FE.
 
 A throw (or a stepped shaft) is twisted by a pure torque T between two rigid end faces
 (:func:`fetorsion.webs.throwfe.torsion_solution`). A throw loaded by a couple about the crank

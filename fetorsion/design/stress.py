@@ -1,4 +1,4 @@
-"""Vibratory shear stress at the pin and journal fillets, from the synthesised section torques (issue 14).
+"""Vibratory shear stress at the pin and journal fillets, from the synthesised section torques.
 
 Each fillet (a journal–web or pin–web junction at axial position x) lies between two anchors of
 the lumped chain, so it carries that spring's torque (the lumped model has no inertia between

@@ -1,4 +1,4 @@
-"""The design verdict (issue 14): the worst vibratory stress (or torque) over the speed range against
+"""The design verdict: the worst vibratory stress (or torque) over the speed range against
 the description's ``[limits]``, without a damper, with Den Hartog's damper and with the optimised
 one, the barred speed ranges and the misfire case.
 

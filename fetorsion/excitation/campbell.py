@@ -1,4 +1,4 @@
-"""Campbell (interference) diagram with the excitation of each order measured (seed 003 eq. 21).
+"""Campbell (interference) diagram with the excitation of each order measured ([Seyedalian] eq. 21).
 
 A mode j of frequency f_j meets order q at n = 60 f_j / q rpm. Whether that crossing
 matters depends on the cylinders' torque harmonic T_q at that speed and on how the

@@ -1,33 +1,33 @@
 """Slider-crank kinematics and crank-pin forces, exact and as the papers' series.
 
-Conventions (seed 004): the cylinder axis passes through the crank axis; θ is the crank
+Conventions ([Kazemi]): the cylinder axis passes through the crank axis; θ is the crank
 angle from top dead centre (TDC), positive in the sense of rotation; r the crank radius,
 l the rod length (eye centre to eye centre), λ = r/l, β the rod angle from the cylinder
 axis with sin β = λ sin θ. The piston position S is measured from the crank axis towards
-the cylinder head; the displacement X from TDC (seed 002) is X = r + l − S.
+the cylinder head; the displacement X from TDC ([Ismailov]) is X = r + l − S.
 
 Exact forms::
 
-    S(θ)  = r cos θ + l √(1 − λ² sin²θ)                                   seed 004 eq. 5
+    S(θ)  = r cos θ + l √(1 − λ² sin²θ)                                   [Kazemi] eq. 5
     Ṡ(θ)  = −r ω [sin θ + λ sin θ cos θ / √D],      D = 1 − λ² sin²θ
     S̈(θ)  = −r ω² [cos θ + λ (cos 2θ + λ² sin⁴θ) / D^{3/2}]
-    β̇     = λ ω cos θ / cos β                                              seed 004 eq. 11
+    β̇     = λ ω cos θ / cos β                                              [Kazemi] eq. 11
     β̈     = −λ (1 − λ²) ω² sin θ / D^{3/2}
 
-Second-order series (seed 002 eq. 17–19, seed 004 eq. 7, 9, 10, 12)::
+Second-order series ([Ismailov] eq. 17–19, [Kazemi] eq. 7, 9, 10, 12)::
 
     S ≈ r cos θ + l (1 − λ²/4 + (λ²/4) cos 2θ)
     Ṡ ≈ −r ω (sin θ + (λ/2) sin 2θ),      S̈ ≈ −r ω² (cos θ + λ cos 2θ)
     β̇ ≈ λ ω cos θ (1 + λ²/4 − (λ²/4) cos 2θ)
 
 Crank-pin forces from a force F acting on the piston along the cylinder axis, towards the
-crank (gas force plus piston inertia force, seed 004 eq. 13), with the rod force F/cos β::
+crank (gas force plus piston inertia force, [Kazemi] eq. 13), with the rod force F/cos β::
 
     tangential F_T = F sin(θ + β)/cos β        (drives the crank; torque T = F_T r)
     radial     F_R = −F cos(θ + β)/cos β       (positive outwards along the crank)
     side       F_N = F tan β                   (piston on the liner)
 
-Their series to λ³ (seed 004 eq. 16–19) are in :func:`pin_forces_series`. Two of the
+Their series to λ³ ([Kazemi] eq. 16–19) are in :func:`pin_forces_series`. Two of the
 printed series disagree with the exact forms they come from: eq. 17 lacks the factor λ
 in front of sin θ, and eq. 18 has the sign of its λ terms flipped (at θ = 90° the rod
 pushes the pin outwards, F_R = +λF/cos β). The functions here follow the exact forms.
@@ -82,7 +82,7 @@ def _d(theta, lam):
 
 
 def rod_angle(theta, r, l):
-    """Rod angle β from the cylinder axis, rad: sin β = λ sin θ (seed 004 eq. 3).
+    """Rod angle β from the cylinder axis, rad: sin β = λ sin θ ([Kazemi] eq. 3).
 
     Parameters
     ----------
@@ -100,7 +100,7 @@ def rod_angle(theta, r, l):
 
 
 def piston_position(theta, r, l):
-    """Exact piston-pin distance from the crank axis S(θ), m (seed 004 eq. 5).
+    """Exact piston-pin distance from the crank axis S(θ), m ([Kazemi] eq. 5).
 
     Parameters
     ----------
@@ -119,18 +119,18 @@ def piston_position(theta, r, l):
 
 
 def piston_position_series(theta, r, l):
-    """Second-order series of S(θ), m (seed 004 eq. 7): r cos θ + l(1 − λ²/4 + λ²/4 cos 2θ)."""
+    """Second-order series of S(θ), m ([Kazemi] eq. 7): r cos θ + l(1 − λ²/4 + λ²/4 cos 2θ)."""
     lam = crank_ratio(r, l)
     return r * np.cos(theta) + l * (1.0 - lam**2 / 4 + lam**2 / 4 * np.cos(2 * theta))
 
 
 def piston_displacement(theta, r, l):
-    """Exact displacement from TDC X(θ) = r[(1 − cos θ) + (1 − √(1 − λ² sin²θ))/λ], m (seed 002 eq. 13)."""
+    """Exact displacement from TDC X(θ) = r[(1 − cos θ) + (1 − √(1 − λ² sin²θ))/λ], m ([Ismailov] eq. 13)."""
     return r + l - piston_position(theta, r, l)
 
 
 def piston_displacement_series(theta, r, l):
-    """Series X(θ) ≈ r[(1 − cos θ) + (λ/4)(1 − cos 2θ)], m (seed 002 eq. 17)."""
+    """Series X(θ) ≈ r[(1 − cos θ) + (λ/4)(1 − cos 2θ)], m ([Ismailov] eq. 17)."""
     lam = crank_ratio(r, l)
     return r * ((1.0 - np.cos(theta)) + lam / 4 * (1.0 - np.cos(2 * theta)))
 
@@ -158,7 +158,7 @@ def piston_velocity(theta, r, l, omega):
 
 
 def piston_velocity_series(theta, r, l, omega):
-    """Series Ṡ ≈ −rω(sin θ + (λ/2) sin 2θ), m/s (seed 004 eq. 9; seed 002 eq. 18 is dX/dt = −Ṡ)."""
+    """Series Ṡ ≈ −rω(sin θ + (λ/2) sin 2θ), m/s ([Kazemi] eq. 9; [Ismailov] eq. 18 is dX/dt = −Ṡ)."""
     lam = crank_ratio(r, l)
     return -r * omega * (np.sin(theta) + lam / 2 * np.sin(2 * theta))
 
@@ -177,19 +177,19 @@ def piston_acceleration(theta, r, l, omega):
 
 
 def piston_acceleration_series(theta, r, l, omega):
-    """Series S̈ ≈ −rω²(cos θ + λ cos 2θ), m/s² (seed 004 eq. 10, seed 002 eq. 19, seed 000 eq. 1)."""
+    """Series S̈ ≈ −rω²(cos θ + λ cos 2θ), m/s² ([Kazemi] eq. 10, [Ismailov] eq. 19, [Asgari] eq. 1)."""
     lam = crank_ratio(r, l)
     return -r * omega**2 * (np.cos(theta) + lam * np.cos(2 * theta))
 
 
 def rod_angular_velocity(theta, r, l, omega):
-    """Exact rod angular velocity β̇ = λω cos θ / cos β, rad/s (seed 004 eq. 11)."""
+    """Exact rod angular velocity β̇ = λω cos θ / cos β, rad/s ([Kazemi] eq. 11)."""
     lam = crank_ratio(r, l)
     return lam * omega * np.cos(theta) / np.sqrt(_d(theta, lam))
 
 
 def rod_angular_velocity_series(theta, r, l, omega):
-    """Series β̇ ≈ λω cos θ (1 + λ²/4 − (λ²/4) cos 2θ), rad/s (seed 004 eq. 12)."""
+    """Series β̇ ≈ λω cos θ (1 + λ²/4 − (λ²/4) cos 2θ), rad/s ([Kazemi] eq. 12)."""
     lam = crank_ratio(r, l)
     return lam * omega * np.cos(theta) * (1.0 + lam**2 / 4 - lam**2 / 4 * np.cos(2 * theta))
 
@@ -236,7 +236,7 @@ def pin_forces(theta, force, r, l):
 
 
 def pin_forces_series(theta, force, r, l):
-    """The same components as :func:`pin_forces` as series to λ³ (seed 004 eq. 16–19).
+    """The same components as :func:`pin_forces` as series to λ³ ([Kazemi] eq. 16–19).
 
     ``tangential`` is eq. 19 as printed; ``rod`` is eq. 16; ``side`` and ``radial`` are eq. 17
     and 18 with the misprints corrected (module docs): F λ(sin θ + (λ²/8)(3 sin θ − sin 3θ))

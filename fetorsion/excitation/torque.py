@@ -1,4 +1,4 @@
-"""Cylinder pressure, cylinder torque and its harmonic orders (seed 004 eq. 13–19, exact).
+"""Cylinder pressure, cylinder torque and its harmonic orders ([Kazemi] eq. 13–19, exact).
 
 Angles: θ is the crank angle of a cylinder measured from its *firing* TDC, over one
 working cycle (720° for a 4-stroke, 360° for a 2-stroke). Cylinder c fires

@@ -10,7 +10,7 @@ The stiffness is built from the scalar gradient blocks
 as  K_e[(a, i), (b, j)] = λ G_e[i, a, j, b] + μ G_e[j, a, i, b] + μ δ_ij Σ_k G_e[k, a, k, b],
 
 the expansion of ∫ λ div u div v + 2 μ ε(u) : ε(v) for u = φ_b e_j, v = φ_a e_i. One
-batched matrix product gives all G_e; on the issue-4 trial this was 7× faster than
+batched matrix product gives all G_e; measured on a 330 k-DOF crank this was 7× faster than
 scikit-fem's generic vector form (:func:`stiffness_generic`, kept as the test reference).
 The mass is ρ ∫ φ_a φ_b times the 3 × 3 identity.
 """

@@ -40,7 +40,7 @@ from .rigid import RigidBody, reduction
 from .tetmesh import TetMesh
 
 SUPPORTS = ("free", "bearings")
-#: Elastic modes the reduction is checked on (issue 13: the first 10 within 0.1 %).
+#: Elastic modes the reduction is checked on (the first 10 within 0.1 %, docs/condensed-crank.md).
 CHECKED_MODES = 10
 #: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
 #: nominal cylinder belong to the bearing surface.

@@ -15,7 +15,7 @@ Factorisations ("backends"):
 ``cholmod``
     CHOLMOD supernodal Cholesky from scikit-sparse (needs ``libsuitesparse-dev`` and an
     optimised BLAS such as Debian's ``libopenblas0-pthread``; see ``scripts/setup.sh``).
-    The fast choice: issue 4 measured 39 s vs SuperLU running out of memory at 330 k DOF.
+    The fast choice: 39 s measured where SuperLU ran out of memory, at 330 k DOF (docs/fe-speed.md).
 ``superlu``
     scipy's SuperLU (LU of a symmetric matrix, so twice the work and more fill); the
     fallback that needs nothing beyond scipy, fine up to ~100 k DOF.

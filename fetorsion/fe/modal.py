@@ -99,7 +99,7 @@ class ModalResult:
         return float(tors[0])
 
     def to_dict(self) -> dict:
-        """Plain JSON-ready dict in the issue-4 layout (SI units)."""
+        """Plain JSON-ready dict (SI units): frequencies, kinds, fractions, mesh and timings."""
         return {
             "modes": [{"frequency_hz": float(f), "kind": k, "torsional_fraction": float(fr[0]),
                        "bending_fraction": float(fr[1]), "axial_fraction": float(fr[2])}

@@ -14,8 +14,8 @@ and the kinetic energy of that rigid motion (up to the common factor ω²/2) is 
 
 summed over the slabs and normalised to fractions that add up to 1. Why not the share of
 tangential kinetic energy of the whole solid: on a crank, torsion drags the webs and pins
-into bending, so that share stays low for the unmistakable first torsional mode (issue 4
-measured at most 0.62); the journals themselves still turn as rigid bodies.
+into bending, so that share stays low for the unmistakable first torsional mode (at most
+0.62 measured on the reference cranks); the journals themselves still turn as rigid bodies.
 
 ``rigid_fit`` is the share of the slabs' motion that the rigid fits capture: low values
 mean the slabs themselves deform (breathing/ovalising and local modes), labelled

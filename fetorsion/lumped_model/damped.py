@@ -1,4 +1,4 @@
-"""A chain's matrices with torsional dampers attached (issue 14): one extra degree of freedom
+"""A chain's matrices with torsional dampers attached: one extra degree of freedom
 per damper ring, the hub or housing added to its station. Here, before the excitation stage,
 so that the Campbell analysis and the forced response see the same damped system; the
 classical optima and the tuning live in :mod:`fetorsion.design.dampers`.

@@ -1,4 +1,4 @@
-"""Lumped torsional models of the crank (seed 003): partitions, matrices, free-free modes.
+"""Lumped torsional models of the crank ([Seyedalian]): partitions, matrices, free-free modes.
 
 A partition is a list of stations. Each station owns an axial interval [lo, hi) of the
 crank and sits at an anchor point x_a. A station's inertia is the inertia of the metal in

@@ -1,6 +1,6 @@
 """The crank as an axial sequence of parts, each with its torsional compliance and inertia.
 
-Inertias follow seed 003: pins eq. (14), journals and end sections eq. (16) with the bore
+Inertias follow [Seyedalian]: pins eq. (14), journals and end sections eq. (16) with the bore
 removed, oil drillings eq. (15)/(17) removed, webs from the exact analytic outline
 (:mod:`fetorsion.solid.outline`). Stiffnesses follow eq. (3)–(6) via :mod:`fetorsion.webs.sections`.
 """

@@ -1,38 +1,38 @@
 """Single-cylinder balancing: rod split, shaking forces, counterweights, balance shafts,
-over-balancing with an advanced counterweight (seeds 000 and 001).
+over-balancing with an advanced counterweight ([Asgari] and [Wang]).
 
 Masses and forces
 -----------------
-Two-mass rod (seed 000 eq. 2–5): the rod mass m_rod is split between the big end (crank
+Two-mass rod ([Asgari] eq. 2–5): the rod mass m_rod is split between the big end (crank
 pin) and the small end (piston pin) so that the centroid stays put::
 
     m_big + m_small = m_rod,   m_big h_big = m_small h_small
     m_big = m_rod h_small/(h_big + h_small),   m_small = m_rod h_big/(h_big + h_small)
 
 with h_big, h_small the distances of the rod centroid from the big- and small-end eye
-centres. (Seed 000's printed eq. 4–5 swap the numerators; its numbers use the form above.)
+centres. ([Asgari]'s printed eq. 4–5 swap the numerators; its numbers use the form above.)
 The crank's own unbalance (mass m_crank, centroid at radius r_g) is moved to the pin
 radius r: m_crank r_g / r (eq. 6). Then m1 = m_piston + m_small reciprocates and
 m2 = m_crank r_g/r + m_big rotates (eq. 10–11).
 
 The inertia force on the frame along the cylinder axis (towards the head positive) is
 −m1 S̈ ≈ m1 r ω² (cos θ + λ cos 2θ): primary m1 r ω² cos θ, secondary m1 r ω² λ cos 2θ
-(seed 000 eq. 7–8 give the same with the opposite sign, i.e. m1 S̈). The rotating mass
+([Asgari] eq. 7–8 give the same with the opposite sign, i.e. m1 S̈). The rotating mass
 adds m2 r ω² along the crank.
 
 Counterweights and balance shafts
 ---------------------------------
-Seed 000: a counterweight opposite the pin balances M = c m1 + m2 (eq. 9); at radius b it
+[Asgari]: a counterweight opposite the pin balances M = c m1 + m2 (eq. 9); at radius b it
 has mass B = M r / b (eq. 12). One shaft counter-rotating at crank speed with
 M_shaft r_shaft = (1 − c) r m1 (eq. 13) takes the rest of the primary force along the axis;
 with c = ½ the primary force vanishes in the plane.
 
-Seed 001: two shafts at ω, counter-rotating, each m_b r_b = ½ m_j r, cancel the primary
+[Wang]: two shafts at ω, counter-rotating, each m_b r_b = ½ m_j r, cancel the primary
 force exactly; two more at 2ω with m_c r_c = (λ/8) m_j r cancel the secondary (each pair
 adds 2 m r (nω)² along the axis and cancels across it). :class:`BalanceShaft` describes
 any such shaft; :func:`shaft_forces` sums them.
 
-Over-balancing (seed 001 §3–4)
+Over-balancing ([Wang] §3–4)
 ------------------------------
 A counterweight m_b r_b = k m_j r advanced by α, in units of J = m_j r ω²::
 
@@ -66,7 +66,7 @@ __all__ = [
 
 
 # ---------------------------------------------------------------------------
-# Masses (seed 000)
+# Masses ([Asgari])
 
 
 def rod_split(m_rod, h_big, h_small):
@@ -81,7 +81,7 @@ def rod_split(m_rod, h_big, h_small):
 
     Examples
     --------
-    >>> big, small = rod_split(0.625, 33.923e-3, 83.577e-3)    # B112, seed 000
+    >>> big, small = rod_split(0.625, 33.923e-3, 83.577e-3)    # B112, [Asgari]
     >>> round(big, 3), round(small, 3)
     (0.445, 0.18)
     """
@@ -90,7 +90,7 @@ def rod_split(m_rod, h_big, h_small):
 
 
 def crank_equivalent_mass(m_crank, r_centroid, r):
-    """Crank unbalance moved to the pin radius, m_crank r_g / r, kg (seed 000 eq. 6).
+    """Crank unbalance moved to the pin radius, m_crank r_g / r, kg ([Asgari] eq. 6).
 
     Parameters
     ----------
@@ -105,17 +105,17 @@ def crank_equivalent_mass(m_crank, r_centroid, r):
 
 
 def unbalanced_mass(m_rec, m_rot, c):
-    """Mass to balance at the pin radius, M = c m1 + m2, kg (seed 000 eq. 9; c in 0.5–0.63)."""
+    """Mass to balance at the pin radius, M = c m1 + m2, kg ([Asgari] eq. 9; c in 0.5–0.63)."""
     return c * m_rec + m_rot
 
 
 def counterweight_mass(m_unbalanced, r, b):
-    """Counterweight mass B = M r / b at centroid radius b (m), kg (seed 000 eq. 12)."""
+    """Counterweight mass B = M r / b at centroid radius b (m), kg ([Asgari] eq. 12)."""
     return m_unbalanced * r / b
 
 
 def primary_shaft_mass(m_rec, r, c, r_shaft):
-    """Mass of one balance shaft at crank speed, (1 − c) r m1 / r_shaft, kg (seed 000 eq. 13).
+    """Mass of one balance shaft at crank speed, (1 − c) r m1 / r_shaft, kg ([Asgari] eq. 13).
 
     Parameters
     ----------
@@ -153,7 +153,7 @@ class CrankMasses:
 
     @classmethod
     def from_parts(cls, m_rod, h_big, h_small, m_piston, m_crank, r_centroid, r):
-        """Build from the part masses (kg) and lengths (m) of seed 000 §2."""
+        """Build from the part masses (kg) and lengths (m) of [Asgari] §2."""
         big, small = rod_split(m_rod, h_big, h_small)
         crank = crank_equivalent_mass(m_crank, r_centroid, r)
         return cls(big, small, crank, m_piston + small, crank + big)
@@ -227,23 +227,23 @@ def shaft_forces(theta, shafts, omega):
 
 
 def two_shaft_arrangement(m_rec, r):
-    """Seed 001 §2.1: two shafts at ω turning opposite ways, each m_b r_b = ½ m_j r."""
+    """[Wang] §2.1: two shafts at ω turning opposite ways, each m_b r_b = ½ m_j r."""
     half = 0.5 * m_rec * r
     return [BalanceShaft(half, 1.0, +1, np.pi), BalanceShaft(half, 1.0, -1, np.pi)]
 
 
 def four_shaft_arrangement(m_rec, r, lam):
-    """Seed 001 §2.2: :func:`two_shaft_arrangement` plus two shafts at 2ω, each m_c r_c = (λ/8) m_j r."""
+    """[Wang] §2.2: :func:`two_shaft_arrangement` plus two shafts at 2ω, each m_c r_c = (λ/8) m_j r."""
     sec = lam / 8 * m_rec * r
     return two_shaft_arrangement(m_rec, r) + [BalanceShaft(sec, 2.0, +1, np.pi), BalanceShaft(sec, 2.0, -1, np.pi)]
 
 
 # ---------------------------------------------------------------------------
-# Over-balancing with an advanced counterweight (seed 001)
+# Over-balancing with an advanced counterweight ([Wang])
 
 
 def residual_force(theta, k, alpha, lam):
-    """Residual force (P_x, P_y)/J of seed 001 eq. 37–38, dimensionless.
+    """Residual force (P_x, P_y)/J of [Wang] eq. 37–38, dimensionless.
 
     Parameters
     ----------
@@ -263,7 +263,7 @@ def residual_force(theta, k, alpha, lam):
 
 
 def ellipse_pmax(k, alpha):
-    """P_max / J of the primary-only locus, (1 + √(1 − 4k cos α + 4k²))/2 (seed 001 eq. 32).
+    """P_max / J of the primary-only locus, (1 + √(1 − 4k cos α + 4k²))/2 ([Wang] eq. 32).
 
     Examples
     --------
@@ -278,7 +278,7 @@ def ellipse_orientation(k, alpha):
 
     P_x + i P_y = J[(1/2 − k e^{iα}) e^{iθ} + e^{−iθ}/2]: the two counter-rotating terms line
     up at tan 2φ = 2k sin α / (2k cos α − 1), the branch chosen by the sign of the
-    denominator as in seed 001 eq. 33–35 (φ = ±π/4 when 2k cos α = 1).
+    denominator as in [Wang] eq. 33–35 (φ = ±π/4 when 2k cos α = 1).
     """
     phi = -0.5 * np.arctan2(2 * k * np.sin(alpha), 1.0 - 2 * k * np.cos(alpha))
     return np.where(phi <= -np.pi / 2, phi + np.pi, np.where(phi > np.pi / 2, phi - np.pi, phi))
@@ -353,7 +353,7 @@ class ResidualLocus:
     p_max : float
         max over θ of P / J (refined peak).
     theta_max_rad, phi_max_rad : float
-        Crank angle of the peak and direction of the force there (seed 001 eq. 40:
+        Crank angle of the peak and direction of the force there ([Wang] eq. 40:
         arctan(P_y/P_x), in (−90°, 90°]).
     j_newton : float or None
         J = m_j r ω² in N when the masses and speed are known, else None.
@@ -406,7 +406,7 @@ class ResidualLocus:
         ax.axvline(0, color="0.7", lw=0.6)
         ax.set_xlabel("P_x / J  (cylinder axis)")
         ax.set_ylabel("P_y / J")
-        ax.set_title("residual inertia force locus (seed 001 eq. 37–38)")
+        ax.set_title("residual inertia force locus ([Wang] eq. 37–38)")
         ax.legend(fontsize=7, loc="lower left")
         return ax
 
@@ -429,7 +429,7 @@ def residual_locus(k, alpha, lam, n_theta=LOCUS_POINTS, j_newton=None, name="") 
 
     Examples
     --------
-    >>> loc = residual_locus(0.6, np.radians(5.0), 0.20)   # seed 001 Table 1 row λ = 0.20
+    >>> loc = residual_locus(0.6, np.radians(5.0), 0.20)   # [Wang] Table 1 row λ = 0.20
     >>> round(loc.p_max, 4), round(float(np.degrees(loc.theta_max_rad)), 1)  # peak past 180°
     (0.6758, 255.4)
     """
@@ -496,7 +496,7 @@ def _pmax_exact(k, alpha, lam):
 
 def minmax_overbalance(lam, k_range=(0.0, 1.5), alpha_range_deg=(0.0, 45.0), k_step=0.005,
                        alpha_step_deg=0.25, n_theta_grid=360, rounds=MINMAX_ROUNDS, tol=1e-6) -> MinMaxResult:
-    """Minimise over (k, α) the largest residual force max_θ P(θ) of seed 001 eq. 37–39.
+    """Minimise over (k, α) the largest residual force max_θ P(θ) of [Wang] eq. 37–39.
 
     Parameters
     ----------
@@ -579,14 +579,14 @@ def minmax_overbalance(lam, k_range=(0.0, 1.5), alpha_range_deg=(0.0, 45.0), k_s
 
 
 def grid_minmax(lam, k_values, alpha_values_deg, theta_values_deg):
-    """Min–max of P/J by plain search on given grids, as seed 001 §4 (fig. 8) does it.
+    """Min–max of P/J by plain search on given grids, as [Wang] §4 (fig. 8) does it.
 
     Parameters
     ----------
     lam : float
         λ = r / l.
     k_values, alpha_values_deg, theta_values_deg : array_like
-        The grids; seed 001 used k in steps of 0.1, α in steps of 5° and, as its Table 1
+        The grids; [Wang] used k in steps of 0.1, α in steps of 5° and, as its Table 1
         shows, θ in whole degrees over half a revolution only (0°–180°).
 
     Returns

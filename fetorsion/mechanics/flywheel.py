@@ -1,6 +1,6 @@
-"""Flywheel sizing (seed 000 §3): rim-speed and diameter checks, and the energy method.
+"""Flywheel sizing ([Asgari] §3): rim-speed and diameter checks, and the energy method.
 
-Checks (seed 000 eq. 14–18)::
+Checks ([Asgari] eq. 14–18)::
 
     rim speed  v = π D n / 60       within 25–30 m/s (cast iron) or 40–45 m/s (steel)
     mean diameter D_r = (D_max + D_min)/2 with 2S ≤ D_r ≤ 3S      (S the stroke)
@@ -32,11 +32,11 @@ __all__ = [
 ]
 
 FOUR_STROKE = 4  # strokes per cycle of the engines these sizings assume unless told
-RIM_SPEED_LIMITS = {"cast_iron": (25.0, 30.0), "steel": (40.0, 45.0)}   # m/s, seed 000 eq. 14
+RIM_SPEED_LIMITS = {"cast_iron": (25.0, 30.0), "steel": (40.0, 45.0)}   # m/s, [Asgari] eq. 14
 
 
 def rim_speed(diameter, speed_rpm):
-    """v = π D n / 60, m/s (seed 000 eq. 15).
+    """v = π D n / 60, m/s ([Asgari] eq. 15).
 
     Parameters
     ----------
@@ -61,19 +61,19 @@ def check_rim_speed(diameter, speed_rpm, material):
 
 
 def check_mean_diameter(d_outer, d_inner, stroke):
-    """(D_r = (D_max + D_min)/2 in m, (2S, 3S), within?) (seed 000 eq. 16–17)."""
+    """(D_r = (D_max + D_min)/2 in m, (2S, 3S), within?) ([Asgari] eq. 16–17)."""
     d = 0.5 * (d_outer + d_inner)
     return d, (2 * stroke, 3 * stroke), bool(2 * stroke <= d <= 3 * stroke)
 
 
 def check_inertia_ratio(i_flywheel, i_rest):
-    """(I_F / I_T, (0.8, 0.9), within?) with I_T the other rotating parts (seed 000 eq. 18)."""
+    """(I_F / I_T, (0.8, 0.9), within?) with I_T the other rotating parts ([Asgari] eq. 18)."""
     q = i_flywheel / i_rest
     return q, (0.8, 0.9), bool(0.8 <= q <= 0.9)
 
 
 def speed_fluctuation_coefficient(n_max, n_min):
-    """C_s = 2(N1 − N2)/(N1 + N2) (seed 000 eq. 19); ±2 % about the mean gives 0.04."""
+    """C_s = 2(N1 − N2)/(N1 + N2) ([Asgari] eq. 19); ±2 % about the mean gives 0.04."""
     return 2.0 * (n_max - n_min) / (n_max + n_min)
 
 
@@ -84,12 +84,12 @@ def cycle_work(power, speed_rpm, strokes=FOUR_STROKE):
 
 
 def flywheel_inertia(delta_e, cs, omega):
-    """I = ΔE/(C_s ω²), kg·m² (seed 000 eq. 30); ΔE in J, ω in rad/s."""
+    """I = ΔE/(C_s ω²), kg·m² ([Asgari] eq. 30); ΔE in J, ω in rad/s."""
     return delta_e / (cs * omega**2)
 
 
 def flywheel_mass(inertia, r_outer, r_inner):
-    """Annulus mass M = 2I/(R1² + R2²), kg (seed 000 eq. 31); radii in m."""
+    """Annulus mass M = 2I/(R1² + R2²), kg ([Asgari] eq. 31); radii in m."""
     return 2.0 * inertia / (r_outer**2 + r_inner**2)
 
 
@@ -107,7 +107,7 @@ def triangular_torque(theta, work_expansion, compression_share=1.0 / 3.0, cycle=
     work_expansion : float
         W_E, J.
     compression_share : float
-        W_C / W_E (seed 000 eq. 23: 1/3).
+        W_C / W_E ([Asgari] eq. 23: 1/3).
     cycle : float
         Cycle length, rad (4π for a 4-stroke).
     """
@@ -148,7 +148,7 @@ def fluctuation_energy(theta, torque):
 
 @dataclass
 class FlywheelSizing:
-    """Flywheel sizing by seed 000's energy method, with its checks.
+    """Flywheel sizing by [Asgari]'s energy method, with its checks.
 
     Attributes
     ----------
@@ -195,7 +195,7 @@ class FlywheelSizing:
                 (f"I = ΔE/(C_s ω²), C_s = {self.speed_fluctuation:g} [kg·m²]", self.inertia_kgm2)]
         if self.mass_kg is not None:
             rows += [("mass 2I/(R1² + R2²) [kg]", self.mass_kg), ("mass with I rounded to 2 digits [kg]", self.mass_at_rounded_inertia_kg)]
-        lines = [f"{self.name}: flywheel, {self.power_w / 1e3:g} kW at {self.speed_rpm:g} rpm (seed 000 energy method)"]
+        lines = [f"{self.name}: flywheel, {self.power_w / 1e3:g} kW at {self.speed_rpm:g} rpm ([Asgari] energy method)"]
         lines += [f"  {label:<48} {value:12.4f}" for label, value in rows]
         for key, c in self.checks.items():
             vals = list(c.values())
@@ -210,7 +210,7 @@ class FlywheelSizing:
             _, ax = plt.subplots(figsize=(8, 4))
         th = np.linspace(0.0, 4 * np.pi, n)
         t = triangular_torque(th, self.expansion_work_j)
-        ax.plot(np.degrees(th), t, label="triangular torque (seed 000 fig. 7)")
+        ax.plot(np.degrees(th), t, label="triangular torque ([Asgari] fig. 7)")
         ax.axhline(self.torque_mean_nm, color="k", ls="--", lw=0.8, label=f"T_mean = {self.torque_mean_nm:.1f} N·m")
         ax.fill_between(np.degrees(th), self.torque_mean_nm, t, where=t > self.torque_mean_nm, alpha=0.3,
                         label=f"ΔE = {self.delta_e_j:.1f} J")
@@ -224,7 +224,7 @@ class FlywheelSizing:
 
 def size_flywheel(power, speed_rpm, speed_fluctuation, d_outer=None, d_inner=None, stroke=None,
                   material=None, i_rest=None, strokes=FOUR_STROKE, name="") -> FlywheelSizing:
-    """Seed 000's flywheel sizing from power and speed.
+    """[Asgari]'s flywheel sizing from power and speed.
 
     Parameters
     ----------
@@ -247,7 +247,7 @@ def size_flywheel(power, speed_rpm, speed_fluctuation, d_outer=None, d_inner=Non
 
     Examples
     --------
-    >>> s = size_flywheel(7000.0, 3000.0, 0.04, 0.27, 0.21)     # B112, seed 000
+    >>> s = size_flywheel(7000.0, 3000.0, 0.04, 0.27, 0.21)     # B112, [Asgari]
     >>> round(s.inertia_kgm2, 2), round(s.mass_at_rounded_inertia_kg, 2)
     (0.09, 6.15)
     """

@@ -3,8 +3,8 @@
 One file may hold any of the tables below; each command needs only its own. Lengths are
 in ``[units] length`` (m, cm, mm, in); other quantities carry their unit in the key name.
 Unknown keys and tables are rejected; every violated rule is reported at once.
-Examples: ``geometry/b112_single.toml`` (seed 000), ``geometry/planetary_ismailov.toml``
-(seed 002).
+Examples: ``geometry/b112_single.toml`` ([Asgari]), ``geometry/planetary_ismailov.toml``
+([Ismailov]).
 
 .. code-block:: toml
 
@@ -18,7 +18,7 @@ Examples: ``geometry/b112_single.toml`` (seed 000), ``geometry/planetary_ismailo
     rod_length = 117.5           # eye centre to eye centre
     speed_rpm = 3000.0
 
-    [masses]                     # balance (seed 000 §2)
+    [masses]                     # balance ([Asgari] §2)
     rod_kg = 0.625
     rod_centroid_to_big_end = 33.923
     rod_centroid_to_small_end = 83.577
@@ -33,7 +33,7 @@ Examples: ``geometry/b112_single.toml`` (seed 000), ``geometry/planetary_ismailo
     overbalance_k = 0.6          # optional: a counterweight k = m_b r_b/(m_j r) ...
     overbalance_alpha_deg = 5.0  # ... advanced by alpha, whose residual locus is shown
 
-    [flywheel]                   # flywheel (seed 000 §3)
+    [flywheel]                   # flywheel ([Asgari] §3)
     power_w = 7000.0
     speed_rpm = 3000.0
     speed_fluctuation = 0.04     # C_s
@@ -44,7 +44,7 @@ Examples: ``geometry/b112_single.toml`` (seed 000), ``geometry/planetary_ismailo
     other_inertia_kgm2 = 0.11    # optional: I_F/I_T check
     cycle_strokes = 4            # optional: 4 or 2
 
-    [planetary]                  # kinematics (seed 002)
+    [planetary]                  # kinematics ([Ismailov])
     kind = "epicycloid"          # or "hypocycloid"
     fixed_diameter = 60.0
     planet_diameters = [20.0, 30.0, 40.0]

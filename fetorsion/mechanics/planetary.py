@@ -1,9 +1,9 @@
-"""Planetary crank mechanisms (seed 002): big-end trajectories, piston motion, torque arm.
+"""Planetary crank mechanisms ([Ismailov]): big-end trajectories, piston motion, torque arm.
 
 The carrier is the crank: it turns by φ about the crank axis O and carries a satellite
 gear of pitch diameter d_p that rolls on a fixed gear of pitch diameter d_f, outside a
 fixed sun (epicycloid) or inside a fixed ring (hypocycloid). The rod's big end sits on
-the satellite at distance e from its centre (seed 002: on the pitch circle, e = d_p/2;
+the satellite at distance e from its centre ([Ismailov]: on the pitch circle, e = d_p/2;
 other e give trochoids). In complex form, with a = d_f/2, ρ = d_p/2 (derived here from
 rolling without slip)::
 
@@ -17,7 +17,7 @@ the piston-pin position x_p = B_x + √(l² − B_y²). A conventional crank is 
 
 Two "torque arms" are reported, because they differ for a geared crank:
 
-* geometric arm h = B_y x_p / l, the distance from O to the rod line (seed 002 fig. 3,
+* geometric arm h = B_y x_p / l, the distance from O to the rod line ([Ismailov] fig. 3,
   "MN"); the rod-force moment about O is F_rod·h. For the conventional crank h = r sin(φ+β).
 * effective arm −dx_p/dφ: by virtual work the torque the carrier delivers per unit piston
   force, reactions of the fixed gear included. For the conventional crank it is
@@ -266,7 +266,7 @@ def planetary(kind, fixed_diameter, planet_diameter, rod_length, eccentricity=No
 
     Examples
     --------
-    >>> res = planetary("epicycloid", 0.060, 0.030, 0.200)    # seed 002 fig. 2b: two cusps
+    >>> res = planetary("epicycloid", 0.060, 0.030, 0.200)    # [Ismailov] fig. 2b: two cusps
     >>> res.turns, res.strokes_per_turn, round(res.stroke_m * 1e3, 3)   # x_p from 260 to 140 mm
     (1, 3.0, 120.0)
     """

@@ -102,7 +102,7 @@ def balance_table(rep: dict) -> str:
     if "overbalance_minmax" in rep:
         o = rep["overbalance_minmax"]
         peaks = ", ".join(f"θ {t:.1f}° φ {p:.1f}°" for t, p in zip(o["peaks_theta_deg"], o["peaks_phi_deg"]))
-        lines.append(f"  over-balancing min–max (seed 001 eq. 37–39): k = {o['k']:.4f}, α = {o['alpha_deg']:.3f}°, "
+        lines.append(f"  over-balancing min–max ([Wang] eq. 37–39): k = {o['k']:.4f}, α = {o['alpha_deg']:.3f}°, "
                      f"P_max = {o['p_max_over_j']:.4f} J = {o['p_max_over_j'] * rep['primary_force_amplitude_n']:.1f} N "
                      f"(peaks: {peaks})")
     if "overbalance_given" in rep:

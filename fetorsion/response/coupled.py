@@ -99,7 +99,7 @@ MIN_MODES = 30
 
 def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray, damping_ratio: float,
                     dampers, modes: int | None = None):
-    """Reduced coordinates z (..., r) with torsional dampers (issue 14) on the front or rear master's
+    """Reduced coordinates z (..., r) with torsional dampers on the front or rear master's
     twist, and each damper's dissipated power (..., dampers) in W.
 
     The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'

@@ -444,7 +444,7 @@ class MeshEstimate:
     mesh_seconds: float
 
 
-# Calibrated on the plain test crank and both reference cranks at 4-20 mm (issue 11; within
+# Calibrated on the plain test crank and both reference cranks at 4-20 mm (within
 # -20/+10 % there): Gmsh gives about 5.5 tets per size³ of volume, and a size field graded
 # away from the fine surfaces adds about 15 tets per fine-size² of their area.
 _TETS_PER_CELL = 5.5

@@ -4,7 +4,7 @@ The web outline (see :class:`fetorsion.description.crank.Web`) is star-shaped ab
 so it is described by its radial function ρ(φ): the distance from the axis to the
 boundary in direction φ, with φ = 0 pointing at the pin centre. Area integrals then
 reduce to one-dimensional quadratures, e.g. the polar second moment
-∫∫ r² dA = ∫ ρ(φ)⁴/4 dφ. The Gmsh solid (issue 3) builds the same outline, so the lumped
+∫∫ r² dA = ∫ ρ(φ)⁴/4 dφ. The Gmsh solid builds the same outline, so the lumped
 model and the FE model see the same web.
 """
 

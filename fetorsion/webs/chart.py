@@ -1,6 +1,6 @@
 """A computed BICERA web chart: L_e0/D_t of a plain crank web against c and R·D_e³/(L_b·B_e³).
 
-The BICERA chart of seed 003 eq. (8) is not available to us, so this module computes its
+The BICERA chart of [Seyedalian] eq. (8) is not available to us, so this module computes its
 counterpart with the static throw FE of :mod:`fetorsion.webs.throwfe` over a parametric web
 family, ships the table (``fetorsion/data/web_chart.json``, written by
 ``scripts/web_chart.py``) and interpolates it: web method ``chart``.

@@ -1,4 +1,4 @@
-"""Section formulas of seed 003: eq. (4)-(5) for round parts, eq. (7) for a web's effective
+"""Section formulas of [Seyedalian]: eq. (4)-(5) for round parts, eq. (7) for a web's effective
 width, the BICERA overlap ratio, and Nestorides' stepped-shaft fillet length.
 
 Every length is reduced to the equivalent diameter D_e (solid): a part of equivalent

@@ -11,7 +11,7 @@ determinate). One sparse Cholesky solve of K u = f gives the twist φ of the loa
 
     k = T / φ,        L_e = G · J(D_e) / k,       J(D_e) = π D_e⁴ / 32.
 
-The web term of seed 003 eq. (6) follows by taking off the journal and pin parts, eq.
+The web term of [Seyedalian] eq. (6) follows by taking off the journal and pin parts, eq.
 (4)–(5), and sharing the rest between the two webs:
 
     L_eb = ½ (L_e − L_et − L_em).
@@ -390,7 +390,7 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
 
 
 # ---------------------------------------------------------------------------
-# Throws inside the whole crank held by rigid bearings (issue 13)
+# Throws inside the whole crank held by rigid bearings (docs/condensed-crank.md)
 
 
 def held_key(crank: Crank, mesh_size: float) -> str:
