@@ -18,6 +18,7 @@ from ..mechanics import reports
 from ..description.crank import parse_crank
 from ..description.model import AttachPoint
 from ..description.reader import read_toml
+from .common import emit_json
 from .options import real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -44,7 +45,7 @@ def _load(path):
 # kinematics
 
 
-def cmd_kinematics(args, emit_json) -> int:
+def cmd_kinematics(args) -> int:
     crank, spec = _load(args.file)
     out = _out(args)
     if crank is not None:
@@ -56,7 +57,7 @@ def cmd_kinematics(args, emit_json) -> int:
         r, l, rpm, name = sc.crank_radius, sc.rod_length, args.rpm or sc.speed_rpm, spec.name
     else:
         spec.need("planetary")
-        return _planetary(args, spec, emit_json)
+        return _planetary(args, spec)
     theta = np.radians(np.arange(0.0, 360.0 + 1e-9, args.step))
     res = kin.kinematics(theta, r, l, rpm * np.pi / 30, name=name)
     print(res.table(), file=out)
@@ -67,7 +68,7 @@ def cmd_kinematics(args, emit_json) -> int:
     return 0
 
 
-def _planetary(args, spec, emit_json) -> int:
+def _planetary(args, spec) -> int:
     pairs = reports.planetary_results(spec)
     print(reports.planetary_table(spec.name, pairs), file=_out(args))
     emit_json({"file": args.file, "mechanisms": [{"planetary": r.figures(), "conventional_same_stroke": c.figures()}
@@ -81,7 +82,7 @@ def _planetary(args, spec, emit_json) -> int:
 # balance
 
 
-def cmd_balance(args, emit_json) -> int:
+def cmd_balance(args) -> int:
     _, spec = _load(args.file)
     if spec is None:
         raise FetorsionError(f"{args.file} is a crank description; balance needs a mechanics file "
@@ -109,10 +110,10 @@ def cmd_balance(args, emit_json) -> int:
 # flywheel
 
 
-def cmd_flywheel(args, emit_json) -> int:
+def cmd_flywheel(args) -> int:
     crank, spec = _load(args.file)
     if crank is not None:
-        return _flywheel_from_engine_torque(crank, args, emit_json)
+        return _flywheel_from_engine_torque(crank, args)
     spec.need("flywheel")
     f = spec.flywheel
     stroke = f.stroke if f.stroke is not None else (2 * spec.slider_crank.crank_radius if spec.slider_crank else None)
@@ -129,7 +130,7 @@ def cmd_flywheel(args, emit_json) -> int:
     return 0
 
 
-def _flywheel_from_engine_torque(crank, args, emit_json) -> int:
+def _flywheel_from_engine_torque(crank, args) -> int:
     """Flywheel inertia from the real engine torque of a crank description with [excitation]."""
     from ..excitation.torque import engine_torque
 
@@ -151,7 +152,7 @@ def _flywheel_from_engine_torque(crank, args, emit_json) -> int:
     return 0
 
 
-def add_parsers(sub, emit_json) -> None:
+def add_parsers(sub) -> None:
     """Register the three subcommands on an argparse subparsers object."""
     def common(p):
         p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
@@ -163,12 +164,12 @@ def add_parsers(sub, emit_json) -> None:
     kp.add_argument("--step", type=real(0.0, 360.0, high_open=False, unit="deg"), default=30.0,
                     help="table step in crank angle, deg (default %(default)s)")
     common(kp)
-    kp.set_defaults(func=lambda a: cmd_kinematics(a, emit_json))
+    kp.set_defaults(func=cmd_kinematics)
 
     bp = sub.add_parser("balance", help="single-cylinder balancing: masses, counterweight, shafts, over-balancing ([Asgari], [Wang])")
     bp.add_argument("file", help="mechanics file (.toml) with [slider_crank], [masses], [balance]")
     common(bp)
-    bp.set_defaults(func=lambda a: cmd_balance(a, emit_json))
+    bp.set_defaults(func=cmd_balance)
 
     fp = sub.add_parser("flywheel", help="flywheel sizing by the energy method ([Asgari])")
     fp.add_argument("file", help="mechanics file (.toml) with [flywheel], or a crank description with [excitation]")
@@ -176,4 +177,4 @@ def add_parsers(sub, emit_json) -> None:
     fp.add_argument("--speed-fluctuation", type=real(0.0, 1.0), default=0.04,
                     help="C_s = 2 (N1 − N2)/(N1 + N2) for a crank description (default %(default)s, [Asgari])")
     common(fp)
-    fp.set_defaults(func=lambda a: cmd_flywheel(a, emit_json))
+    fp.set_defaults(func=cmd_flywheel)

@@ -20,6 +20,7 @@ from ..studies.models import FE_LEFT_OUT, MODEL_CHOICES, make_model
 from ..studies.sampling import METHODS, check_samples, runs_for, study_inputs
 from ..studies.study import run_crank_study, write_study_folder
 from ..webs.methods import WEB_METHODS
+from .common import check_mesh_size, load_crank
 from .options import MM, integer, millimetres
 
 
@@ -34,7 +35,7 @@ def _names(option: str):
     return parse
 
 
-def add_parser(sub, load_crank, check_mesh_size) -> None:
+def add_parser(sub) -> None:
     """Register ``study`` on an argparse subparsers object."""
     sp = sub.add_parser("study", help="Monte Carlo, Sobol', Morris or grid study of a crank's [uncertainty] inputs, "
                                       "on a Dask cluster (local by default)")
@@ -67,7 +68,7 @@ def add_parser(sub, load_crank, check_mesh_size) -> None:
                     help="where each sample's result is kept (default $FETORSION_STORE, else ~/.cache/fetorsion/samples)")
     sp.add_argument("--retry-failed", action="store_true", help="compute again the samples stored with an error")
     sp.add_argument("--force", action="store_true", help="replace --out even if it is not an earlier fetorsion report")
-    sp.set_defaults(func=lambda args: cmd_study(args, load_crank, check_mesh_size))
+    sp.set_defaults(func=cmd_study)
 
     tp = sub.add_parser("store", help="where the studies' sample store is, how full; --clear empties it")
     tp.add_argument("--store", metavar="DIR", help=f"the store's folder (default ${STORE_ENV}, else "
@@ -90,7 +91,7 @@ def cmd_store(args) -> int:
     return 0
 
 
-def cmd_study(args, load_crank, check_mesh_size) -> int:
+def cmd_study(args) -> int:
     from ..io import check_report_folder
 
     # Options that need no file first, then the description, then what needs both.

@@ -1,0 +1,189 @@
+"""``fetorsion campbell``, ``response`` and ``damper``: the excited crank (or chain) over its speed range."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from .options import MM, integer, millimetres, real
+from ..description.model import Chain
+from ..errors import FetorsionError
+from ..io import write_text_atomic
+from ..lumped_model.lumped import PARTITIONS, lumped
+from ..response.forced import COMPARE_UNITS
+from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
+                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD)
+from ..webs.methods import WEB_METHODS
+from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
+from ..design.dampers import OBJECTIVES
+from .common import SUPPORT_CHOICES, check_mesh_size, load_excited, partition_of, report, stiffness_for
+from .fe import condensed
+
+
+def cmd_campbell(args) -> int:
+    from ..excitation.campbell import lumped_modes, run_campbell
+
+    crank = load_excited(args.file, args.source)
+    if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
+        print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
+              "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
+    if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
+        check_mesh_size(crank, args.mesh_size, "modal")
+        modes = condensed(crank, args.mesh_size).torsional_modes(args.support, args.modes)
+    elif args.source == "fe":
+        from ..fe.crankfe import run_modal
+
+        check_mesh_size(crank, args.mesh_size, "modal")
+
+        modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
+    else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
+        modes = None if crank.dampers else lumped_modes(crank, partition_of(args.source), stiffness_for(args))
+    res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
+                       damping_ratio=args.damping,
+                       partition=partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,
+                       web_method=stiffness_for(args))
+    head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
+            f"most severe first ({res.source})")
+    report(res, head + "\n" + res.table(), args)
+    if args.html:
+        from ..report.html import campbell_figure, page
+
+        text = f"# {res.name}: Campbell diagram\n\n![](campbell.png)\n\n```\n{head}\n{res.table()}\n```\n"
+        write_text_atomic(args.html, page(res.name, text, {"campbell.png": campbell_figure(res, "campbell")},
+                                          Path(args.html).parent))
+    return 0
+
+
+def cmd_response(args) -> int:
+    from ..response.forced import run_response
+
+    if args.source == "fe":
+        raise FetorsionError("--source fe: the forced response uses a lumped model or the condensed crank; "
+                             "choose --source lumpedN or condensed")
+    crank = load_excited(args.file, args.source)
+    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    if args.source == "condensed":
+        from ..response.coupled import run_coupled_response
+
+        if args.compare is not None:
+            raise FetorsionError("--compare works with a lumped source (its section torques); "
+                                 "leave --source condensed out")
+        if args.misfire is not None:
+            raise FetorsionError("--misfire works with a lumped source; leave --source condensed out")
+        check_mesh_size(crank, args.mesh_size, "modal")
+        res = run_coupled_response(condensed(crank, args.mesh_size), args.support, rpm=rpm, orders=args.orders,
+                                   damping_ratio=args.damping)
+        return report(res, res.table(), args)
+    if args.compare_section is not None:  # checked on the model's springs before the response is computed
+        springs = len(lumped(crank, partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
+        if args.compare_section > springs:
+            raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
+    if args.misfire is not None and args.misfire > crank.engine.cylinders:
+        raise FetorsionError(f"--misfire {args.misfire}: the engine has cylinders 1..{crank.engine.cylinders}")
+    if args.misfire is not None and crank.excitation.pressure_curve is not None:
+        raise FetorsionError(f"--misfire: {args.file} gives a measured pressure_csv; the motored cycle of a misfiring "
+                             "cylinder needs the synthetic cycle (compression_ratio)")
+    res = run_response(crank, partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
+                       web_method=stiffness_for(args), misfire=None if args.misfire is None else args.misfire - 1)
+    if args.compare is not None:
+        from ..response.forced import compare_curve
+
+        rpm_c, value, name, unit = args.compare_curve
+        compare_curve(res, rpm_c, value, name, unit,
+                      None if args.compare_section is None else args.compare_section - 1)
+    return report(res, res.table(), args)
+
+
+def cmd_damper(args) -> int:
+    from ..design.dampers import run_damper
+
+    if args.source in ("fe", "condensed"):
+        raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
+    crank = load_excited(args.file, args.source)
+    if args.objective == "stress" and isinstance(crank, Chain):
+        raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
+                             "use --objective twist")
+    if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+        raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
+                             "SCF); give [fillets] or use --objective twist")
+    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
+                     rpm=rpm, partition=partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
+                     web_method=stiffness_for(args))
+    return report(res, res.table(), args)
+
+
+def _orders(text: str) -> list[float]:
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"--orders {text!r}: give comma-separated numbers, e.g. 0.5,1,1.5") from None
+    if any(not (math.isfinite(v) and 0 < v <= 100) for v in values):
+        raise argparse.ArgumentTypeError(f"--orders {text!r}: orders must be > 0 and <= 100")
+    return values
+
+
+def _add_excitation_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("file", help="crank description or chain file with an [excitation] table (.toml)")
+    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
+                   help="which model gives the modes (default %(default)s; fe: campbell only; condensed: the 3D FE "
+                        "crank condensed to its journal and pin centres, torsion and bending coupled)")
+    p.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
+                   help="the crank in its main bearings (default, as it runs) or free-free (as on a modal test "
+                        "bench); lumped: the fe web method becomes fe-held")
+    p.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
+    p.add_argument("--speed-range", nargs=2, type=real(0.0, unit="rpm"), metavar=("LOW", "HIGH"),
+                   help="rpm, 0 < LOW < HIGH")
+    p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
+    p.add_argument("--damping", type=real(0.0, 1.0), help=f"modal damping ratio, 0 < ζ < 1 (default from the file, else {DEFAULT_DAMPING_RATIO:g})")
+    p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
+
+
+def add_parsers(sub) -> None:
+    """The ``campbell``, ``damper``, ``response`` commands."""
+    cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
+    _add_excitation_options(cp)
+    cp.add_argument("--modes", type=integer(1, 50), default=3, help="number of lowest modes (default %(default)s)")
+    cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size for --source fe (default {DEFAULT_MESH_SIZE / MM:g})")
+    cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
+    cp.set_defaults(func=cmd_campbell)
+
+    dp = sub.add_parser("damper", help="torsional damper: Den Hartog start, optimised on the whole crank")
+    _add_excitation_options(dp)
+    dp.add_argument("--type", choices=DAMPER_TYPES, default="rubber", help="damper type (default %(default)s)")
+    dp.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
+                    help="ring inertia over the damped mode's equivalent inertia at the station, 0 < MU < 2 "
+                         "(default %(default)s)")
+    dp.add_argument("--optimise", action="store_true", help="optimise stiffness and damping on the whole crank "
+                    "over the speed range after the Den Hartog start (ring inertia held)")
+    dp.add_argument("--objective", choices=OBJECTIVES, default="stress",
+                    help="what the optimiser minimises: the largest fillet shear stress or the pulley twist")
+    dp.add_argument("--at", choices=DAMPER_STATIONS, default="front", help="pulley end (front) or flywheel side")
+    dp.add_argument("--hub-inertia", type=real(0.0, 10.0, low_open=False, unit="kg m^2"), default=0.0,
+                    metavar="KGM2", help="hub or housing inertia, kg m^2 (default 0)")
+    dp.add_argument("--steps", type=integer(2, 2000), default=100, help="speeds in the range (default %(default)s)")
+    dp.set_defaults(func=cmd_damper)
+
+    rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
+    _add_excitation_options(rp)
+    rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--misfire", type=integer(1), metavar="CYL",
+                    help="cylinder CYL (1-based) does not fire: compression and expansion only")
+    rp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size for --source condensed (default {DEFAULT_MESH_SIZE / MM:g})")
+    rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
+                    "comments, '# name = ...' and '# unit = ...' read), drawn over the response; the table gives "
+                    "the difference at its peak")
+    rp.add_argument("--compare-name", metavar="TEXT", help="what the --compare curve is (default the CSV's '# name')")
+    rp.add_argument("--compare-unit", choices=sorted(COMPARE_UNITS),
+                    help="its unit: a torque is compared with a section's torque, an angle with the pulley angle "
+                         "(default the CSV's '# unit')")
+    rp.add_argument("--compare-section", type=integer(1), metavar="N",
+                    help="1-based shaft section (spring) whose torque is compared (default the most loaded)")
+    rp.set_defaults(func=cmd_response)

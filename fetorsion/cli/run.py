@@ -1,0 +1,78 @@
+"""``fetorsion run``: the main job, every analysis of a crank (or of both reference cranks) into a
+report folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .options import MM, millimetres, real
+from ..description.model import Chain
+from ..errors import FetorsionError
+from ..io import check_report_folder
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE
+from .common import SUPPORT_CHOICES, check_mesh_size, load_description
+
+
+REFERENCE_CRANKS = ("renault21", "peugeot_glx")
+
+
+def _geometry_folder():
+    """``geometry/`` in the working folder, else beside the package (a source checkout)."""
+    from pathlib import Path
+
+    import os
+
+    for folder in (Path("geometry"), Path(__file__).resolve().parents[1] / "geometry"):
+        if (folder / f"{REFERENCE_CRANKS[0]}.toml").exists():
+            rel = os.path.relpath(folder)
+            return Path(rel) if not rel.startswith("..") else folder
+    raise FetorsionError("no FILE given and no geometry/ folder with the reference cranks found; give FILE")
+
+
+def run_jobs(args) -> list[tuple[Path, Path]]:
+    """(description, report folder) of each crank ``run`` will do."""
+    if args.all:
+        if args.file:
+            raise FetorsionError("--all runs both reference cranks; it takes no FILE")
+        folder = _geometry_folder()
+        return [(folder / f"{name}.toml", Path(args.out or "results") / name) for name in REFERENCE_CRANKS]
+    file = Path(args.file) if args.file else _geometry_folder() / f"{REFERENCE_CRANKS[0]}.toml"
+    return [(file, Path(args.out) if args.out else Path("out") / file.stem)]
+
+
+def cmd_run(args) -> int:
+    from ..app.run import FAST_STEPS, run
+
+    jobs = run_jobs(args)
+    for file, out in jobs:  # every destination and description is checked before any work
+        check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
+        crank = load_description(str(file))
+        if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
+            check_mesh_size(crank, args.mesh_size, "modal")
+    options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio}
+    for file, out in jobs:
+        folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,
+                     **({"steps": FAST_STEPS} if args.no_fe else {}))
+        print(f"report: {folder / 'report.md'}")
+    return 0
+
+
+def add_parser(sub) -> None:
+    """The ``run`` commands."""
+    up = sub.add_parser("run", help="the main job: every analysis of a crank into one report folder")
+    up.add_argument("file", nargs="?", help="crank description or chain file (default geometry/renault21.toml; "
+                                            "a chain gets the report without the FE sections)")
+    up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
+    up.add_argument("--all", action="store_true", help="both reference cranks into results/<name>/")
+    up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
+    up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
+                    help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
+                         "free-free FE; the report shows both")
+    up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
+                    help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
+    up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
+    up.add_argument("--force", action="store_true",
+                    help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")
+    up.set_defaults(func=cmd_run)
