@@ -11,7 +11,8 @@ from fetorsion.app.run import DEFAULT_STEPS, run
 from conftest import GEOMETRY, assert_picture
 
 
-NO_FE = tuple(step for step in DEFAULT_STEPS if "FE" not in step[0])
+NO_FE = tuple(step for step in DEFAULT_STEPS if step[1] not in ("fe", "bearings"))
+LUMPED = tuple(step for step in DEFAULT_STEPS if step[1] == "lumped")
 
 
 @pytest.mark.slow
@@ -81,7 +82,7 @@ def test_broken_description_fails_cleanly_and_writes_nothing(tmp_path):
 
 
 def test_failing_step_keeps_the_previous_report(tmp_path):
-    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=DEFAULT_STEPS[:1])
+    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED)
     before = (out / "report.md").read_text()
 
     def broken(ctx):
@@ -89,7 +90,7 @@ def test_failing_step_keeps_the_previous_report(tmp_path):
         raise RuntimeError("step failed")
 
     with pytest.raises(RuntimeError):
-        run(GEOMETRY / "renault21.toml", tmp_path / "r", steps=DEFAULT_STEPS[:1] + (("broken", "verdict", broken),))
+        run(GEOMETRY / "renault21.toml", tmp_path / "r", steps=LUMPED + (("broken", "verdict", broken),))
     assert (out / "report.md").read_text() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["r"]
     assert not (out / "partial.txt").exists()

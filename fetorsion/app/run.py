@@ -256,11 +256,13 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
          "sobol": ctx.save(studies["sobol"].plot(kind="indices").figure, "f1_sobol.png")})
 
 
-#: (what the progress line says, the RunOutcome field its outcome fills, the step), in order.
+#: (what the progress line says, the RunOutcome field its outcome fills, the step), in order. The
+#: FE steps come first: the condensed crank they build also gives the in-bearing throw stiffness
+#: that the lumped models' ``fe-held`` web method reads (one condensation per run, not two).
 DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
-    ("lumped models", "lumped", step_lumped),
     ("mesh and FE modal analysis", "fe", step_fe),
     ("condensed crank in its bearings", "bearings", step_bearings),
+    ("lumped models", "lumped", step_lumped),
     ("Campbell diagram and forced response", "campbell", step_campbell),
     ("sensitivity of f1", "sensitivity", step_sensitivity),
     ("fillet stress, dampers and verdict", "verdict", step_verdict),
