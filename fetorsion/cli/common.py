@@ -105,3 +105,17 @@ def check_mesh_size(crank, mesh_size: float, job: str, purpose: str = "modal", f
     if est.tets > 150_000:
         print(f"fetorsion: {option} {mesh_size_mm:g} mm: expect {what} (available {have / gib:.1f} GiB); "
               f"meshing alone takes about {est.mesh_seconds:.0f} s", file=sys.stderr)
+
+
+def add_json_option(p) -> None:
+    """``--json PATH|-``: the command's results as JSON, to a file or standard output."""
+    p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+
+
+def add_mesh_size_option(p, what: str = "global element size") -> None:
+    """``--mesh-size MM``: the FE mesh's element size, in mm on the command line (m inside)."""
+    from ..description.defaults import DEFAULT_MESH_SIZE
+    from .options import MM, millimetres
+
+    p.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                   help=f"{what} in mm (default {DEFAULT_MESH_SIZE / MM:g})")

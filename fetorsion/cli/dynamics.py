@@ -20,7 +20,8 @@ from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..design.dampers import OBJECTIVES
-from .common import SUPPORT_CHOICES, check_mesh_size, load_excited, partition_of, report, stiffness_for
+from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, report,
+                     stiffness_for)
 from .fe import condensed
 
 
@@ -140,7 +141,7 @@ def _add_excitation_options(p: argparse.ArgumentParser) -> None:
                    help="rpm, 0 < LOW < HIGH")
     p.add_argument("--orders", type=_orders, help="comma-separated orders (default 0.5 ... 12 for a 4-stroke)")
     p.add_argument("--damping", type=real(0.0, 1.0), help=f"modal damping ratio, 0 < ζ < 1 (default from the file, else {DEFAULT_DAMPING_RATIO:g})")
-    p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    add_json_option(p)
     p.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
 
 

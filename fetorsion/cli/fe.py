@@ -12,7 +12,8 @@ from ..errors import FetorsionError
 from ..solid.isolate import call_isolated
 from ..io import write_text_atomic
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
-from .common import SUPPORT_CHOICES, check_mesh_size, emit_json, load_crank, report, save_plot
+from .common import (SUPPORT_CHOICES, add_json_option, add_mesh_size_option, check_mesh_size, emit_json, load_crank,
+                     report, save_plot)
 
 
 def cmd_mesh(args) -> int:
@@ -167,17 +168,16 @@ def add_parsers(sub) -> None:
     fp.add_argument("--plot", metavar="PATH", help="save the modes' torsion/bending shares (.png, .pdf, .svg)")
     fp.add_argument("--refine", action="store_true",
                     help="three meshes (sizes x1, x0.8, x0.64) and the extrapolated first torsional frequency")
-    fp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    add_json_option(fp)
     fp.add_argument("--html", metavar="PATH", help="write the mode shapes as an interactive 3D web page (.html)")
     fp.set_defaults(func=cmd_modal)
 
     kp = sub.add_parser("condense", help="the 3D FE crank condensed (Craig-Bampton) to journal, pin and end masters")
     kp.add_argument("file", help="crank description (.toml)")
-    kp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
-                    help=f"global element size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
+    add_mesh_size_option(kp)
     kp.add_argument("--npz", metavar="PATH", help="save the reduced model (.npz; layout in docs/condensed-crank.md)")
     kp.add_argument("--with-shapes", action="store_true",
                     help="with --npz: also the recovery basis at the mesh vertices (for pictures; tens of MB)")
-    kp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    add_json_option(kp)
     kp.add_argument("--plot", metavar="PATH", help="save the torsion share of each mode, free and in bearings")
     kp.set_defaults(func=cmd_condense)

@@ -12,7 +12,7 @@ from ..lumped_model.lumped import MODES_SHOWN, PARTITIONS, lumped
 from ..lumped_model.parts import build_parts
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from ..webs.methods import WEB_METHODS
-from .common import emit_json, load_crank, load_description, report
+from .common import add_json_option, emit_json, load_crank, load_description, report
 
 
 def _dof_list(text: str) -> list[int]:
@@ -77,13 +77,13 @@ def add_parsers(sub) -> None:
     lp.add_argument("--dof", type=_dof_list, default=[DEFAULT_PARTITION], help="partition(s): 5, 6, 17, 19, 21, a list, or 'all'")
     lp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD,
                     help="web stiffness method (default %(default)s)")
-    lp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    add_json_option(lp)
     lp.set_defaults(func=cmd_lumped)
 
     sp = sub.add_parser("sensitivity", help="f1 against each reconstructed input, and the f1 band")
     sp.add_argument("file", help="crank description with an [uncertainty] table (.toml)")
     sp.add_argument("--dof", type=int, choices=PARTITIONS, default=DEFAULT_PARTITION)
     sp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
-    sp.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+    add_json_option(sp)
     sp.add_argument("--plot", metavar="PATH", help="save the tornado chart (.png, .pdf, .svg)")
     sp.set_defaults(func=cmd_sensitivity)

@@ -18,7 +18,7 @@ from ..mechanics import reports
 from ..description.crank import parse_crank
 from ..description.model import AttachPoint
 from ..description.reader import read_toml
-from .common import emit_json
+from .common import add_json_option, emit_json
 from .options import real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -155,7 +155,7 @@ def _flywheel_from_engine_torque(crank, args) -> int:
 def add_parsers(sub) -> None:
     """Register the three subcommands on an argparse subparsers object."""
     def common(p):
-        p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
+        add_json_option(p)
         p.add_argument("--plot", metavar="PATH", help="write a figure (PNG, PDF or SVG by suffix)")
 
     kp = sub.add_parser("kinematics", help="slider-crank or planetary-crank kinematics ([Ismailov], [Kazemi])")
