@@ -42,16 +42,29 @@ def test_run_writes_report_consistent_with_the_api(tmp_path):
 
 @pytest.mark.fe
 @pytest.mark.slow
-def test_full_run_with_fe_and_mode_images(tmp_path):
+def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     # Every step, FE included, on the Renault crank without fillets and drillings (cheap mesh).
     import re
     from PIL import Image
+
+    from fetorsion.fe import condensed as condensed_module
     text = (GEOMETRY / "renault21.toml").read_text()
     text = re.sub(r"^\[uncertainty\].*", "", text, flags=re.M | re.S)
     text = re.sub(r"^(journal|pin|diameter) = (2\.5|5\.0)", r"\1 = 0.0", text, flags=re.M)
     src = tmp_path / "r21.toml"
     src.write_text(text)
+    condensations = []
+    original = condensed_module.run_condensed
+
+    def counted(*args, **kwargs):
+        condensations.append(args[1:2])
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(condensed_module, "run_condensed", counted)
     out = run(src, tmp_path / "r21", options={"mesh_size": 0.03})
+    # one condensed crank serves the bearings section and the lumped fe-held column (its throws'
+    # in-bearing stiffness at the run's mesh size): the crank is condensed once
+    assert condensations == [(0.03,)]
     data = json.loads((out / "results.json").read_text())
     f1 = data["fe"]["first_torsional_hz"]
     assert 0.9 < f1 / data["lumped"]["carter"][2]["frequencies_hz"][0] < 1.1

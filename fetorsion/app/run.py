@@ -50,11 +50,21 @@ class RunContext:
     built: dict = field(default_factory=dict)
 
     def parts(self, method: str = DEFAULT_WEB_METHOD):
-        """The crank cut into its parts with ``method``'s web stiffness (built once)."""
+        """The crank cut into its parts with ``method``'s web stiffness (built once). With the
+        run's condensed crank built, ``fe-held`` takes its throws' stiffness from it, at the
+        run's mesh size, instead of condensing the crank once more."""
+        import functools
+
         from ..lumped_model.parts import build_parts
+        from ..webs.throwfe import held_throw_stiffnesses, web_equivalent_length_held
 
         if ("parts", method) not in self.built:
-            self.built["parts", method] = build_parts(self.crank, method)
+            web_length = None
+            if method == "fe-held" and "condensed" in self.built:
+                size = self.options.get("mesh_size", DEFAULT_MESH_SIZE)
+                k = held_throw_stiffnesses(self.crank, size, condensed=self.built["condensed"])
+                web_length = functools.partial(web_equivalent_length_held, stiffnesses=k)
+            self.built["parts", method] = build_parts(self.crank, method, web_length=web_length)
         return self.built["parts", method]
 
     def setup(self):
@@ -141,15 +151,13 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     coupled forced response (gas, inertia, tangential and radial pin forces; bearing forces)."""
     from ..fe.condensed import run_condensed
     from ..response.coupled import run_coupled_response
-    from ..webs.throwfe import held_throw_stiffnesses
 
     if ctx.outcome.fe is None:
         return None
     size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
-    cc = run_condensed(ctx.crank, size, mesh=ctx.outcome.fe.modal.mesh)
+    cc = ctx.built["condensed"] = run_condensed(ctx.crank, size, mesh=ctx.outcome.fe.modal.mesh)
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
-    held_throw_stiffnesses(ctx.crank, size, condensed=cc)  # the fe-held web method then reuses this reduction
     chain = {}
     for method in ("carter", "fe", "fe-held"):
         f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method, parts=ctx.parts(method)).frequencies_hz[0])

@@ -79,7 +79,7 @@ def oil_hole_inertia(c: Cylinder, hole_diameter: float, density: float, radius: 
     return mass * (hole_diameter**2 / 16 + piece**2 / 12 + centre**2 + radius**2)
 
 
-def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD) -> PartChain:
+def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=None) -> PartChain:
     """Cut ``crank`` into its axial parts with compliances and inertias.
 
     Parameters
@@ -88,6 +88,10 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD) -> PartChain
         The description.
     web_method : str
         Name of the web stiffness method (see :data:`fetorsion.webs.sections.WEB_METHODS`).
+    web_length : callable, optional
+        ``web_length(crank, web_index, d_e) -> L_eb`` (m) in place of the registry's function of
+        ``web_method``: the same method evaluated on a model the caller already has (the ``fe-held``
+        throws of a run's own condensed crank).
     """
     rho = crank.material.density
     G = crank.material.shear_modulus
@@ -117,7 +121,8 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD) -> PartChain
                 if oil.in_pins:
                     inertia -= oil_hole_inertia(p, oil.diameter, rho, R)
                 pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), inertia, piston))
-            pieces.append(("web", w, web.thickness, web_equivalent_length(crank, w, d_e, web_method),
+            length = web_equivalent_length(crank, w, d_e, web_method) if web_length is None else web_length(crank, w, d_e)
+            pieces.append(("web", w, web.thickness, length,
                            mass_properties(web, R, rho)["polar_inertia"], 0.0))
     for i, c in enumerate(crank.rear):
         pieces.append(("rear", i, c.length, cylinder_equivalent_length(c, d_e), cylinder_inertia(c, rho), 0.0))

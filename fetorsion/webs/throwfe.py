@@ -452,10 +452,11 @@ def static_throw_stiffnesses(cc) -> np.ndarray:
     return TORQUE / np.diff(twist)
 
 
-def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float) -> float:
+def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float, stiffnesses=None) -> float:
     """Web method ``fe-held``: L_eb (m, at D_e) of web ``web_index`` from its throw's stiffness
-    inside the whole crank in rigid bearings (:func:`held_throw_stiffnesses`)."""
+    inside the whole crank in rigid bearings (``stiffnesses``, N·m/rad per throw; default
+    :func:`held_throw_stiffnesses` at the default mesh size)."""
     i = crank.throw_of_web(web_index)
-    k = held_throw_stiffnesses(crank)[i]
+    k = (held_throw_stiffnesses(crank) if stiffnesses is None else stiffnesses)[i]
     l_throw = crank.material.shear_modulus * math.pi * d_e**4 / (32.0 * k)
     return web_term(throw_of(crank, i), l_throw, d_e)
