@@ -146,7 +146,7 @@ def render_solid(crank, path, size: float = DEFAULT_MESH_SIZE, window: tuple[int
 
     Parameters
     ----------
-    crank : fetorsion.description.crank.Crank
+    crank : fetorsion.description.model.Crank
     path : str or Path
         Output ``.png``.
     size : float

@@ -3,7 +3,7 @@
 Frame (SI outside, see below for inside): the crank axis is the x axis, the shaft runs
 along +x from the front (pulley) face at x = 0 to the rear (flywheel-flange) face at
 x = length. Pin i sits at (y, z) = R (cos θᵢ, sin θᵢ), R = stroke/2, θᵢ =
-``engine.crank_angles[i]``. Parts are stacked exactly as :class:`fetorsion.description.crank.Crank`
+``engine.crank_angles[i]``. Parts are stacked exactly as :class:`fetorsion.description.model.Crank`
 lists them, so part boundaries are planes x = const.
 
 Inside the Gmsh model lengths are in **millimetres** (:data:`MODEL_UNIT` metres per model
