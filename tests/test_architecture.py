@@ -118,7 +118,7 @@ def test_the_package_is_subpackages_and_a_handful_of_modules():
 
 def literal_defaults(sources=None):
     """(parameter or option name, value) -> places, for every numeric literal default: function
-    parameters, and argparse options' ``default=``. 0, 1, 2 and -1 are not counted (neutral
+    parameters, argparse options' ``default=`` and module-level constants. 0, 1, 2 and -1 are not counted (neutral
     values, not choices someone could change in one place and forget in another)."""
     found: dict[tuple, list[str]] = {}
 
@@ -138,6 +138,10 @@ def literal_defaults(sources=None):
                 pairs += [(k, d) for k, d in zip(a.kwonlyargs, a.kw_defaults) if d is not None]
                 for arg, default in pairs:
                     note(arg.arg, default, f"{name}.{node.name}")
+            elif isinstance(node, ast.Module):  # module-level constants: NAME = literal
+                for stmt in node.body:
+                    if isinstance(stmt, ast.Assign) and len(stmt.targets) == 1 and isinstance(stmt.targets[0], ast.Name):
+                        note(stmt.targets[0].id, stmt.value, f"{name}.{stmt.targets[0].id}")
             elif isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "add_argument":
                 flags = [c.value for c in node.args if isinstance(c, ast.Constant)]
                 for kw in node.keywords:
@@ -148,8 +152,9 @@ def literal_defaults(sources=None):
 
 def test_literal_defaults_finder_finds_a_repeat():
     found = literal_defaults({"a": "def f(x, mu=0.25, n=1):\n    pass\n",
-                              "b": "def g(*, mu=0.25):\n    pass\np.add_argument('--mu', default=0.25)\n"})
-    assert found == {("mu", 0.25): ["a.f", "b.g", "b --mu"]}
+                              "b": "def g(*, mu=0.25):\n    pass\np.add_argument('--mu', default=0.25)\n",
+                              "c": "mu = 0.25\n"})
+    assert found == {("mu", 0.25): ["a.f", "b.g", "b --mu", "c.mu"]}
 
 
 def test_no_default_literal_is_written_twice():
