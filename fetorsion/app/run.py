@@ -49,6 +49,12 @@ class RunContext:
     #: crank's parts by web method, the forced response's setup, the fillets.
     built: dict = field(default_factory=dict)
 
+    def once(self, key, build):
+        """``built[key]``, made by ``build()`` the first time it is asked for."""
+        if key not in self.built:
+            self.built[key] = build()
+        return self.built[key]
+
     def parts(self, method: str = DEFAULT_WEB_METHOD):
         """The crank cut into its parts with ``method``'s web stiffness (built once). With the
         run's condensed crank built, ``fe-held`` takes its throws' stiffness from it, at the
@@ -58,32 +64,29 @@ class RunContext:
         from ..lumped_model.parts import build_parts
         from ..webs.throwfe import held_throw_stiffnesses, web_equivalent_length_held
 
-        if ("parts", method) not in self.built:
+        def build():
             web_length = None
             if method == "fe-held" and "condensed" in self.built:
                 size = self.options.get("mesh_size", DEFAULT_MESH_SIZE)
                 k = held_throw_stiffnesses(self.crank, size, condensed=self.built["condensed"])
                 web_length = functools.partial(web_equivalent_length_held, stiffnesses=k)
-            self.built["parts", method] = build_parts(self.crank, method, web_length=web_length)
-        return self.built["parts", method]
+            return build_parts(self.crank, method, web_length=web_length)
+
+        return self.once(("parts", method), build)
 
     def setup(self):
         """The forced response's setup of the crank (its chain, damping, the cylinders' forces at
         every speed and order; built once): the response and every verdict case derive from it."""
         from ..response.forced import response_setup
 
-        if "setup" not in self.built:
-            parts = None if isinstance(self.crank, Chain) else self.parts()
-            self.built["setup"] = response_setup(self.crank, parts=parts)
-        return self.built["setup"]
+        return self.once("setup", lambda: response_setup(
+            self.crank, parts=None if isinstance(self.crank, Chain) else self.parts()))
 
     def fillets(self):
         """Every fillet of the crank (built once)."""
         from ..design.stress import fillets_of
 
-        if "fillets" not in self.built:
-            self.built["fillets"] = fillets_of(self.crank, self.parts())
-        return self.built["fillets"]
+        return self.once("fillets", lambda: fillets_of(self.crank, self.parts()))
 
     def save(self, fig, name: str) -> str:
         save_figure_atomic(fig, self.folder / name, close=True, dpi=120)
