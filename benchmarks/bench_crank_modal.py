@@ -12,7 +12,7 @@ Prints a Markdown table.
 ``stress`` the smallest fillet radius, 2.5 mm on the reference cranks; ``modal`` twice that);
 ``--fillet-scale`` multiplies the *stress* fillet size instead (one case per value, the
 fillet-size convergence study of docs/modal-mesh.md). ``--reference-hz`` adds the f1 error
-against a reference value (e.g. the 1.15 M-DOF f1). ``--method`` picks the eigen-method.
+against a reference value (e.g. the 1.15 M-DOF f1).
 """
 
 from __future__ import annotations
@@ -24,8 +24,7 @@ import subprocess
 import sys
 
 
-def run_case(crank_path: str, size_mm: float, purpose: str, fillet_scale: float | None, modes: int,
-             method: str) -> dict:
+def run_case(crank_path: str, size_mm: float, purpose: str, fillet_scale: float | None, modes: int) -> dict:
     import time
 
     import fetorsion
@@ -36,7 +35,7 @@ def run_case(crank_path: str, size_mm: float, purpose: str, fillet_scale: float 
     size = size_mm * 1e-3
     fillet = None if fillet_scale is None else default_fillet_size(crank, size, "stress") * fillet_scale
     t = time.perf_counter()
-    fe = run_modal(crank, size, modes, fillet_size=fillet, purpose=purpose, method=method)
+    fe = run_modal(crank, size, modes, fillet_size=fillet, purpose=purpose)
     wall = time.perf_counter() - t
     r, q = fe, fe.mesh.quality
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 2**20
@@ -54,22 +53,21 @@ def main() -> None:
     p.add_argument("--purpose", choices=("modal", "stress"), default="modal")
     p.add_argument("--fillet-scale", type=float, nargs="+", help="fillet size = scale x the stress fillet size")
     p.add_argument("--modes", type=int, default=20)
-    p.add_argument("--method", default="block", help="eigen-method: block, lanczos, lobpcg")
     p.add_argument("--reference-hz", type=float, help="f1 reference for the error column")
     p.add_argument("--case", type=float, help=argparse.SUPPRESS)
     p.add_argument("--scale", type=float, help=argparse.SUPPRESS)
     a = p.parse_args()
     if a.case is not None:
-        print(json.dumps(run_case(a.crank, a.case, a.purpose, a.scale, a.modes, a.method)))
+        print(json.dumps(run_case(a.crank, a.case, a.purpose, a.scale, a.modes)))
         return
-    print(f"{a.crank}, {a.modes} elastic modes, {a.purpose} mesh, eigen-method {a.method}")
+    print(f"{a.crank}, {a.modes} elastic modes, {a.purpose} mesh")
     print("| size mm | fillet mm | tets | DOF | f1 Hz | f1 error | mesh s | assembly s | factorise s | eigen s "
           "| wall s | peak GiB |")
     print("|" + "---|" * 12)
     for size in a.sizes:
         for scale in a.fillet_scale or [None]:
             cmd = [sys.executable, __file__, "--crank", a.crank, "--case", str(size), "--purpose", a.purpose,
-                   "--modes", str(a.modes), "--method", a.method] + ([] if scale is None else ["--scale", str(scale)])
+                   "--modes", str(a.modes)] + ([] if scale is None else ["--scale", str(scale)])
             out = subprocess.run(cmd, capture_output=True, text=True)
             if out.returncode != 0:
                 print(f"| {size:g} | x{scale} | failed: {out.stderr.strip().splitlines()[-1]} |", flush=True)

@@ -149,7 +149,7 @@ def step_fe(ctx: RunContext) -> FEOutcome:
 
 
 def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
-    """The crank condensed to its journal and pin centres (on the FE step's mesh), free and in
+    """The crank condensed to its journal and pin centres (the FE step's system), free and in
     its bearings: modes with torsion/bending shares, the lumped chain against each, and the
     coupled forced response (gas, inertia, tangential and radial pin forces; bearing forces)."""
     from ..fe.condensed import run_condensed
@@ -157,8 +157,11 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
 
     if ctx.outcome.fe is None:
         return None
-    size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
-    cc = ctx.built["condensed"] = run_condensed(ctx.crank, size, mesh=ctx.outcome.fe.modal.mesh)
+    modal = ctx.outcome.fe.modal
+    # The FE step's system, already assembled and factorised: reduced, not rebuilt; its factor
+    # (the run's largest object) is let go once the reduction has it.
+    cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=modal.system)
+    modal.system = None
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
     chain = {}

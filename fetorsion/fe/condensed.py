@@ -1,19 +1,11 @@
 """The crank condensed to master points (Craig–Bampton), in its bearings or free.
 
 Masters, 6 DOF each, in axial order: ``front`` (pulley end face centre), ``J1`` (main-journal
-centre), ``P1`` (pin centre), ``J2``, … , ``rear`` (flywheel flange face centre). Each is tied
-by a distributing coupling (:mod:`fetorsion.fe.couplings`) to
-
-* a main journal's bearing surface: the journal's cylindrical surface nodes within the
-  bearing width (``[bearings] width``, default the journal length) centred on the journal;
-* a pin's cylindrical surface (where the big end bears);
-* an end face (by default rigidly: the pulley hub and the flywheel flange; see
-  :func:`run_condensed`).
-
-Attachments act on the masters as rigid masses (pulley/damper hub at ``front``, flywheel at
-``rear``, each with its offset; piston + rod as a point mass I/R² at every pin centre, as in
-:mod:`fetorsion.fe.crankfe`); bearings as radial springs and dampers on the journal masters'
-y, z translations, a rigid bearing by holding them, a thrust bearing on one journal's x.
+centre), ``P1`` (pin centre), ``J2``, … , ``rear`` (flywheel flange face centre), tied to the
+mesh and carrying the attachments as :mod:`fetorsion.fe.cranksystem` describes (the same
+system the free-free modal analysis solves). Bearings act as radial springs and dampers on
+the journal masters' y, z translations, a rigid bearing by holding them, a thrust bearing on
+one journal's x.
 The reduced matrices are those of the bare crank: supports and attachments are added on the
 masters for each analysis, so one reduction serves free-free and every bearing case.
 """
@@ -28,86 +20,19 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_TORSIONAL_MODES
-from ..description.model import AttachPoint, Crank
+from ..description.model import Crank
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
-from ..solid.mesh import CrankMesh, mesh_crank
+from ..solid.mesh import CrankMesh
 from . import assembly, modeshape
-from .couplings import DOF_NAMES, Master, coupling_matrix, point_mass_block
-from .modal import default_shift
-from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, interface, reduced_modes, supported_modes
-from .rigid import RigidBody, reduction
+from .couplings import DOF_NAMES
+from .cranksystem import CrankSystem, build_system
+from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, reduced_modes, supported_modes
 from .tetmesh import TetMesh
 
 SUPPORTS = ("free", "bearings")
 #: Elastic modes the reduction is checked on (the first 10 within 0.1 %, docs/condensed-crank.md).
 CHECKED_MODES = 10
-#: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
-#: nominal cylinder belong to the bearing surface.
-SURFACE_TOL = 0.005
-
-
-def _surface(cm: CrankMesh, part: str, axis_yz, diameter: float, x_mid: float, width: float) -> np.ndarray:
-    k = cm.part_names.index(part)
-    nodes = np.unique(cm.tets[cm.part == k])
-    p = cm.nodes[nodes]
-    r = np.hypot(p[:, 1] - axis_yz[0], p[:, 2] - axis_yz[1])
-    on = (np.abs(r - 0.5 * diameter) <= SURFACE_TOL * diameter) & (np.abs(p[:, 0] - x_mid) <= 0.5 * width * (1 + 1e-9))
-    if on.sum() < 12:
-        raise FetorsionError(f"{part}: too few surface nodes for its coupling; refine the mesh")
-    return nodes[on]
-
-
-def _part_mid(cm: CrankMesh, part: str) -> float:
-    k = cm.part_names.index(part)
-    x = cm.nodes[np.unique(cm.tets[cm.part == k]), 0]
-    return 0.5 * (x.min() + x.max())
-
-
-def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
-    """The masters of a crank mesh, in axial order (see the module docstring)."""
-    bearings = crank.main_bearings
-    R = crank.engine.crank_radius
-    face = lambda name: cm.node_sets[f"{name}_face"]  # noqa: E731
-    masters = [Master("front", np.array([cm.nodes[face("front"), 0].mean(), 0.0, 0.0]), face("front"))]
-    for j, journal in enumerate(crank.journals):
-        xm = _part_mid(cm, f"journal_{j + 1}")
-        masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
-                              _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
-        if j < crank.cylinders:
-            pin, a = crank.pins[j], crank.engine.crank_angles[j]
-            yz = (R * math.cos(a), R * math.sin(a))
-            xp = _part_mid(cm, f"pin_{j + 1}")
-            masters.append(Master(f"P{j + 1}", np.array([xp, *yz]),
-                                  _surface(cm, f"pin_{j + 1}", yz, pin.diameter, xp, pin.length)))
-    masters.append(Master("rear", np.array([cm.nodes[face("rear"), 0].mean(), 0.0, 0.0]), face("rear")))
-    return masters
-
-
-def attachment_masses(crank: Crank, labels: list[str], positions: np.ndarray) -> np.ndarray:
-    """Master-level mass matrix (6·masters square) of the description's attachments."""
-    m = len(labels)
-    Dm = np.zeros((6 * m, 6 * m))
-    for at, label, outward in ((AttachPoint.FRONT, "front", -1.0), (AttachPoint.REAR, "rear", 1.0)):
-        atts = crank.attachments_at(at)
-        if not atts:
-            continue
-        mass = sum(a.mass for a in atts)
-        offset = sum(a.mass * a.offset for a in atts) / mass if mass > 0 else 0.0
-        diametral = sum(a.diametral_inertia + a.mass * (a.offset - offset) ** 2 for a in atts)
-        polar = sum(a.polar_inertia for a in atts)
-        k = labels.index(label)
-        centre = positions[k] + np.array([outward * offset, 0.0, 0.0])
-        Dm[6 * k:6 * k + 6, 6 * k:6 * k + 6] += point_mass_block(mass, np.diag([polar, diametral, diametral]),
-                                                                  centre, positions[k])
-    pistons = crank.attachments_at(AttachPoint.PINS)
-    if pistons:
-        inertia = sum(a.polar_inertia for a in pistons)
-        for c in range(crank.cylinders):
-            k = labels.index(f"P{c + 1}")
-            r2 = float(positions[k, 1] ** 2 + positions[k, 2] ** 2)
-            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += inertia / r2 * np.eye(3)
-    return Dm
 
 
 def bearing_matrices(crank: Crank, labels: list[str]):
@@ -356,14 +281,15 @@ class CondensedCrank:
 
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
-                  keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid") -> CondensedCrank:
-    """Mesh the crank, assemble its bare K and M, and condense it to its masters.
+                  keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid",
+                  system: CrankSystem | None = None) -> CondensedCrank:
+    """Condense the crank's FE system (:func:`fetorsion.fe.cranksystem.build_system`) to its masters.
 
     Parameters
     ----------
     crank : Crank
     mesh_size : float
-        Global element size, m (ignored when ``mesh`` is given).
+        Global element size, m (ignored when ``mesh`` or ``system`` is given).
     ritz_blocks : int
         Blocks of interface Ritz vectors (6 per master each; see
         :func:`fetorsion.fe.substructure.craig_bampton`).
@@ -377,58 +303,29 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     backend : str
         Factorisation backend.
     end_ties : str
-        ``rigid`` (default): the end faces move with the pulley hub and the flywheel as rigid
-        bodies, as in the free-free FE (:mod:`fetorsion.fe.crankfe`) that is compared with the
-        measured frequencies (a distributing coupling lets the flange face deform under the
-        flywheel: Renault 21 free-free f1 −2.5 %); ``distributing``: RBE3 couplings there too.
+        ``rigid`` (default) or ``distributing``: see :func:`fetorsion.fe.cranksystem.build_system`.
+    system : CrankSystem, optional
+        The crank's system built already (by the free-free modal analysis of the same run):
+        its factorisation is reused, nothing is meshed or assembled again.
     """
     t0 = time.perf_counter()
-    cm = mesh or mesh_crank(crank, mesh_size)
-    t1 = time.perf_counter()
-    tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
-    m, dof_of_node = assembly.skfem_mesh(tm)
-    basis = assembly.p2_basis(m)
-    pat = assembly.block_pattern(basis)
-    mat = crank.material
-    K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
-    M = assembly.mass(basis, mat.density, pat)
-    masters = crank_masters(crank, cm)
-    xyz = m.doflocs.T
-    G = coupling_matrix(masters, dof_of_node, xyz)
-    T = None
-    Kc, Mc = K, M
-    if end_ties == "rigid":
-        # The flange and pulley-hub faces move with their rigid bodies (as in fetorsion.fe.crankfe):
-        # eliminate them exactly; their masters are then the bodies' own six DOF.
-        ends = [RigidBody(mst.label, dof_of_node[mst.nodes], 0.0, np.zeros((3, 3)), mst.position)
-                for mst in (masters[0], masters[-1])]
-        red_t = reduction(K.shape[0], ends, xyz)
-        T = red_t.T
-        Kc, Mc = red_t.reduce(K), red_t.reduce(M)
-        nf = red_t.n_free
-        pick = lambda first: sp.csr_array((np.ones(6), (np.arange(6), nf + first + np.arange(6))),  # noqa: E731
-                                          shape=(6, Kc.shape[0]))
-        G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
-    elif end_ties != "distributing":
-        raise FetorsionError(f"unknown end_ties {end_ties!r}; choose rigid or distributing")
-    t2 = time.perf_counter()
-    itf = interface(Kc, Mc, G, default_shift(tm, mat), backend)
+    sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
+    itf = sys_.interface
     red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
-    if T is not None:
-        red.basis = np.asarray(T @ red.basis)
-    labels = [mst.label for mst in masters]
-    positions = np.array([mst.position for mst in masters])
+    red.basis = sys_.expand(red.basis)
+    t2 = time.perf_counter()
+    labels, positions = sys_.labels, sys_.positions
     inner = [(p[0], p) for p in positions[1:-1]]
     sections = np.zeros((len(labels), 6, red.size))
-    sections[1:-1] = section_rows(K, red.basis, cm, dof_of_node, xyz, inner)
+    sections[1:-1] = section_rows(sys_.K, red.basis, sys_.mesh, sys_.dof_of_node, sys_.xyz, inner)
     if not keep_basis:
         red.basis = None
-    t3 = time.perf_counter()
     Kb, Cb, held = bearing_matrices(crank, labels)
-    timings = {"meshing": (cm.quality.seconds if cm.quality and mesh is None else t1 - t0), "assembly": t2 - t1,
-               **itf.timings_s, **red.timings_s, "total": time.perf_counter() - t0}
-    return CondensedCrank(crank, labels, positions, red, attachment_masses(crank, labels, positions), Kb, Cb, held,
-                          K.shape[0], timings, sections, cm, itf if keep_full else None)
+    timings = {**({} if system is not None else sys_.timings_s), **red.timings_s,
+               "sections": time.perf_counter() - t2,
+               "total": time.perf_counter() - t0}
+    return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
+                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None)
 
 
 #: Layout tag of the saved file; bump when the layout changes.

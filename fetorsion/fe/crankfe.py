@@ -1,42 +1,38 @@
-"""3D FE modal analysis of a crank description: mesh, attachments, journals, torsional modes.
+"""3D FE modal analysis of a crank description: its free-free modes, labelled.
 
-Glue between :mod:`fetorsion.solid.mesh` (the crank's curved P2 mesh with part tags) and
-:mod:`fetorsion.fe.modal` (the free-free solver):
-
-- pulley-end attachments are one rigid body tied to the ``front_face`` nodes, flywheel-end
-  attachments one tied to ``rear_face`` (mass, polar and diametral inertia, offset);
-- a ``pins`` attachment (piston + rod, given as its equivalent inertia about the crank
-  axis) becomes, on every pin, a point mass m = I/R² at the pin centre tied to a ring of
-  pin-surface nodes around the pin's mid-plane: that reproduces I about the crank axis
-  and stiffens only that ring, not the pin;
-- the main journals are the slabs whose rigid twist identifies torsional modes.
+The crank's FE system (:mod:`fetorsion.fe.cranksystem`: the curved P2 mesh, the pulley hub and
+flywheel flange as rigid end bodies, every journal and pin coupled to a master, the piston +
+rod as a point mass on each pin master through a distributing coupling) is solved free-free
+from its one factorisation (:func:`fetorsion.fe.substructure.supported_modes`); the condensed
+crank of the same run reduces the same system, so both give the same free-free frequencies.
+The main journals are the slabs whose rigid twist identifies torsional modes.
 """
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field, fields
 
 import numpy as np
 
 from ..modes import TorsionalModes
-from ..description.model import Attachment, AttachPoint, Crank
+from ..description.model import Crank
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_TORSIONAL_MODES
 from ..errors import FetorsionError
 from ..extrapolation import richardson
-from ..solid.mesh import CrankMesh, mesh_crank
-from .modal import ModalResult, modal
+from ..solid.mesh import CrankMesh
+from . import modeshape
+from .cranksystem import ENDS, CrankSystem, build_system, end_body
+from .modal import ModalResult, split_rigid
 from .modeshape import slab_fit
-from .rigid import RigidBody, from_attachment
-from .tetmesh import TetMesh
+from .rigid import rigid_rows
+from .substructure import supported_modes
 
 #: Stated error of the default modal mesh (10 mm global, fillet elements of the fillet
 #: radius) on the first torsional frequency, relative: against each crank's finest (4 mm)
 #: mesh, f1 is +0.11 % (Peugeot GLX, 1.15 M DOF) and +0.24 % (Renault 21, 1.03 M DOF) high
 #: (docs/modal-mesh.md); ``--refine`` estimates it for other cranks.
 MODAL_F1_ERROR = 2.5e-3
-
-#: Axial share of a pin (around its mid-plane) whose surface nodes carry the piston + rod.
-PIN_RING_SHARE = 1.0 / 3.0
 
 
 def part_nodes(cm: CrankMesh, name: str) -> np.ndarray:
@@ -48,54 +44,15 @@ def part_nodes(cm: CrankMesh, name: str) -> np.ndarray:
     return np.unique(cm.tets[cm.part == k])
 
 
-def pin_ring(cm: CrankMesh, crank: Crank, i: int) -> np.ndarray:
-    """Surface nodes of pin ``i`` (0-based) within its middle third, m from its axis ≈ D/2."""
-    nodes = part_nodes(cm, f"pin_{i + 1}")
-    xyz = cm.nodes[nodes]
-    R, angle = crank.engine.crank_radius, crank.engine.crank_angles[i]
-    centre = np.array([R * np.cos(angle), R * np.sin(angle)])
-    r = np.hypot(xyz[:, 1] - centre[0], xyz[:, 2] - centre[1])
-    x_mid = 0.5 * (xyz[:, 0].min() + xyz[:, 0].max())
-    pin = crank.pins[i]
-    ring = (r > 0.5 * pin.diameter * 0.98) & (np.abs(xyz[:, 0] - x_mid) <= 0.5 * PIN_RING_SHARE * pin.length)
-    if ring.sum() < 6:
-        raise FetorsionError(f"pin_{i + 1}: too few surface nodes to carry its attachment; refine the mesh")
-    return nodes[ring]
-
-
-def attachment_bodies(crank: Crank, cm: CrankMesh) -> list[RigidBody]:
-    """Rigid bodies for the description's attachments, tied to the mesh."""
-    bodies = []
-    for at, outward in ((AttachPoint.FRONT, -1.0), (AttachPoint.REAR, 1.0)):
-        atts = crank.attachments_at(at)
-        if atts:
-            bodies.append(from_attachment(_combined(atts, at), cm.node_sets[f"{at}_face"], cm.nodes, outward))
-    pistons = crank.attachments_at(AttachPoint.PINS)
-    if pistons:
-        inertia = sum(a.polar_inertia for a in pistons)
-        for i in range(crank.cylinders):
-            ring = pin_ring(cm, crank, i)
-            r2 = float(np.sum(cm.nodes[ring].mean(axis=0)[1:] ** 2))  # the body sits at the ring's centroid
-            att = Attachment(f"piston+rod {i + 1}", AttachPoint.PINS, inertia, mass=inertia / r2)
-            bodies.append(from_attachment(att, ring, cm.nodes, 0.0, about_crank_axis=True))
-    return bodies
-
-
-def _combined(atts, at: str) -> Attachment:
-    """Several bodies on one face as one: masses add, inertias add about the common axis."""
-    mass = sum(a.mass for a in atts)
-    offset = sum(a.mass * a.offset for a in atts) / mass if mass > 0 else 0.0
-    diametral = sum(a.diametral_inertia + a.mass * (a.offset - offset) ** 2 for a in atts)
-    return Attachment(" + ".join(a.name for a in atts), at, sum(a.polar_inertia for a in atts), mass, diametral, offset)
-
-
 @dataclass
 class CrankModal(ModalResult):
     """FE modal result of a crank: a :class:`~fetorsion.fe.modal.ModalResult` that also holds
-    the crank and the mesh it was computed on (for pictures and the Campbell hand-off)."""
+    the crank, the mesh it was computed on (for pictures and the Campbell hand-off) and its FE
+    system (factorised: the condensed crank of the same run reduces it)."""
 
     crank: Crank | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
+    system: CrankSystem | None = field(default=None, repr=False)
 
     def torsional_modes(self, n: int = DEFAULT_TORSIONAL_MODES) -> TorsionalModes:
         """The first ``n`` torsional modes in the form the Campbell analysis uses.
@@ -114,8 +71,9 @@ class CrankModal(ModalResult):
 
 
 def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
-              mesh: CrankMesh | None = None, purpose: str = "modal", **solver) -> CrankModal:
-    """Free-free FE modes of a crank with its attachments as rigid inertias.
+              mesh: CrankMesh | None = None, purpose: str = "modal", backend: str = "auto",
+              system: CrankSystem | None = None) -> CrankModal:
+    """Free-free FE modes of a crank with its attachments.
 
     Parameters
     ----------
@@ -134,15 +92,52 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
         ``"modal"`` (default; f1 within :data:`MODAL_F1_ERROR` of a 1.15 M-DOF mesh on the
         reference cranks, docs/modal-mesh.md) or ``"stress"``; see
         :func:`fetorsion.solid.mesh.default_fillet_size`.
-    **solver
-        Passed to :func:`fetorsion.fe.modal.modal` (``backend``, ``method``, ``shift``).
+    backend : str
+        Factorisation backend (:func:`fetorsion.fe.eigen.factorize`).
+    system : CrankSystem, optional
+        The crank's FE system built already (then nothing is meshed, assembled or factorised);
+        the result keeps it (``.system``) for the condensed crank of the same run.
     """
-    cm = mesh or mesh_crank(crank, mesh_size, fillet_size, purpose)
-    tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
-    slabs = {f"J{k + 1}": part_nodes(cm, f"journal_{k + 1}") for k in range(crank.cylinders + 1)}
-    res = modal(tm, crank.material, modes=modes, attachments=attachment_bodies(crank, cm), slabs=slabs, **solver)
-    res.timings_s["meshing"] = cm.quality.seconds if cm.quality else 0.0
-    return CrankModal(**{f.name: getattr(res, f.name) for f in fields(ModalResult)}, crank=crank, mesh=cm)
+    t0 = time.perf_counter()
+    sys_ = system or build_system(crank, mesh_size, mesh, backend, fillet_size=fillet_size, purpose=purpose)
+    t1 = time.perf_counter()
+    itf = sys_.interface
+    w2, X = supported_modes(itf, modes + 6, Dm=sys_.attachment_mass)
+    rigid, elastic = split_rigid(w2, itf.sigma)
+    t2 = time.perf_counter()
+    cm, xyz = sys_.mesh, sys_.xyz
+    U = sys_.expand(X[:, 6:]).T.reshape(len(elastic), -1, 3)  # (modes, DOF nodes, 3)
+    slabs = []
+    for k in range(crank.cylinders + 1):
+        d = sys_.dof_of_node[part_nodes(cm, f"journal_{k + 1}")]
+        slabs.append(d[d >= 0])
+    bodies, body_motion = [], {}
+    for label, at, outward in ENDS:
+        body = end_body(crank, at)
+        if body is None:
+            continue
+        mass, inertia, offset = body
+        k = sys_.labels.index(label)
+        q = np.asarray(itf.G[[6 * k + i for i in range(6)]] @ X[:, 6:]).T  # (modes, 6) at the master
+        centre = sys_.positions[k] + np.array([outward * offset, 0.0, 0.0])
+        L = np.eye(6)
+        L[:3, 3:] = rigid_rows(centre[None], sys_.positions[k])[0, :, 3:]
+        p = q @ L.T  # (t, θ) at the body's centre of mass
+        body_motion[label] = p
+        if mass > 0:
+            bodies.append((p, mass, inertia))
+    fractions, kinds, fit = modeshape.identify(U, xyz, sys_.node_mass, slabs, bodies)
+    shapes = np.zeros((len(elastic), len(cm.nodes), 3))
+    used = sys_.dof_of_node >= 0
+    shapes[:, used] = U[:, sys_.dof_of_node[used]]
+    t3 = time.perf_counter()
+    hz = lambda w: np.sqrt(np.abs(w)) / (2 * np.pi)  # noqa: E731
+    timings = {**(sys_.timings_s if system is None else {}), "eigensolve": t2 - t1, "identify": t3 - t2,
+               "total": t3 - t0}
+    res = ModalResult(hz(elastic), kinds, fractions, fit, hz(rigid), int(used.sum()), len(cm.tets), sys_.dofs,
+                      crank.material, timings, shapes, body_motion, backend, "block")
+    return CrankModal(**{f.name: getattr(res, f.name) for f in fields(ModalResult)}, crank=crank, mesh=cm,
+                      system=sys_)
 
 
 def extrapolate_refinement(sizes, values) -> dict:
@@ -169,7 +164,7 @@ REFINE_RATIO = 0.8
 
 
 def run_refinement(crank: Crank, mesh_size: float, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
-                   purpose: str = "modal", **solver) -> tuple[list[CrankModal], dict]:
+                   purpose: str = "modal", backend: str = "auto") -> tuple[list[CrankModal], dict]:
     """The modal analysis at three meshes (global and fillet sizes × 1, 0.8, 0.64) and the
     extrapolated first torsional frequency with its discretisation error estimate.
 
@@ -179,7 +174,7 @@ def run_refinement(crank: Crank, mesh_size: float, modes: int = DEFAULT_MODES, f
 
     fine = fillet_size or default_fillet_size(crank, mesh_size, purpose)
     scales = [1.0, REFINE_RATIO, REFINE_RATIO**2]
-    runs = [run_modal(crank, mesh_size * s, modes, fine * s, purpose=purpose, **solver) for s in scales]
+    runs = [run_modal(crank, mesh_size * s, modes, fine * s, purpose=purpose, backend=backend) for s in scales]
     f1 = [r.first_torsional() for r in runs]
     out = extrapolate_refinement([mesh_size * s for s in scales], f1)
     out.update(sizes_m=[mesh_size * s for s in scales], fillet_sizes_m=[fine * s for s in scales],

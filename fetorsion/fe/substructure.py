@@ -74,7 +74,7 @@ class Interface:
         return self.G.shape[0]
 
 
-def interface(K, M, G, sigma: float, backend: str = "auto") -> Interface:
+def interface(K, M, G, sigma: float, backend: str = "auto", groups: np.ndarray | None = None) -> Interface:
     """Factor S = K − σM once and solve for the interface block Y = S⁻¹Gᵀ.
 
     Parameters
@@ -87,11 +87,13 @@ def interface(K, M, G, sigma: float, backend: str = "auto") -> Interface:
         Negative shift, rad²/s².
     backend : str
         Factorisation backend of :func:`fetorsion.fe.eigen.factorize`.
+    groups : ndarray of int, optional
+        DOF groups sharing one sparsity pattern, for the fill-reducing ordering (same function).
     """
     if sigma >= 0:
         raise ValueError("the shift must be negative")
     t0 = time.perf_counter()
-    solve = factorize(shifted(K, M, sigma), backend)
+    solve = factorize(shifted(K, M, sigma), backend, groups)
     t1 = time.perf_counter()
     Y = np.asarray(solve(G.T.toarray()))
     C = np.asarray(G @ Y)

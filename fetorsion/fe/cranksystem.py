@@ -1,0 +1,240 @@
+"""The crank's FE system, built once: mesh, assembly, ties, couplings and one factorisation.
+
+Every FE answer about a crank comes from this one object — the free-free modes
+(:func:`fetorsion.fe.crankfe.run_modal`), the condensed crank free and in its bearings
+(:func:`fetorsion.fe.condensed.run_condensed`) and through it the held-throw stiffnesses — so
+a run assembles one mesh and factorises one matrix, and every path attaches the crank's
+bodies the same way:
+
+* the end faces move rigidly with the pulley hub and the flywheel flange: their nodes are
+  eliminated exactly (u = T q, :func:`fetorsion.fe.rigid.reduction`), each face's six DOF at
+  its centre becoming the ``front`` / ``rear`` master;
+* every main journal (``J1`` …) and pin (``P1`` …) has a master at its centre, tied by a
+  distributing coupling (:mod:`fetorsion.fe.couplings`) to its bearing surface: the journal's
+  cylindrical surface within the bearing width, the pin's whole cylindrical surface;
+* attachments are masses on the masters (:func:`attachment_masses`): pulley/damper hub at
+  ``front``, flywheel at ``rear``, each with its offset, and every cylinder's piston + rod as a
+  point mass I/R² at its pin centre. Through the distributing coupling that mass loads the pin
+  surface without making its section rigid, as the big-end bearing's oil film does; a rigid
+  ring would bridge the pin's oil drilling and stiffen it (Renault 21 f1 +2.4 %,
+  docs/condensed-crank.md).
+
+Springs and masses on the masters enter the full model as the low-rank term Gᵀ D G and held
+master DOF as constraints (:mod:`fetorsion.fe.substructure`); nothing is assembled twice.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from ..description.defaults import DEFAULT_MESH_SIZE
+from ..description.model import AttachPoint, Crank
+from ..errors import FetorsionError
+from ..solid.mesh import CrankMesh, mesh_crank
+from . import assembly
+from .couplings import Master, coupling_matrix, point_mass_block
+from .modal import default_shift, node_masses
+from .rigid import RigidBody, reduction
+from .substructure import Interface, interface
+from .tetmesh import TetMesh
+
+#: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
+#: nominal cylinder belong to the bearing surface.
+SURFACE_TOL = 0.005
+END_TIES = ("rigid", "distributing")
+
+
+def _surface(cm: CrankMesh, part: str, axis_yz, diameter: float, x_mid: float, width: float) -> np.ndarray:
+    k = cm.part_names.index(part)
+    nodes = np.unique(cm.tets[cm.part == k])
+    p = cm.nodes[nodes]
+    r = np.hypot(p[:, 1] - axis_yz[0], p[:, 2] - axis_yz[1])
+    on = (np.abs(r - 0.5 * diameter) <= SURFACE_TOL * diameter) & (np.abs(p[:, 0] - x_mid) <= 0.5 * width * (1 + 1e-9))
+    if on.sum() < 12:
+        raise FetorsionError(f"{part}: too few surface nodes for its coupling; refine the mesh")
+    return nodes[on]
+
+
+def _part_mid(cm: CrankMesh, part: str) -> float:
+    k = cm.part_names.index(part)
+    x = cm.nodes[np.unique(cm.tets[cm.part == k]), 0]
+    return 0.5 * (x.min() + x.max())
+
+
+def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
+    """The masters of a crank mesh, in axial order: ``front``, ``J1``, ``P1``, ``J2``, …, ``rear``."""
+    bearings = crank.main_bearings
+    R = crank.engine.crank_radius
+    face = lambda name: cm.node_sets[f"{name}_face"]  # noqa: E731
+    masters = [Master("front", np.array([cm.nodes[face("front"), 0].mean(), 0.0, 0.0]), face("front"))]
+    for j, journal in enumerate(crank.journals):
+        xm = _part_mid(cm, f"journal_{j + 1}")
+        masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
+                              _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
+        if j < crank.cylinders:
+            pin, a = crank.pins[j], crank.engine.crank_angles[j]
+            yz = (R * math.cos(a), R * math.sin(a))
+            xp = _part_mid(cm, f"pin_{j + 1}")
+            masters.append(Master(f"P{j + 1}", np.array([xp, *yz]),
+                                  _surface(cm, f"pin_{j + 1}", yz, pin.diameter, xp, pin.length)))
+    masters.append(Master("rear", np.array([cm.nodes[face("rear"), 0].mean(), 0.0, 0.0]), face("rear")))
+    return masters
+
+
+def end_body(crank: Crank, at: str):
+    """(mass kg, 3 × 3 inertia kg·m² about its centre, axial offset m outward) of the attachments
+    on one end face, combined (masses add, inertias add about the common centre); None without."""
+    atts = crank.attachments_at(at)
+    if not atts:
+        return None
+    mass = sum(a.mass for a in atts)
+    offset = sum(a.mass * a.offset for a in atts) / mass if mass > 0 else 0.0
+    diametral = sum(a.diametral_inertia + a.mass * (a.offset - offset) ** 2 for a in atts)
+    return mass, np.diag([sum(a.polar_inertia for a in atts), diametral, diametral]), offset
+
+
+#: (master label, attach point, sign of the outward normal along x) of the two end faces.
+ENDS = (("front", AttachPoint.FRONT, -1.0), ("rear", AttachPoint.REAR, 1.0))
+
+
+def attachment_masses(crank: Crank, labels: list[str], positions: np.ndarray) -> np.ndarray:
+    """Master-level mass matrix (6·masters square) of the description's attachments."""
+    m = len(labels)
+    Dm = np.zeros((6 * m, 6 * m))
+    for label, at, outward in ENDS:
+        body = end_body(crank, at)
+        if body is None:
+            continue
+        mass, inertia, offset = body
+        k = labels.index(label)
+        centre = positions[k] + np.array([outward * offset, 0.0, 0.0])
+        Dm[6 * k:6 * k + 6, 6 * k:6 * k + 6] += point_mass_block(mass, inertia, centre, positions[k])
+    pistons = crank.attachments_at(AttachPoint.PINS)
+    if pistons:
+        inertia = sum(a.polar_inertia for a in pistons)
+        for c in range(crank.cylinders):
+            k = labels.index(f"P{c + 1}")
+            r2 = float(positions[k, 1] ** 2 + positions[k, 2] ** 2)
+            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += inertia / r2 * np.eye(3)
+    return Dm
+
+
+@dataclass
+class CrankSystem:
+    """A crank's FE model, assembled and factorised once (see the module docstring).
+
+    Attributes
+    ----------
+    crank : Crank
+    mesh : CrankMesh
+    labels : list of str
+        Master labels in axial order.
+    positions : ndarray (masters, 3)
+        m.
+    interface : Interface
+        The factor of K − σM over the solved DOF, and the couplings G to the masters.
+    T : sparse (3·nodes, solved DOF) or None
+        u = T x: the mesh displacement from the solved DOF (None: no rigid end ties).
+    K : sparse
+        Stiffness on the mesh DOF (N/m), for the section resultants.
+    dof_of_node : ndarray of int
+        Mesh node → DOF node (−1: unused).
+    xyz : ndarray (DOF nodes, 3)
+        m.
+    node_mass : ndarray (DOF nodes,)
+        Positive lumped node masses, kg (weights of the mode identification).
+    attachment_mass : ndarray (6·masters, 6·masters)
+        Attachments on the masters.
+    """
+
+    crank: Crank
+    mesh: CrankMesh
+    labels: list[str]
+    positions: np.ndarray
+    interface: Interface
+    T: sp.csr_array | None
+    K: sp.csr_array
+    dof_of_node: np.ndarray
+    xyz: np.ndarray
+    node_mass: np.ndarray
+    attachment_mass: np.ndarray
+    end_ties: str = "rigid"
+    timings_s: dict = field(default_factory=dict)
+
+    @property
+    def dofs(self) -> int:
+        """Size of the solved system."""
+        return self.interface.K.shape[0]
+
+    def expand(self, x: np.ndarray) -> np.ndarray:
+        """Mesh-DOF displacements (3·nodes, …) from solved-DOF vectors (solved DOF, …)."""
+        return np.asarray(self.T @ x) if self.T is not None else np.asarray(x)
+
+
+def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: CrankMesh | None = None,
+                 backend: str = "auto", end_ties: str = "rigid", fillet_size: float | None = None,
+                 purpose: str = "modal") -> CrankSystem:
+    """Mesh (unless ``mesh`` is given), assemble, tie, couple and factorise a crank.
+
+    Parameters
+    ----------
+    crank : Crank
+    mesh_size : float
+        Global element size, m (ignored when ``mesh`` is given).
+    mesh : CrankMesh, optional
+    backend : str
+        Factorisation backend (:func:`fetorsion.fe.eigen.factorize`).
+    end_ties : str
+        ``rigid`` (default): the end faces move with the pulley hub and the flywheel as rigid
+        bodies; ``distributing``: RBE3 couplings there too (a flange face free to deform under
+        the flywheel: Renault 21 free-free f1 −2.5 %).
+    fillet_size : float, optional
+        Element size at fillets and drillings, m (:func:`fetorsion.solid.mesh.default_fillet_size`).
+    purpose : str
+        ``modal`` or ``stress`` (the fillet size's default).
+    """
+    if end_ties not in END_TIES:
+        raise FetorsionError(f"unknown end_ties {end_ties!r}; choose from {', '.join(END_TIES)}")
+    t0 = time.perf_counter()
+    cm = mesh or mesh_crank(crank, mesh_size, fillet_size, purpose)
+    t1 = time.perf_counter()
+    tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
+    m, dof_of_node = assembly.skfem_mesh(tm)
+    basis = assembly.p2_basis(m)
+    pat = assembly.block_pattern(basis)
+    mat = crank.material
+    K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
+    M = assembly.mass(basis, mat.density, pat)
+    w = node_masses(basis, mat.density)
+    del basis, pat
+    masters = crank_masters(crank, cm)
+    xyz = m.doflocs.T
+    G = coupling_matrix(masters, dof_of_node, xyz)
+    T, Kc, Mc = None, K, M
+    groups = np.arange(0, K.shape[0] + 1, 3)  # a node's three displacements share their neighbours
+    if end_ties == "rigid":
+        # The end faces' nodes follow their bodies exactly; the bodies' six DOF (at the face
+        # centres, massless here: the attachments act on the masters) are the end masters.
+        ends = [RigidBody(mst.label, dof_of_node[mst.nodes], 0.0, np.zeros((3, 3)), mst.position)
+                for mst in (masters[0], masters[-1])]
+        red = reduction(K.shape[0], ends, xyz)
+        T = red.T
+        Kc, Mc = red.reduce(K), red.reduce(M)
+        nf = red.n_free
+        pick = lambda first: sp.csr_array((np.ones(6), (np.arange(6), nf + first + np.arange(6))),  # noqa: E731
+                                          shape=(6, Kc.shape[0]))
+        G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
+        groups = red.groups()
+    t2 = time.perf_counter()
+    itf = interface(Kc, Mc, G, default_shift(tm, mat), backend, groups=groups)
+    labels = [mst.label for mst in masters]
+    positions = np.array([mst.position for mst in masters])
+    timings = {"meshing": cm.quality.seconds if cm.quality and mesh is None else t1 - t0, "assembly": t2 - t1,
+               **itf.timings_s}
+    return CrankSystem(crank, cm, labels, positions, itf, T, K, dof_of_node, xyz, w,
+                       attachment_masses(crank, labels, positions), end_ties, timings)
