@@ -1,0 +1,158 @@
+"""Oil-film main bearings: the short-bearing coefficients against independent evidence, the
+``[bearings]`` oil-film input, and f1 in bearings against the bearing stiffness."""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from fetorsion.fe import oilfilm
+
+PI = math.pi
+RPM = PI / 30  # rad/s per rpm
+
+# A passenger-car main bearing: 58 mm journal, 20 mm wide, 30 µm radial clearance, SAE 10W-40
+# near 100 °C (0.01 Pa·s), 6000 rpm, 5 kN.
+CAR = dict(load=5000.0, speed=6000 * RPM, diameter=0.058, width=0.020, clearance=30e-6, viscosity=0.01)
+# [Friswell] Example 5.5.1: D = 100 mm, L = 30 mm, c = 0.1 mm, μ = 0.1 Pa·s, 1500 rpm, W = 525 N.
+FRISWELL = dict(load=525.0, speed=1500 * RPM, diameter=0.1, width=0.03, clearance=1e-4, viscosity=0.1)
+
+
+# ---------------------------------------------------------------------------------------------
+# (a) a hand evaluation: the quartic's root by numpy, the coefficients typed out with plain math
+
+
+def hand_coefficients(load, speed, diameter, width, clearance, viscosity):
+    """ε from the quartic in ε² (numpy's polynomial roots, not the bracketing of the package),
+    then K and C from [Friswell]'s dimensionless coefficients, written out term by term."""
+    s = diameter * speed * viscosity * width**3 / (8 * load * clearance**2)
+    roots = np.roots([1.0, -4.0, 6.0 - s * s * (16 - PI**2), -(4.0 + PI**2 * s * s), 1.0])
+    x = [r.real for r in roots if abs(r.imag) < 1e-12 and 0 < r.real < 1]
+    assert len(x) == 1
+    e = math.sqrt(x[0])
+    h0 = 1 / (PI**2 * (1 - e**2) + 16 * e**2) ** 1.5
+    kuu = 4 * h0 * (PI**2 * (2 - e**2) + 16 * e**2)
+    kuv = h0 * PI * (PI**2 * (1 - e**2) ** 2 - 16 * e**4) / (e * math.sqrt(1 - e**2))
+    kvu = -h0 * PI * (PI**2 * (1 - e**2) * (1 + 2 * e**2) + 32 * e**2 * (1 + e**2)) / (e * math.sqrt(1 - e**2))
+    kvv = 4 * h0 * (PI**2 * (1 + 2 * e**2) + 32 * e**2 * (1 + e**2) / (1 - e**2))
+    cuu = 2 * PI * h0 * math.sqrt(1 - e**2) * (PI**2 * (1 + 2 * e**2) - 16 * e**2) / e
+    cuv = -8 * h0 * (PI**2 * (1 + 2 * e**2) - 16 * e**2)
+    cvv = 2 * PI * h0 * (PI**2 * (1 - e**2) ** 2 + 48 * e**2) / (e * math.sqrt(1 - e**2))
+    k, c = load / clearance, load / (clearance * speed)
+    return e, k * np.array([[kuu, kuv], [kvu, kvv]]), c * np.array([[cuu, cuv], [cuv, cvv]])
+
+
+@pytest.mark.parametrize("case", [CAR, FRISWELL], ids=["car", "friswell"])
+def test_closed_form_equals_a_hand_evaluation(case):
+    film = oilfilm.film_coefficients(**case)
+    e, K, C = hand_coefficients(**case)
+    assert film.eccentricity == pytest.approx(e, rel=1e-9)
+    np.testing.assert_allclose(film.stiffness, K, rtol=1e-9)
+    np.testing.assert_allclose(film.damping, C, rtol=1e-9)
+
+
+def test_friswell_example_5_5_1():
+    # the book's printed values, four significant figures: half a unit in the last place
+    film = oilfilm.film_coefficients(**FRISWELL)
+    np.testing.assert_allclose(film.stiffness / 1e6, [[12.81, 16.39], [-25.06, 8.815]], rtol=5e-4)
+    np.testing.assert_allclose(film.damping / 1e3, [[232.9, -81.92], [-81.92, 294.9]], rtol=5e-4)
+
+
+# ---------------------------------------------------------------------------------------------
+# (b) the film force integrated from the short-bearing pressure, and its finite differences
+
+
+def film_force(y, z, vy, vz, *, speed, diameter, width, clearance, viscosity, **_):
+    """Force (N) of the oil on the journal, centre at (y, z) m moving at (vy, vz) m/s, the
+    journal turning at ``speed`` from +y towards +z in a fixed bush.
+
+    θ is fixed to the bush, from +y towards +z; the film is h = c − y cos θ − z sin θ. The
+    short-bearing Reynolds equation ∂/∂x(h³ ∂p/∂x) = 6μΩ ∂h/∂θ + 12μ ∂h/∂t with p = 0 at the
+    edges x = ±L/2 gives p = (3μ/h³)(L²/4 − x²) g(θ), g = −(Ω ∂h/∂θ + 2 ∂h/∂t); the oil carries
+    no tension (p ≥ 0), so the force −∫∫ p (cos θ, sin θ) R dθ dx runs over g > 0 only. Across
+    the width it integrates to L³/6; round the journal g = A sin θ + B cos θ is positive on one
+    half turn, found exactly, and quad integrates the smooth integrand there.
+    """
+    R, mu, c = diameter / 2, viscosity, clearance
+    A, B = -speed * y + 2 * vz, speed * z + 2 * vy  # g(θ) = A sin θ + B cos θ
+    start = math.atan2(-B, A)  # g = r sin(θ − start): positive on (start, start + π)
+
+    tol = 1e-13 * math.hypot(A, B) / c**3  # absolute: a component near zero has no relative accuracy
+
+    def part(trig):
+        return quad(lambda t: (A * math.sin(t) + B * math.cos(t)) * trig(t) / (c - y * math.cos(t) - z * math.sin(t)) ** 3,
+                    start, start + PI, epsabs=tol, epsrel=1e-12, limit=200)[0]
+
+    scale = -3 * mu * R * width**3 / 6
+    return scale * np.array([part(math.cos), part(math.sin)])
+
+
+def equilibrium(film, load_angle, clearance):
+    """Journal centre (m) under a load at ``load_angle``: ε c from the bush centre, the line of
+    centres the attitude angle on from the load, in the turning sense."""
+    a = load_angle + film.attitude
+    return film.eccentricity * clearance * np.array([math.cos(a), math.sin(a)])
+
+
+@pytest.mark.parametrize("load", [20.0, 525.0, 5000.0, 30000.0])
+@pytest.mark.parametrize("load_angle", [-PI / 2, 0.7])
+def test_coefficients_are_the_derivatives_of_the_film_force(load, load_angle):
+    """K = −∂f/∂x and C = −∂f/∂ẋ by central differences of the integrated film force, at the
+    static position the closed form gives, in the crank's y, z for a load at ``load_angle``;
+    the equilibrium itself checks ε and the attitude angle."""
+    case = dict(CAR, load=load)
+    film = oilfilm.film_coefficients(**case)
+    c, w = case["clearance"], case["speed"]
+    y0, z0 = equilibrium(film, load_angle, c)
+    f0 = film_force(y0, z0, 0.0, 0.0, **case)
+    applied = load * np.array([math.cos(load_angle), math.sin(load_angle)])
+    np.testing.assert_allclose(f0, -applied, atol=1e-9 * load)
+
+    h = 1e-5 * c  # truncation ~h², round-off ~1e-12/h relative: both below 1e-8 here
+    K, C = np.zeros((2, 2)), np.zeros((2, 2))
+    for j in range(2):
+        d = np.eye(2)[j] * h
+        K[:, j] = -(film_force(y0 + d[0], z0 + d[1], 0, 0, **case) - film_force(y0 - d[0], z0 - d[1], 0, 0, **case)) / (2 * h)
+        v = d * w
+        C[:, j] = -(film_force(y0, z0, *v, **case) - film_force(y0, z0, *-v, **case)) / (2 * h * w)
+    Kc, Cc = oilfilm.in_crank_axes(film.stiffness, load_angle), oilfilm.in_crank_axes(film.damping, load_angle)
+    k_err = np.abs(K - Kc).max() / np.abs(Kc).max()
+    c_err = np.abs(C - Cc).max() / np.abs(Cc).max()
+    assert k_err < 1e-6 and c_err < 1e-6, (k_err, c_err)
+
+
+def test_light_and_heavy_load_limits():
+    # Light load (S_s → ∞): ε → 1/(π S_s), the direct stiffness vanishes and the cross-coupled
+    # one tends to π μ Ω R L³ / (4 c³), what an unloaded, centred journal feels when pushed aside.
+    case = dict(CAR, load=1e-3)
+    film = oilfilm.film_coefficients(**case)
+    s = oilfilm.modified_sommerfeld(**case)
+    assert film.eccentricity == pytest.approx(1 / (PI * s), rel=1e-6)
+    assert film.attitude == pytest.approx(PI / 2 - 4 * film.eccentricity / PI, rel=1e-9)
+    mu, w, R, L, c = case["viscosity"], case["speed"], case["diameter"] / 2, case["width"], case["clearance"]
+    cross = PI * mu * w * R * L**3 / (4 * c**3)
+    assert film.stiffness[0, 1] == pytest.approx(cross, rel=1e-6)
+    assert film.stiffness[1, 0] == pytest.approx(-cross, rel=1e-6)
+    assert abs(film.stiffness[0, 0]) + abs(film.stiffness[1, 1]) < 1e-5 * cross
+    # Heavy load (S_s → 0): the journal nears the bush, 1 − ε² → 2 √S_s, the line of centres
+    # turns onto the load
+    heavy = dict(CAR, load=1e9)
+    e = oilfilm.film_coefficients(**heavy).eccentricity
+    assert 1 - e * e == pytest.approx(2 * math.sqrt(oilfilm.modified_sommerfeld(**heavy)), rel=1e-3)
+    assert oilfilm.attitude_angle(e) < 0.01
+
+
+def test_isotropic_equivalent_is_the_same_for_every_load_direction():
+    film = oilfilm.film_coefficients(**CAR)
+    k, c = oilfilm.isotropic_equivalent(film.stiffness, film.damping)
+    assert k == pytest.approx(0.5 * (film.stiffness[0, 0] + film.stiffness[1, 1]), rel=1e-15)
+    for angle in np.linspace(0, 2 * PI, 7):
+        k2, c2 = oilfilm.isotropic_equivalent(oilfilm.in_crank_axes(film.stiffness, angle),
+                                              oilfilm.in_crank_axes(film.damping, angle))
+        assert (k2, c2) == pytest.approx((k, c), rel=1e-12)
+    # the stiffer the load, the stiffer the film (at this speed): ε rises, and K with W / c
+    loads = [500.0, 2000.0, 5000.0, 20000.0]
+    ks = [oilfilm.isotropic_equivalent(*(lambda f: (f.stiffness, f.damping))(oilfilm.film_coefficients(**dict(CAR, load=w))))[0]
+          for w in loads]
+    assert np.all(np.diff(ks) > 0)
