@@ -135,12 +135,13 @@ def test_light_and_heavy_load_limits():
     assert film.stiffness[0, 1] == pytest.approx(cross, rel=1e-6)
     assert film.stiffness[1, 0] == pytest.approx(-cross, rel=1e-6)
     assert abs(film.stiffness[0, 0]) + abs(film.stiffness[1, 1]) < 1e-5 * cross
-    # Heavy load (S_s → 0): the journal nears the bush, 1 − ε² → 2 √S_s, the line of centres
-    # turns onto the load
+    # Heavy load (S_s → 0): the journal nears the bush, 1 − ε² → 2 √S_s, and the line of
+    # centres turns onto the load, φ → (π/4) √(2 √S_s)
     heavy = dict(CAR, load=1e9)
+    s = oilfilm.modified_sommerfeld(**heavy)
     e = oilfilm.film_coefficients(**heavy).eccentricity
-    assert 1 - e * e == pytest.approx(2 * math.sqrt(oilfilm.modified_sommerfeld(**heavy)), rel=1e-3)
-    assert oilfilm.attitude_angle(e) < 0.01
+    assert 1 - e * e == pytest.approx(2 * math.sqrt(s), rel=1e-3)
+    assert oilfilm.attitude_angle(e) == pytest.approx(PI / 4 * math.sqrt(2 * math.sqrt(s)), rel=1e-3)
 
 
 def test_isotropic_equivalent_is_the_same_for_every_load_direction():
