@@ -157,3 +157,35 @@ def test_isotropic_equivalent_is_the_same_for_every_load_direction():
     ks = [oilfilm.isotropic_equivalent(*(lambda f: (f.stiffness, f.damping))(oilfilm.film_coefficients(**dict(CAR, load=w))))[0]
           for w in loads]
     assert np.all(np.diff(ks) > 0)
+
+
+# ---------------------------------------------------------------------------------------------
+# [bearings] as an oil film
+
+
+def with_film(raw, **film):
+    raw = dict(raw)
+    raw["bearings"] = film
+    return raw
+
+
+def test_oil_film_input_gives_the_isotropic_equivalents(renault_raw):
+    from fetorsion.description.crank import parse_crank
+
+    loads = [3000.0, 5000.0, 5000.0, 5000.0, 3000.0]
+    crank = parse_crank(with_film(renault_raw, clearance=0.030, oil_viscosity_pa_s=0.01, load_n=loads, width=20.0),
+                        "x.toml")
+    b = crank.main_bearings
+    top = renault_raw["excitation"]["speed_range_rpm"][1]  # no speed_rpm: the top of the range
+    assert b.oil_film.speed == pytest.approx(top * RPM)
+    for j, journal in enumerate(crank.journals):
+        e, K, C = hand_coefficients(loads[j], top * RPM, journal.diameter, 0.020, 30e-6, 0.01)
+        assert b.oil_film.eccentricity[j] == pytest.approx(e, rel=1e-9)
+        assert b.radial_stiffness[j] == pytest.approx(0.5 * (K[0, 0] + K[1, 1]), rel=1e-9)
+        assert b.radial_damping[j] == pytest.approx(0.5 * (C[0, 0] + C[1, 1]), rel=1e-9)
+    assert not b.rigid and b.oil_film.clearance == (30e-6,) * 5 and b.oil_film.load == tuple(loads)
+    # a stated speed wins over the range; no [excitation] needs one
+    slow = parse_crank(with_film(renault_raw, clearance=0.030, oil_viscosity_pa_s=0.01, load_n=5000.0,
+                                 speed_rpm=2000.0), "x.toml").main_bearings
+    assert slow.oil_film.speed == pytest.approx(2000 * RPM)
+    assert slow.oil_film.eccentricity[0] > b.oil_film.eccentricity[1]  # slower: the journal sinks
