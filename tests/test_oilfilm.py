@@ -189,3 +189,82 @@ def test_oil_film_input_gives_the_isotropic_equivalents(renault_raw):
                                  speed_rpm=2000.0), "x.toml").main_bearings
     assert slow.oil_film.speed == pytest.approx(2000 * RPM)
     assert slow.oil_film.eccentricity[0] > b.oil_film.eccentricity[1]  # slower: the journal sinks
+
+
+# ---------------------------------------------------------------------------------------------
+# f1 in bearings between the free-free and the rigid-bearing value
+
+
+@pytest.fixture(scope="module")
+def reduced_shaft():
+    """A 1 m × 50 mm steel shaft condensed to its two end faces (as tests/test_condensed.py's
+    shaft, on a coarser mesh: the test compares the model with itself)."""
+    from fetorsion.fe import assembly
+    from fetorsion.fe import substructure as ss
+    from fetorsion.fe.couplings import Master, coupling_matrix
+    from fetorsion.fe.modal import default_shift
+    from fetorsion.fe.tetmesh import cylinder_mesh
+    from fetorsion.description.model import Material
+
+    steel = Material(210e9, 0.3, 7850.0, "steel")
+    length, diameter = 1.0, 0.05
+    mesh = cylinder_mesh(length, diameter, diameter / 2)
+    m, dof_of_node = assembly.skfem_mesh(mesh)
+    b = assembly.p2_basis(m)
+    pat = assembly.block_pattern(b)
+    K, M = assembly.stiffness(b, steel.youngs_modulus, steel.poisson_ratio, pat), assembly.mass(b, steel.density, pat)
+    masters = [Master("front", np.zeros(3), mesh.node_sets["front_face"]),
+               Master("rear", np.array([length, 0.0, 0.0]), mesh.node_sets["rear_face"])]
+    itf = ss.interface(K, M, coupling_matrix(masters, dof_of_node, m.doflocs.T), default_shift(mesh, steel))
+    along_y = np.zeros(M.shape[0])
+    along_y[1::3] = 1.0  # the whole shaft moved 1 m along y (DOF 3n + d: node n, direction d)
+    return ss.craig_bampton(itf), along_y @ (M @ along_y)
+
+
+@pytest.mark.fe
+def test_f1_in_bearings_rises_from_free_free_to_rigid(reduced_shaft):
+    """Radial bearings at both ends of the shaft, isotropic stiffness k on each end master's y and z
+    (as fetorsion.fe.condensed.bearing_matrices): k = 0 is the free-free shaft, k = ∞ holds those
+    DOF. The shaft's torsion does not feel radial bearings, so the mode tracked is the first one
+    the bearings carry, the first bending mode in bearings (sorted index 2, after the rigid twist
+    and axial motion no radial bearing restrains): k = 0 gives its free-free value, a rigid-body
+    lateral mode at 0 Hz, k = ∞ the pinned-pinned first bending mode. Adding a stiffness never
+    lowers an eigenvalue (Rayleigh), so every sorted frequency rises monotonically with k; the
+    first free-free elastic mode's index (6, after six rigid-body modes) is checked too, from
+    free-free bending (~230 Hz) to its value with rigid bearings. A passenger-car film
+    (:data:`CAR`) sits between the limits.
+    """
+    from fetorsion.fe import substructure as ss
+
+    red, mass = reduced_shaft
+    radial = [1, 2, 7, 8]  # y, z of the front and the rear master
+    k_film = oilfilm.isotropic_equivalent(*(lambda f: (f.stiffness, f.damping))(oilfilm.film_coefficients(**CAR)))[0]
+    ks = [0.0, *np.logspace(2, 12, 11), k_film, math.inf]
+    ks.sort()
+    f = []
+    for k in ks:
+        Dk = np.zeros((red.n_master_dofs, red.n_master_dofs))
+        held = radial if math.isinf(k) else []
+        if not math.isinf(k):
+            Dk[radial, radial] = k
+        w2, _, _ = ss.reduced_modes(red, Dk, held=held)
+        f.append(np.sqrt(np.abs(w2[:10])) / (2 * PI))
+    f = np.array(f)  # (stiffness, mode)
+    # monotone in k, every mode, to the eigen-solver's round-off: relative 1e-7 on the elastic
+    # modes, and a few mHz on the zero ones (ω² to ε_machine ‖K‖/m ≈ 1e-16 · 1e12 / 15 s⁻²)
+    assert np.all(np.diff(f, axis=0) >= -(1e-7 * f[-1] + 1e-2)), np.diff(f, axis=0).min()
+    # the first bending mode in bearings: 0 Hz free-free (a rigid mode), the pinned-pinned value
+    # held; on soft springs it is the rigid shaft bouncing, √(2k/m)/2π (the shaft's own bending
+    # stiffness, ~1e7 N/m, is 1e5 times the 1e2 N/m spring: the rigid value to ~1e-5)
+    free, soft, stiff, held = f[0, 2], f[1, 2], f[-2, 2], f[-1, 2]
+    assert free < 1e-3
+    assert soft == pytest.approx(math.sqrt(2 * ks[1] / mass) / (2 * PI), rel=1e-4)
+    # 1e12 N/m is 1e5 times the shaft's lateral stiffness: within ~1e-5 of the held value
+    assert stiff == pytest.approx(held, rel=1e-4)
+    assert 90 < held < 110  # a 1 m × 50 mm steel shaft pinned-pinned: ~101 Hz (Euler–Bernoulli)
+    # the first free-free elastic mode: index 6 free-free (six rigid-body modes below it)
+    assert f[1, 6] == pytest.approx(f[0, 6], rel=1e-4) and f[-2, 6] == pytest.approx(f[-1, 6], rel=1e-4)
+    assert f[-1, 6] > f[0, 6] > 200
+    # the film: between the limits, nearly rigid for this shaft (700 MN/m against ~10 MN/m)
+    i = ks.index(k_film)
+    assert f[0, 2] < f[i, 2] <= f[-1, 2] and f[i, 2] == pytest.approx(held, rel=1e-2)
