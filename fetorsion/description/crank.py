@@ -18,7 +18,7 @@ from pathlib import Path
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_RATIO
 from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
-                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilHoles, Web)
+                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
 
 # Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
@@ -192,18 +192,33 @@ def _per_journal(t: Table, key: str, n: int, default: float, *, rigid: bool = Fa
     return tuple(out) * (n if len(out) == 1 else 1)
 
 
-def _bearings(t: Table, journals) -> Bearings:
-    """``[bearings]``: radial stiffness (N/m or "rigid") and damping (N·s/m) per journal, widths,
-    a thrust journal with its axial stiffness."""
+# The oil-film group of [bearings]: given instead of radial_stiffness_n_per_m (speed_rpm may be left
+# to default to the top of [excitation] speed_range_rpm).
+OIL_FILM_KEYS = ("clearance", "oil_viscosity_pa_s", "load_n", "speed_rpm")
+
+
+def _bearings(t: Table, journals, speed_range=None) -> Bearings:
+    """``[bearings]``: radial stiffness (N/m or "rigid") and damping (N·s/m) per journal, or an
+    oil film (:func:`_oil_film`); widths, a thrust journal with its axial stiffness.
+    ``speed_range`` is the raw ``[excitation] speed_range_rpm`` (the oil film's default speed)."""
     n = len(journals)
-    radial = _per_journal(t, "radial_stiffness_n_per_m", n, math.inf, rigid=True, positive=True)
-    damping = _per_journal(t, "radial_damping_ns_per_m", n, 0.0)
     width = _per_journal(t, "width", n, math.nan, length=True, positive=True)
     width = tuple(j.length if math.isnan(w) else w for w, j in zip(width, journals))
     for i, (w, j) in enumerate(zip(width, journals)):
         if w > j.length * (1 + 1e-9):
             t.problems.append(Problem(f"{t.path}.width", w / t.scale,
                                       f"must not exceed journal {i + 1}'s length ({j.length / t.scale:g})"))
+    film = None
+    if any(k in t.data for k in OIL_FILM_KEYS):
+        for key in ("radial_stiffness_n_per_m", "radial_damping_ns_per_m"):
+            if key in t.data:
+                t.problems.append(Problem(f"{t.path}.{key}", t.get(key), (
+                    "cannot be given with an oil film (clearance, oil_viscosity_pa_s, load_n, speed_rpm): "
+                    "the film gives the radial stiffness and damping; give one or the other")))
+        radial, damping, film = _oil_film(t, journals, width, speed_range)
+    else:
+        radial = _per_journal(t, "radial_stiffness_n_per_m", n, math.inf, rigid=True, positive=True)
+        damping = _per_journal(t, "radial_damping_ns_per_m", n, 0.0)
     axial_raw = t.get("axial_stiffness_n_per_m", 0.0)
     if axial_raw == RIGID:
         axial = math.inf
@@ -222,7 +237,53 @@ def _bearings(t: Table, journals) -> Bearings:
         t.problems.append(Problem(f"{t.path}.thrust_journal", None, "is required with axial_stiffness_n_per_m"))
     t.used.add("source")
     t.finish()
-    return Bearings(radial, damping, width, axial, max(thrust, 1) - 1)
+    return Bearings(radial, damping, width, axial, max(thrust, 1) - 1, oil_film=film)
+
+
+def _oil_film(t: Table, journals, width: tuple[float, ...], speed_range) -> tuple:
+    """The oil-film group of ``[bearings]``: plain journal bearings at one operating point.
+
+    ``clearance`` (radial, file length unit) and ``load_n`` (static load, N) one value or one per
+    journal, ``oil_viscosity_pa_s`` one value, ``speed_rpm`` one value (default: the top of
+    ``speed_range``). Returns (radial stiffness N/m, radial damping N·s/m, :class:`OilFilm`):
+    the short-bearing film's isotropic equivalents per journal (:mod:`fetorsion.fe.oilfilm`),
+    NaN where a value was refused (the problem is recorded).
+    """
+    from ..fe.oilfilm import film_coefficients, isotropic_equivalent
+
+    n = len(journals)
+    for key in ("clearance", "load_n"):  # per journal: _per_journal has no "required"
+        if key not in t.data:
+            t.problems.append(Problem(f"{t.path}.{key}", None, "is required with an oil film"))
+    clearance = _per_journal(t, "clearance", n, math.nan, length=True, positive=True)
+    load = _per_journal(t, "load_n", n, math.nan, positive=True)
+    viscosity = t.number("oil_viscosity_pa_s", positive=True)
+    if "speed_rpm" in t.data:
+        speed_rpm = t.number("speed_rpm", positive=True)
+    elif speed_range is None:
+        t.problems.append(Problem(f"{t.path}.speed_rpm", None, (
+            "is required with an oil film when [excitation] gives no speed_range_rpm to take its top")))
+        speed_rpm = math.nan
+    else:  # a bad range is the excitation's problem: no film then, and no second problem here
+        top = speed_range[-1] if isinstance(speed_range, list) and speed_range else None
+        speed_rpm = float(top) if finite_number(top) and top > 0 else math.nan
+    for i, (c, j) in enumerate(zip(clearance, journals)):
+        if c >= 0.5 * j.diameter:
+            t.problems.append(Problem(f"{t.path}.clearance", c / t.scale,
+                                      f"must be smaller than journal {i + 1}'s radius ({0.5 * j.diameter / t.scale:g})"))
+            clearance = (math.nan,) * n
+            break
+    speed = speed_rpm * math.pi / 30.0  # rad/s
+    stiffness, damping, eccentricity, attitude = [], [], [], []
+    for c, w, j, lw in zip(clearance, load, journals, width):
+        if all(math.isfinite(v) for v in (c, w, lw, j.diameter, viscosity, speed)):
+            f = film_coefficients(w, speed, j.diameter, lw, c, viscosity)
+            k, d = isotropic_equivalent(f.stiffness, f.damping)
+            stiffness.append(k), damping.append(d), eccentricity.append(f.eccentricity), attitude.append(f.attitude)
+        else:
+            stiffness.append(math.nan), damping.append(math.nan), eccentricity.append(math.nan), attitude.append(math.nan)
+    film = OilFilm(clearance, viscosity, load, speed, tuple(eccentricity), tuple(attitude))
+    return tuple(stiffness), tuple(damping), film
 
 
 def _cylinder(t: Table) -> Cylinder:
@@ -345,7 +406,9 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
         ))
         t.used.add("source")
         t.finish()
-    bearings = _bearings(root.table("bearings"), journals) if "bearings" in data else None
+    ex = data.get("excitation")
+    bearings = (_bearings(root.table("bearings"), journals, ex.get("speed_range_rpm") if isinstance(ex, dict) else None)
+                if "bearings" in data else None)
     uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
     distributions = _distributions(root.table("distributions", required=False), uncertainty, data, problems)
     dampers = read_dampers(root)

@@ -240,12 +240,33 @@ class Limits:
 
 
 @dataclass(frozen=True)
+class OilFilm:
+    """Plain oil-film main bearings at one operating point, SI units.
+
+    Radial clearance m and static load N per journal, dynamic viscosity Pa·s, journal speed rad/s;
+    the static eccentricity ratio ε and attitude angle (rad) per journal that the short-bearing
+    theory gives there (:mod:`fetorsion.fe.oilfilm`). The film's stiffness and damping depend on
+    load and speed: they are taken at this one point.
+    """
+
+    clearance: tuple[float, ...]
+    viscosity: float
+    load: tuple[float, ...]
+    speed: float
+    eccentricity: tuple[float, ...]
+    attitude: tuple[float, ...]
+
+
+@dataclass(frozen=True)
 class Bearings:
     """Main bearings, acting radially on each main journal's bearing surface.
 
     Stiffness N/m and damping N·s/m per journal (``inf`` = rigid), axial stiffness N/m at the
     thrust journal (0: none, the crank is then free axially; ``inf``: rigid), bearing widths m
     per journal (centred on the journal; by default the journal's length).
+
+    With ``oil_film`` the radial stiffness and damping are the film's isotropic equivalents
+    (:func:`fetorsion.fe.oilfilm.isotropic_equivalent`) at the operating point it records.
 
     Without a ``[bearings]`` table the bearings are rigid radially and there is no thrust
     bearing (:func:`default_bearings`): no source gives the oil-film stiffness of the
@@ -258,6 +279,7 @@ class Bearings:
     axial_stiffness: float = 0.0
     thrust_journal: int = 0
     given: bool = True
+    oil_film: OilFilm | None = None
 
     @property
     def rigid(self) -> bool:
