@@ -77,15 +77,19 @@ def peak_amplification(M, K, C, station: int, omega_range: tuple[float, float], 
 
 
 
-def equivalent_sdof(M: np.ndarray, K: np.ndarray, station: int, mode: int = 0) -> tuple[float, float]:
+def equivalent_sdof(M: np.ndarray, K: np.ndarray, station: int, mode: int = 0,
+                    candidates=None) -> tuple[float, float]:
     """(J_eq kg·m², ω_n rad/s) of elastic mode ``mode`` (0-based) seen from ``station``: the modal
-    inertia with the shape scaled to 1 there, and the mode's frequency."""
+    inertia with the shape scaled to 1 there, and the mode's frequency. ``candidates``: indices,
+    in ascending order of the undamped modes, of the modes to count (a condensed crank's
+    torsional ones); default every mode after the free chain's rigid rotation."""
     lam, vec = scipy.linalg.eigh(np.real(K), M)
-    phi = vec[:, mode + 1]  # the free-free rigid-body mode first
+    j = mode + 1 if candidates is None else int(candidates[mode])
+    phi = vec[:, j]
     if abs(phi[station]) < 1e-9 * np.abs(phi).max():
         raise FetorsionError(f"mode {mode + 1} has a node at the damper's station: a damper there cannot act on it")
     phi = phi / phi[station]
-    return float(phi @ M @ phi), float(np.sqrt(lam[mode + 1]))
+    return float(phi @ M @ phi), float(np.sqrt(lam[j]))
 
 
 def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str = "front",
@@ -109,17 +113,18 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
     raise ParameterError("kind", f"{kind!r}: choose viscous, rubber or tuned")
 
 
-def stress_weights(crank: Crank, positions_m, scf: dict, fillets=None) -> np.ndarray:
-    """Pa of fillet shear per N·m of each spring's torque: SCF · 16 D / (π (D⁴ − d_i⁴)) of the most
-    stressed fillet the spring carries (0 for a spring that carries none); ``fillets`` as
-    :func:`fetorsion.design.stress.fillets_of` gives them, when the caller has them."""
-    from .stress import fillet_springs, fillets_of
+def stress_weights(crank: Crank, setup, scf: dict, fillets=None) -> np.ndarray:
+    """Pa of fillet shear per N·m of each section's torque in ``setup`` (a chain's spring or a
+    cut section): SCF · 16 D / (π (D⁴ − d_i⁴)) of the most stressed fillet the section carries
+    (0 for one that carries none); ``fillets`` as :func:`fetorsion.design.stress.fillets_of`
+    gives them, when the caller has them."""
+    from .stress import fillet_sections, fillets_of
     from .scf import nominal_shear
 
     fillets = fillets_of(crank) if fillets is None else fillets
-    springs = fillet_springs(fillets, positions_m)
-    w = np.zeros(len(positions_m) - 1)
-    for f, s in zip(fillets, springs):
+    sections = fillet_sections(fillets, setup)
+    w = np.zeros(len(setup.section_labels))
+    for f, s in zip(fillets, sections):
         w[s] = max(w[s], scf[f.kind] * float(nominal_shear(1.0, f.diameter, f.bore)))
     return w
 
@@ -241,20 +246,20 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
     if objective == "stress" and isinstance(crank, Chain):
         raise ParameterError("objective", "stress: a chain file has no shaft sections; use twist")
     setup = response_setup(crank, partition, rpm, **setup_options) if setup is None else setup
-    n = len(setup.labels)
-    station = 0 if at == "front" else n - 1
-    J_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, mode)
+    station = setup.damper_station(Damper(kind, at, 0.0, 1.0))
+    J_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, mode, setup.torsional_modes)
     start = den_hartog_damper(kind, mu, J_eq, omega_n, at, hub_inertia)
     weights = None
     if objective == "stress":
         from .scf import fillet_scfs
 
-        weights = stress_weights(crank, setup.positions_m, fillet_scfs(crank) if scf is None else scf, fillets)
+        weights = stress_weights(crank, setup, fillet_scfs(crank) if scf is None else scf, fillets)
 
     def curve(dampers):  # only the objective's synthesis: the optimiser calls this some 80 times
         theta, _, _ = solve_theta(setup, dampers)
         if objective == "twist":
-            return np.degrees(half_peak_to_peak(theta[:, :, 0] - theta[:, :, n - 1], setup.orders, setup.period))
+            twist = theta[:, :, setup.pulley] - theta[:, :, setup.flywheel]
+            return np.degrees(half_peak_to_peak(twist, setup.orders, setup.period))
         torque = half_peak_to_peak(section_torques(setup, theta), setup.orders, setup.period)
         return (torque * weights[None, :]).max(axis=1)
 

@@ -64,6 +64,16 @@ def fillet_springs(fillets: list[Fillet], anchors) -> np.ndarray:
     return np.clip(np.searchsorted(anchors, [f.x for f in fillets]) - 1, 0, len(anchors) - 2)
 
 
+def fillet_sections(fillets: list[Fillet], model) -> np.ndarray:
+    """The 0-based section of ``model`` (a response setup or result) whose torque each fillet
+    carries: the cut at the fillet when the model has cut sections (``section_x``: the
+    condensed crank), else the chain spring between the anchors around it."""
+    if getattr(model, "section_x", None) is not None:
+        x = np.asarray(model.section_x)
+        return np.array([int(np.argmin(np.abs(x - f.x))) for f in fillets])
+    return fillet_springs(fillets, model.positions_m)
+
+
 @dataclass
 class StressResult:
     """Vibratory shear stress at every fillet against speed.
@@ -73,7 +83,7 @@ class StressResult:
     rpm : ndarray
     fillets : list of Fillet
     springs : ndarray of int
-        The chain spring whose torque each fillet carries.
+        The section (chain spring or cut) whose torque each fillet carries.
     scf : ndarray
         Torsional SCF of each fillet.
     nominal_pa, stress_pa : ndarray, shape (speeds, fillets)
@@ -130,10 +140,10 @@ class StressResult:
 
 def fillet_stress(crank: Crank, response, scf: dict, fillets: list[Fillet] | None = None) -> StressResult:
     """Fillet stresses of ``response`` (a :class:`~fetorsion.response.forced.ResponseResult` of a
-    lumped crank model) with the SCFs ``scf`` (``pin``, ``journal``, ``source``); ``fillets``:
+    lumped crank model or of the condensed crank) with the SCFs ``scf`` (``pin``, ``journal``, ``source``); ``fillets``:
     :func:`fillets_of` the crank, when the caller has them."""
     fillets = fillets_of(crank) if fillets is None else fillets
-    springs = fillet_springs(fillets, response.positions_m)
+    springs = fillet_sections(fillets, response)
     torque = response.section_torque_nm[:, springs]  # (speeds, fillets)
     D = np.array([f.diameter for f in fillets])
     bore = np.array([f.bore for f in fillets])

@@ -133,7 +133,7 @@ def _case(name: str, crank, response, scf, limits: Limits, fillets) -> VerdictCa
     else:
         j = np.argmax(response.section_torque_nm, axis=1)
         value = response.section_torque_nm.max(axis=1)
-        where = [f"section {response.labels[k]}-{response.labels[k + 1]}" for k in j]
+        where = [f"section {response.section_labels[k]}" for k in j]
     power, by_order = 0.0, {}
     if response.damper_names:
         total = response.damper_power_w.sum(axis=(1, 2))  # (speeds,)
@@ -157,7 +157,7 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     its own) and ``fillets`` (:func:`fetorsion.design.stress.fillets_of`) are built here unless
     the caller has them; every case, the damper tuning and the misfires are derived from them.
     """
-    from ..response.forced import motored_harmonics, response_setup, solve_response
+    from ..response.forced import misfire_harmonics, response_setup, solve_response
     from .dampers import run_damper
 
     limits = crank.limits
@@ -193,7 +193,7 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     elif misfire:
         best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
         worst = {"without damper": None, best_name: None}
-        motored = motored_harmonics(crank, setup.rpm, setup.orders)
+        motored = misfire_harmonics(crank, setup)
         for c in range(crank.engine.cylinders):
             ms = setup.with_misfire(c, motored)
             for name, dampers in (("without damper", ()), (best_name, (best,))):

@@ -162,7 +162,7 @@ def response_figure(resp, div: str) -> str:
     fig.add_trace(go.Scatter(x=resp.rpm, y=resp.pulley_twist_deg, name="pulley twist against flywheel end"), 1, 1)
     worst = int(np.argmax(resp.section_torque_nm.max(axis=0)))
     fig.add_trace(go.Scatter(x=resp.rpm, y=resp.section_torque_nm[:, worst],
-                             name=f"torque, section {resp.labels[worst]}–{resp.labels[worst + 1]}"), 2, 1)
+                             name=f"torque, section {resp.section_labels[worst]}"), 2, 1)
     fig.update_yaxes(title_text="vibratory angle [deg]", row=1, col=1)
     fig.update_yaxes(title_text="vibratory torque [N m]", row=2, col=1)
     fig.update_xaxes(title_text="engine speed [rpm]", row=2, col=1)

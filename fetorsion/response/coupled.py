@@ -91,26 +91,9 @@ def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omega
     return np.divide(P, den, out=np.zeros_like(P), where=~free) @ Vfull.T
 
 
-#: Modes kept for a damped solve: every undamped mode of the crank-and-rings system below this
-#: multiple of the highest excitation frequency (order × speed), at least MIN_MODES.
-DAMPED_CUTOFF = 3.0
-MIN_MODES = 30
-
-
-def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray, damping_ratio: float,
-                    dampers, modes: int | None = None):
-    """Reduced coordinates z (..., r) with torsional dampers on the front or rear master's
-    twist, and each damper's dissipated power (..., dampers) in W.
-
-    The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'
-    dampers stay as in :func:`harmonic_solution`; the dampers' rings are appended by
-    :class:`fetorsion.lumped_model.damped.DampedSystem` (a function of M, K, C and the carrying
-    DOF only). Non-proportional damping: the system is solved in the basis of the undamped modes
-    of crank + rings below :data:`DAMPED_CUTOFF` × the highest excitation frequency (``modes``
-    overrides the count), each frequency a small dense solve.
-    """
-    from ..lumped_model.damped import DampedSystem, damper_spring
-
+def supported_damping(cc: CondensedCrank, support: str, damping_ratio: float):
+    """(K, M, C, kept DOF) of the reduced crank in ``support`` with the held DOF removed: the
+    crank's own losses as ``damping_ratio`` on its undamped modes, plus the bearings' dampers."""
     Dk, Dm, held = cc.support_terms(support)
     m = cc.n_master_dofs
     K, M = supported_matrices(cc.reduced, Dk, Dm)
@@ -124,28 +107,36 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
         Cb = np.zeros_like(K)
         Cb[:m, :m] = cc.bearing_damping
         Ck = Ck + Cb[np.ix_(keep, keep)]
+    return Kk, Mk, Ck, keep
+
+
+def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray, damping_ratio: float,
+                    dampers):
+    """Reduced coordinates z (..., r) with torsional dampers on the front or rear master's
+    twist, and each damper's dissipated power (..., dampers) in W.
+
+    The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'
+    dampers stay as in :func:`harmonic_solution`; the dampers' rings are appended by
+    :class:`fetorsion.lumped_model.damped.DampedSystem` and the whole solved by
+    :func:`fetorsion.lumped_model.damped.projected_solve` (non-proportional damping).
+    """
+    from ..lumped_model.damped import DampedSystem, projected_solve
+
+    Kk, Mk, Ck, keep = supported_damping(cc, support, damping_ratio)
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
     system = DampedSystem(Mk, Kk, Ck, dampers, stations=len(keep), at=lambda d: where[d.at])
     om = np.asarray(omegas, float)
-    Mn, Kn, Cn, _ = system.nominal(float(om.max()) / 2)
-    Linv = np.linalg.inv(np.linalg.cholesky(Mn))
-    lam, Y = np.linalg.eigh(Linv @ Kn @ Linv.T)
-    Phi = Linv.T @ Y  # M-orthonormal undamped modes of crank + rings
-    count = modes or max(MIN_MODES, int((np.sqrt(np.clip(lam, 0, None)) < DAMPED_CUTOFF * om.max()).sum()))
-    Phi = Phi[:, :count]
-    Kp, Mp, Cp = Phi.T @ system.K @ Phi, Phi.T @ system.M @ Phi, Phi.T @ system.C @ Phi
-    U = np.stack([Phi[s] - Phi[r] for s, r in system.joints], axis=0) if system.joints else np.zeros((0, count))
-    A = (Kp - om[..., None, None] ** 2 * Mp + 1j * om[..., None, None] * Cp).astype(complex)
-    for d, u in zip(system.dampers, U):
-        A = A + damper_spring(d, om)[..., None, None] * np.outer(u, u)
-    F = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
-    F[..., :m] = loads
-    P = F[..., keep] @ Phi[:len(keep)]
-    xi = np.linalg.solve(A, P[..., None])[..., 0]
-    x = xi @ Phi.T  # (..., kept + rings)
+    x = projected_solve(system, loads_on(cc, loads, keep), om)
     z = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
     z[..., keep] = x[..., :len(keep)]
     return z, system.dissipated_power(x, om)
+
+
+def loads_on(cc: CondensedCrank, loads: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """Master loads (..., 6·masters) as forces on the kept reduced DOF (..., kept)."""
+    F = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
+    F[..., :cc.n_master_dofs] = loads
+    return F[..., keep]
 
 
 def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.ndarray, omegas: np.ndarray) -> np.ndarray:

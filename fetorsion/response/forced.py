@@ -25,7 +25,7 @@ from ..description.model import Chain, Crank
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
-from ..lumped_model.damped import DampedSystem
+from ..lumped_model.damped import DampedSystem, damper_station
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
@@ -78,9 +78,15 @@ class ResponseResult:
     damper_power_w: np.ndarray | None = None
     misfire: int | None = None
     positions_m: np.ndarray | None = None
+    section_labels: list = field(default_factory=list)
+    section_rows: np.ndarray | None = None  # (sections, DOF), N·m per unit DOF
+    section_x: np.ndarray | None = None
+    model: str = "lumped chain"
+    pulley: int = 0
 
     def to_dict(self) -> dict:
-        out = {"name": self.name, "labels": self.labels, "orders": self.orders.tolist(),
+        out = {"name": self.name, "model": self.model, "labels": self.labels, "sections": self.section_labels,
+               "orders": self.orders.tolist(),
                "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,
                "pulley_angle_deg": self.pulley_angle_deg.tolist(),
                "pulley_twist_deg": self.pulley_twist_deg.tolist(),
@@ -102,9 +108,8 @@ class ResponseResult:
         ``pulley_deg`` (pulley vibratory angle) and ``section_torque_nm`` (springs × angles)."""
         theta = np.linspace(0.0, self.cycle_rad, samples, endpoint=False)
         z = self.theta[speed]  # (orders, DOF)
-        n = len(self.labels)
-        torque = self.stiffnesses_nm_per_rad[:, None] * (z[:, : n - 1] - z[:, 1:n]).T  # (springs, orders)
-        return {"angle_deg": np.degrees(theta), "pulley_deg": np.degrees(waveform(z[:, 0], self.orders, theta)),
+        torque = self.section_rows @ z[:, :self.section_rows.shape[1]].T  # (sections, orders)
+        return {"angle_deg": np.degrees(theta), "pulley_deg": np.degrees(waveform(z[:, self.pulley], self.orders, theta)),
                 "section_torque_nm": waveform(torque, self.orders, theta)}
 
     def damping_text(self) -> str:
@@ -121,7 +126,7 @@ class ResponseResult:
             f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
             f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
             f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
-            f"({self.labels[k]}-{self.labels[k + 1]})"] + self._extra_lines() + compare_lines(self.compare))
+            f"({self.section_labels[k]})"] + self._extra_lines() + compare_lines(self.compare))
 
     def _extra_lines(self) -> list[str]:
         lines = []
@@ -166,7 +171,7 @@ class ResponseResult:
             worst = c["section"]
             a2.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
         a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
-                label=f"section {self.labels[worst]}–{self.labels[worst + 1]}: amplitude (½ peak-to-peak)")
+                label=f"section {self.section_labels[worst]}: amplitude (½ peak-to-peak)")
         if self.section_torque_peak_nm is not None:
             a2.plot(self.rpm, self.section_torque_peak_nm[:, worst], color="C3", ls=":",
                     label="largest |torque| over the cycle (orders summed with phases)")
@@ -215,44 +220,73 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
 
 @dataclass
 class ResponseSetup:
-    """What a forced response needs before its dampers are chosen: the chain's matrices, the
-    forces of every speed and order, and the damping text (:func:`response_setup`); solving it
-    with any set of dampers (:func:`solve_response`) reuses the costly torque harmonics."""
+    """What a forced response needs before its dampers are chosen: the model's matrices, the
+    forces of every speed and order, the sections whose torque is read, and the damping text
+    (:func:`response_setup` for a lumped chain, :func:`fetorsion.response.coupled.condensed_setup`
+    for the condensed crank in its bearings); solving it with any set of dampers
+    (:func:`solve_response`) reuses the costly force harmonics.
+
+    The forces are those of one cylinder, ``cylinder_harmonics`` (speeds, orders, components:
+    its torque for a chain; its tangential and radial pin force for the condensed crank), put on
+    the model's DOF by ``load_map`` (cylinders, components, DOF) with each cylinder's firing
+    phase ``phasors`` (orders, cylinders): a misfire changes one cylinder's share.
+    """
 
     name: str
-    labels: list
-    positions_m: np.ndarray
-    stiffnesses: np.ndarray
+    labels: list  # one per DOF
     M: np.ndarray
     K: np.ndarray
     C: np.ndarray
-    forces: np.ndarray  # (speeds, orders, stations)
+    forces: np.ndarray  # (speeds, orders, DOF)
     rpm: np.ndarray
     orders: np.ndarray
     period: float
     zeta: float
     stated: str
     misfire: int | None
-    torque_harmonics: np.ndarray | None = None  # (speeds, orders): one firing cylinder's T_q, N·m
-    phasors: np.ndarray | None = None  # (orders, cylinders): e^{−i q φ_c}
-    pin_weights: np.ndarray | None = None  # (cylinders, stations)
+    cylinder_harmonics: np.ndarray  # (speeds, orders, components): one firing cylinder's, N·m or N
+    phasors: np.ndarray  # (orders, cylinders): e^{−i q φ_c}
+    load_map: np.ndarray  # (cylinders, components, DOF)
+    section_rows: np.ndarray  # (sections, DOF): torque through each section per unit DOF, N·m
+    section_labels: list
+    #: Where each section lies: a chain's station positions (a section is the spring between
+    #: two, m) or, for cut sections, the x of each cut (``section_x``).
+    positions_m: np.ndarray | None = None
+    section_x: np.ndarray | None = None
+    pulley: int = 0
+    flywheel: int = -1
+    damper_dof: dict | None = None  # {"front": DOF, "rear": DOF}; None: the chain's end stations
+    #: Indices (in ascending order of the undamped modes) of the modes a damper is tuned on;
+    #: None: every elastic mode of a free chain (all but the first, rigid one).
+    torsional_modes: np.ndarray | None = None
+    model: str = "lumped chain"
+    load_kind: str = "torque"  # "torque" (a chain) or "pin forces" (tangential, radial)
+    projected: bool = False  # solve in the modes' basis (a large reduced model)
+    stiffnesses: np.ndarray | None = None  # a chain's springs, N·m/rad
 
     def at_speeds(self, index) -> "ResponseSetup":
         """The same setup at a subset of its speeds (``index`` into ``rpm``: a slice or indices),
         exactly: each speed's forces are its own."""
         from dataclasses import replace
 
-        Tq = None if self.torque_harmonics is None else self.torque_harmonics[index]
-        return replace(self, rpm=self.rpm[index], forces=self.forces[index], torque_harmonics=Tq)
+        return replace(self, rpm=self.rpm[index], forces=self.forces[index],
+                       cylinder_harmonics=self.cylinder_harmonics[index])
 
     def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
-        """The same engine with ``cylinder`` (0-based) not firing: its torque harmonics replaced by
-        ``motored`` (speeds, orders; :func:`motored_harmonics`), the others' unchanged."""
+        """The same engine with ``cylinder`` (0-based) not firing: its force harmonics replaced by
+        ``motored`` (speeds, orders, components; :func:`misfire_harmonics`), the others' unchanged."""
         from dataclasses import replace
 
-        W = self.pin_weights
-        delta = (motored - self.torque_harmonics)[:, :, None] * (self.phasors[:, cylinder, None] * W[cylinder][None, :])[None]
+        delta = np.einsum("sok,o,kd->sod", motored - self.cylinder_harmonics, self.phasors[:, cylinder],
+                          self.load_map[cylinder])
         return replace(self, forces=self.forces + delta, misfire=cylinder)
+
+    def damper_station(self, damper) -> int:
+        """The DOF a damper at ``damper.at`` (front or rear) acts on."""
+        if self.damper_dof is None:
+            return damper_station(damper, len(self.labels))
+        return self.damper_dof[damper.at]
+
 
 def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
                    damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
@@ -287,10 +321,17 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
-    setup = ResponseSetup(crank.name, res.labels, res.positions_m, res.stiffnesses_nm_per_rad, M, K, C, forces, rpm,
-                          orders, period, zeta, stated, None, Tq, phasors, W)
+    k = np.real(res.stiffnesses_nm_per_rad)
+    n = len(res.labels)
+    rows = np.zeros((n - 1, n))
+    rows[np.arange(n - 1), np.arange(n - 1)], rows[np.arange(n - 1), np.arange(1, n)] = k, -k  # k (θ_i − θ_i+1)
+    setup = ResponseSetup(crank.name, res.labels, M, K, C, forces, rpm, orders, period, zeta, stated, None,
+                          Tq[:, :, None], phasors, W[:, None, :], rows,
+                          [f"{a}-{b}" for a, b in zip(res.labels, res.labels[1:])], positions_m=res.positions_m,
+                          pulley=0, flywheel=n - 1, model=f"lumped {res.dof}-DOF chain ({web_method})",
+                          stiffnesses=res.stiffnesses_nm_per_rad)
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
-        return setup.with_misfire(misfire, motored_harmonics(crank, rpm, orders))
+        return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup
 
 
@@ -301,29 +342,43 @@ def motored_harmonics(crank, rpm, orders) -> np.ndarray:
     return np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
 
 
+def misfire_harmonics(crank, setup: ResponseSetup) -> np.ndarray:
+    """(speeds, orders, components) force harmonics of a cylinder that does not fire, in the
+    form of ``setup.cylinder_harmonics`` (its torque, or its tangential and radial pin force)."""
+    if setup.load_kind == "torque":
+        return motored_harmonics(crank, setup.rpm, setup.orders)[:, :, None]
+    from .coupled import pin_force_harmonics
+
+    return pin_force_harmonics(crank, setup.rpm, setup.orders, misfire=True)
+
+
 def solve_theta(setup: ResponseSetup, dampers=()):
-    """(theta (speeds, orders, DOF) complex rad, ω (speeds, orders) rad/s, the DampedSystem) of a
-    :func:`response_setup` with ``dampers``: the solve without the synthesis."""
-    system = DampedSystem(setup.M, setup.K, setup.C, dampers)
+    """(theta (speeds, orders, DOF) complex, ω (speeds, orders) rad/s, the DampedSystem) of a
+    setup with ``dampers``: the solve without the synthesis. A chain is solved directly; a large
+    reduced model in the basis of its modes (:func:`fetorsion.lumped_model.damped.projected_solve`)."""
+    from ..lumped_model.damped import projected_solve
+
     n = len(setup.labels)
+    system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station)
+    omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
+    if setup.projected:
+        return projected_solve(system, setup.forces, omegas), omegas, system
     N = len(system.M)
     forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
-    omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
 
 
 def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:
-    """(speeds, springs, orders) complex torque of each shaft section, N·m."""
+    """(speeds, sections, orders) complex torque through each section, N·m."""
     n = len(setup.labels)
-    return np.moveaxis(np.real(setup.stiffnesses) * (theta[:, :, : n - 1] - theta[:, :, 1:n]), 1, 2)
+    return np.einsum("kd,sod->sko", setup.section_rows, theta[:, :, :n])
 
 
 def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
-    """The forced response of a :func:`response_setup` with ``dampers`` on the chain."""
+    """The forced response of a setup (:func:`response_setup`, or the condensed crank's) with ``dampers``."""
     stated = setup.stated
     if dampers:
         stated = ", ".join([stated] * bool(stated) + [f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers])
-    n = len(setup.labels)
     orders, period = setup.orders, setup.period
     theta, omegas, system = solve_theta(setup, dampers)
 
@@ -331,20 +386,22 @@ def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
         top, bottom = extremes(z, orders, period)
         return 0.5 * (top - bottom), np.maximum(top, -bottom)
 
-    k = np.real(setup.stiffnesses)
+    p, f = setup.pulley, setup.flywheel
     torque_amp, torque_peak = synth(section_torques(setup, theta))
-    pulley_amp, pulley_peak = synth(theta[:, :, 0])
+    pulley_amp, pulley_peak = synth(theta[:, :, p])
     return ResponseResult(
         name=setup.name, labels=setup.labels, orders=orders, rpm=setup.rpm,
         pulley_angle_deg=np.degrees(pulley_amp),
-        pulley_twist_deg=np.degrees(synth(theta[:, :, 0] - theta[:, :, n - 1])[0]),
+        pulley_twist_deg=np.degrees(synth(theta[:, :, p] - theta[:, :, f])[0]),
         section_torque_nm=torque_amp,
-        order_pulley_deg=np.degrees(np.abs(theta[:, :, 0])),
+        order_pulley_deg=np.degrees(np.abs(theta[:, :, p])),
         damping_ratio=setup.zeta, damping=stated,
         section_torque_peak_nm=torque_peak, pulley_angle_peak_deg=np.degrees(pulley_peak), theta=theta,
-        stiffnesses_nm_per_rad=k, cycle_rad=period, damper_names=[d.name for d in dampers],
+        stiffnesses_nm_per_rad=None if setup.stiffnesses is None else np.real(setup.stiffnesses),
+        cycle_rad=period, damper_names=[d.name for d in dampers],
         damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=setup.misfire,
-        positions_m=setup.positions_m,
+        positions_m=setup.positions_m, section_labels=list(setup.section_labels), section_rows=setup.section_rows,
+        section_x=setup.section_x, model=setup.model, pulley=p,
     )
 
 
@@ -383,7 +440,7 @@ def compare_curve(result: ResponseResult, rpm, value, name: str, unit: str, sect
     if quantity == "section_torque_nm":
         section = int(np.argmax(result.section_torque_nm.max(axis=0))) if section is None else section
         model = result.section_torque_nm[:, section]
-        where = f"section {result.labels[section]}-{result.labels[section + 1]}"
+        where = f"section {result.section_labels[section]}"
     else:
         model, where = result.pulley_angle_deg, "pulley angle"
     # Peaks compared inside the speeds both cover, so a curve reaching past the model's range is not misread.
