@@ -179,6 +179,8 @@ API_ONLY = {
     "attachment_rotating_matrices": "the attachments' rotating-frame terms on the masters",
     "rotating_modes": "natural frequencies in the rotating frame",
     "rotating_harmonic": "harmonic response in the rotating frame",
+    "prestress": "the centrifugal prestress at the quadrature points, for geometric_stiffness",
+    "geometric_stiffness": "the stress stiffening that goes with spin softening",
 }
 
 

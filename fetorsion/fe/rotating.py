@@ -24,12 +24,16 @@ The constant load Ω² N X (the centrifugal body force of the undeformed crank) 
 the rotating frame (order 0): it deforms and prestresses the crank but does not enter the
 vibratory response. It is returned separately (:func:`centrifugal_load`).
 
-Left out here: the geometric (stress-stiffening) matrix K_σ of the centrifugal prestress,
-O(Ω²) like N. It matters: N alone (spin softening) lowers every torsional ω² by Ω² × the
-mode's share of motion across the axis (all of it, for torsion), and puts the rigid rotation
-about x at ω² = −Ω², which K_σ cancels exactly for a body in equilibrium (a rotated steady
-state is again a steady state; [Likins]). For a rigid body this cancellation is written out in
-:func:`master_rotating_blocks` (its ``K_s``).
+Spin softening N belongs with the geometric (stress-stiffening) matrix K_σ of the centrifugal
+prestress, O(Ω²) as well ([Likins]): N alone lowers every torsional ω² by Ω² × the mode's share
+of motion across the axis (all of it, for torsion: −Ω²/(2ω_t²) in frequency) and puts the rigid
+rotation about x at ω² = −Ω², which K_σ cancels exactly for a body in equilibrium (a rotated
+steady state is again a steady state). K_σ per unit Ω² comes from the static displacement under
+N X (:func:`prestress`, :func:`geometric_stiffness`); the equations with both read
+
+    M ü + Ω G u̇ + (K + Ω² (K_σ − N)) u = f.                                               (R4)
+
+For a rigid body the cancellation is written out in :func:`master_rotating_blocks` (its ``K_s``).
 """
 
 from __future__ import annotations
@@ -257,3 +261,50 @@ def rotating_harmonic(K_r, M_r, C_r, G_r, N_r, omega_spin, F, omegas, held=()) -
         A = K - o**2 * N - w**2 * M + 1j * w * (C + o * G)
         z[s:s + HARMONIC_BATCH, keep] = np.linalg.solve(A, F[s:s + HARMONIC_BATCH, keep, None])[..., 0]
     return z.reshape(shape + (r,))
+
+
+def prestress(basis, displacement: np.ndarray, youngs_modulus: float, poisson_ratio: float) -> np.ndarray:
+    """Cauchy stress σ = λ tr ε I + 2μ ε of an interleaved P2 displacement at the quadrature
+    points, Pa per unit displacement scale: shape (3, 3, elements, points).
+
+    Parameters
+    ----------
+    basis : skfem.Basis
+        Scalar P2 basis (:func:`fetorsion.fe.assembly.p2_basis`).
+    displacement : ndarray (3 · DOF-nodes,)
+        m, interleaved x, y, z.
+    youngs_modulus, poisson_ratio : float
+        Pa, -.
+    """
+    from .assembly import lame
+
+    lam, mu = lame(youngs_modulus, poisson_ratio)
+    grads = np.stack([b[0].grad for b in basis.basis], axis=2)  # [j, e, a, q]
+    U = np.asarray(displacement).reshape(-1, 3)[basis.element_dofs.T]  # [e, a, i]
+    du = np.einsum("eai,jeaq->ijeq", U, grads)  # ∂_j u_i
+    eps = 0.5 * (du + du.transpose(1, 0, 2, 3))
+    tr = np.einsum("iieq->eq", eps)
+    return 2 * mu * eps + lam * tr[None, None] * np.eye(3)[:, :, None, None]
+
+
+def geometric_stiffness(basis, pattern, stress: np.ndarray):
+    """Geometric (stress-stiffening) matrix of a prestress, N/m, interleaved DOF:
+
+        K_σ[(a, i), (b, j)] = δ_ij ∫ ∂_k φ_a σ_kl ∂_l φ_b dx,
+
+    the second variation of ∫ σ : E(u), E the Green strain, about the prestressed state.
+
+    Parameters
+    ----------
+    basis : skfem.Basis
+        Scalar P2 basis.
+    pattern : fetorsion.fe.assembly.BlockPattern
+    stress : ndarray (3, 3, elements, points)
+        Pa (:func:`prestress`).
+    """
+    from .assembly import diagonal_block_matrix
+
+    grads = np.stack([b[0].grad for b in basis.basis], axis=2)  # [k, e, a, q]
+    flux = np.einsum("kleq,leaq->keaq", stress * basis.dx[None, None], grads)  # σ ∇φ_b dx
+    Se = np.einsum("keaq,kebq->eab", grads, flux)
+    return diagonal_block_matrix(pattern, np.bincount(pattern.slot, Se.ravel(), minlength=len(pattern.indices)))
