@@ -141,7 +141,7 @@ def test_bending_pair_splits_by_spin_speed(shaft, ratio):
         # the exact split against the first-order one (measured within 1e-6 at Ω = 0.3 ω₁): the
         # remaining terms couple the pair to other modes through the rotary share 1 − α only
         assert split / spin == pytest.approx(alpha, abs=1e-5)
-        # the pair's centre moves by the Rayleigh beam's −α(1 − α)Ω²/(2ω_n²) (eq. R6): this is 7e-5
+        # the pair's centre moves by the Rayleigh beam's −α(1 − α)Ω²/(2ω_n²) (eq. R5): this is 7e-5
         # of ω₁ at Ω = 0.3 ω₁ and found to 1e-6
         mean = np.sqrt(wn**2 - alpha * (1 - alpha) * spin**2)
         assert (hi + lo) / 2 == pytest.approx(mean, rel=1e-6)
