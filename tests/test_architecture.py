@@ -172,6 +172,15 @@ API_ONLY = {
     "chart_point": "one point of the computed web chart (scripts/web_chart.py builds the chart from it)",
     "render_gif": "an animated mode shape for slides, beside the report's still images",
     "peak_amplification": "a damped chain's peak amplification: the check of the optimiser on Den Hartog's system",
+    # the rotating-frame terms of the condensed crank (fe/rotating.py), tested on a spinning shaft
+    # and on point-mass bodies; wired into run_condensed and the coupled response next
+    "rotating_frame_matrices": "Coriolis and spin-softening matrices on the Craig–Bampton basis",
+    "centrifugal_load": "the static (order 0) centrifugal load on the reduced coordinates",
+    "attachment_rotating_matrices": "the attachments' rotating-frame terms on the masters",
+    "rotating_modes": "natural frequencies in the rotating frame",
+    "rotating_harmonic": "harmonic response in the rotating frame",
+    "prestress": "the centrifugal prestress at the quadrature points, for geometric_stiffness",
+    "geometric_stiffness": "the stress stiffening that goes with spin softening",
 }
 
 
