@@ -62,3 +62,31 @@ def shaft_with_end_disk_hz(G, rho, L, D, disk_inertia, count=3):
     g = lambda z: np.sin(z) + mu * z * np.cos(z)  # noqa: E731  (tan z + μz = 0 without poles)
     roots = [scipy.optimize.brentq(g, (n - 0.5) * np.pi + 1e-12, n * np.pi) for n in range(1, count + 1)]
     return np.array(roots) * c / (2 * np.pi * L)
+
+
+def timoshenko_pinned_midload(E, nu, rho, L, D, omega, force, disc_mass=0.0, kappa=None):
+    """A simply supported Timoshenko beam of solid round section, a harmonic force at mid-span on a
+    point mass there: (deflection, bending moment at mid-span, support reaction), magnitudes.
+
+    State y = [w, ψ, M, Q] as in :func:`timoshenko_free_free_hz`; by symmetry the half span
+    0 ≤ x ≤ L/2 with w = M = 0 at the support and ψ = 0, Q = P/2 at mid-span, where the net
+    point load is P = force + m ω² w(L/2) (the mass's inertia). Exact for the beam model.
+    """
+    G = E / (2 * (1 + nu))
+    A, I = np.pi * D**2 / 4, np.pi * D**4 / 64
+    kappa = cowper_circle(nu) if kappa is None else kappa
+    a = L / 2
+    # dimensionless: ξ = x/L, w̄ = w/L, M̄ = M L/(EI), Q̄ = Q L²/(EI)
+    s = E * I / (kappa * G * A * L**2)
+    m_a = rho * A * omega**2 * L**4 / (E * I)
+    m_i = rho * I * omega**2 * L**2 / (E * I)
+    Amat = np.array([[0, 1, 0, s], [0, 0, 1, 0], [0, -m_i, 0, -1], [-m_a, 0, 0, 0]], float)
+    T = scipy.linalg.expm(Amat * a / L)
+    f = force * L**2 / (E * I)
+    md = disc_mass * omega**2 * L**3 / (E * I)
+    # unknowns (ψ0, Q0): ψ(a) = 0; Q(a) − md w̄(a)/2 = f/2
+    lhs = np.array([[T[1, 1], T[1, 3]], [T[3, 1] - 0.5 * md * T[0, 1], T[3, 3] - 0.5 * md * T[0, 3]]])
+    psi0, q0 = np.linalg.solve(lhs, [0.0, 0.5 * f])
+    w_mid = (T[0, 1] * psi0 + T[0, 3] * q0) * L
+    m_mid = (T[2, 1] * psi0 + T[2, 3] * q0) * E * I / L
+    return abs(w_mid), abs(m_mid), abs(q0 * E * I / L**2)

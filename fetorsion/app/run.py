@@ -75,11 +75,22 @@ class RunContext:
         return self.once(("parts", method), build)
 
     def setup(self):
-        """The forced response's setup of the crank (its chain, damping, the cylinders' forces at
-        every speed and order; built once): the response and every verdict case derive from it."""
+        """The forced response's setup (built once): the model, its damping, the cylinders' forces
+        at every speed and order. The engine model — the condensed crank in its bearings — when
+        the run has built it and ``source`` is ``condensed`` (the default), else the lumped
+        17-DOF chain; the response, fillet stress, dampers, misfire and verdict derive from it."""
+        if self.options.get("source", "condensed") == "condensed" and "condensed" in self.built:
+            from ..response.coupled import condensed_setup
+
+            return self.once("setup", lambda: condensed_setup(
+                self.built["condensed"], "bearings", section_labels=[f.label for f in self.fillets()]))
+        return self.once("setup", self.lumped_setup)
+
+    def lumped_setup(self):
+        """The lumped 17-DOF chain's setup (built once): the fast model, and the engine model's yardstick."""
         from ..response.forced import response_setup
 
-        return self.once("setup", lambda: response_setup(
+        return self.once("lumped_setup", lambda: response_setup(
             self.crank, parts=None if isinstance(self.crank, Chain) else self.parts()))
 
     def fillets(self):
@@ -160,7 +171,10 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     modal = ctx.outcome.fe.modal
     # The FE step's system, already assembled and factorised: reduced, not rebuilt; its factor
     # (the run's largest object) is let go once the reduction has it.
-    cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=modal.system)
+    from ..design.stress import fillet_cuts
+
+    cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
+    cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=modal.system, cuts=cuts)
     modal.system = None
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
@@ -187,12 +201,19 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
 
     if ctx.crank.excitation is None:
         return Skipped("the description has no `[excitation]` table")
-    # In its bearings when the condensed crank exists (the engine as it runs), else the free-free FE.
+    # In its bearings when the condensed crank exists (the engine as it runs: every mode, the
+    # full pin forces, severity as fillet stress), else the free-free FE's torsional modes.
     bearings, fe = ctx.outcome.bearings, ctx.outcome.fe
-    in_bearings = bearings is not None and ctx.options.get("support", "bearings") == "bearings"
-    modes = (bearings.condensed.torsional_modes("bearings") if in_bearings
-             else fe.modal.torsional_modes() if fe is not None else None)
-    camp = run_campbell(ctx.crank, modes, parts=None if isinstance(ctx.crank, Chain) else ctx.parts())
+    if bearings is not None and ctx.options.get("support", "bearings") == "bearings":
+        from ..response.coupled import run_coupled_campbell
+
+        sections = [(f.diameter, f.bore) for f in ctx.fillets()]
+        camp = run_coupled_campbell(bearings.condensed, "bearings", diameters=sections)
+        for c in camp.crossings:
+            c["worst_section"] = ctx.fillets()[c.pop("worst_cut")].label
+    else:
+        camp = run_campbell(ctx.crank, fe.modal.torsional_modes() if fe is not None else None,
+                            parts=None if isinstance(ctx.crank, Chain) else ctx.parts())
     resp = solve_response(ctx.setup(), ctx.crank.dampers)
     ctx.results["campbell"] = camp.to_dict()
     ctx.results["response"] = resp.to_dict()
@@ -234,7 +255,22 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
 
         stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets)
         ctx.results["stress"] = stress.to_dict()
-    return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress)
+    setup = ctx.setup()
+    yardstick = None
+    if setup is not ctx.lumped_setup():  # the engine model decided: how far the fast chain is from it
+        from ..design.verdict import worst_case
+        from ..response.forced import solve_response
+
+        mine = verdict.cases[0]
+        other = worst_case("without damper", crank, solve_response(ctx.lumped_setup(), ()), scf, crank.limits, fillets)
+        i, j = mine.worst(), other.worst()
+        yardstick = {"model": ctx.lumped_setup().model, "value": float(other.value[j]), "rpm": float(other.rpm[j]),
+                     "where": other.where[j], "engine_value": float(mine.value[i]), "engine_rpm": float(mine.rpm[i]),
+                     "difference": float(other.value[j] / mine.value[i] - 1.0)}
+        ctx.results["verdict"]["yardstick"] = yardstick
+    ctx.results["verdict"]["model"] = setup.model
+    return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model,
+                          yardstick)
 
 
 def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:

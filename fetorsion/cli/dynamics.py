@@ -66,7 +66,7 @@ def cmd_response(args) -> int:
         raise FetorsionError("--source fe: the forced response uses a lumped model or the condensed crank; "
                              "choose --source lumpedN or condensed")
     crank = load_excited(args.file, args.source)
-    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
     if args.source == "condensed":
         from ..response.coupled import run_coupled_response
 
@@ -111,7 +111,7 @@ def cmd_damper(args) -> int:
     if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
                              "SCF); give [fillets] or use --objective twist")
-    rpm = np.linspace(*(args.speed_range or crank.excitation.speed_range), args.steps)
+    rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
     res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
                      rpm=rpm, partition=partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
                      web_method=stiffness_for(args))

@@ -14,6 +14,7 @@ from .common import SUPPORT_CHOICES, check_mesh_size, load_description
 
 
 REFERENCE_CRANKS = ("renault21", "peugeot_glx")
+RUN_SOURCES = ("condensed", "lumped17")
 
 
 def _geometry_folder():
@@ -49,7 +50,8 @@ def cmd_run(args) -> int:
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
-    options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio}
+    options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,
+               "source": args.source}
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,
                      **({"steps": FAST_STEPS} if args.no_fe else {}))
@@ -70,6 +72,10 @@ def add_parser(sub) -> None:
     up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
                     help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
                          "free-free FE; the report shows both")
+    up.add_argument("--source", choices=RUN_SOURCES, default=RUN_SOURCES[0],
+                    help="the model the forced response, fillet stress, dampers and verdict run on: the condensed "
+                         "crank in its bearings (default: the engine model) or the lumped 17-DOF chain (fast; "
+                         "always with --no-fe); the report states the other's gap")
     up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")

@@ -16,7 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .defaults import DEFAULT_DAMPING_RATIO
+from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
@@ -598,7 +598,10 @@ def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: 
         speeds = (1.0, 2.0)
     zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=not zero_damping_ok,
                     nonnegative=zero_damping_ok, below=1.0)
-    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta)
+    overspeed = t.number("overspeed_factor", DEFAULT_OVERSPEED, above=0.0)
+    if overspeed < 1.0:
+        t.problems.append(Problem(f"{t.path}.overspeed_factor", overspeed, "must be >= 1 (a multiple of the top speed)"))
+    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed)
     given = [k for k in EXCITATION_SOURCES if k in t.data]
     if len(given) != 1:
         t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))

@@ -10,6 +10,9 @@ DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
 # Modal damping ratio when the description's [excitation] gives none: a design-rule value for
 # an undamped steel crank.
 DEFAULT_DAMPING_RATIO = 0.02
+# The forced response and the verdict reach past the rated (top) speed to overspeed, as crank
+# fatigue checks do (a governor's or a driver's overrun): this multiple of the top speed.
+DEFAULT_OVERSPEED = 1.1
 DEFAULT_SPEED_STEPS = 300  # speeds across the operating range in the forced response
 # A damper's ring inertia over the equivalent inertia of the mode it damps (Den Hartog's μ): a
 # common pulley-damper size.

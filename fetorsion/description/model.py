@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 
-from .defaults import DEFAULT_DAMPING_RATIO
+from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 
 class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
@@ -174,6 +174,12 @@ class Excitation:
     wiebe_m: float = 2.0
     pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
+    overspeed: float = DEFAULT_OVERSPEED  # the checked range's top over the rated speed
+
+    @property
+    def checked_range(self) -> tuple[float, float]:
+        """(low, overspeed × high) rpm: the speeds the forced response and the verdict cover."""
+        return self.speed_range[0], self.overspeed * self.speed_range[1]
 
 
 DAMPER_TYPES = ("viscous", "rubber", "tuned")

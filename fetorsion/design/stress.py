@@ -56,6 +56,20 @@ def fillets_of(crank: Crank, parts=None) -> list[Fillet]:
     return out
 
 
+def fillet_cuts(crank: Crank, fillets: list[Fillet]) -> np.ndarray:
+    """(fillets, 3) centres of the section cuts at each fillet, m: on the crank axis for a
+    journal fillet, on the pin's axis for a pin fillet (so the cut's moment about x is the
+    torque its section carries)."""
+    R = crank.engine.crank_radius
+    out = np.zeros((len(fillets), 3))
+    for k, f in enumerate(fillets):
+        out[k, 0] = f.x
+        if f.kind == "pin":
+            a = crank.engine.crank_angles[f.index]
+            out[k, 1:] = R * np.cos(a), R * np.sin(a)
+    return out
+
+
 def fillet_springs(fillets: list[Fillet], anchors) -> np.ndarray:
     """The 0-based spring (between anchors i and i + 1, m) that carries each fillet's torque."""
     anchors = np.asarray(anchors, dtype=float)

@@ -59,6 +59,8 @@ class VerdictResult:
     limits: Limits
     cases: list
     notes: list = field(default_factory=list)
+    #: The damper designed for each case that has one (case name → Damper).
+    designs: dict = field(default_factory=dict)
 
     @property
     def unit(self) -> tuple[str, float]:
@@ -122,7 +124,7 @@ class VerdictResult:
         return ax
 
 
-def _case(name: str, crank, response, scf, limits: Limits, fillets) -> VerdictCase:
+def worst_case(name: str, crank, response, scf, limits: Limits, fillets) -> VerdictCase:
     """The worst value over sections against speed for one response."""
     if limits.kind == "stress":
         from .stress import fillet_stress
@@ -175,9 +177,9 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     # The damper is tuned on every k-th speed, at most 100 (the optimiser's many responses),
     # then checked on all.
     coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // 100)))
-    cases = [_case("without damper", crank, solve_response(setup, ()), scf, limits, fillets)]
+    cases = [worst_case("without damper", crank, solve_response(setup, ()), scf, limits, fillets)]
     if crank.dampers:
-        cases.append(_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits,
+        cases.append(worst_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits,
                            fillets))
     objective = "stress" if limits.kind == "stress" else "twist"
     tuned = run_damper(crank, kind, mu, optimise, objective, scf=scf, setup=coarse, fillets=fillets)
@@ -185,7 +187,7 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     if tuned.optimised is not None:
         options.append((f"optimised {kind} damper (mu = {mu:g})", tuned.optimised))
     for name, d in options:
-        cases.append(_case(name, crank, solve_response(setup, (d,)), scf, limits, fillets))
+        cases.append(worst_case(name, crank, solve_response(setup, (d,)), scf, limits, fillets))
     notes = [f"Den Hartog start on mode 1 ({tuned.mode_hz:.1f} Hz) seen from the pulley: J_eq = "
              f"{tuned.equivalent_inertia_kgm2:.4g} kg m^2, ring {tuned.den_hartog.ring_inertia:.4g} kg m^2"]
     if misfire and crank.excitation.pressure_curve is not None:
@@ -197,11 +199,11 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
         for c in range(crank.engine.cylinders):
             ms = setup.with_misfire(c, motored)
             for name, dampers in (("without damper", ()), (best_name, (best,))):
-                case = _case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits,
+                case = worst_case(f"misfire of cylinder {c + 1}, {name}", crank, solve_response(ms, dampers), scf, limits,
                              fillets)
                 if worst[name] is None or case.value.max() > worst[name].value.max():
                     worst[name] = case
         cases += list(worst.values())
         notes.append("misfire: the cylinder's pressure is the motored cycle (compression and expansion only); "
                      "the worst cylinder is shown")
-    return VerdictResult(crank.name, limits, cases, notes)
+    return VerdictResult(crank.name, limits, cases, notes, dict(options))

@@ -82,20 +82,23 @@ class CampbellResult:
     damping_ratio: float | tuple[float, ...]
     crossings: list[dict]
     harmonics_table: dict = field(default_factory=dict)
+    severity_unit: str = "deg: resonant vibratory angle at the pulley"
 
     def to_dict(self) -> dict:
         return {"name": self.name, "source": self.source, "frequencies_hz": self.frequencies_hz.tolist(),
                 "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
                 "modal_damping_ratio": (list(self.damping_ratio) if isinstance(self.damping_ratio, tuple)
                                         else self.damping_ratio),
-                "severity_unit": "deg: resonant vibratory angle at the pulley", "crossings": self.crossings,
+                "severity_unit": self.severity_unit, "crossings": self.crossings,
                 "torque_harmonics": self.harmonics_table}
 
     def table(self, only_in_range: bool = True) -> str:
         rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
         rows.sort(key=lambda c: -c["severity"])
         kinds = any("mode_kind" in c for c in self.crossings)
-        head = f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} {'severity [deg]':>15}"
+        unit = self.severity_unit.split(":")[0]
+        head = (f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} "
+                f"{'severity [' + unit + ']':>15}")
         head += f"  {'kind (torsion/bending share)'}" if kinds else ""
         lines = [head, "-" * len(head)]
         lines += [f"{c['mode']:>4} {c['frequency_hz']:8.1f} {c['order']:6.1f} {c['rpm']:7.0f} "
@@ -193,7 +196,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     if np.any(orders <= 0):
         raise FetorsionError(f"orders must be > 0, got {orders.tolist()}")
-    lo, hi = crank.excitation.speed_range if speed_range is None else speed_range
+    lo, hi = crank.excitation.checked_range if speed_range is None else speed_range
     zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio
     zeta_base = zeta
     k = min(n_modes, len(modes.frequencies_hz))

@@ -20,7 +20,7 @@ import numpy as np
 
 from ..description.model import Crank, Engine, Excitation
 from ..errors import FetorsionError
-from .kinematics import piston_acceleration, piston_position, tangential_torque
+from .kinematics import pin_forces, piston_acceleration, piston_position, tangential_torque
 
 SAMPLES_PER_CYCLE = 1440  # 0.5° for a 4-stroke: resolves orders up to 360 (Nyquist)
 
@@ -203,3 +203,28 @@ def harmonics(torque, period: float) -> Harmonics:
     if n % 2 == 0:  # the Nyquist bin is real and not doubled
         amps[..., -1] /= 2
     return Harmonics(base * np.arange(1, amps.shape[-1] + 1), amps, float(np.real(c[..., 0]).mean()))
+
+
+def cylinder_pin_forces(crank, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
+    """Tangential and radial force on cylinder 1's pin over a cycle at ``rpm`` (N), from its gas
+    force and reciprocating inertia; ``theta`` rad from firing TDC. ``misfire``: the cylinder
+    does not fire (its motored cycle)."""
+    ex = crank.excitation
+    theta, p = cylinder_pressure(crank, rpm, misfire=misfire)
+    e = crank.engine
+    omega = rpm * 2 * np.pi / 60
+    force = math.pi / 4 * e.bore**2 * (p - ex.intake_pressure) \
+        + ex.reciprocating_mass * piston_acceleration(theta, e.crank_radius, e.rod_length, omega)
+    f = pin_forces(theta, force, e.crank_radius, e.rod_length)
+    return {"theta": theta, "tangential": f["tangential"], "radial": f["radial"]}
+
+
+def pin_force_harmonics(crank, rpm, orders, misfire: bool = False) -> np.ndarray:
+    """(speeds, orders, 2) complex harmonics of cylinder 1's tangential and radial pin force, N."""
+    period = cycle_angle(crank.engine)
+    out = np.empty((len(rpm), len(orders), 2), complex)
+    for s, n in enumerate(rpm):
+        f = cylinder_pin_forces(crank, n, misfire)
+        out[s, :, 0] = harmonics(f["tangential"], period).at(orders)
+        out[s, :, 1] = harmonics(f["radial"], period).at(orders)
+    return out

@@ -73,11 +73,14 @@ def section_rows(K, basis: np.ndarray, cm: CrankMesh, dof_of_node: np.ndarray, d
     from .rigid import rigid_rows
 
     centroid_x = cm.nodes[cm.tets[:, :4], 0].mean(axis=1)
+    # A node lies only in left elements when the largest centroid x of its elements is left of
+    # the cut: one pass over the elements serves every cut.
+    right_most = np.full(len(cm.nodes), -np.inf)
+    np.maximum.at(right_most, cm.tets.ravel(), np.repeat(centroid_x, cm.tets.shape[1]))
     out = np.empty((len(cuts), 6, basis.shape[1]))
     n = 3 * len(dof_xyz)
     for c, (x_cut, centre) in enumerate(cuts):
-        left = centroid_x < x_cut
-        only = np.setdiff1d(np.unique(cm.tets[left]), np.unique(cm.tets[~left]))
+        only = np.flatnonzero(right_most < x_cut)
         d = dof_of_node[only]
         d = d[d >= 0]
         R = rigid_rows(dof_xyz[d], centre)  # (nodes, 3, 6)
@@ -162,6 +165,10 @@ class CondensedCrank:
     sections: np.ndarray | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
     interface: Interface | None = field(default=None, repr=False)
+    #: Recovery rows (cuts, 6, r) of the resultants through extra cuts (the fillets), about each
+    #: cut's centre ``cut_centres`` (cuts, 3), m; None without.
+    cut_rows: np.ndarray | None = field(default=None, repr=False)
+    cut_centres: np.ndarray | None = None
 
     @property
     def n_master_dofs(self) -> int:
@@ -219,6 +226,8 @@ class CondensedCrank:
             J = np.diag([m * c.diameter**2 / 8] + [m * (3 * c.diameter**2 / 16 + c.length**2 / 12)] * 2)
             energies += modeshape.energy_split(Z[6 * k:6 * k + 6].T, m, J)
         for label in ("front", "rear"):
+            if label not in self.labels:  # a model without end bodies
+                continue
             k = self.labels.index(label)
             B = self.attachment_mass[6 * k:6 * k + 6, 6 * k:6 * k + 6]
             if B[0, 0] > 0:
@@ -282,7 +291,7 @@ class CondensedCrank:
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
                   keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid",
-                  system: CrankSystem | None = None) -> CondensedCrank:
+                  system: CrankSystem | None = None, cuts=None) -> CondensedCrank:
     """Condense the crank's FE system (:func:`fetorsion.fe.cranksystem.build_system`) to its masters.
 
     Parameters
@@ -307,6 +316,9 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     system : CrankSystem, optional
         The crank's system built already (by the free-free modal analysis of the same run):
         its factorisation is reused, nothing is meshed or assembled again.
+    cuts : array_like (k, 3), optional
+        Centres of extra section cuts (the planes x = centre x), m: e.g. every fillet, with the
+        pin's axis as the centre of a pin fillet; their recovery rows go to ``cut_rows``.
     """
     t0 = time.perf_counter()
     sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
@@ -318,6 +330,9 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     inner = [(p[0], p) for p in positions[1:-1]]
     sections = np.zeros((len(labels), 6, red.size))
     sections[1:-1] = section_rows(sys_.K, red.basis, sys_.mesh, sys_.dof_of_node, sys_.xyz, inner)
+    centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)
+    extra = None if centres is None else section_rows(sys_.K, red.basis, sys_.mesh, sys_.dof_of_node, sys_.xyz,
+                                                      [(c[0], c) for c in centres])
     if not keep_basis:
         red.basis = None
     Kb, Cb, held = bearing_matrices(crank, labels)
@@ -325,7 +340,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
                "sections": time.perf_counter() - t2,
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
-                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None)
+                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres)
 
 
 #: Layout tag of the saved file; bump when the layout changes.

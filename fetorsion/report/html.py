@@ -144,7 +144,7 @@ def campbell_figure(camp, div: str) -> str:
             marker={"size": size, "color": sev, "colorscale": "Reds", "line": {"width": 1, "color": "black"}},
             name="crossings", customdata=[[r["mode"], r["order"], r["rpm"], r["severity"]] for r in rows],
             hovertemplate="mode %{customdata[0]}<br>order %{customdata[1]}<br>%{customdata[2]:.0f} rpm"
-                          "<br>severity %{customdata[3]:.4g} deg<extra></extra>"))
+                          "<br>severity %{customdata[3]:.4g} " + camp.severity_unit.split(":")[0] + "<extra></extra>"))
     fig.add_vrect(x0=lo, x1=hi, fillcolor="#2a9d8f", opacity=0.08, line_width=0)
     fig.update_layout(title=f"{camp.name}: Campbell diagram ({camp.source})", xaxis_title="engine speed [rpm]",
                       yaxis_title="frequency [Hz]", xaxis_range=[0, top],

@@ -114,9 +114,11 @@ def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[s
     camp, resp = outcome.campbell, outcome.response
     a, b = outcome.campbell_image, outcome.response_image
     return ["## Campbell diagram and forced response", "",
-            f"Crossings inside the operating range, most severe first ({camp.source}; severity = resonant "
-            f"vibratory angle at the pulley for ζ = {zeta_text(camp.damping_ratio)}):", "", "```", camp.table(), "```", "",
-            f"![]({a})", "", "```", resp.table(), "```", "", f"![]({b})", ""]
+            f"Crossings inside the checked range {camp.speed_range_rpm[0]:.0f}-{camp.speed_range_rpm[1]:.0f} rpm (to "
+            f"overspeed), most severe first ({camp.source}; severity in {camp.severity_unit.split(': ')[1]} for "
+            f"ζ = {zeta_text(camp.damping_ratio)}, {camp.severity_unit.split(':')[0]}):", "", "```", camp.table(), "```",
+            "", f"![]({a})", "", f"Forced response on the {resp.model}, every order summed with its phase:", "",
+            "```", resp.table(), "```", "", f"![]({b})", ""]
 
 
 def sensitivity_section(crank: Crank, outcome: SensitivityOutcome | Skipped) -> list[str]:
@@ -183,6 +185,14 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
     unit, scale = v.unit
     lim = v.limits
     lines = [f"## {'Fillet stress' if lim.kind == 'stress' else 'Section torque'}, dampers and verdict", ""]
+    if outcome.model:
+        lines += [f"Computed on the **{outcome.model}**: it decides."]
+        y = outcome.yardstick
+        if y:
+            lines[-1] += (f" The {y['model']} (the fast model) gives, without a damper, {y['value'] / scale:.4g} {unit} at "
+                          f"{y['rpm']:.0f} rpm in {y['where']}, against {y['engine_value'] / scale:.4g} {unit} at "
+                          f"{y['engine_rpm']:.0f} rpm here: **{100 * y['difference']:+.1f} %**.")
+        lines += [""]
     if outcome.stress is not None:
         scf = outcome.scf
         lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "
@@ -223,9 +233,55 @@ SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearing
             ("sensitivity", sensitivity_section), ("verdict", verdict_section))
 
 
+def summary_lines(run: RunOutcome) -> list[str]:
+    """The answers first, each naming the model it comes from: free-free f1 against the
+    measurement with the reconstruction's band, f1 in the engine, the worst location and its
+    margin, the recommended damper, the barred ranges."""
+    crank, out = run.crank, []
+    measured = getattr(crank, "notes", {}).get("measured_first_torsional_hz")
+    fe, bearings, sens, ver = run.fe, run.bearings, run.sensitivity, run.verdict
+    if fe is not None:
+        f1 = fe.modal.first_torsional()
+        line = f"- **Free-free f1: {f1:.1f} Hz** (3D FE, {fe.modal.dofs} DOF)"
+        if measured:
+            line += f"; measured {measured:g} Hz ({100 * (f1 / measured - 1):+.1f} %)"
+        if isinstance(sens, SensitivityOutcome) and sens.studies:
+            b = sens.studies["montecarlo"].bands["f1"]
+            line += (f"; the reconstruction's inputs put f1 at {b['p5']:.0f}–{b['p95']:.0f} Hz (5–95 %, "
+                     f"{sens.studies['montecarlo'].model} Monte Carlo)")
+        out.append(line + ".")
+    if bearings is not None:
+        support = "rigid main bearings" if crank.main_bearings.rigid else "the [bearings] stiffness"
+        out.append(f"- **f1 in the engine: {bearings.f1_bearings_hz:.1f} Hz** (condensed crank in {support}, "
+                   f"{bearings.condensed.reduced.size} DOF; {100 * (bearings.f1_bearings_hz / bearings.f1_free_hz - 1):+.1f} % "
+                   "on free-free).")
+    if isinstance(ver, VerdictOutcome):
+        unit, scale = ver.verdict.unit
+        rows = ver.verdict.rows()
+        r = rows[0]
+        out.append(f"- **Worst {'location' if ver.verdict.limits.kind == 'stress' else 'section'} without a damper: {r['worst_section']} at {r['worst_rpm']:.0f} rpm, "
+                   f"{r['value'] / scale:.4g} {unit} against {r['limit'] / scale:.4g} {unit}: margin "
+                   f"{100 * r['margin']:+.1f} %, {r['verdict']}** ({ver.model or 'lumped chain'}).")
+        designed = [row for row in rows if row["case"] in ver.verdict.designs]
+        if designed:
+            best = min(designed, key=lambda row: row["value"])
+            d = ver.verdict.designs[best["case"]]
+            spec = (f"ring {d.ring_inertia:.4g} kg m^2"
+                    + (f", stiffness {d.stiffness:.4g} N m/rad" if d.stiffness else "")
+                    + (f", loss factor {d.loss_factor:.3g}" if d.loss_factor else "")
+                    + (f", damping {d.damping:.4g} N m s/rad" if d.damping else ""))
+            out.append(f"- **Recommended damper: {best['case']}** ({spec}): worst {best['value'] / scale:.4g} {unit}, "
+                       f"margin {100 * best['margin']:+.1f} %, {best['verdict']} ({ver.model or 'lumped chain'}).")
+        bars = [f"{b['from_rpm']:.0f}-{b['to_rpm']:.0f} rpm" for b in r["barred_ranges"]]
+        out.append(f"- **Barred speed ranges without a damper:** {', '.join(bars) or 'none'} "
+                   f"(checked {r['speed_range_rpm'][0]:.0f}-{r['speed_range_rpm'][1]:.0f} rpm, to overspeed; "
+                   f"{ver.model or 'lumped chain'}).")
+    return ["## Summary", "", *out, ""] if out else []
+
+
 def report_markdown(run: RunOutcome) -> str:
-    """The whole report: a title, each section whose step ran, in pipeline order, the timings."""
-    lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""]
+    """The whole report: a title, the summary, each section whose step ran, in pipeline order, the timings."""
+    lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""] + summary_lines(run)
     for key, render in SECTIONS:
         outcome = getattr(run, key)
         if outcome is not None:

@@ -105,6 +105,12 @@ class VerdictOutcome:
     scf: dict | None
     image: str
     stress: object = None
+    #: The model the verdict was computed on (the setup's ``model``).
+    model: str = ""
+    #: The other model's answer to the same question (no damper, worst fillet stress or section
+    #: torque): ``model``, ``value``, ``rpm``, ``where`` and ``difference`` (its value over the
+    #: deciding model's, − 1); None when only one model ran.
+    yardstick: dict | None = None
 
 
 @dataclass

@@ -27,47 +27,32 @@ import numpy as np
 from ..description.defaults import DEFAULT_SPEED_STEPS
 from ..errors import FetorsionError
 from ..excitation.campbell import default_orders
-from ..excitation.kinematics import piston_acceleration, pin_forces
-from ..excitation.torque import cycle_angle, cylinder_pressure, firing_angles, harmonics
+from ..excitation.torque import cycle_angle, firing_angles, pin_force_harmonics
 from ..fe.condensed import CondensedCrank
+from ..fe.couplings import DOF_NAMES
 from ..fe.substructure import reduced_modes, supported_matrices
 from .synthesis import half_peak_to_peak, waveform
 
 
-def cylinder_pin_forces(crank, rpm: float) -> dict[str, np.ndarray]:
-    """Tangential and radial force on cylinder 1's pin over a cycle at ``rpm`` (N), from its gas
-    force and reciprocating inertia; ``theta`` rad from firing TDC."""
-    ex = crank.excitation
-    theta, p = cylinder_pressure(crank, rpm)
-    e = crank.engine
-    omega = rpm * 2 * np.pi / 60
-    force = math.pi / 4 * e.bore**2 * (p - ex.intake_pressure) \
-        + ex.reciprocating_mass * piston_acceleration(theta, e.crank_radius, e.rod_length, omega)
-    f = pin_forces(theta, force, e.crank_radius, e.rod_length)
-    return {"theta": theta, "tangential": f["tangential"], "radial": f["radial"]}
+def pin_load_map(cc: CondensedCrank) -> np.ndarray:
+    """(cylinders, 2, 6·masters): master forces of a unit tangential and radial force on each pin.
+
+    Pin c at angle a_c: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a) (a
+    positive tangential force turns the crank in +θx)."""
+    crank = cc.crank
+    out = np.zeros((crank.cylinders, 2, cc.n_master_dofs))
+    for c, a in enumerate(crank.engine.crank_angles):
+        iy, iz = cc.dof(f"P{c + 1}", "ty"), cc.dof(f"P{c + 1}", "tz")
+        out[c, 0, [iy, iz]] = -math.sin(a), math.cos(a)
+        out[c, 1, [iy, iz]] = math.cos(a), math.sin(a)
+    return out
 
 
 def master_loads(cc: CondensedCrank, rpm: np.ndarray, orders: np.ndarray) -> np.ndarray:
-    """Complex master-force amplitudes of each order: (speeds, orders, 6·masters), N.
-
-    Pin c at angle a_c: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a)
-    (a positive tangential force turns the crank in +θx); its cylinder's forces lag cylinder
-    1's by the firing angle φ_c, i.e. order q gets the factor e^{−i q φ_c}.
-    """
-    crank = cc.crank
-    period = cycle_angle(crank.engine)
-    phi = firing_angles(crank.engine)
-    out = np.zeros((len(rpm), len(orders), cc.n_master_dofs), complex)
-    for s, n in enumerate(rpm):
-        f = cylinder_pin_forces(crank, n)
-        ft = harmonics(f["tangential"], period).at(orders)
-        fr = harmonics(f["radial"], period).at(orders)
-        for c, a in enumerate(crank.engine.crank_angles):
-            phase = np.exp(-1j * orders * phi[c])
-            iy, iz = cc.dof(f"P{c + 1}", "ty"), cc.dof(f"P{c + 1}", "tz")
-            out[s, :, iy] += phase * (fr * math.cos(a) - ft * math.sin(a))
-            out[s, :, iz] += phase * (fr * math.sin(a) + ft * math.cos(a))
-    return out
+    """Complex master-force amplitudes of each order: (speeds, orders, 6·masters), N; each
+    cylinder's forces lag cylinder 1's by its firing angle φ_c (order q: the factor e^{−i q φ_c})."""
+    phasors = np.exp(-1j * np.outer(orders, firing_angles(cc.crank.engine)))  # (orders, cylinders)
+    return np.einsum("sok,oc,ckd->sod", pin_force_harmonics(cc.crank, rpm, orders), phasors, pin_load_map(cc))
 
 
 def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray,
@@ -260,7 +245,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
     t0 = time.perf_counter()
-    rpm = np.linspace(*ex.speed_range, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, float)
+    rpm = np.linspace(*ex.checked_range, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     loads = master_loads(cc, rpm, orders)  # (speeds, orders, 6m)
@@ -301,3 +286,163 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
         out.dampers = ", ".join(f"{d.kind} damper '{d.name}' at the {d.at}" for d in dampers)
         out.damper_heat_w = heat.sum(axis=1)  # (speeds, dampers): all orders together
     return out
+
+
+def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, orders=None,
+                    damping_ratio: float | None = None, section_labels=None):
+    """The condensed crank as a :class:`~fetorsion.response.forced.ResponseSetup`: the engine
+    model that the forced response, the fillet stress, the damper design and the verdict run on.
+
+    Its DOF are the reduced coordinates left free by ``support``; its sections the cuts of
+    ``cc.cut_rows`` (the fillets; torque about the x-parallel axis through each cut's centre:
+    the crank axis for a journal, the pin's axis for a pin), else the journal and pin
+    mid-planes; the pulley angle is the front master's θx, the twist front − rear; a damper
+    acts on the front or rear master's θx; the damper is tuned on the torsional modes
+    (torsion share of the journals' kinetic energy above one half).
+
+    Parameters
+    ----------
+    cc : CondensedCrank
+    support : str
+        ``bearings`` (default) or ``free``.
+    rpm, orders : array_like, optional
+        Speeds (rpm; default :data:`DEFAULT_SPEED_STEPS` over the checked range, to overspeed) and
+        orders (default 0.5 … 12 for a four-stroke).
+    damping_ratio : float, optional
+        The crank's modal damping ratio (default the description's).
+    section_labels : list of str, optional
+        Names of the cuts (default ``cut 1`` …).
+    """
+    from .forced import ResponseSetup
+
+    crank = cc.crank
+    ex = crank.excitation
+    if ex is None:
+        raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
+    rpm = np.linspace(*ex.checked_range, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, float)
+    orders = default_orders(crank) if orders is None else np.asarray(orders, float)
+    zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
+    Kk, Mk, Ck, keep = supported_damping(cc, support, zeta)
+    harm = pin_force_harmonics(crank, rpm, orders)
+    phasors = np.exp(-1j * np.outer(orders, firing_angles(crank.engine)))
+    m = cc.n_master_dofs
+    load_map = np.zeros((crank.cylinders, 2, cc.reduced.size))
+    load_map[:, :, :m] = pin_load_map(cc)
+    load_map = load_map[:, :, keep]
+    forces = np.einsum("sok,oc,ckd->sod", harm, phasors, load_map)
+    if cc.cut_rows is not None:
+        rows, x = cc.cut_rows[:, 3, keep], cc.cut_centres[:, 0]
+        names = section_labels or [f"cut {k + 1} at x = {v * 1e3:.1f} mm" for k, v in enumerate(x)]
+    else:
+        inner = list(range(1, len(cc.labels) - 1))
+        rows, x, names = cc.sections[inner, 3][:, keep], cc.positions[inner, 0], [cc.labels[k] for k in inner]
+    w2, V, _ = reduced_modes(cc.reduced, *cc.support_terms(support))
+    full = np.zeros((cc.reduced.size, V.shape[1]))
+    full[keep] = V
+    _, kinds = cc.classify(full)
+    rigid = np.abs(w2) < 1e-8 * np.abs(w2).max()
+    torsional = np.array([j for j, k in enumerate(kinds) if k == "torsional" and not rigid[j]])
+    dof_names = [f"{lb} {d}" for lb in cc.labels for d in DOF_NAMES] + \
+        [f"interior {j + 1}" for j in range(cc.reduced.size - m)]
+    where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
+    return ResponseSetup(crank.name, [dof_names[k] for k in keep], Mk, Kk, Ck, forces, rpm, orders,
+                         cycle_angle(crank.engine), zeta, "", None, harm, phasors, load_map, rows, list(names),
+                         section_x=np.asarray(x), pulley=where["front"], flywheel=where["rear"], damper_dof=where,
+                         torsional_modes=torsional, model=f"condensed crank, {support} ({cc.reduced.size} DOF)",
+                         load_kind="pin forces", projected=True)
+
+
+def peak_of_phasor(v: np.ndarray) -> np.ndarray:
+    """max over t of |Re(v e^{iωt})| for complex vectors v (..., k): the peak length of the ellipse
+    a harmonic vector traces, √((|v|² + |v·v|)/2)."""
+    return np.sqrt(0.5 * ((np.abs(v) ** 2).sum(axis=-1) + np.abs((v * v).sum(axis=-1))))
+
+
+def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameters=None, orders=None,
+                         speed_range=None, damping_ratio: float | None = None, max_modes: int = 20, forces=None):
+    """Campbell diagram of the condensed crank: every mode (torsional, bending, axial, coupled)
+    that an order can meet in the speed range, each crossing's severity the peak nominal
+    equivalent stress √(σ_b² + 3τ²) it drives at the worst fillet cut, MPa.
+
+    At a crossing of mode j (ω_j, unit modal mass, shape φ_j) and order q at n = 60 f_j / q, the
+    full pin force of every cylinder — tangential and radial, gas and inertia, with its firing
+    phase — gives the modal force P = φ_jᵀ F_q(n), and the resonant modal amplitude is
+    |P| / (2 ζ ω_j²). Through each cut (``cc.cut_rows``; else the journal and pin mid-planes) the
+    mode's torque T and bending moment M (its peak over the cycle) give τ = 16 T D / (π(D⁴ − d⁴))
+    and σ_b = 32 M D / (π(D⁴ − d⁴)): a bending resonance and a torsional one in one unit.
+
+    Parameters
+    ----------
+    cc : CondensedCrank
+    support : str
+        ``bearings`` (default) or ``free``.
+    diameters : array_like (cuts, 2), optional
+        Outer diameter and bore (m) of the section at each cut (default: the journal's or pin's).
+    orders : array_like, optional
+    speed_range : (float, float), optional
+        rpm; default the checked range (to overspeed).
+    damping_ratio : float, optional
+    max_modes : int
+        At most this many of the lowest elastic modes.
+    forces : callable, optional
+        ``forces(rpm, order)`` → (the complex master-force amplitude (6·masters,) N of that order at
+        that speed, a torque harmonic N·m to show beside it); default every cylinder's pin forces
+        (:func:`pin_force_harmonics`) and one cylinder's torque harmonic. Then ``orders``,
+        ``speed_range`` and ``damping_ratio`` are required.
+    """
+    from ..excitation.campbell import CampbellResult
+
+    crank = cc.crank
+    if forces is None:
+        if crank.excitation is None:
+            raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
+        phi, load_map = firing_angles(crank.engine), pin_load_map(cc)
+
+        def forces(n, q):  # and one cylinder's torque harmonic R |F_t,q|, N·m
+            h = pin_force_harmonics(crank, [n], [q])[0, 0]  # (2,): tangential, radial
+            return np.einsum("c,k,ckd->d", np.exp(-1j * q * phi), h, load_map), crank.engine.crank_radius * abs(h[0])
+        orders = default_orders(crank) if orders is None else np.asarray(orders, float)
+        lo, hi = crank.excitation.checked_range if speed_range is None else speed_range
+        zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio
+    else:
+        orders, (lo, hi), zeta = np.asarray(orders, float), speed_range, damping_ratio
+    md = cc.modes(support)
+    fmax = orders.max() * hi / 60
+    k = min(max_modes, int((md.frequencies_hz <= fmax).sum()) or 1)
+    f, V = md.frequencies_hz[:k], md.vectors[:, :k]
+    rows = cc.cut_rows if cc.cut_rows is not None else cc.sections[1:-1]
+    D = np.asarray(diameters, float) if diameters is not None else \
+        np.array([[c.diameter, c.bore] for c in _section_parts(cc)])
+    modulus = np.pi * (D[:, 0] ** 4 - D[:, 1] ** 4) / (16 * D[:, 0])  # polar section modulus, m³
+    m = cc.n_master_dofs
+    crossings = []
+    for j in range(k):
+        w = 2 * np.pi * f[j]
+        R = np.einsum("kcr,r->kc", rows, V[:, j])  # (cuts, 6) per unit modal coordinate
+        for q in orders:
+            n = 60 * f[j] / q
+            F, torque = forces(n, q)
+            terms = F * V[:m, j]
+            P = terms.sum()
+            a = abs(P) / (2 * zeta * w**2)
+            tau = np.abs(R[:, 3]) * a / modulus
+            sigma = peak_of_phasor(R[:, 4:6] * a) / (modulus / 2)
+            eq = np.sqrt(sigma**2 + 3 * tau**2)
+            worst = int(np.argmax(eq))
+            crossings.append({
+                "mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(n),
+                "in_range": bool(lo <= n <= hi), "mode_kind": f"{md.kinds[j]} ({md.fractions[j, 0]:.2f}/{md.fractions[j, 1]:.2f})",
+                "torque_harmonic_nm": float(torque),
+                "phase_sum": float(abs(P) / max(np.abs(terms).sum(), 1e-300)),
+                "severity": float(eq[worst] / 1e6), "worst_cut": worst,
+                "shear_mpa": float(tau[worst] / 1e6), "bending_mpa": float(sigma[worst] / 1e6)})
+    return CampbellResult(getattr(crank, "name", ""), f"condensed FE crank, {support} ({cc.reduced.size} DOF), "
+                          "full pin forces", f, orders, (lo, hi), zeta, crossings,
+                          severity_unit="MPa: peak nominal equivalent stress sqrt(sigma_b^2 + 3 tau^2) at the worst "
+                                        "section, resonant, one mode")
+
+
+def _section_parts(cc: CondensedCrank):
+    """The journal or pin of each mid-plane section (J1, P1, J2, …)."""
+    crank = cc.crank
+    return [(crank.journals if lb[0] == "J" else crank.pins)[int(lb[1:]) - 1] for lb in cc.labels[1:-1]]

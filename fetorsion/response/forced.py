@@ -23,9 +23,9 @@ import numpy as np
 from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank
 from ..errors import FetorsionError, ParameterError
-from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics
+from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
 from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
-from ..lumped_model.damped import DampedSystem, damper_station
+from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
@@ -297,7 +297,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     ex = crank.excitation
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
-    lo, hi = ex.speed_range
+    lo, hi = ex.checked_range
     rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
@@ -347,8 +347,6 @@ def misfire_harmonics(crank, setup: ResponseSetup) -> np.ndarray:
     form of ``setup.cylinder_harmonics`` (its torque, or its tangential and radial pin force)."""
     if setup.load_kind == "torque":
         return motored_harmonics(crank, setup.rpm, setup.orders)[:, :, None]
-    from .coupled import pin_force_harmonics
-
     return pin_force_harmonics(crank, setup.rpm, setup.orders, misfire=True)
 
 
@@ -371,7 +369,7 @@ def solve_theta(setup: ResponseSetup, dampers=()):
 def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:
     """(speeds, sections, orders) complex torque through each section, N·m."""
     n = len(setup.labels)
-    return np.einsum("kd,sod->sko", setup.section_rows, theta[:, :, :n])
+    return np.moveaxis(complex_times(theta[:, :, :n], np.ascontiguousarray(setup.section_rows.T)), 2, 1)
 
 
 def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
