@@ -90,6 +90,55 @@ def section_rows(K, basis: np.ndarray, cm: CrankMesh, dof_of_node: np.ndarray, d
     return out
 
 
+def cut_resultants(sys_: CrankSystem, forces: np.ndarray, centres: np.ndarray) -> np.ndarray:
+    """The rows of :func:`section_rows` for cuts at x = centre x, from the nodal forces of the
+    basis, ``forces`` = K [Ψ Φ] over the solved DOF (n × r): (cuts, 6, r).
+
+    The resultant through a cut is −Σ Rᵢᵀ fᵢ over the DOF of nodes in left elements only
+    (:func:`section_rows`): forces Σ fᵢ and moments Σ Xᵢ × fᵢ − c × Σ fᵢ. Sorting the nodes by
+    the rightmost centroid of their elements turns every cut into one more slice of a running
+    sum: one pass over the DOF for all cuts, no product with K. With rigid end ties the front
+    body's six solved DOF carry the face's nodal forces (its generalised force about the front
+    master), left of every interior cut.
+    """
+    cm = sys_.mesh
+    centroid_x = cm.nodes[cm.tets[:, :4], 0].mean(axis=1)
+    right_most = np.full(len(cm.nodes), -np.inf)
+    np.maximum.at(right_most, cm.tets.ravel(), np.repeat(centroid_x, cm.tets.shape[1]))
+    used = sys_.dof_of_node >= 0
+    node_key = np.full(len(sys_.xyz), np.inf)
+    node_key[sys_.dof_of_node[used]] = right_most[used]
+    free = sys_.free_dofs
+    node, comp = free // 3, free % 3
+    X = sys_.xyz[node]
+    on = [(comp == k).astype(float) for k in range(3)]
+    coeff = np.stack([on[0], on[1], on[2],  # forces, then moments X × f about the origin
+                      X[:, 1] * on[2] - X[:, 2] * on[1], X[:, 2] * on[0] - X[:, 0] * on[2],
+                      X[:, 0] * on[1] - X[:, 1] * on[0]])
+    order = np.argsort(node_key[node], kind="stable")
+    keys = node_key[node][order]
+    centres = np.asarray(centres, float).reshape(-1, 3)
+    out = np.empty((len(centres), 6, forces.shape[1]))
+    running, start = np.zeros((6, forces.shape[1])), 0
+    body = None
+    if sys_.T is not None:
+        p = sys_.positions[0]
+        g = forces[len(free):len(free) + 6]
+        body = (g[:3], g[3:] + np.cross(p, g[:3].T).T)  # its force, and moment about the origin
+    for c in np.argsort(centres[:, 0], kind="stable"):
+        stop = int(np.searchsorted(keys, centres[c, 0], side="left"))
+        rows = order[start:stop]
+        running += coeff[:, rows] @ forces[rows]
+        start = stop
+        F, Mo = running[:3].copy(), running[3:].copy()
+        if body is not None:
+            F += body[0]
+            Mo += body[1]
+        out[c, :3] = -F
+        out[c, 3:] = -(Mo - np.cross(centres[c], F.T).T)
+    return out
+
+
 @dataclass
 class CondensedModes:
     """Modes of the condensed crank in one support condition.
@@ -324,17 +373,14 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
     itf = sys_.interface
     red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
-    red.basis = sys_.expand(red.basis)
     t2 = time.perf_counter()
     labels, positions = sys_.labels, sys_.positions
-    inner = [(p[0], p) for p in positions[1:-1]]
     sections = np.zeros((len(labels), 6, red.size))
-    sections[1:-1] = section_rows(sys_.K, red.basis, sys_.mesh, sys_.dof_of_node, sys_.xyz, inner)
+    sections[1:-1] = cut_resultants(sys_, red.basis_forces, positions[1:-1])
     centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)
-    extra = None if centres is None else section_rows(sys_.K, red.basis, sys_.mesh, sys_.dof_of_node, sys_.xyz,
-                                                      [(c[0], c) for c in centres])
-    if not keep_basis:
-        red.basis = None
+    extra = None if centres is None else cut_resultants(sys_, red.basis_forces, centres)
+    red.basis_forces = None
+    red.basis = sys_.expand(red.basis) if keep_basis else None
     Kb, Cb, held = bearing_matrices(crank, labels)
     timings = {**({} if system is not None else sys_.timings_s), **red.timings_s,
                "sections": time.perf_counter() - t2,

@@ -165,6 +165,9 @@ class CrankSystem:
     attachment_mass: np.ndarray
     end_ties: str = "rigid"
     timings_s: dict = field(default_factory=dict)
+    #: Mesh DOF (interleaved x, y, z per DOF node) of the solved DOF that are not tied to an end
+    #: body, in solved order; the end bodies' six DOF each follow them.
+    free_dofs: np.ndarray | None = None
 
     @property
     def dofs(self) -> int:
@@ -215,7 +218,7 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     masters = crank_masters(crank, cm)
     xyz = m.doflocs.T
     G = coupling_matrix(masters, dof_of_node, xyz)
-    T, Kc, Mc = None, K, M
+    T, Kc, Mc, free = None, K, M, np.arange(K.shape[0])
     groups = np.arange(0, K.shape[0] + 1, 3)  # a node's three displacements share their neighbours
     if end_ties == "rigid":
         # The end faces' nodes follow their bodies exactly; the bodies' six DOF (at the face
@@ -223,7 +226,7 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
         ends = [RigidBody(mst.label, dof_of_node[mst.nodes], 0.0, np.zeros((3, 3)), mst.position)
                 for mst in (masters[0], masters[-1])]
         red = reduction(K.shape[0], ends, xyz)
-        T = red.T
+        T, free = red.T, red.free
         Kc, Mc = red.reduce(K), red.reduce(M)
         nf = red.n_free
         pick = lambda first: sp.csr_array((np.ones(6), (np.arange(6), nf + first + np.arange(6))),  # noqa: E731
@@ -237,4 +240,4 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     timings = {"meshing": cm.quality.seconds if cm.quality and mesh is None else t1 - t0, "assembly": t2 - t1,
                **itf.timings_s}
     return CrankSystem(crank, cm, labels, positions, itf, T, K, dof_of_node, xyz, w,
-                       attachment_masses(crank, labels, positions), end_ties, timings)
+                       attachment_masses(crank, labels, positions), end_ties, timings, free)

@@ -170,6 +170,9 @@ class ReducedModel:
     basis: np.ndarray | None = None
     timings_s: dict = field(default_factory=dict)
     psi_iterations: int = 0
+    #: K [Ψ Φ] (n × r), the nodal forces of each basis vector (N per unit coordinate), kept with
+    #: the basis: the section resultants are sums of its rows.
+    basis_forces: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -202,11 +205,10 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     psi, its = constraint_modes(itf, iterations=psi_iterations)
     t1 = time.perf_counter()
     if ritz_blocks:
-        w2, phi = interface_ritz_vectors(itf, psi, ritz_blocks)
-    elif modes:
-        w2, phi = fixed_interface_modes(itf, modes)
+        w2, phi, kphi = interface_ritz_vectors(itf, psi, ritz_blocks)
     else:
-        w2, phi = np.zeros(0), np.zeros((itf.K.shape[0], 0))
+        w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((itf.K.shape[0], 0)))
+        kphi = np.asarray(itf.K @ phi)
     t2 = time.perf_counter()
     m = itf.n_master_dofs
     r = m + len(w2)
@@ -226,7 +228,8 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     basis = np.hstack([psi, phi]) if keep_basis else None
     hz = np.sqrt(np.abs(w2)) / (2 * np.pi)
     return ReducedModel(Kr, Mr, m, hz, basis, {"constraint_modes": t1 - t0, "interior_vectors": t2 - t1,
-                                                "projection": t3 - t2}, its)
+                                                "projection": t3 - t2}, its,
+                        np.hstack([Kpsi, kphi]) if keep_basis else None)
 
 
 class _MassWithMasters:
@@ -300,7 +303,7 @@ def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
 def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = ORTHO_DROP):
     """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
-    G x = 0; then rotated to the Ritz pairs of (K, M) in that space: (ω² ascending, Φ n × k).
+    G x = 0; then rotated to the Ritz pairs of (K, M) in that space: (ω² ascending, Φ n × k, K Φ).
     """
     from .eigen import m_orthonormalize
 
@@ -317,6 +320,7 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
             basis.append(V)
             mbasis.append(MV)
     Q = np.hstack(basis)
-    Kq = Q.T @ np.asarray(itf.K @ Q)
+    KQ = np.asarray(itf.K @ Q)
+    Kq = Q.T @ KQ
     w2, S = scipy.linalg.eigh(0.5 * (Kq + Kq.T))
-    return w2, Q @ S
+    return w2, Q @ S, KQ @ S
