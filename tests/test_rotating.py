@@ -338,3 +338,14 @@ def test_stress_stiffening_cancels_spin_softening_of_a_twist(built, stiffening):
             lo, hi = np.sort(f[np.argsort(np.abs(f - wn))[:2]])
             Phi = V[:, pair]
             assert (hi - lo) / 2 / spin == pytest.approx(abs(Phi[:, 0] @ Gr @ Phi[:, 1]) / 2, abs=1e-5)
+
+
+def test_reduced_coriolis_from_the_scalar_mass_equals_the_full_product(built):
+    # the condensed crank builds G_r from m (M = m ⊗ I₃) alone: the same matrix as Bᵀ M (S B)
+    import scipy.sparse as sp
+
+    from fetorsion.fe.rotating import reduced_coriolis
+
+    m = sp.csr_array(sp.csr_array(built.M)[0::3][:, 0::3])
+    np.testing.assert_allclose(reduced_coriolis(m, built.red.basis), built.Gr, rtol=0,
+                               atol=1e-12 * np.abs(built.Gr).max())

@@ -218,6 +218,9 @@ class CondensedCrank:
     #: cut's centre ``cut_centres`` (cuts, 3), m; None without.
     cut_rows: np.ndarray | None = field(default=None, repr=False)
     cut_centres: np.ndarray | None = None
+    #: Coriolis (gyroscopic) matrix per unit spin speed, r × r, skew: in the crank's rotating
+    #: frame M z̈ + (C + Ω G) ż + K z = f (:mod:`fetorsion.fe.rotating`; crank and attachments).
+    gyroscopic: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def n_master_dofs(self) -> int:
@@ -380,13 +383,25 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)
     extra = None if centres is None else cut_resultants(sys_, red.basis_forces, centres)
     red.basis_forces = None
-    red.basis = sys_.expand(red.basis) if keep_basis else None
+    red.basis = sys_.expand(red.basis)
+    tg = time.perf_counter()
+    gyro = None
+    if sys_.node_mass_matrix is not None:
+        from .rotating import attachment_rotating_matrices, reduced_coriolis
+
+        gyro = reduced_coriolis(sys_.node_mass_matrix, red.basis)
+        m = 6 * len(labels)
+        gyro[:m, :m] += attachment_rotating_matrices(sys_.attachment_mass, positions)[0]
+    if not keep_basis:
+        red.basis = None
+    t3 = time.perf_counter()
     Kb, Cb, held = bearing_matrices(crank, labels)
     timings = {**({} if system is not None else sys_.timings_s), **red.timings_s,
-               "sections": time.perf_counter() - t2,
+               "sections": tg - t2, "gyroscopic": t3 - tg,
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
-                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres)
+                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,
+                          gyro)
 
 
 #: Layout tag of the saved file; bump when the layout changes.

@@ -168,6 +168,9 @@ class CrankSystem:
     #: Mesh DOF (interleaved x, y, z per DOF node) of the solved DOF that are not tied to an end
     #: body, in solved order; the end bodies' six DOF each follow them.
     free_dofs: np.ndarray | None = None
+    #: The scalar node mass matrix m (M = m ⊗ I₃ on the mesh DOF), kg: the rotating-frame terms
+    #: (:mod:`fetorsion.fe.rotating`) are products with it.
+    node_mass_matrix: sp.csr_array | None = None
 
     @property
     def dofs(self) -> int:
@@ -214,6 +217,7 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
     M = assembly.mass(basis, mat.density, pat)
     w = node_masses(basis, mat.density)
+    m_scalar = sp.csr_array(M[0::3][:, 0::3])
     del basis, pat
     masters = crank_masters(crank, cm)
     xyz = m.doflocs.T
@@ -240,4 +244,4 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     timings = {"meshing": cm.quality.seconds if cm.quality and mesh is None else t1 - t0, "assembly": t2 - t1,
                **itf.timings_s}
     return CrankSystem(crank, cm, labels, positions, itf, T, K, dof_of_node, xyz, w,
-                       attachment_masses(crank, labels, positions), end_ties, timings, free)
+                       attachment_masses(crank, labels, positions), end_ties, timings, free, m_scalar)

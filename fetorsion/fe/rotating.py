@@ -91,6 +91,18 @@ def rotating_frame_matrices(M, basis: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return 0.5 * (G - G.T), 0.5 * (N + N.T)
 
 
+def reduced_coriolis(node_mass, basis: np.ndarray) -> np.ndarray:
+    """G_r = Bᵀ G B (r × r, skew) from the scalar node mass matrix m (M = m ⊗ I₃) alone:
+    (R2) reads G_r = 2 (B_zᵀ m B_y − B_yᵀ m B_z), B_y, B_z the y and z rows of the basis —
+    two products with a matrix a ninth of M's size, the same value as
+    :func:`rotating_frame_matrices`'s first."""
+    By, Bz = basis[1::3], basis[2::3]
+    mBy = np.asarray(node_mass @ By)
+    mBz = np.asarray(node_mass @ Bz)
+    G = 2.0 * (Bz.T @ mBy - By.T @ mBz)
+    return 0.5 * (G - G.T)
+
+
 def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
     """Reduced static centrifugal load per unit Ω², Bᵀ N X (N·s² per unit coordinate).
 

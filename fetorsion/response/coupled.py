@@ -2,19 +2,22 @@
 
 Each pin carries the slider-crank force of its cylinder (gas force and reciprocating inertia
 along the cylinder axis, taken through the exact rod geometry into a tangential and a radial
-component, :func:`fetorsion.excitation.kinematics.pin_forces`), with its firing phase. The
+component, :func:`fetorsion.excitation.torque.pin_force_harmonics`), with its firing phase. The
 crank is modelled in its own rotating frame, where each pin force has fixed directions: with
-isotropic bearings this is exact for the linear model; gyroscopic, Coriolis and centrifugal
-stiffening terms are left out (at 6000 rpm, Ω² is under 0.1 % of the first in-bearing ω²).
+isotropic bearings this is exact for the linear model. The Coriolis term of that frame
+(Ω G ż, :mod:`fetorsion.fe.rotating`) is included; the centrifugal spin softening is left out
+with the stress stiffening of the centrifugal prestress that cancels it to first order (for
+torsion exactly, docs/condensed-crank.md).
 
 Each order q at speed Ω is a harmonic load at ω = qΩ; the reduced model (supports and
-attachments on the masters, :class:`fetorsion.fe.condensed.CondensedCrank`) is solved by
-modal superposition with one damping ratio for every mode (the rigid rotation responds as
-a free inertia). Outputs are synthesised over the orders (:mod:`.synthesis`): pulley angle
-and twist, torque and bending moment through every journal and pin mid-plane (recovered
-exactly from the reduced coordinates), and the bearing forces (spring forces, or the
-reactions of rigid bearings), each as the vibratory amplitude (half peak-to-peak) or the
-largest magnitude over the cycle, against speed.
+attachments on the masters, :class:`fetorsion.fe.condensed.CondensedCrank`) is solved in the
+basis of its modes below three times the highest excitation frequency with a static correction
+above (:func:`fetorsion.lumped_model.damped.projected_solve`), one damping ratio on every mode
+of the crank (the rigid rotation responds as a free inertia). Outputs are synthesised over the
+orders (:mod:`.synthesis`): pulley angle and twist, torque and bending moment through every
+journal and pin mid-plane (recovered exactly from the reduced coordinates), and the bearing
+forces (spring forces, or the reactions of rigid bearings), each as the vibratory amplitude
+(half peak-to-peak) or the largest magnitude over the cycle, against speed.
 """
 
 from __future__ import annotations
@@ -96,14 +99,16 @@ def supported_damping(cc: CondensedCrank, support: str, damping_ratio: float):
 
 
 def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray, damping_ratio: float,
-                    dampers):
+                    dampers, spin=None):
     """Reduced coordinates z (..., r) with torsional dampers on the front or rear master's
     twist, and each damper's dissipated power (..., dampers) in W.
 
     The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'
     dampers stay as in :func:`harmonic_solution`; the dampers' rings are appended by
     :class:`fetorsion.lumped_model.damped.DampedSystem` and the whole solved by
-    :func:`fetorsion.lumped_model.damped.projected_solve` (non-proportional damping).
+    :func:`fetorsion.lumped_model.damped.projected_solve` (non-proportional damping). ``spin``
+    (rad/s, broadcast against ``omegas``): the crank's speed, for the Coriolis term of its
+    rotating frame (``cc.gyroscopic``); None leaves it out.
     """
     from ..lumped_model.damped import DampedSystem, projected_solve
 
@@ -111,7 +116,8 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
     system = DampedSystem(Mk, Kk, Ck, dampers, stations=len(keep), at=lambda d: where[d.at])
     om = np.asarray(omegas, float)
-    x = projected_solve(system, loads_on(cc, loads, keep), om)
+    G = None if spin is None or cc.gyroscopic is None else cc.gyroscopic[np.ix_(keep, keep)]
+    x = projected_solve(system, loads_on(cc, loads, keep), om, G, spin)
     z = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
     z[..., keep] = x[..., :len(keep)]
     return z, system.dissipated_power(x, om)
@@ -124,7 +130,8 @@ def loads_on(cc: CondensedCrank, loads: np.ndarray, keep: np.ndarray) -> np.ndar
     return F[..., keep]
 
 
-def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.ndarray, omegas: np.ndarray) -> np.ndarray:
+def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.ndarray, omegas: np.ndarray,
+                   spin=None) -> np.ndarray:
     """Force of each main bearing on the crank (..., journals, 2: y, z), N.
 
     Springs: −K_b z − iω C_b z. Rigid bearings: the reactions, from the equations of the held
@@ -140,6 +147,8 @@ def bearing_forces(cc: CondensedCrank, support: str, z: np.ndarray, loads: np.nd
     react = np.zeros(z.shape, complex)
     if len(held):
         react[..., held] = (z @ K[held].T) - om**2 * (z @ M[held].T) - F[..., held]
+        if spin is not None and cc.gyroscopic is not None:  # the Coriolis forces the bearings hold too
+            react[..., held] += 1j * om * np.asarray(spin)[..., None] * (z @ cc.gyroscopic[held].T)
     spring = -(z[..., :m] @ cc.bearing_stiffness.T) - 1j * om * (z[..., :m] @ cc.bearing_damping.T)
     for j in range(len(cc.crank.journals)):
         for d, name in enumerate(("ty", "tz")):
@@ -252,11 +261,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     t1 = time.perf_counter()
     omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
     dampers = tuple(getattr(crank, "dampers", ()))
-    heat = None
-    if dampers:
-        z, heat = damped_solution(cc, support, loads, omegas, zeta, dampers)
-    else:
-        z = harmonic_solution(cc, support, loads, omegas, zeta)  # (speeds, orders, r)
+    z, heat = damped_solution(cc, support, loads, omegas, zeta, dampers, spin=rpm[:, None] * np.pi / 30)
     period = cycle_angle(crank.engine)
 
     def amp(x):  # (..., orders) -> (...)
@@ -272,7 +277,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
         w = waveform(vec, orders, theta)  # (..., 2, angles)
         return np.sqrt((w**2).sum(axis=-2)).max(axis=-1)
 
-    fb = bearing_forces(cc, support, z, loads, omegas)  # (speeds, orders, journals, 2)
+    fb = bearing_forces(cc, support, z, loads, omegas, rpm[:, None] * np.pi / 30)  # (speeds, orders, journals, 2)
     out = CoupledResponse(
         crank.name, support, rpm, orders, zeta,
         pulley_angle_deg=np.degrees(amp(z[..., front])),
@@ -289,7 +294,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
 
 
 def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, orders=None,
-                    damping_ratio: float | None = None, section_labels=None):
+                    damping_ratio: float | None = None, section_labels=None, rotating: bool = True):
     """The condensed crank as a :class:`~fetorsion.response.forced.ResponseSetup`: the engine
     model that the forced response, the fillet stress, the damper design and the verdict run on.
 
@@ -312,6 +317,8 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
         The crank's modal damping ratio (default the description's).
     section_labels : list of str, optional
         Names of the cuts (default ``cut 1`` …).
+    rotating : bool
+        Include the Coriolis term of the crank's rotating frame (``cc.gyroscopic``, default).
     """
     from .forced import ResponseSetup
 
@@ -349,7 +356,8 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
                          cycle_angle(crank.engine), zeta, "", None, harm, phasors, load_map, rows, list(names),
                          section_x=np.asarray(x), pulley=where["front"], flywheel=where["rear"], damper_dof=where,
                          torsional_modes=torsional, model=f"condensed crank, {support} ({cc.reduced.size} DOF)",
-                         load_kind="pin forces", projected=True)
+                         load_kind="pin forces", projected=True,
+                         gyroscopic=cc.gyroscopic[np.ix_(keep, keep)] if rotating and cc.gyroscopic is not None else None)
 
 
 def peak_of_phasor(v: np.ndarray) -> np.ndarray:

@@ -263,6 +263,9 @@ class ResponseSetup:
     load_kind: str = "torque"  # "torque" (a chain) or "pin forces" (tangential, radial)
     projected: bool = False  # solve in the modes' basis (a large reduced model)
     stiffnesses: np.ndarray | None = None  # a chain's springs, N·m/rad
+    #: Coriolis matrix per unit spin speed (DOF × DOF, skew): a model in the crank's rotating
+    #: frame (the condensed crank); None for a chain (torsion about the spin axis has none).
+    gyroscopic: np.ndarray | None = None
 
     def at_speeds(self, index) -> "ResponseSetup":
         """The same setup at a subset of its speeds (``index`` into ``rpm``: a slice or indices),
@@ -360,7 +363,8 @@ def solve_theta(setup: ResponseSetup, dampers=()):
     system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station)
     omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     if setup.projected:
-        return projected_solve(system, setup.forces, omegas), omegas, system
+        spin = setup.rpm[:, None] * 2 * np.pi / 60
+        return projected_solve(system, setup.forces, omegas, setup.gyroscopic, spin), omegas, system
     N = len(system.M)
     forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
     return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
