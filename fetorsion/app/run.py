@@ -15,6 +15,7 @@ import json
 import sys
 import time
 from dataclasses import dataclass, field
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Callable
 
@@ -24,6 +25,7 @@ from ..description.crank import load
 from ..description.model import Chain, Crank
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
+from ..studies.runner import machine_workers
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_PARTITION,
                                     DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
@@ -221,6 +223,8 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
                            ctx.save(resp.plot().figure, "response.png"))
 
 
+#: Start the sensitivity studies when the run begins, beside the FE steps (False: in their step).
+BACKGROUND = True
 #: The report's studies of f1 (lumped 17 DOF, default web method), each of the default size.
 REPORT_STUDIES = ("montecarlo", "sobol")
 
@@ -273,30 +277,40 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
                           yardstick)
 
 
-def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
-    """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
-    Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs.
-    The studies run on an embedded Dask cluster, each sample stored as it finishes."""
+def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool):
+    """(one-at-a-time sensitivity, {study: result}, FE checks) of f1: the lumped Monte Carlo and
+    Sobol' studies and the FE checks of the most influential inputs, on an embedded Dask cluster,
+    each sample stored as it finishes. Nothing here depends on the run's other steps, so
+    :func:`run` starts it first, beside the FE work (:data:`BACKGROUND`)."""
     from ..studies.runner import ClusterOnDemand, open_store
     from ..studies.models import make_model
     from ..studies.sampling import study_inputs
     from ..studies.sensitivity import fe_check, run_sensitivity
     from ..studies.study import run_study
 
-    if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
-        return Skipped("the description has no `[uncertainty]` table")
-    sens = run_sensitivity(ctx.crank, parts=ctx.parts())
-    ctx.results["sensitivity"] = sens.to_dict()
-    inputs, _ = study_inputs(ctx.crank)
-    model = make_model(ctx.crank, "lumped17")
-    measured = sens.measured_hz
+    sens = run_sensitivity(crank)
+    inputs, _ = study_inputs(crank)
+    model = make_model(crank, "lumped17")
     store = open_store()
     print(f"[fetorsion] {store.describe()}", file=sys.stderr, flush=True)
-    with ClusterOnDemand(workers=ctx.options.get("workers")) as client:  # started only for samples not stored
-        studies = {method: run_study(model, inputs, method, n, client=client, store=store, name=ctx.crank.name,
-                                     measured_hz=measured)
+    with ClusterOnDemand(workers=workers) as client:  # started only for samples not stored
+        studies = {method: run_study(model, inputs, method, n, client=client, store=store, name=crank.name,
+                                     measured_hz=sens.measured_hz)
                    for method, n in ((m, DEFAULT_STUDY_SAMPLES[m]) for m in REPORT_STUDIES)}
-        checks = fe_check(ctx.crank, sens, client=client, store=store) if ctx.outcome.fe is not None else []
+        checks = fe_check(crank, sens, client=client, store=store) if fe_checks else []
+    return sens, studies, checks
+
+
+def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
+    """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
+    Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs
+    (:func:`sensitivity_studies`, started in the background when the run began)."""
+    if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
+        return Skipped("the description has no `[uncertainty]` table")
+    pending = ctx.built.pop("studies", None)
+    sens, studies, checks = (pending.result() if pending is not None else
+                             sensitivity_studies(ctx.crank, ctx.options.get("workers"), ctx.outcome.fe is not None))
+    ctx.results["sensitivity"] = sens.to_dict()
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks
     ctx.results["studies"] = {m: r.to_dict() for m, r in studies.items()}
@@ -349,9 +363,16 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     crank = load(path)  # every input rule is checked here, before any work or any file
     if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
-    with atomic_folder(out) as work:
+    with atomic_folder(out) as work, ThreadPoolExecutor(1) as background:
         outcome = RunOutcome(crank, str(path), timings_s={})
         ctx = RunContext(crank, work, {"no_fe": not any(s[2] is step_fe for s in steps), **(options or {})}, outcome)
+        if BACKGROUND and any(s[2] is step_sensitivity for s in steps) and getattr(crank, "uncertainty", ()):
+            # the studies run beside the FE steps on one core fewer than the machine has: the FE's
+            # assembly and Lanczos iterations keep one core busy, not two (Renault 21 on 2 cores:
+            # 97 s with the studies in their step, 93 s beside the FE on 2 workers, 88 s on 1)
+            workers = ctx.options.get("workers") or max(1, machine_workers() - 1)
+            ctx.built["studies"] = background.submit(sensitivity_studies, crank, workers,
+                                                     any(s[2] is step_fe for s in steps))
         for name, key, fn in steps:
             _progress(f"{name} ...")
             t0 = time.perf_counter()
