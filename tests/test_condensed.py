@@ -385,3 +385,25 @@ def test_cut_resultants_equal_the_section_rows_of_the_full_model():
                         [(c[0], c) for c in centres])
     scale = np.abs(slow).max(axis=(0, 2), keepdims=True)  # per component: N and N m differ
     np.testing.assert_allclose(fast / scale, slow / scale, rtol=0, atol=1e-9)
+
+
+def test_crank_f1_rises_monotonically_from_free_to_rigid_bearings():
+    """Issue 26: the Renault 21's first torsional frequency in bearings of stiffness k rises
+    monotonically from the free-free value (k = 0) to the rigid-bearing one (k → ∞): stiffness
+    added to a structure lowers no eigenvalue (Rayleigh), and the limits are the same model."""
+    from fetorsion.fe.condensed import run_condensed
+
+    cc = run_condensed(plain("renault21.toml"), 0.03)
+    radial = [cc.dof(f"J{j + 1}", d) for j in range(len(cc.crank.journals)) for d in ("ty", "tz")]
+
+    def f1(k):
+        Kb = np.zeros_like(cc.bearing_stiffness)
+        Kb[radial, radial] = k
+        return dataclasses.replace(cc, bearing_stiffness=Kb, held=np.zeros(0, np.int64)).modes("bearings").first_torsional()
+
+    sweep = [f1(k) for k in (0.0, 1e6, 1e7, 1e8, 3e8, 1e9, 1e10, 1e11, 1e12)]
+    assert sweep[0] == pytest.approx(cc.modes("free").first_torsional(), rel=1e-9)
+    assert np.all(np.diff(sweep) >= -1e-9 * sweep[0])
+    rigid = cc.modes("bearings").first_torsional()  # the default: rigid radial bearings
+    assert sweep[-1] == pytest.approx(rigid, rel=1e-3)  # 1e12 N/m is rigid to ~1e-4 against ~1e9 N/m throws
+    assert sweep[-1] <= rigid * (1 + 1e-9)

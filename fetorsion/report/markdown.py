@@ -8,6 +8,8 @@ outcomes.
 
 from __future__ import annotations
 
+import math
+
 from ..description.model import Crank
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
@@ -76,6 +78,12 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     support = ("rigid main bearings (no `[bearings]` table: the default)" if not b.given else
                "main bearings of the `[bearings]` table: " + ", ".join("rigid" if k == float("inf") else f"{k:.3g} N/m"
                                                                         for k in b.radial_stiffness))
+    film = getattr(b, "oil_film", None)
+    if film is not None:
+        support += (f" — oil films (short-bearing linearised coefficients [Friswell], mean of the two direct terms) "
+                    f"at {film.speed * 30 / math.pi:.0f} rpm, viscosity {film.viscosity:g} Pa s, "
+                    "eccentricity ratios " + ", ".join(f"{e:.2f}" for e in film.eccentricity)
+                    + ", damping " + ", ".join(f"{c:.3g}" for c in b.radial_damping) + " N s/m")
     measured = crank.notes.get("measured_first_torsional_hz")
     lines = ["## The crank in its bearings (condensed 3D FE, torsion and bending coupled)", "",
              f"The FE crank of the previous section condensed (Craig–Bampton, distributing couplings) to "
