@@ -74,6 +74,7 @@ def main() -> None:
     p.add_argument("--six", action="store_true", help="the six-cylinder variant without shipped data")
     a = p.parse_args()
     exe = [sys.executable, "-c", "import sys; from fetorsion.cli import main; sys.exit(main())"]
+    load_before = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         src = Path(a.file).resolve()
@@ -92,7 +93,7 @@ def main() -> None:
                 crank.unlink(missing_ok=True)
     fe = results.get("fe", {})
     print(f"{results.get('fe', {}).get('mesh', {}).get('dofs', '?')} DOF; {cpu_name()}, {os.cpu_count()} cores; "
-          f"load average before {os.getloadavg()[0]:.2f}")
+          f"load average before {load_before:.2f}")
     print(f"| crank | fetorsion modal [s] | fetorsion run [s] | run / modal |\n|---|---|---|---|\n"
           f"| {'six-cylinder variant' if a.six else src.stem} | {modal:.1f} | {run:.1f} | {run / modal:.2f} |")
     print("run, by step [s]: " + ", ".join(f"{k} {v:.1f}" for k, v in results["timings_s"].items()))

@@ -48,23 +48,30 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     from PIL import Image
 
     from fetorsion.fe import condensed as condensed_module
+    from fetorsion.fe import crankfe, cranksystem
     text = (GEOMETRY / "renault21.toml").read_text()
     text = re.sub(r"^\[uncertainty\].*", "", text, flags=re.M | re.S)
     text = re.sub(r"^(journal|pin|diameter) = (2\.5|5\.0)", r"\1 = 0.0", text, flags=re.M)
     src = tmp_path / "r21.toml"
     src.write_text(text)
-    condensations = []
-    original = condensed_module.run_condensed
+    condensations, systems = [], []
+    original, build = condensed_module.run_condensed, cranksystem.build_system
 
     def counted(*args, **kwargs):
-        condensations.append(args[1:2])
+        condensations.append(kwargs.get("system"))
         return original(*args, **kwargs)
 
+    def built(*args, **kwargs):
+        systems.append(args[1:2])
+        return build(*args, **kwargs)
+
     monkeypatch.setattr(condensed_module, "run_condensed", counted)
+    for module in (crankfe, condensed_module):
+        monkeypatch.setattr(module, "build_system", built)
     out = run(src, tmp_path / "r21", options={"mesh_size": 0.03})
-    # one condensed crank serves the bearings section and the lumped fe-held column (its throws'
-    # in-bearing stiffness at the run's mesh size): the crank is condensed once
-    assert condensations == [(0.03,)]
+    # one mesh, one assembly and one factorisation serve the free-free modes, the condensed crank
+    # (free and in bearings) and the lumped fe-held column (its throws' in-bearing stiffness)
+    assert systems == [(0.03,)] and len(condensations) == 1 and condensations[0] is not None
     data = json.loads((out / "results.json").read_text())
     f1 = data["fe"]["first_torsional_hz"]
     assert 0.9 < f1 / data["lumped"]["carter"][2]["frequencies_hz"][0] < 1.1
@@ -74,8 +81,15 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     assert "condensed FE crank, bearings" in data["campbell"]["source"]
     b = data["bearings"]
     assert b["reduced_dofs"] <= 400 and b["f1_free_hz"] == pytest.approx(f1, rel=1e-3)  # same mesh, same ties
-    assert "## The crank in its bearings" in (out / "report.md").read_text()
-    assert "## 3D FE modal analysis" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "## The crank in its bearings" in report and "## 3D FE modal analysis" in report
+    # the summary opens the report, each line naming the model it comes from
+    summary = report.split("## Summary", 1)[1].split("\n## ", 1)[0]
+    lines = [x for x in summary.splitlines() if x.startswith("- ")]
+    assert len(lines) >= 4
+    for line in lines:
+        assert any(m in line for m in ("3D FE", "condensed crank", "lumped")), line
+    assert data["verdict"]["model"].startswith("condensed crank")  # the engine model decided
     # The web page beside it: the same sections, interactive figures, no still picture left
     # where one replaces it, nothing fetched from the network.
     page = (out / "report.html").read_text()

@@ -277,18 +277,19 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
                           yardstick)
 
 
-def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool):
+def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, parts=None):
     """(one-at-a-time sensitivity, {study: result}, FE checks) of f1: the lumped Monte Carlo and
     Sobol' studies and the FE checks of the most influential inputs, on an embedded Dask cluster,
-    each sample stored as it finishes. Nothing here depends on the run's other steps, so
-    :func:`run` starts it first, beside the FE work (:data:`BACKGROUND`)."""
+    each sample stored as it finishes (``parts``: the nominal crank's, default web method, when
+    the caller has them). Nothing here depends on the run's other steps, so :func:`run` starts
+    it first, beside the FE work (:data:`BACKGROUND`)."""
     from ..studies.runner import ClusterOnDemand, open_store
     from ..studies.models import make_model
     from ..studies.sampling import study_inputs
     from ..studies.sensitivity import fe_check, run_sensitivity
     from ..studies.study import run_study
 
-    sens = run_sensitivity(crank)
+    sens = run_sensitivity(crank, parts=parts)
     inputs, _ = study_inputs(crank)
     model = make_model(crank, "lumped17")
     store = open_store()
@@ -309,7 +310,8 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
         return Skipped("the description has no `[uncertainty]` table")
     pending = ctx.built.pop("studies", None)
     sens, studies, checks = (pending.result() if pending is not None else
-                             sensitivity_studies(ctx.crank, ctx.options.get("workers"), ctx.outcome.fe is not None))
+                             sensitivity_studies(ctx.crank, ctx.options.get("workers"), ctx.outcome.fe is not None,
+                                                 ctx.parts()))
     ctx.results["sensitivity"] = sens.to_dict()
     if checks:
         ctx.results["sensitivity"]["fe_check"] = checks
@@ -372,7 +374,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
             # 97 s with the studies in their step, 93 s beside the FE on 2 workers, 88 s on 1)
             workers = ctx.options.get("workers") or max(1, machine_workers() - 1)
             ctx.built["studies"] = background.submit(sensitivity_studies, crank, workers,
-                                                     any(s[2] is step_fe for s in steps))
+                                                     any(s[2] is step_fe for s in steps), ctx.parts())
         for name, key, fn in steps:
             _progress(f"{name} ...")
             t0 = time.perf_counter()
