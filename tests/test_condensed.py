@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 from beams import cowper_circle, timoshenko_free_free_hz
+from shafts import assembled_shaft
 from conftest import plain
 
 from fetorsion.description.model import Material
@@ -14,7 +15,7 @@ from fetorsion.fe import substructure as ss
 from fetorsion.fe.condensed import section_rows
 from fetorsion.fe.couplings import Master, coupling_matrix, fit_rows, point_mass_block
 from fetorsion.fe.modal import default_shift, modal
-from fetorsion.fe.tetmesh import TetMesh, cylinder_mesh
+from fetorsion.fe.tetmesh import TetMesh
 
 E, NU, RHO = 210e9, 0.3, 7850.0
 STEEL = Material(E, NU, RHO, "steel")
@@ -29,12 +30,8 @@ def hz(w2):
 @pytest.fixture(scope="module")
 def shaft():
     # meshes with Gmsh: an FE test, but a small one (15 k DOF)
-    mesh = cylinder_mesh(L, D, H)
-    m, dof_of_node = assembly.skfem_mesh(mesh)
-    b = assembly.p2_basis(m)
-    pat = assembly.block_pattern(b)
-    K = assembly.stiffness(b, E, NU, pat)
-    M = assembly.mass(b, RHO, pat)
+    s = assembled_shaft(L, D, H, E, NU, RHO)
+    mesh, m, dof_of_node, K, M = s.mesh, s.m, s.dof_of_node, s.K, s.M
     masters = [Master("front", np.zeros(3), mesh.node_sets["front_face"]),
                Master("rear", np.array([L, 0.0, 0.0]), mesh.node_sets["rear_face"])]
     G = coupling_matrix(masters, dof_of_node, m.doflocs.T)
@@ -285,12 +282,8 @@ def shaft_with_disc():
 
     from fetorsion.fe.condensed import CondensedCrank
 
-    mesh = cylinder_mesh(L, D, D / 5)
-    m, dof_of_node = assembly.skfem_mesh(mesh)
-    b = assembly.p2_basis(m)
-    pat = assembly.block_pattern(b)
-    K = assembly.stiffness(b, E, NU, pat)
-    M = assembly.mass(b, RHO, pat)
+    s = assembled_shaft(L, D, D / 5, E, NU, RHO)
+    mesh, m, dof_of_node, K, M = s.mesh, s.m, s.dof_of_node, s.K, s.M
     p = mesh.nodes
     band = np.flatnonzero((np.abs(np.hypot(p[:, 1], p[:, 2]) - D / 2) < 1e-3 * D) & (np.abs(p[:, 0] - L / 2) <= 0.005))
     mid = np.array([L / 2, 0.0, 0.0])

@@ -86,10 +86,10 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     # the summary opens the report, each line naming the model it comes from
     summary = report.split("## Summary", 1)[1].split("\n## ", 1)[0]
     lines = [x for x in summary.splitlines() if x.startswith("- ")]
-    assert len(lines) >= 4
+    assert len(lines) >= 2  # free-free and in-engine f1 (no verdict: this crank has no fillet radii)
     for line in lines:
         assert any(m in line for m in ("3D FE", "condensed crank", "lumped")), line
-    assert data["verdict"]["model"].startswith("condensed crank")  # the engine model decided
+    assert data["response"]["model"].startswith("condensed crank")  # the engine model answered
     # The web page beside it: the same sections, interactive figures, no still picture left
     # where one replaces it, nothing fetched from the network.
     page = (out / "report.html").read_text()

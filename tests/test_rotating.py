@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 import scipy.linalg
 from beams import cowper_circle
+from shafts import assembled_shaft
 
 from fetorsion.description.model import Material
-from fetorsion.fe import assembly
 from fetorsion.fe import substructure as ss
 from fetorsion.fe.couplings import Master, coupling_matrix, point_mass_block
 from fetorsion.fe.modal import default_shift
@@ -16,7 +16,6 @@ from fetorsion.fe.rigid import rigid_rows
 from fetorsion.fe.rotating import (ACROSS, E_CROSS, attachment_rotating_matrices, centrifugal_load,
                                    geometric_stiffness, master_rotating_blocks, prestress,
                                    rotating_frame_matrices, rotating_harmonic, rotating_modes)
-from fetorsion.fe.tetmesh import cylinder_mesh
 
 E, NU, RHO = 210e9, 0.3, 7850.0
 STEEL = Material(E, NU, RHO, "steel")
@@ -27,12 +26,8 @@ PINNED = [0, 1, 2, 3, 7, 8]  # both ends' y, z; the front end's axial motion and
 
 @pytest.fixture(scope="module")
 def built():
-    mesh = cylinder_mesh(L, D, H)
-    m, dof_of_node = assembly.skfem_mesh(mesh)
-    b = assembly.p2_basis(m)
-    pat = assembly.block_pattern(b)
-    K = assembly.stiffness(b, E, NU, pat)
-    M = assembly.mass(b, RHO, pat)
+    s = assembled_shaft(L, D, H, E, NU, RHO)
+    mesh, m, dof_of_node, K, M, b, pat = s.mesh, s.m, s.dof_of_node, s.K, s.M, s.basis, s.pattern
     masters = [Master("front", np.zeros(3), mesh.node_sets["front_face"]),
                Master("rear", np.array([L, 0.0, 0.0]), mesh.node_sets["rear_face"])]
     G = coupling_matrix(masters, dof_of_node, m.doflocs.T)
