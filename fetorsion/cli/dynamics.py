@@ -33,8 +33,13 @@ def cmd_campbell(args) -> int:
         print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
               "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
     if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
+        # the coupled crank: every mode an order meets in range, full pin forces, severity as stress
+        from ..response.coupled import run_coupled_campbell
+
         check_mesh_size(crank, args.mesh_size, "modal")
-        modes = condensed(crank, args.mesh_size).torsional_modes(args.support, args.modes)
+        res = run_coupled_campbell(condensed(crank, args.mesh_size), args.support, orders=args.orders,
+                                   speed_range=args.speed_range, damping_ratio=args.damping)
+        modes = None
     elif args.source == "fe":
         from ..fe.crankfe import run_modal
 
@@ -43,10 +48,11 @@ def cmd_campbell(args) -> int:
         modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
     else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
         modes = None if crank.dampers else lumped_modes(crank, partition_of(args.source), stiffness_for(args))
-    res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
-                       damping_ratio=args.damping,
-                       partition=partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,
-                       web_method=stiffness_for(args))
+    if not (args.source == "condensed" or (args.source == "fe" and args.support == "bearings")):
+        res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
+                           damping_ratio=args.damping,
+                           partition=partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,
+                           web_method=stiffness_for(args))
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
     report(res, head + "\n" + res.table(), args)
@@ -149,7 +155,9 @@ def add_parsers(sub) -> None:
     """The ``campbell``, ``damper``, ``response`` commands."""
     cp = sub.add_parser("campbell", help="Campbell diagram: crossings of modes and orders, with severity")
     _add_excitation_options(cp)
-    cp.add_argument("--modes", type=integer(1, 50), default=3, help="number of lowest modes (default %(default)s)")
+    cp.add_argument("--modes", type=integer(1, 50), default=3,
+                    help="number of lowest torsional modes (default %(default)s); the condensed crank in its bearings "
+                         "shows every mode an order meets in range, with the fillet stress it drives")
     cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size for --source fe (default {DEFAULT_MESH_SIZE / MM:g})")
     cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
