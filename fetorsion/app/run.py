@@ -82,11 +82,17 @@ class RunContext:
         the run has built it and ``source`` is ``condensed`` (the default), else the lumped
         17-DOF chain; the response, fillet stress, dampers, misfire and verdict derive from it."""
         if self.options.get("source", "condensed") == "condensed" and "condensed" in self.built:
-            from ..response.coupled import condensed_setup
+            return self.engine_setup()
+        return self.lumped_setup()
 
-            return self.once("setup", lambda: condensed_setup(
-                self.built["condensed"], "bearings", section_labels=[f.label for f in self.fillets()]))
-        return self.once("setup", self.lumped_setup)
+    def engine_setup(self):
+        """The condensed crank in its bearings as a response setup (built once); None without it."""
+        if "condensed" not in self.built:
+            return None
+        from ..response.coupled import condensed_setup
+
+        return self.once("engine_setup", lambda: condensed_setup(
+            self.built["condensed"], "bearings", section_labels=[f.label for f in self.fillets()]))
 
     def lumped_setup(self):
         """The lumped 17-DOF chain's setup (built once): the fast model, and the engine model's yardstick."""
@@ -261,16 +267,17 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
         ctx.results["stress"] = stress.to_dict()
     setup = ctx.setup()
     yardstick = None
-    if setup is not ctx.lumped_setup():  # the engine model decided: how far the fast chain is from it
+    other = ctx.lumped_setup() if setup is not ctx.lumped_setup() else ctx.engine_setup()
+    if other is not None:  # the other model's answer to the same question, and how far it is
         from ..design.verdict import worst_case
         from ..response.forced import solve_response
 
         mine = verdict.cases[0]
-        other = worst_case("without damper", crank, solve_response(ctx.lumped_setup(), ()), scf, crank.limits, fillets)
-        i, j = mine.worst(), other.worst()
-        yardstick = {"model": ctx.lumped_setup().model, "value": float(other.value[j]), "rpm": float(other.rpm[j]),
-                     "where": other.where[j], "engine_value": float(mine.value[i]), "engine_rpm": float(mine.rpm[i]),
-                     "difference": float(other.value[j] / mine.value[i] - 1.0)}
+        theirs = worst_case("without damper", crank, solve_response(other, ()), scf, crank.limits, fillets)
+        i, j = mine.worst(), theirs.worst()
+        yardstick = {"model": other.model, "value": float(theirs.value[j]), "rpm": float(theirs.rpm[j]),
+                     "where": theirs.where[j], "deciding_value": float(mine.value[i]), "deciding_rpm": float(mine.rpm[i]),
+                     "difference": float(theirs.value[j] / mine.value[i] - 1.0)}
         ctx.results["verdict"]["yardstick"] = yardstick
     ctx.results["verdict"]["model"] = setup.model
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model,

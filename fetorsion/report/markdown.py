@@ -197,9 +197,9 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
         lines += [f"Computed on the **{outcome.model}**: it decides."]
         y = outcome.yardstick
         if y:
-            lines[-1] += (f" The {y['model']} (the fast model) gives, without a damper, {y['value'] / scale:.4g} {unit} at "
-                          f"{y['rpm']:.0f} rpm in {y['where']}, against {y['engine_value'] / scale:.4g} {unit} at "
-                          f"{y['engine_rpm']:.0f} rpm here: **{100 * y['difference']:+.1f} %**.")
+            lines[-1] += (f" The {y['model']} gives, without a damper, {y['value'] / scale:.4g} {unit} at "
+                          f"{y['rpm']:.0f} rpm in {y['where']}, against {y['deciding_value'] / scale:.4g} {unit} at "
+                          f"{y['deciding_rpm']:.0f} rpm here: **{100 * y['difference']:+.1f} %**.")
         lines += [""]
     if outcome.stress is not None:
         scf = outcome.scf
