@@ -268,3 +268,81 @@ def test_f1_in_bearings_rises_from_free_free_to_rigid(reduced_shaft):
     # the film: between the limits, nearly rigid for this shaft (700 MN/m against ~10 MN/m)
     i = ks.index(k_film)
     assert f[0, 2] < f[i, 2] <= f[-1, 2] and f[i, 2] == pytest.approx(held, rel=1e-2)
+
+
+# ---------------------------------------------------------------------------------------------
+# oil films at each journal's mean load from the crank's own forces
+
+
+@pytest.fixture(scope="module")
+def condensed_with_film():
+    """The Renault 21 (no fillets, 30 mm) with oil-film mains and no stated loads."""
+    from conftest import plain
+
+    from fetorsion.description.crank import parse_crank
+    from fetorsion.fe.condensed import run_condensed
+
+    raw = plain("renault21.toml").raw
+    crank = parse_crank(with_film(raw, clearance=0.030, oil_viscosity_pa_s=0.01), "x.toml")
+    return run_condensed(crank, 0.03)
+
+
+@pytest.mark.fe
+def test_mean_journal_loads_balance_the_mean_pin_forces(condensed_with_film):
+    """Statics, at every crank angle: the bearings carry what the pins are loaded with. So the
+    journals' mean loads (fixed frame) add up to the mean of the cylinders' pin forces turned
+    into that frame, computed here directly from the slider-crank forces (1e-9 of their size)."""
+    from fetorsion.excitation.torque import cycle_angle, cylinder_pin_forces, firing_angles
+    from fetorsion.response.coupled import journal_mean_loads
+
+    cc = condensed_with_film
+    crank = cc.crank
+    rpm = 4000.0
+    loads = journal_mean_loads(cc, rpm)
+    f = cylinder_pin_forces(crank, rpm)
+    theta, period, phi = f["theta"], cycle_angle(crank.engine), firing_angles(crank.engine)
+    total = np.zeros(2)
+    for c, a in enumerate(crank.engine.crank_angles):
+        ft = np.interp(theta - phi[c], theta, f["tangential"], period=period)
+        fr = np.interp(theta - phi[c], theta, f["radial"], period=period)
+        angle = a - theta  # the pin's direction in the fixed frame (top dead centre at θ = φ_c)
+        total += np.mean(np.stack([fr * np.cos(angle) - ft * np.sin(angle), fr * np.sin(angle) + ft * np.cos(angle)]),
+                         axis=1)
+    scale = np.abs(f["radial"]).max()
+    np.testing.assert_allclose(loads.sum(axis=0), total, rtol=0, atol=1e-9 * scale)
+    assert np.all(np.hypot(*loads.T) > 0)
+
+
+@pytest.mark.fe
+def test_film_without_stated_loads_takes_the_mean_loads(condensed_with_film):
+    """Without load_n the description parses with the film pending (rigid placeholders); the
+    condensed crank then carries the short-bearing coefficients at the mean loads, the same as a
+    description that states those loads."""
+    from fetorsion.description.crank import parse_crank
+    from fetorsion.response.coupled import journal_mean_loads, with_film_bearings
+
+    cc = condensed_with_film
+    assert cc.crank.main_bearings.oil_film.load is None
+    film = with_film_bearings(cc)
+    b = film.crank.main_bearings
+    top = cc.crank.excitation.speed_range[1]
+    expected = np.hypot(*journal_mean_loads(cc, top).T)
+    np.testing.assert_allclose(b.oil_film.load, expected, rtol=1e-12)
+    stated = parse_crank(with_film(cc.crank.raw, clearance=0.030, oil_viscosity_pa_s=0.01, load_n=list(expected)),
+                         "x.toml").main_bearings
+    np.testing.assert_allclose(b.radial_stiffness, stated.radial_stiffness, rtol=1e-9)
+    np.testing.assert_allclose(b.radial_damping, stated.radial_damping, rtol=1e-9)
+    assert all(0 < e < 1 for e in b.oil_film.eccentricity) and len(film.held) < len(cc.held)
+    # and the crank in these bearings sits between free-free and rigid
+    assert cc.modes("free").first_torsional() < film.modes("bearings").first_torsional() \
+        <= cc.modes("bearings").first_torsional() * (1 + 1e-9)
+
+
+def test_film_without_loads_or_excitation_is_refused_by_name(renault_raw):
+    from fetorsion.description.crank import parse_crank
+    from fetorsion.errors import FetorsionError
+
+    raw = {k: v for k, v in with_film(renault_raw, clearance=0.030, oil_viscosity_pa_s=0.01, speed_rpm=3000.0).items()
+           if k not in ("excitation", "limits", "dampers")}
+    with pytest.raises(FetorsionError, match=r"bearings\.load_n.*\[excitation\]"):
+        parse_crank(raw, "x.toml")

@@ -172,7 +172,7 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     its bearings: modes with torsion/bending shares, the lumped chain against each, and the
     coupled forced response (gas, inertia, tangential and radial pin forces; bearing forces)."""
     from ..fe.condensed import run_condensed
-    from ..response.coupled import run_coupled_response
+    from ..response.coupled import run_coupled_response, with_film_bearings
 
     if ctx.outcome.fe is None:
         return None
@@ -182,7 +182,8 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     from ..design.stress import fillet_cuts
 
     cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
-    cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=modal.system, cuts=cuts)
+    # oil films without stated loads take each journal's mean load from the crank's own forces
+    cc = ctx.built["condensed"] = with_film_bearings(run_condensed(ctx.crank, system=modal.system, cuts=cuts))
     modal.system = None
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
@@ -193,8 +194,11 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     images = [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]
     coupled = None
     ctx.results["bearings"] = {**cc.to_dict(), "f1_free_hz": f_free, "f1_bearings_hz": f_held, "lumped_17dof": chain,
-                               "support": {"radial_stiffness_n_per_m": list(ctx.crank.main_bearings.radial_stiffness),
-                                           "from_description": ctx.crank.main_bearings.given}}
+                               "support": {"radial_stiffness_n_per_m": list(cc.crank.main_bearings.radial_stiffness),
+                                           "radial_damping_ns_per_m": list(cc.crank.main_bearings.radial_damping),
+                                           "from_description": cc.crank.main_bearings.given,
+                                           "oil_film_load_n": (None if cc.crank.main_bearings.oil_film is None
+                                                               else cc.crank.main_bearings.oil_film.load)}}
     if ctx.crank.excitation is not None:
         coupled = run_coupled_response(cc, "bearings")
         images.append(ctx.save(coupled.plot().figure, "coupled_response.png"))

@@ -105,12 +105,13 @@ def cmd_modal(args) -> int:
 
 def cmd_condense(args) -> int:
     from ..fe.condensed import run_condensed, save_condensed
+    from ..response.coupled import with_film_bearings
 
     if args.with_shapes and not args.npz:
         raise FetorsionError("--with-shapes is saved in the --npz file; give --npz PATH")
     crank = load_crank(args.file, "geometry")
     check_mesh_size(crank, args.mesh_size, "modal")
-    cc = run_condensed(crank, args.mesh_size, keep_basis=args.with_shapes)
+    cc = with_film_bearings(run_condensed(crank, args.mesh_size, keep_basis=args.with_shapes))
     report(cc, f"{crank.name}\n{cc.table()}", args)
     if args.npz:
         save_condensed(cc, args.npz)
@@ -127,10 +128,12 @@ def format_mass_table(name: str, total, parts: dict) -> str:
 
 
 def condensed(crank, mesh_size: float, mesh=None):
-    """The condensed crank (meshing in this process: the FE job needs the mesh's arrays)."""
+    """The condensed crank (meshing in this process: the FE job needs the mesh's arrays), its
+    oil-film bearings at the journals' mean loads when the description states none."""
     from ..fe.condensed import run_condensed
+    from ..response.coupled import with_film_bearings
 
-    return run_condensed(crank, mesh_size, mesh=mesh)
+    return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh))
 
 
 def _add_purpose_options(p: argparse.ArgumentParser) -> None:

@@ -247,16 +247,22 @@ def _oil_film(t: Table, journals, width: tuple[float, ...], speed_range) -> tupl
     journal, ``oil_viscosity_pa_s`` one value, ``speed_rpm`` one value (default: the top of
     ``speed_range``). Returns (radial stiffness N/m, radial damping N·s/m, :class:`OilFilm`):
     the short-bearing film's isotropic equivalents per journal (:mod:`fetorsion.fe.oilfilm`),
-    NaN where a value was refused (the problem is recorded).
+    NaN where a value was refused (the problem is recorded). Without ``load_n`` the loads are
+    each journal's mean load from the crank's own gas and inertia forces, found once the crank
+    is condensed (:func:`fetorsion.response.coupled.with_film_bearings`): until then the film's
+    ``load`` is None and the stiffness placeholders are rigid.
     """
     from ..fe.oilfilm import film_coefficients, isotropic_equivalent
 
     n = len(journals)
-    for key in ("clearance", "load_n"):  # per journal: _per_journal has no "required"
-        if key not in t.data:
-            t.problems.append(Problem(f"{t.path}.{key}", None, "is required with an oil film"))
+    if "clearance" not in t.data:  # per journal: _per_journal has no "required"
+        t.problems.append(Problem(f"{t.path}.clearance", None, "is required with an oil film"))
     clearance = _per_journal(t, "clearance", n, math.nan, length=True, positive=True)
-    load = _per_journal(t, "load_n", n, math.nan, positive=True)
+    load = _per_journal(t, "load_n", n, math.nan, positive=True) if "load_n" in t.data else None
+    if load is None and speed_range is None:
+        t.problems.append(Problem(f"{t.path}.load_n", None, (
+            "is required with an oil film when the description has no [excitation] to derive the journals' "
+            "mean loads from")))
     viscosity = t.number("oil_viscosity_pa_s", positive=True)
     if "speed_rpm" in t.data:
         speed_rpm = t.number("speed_rpm", positive=True)
@@ -274,6 +280,8 @@ def _oil_film(t: Table, journals, width: tuple[float, ...], speed_range) -> tupl
             clearance = (math.nan,) * n
             break
     speed = speed_rpm * math.pi / 30.0  # rad/s
+    if load is None:  # from the crank's own forces, later
+        return (math.inf,) * n, (0.0,) * n, OilFilm(clearance, viscosity, None, speed, (), ())
     stiffness, damping, eccentricity, attitude = [], [], [], []
     for c, w, j, lw in zip(clearance, load, journals, width):
         if all(math.isfinite(v) for v in (c, w, lw, j.diameter, viscosity, speed)):

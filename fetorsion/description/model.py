@@ -252,12 +252,13 @@ class OilFilm:
     Radial clearance m and static load N per journal, dynamic viscosity Pa·s, journal speed rad/s;
     the static eccentricity ratio ε and attitude angle (rad) per journal that the short-bearing
     theory gives there (:mod:`fetorsion.fe.oilfilm`). The film's stiffness and damping depend on
-    load and speed: they are taken at this one point.
+    load and speed: they are taken at this one point. ``load`` None: each journal's mean load
+    from the crank's own forces, not found yet (``eccentricity`` and ``attitude`` then empty).
     """
 
     clearance: tuple[float, ...]
     viscosity: float
-    load: tuple[float, ...]
+    load: tuple[float, ...] | None
     speed: float
     eccentricity: tuple[float, ...]
     attitude: tuple[float, ...]

@@ -74,7 +74,7 @@ def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
 def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     """The condensed crank free and in its bearings; the lumped chain against both; the coupled response."""
     cc, free, held = outcome.condensed, outcome.free, outcome.bearings
-    b = crank.main_bearings
+    b = cc.crank.main_bearings  # with an oil film's loads found from the crank's forces
     support = ("rigid main bearings (no `[bearings]` table: the default)" if not b.given else
                "main bearings of the `[bearings]` table: " + ", ".join("rigid" if k == float("inf") else f"{k:.3g} N/m"
                                                                         for k in b.radial_stiffness))
@@ -259,7 +259,9 @@ def summary_lines(run: RunOutcome) -> list[str]:
                      f"{sens.studies['montecarlo'].model} Monte Carlo)")
         out.append(line + ".")
     if bearings is not None:
-        support = "rigid main bearings" if crank.main_bearings.rigid else "the [bearings] stiffness"
+        b = bearings.condensed.crank.main_bearings
+        support = ("rigid main bearings" if b.rigid else "oil-film main bearings" if b.oil_film is not None
+                   else "the [bearings] stiffness")
         out.append(f"- **f1 in the engine: {bearings.f1_bearings_hz:.1f} Hz** (condensed crank in {support}, "
                    f"{bearings.condensed.reduced.size} DOF; {100 * (bearings.f1_bearings_hz / bearings.f1_free_hz - 1):+.1f} % "
                    "on free-free).")

@@ -454,3 +454,74 @@ def _section_parts(cc: CondensedCrank):
     """The journal or pin of each mid-plane section (J1, P1, J2, …)."""
     crank = cc.crank
     return [(crank.journals if lb[0] == "J" else crank.pins)[int(lb[1:]) - 1] for lb in cc.labels[1:-1]]
+
+
+def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
+    """Each main journal's mean load over the cycle at ``rpm``, in the bearing shell's (fixed)
+    frame: (journals, 2) N, the force the crank puts on the bearing.
+
+    The journals are held radially (and the flywheel master in twist, which takes the mean
+    torque; the thrust journal, or the first, axially), and the static reactions to a unit
+    tangential and radial force on each pin are solved once on the reduced model (static master
+    loads are exact in a Craig–Bampton model). Over the cycle, cylinder c's pin forces are
+    cylinder 1's delayed by its firing angle φ_c; the reactions in the crank's frame are turned
+    into the fixed frame, in which the cylinder reaches its top dead centre at θ = φ_c (pin c,
+    at crank-frame angle a_c ≡ φ_c, turned back by θ), and averaged.
+    """
+    from ..excitation.torque import cylinder_pin_forces
+
+    crank = cc.crank
+    m = cc.n_master_dofs
+    journals = [cc.labels.index(f"J{j + 1}") for j in range(len(crank.journals))]
+    axial = 6 * journals[crank.main_bearings.thrust_journal] if crank.main_bearings.axial_stiffness > 0 else 6 * journals[0]
+    held = np.array(sorted([6 * k + d for k in journals for d in (1, 2)] + [axial, cc.dof("rear", "rx")]))
+    keep = np.setdiff1d(np.arange(cc.reduced.size), held)
+    K = cc.reduced.K
+    unit = np.zeros((cc.reduced.size, crank.cylinders * 2))
+    unit[:m] = pin_load_map(cc).reshape(-1, m).T  # columns: cylinder c tangential, radial
+    z = np.zeros_like(unit)
+    z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], unit[keep])
+    react = K[held] @ z - unit[held]  # (held, cylinders·2): the bearings' forces on the crank
+    rows = [[list(held).index(6 * k + d) for d in (1, 2)] for k in journals]
+    A = np.stack([react[r] for r in rows])  # (journals, 2 (y, z), cylinders·2)
+    f = cylinder_pin_forces(crank, rpm)
+    theta, period = f["theta"], cycle_angle(crank.engine)
+    phi = firing_angles(crank.engine)
+    forces = np.empty((len(theta), crank.cylinders * 2))
+    for c in range(crank.cylinders):  # cylinder c's force at θ is cylinder 1's at θ − φ_c
+        for k, name in enumerate(("tangential", "radial")):
+            forces[:, 2 * c + k] = np.interp(theta - phi[c], theta, f[name], period=period)
+    on_crank = np.einsum("jdk,tk->tjd", A, forces)  # (angles, journals, y z), crank frame
+    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
+    fixed = np.stack([c * on_crank[..., 0] + s * on_crank[..., 1], -s * on_crank[..., 0] + c * on_crank[..., 1]], -1)
+    return -fixed.mean(axis=0)
+
+
+def with_film_bearings(cc: CondensedCrank) -> CondensedCrank:
+    """The condensed crank with its oil-film main bearings at each journal's mean load.
+
+    For a ``[bearings]`` oil film given without ``load_n``: the mean load magnitudes of
+    :func:`journal_mean_loads` at the film's speed give the short-bearing coefficients
+    (:mod:`fetorsion.fe.oilfilm`, isotropic equivalents), which replace the rigid placeholders;
+    the crank it carries records the loads and eccentricities. Any other crank comes back as is.
+    """
+    import dataclasses
+
+    from ..fe.condensed import bearing_matrices
+    from ..fe.oilfilm import film_coefficients, isotropic_equivalent
+
+    b = cc.crank.main_bearings
+    film = b.oil_film
+    if film is None or film.load is not None:
+        return cc
+    loads = np.hypot(*journal_mean_loads(cc, film.speed * 30 / np.pi).T)
+    k, d, ecc, att = [], [], [], []
+    for j, (journal, width, clearance, load) in enumerate(zip(cc.crank.journals, b.width, film.clearance, loads)):
+        coeff = film_coefficients(float(load), film.speed, journal.diameter, width, clearance, film.viscosity)
+        kj, dj = isotropic_equivalent(coeff.stiffness, coeff.damping)
+        k.append(kj), d.append(dj), ecc.append(coeff.eccentricity), att.append(coeff.attitude)
+    film = dataclasses.replace(film, load=tuple(float(x) for x in loads), eccentricity=tuple(ecc), attitude=tuple(att))
+    bearings = dataclasses.replace(b, radial_stiffness=tuple(k), radial_damping=tuple(d), oil_film=film)
+    crank = dataclasses.replace(cc.crank, bearings=bearings)
+    Kb, Cb, held = bearing_matrices(crank, cc.labels)
+    return dataclasses.replace(cc, crank=crank, bearing_stiffness=Kb, bearing_damping=Cb, held=held)
