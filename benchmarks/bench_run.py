@@ -78,19 +78,16 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         src = Path(a.file).resolve()
-        if a.six:
-            crank = src.parent / f".bench-six-{os.getpid()}.toml"  # beside the original: its CSV paths stay valid
-            crank.write_text(six_cylinder(src.read_text()))
-        else:
-            crank = src
+        crank = src
+        if a.six:  # in the temporary folder (nothing left beside the user's file), its CSV paths made absolute
+            crank = tmp / "six.toml"
+            text = re.sub(r'(?m)^(pressure_csv\s*=\s*)"([^"]+)"',
+                          lambda m: f'{m.group(1)}"{(src.parent / m.group(2)).resolve()}"', src.read_text())
+            crank.write_text(six_cylinder(text))
         env = {**os.environ, "FETORSION_STORE": str(tmp / "store"), "PYTHONPATH": str(ROOT)}
-        try:
-            modal = timed(exe + ["modal", str(crank)], env)
-            run = timed(exe + ["run", str(crank), "--out", str(tmp / "report"), "--no-html"], env)
-            results = json.loads((tmp / "report" / "results.json").read_text())
-        finally:
-            if a.six:
-                crank.unlink(missing_ok=True)
+        modal = timed(exe + ["modal", str(crank)], env)
+        run = timed(exe + ["run", str(crank), "--out", str(tmp / "report"), "--no-html"], env)
+        results = json.loads((tmp / "report" / "results.json").read_text())
     fe = results.get("fe", {})
     print(f"{results.get('fe', {}).get('mesh', {}).get('dofs', '?')} DOF; {cpu_name()}, {os.cpu_count()} cores; "
           f"load average before {load_before:.2f}")

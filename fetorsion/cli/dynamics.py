@@ -32,14 +32,14 @@ def cmd_campbell(args) -> int:
     if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
         print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
               "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
-    if args.source == "condensed" or (args.source == "fe" and args.support == "bearings"):
+    coupled = args.source == "condensed" or (args.source == "fe" and args.support == "bearings")
+    if coupled:
         # the coupled crank: every mode an order meets in range, full pin forces, severity as stress
         from ..response.coupled import run_coupled_campbell
 
         check_mesh_size(crank, args.mesh_size, "modal")
         res = run_coupled_campbell(condensed(crank, args.mesh_size), args.support, orders=args.orders,
                                    speed_range=args.speed_range, damping_ratio=args.damping)
-        modes = None
     elif args.source == "fe":
         from ..fe.crankfe import run_modal
 
@@ -48,7 +48,7 @@ def cmd_campbell(args) -> int:
         modes = run_modal(crank, args.mesh_size, modes=DEFAULT_MODES).torsional_modes(args.modes)
     else:  # with [[dampers]], run_campbell builds the damped lumped modes itself
         modes = None if crank.dampers else lumped_modes(crank, partition_of(args.source), stiffness_for(args))
-    if not (args.source == "condensed" or (args.source == "fe" and args.support == "bearings")):
+    if not coupled:
         res = run_campbell(crank, modes, orders=args.orders, speed_range=args.speed_range, n_modes=args.modes,
                            damping_ratio=args.damping,
                            partition=partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,

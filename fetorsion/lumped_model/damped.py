@@ -248,10 +248,10 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
         wO = om * np.broadcast_to(spin, om.shape)
         Gn = np.zeros((len(Mn), len(Mn)))
         Gn[:n, :n] = gyroscopic
-        Gll, Glh = low.T @ Gn @ low, low.T @ Gn @ high
+        Gll, Glh, Ghl = low.T @ Gn @ low, low.T @ Gn @ high, high.T @ Gn @ low
         A += (1j * wO)[..., None, None] * Gll
         if Fh is not None:
-            H = (Glh / lam[count:]) @ (high.T @ Gn @ low)
+            H = (Glh / lam[count:]) @ Ghl
             A += (wO**2)[..., None, None] * H
             rhs = rhs - (1j * wO)[..., None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
     diag = np.einsum("...ii->...i", A)
@@ -263,8 +263,7 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     x = complex_times(xi, np.ascontiguousarray(low.T))
     if Fh is not None:
         if gyroscopic is not None:
-            Fh = Fh - (1j * wO)[..., None] * complex_times(xi, np.ascontiguousarray(((high.T @ Gn @ low).T
-                                                                                     / lam[count:])))
+            Fh = Fh - (1j * wO)[..., None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
         x = x + complex_times(Fh, np.ascontiguousarray(high.T))
     return x
 

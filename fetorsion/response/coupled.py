@@ -343,12 +343,8 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
     else:
         inner = list(range(1, len(cc.labels) - 1))
         rows, x, names = cc.sections[inner, 3][:, keep], cc.positions[inner, 0], [cc.labels[k] for k in inner]
-    w2, V, _ = reduced_modes(cc.reduced, *cc.support_terms(support))
-    full = np.zeros((cc.reduced.size, V.shape[1]))
-    full[keep] = V
-    _, kinds = cc.classify(full)
-    rigid = np.abs(w2) < 1e-8 * np.abs(w2).max()
-    torsional = np.array([j for j, k in enumerate(kinds) if k == "torsional" and not rigid[j]])
+    md = cc.modes(support)  # elastic modes, after the support's zero-frequency motions
+    torsional = np.array([md.free_motions + j for j, k in enumerate(md.kinds) if k == "torsional"])
     dof_names = [f"{lb} {d}" for lb in cc.labels for d in DOF_NAMES] + \
         [f"interior {j + 1}" for j in range(cc.reduced.size - m)]
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
