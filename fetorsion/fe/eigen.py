@@ -358,6 +358,23 @@ def _iterate(S, M, k, sigma, solve, method, tol, rng, null_space=None):
 BLOCK_WIDTH = 8
 
 
+def _svqb(W: np.ndarray, MW: np.ndarray, drop: float):
+    """(U, s): the kept eigenvectors of the Gram matrix Wᵀ M W and the square roots of their
+    eigenvalues, directions below ``drop`` of the largest dropped."""
+    G = W.T @ MW
+    G = 0.5 * (G + G.T)
+    d, U = np.linalg.eigh(G)
+    keep = d > drop * max(d.max(), 0.0)
+    return U[:, keep], np.sqrt(d[keep])
+
+
+def svqb_coefficients(W: np.ndarray, MW: np.ndarray, drop: float = ORTHO_DROP) -> np.ndarray:
+    """C such that W C is an M-orthonormal basis of W's columns (given MW = M W), by SVQB; C may
+    have fewer columns than W when W is (numerically) rank deficient."""
+    U, s = _svqb(W, MW, drop)
+    return U / s
+
+
 def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = ORTHO_DROP):
     """M-orthonormal basis of the columns of W (given MW = M W) by SVQB (eigen-decomposition
     of the Gram matrix), dropping directions below ``drop`` of the largest.
@@ -365,13 +382,14 @@ def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = ORTHO_DROP):
     Returns (V, MV, R) with W ≈ V R, Vᵀ M V = I; V may have fewer columns than W when W is
     (numerically) rank deficient.
     """
-    G = W.T @ MW
-    G = 0.5 * (G + G.T)
-    d, U = np.linalg.eigh(G)
-    keep = d > drop * max(d.max(), 0.0)
-    U, s = U[:, keep], np.sqrt(d[keep])
+    U, s = _svqb(W, MW, drop)
     C = U / s
     return W @ C, MW @ C, (U * s).T
+
+
+def matmul(A, X: np.ndarray) -> np.ndarray:
+    """A @ X for a sparse ``A`` and a dense block ``X`` (n × k)."""
+    return np.asarray(A @ X)
 
 
 def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int | None = None,

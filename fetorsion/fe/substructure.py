@@ -34,7 +34,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import FetorsionError
-from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, factorize, numpy_blas_threads, shifted
+from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, factorize, matmul, numpy_blas_threads, shifted, svqb_coefficients
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -103,13 +103,19 @@ def interface(K, M, G, sigma: float, backend: str = "auto", groups: np.ndarray |
 
 
 def prescribed_solver(itf: Interface):
-    """x = solve(b, g): S x + Gᵀ λ = b with every master DOF prescribed, G x = g (g: (m,) or (m, k))."""
+    """x = solve(b, g): S x + Gᵀ μ = b with every master DOF prescribed, G x = g (g: (m,) or (m, k)).
+
+    With ``forces=True`` the call returns (x, μ): the master forces, from which K x follows
+    without a sparse product, K x = b + σ M x − Gᵀ μ.
+    """
     C = scipy.linalg.cho_factor(itf.C)
 
-    def solve(b, g=None):
+    def solve(b, g=None, forces=False):
         x0 = np.asarray(itf.solve(b))
         r = itf.G @ x0 if g is None else itf.G @ x0 - g
-        return x0 - itf.Y @ scipy.linalg.cho_solve(C, r)
+        mu = scipy.linalg.cho_solve(C, r)
+        x = x0 - itf.Y @ mu
+        return (x, mu) if forces else x
 
     return solve
 
@@ -120,17 +126,30 @@ def constraint_modes(itf: Interface, tol: float = PSI_TOL, iterations: int | Non
     ``iterations`` fixes the number of fixed-point steps instead (0: the shifted modes
     Ψ_σ = Y C⁻¹, with S Ψ_σ + GᵀΛ = 0).
     """
+    psi, its, _, _ = _constraint_modes(itf, tol, iterations)
+    return psi, its
+
+
+def _constraint_modes(itf: Interface, tol: float, iterations: int | None):
+    """(Ψ, iterations, M Ψ, K Ψ): the products from the last fixed-point step's equilibrium,
+    S Ψ + Gᵀ μ = −σ M Ψ_prev, so K Ψ = σ M Ψ − σ M Ψ_prev − Gᵀ μ (no sparse product with K)."""
     solve = prescribed_solver(itf)
     eye = np.eye(itf.n_master_dofs)
-    psi = itf.Y @ scipy.linalg.cho_solve(scipy.linalg.cho_factor(itf.C), eye)
+    C = scipy.linalg.cho_factor(itf.C)
+    psi = itf.Y @ scipy.linalg.cho_solve(C, eye)
+    Mpsi = matmul(itf.M, psi)
+    Kpsi = itf.sigma * Mpsi + itf.G.T @ scipy.linalg.cho_solve(C, eye)  # S Ψ_σ = S Y C⁻¹ = Gᵀ C⁻¹
     for it in range(1, (PSI_MAX_ITER if iterations is None else iterations) + 1):
-        new = solve(-itf.sigma * (itf.M @ psi), eye)
+        b = -itf.sigma * Mpsi
+        new, mu = solve(b, eye, forces=True)
         change = np.abs(new - psi).max() / np.abs(new).max()
         psi = new
-        if change < tol:
-            return psi, it
-    if iterations is not None:
-        return psi, iterations
+        Mpsi = matmul(itf.M, psi)
+        Kpsi = b + itf.sigma * Mpsi - itf.G.T @ mu
+        if change < tol or (iterations is not None and it == iterations):
+            return psi, it, Mpsi, Kpsi
+    if iterations is not None:  # iterations == 0
+        return psi, 0, Mpsi, Kpsi
     raise FetorsionError(f"constraint modes did not converge ({change:.2g} after {PSI_MAX_ITER} iterations); "
                          "the shift is too close to the fixed-interface frequencies")
 
@@ -158,7 +177,7 @@ class ReducedModel:
     n_master_dofs : int
         Length of q (the first coordinates).
     fixed_interface_hz : ndarray
-        Frequencies of the kept fixed-interface modes, Hz.
+        Frequencies of the kept fixed-interface modes (for Ritz vectors: their Ritz frequencies), Hz.
     basis : ndarray (n, r), optional
         [Ψ Φ]: u = basis @ z expands a reduced solution onto the full model's DOF.
     """
@@ -199,37 +218,44 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     fixed-interface problem (:func:`interface_ritz_vectors`), or, with ``ritz_blocks=0``, the
     ``modes`` lowest fixed-interface eigenmodes (classical Craig–Bampton). Either way the
     reduced matrices are the exact Galerkin projection Bᵀ K B, Bᵀ M B on B = [Ψ Φ], with
-    the η–η blocks diagonal (Φ are Ritz pairs / eigenpairs of (K, M) under G x = 0).
+    the η–η mass block the identity (Φ M-orthonormal; its stiffness block is diagonal for
+    eigenmodes, full for Ritz vectors, whose Ritz frequencies ``fixed_interface_hz`` gives).
     """
     t0 = time.perf_counter()
-    psi, its = constraint_modes(itf, iterations=psi_iterations)
+    psi, its, Mpsi, Kpsi = _constraint_modes(itf, PSI_TOL, psi_iterations)
     t1 = time.perf_counter()
     if ritz_blocks:
-        w2, phi, kphi = interface_ritz_vectors(itf, psi, ritz_blocks)
+        phis, kphis, Kq = interface_ritz_vectors(itf, psi, ritz_blocks, mpsi=Mpsi)
+        w2 = scipy.linalg.eigvalsh(Kq)
     else:
         w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((itf.K.shape[0], 0)))
-        kphi = np.asarray(itf.K @ phi)
-    t2 = time.perf_counter()
+        phis, kphis, Kq = [phi], [matmul(itf.K, phi)], np.diag(w2)
     m = itf.n_master_dofs
     r = m + len(w2)
+    # one layout of the basis and of its nodal forces, written block by block (no copies of copies)
+    basis, forces = np.empty((psi.shape[0], r)), np.empty((psi.shape[0], r))
+    basis[:, :m], forces[:, :m] = psi, Kpsi
+    j = m
+    for P, KP in zip(phis, kphis):
+        basis[:, j:j + P.shape[1]], forces[:, j:j + P.shape[1]] = P, KP
+        j += P.shape[1]
+    phi = basis[:, m:]
+    t2 = time.perf_counter()
     Kr, Mr = np.zeros((r, r)), np.zeros((r, r))
-    Kpsi = np.asarray(itf.K @ psi)
-    Mpsi = np.asarray(itf.M @ psi)
     Kr[:m, :m] = psi.T @ Kpsi
     Kr[m:, :m] = phi.T @ Kpsi
     Kr[:m, m:] = Kr[m:, :m].T
-    Kr[m:, m:] = np.diag(w2)
+    Kr[m:, m:] = Kq
     Mr[:m, :m] = psi.T @ Mpsi
     Mr[m:, :m] = phi.T @ Mpsi
     Mr[:m, m:] = Mr[m:, :m].T
-    Mr[m:, m:] = np.eye(len(w2))
+    Mr[m:, m:] = np.eye(r - m)
     Kr, Mr = 0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T)
     t3 = time.perf_counter()
-    basis = np.hstack([psi, phi]) if keep_basis else None
     hz = np.sqrt(np.abs(w2)) / (2 * np.pi)
-    return ReducedModel(Kr, Mr, m, hz, basis, {"constraint_modes": t1 - t0, "interior_vectors": t2 - t1,
-                                                "projection": t3 - t2}, its,
-                        np.hstack([Kpsi, kphi]) if keep_basis else None)
+    return ReducedModel(Kr, Mr, m, hz, basis if keep_basis else None,
+                        {"constraint_modes": t1 - t0, "interior_vectors": t2 - t1, "projection": t3 - t2}, its,
+                        forces if keep_basis else None)
 
 
 class _MassWithMasters:
@@ -300,27 +326,34 @@ def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
     return w2, V, keep
 
 
-def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = ORTHO_DROP):
-    """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis of
+def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = ORTHO_DROP,
+                           mpsi: np.ndarray | None = None):
+    """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis Q of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
-    G x = 0; then rotated to the Ritz pairs of (K, M) in that space: (ω² ascending, Φ n × k, K Φ).
-    """
-    from .eigen import m_orthonormalize
+    G x = 0: ([Q blocks], [K Q blocks], Qᵀ K Q), the blocks as lists (the caller lays them out
+    once).
 
+    K Q comes from each block solve's equilibrium (S W + Gᵀ μ = M V ⇒ K W = M V + σ M W − Gᵀ μ)
+    carried through the orthogonalisation, not from a sparse product with K: the dense
+    updates cost a fraction of one.
+    """
     solve = prescribed_solver(itf)
-    V = psi
-    basis, mbasis = [], []
-    with numpy_blas_threads(1):
-        for _ in range(blocks):
-            W = solve(itf.M @ V)
-            for _ in range(2):
-                for Q, MQ in zip(basis, mbasis):
-                    W -= Q @ (MQ.T @ W)
-            V, MV, _ = m_orthonormalize(W, itf.M @ W, drop)
-            basis.append(V)
-            mbasis.append(MV)
-    Q = np.hstack(basis)
-    KQ = np.asarray(itf.K @ Q)
-    Kq = Q.T @ KQ
-    w2, S = scipy.linalg.eigh(0.5 * (Kq + Kq.T))
-    return w2, Q @ S, KQ @ S
+    V, MV = psi, (matmul(itf.M, psi) if mpsi is None else mpsi)
+    basis, mbasis, kbasis = [], [], []
+    for _ in range(blocks):
+        W, mu = solve(MV, forces=True)
+        MW = matmul(itf.M, W)
+        KW = MV + itf.sigma * MW - itf.G.T @ mu
+        for _ in range(2):
+            for Q, MQ, KQ in zip(basis, mbasis, kbasis):
+                c = MQ.T @ W
+                W -= Q @ c
+                MW -= MQ @ c
+                KW -= KQ @ c
+        C = svqb_coefficients(W, MW, drop)
+        V, MV = W @ C, MW @ C
+        basis.append(V)
+        mbasis.append(MV)
+        kbasis.append(KW @ C)
+    Kq = np.block([[Q.T @ KQ for KQ in kbasis] for Q in basis]) if basis else np.zeros((0, 0))
+    return basis, kbasis, 0.5 * (Kq + Kq.T)
