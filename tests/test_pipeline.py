@@ -66,7 +66,7 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
         return build(*args, **kwargs)
 
     monkeypatch.setattr(condensed_module, "run_condensed", counted)
-    for module in (crankfe, condensed_module):
+    for module in (crankfe, condensed_module, cranksystem):
         monkeypatch.setattr(module, "build_system", built)
     out = run(src, tmp_path / "r21", options={"mesh_size": 0.03})
     # one mesh, one assembly and one factorisation serve the free-free modes, the condensed crank

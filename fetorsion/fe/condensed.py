@@ -221,6 +221,11 @@ class CondensedCrank:
     #: Coriolis (gyroscopic) matrix per unit spin speed, r × r, skew: in the crank's rotating
     #: frame M z̈ + (C + Ω G) ż + K z = f (:mod:`fetorsion.fe.rotating`; crank and attachments).
     gyroscopic: np.ndarray | None = field(default=None, repr=False)
+    #: The lowest free-free modes of the reduced model, rigid ones first: (ω² rad²/s² (k,),
+    #: vectors on the full system's solved DOF (solved DOF, k)), Ritz pairs of the full model
+    #: (:func:`run_condensed` ``start_modes``; :func:`fetorsion.fe.crankfe.run_modal` ``ritz``);
+    #: None unless asked for.
+    free_ritz: tuple | None = field(default=None, repr=False)
 
     @property
     def n_master_dofs(self) -> int:
@@ -343,7 +348,7 @@ class CondensedCrank:
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
                   keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid",
-                  system: CrankSystem | None = None, cuts=None) -> CondensedCrank:
+                  system: CrankSystem | None = None, cuts=None, start_modes: int = 0) -> CondensedCrank:
     """Condense the crank's FE system (:func:`fetorsion.fe.cranksystem.build_system`) to its masters.
 
     Parameters
@@ -371,6 +376,10 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     cuts : array_like (k, 3), optional
         Centres of extra section cuts (the planes x = centre x), m: e.g. every fillet, with the
         pin's axis as the centre of a pin fillet; their recovery rows go to ``cut_rows``.
+    start_modes : int
+        Keep the lowest this many free-free modes of the reduced model, expanded onto the
+        system's solved DOF, as ``free_ritz`` (the free-free modes of the same run, checked:
+        :func:`fetorsion.fe.crankfe.run_modal` ``ritz``).
     """
     t0 = time.perf_counter()
     sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
@@ -383,6 +392,10 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)
     extra = None if centres is None else cut_resultants(sys_, red.basis_forces, centres)
     red.basis_forces = None
+    ritz = None
+    if start_modes:
+        w2, V, _ = reduced_modes(red, None, sys_.attachment_mass)
+        ritz = (w2[:start_modes], red.basis @ V[:, :start_modes])
     red.basis = sys_.expand(red.basis)
     tg = time.perf_counter()
     gyro = None
@@ -401,7 +414,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
                           sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,
-                          gyro)
+                          gyro, ritz)
 
 
 #: Layout tag of the saved file; bump when the layout changes.

@@ -26,13 +26,16 @@ from .cranksystem import ENDS, CrankSystem, build_system, end_body
 from .modal import ModalResult, split_rigid
 from .modeshape import slab_fit
 from .rigid import rigid_rows
-from .substructure import supported_modes
+from .substructure import ritz_error_bounds, supported_modes
 
 #: Stated error of the default modal mesh (10 mm global, fillet elements of the fillet
 #: radius) on the first torsional frequency, relative: against each crank's finest (4 mm)
 #: mesh, f1 is +0.11 % (Peugeot GLX, 1.15 M DOF) and +0.24 % (Renault 21, 1.03 M DOF) high
 #: (docs/modal-mesh.md); ``--refine`` estimates it for other cranks.
 MODAL_F1_ERROR = 2.5e-3
+#: Ritz frequencies (the condensed crank's) stand for the FE model's own when their guaranteed
+#: error is below this: a tenth of the default mesh's discretisation error (MODAL_F1_ERROR).
+RITZ_ACCEPT = MODAL_F1_ERROR / 10
 
 
 def part_nodes(cm: CrankMesh, name: str) -> np.ndarray:
@@ -72,7 +75,7 @@ class CrankModal(ModalResult):
 
 def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
               mesh: CrankMesh | None = None, purpose: str = "modal", backend: str = "auto",
-              system: CrankSystem | None = None) -> CrankModal:
+              system: CrankSystem | None = None, ritz=None) -> CrankModal:
     """Free-free FE modes of a crank with its attachments.
 
     Parameters
@@ -97,12 +100,28 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
     system : CrankSystem, optional
         The crank's FE system built already (then nothing is meshed, assembled or factorised);
         the result keeps it (``.system``) for the condensed crank of the same run.
+    ritz : tuple (ω² (k,), X (solved DOF, k)), optional
+        Ritz pairs of this system's free-free problem, six rigid ones first (the condensed
+        crank's of the same run, ``CondensedCrank.free_ritz``). They are the result when one
+        block solve bounds every elastic frequency's error within :data:`RITZ_ACCEPT`
+        (:func:`fetorsion.fe.substructure.ritz_error_bounds`; the bounds are kept as
+        ``error_bound``); otherwise the block Lanczos starts from them.
     """
     t0 = time.perf_counter()
     sys_ = system or build_system(crank, mesh_size, mesh, backend, fillet_size=fillet_size, purpose=purpose)
     t1 = time.perf_counter()
     itf = sys_.interface
-    w2, X = supported_modes(itf, modes + 6, Dm=sys_.attachment_mass)
+    method, bound = "block", None
+    if ritz is not None and len(ritz[0]) >= modes + 6:
+        w2, X = np.asarray(ritz[0][:modes + 6], float), np.asarray(ritz[1][:, :modes + 6])
+        bound = ritz_error_bounds(itf, w2[6:], X[:, 6:], Dm=sys_.attachment_mass)[0]
+        if bound.max() <= RITZ_ACCEPT:
+            method = "condensed Ritz"
+        else:
+            bound = None
+            w2, X = supported_modes(itf, modes + 6, Dm=sys_.attachment_mass, start=X)
+    else:
+        w2, X = supported_modes(itf, modes + 6, Dm=sys_.attachment_mass)
     rigid, elastic = split_rigid(w2, itf.sigma)
     t2 = time.perf_counter()
     cm, xyz = sys_.mesh, sys_.xyz
@@ -135,7 +154,7 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
     timings = {**(sys_.timings_s if system is None else {}), "eigensolve": t2 - t1, "identify": t3 - t2,
                "total": t3 - t0}
     res = ModalResult(hz(elastic), kinds, fractions, fit, hz(rigid), int(used.sum()), len(cm.tets), sys_.dofs,
-                      crank.material, timings, shapes, body_motion, backend, "block")
+                      crank.material, timings, shapes, body_motion, backend, method, bound)
     return CrankModal(**{f.name: getattr(res, f.name) for f in fields(ModalResult)}, crank=crank, mesh=cm,
                       system=sys_)
 
