@@ -55,6 +55,8 @@ MARIN_SURFACE = {"ground": (1.58, -0.085), "machined": (4.51, -0.265), "cold-dra
 RELIABILITY_FACTOR = {0.5: 1.000, 0.9: 0.897, 0.95: 0.868, 0.99: 0.814, 0.999: 0.753, 0.9999: 0.702}
 #: Marin load factor k_c, [Budynas] eq. 6-26 (combined loading by von Mises uses "bending": 1).
 LOAD_FACTOR = {"bending": 1.0, "axial": 0.85, "torsion": 0.59}
+#: Reliability of the endurance limit unless stated: the mean (k_e = 1).
+DEFAULT_RELIABILITY = 0.5
 #: The kinds of location; an oil bore's notch is its bore (radius half its diameter).
 KINDS = ("pin-fillet", "journal-fillet", "oil-bore")
 METHODS = ("iacs-m53", "textbook")
@@ -186,7 +188,7 @@ def marin_reliability(reliability: float) -> float:
     raise FetorsionError(f"reliability must be one of {', '.join(map(str, RELIABILITY_FACTOR))}, got {reliability}")
 
 
-def endurance_limit(tensile_strength: float, diameter: float, surface: str, reliability: float = 0.5,
+def endurance_limit(tensile_strength: float, diameter: float, surface: str, reliability: float = DEFAULT_RELIABILITY,
                     load: str = "bending", temperature_factor: float = 1.0) -> float:
     """S_e = k_a k_b k_c k_d k_e S'_e ([Budynas] eq. 6-18; k_f, miscellaneous, = 1), Pa."""
     if load not in LOAD_FACTOR:
@@ -428,7 +430,7 @@ def assess_m53(loc: LocationStress, mat: FatigueMaterial, required: float = M53_
 
 
 def assess_textbook(loc: LocationStress, mat: FatigueMaterial, required: float = 1.0, mean_stress: str = "goodman",
-                    reliability: float = 0.5, temperature_factor: float = 1.0) -> FatigueAssessment:
+                    reliability: float = DEFAULT_RELIABILITY, temperature_factor: float = 1.0) -> FatigueAssessment:
     """[Budynas] ch. 6: K_f, K_fs by Neuber on the nominal stresses, von Mises alternating and
     mean equivalents, S_e with k_c = 1, Goodman or Gerber, and first-cycle yield
     n_y = S_y / σ'_max with σ'_max = √((K_f(σ_m + σ_a))² + 3 (K_fs(τ_m + τ_a))²)."""
@@ -452,7 +454,8 @@ def assess_textbook(loc: LocationStress, mat: FatigueMaterial, required: float =
 
 
 def run_fatigue(locations, material: Material | FatigueMaterial | None = None, method: str = "iacs-m53",
-                required: float | None = None, mean_stress: str = "goodman", reliability: float = 0.5) -> FatigueResult:
+                required: float | None = None, mean_stress: str = "goodman",
+                reliability: float = DEFAULT_RELIABILITY) -> FatigueResult:
     """Assess every location by one method and name the governing one.
 
     Parameters
