@@ -18,7 +18,8 @@ from pathlib import Path
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
-                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, Web)
+                    Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
+                    SURFACES, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
 
 # Tables of the crank-train mechanics file (fetorsion.mechanics.input), which has no [engine].
@@ -377,6 +378,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
         poisson_ratio=mt.number("poisson_ratio", above=0.0, below=0.5),
         density=mt.number("density_kgm3", positive=True),
         name=mt.text("name"),
+        **_strength(mt),
     )
     mt.used.add("source")
     mt.finish()
@@ -435,6 +437,24 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     if problems:
         raise DescriptionError(source, _unique(problems))
     return crank
+
+
+def _strength(mt: Table) -> dict:
+    """The optional strength fields of ``[material]`` (absent: None); a yield strength must lie
+    below the tensile strength."""
+    out = {"tensile_strength": None, "yield_strength": None, "surface": None, "process": None}
+    for field, key in (("tensile_strength", "tensile_strength_pa"), ("yield_strength", "yield_strength_pa")):
+        if key in mt.data:
+            value = mt.number(key, positive=True)
+            out[field] = None if math.isnan(value) else value
+    for field, choices in (("surface", SURFACES), ("process", PROCESSES)):
+        if field in mt.data:
+            value = mt.text(field, choices=choices)
+            out[field] = value if value in choices else None
+    if out["tensile_strength"] and out["yield_strength"] and out["yield_strength"] > out["tensile_strength"]:
+        mt.problems.append(Problem("material.yield_strength_pa", mt.data["yield_strength_pa"],
+                                   f"must not exceed tensile_strength_pa ({mt.data['tensile_strength_pa']})"))
+    return out
 
 
 # The inertia key of each damper type: a viscous damper's housing, a rubber or tuned damper's hub.

@@ -25,14 +25,33 @@ class AttachPoint(StrEnum):
 ATTACH_POINTS = tuple(p.value for p in AttachPoint)
 
 
+#: Surface finishes of the Marin surface factor (Budynas–Nisbett Table 6-2): ``[material] surface``.
+SURFACES = ("ground", "machined", "cold-drawn", "hot-rolled", "as-forged")
+#: Manufacturing routes of the IACS UR M53 fatigue-strength factor K: ``[material] process``.
+PROCESSES = ("continuous-grain-flow", "drop-forged", "free-form-forged", "cast-cold-rolled")
+#: The Material fields that only fatigue reads (not the elastic stiffness): caches keyed on
+#: stiffness leave them out.
+STRENGTH_FIELDS = ("tensile_strength", "yield_strength", "surface", "process")
+
+
 @dataclass(frozen=True)
 class Material:
-    """Linear elastic isotropic material, SI units (Pa, -, kg/m³)."""
+    """Linear elastic isotropic material, SI units (Pa, -, kg/m³).
+
+    The strength fields are optional (None: not given; fatigue then uses a stated default steel,
+    :data:`fetorsion.design.fatigue.DEFAULT_FORGING_STEEL`): ``tensile_strength`` and
+    ``yield_strength`` in Pa, ``surface`` one of :data:`SURFACES`, ``process`` one of
+    :data:`PROCESSES`.
+    """
 
     youngs_modulus: float
     poisson_ratio: float
     density: float
     name: str = ""
+    tensile_strength: float | None = None
+    yield_strength: float | None = None
+    surface: str | None = None
+    process: str | None = None
 
     @property
     def shear_modulus(self) -> float:

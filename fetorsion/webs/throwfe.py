@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from ..fe import assembly
-from ..description.model import Crank, Engine
+from ..description.model import STRENGTH_FIELDS, Crank, Engine
 from ..fe.eigen import factorize
 from ..errors import FetorsionError
 from ..fe.rigid import RigidBody, reduction
@@ -254,7 +254,8 @@ def throw_key(throw: Crank, mesh_size: float | None) -> str:
               "webs": [dataclasses.asdict(w) for w in throw.webs],
               "fillets": dataclasses.asdict(throw.fillets), "oil_holes": dataclasses.asdict(throw.oil_holes),
               "mesh_size": mesh_size, "model": MODEL_VERSION}
-    fields["material"].pop("name", None)
+    for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
+        fields["material"].pop(key, None)
     text = json.dumps(fields, sort_keys=True, default=repr)
     return hashlib.sha256(text.encode()).hexdigest()[:20]
 
@@ -402,7 +403,8 @@ def held_key(crank: Crank, mesh_size: float) -> str:
               "front": [dataclasses.asdict(c) for c in crank.front], "rear": [dataclasses.asdict(c) for c in crank.rear],
               "fillets": dataclasses.asdict(crank.fillets), "oil_holes": dataclasses.asdict(crank.oil_holes),
               "widths": list(crank.main_bearings.width), "mesh_size": mesh_size, "model": MODEL_VERSION + "-held"}
-    fields["material"].pop("name", None)
+    for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
+        fields["material"].pop(key, None)
     return hashlib.sha256(json.dumps(fields, sort_keys=True, default=repr).encode()).hexdigest()[:20]
 
 
