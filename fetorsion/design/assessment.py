@@ -1,0 +1,162 @@
+"""Fatigue assessment of every fillet over the speed range: bending and torsion, mean and
+alternating, from the condensed crank's load cycle (issue 27).
+
+At each fillet the section's in-plane bending moment M(θ) and torque T(θ) over the cycle
+(:func:`fetorsion.response.cycle.run_load_cycle`) give the nominal stresses
+
+    σ(θ) = 32 M D / (π (D⁴ − d_i⁴)),    τ(θ) = 16 T D / (π (D⁴ − d_i⁴)),
+
+which the fillet's bending and torsional SCFs (:func:`fetorsion.design.scf.fillet_scfs`) carry
+to the fillet surface; their mean and alternating parts (half the range) go to the chosen
+strength method (:func:`fetorsion.design.fatigue.run_fatigue`: IACS UR M53 or the textbook
+path). Every speed is assessed; each location's worst speed is then assessed again with its
+whole history for the multiaxial cross-checks (Crossland, Findley).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import FetorsionError
+from .fatigue import FatigueResult, LocationStress, run_fatigue
+
+
+def section_modulus_factor(diameter: float, bore: float) -> float:
+    """D / (π (D⁴ − d⁴)) in 1/m³: σ = 32 M × this, τ = 16 T × this."""
+    return diameter / (math.pi * (diameter**4 - bore**4))
+
+
+def fillet_stress_histories(crank, cycle, fillets) -> tuple[np.ndarray, np.ndarray]:
+    """Nominal (σ, τ) at each fillet over the cycle: (speeds, fillets, angles) each, Pa. The
+    cycle's cuts are the fillets in the same order."""
+    if len(cycle.labels) != len(fillets):
+        raise FetorsionError(f"the load cycle has {len(cycle.labels)} cuts for {len(fillets)} fillets")
+    w = np.array([section_modulus_factor(f.diameter, f.bore) for f in fillets])[None, :, None]
+    return 32 * w * cycle.bending_in_plane(), 16 * w * cycle.torque()
+
+
+def _scf(scf: dict, kind: str) -> tuple[float, float]:
+    """(bending, torsion) SCF of a ``pin`` or ``journal`` fillet."""
+    bending = scf.get(f"{kind}_bending")
+    if bending is None:
+        raise FetorsionError(f"no bending SCF for the {kind} fillets in {scf.get('source', 'the SCFs given')}")
+    return float(bending), float(scf[kind])
+
+
+@dataclass
+class CrankAssessment:
+    """Safety of every fillet against speed, the worst speed of each, and the governing one.
+
+    Attributes
+    ----------
+    rpm : ndarray (speeds,)
+    labels : list of str
+        Fillets.
+    safety : ndarray (speeds, fillets)
+        The method's safety factor (M53: Q = σ_DW / σ_V; textbook: Goodman's n).
+    worst : FatigueResult
+        Each fillet assessed at its own worst speed, with its whole history (criteria included).
+    worst_rpm : ndarray (fillets,)
+    """
+
+    name: str
+    method: str
+    rpm: np.ndarray
+    labels: list
+    safety: np.ndarray
+    worst: FatigueResult
+    worst_rpm: np.ndarray
+    scf_source: str = ""
+    notes: list = field(default_factory=list)
+
+    @property
+    def governing(self) -> int:
+        return int(np.argmin(self.safety.min(axis=0)))
+
+    def to_dict(self) -> dict:
+        g = self.governing
+        return {"name": self.name, "method": self.method, "rpm": self.rpm.tolist(), "fillets": list(self.labels),
+                "safety": self.safety.tolist(), "worst_rpm": self.worst_rpm.tolist(),
+                "locations": [a.to_dict() for a in self.worst.locations], "material": self.worst.to_dict()["material"],
+                "defaulted": list(self.worst.defaulted), "scf_source": self.scf_source, "notes": list(self.notes),
+                "governing": {"fillet": self.labels[g], "rpm": float(self.worst_rpm[g]),
+                              "safety": float(self.safety[:, g].min()),
+                              "required": float(self.worst.locations[g].required)}}
+
+    def table(self) -> str:
+        lines = [f"{self.name}: fatigue of the fillets ({self.method}), each at its worst speed",
+                 f"{'fillet':<28} {'rpm':>6} {'σ_a [MPa]':>10} {'σ_m [MPa]':>10} {'τ_a [MPa]':>10} "
+                 f"{'τ_m [MPa]':>10} {'safety':>7} {'required':>8}"]
+        for j, a in enumerate(self.worst.locations):
+            st = a.factors.get("stresses", {})
+            lines.append(f"{self.labels[j]:<28} {self.worst_rpm[j]:6.0f} {st.get('bending_alt', 0) / 1e6:10.1f} "
+                         f"{st.get('bending_mean', 0) / 1e6:10.1f} {st.get('torsion_alt', 0) / 1e6:10.1f} "
+                         f"{st.get('torsion_mean', 0) / 1e6:10.1f} {a.safety:7.2f} {a.required:8.2f}")
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Safety of every fillet against speed, the required value dashed. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(7, 4))
+        for j, lb in enumerate(self.labels):
+            ax.plot(self.rpm, self.safety[:, j], lw=1.2 if j == self.governing else 0.7, label=lb)
+        ax.axhline(self.worst.locations[0].required, color="k", ls="--", lw=0.8, label="required")
+        ax.set_xlabel("engine speed [rpm]")
+        ax.set_ylabel("fatigue safety factor [-]")
+        ax.set_title(f"{self.name}: fillet fatigue ({self.method})", fontsize=10)
+        ax.legend(fontsize=6, ncol=2)
+        return ax
+
+
+def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", required: float | None = None
+                   ) -> CrankAssessment:
+    """Assess every fillet of ``crank`` at every speed of ``cycle``.
+
+    Parameters
+    ----------
+    crank : Crank
+        Its ``[material]`` strengths (or the default forging steel, named in the result) and fillet radii.
+    cycle : LoadCycle
+        The fillet cuts' loads (:func:`fetorsion.response.cycle.run_load_cycle`), cuts = ``fillets``.
+    fillets : list of Fillet
+        :func:`fetorsion.design.stress.fillets_of` the crank, in the cuts' order.
+    scf : dict
+        ``pin``, ``journal`` (torsion) and ``pin_bending``, ``journal_bending`` SCFs.
+    method : {"iacs-m53", "textbook"}
+    required : float, optional
+        Required safety (default the method's: :func:`fetorsion.design.fatigue.run_fatigue`).
+    """
+    sigma, tau = fillet_stress_histories(crank, cycle, fillets)
+    radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
+    kts = [_scf(scf, f.kind) for f in fillets]
+    s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
+    t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
+    safety = np.empty(sigma.shape[:2])
+    for s in range(sigma.shape[0]):
+        locs = [LocationStress(f.label, f"{f.kind}-fillet", f.diameter, radius[f.kind], s_alt[s, j], t_alt[s, j],
+                               s_mean[s, j], t_mean[s, j], kt_bending=kb, kt_torsion=kt)
+                for j, (f, (kb, kt)) in enumerate(zip(fillets, kts))]
+        safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required).locations]
+    worst_speed = np.argmin(safety, axis=0)
+    locs = [LocationStress.from_history(f.label, f"{f.kind}-fillet", f.diameter, radius[f.kind],
+                                        sigma[worst_speed[j], j], tau[worst_speed[j], j], kt_bending=kb, kt_torsion=kt)
+            for j, (f, (kb, kt)) in enumerate(zip(fillets, kts))]
+    worst = run_fatigue(locs, crank.material, method, required)
+    stresses = [{"bending_alt": kb * l.bending_alt, "bending_mean": kb * l.bending_mean,
+                 "torsion_alt": kt * l.torsion_alt, "torsion_mean": kt * l.torsion_mean}
+                for l, (kb, kt) in zip(locs, kts)]
+    from dataclasses import replace
+
+    worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
+                                           for a, st in zip(worst.locations, stresses)))
+    notes = [f"local stresses: nominal section stresses × SCF (bending {kts[0][0]:.2f} …, torsion {kts[0][1]:.2f} …)"]
+    if worst.defaulted:
+        notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
+                     f"{worst.material.name} ({worst.material.source})")
+    return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), [f.label for f in fillets], safety, worst,
+                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes)
