@@ -31,7 +31,8 @@ from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DE
                                     DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..report.markdown import report_markdown
-from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, ModeImage,
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome,
+                               ModeImage,
                                RunOutcome, SensitivityOutcome, Skipped, VerdictOutcome)
 
 
@@ -100,6 +101,16 @@ class RunContext:
 
         return self.once("lumped_setup", lambda: response_setup(
             self.crank, parts=None if isinstance(self.crank, Chain) else self.parts()))
+
+    def scf(self) -> dict:
+        """The fillet SCFs of the crank (shipped, or one static FE of a throw), found once."""
+        def build():
+            from ..design.scf import fillet_scfs
+
+            _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
+            return fillet_scfs(self.crank)
+
+        return self.once("scf", build)
 
     def fillets(self):
         """Every fillet of the crank (built once)."""
@@ -259,14 +270,13 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     if crank.limits.kind == "stress":
         if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
             return Skipped("stress limits need fillet radii (a sharp corner has no finite SCF)")
-        from ..design.scf import SHIPPED_SCF, fillet_scfs, scf_key
+        from ..design.scf import SHIPPED_SCF, scf_key
 
         shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
         if scf_key(crank) not in shipped and ctx.options.get("no_fe"):
             scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: no FE step in this run and no stored FE SCF)"}
         else:
-            _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
-            scf = fillet_scfs(crank)
+            scf = ctx.scf()
     mu = ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO)
     fillets = ctx.fillets() if scf is not None else None
     verdict = run_verdict(crank, mu=mu, scf=scf, setup=ctx.setup(), fillets=fillets)
@@ -294,6 +304,56 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     ctx.results["verdict"]["model"] = setup.model
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model,
                           yardstick)
+
+
+#: The fatigue method of ``fetorsion run`` (the classification rule; ``textbook`` the alternative).
+DEFAULT_FATIGUE_METHOD = "iacs-m53"
+
+
+def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
+    """Bending and torsion, mean and alternating, at every fillet and speed on the condensed crank
+    in its bearings with the description's dampers; the safety factors at the nominal damping
+    ratio and across the stated band, the verdict at its low end."""
+    from ..design.assessment import run_assessment
+    from ..response.coupled import condensed_setup
+    from ..response.cycle import run_load_cycle
+
+    crank = ctx.crank
+    if "condensed" not in ctx.built:
+        return Skipped("the fatigue assessment runs on the condensed crank (the FE steps did not run)")
+    if crank.excitation is None:
+        return Skipped("the description has no [excitation] table")
+    if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+        return Skipped("fillet fatigue needs fillet radii (a sharp corner has no finite SCF)")
+    scf = ctx.scf()
+    missing = [k for k in ("pin_bending", "journal_bending") if k not in scf]
+    if missing:
+        return Skipped(f"no bending SCF ({', '.join(missing)}) in {scf.get('source', 'the SCFs')}")
+    cc, fillets = ctx.built["condensed"], ctx.fillets()
+    method = ctx.options.get("fatigue_method", DEFAULT_FATIGUE_METHOD)
+    ex = crank.excitation
+    labels = [f.label for f in fillets]
+    runs = {}
+    for zeta in sorted({ex.damping_band[0], ex.modal_damping_ratio, ex.damping_band[1]}):
+        setup = condensed_setup(cc, "bearings", damping_ratio=zeta, section_labels=labels)
+        cycle = run_load_cycle(cc, setup, crank.dampers)
+        runs[zeta] = (run_assessment(crank, cycle, fillets, scf, method), cycle)
+    nominal, cycle = runs[ex.modal_damping_ratio]
+    worst = runs[ex.damping_band[0]][0]
+    band = []
+    for zeta, (a, _) in runs.items():
+        g = a.governing
+        band.append((zeta, float(a.safety[:, g].min()), a.labels[g], float(a.worst_rpm[g]),
+                     float(a.worst.locations[g].required)))
+    g = nominal.governing
+    s = int(np.flatnonzero(cycle.rpm == nominal.worst_rpm[g])[0])
+    images = (ctx.save(nominal.plot().figure, "fatigue_safety.png"),
+              ctx.save(cycle.plot(s, g).figure, "fatigue_load_cycle.png"))
+    ctx.results["fatigue"] = {**nominal.to_dict(), "band": [dict(zip(("damping_ratio", "safety", "fillet", "rpm", "required"), b))
+                                                             for b in band],
+                              "damping_source": ex.damping_source, "worst_case": worst.to_dict()["governing"],
+                              "load_cycle": cycle.to_dict()}
+    return FatigueOutcome(nominal, worst, tuple(band), ex.damping_source, scf, images, setup.model)
 
 
 def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, parts=None):
@@ -387,6 +447,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
     ("lumped models", "lumped", step_lumped),
     ("Campbell diagram and forced response", "campbell", step_campbell),
     ("fillet stress, dampers and verdict", "verdict", step_verdict),
+    ("fatigue of the fillets", "fatigue", step_fatigue),
     # last: the studies, started in the background when the run began, finish in the cores the
     # steps before leave idle (the verdict's many small solves keep one busy, not two)
     ("sensitivity of f1", "sensitivity", step_sensitivity),

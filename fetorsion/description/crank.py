@@ -16,7 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
@@ -629,7 +629,17 @@ def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: 
     overspeed = t.number("overspeed_factor", DEFAULT_OVERSPEED, above=0.0)
     if overspeed < 1.0:
         t.problems.append(Problem(f"{t.path}.overspeed_factor", overspeed, "must be >= 1 (a multiple of the top speed)"))
-    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed)
+    band = tuple(t.numbers("modal_damping_band", required=False) or DEFAULT_DAMPING_BAND)
+    if not (len(band) == 2 and 0 < band[0] <= band[1] < 1):
+        t.problems.append(Problem(f"{t.path}.modal_damping_band", list(band), "must be [low, high] with 0 < low <= high < 1"))
+        band = DEFAULT_DAMPING_BAND
+    source = t.text("modal_damping_source", "")
+    if "modal_damping_band" in t.data and not source.strip():
+        t.problems.append(Problem(f"{t.path}.modal_damping_source", source,
+                                  "is required with modal_damping_band: say where the band comes from"))
+    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
+                  damping_band=(float(band[0]), float(band[1])),
+                  damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE)
     given = [k for k in EXCITATION_SOURCES if k in t.data]
     if len(given) != 1:
         t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 
-from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 
 class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
@@ -194,6 +194,9 @@ class Excitation:
     pressure_curve: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     modal_damping_ratio: float = DEFAULT_DAMPING_RATIO
     overspeed: float = DEFAULT_OVERSPEED  # the checked range's top over the rated speed
+    #: (low, high) of the modal damping ratio the verdict is also given at, and where it comes from
+    damping_band: tuple[float, float] = DEFAULT_DAMPING_BAND
+    damping_source: str = DEFAULT_DAMPING_BAND_SOURCE
 
     @property
     def checked_range(self) -> tuple[float, float]:

@@ -114,6 +114,22 @@ class VerdictOutcome:
     yardstick: dict | None = None
 
 
+@dataclass(frozen=True)
+class FatigueOutcome:
+    """The fatigue assessment of the fillets on the condensed crank in its bearings, with the
+    description's dampers: ``assessment`` at the nominal damping ratio, ``band`` the governing
+    safety at each damping ratio of the stated band (ζ, safety, fillet, rpm), ``worst_case`` the
+    assessment at the band's low end (the verdict), the SCFs used and the pictures."""
+
+    assessment: object
+    worst_case: object
+    band: tuple
+    damping_source: str
+    scf: dict
+    images: tuple[str, ...]
+    model: str = ""
+
+
 @dataclass
 class RunOutcome:
     """Every section of one run, in pipeline order, and each step's wall time (s)."""
@@ -126,4 +142,5 @@ class RunOutcome:
     campbell: CampbellOutcome | Skipped | None = None
     sensitivity: SensitivityOutcome | Skipped | None = None
     verdict: VerdictOutcome | Skipped | None = None
+    fatigue: FatigueOutcome | Skipped | None = None
     timings_s: dict | None = None
