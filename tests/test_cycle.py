@@ -4,7 +4,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import GEOMETRY, plain
+from conftest import GEOMETRY, assert_picture, plain
 
 import fetorsion
 from fetorsion.design.assessment import run_assessment, section_modulus_factor
@@ -79,7 +79,7 @@ def _cycle(bending, torque, fillets):
                      [f.label for f in fillets], history.mean(axis=3), history, np.zeros(c))
 
 
-def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas():
+def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
     """Made-up histories on two fillets: nominal stresses from the section, × SCF, halves of the
     range, M53's equivalent stress and strength (written out here) give Q to 1e-9."""
     crank = fetorsion.load(GEOMETRY / "renault21.toml")
@@ -105,3 +105,6 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas():
         assert res.worst_rpm[j] == res.rpm[1]  # the larger loads govern
     assert section_modulus_factor(0.048, 0.0) == pytest.approx(0.048 / (math.pi * 0.048**4), rel=1e-15)
     assert res.labels[res.governing] in (f.label for f in fillets)
+    for name, ax in (("haigh", res.haigh()), ("safety", res.plot())):  # the report's pictures show something
+        ax.figure.savefig(tmp_path / f"{name}.png")
+        assert_picture(tmp_path / f"{name}.png")

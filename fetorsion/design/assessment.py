@@ -71,6 +71,7 @@ class CrankAssessment:
     worst_rpm: np.ndarray
     scf_source: str = ""
     notes: list = field(default_factory=list)
+    worst_diameters: np.ndarray | None = None  # each fillet's section diameter, m
 
     @property
     def governing(self) -> int:
@@ -96,6 +97,40 @@ class CrankAssessment:
                          f"{st.get('bending_mean', 0) / 1e6:10.1f} {st.get('torsion_alt', 0) / 1e6:10.1f} "
                          f"{st.get('torsion_mean', 0) / 1e6:10.1f} {a.safety:7.2f} {a.required:8.2f}")
         return "\n".join(lines)
+
+    def haigh(self, count: int = 3, ax=None):
+        """Haigh diagram of the ``count`` least safe fillets at their worst speeds: von Mises mean
+        and alternating local stresses (σ'_m, σ'_a) against each one's Goodman line (the
+        textbook endurance limit S_e at that fillet to S_ut) and, for M53, its σ_DW (the rule
+        reads the alternating stress only). Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        from .fatigue import endurance_limit, von_mises
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4.5))
+        mat = self.worst.material
+        order = np.argsort(self.safety.min(axis=0))[:count]
+        for n, j in enumerate(order):
+            a = self.worst.locations[j]
+            st = a.factors.get("stresses", {})
+            sm = float(von_mises(st.get("bending_mean", 0.0), st.get("torsion_mean", 0.0)))
+            sa = float(von_mises(st.get("bending_alt", 0.0), st.get("torsion_alt", 0.0)))
+            d = float(self.worst_diameters[j]) if self.worst_diameters is not None else 0.05
+            se = endurance_limit(mat.tensile_strength, d, mat.surface)
+            line, = ax.plot([0, mat.tensile_strength / 1e6], [se / 1e6, 0], lw=0.8, ls="--",
+                            label=f"Goodman, {self.labels[j]}")
+            ax.plot([sm / 1e6], [sa / 1e6], "o", color=line.get_color(), label=f"{self.labels[j]}, {self.worst_rpm[j]:.0f} rpm")
+            if self.method == "iacs-m53":
+                ax.axhline(a.strength / 1e6, color=line.get_color(), lw=0.6, ls=":")
+        ax.set_xlim(-0.05 * mat.tensile_strength / 1e6, mat.tensile_strength / 1e6)
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel("mean equivalent stress [MPa]")
+        ax.set_ylabel("alternating equivalent stress [MPa]")
+        ax.set_title(f"{self.name}: Haigh diagram" + (" (dotted: M53 sigma_DW)" if self.method == "iacs-m53" else ""),
+                     fontsize=9)
+        ax.legend(fontsize=6)
+        return ax
 
     def plot(self, ax=None):
         """Safety of every fillet against speed, the required value dashed. Returns the Axes."""
@@ -159,4 +194,5 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
     return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), [f.label for f in fillets], safety, worst,
-                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes)
+                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes,
+                           np.array([f.diameter for f in fillets]))
