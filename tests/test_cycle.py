@@ -88,8 +88,12 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
     speeds = np.array([1.0, 1.7])[:, None, None]
     bending = speeds * np.array([300.0, 120.0])[None, :, None] * (0.4 + np.sin(2 * th))[None, None, :]
     torque = speeds * np.array([150.0, 400.0])[None, :, None] * (0.1 + np.cos(th + 0.3))[None, None, :]
-    scf = {"pin": 1.6, "journal": 1.4, "pin_bending": 2.6, "journal_bending": 2.1, "source": "made up"}
+    scf = {"pin": 1.6, "journal": 1.4, "pin_bending": 2.6, "journal_bending": 2.1, "oil_bore_bending": 1.9,
+           "oil_bore_torsion": 3.6, "source": "made up"}
     res = run_assessment(crank, _cycle(bending, torque, fillets), fillets, scf, "iacs-m53")
+    # the Renault 21 drills pins and journals: one oil bore per drilled section here (P1, J2), its
+    # nominal stresses those of its section (one fillet cut each here)
+    assert res.labels == [f.label for f in fillets] + ["P1 oil bore", "J2 oil bore"]
     mat = res.worst.material
     for j, f in enumerate(fillets):
         w = f.diameter / (math.pi * (f.diameter**4 - f.bore**4))
@@ -103,6 +107,12 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
             assert res.safety[s, j] == pytest.approx(dw / sv, rel=1e-9)
             assert float(m53_equivalent_fillet(sa, ta)) == pytest.approx(sv, rel=1e-12)
         assert res.worst_rpm[j] == res.rpm[1]  # the larger loads govern
+        # the oil bore of the same section: M53's σ_V = σ_B/3 (1 + 2 √(1 + 9/4 (τ/σ_B)²)), radius d/2
+        sb = scf["oil_bore_bending"] * 0.5 * np.ptp(32 * w * bending[1, j])
+        tb = scf["oil_bore_torsion"] * 0.5 * np.ptp(16 * w * torque[1, j])
+        sv = sb / 3 * (1 + 2 * math.sqrt(1 + 9 / 4 * (tb / sb) ** 2))
+        dw = m53_fatigue_strength(mat.tensile_strength, f.diameter, 0.5 * crank.oil_holes.diameter, mat.process, "oil-bore")
+        assert res.safety[1, 2 + j] == pytest.approx(dw / sv, rel=1e-9)
     assert section_modulus_factor(0.048, 0.0) == pytest.approx(0.048 / (math.pi * 0.048**4), rel=1e-15)
     assert res.labels[res.governing] in (f.label for f in fillets)
     for name, ax in (("haigh", res.haigh()), ("safety", res.plot())):  # the report's pictures show something

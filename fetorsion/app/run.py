@@ -326,10 +326,14 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         return Skipped("fillet fatigue needs fillet radii (a sharp corner has no finite SCF)")
     scf = ctx.scf()
-    missing = [k for k in ("pin_bending", "journal_bending") if k not in scf]
-    if missing:
-        return Skipped(f"no bending SCF ({', '.join(missing)}) in {scf.get('source', 'the SCFs')}")
     cc, fillets = ctx.built["condensed"], ctx.fillets()
+    from ..design.assessment import oil_bore_sections
+
+    wanted = ("pin_bending", "journal_bending") + (("oil_bore_bending", "oil_bore_torsion")
+                                                   if oil_bore_sections(crank, fillets) else ())
+    missing = [k for k in wanted if k not in scf]
+    if missing:
+        return Skipped(f"no {', '.join(missing)} SCF in {scf.get('source', 'the SCFs')}")
     method = ctx.options.get("fatigue_method", DEFAULT_FATIGUE_METHOD)
     ex = crank.excitation
     labels = [f.label for f in fillets]

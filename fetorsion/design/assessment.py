@@ -38,6 +38,23 @@ def fillet_stress_histories(crank, cycle, fillets) -> tuple[np.ndarray, np.ndarr
     return 32 * w * cycle.bending_in_plane(), 16 * w * cycle.torque()
 
 
+def oil_bore_sections(crank, fillets) -> list[tuple[str, list[int], float, float]]:
+    """Every drilled pin and journal of ``crank``: (label, indices of its fillets in ``fillets``,
+    diameter m, bore m); none without ``[oil_holes]``."""
+    holes = crank.oil_holes
+    if holes is None or not holes.diameter > 0:
+        return []
+    out = []
+    for kind, drilled, parts in (("pin", holes.in_pins, crank.pins), ("journal", holes.in_journals, crank.journals)):
+        if not drilled:
+            continue
+        for i, part in enumerate(parts):
+            cuts = [j for j, f in enumerate(fillets) if f.kind == kind and f.index == i]
+            if cuts:
+                out.append((f"{'P' if kind == 'pin' else 'J'}{i + 1} oil bore", cuts, part.diameter, part.bore))
+    return out
+
+
 def _scf(scf: dict, kind: str) -> tuple[float, float]:
     """(bending, torsion) SCF of a ``pin`` or ``journal`` fillet."""
     bending = scf.get(f"{kind}_bending")
@@ -169,22 +186,40 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     sigma, tau = fillet_stress_histories(crank, cycle, fillets)
     radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
     kts = [_scf(scf, f.kind) for f in fillets]
+    labels, kinds, radii, diameters = [f.label for f in fillets], [f"{f.kind}-fillet" for f in fillets], \
+        [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
+    bores = oil_bore_sections(crank, fillets)
+    if bores:
+        if "oil_bore_bending" not in scf or "oil_bore_torsion" not in scf:
+            raise FetorsionError(f"the crank has oil bores but no oil-bore SCFs in {scf.get('source', 'the SCFs given')}")
+        for label, cuts, diameter, bore in bores:
+            # the bore's exit at mid-length: the mean of the section's own fillet cuts' nominal
+            # stresses (the moment is linear along a pin or journal between its webs, the torque
+            # constant; the same diameter and bore)
+            sigma = np.concatenate([sigma, sigma[:, cuts].mean(axis=1, keepdims=True)], axis=1)
+            tau = np.concatenate([tau, tau[:, cuts].mean(axis=1, keepdims=True)], axis=1)
+            kts.append((float(scf["oil_bore_bending"]), float(scf["oil_bore_torsion"])))
+            labels.append(label)
+            kinds.append("oil-bore")
+            radii.append(0.5 * crank.oil_holes.diameter)
+            diameters.append(diameter)
     s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
     t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
+    where = list(zip(labels, kinds, diameters, radii, kts))
     safety = np.empty(sigma.shape[:2])
     for s in range(sigma.shape[0]):
-        locs = [LocationStress(f.label, f"{f.kind}-fillet", f.diameter, radius[f.kind], s_alt[s, j], t_alt[s, j],
-                               s_mean[s, j], t_mean[s, j], kt_bending=kb, kt_torsion=kt)
-                for j, (f, (kb, kt)) in enumerate(zip(fillets, kts))]
+        locs = [LocationStress(lb, kind, d, r, s_alt[s, j], t_alt[s, j], s_mean[s, j], t_mean[s, j],
+                               kt_bending=kb, kt_torsion=kt)
+                for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
         safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required).locations]
     worst_speed = np.argmin(safety, axis=0)
-    locs = [LocationStress.from_history(f.label, f"{f.kind}-fillet", f.diameter, radius[f.kind],
-                                        sigma[worst_speed[j], j], tau[worst_speed[j], j], kt_bending=kb, kt_torsion=kt)
-            for j, (f, (kb, kt)) in enumerate(zip(fillets, kts))]
+    locs = [LocationStress.from_history(lb, kind, d, r, sigma[worst_speed[j], j], tau[worst_speed[j], j],
+                                        kt_bending=kb, kt_torsion=kt)
+            for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
     worst = run_fatigue(locs, crank.material, method, required)
-    stresses = [{"bending_alt": kb * l.bending_alt, "bending_mean": kb * l.bending_mean,
-                 "torsion_alt": kt * l.torsion_alt, "torsion_mean": kt * l.torsion_mean}
-                for l, (kb, kt) in zip(locs, kts)]
+    stresses = [{"bending_alt": kb * loc.bending_alt, "bending_mean": kb * loc.bending_mean,
+                 "torsion_alt": kt * loc.torsion_alt, "torsion_mean": kt * loc.torsion_mean}
+                for loc, (kb, kt) in zip(locs, kts)]
     from dataclasses import replace
 
     worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
@@ -193,6 +228,5 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
-    return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), [f.label for f in fillets], safety, worst,
-                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes,
-                           np.array([f.diameter for f in fillets]))
+    return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), labels, safety, worst,
+                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes, np.array(diameters))
