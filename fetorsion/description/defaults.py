@@ -11,11 +11,11 @@ DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
 # an undamped steel crank.
 DEFAULT_DAMPING_RATIO = 0.02
 # The band of the crank's modal damping ratio when the description states none: dynamic
-# magnifiers Q = 1/(2ζ) of 30 to 60 for an undamped crank system, the practice issue 27 states
+# magnifiers Q = 1/(2ζ) of 30 to 60 for an undamped crank system, as engine practice states it
 # (no published table of them was read: a description should give its own band and source).
 # The fatigue verdict is given at its low end (the worst case) as well.
 DEFAULT_DAMPING_BAND = (1.0 / 120.0, 1.0 / 60.0)
-DEFAULT_DAMPING_BAND_SOURCE = "default: dynamic magnifier Q = 30-60 of an undamped crank (engine practice, issue 27; no published table read)"
+DEFAULT_DAMPING_BAND_SOURCE = "default: dynamic magnifier Q = 30-60 of an undamped crank (stated engine practice; no published table read)"
 # The forced response and the verdict reach past the rated (top) speed to overspeed, as crank
 # fatigue checks do (a governor's or a driver's overrun): this multiple of the top speed.
 DEFAULT_OVERSPEED = 1.1

@@ -1,5 +1,5 @@
 """Fatigue assessment of every fillet over the speed range: bending and torsion, mean and
-alternating, from the condensed crank's load cycle (issue 27).
+alternating, from the condensed crank's load cycle.
 
 At each fillet the section's in-plane bending moment M(θ) and torque T(θ) over the cycle
 (:func:`fetorsion.response.cycle.run_load_cycle`) give the nominal stresses
@@ -63,6 +63,10 @@ def _scf(scf: dict, kind: str) -> tuple[float, float]:
     return float(bending), float(scf[kind])
 
 
+#: Locations (the least safe) drawn in the Haigh diagram.
+HAIGH_LOCATIONS = 3
+
+
 @dataclass
 class CrankAssessment:
     """Safety of every fillet against speed, the worst speed of each, and the governing one.
@@ -115,7 +119,7 @@ class CrankAssessment:
                          f"{st.get('torsion_mean', 0) / 1e6:10.1f} {a.safety:7.2f} {a.required:8.2f}")
         return "\n".join(lines)
 
-    def haigh(self, count: int = 3, ax=None):
+    def haigh(self, count: int = HAIGH_LOCATIONS, ax=None):
         """Haigh diagram of the ``count`` least safe fillets at their worst speeds: von Mises mean
         and alternating local stresses (σ'_m, σ'_a) against each one's Goodman line (the
         textbook endurance limit S_e at that fillet to S_ut) and, for M53, its σ_DW (the rule

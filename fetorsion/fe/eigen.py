@@ -444,7 +444,7 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int |
         M-orthonormal eigenvectors.
     """
     n = M.shape[0]
-    M = _drop_zeros(M)
+    M = drop_zeros(M)
     b = min(width or BLOCK_WIDTH, n) if start is None else np.shape(start)[1]
     cap = min(n, max_dim or (max(5 * k, k + 8 * b) if start is None else max(5 * k, k + 3 * b)))
     if k >= cap:
@@ -509,7 +509,7 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int |
     raise FetorsionError(f"block Lanczos did not converge to tol {tol:g} in {max_restarts} restarts")
 
 
-def _drop_zeros(M):
+def drop_zeros(M):
     """A sparse M without its explicit zeros (a copy only when there are any); anything else
     (an operator with ``@``) as it is.
 

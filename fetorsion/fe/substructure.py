@@ -34,7 +34,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import FetorsionError
-from .eigen import EIGEN_TOL, ORTHO_DROP, _drop_zeros, block_lanczos, factorize, matmul, numpy_blas_threads, shifted, svqb_coefficients
+from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, drop_zeros, factorize, matmul, numpy_blas_threads, shifted, svqb_coefficients
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -100,7 +100,7 @@ def interface(K, M, G, sigma: float, backend: str = "auto", groups: np.ndarray |
     t2 = time.perf_counter()
     # M keeps K's 3 × 3 block pattern, two thirds of it explicit zeros: dropped once here, the
     # reduction's and the eigen-solves' products with M cost a third
-    return Interface(solve, sp.csr_array(K), sp.csr_array(_drop_zeros(M)), sp.csr_array(G), float(sigma), Y,
+    return Interface(solve, sp.csr_array(K), sp.csr_array(drop_zeros(M)), sp.csr_array(G), float(sigma), Y,
                      0.5 * (C + C.T),
                      {"factorize": t1 - t0, "interface": t2 - t1})
 

@@ -1,4 +1,4 @@
-"""The load cycle at every fillet section: mean and vibratory, over crank angle (issue 27).
+"""The load cycle at every fillet section: mean and vibratory, over crank angle.
 
 At each operating speed the condensed crank in its bearings carries
 
