@@ -1,6 +1,8 @@
 """Dampers on a chain against Den Hartog's closed forms (issue 14): the numeric optimum of an
 untuned viscous damper, the tuned absorber's fixed points, and the optimiser from a poor start."""
 
+import math
+
 import numpy as np
 import pytest
 
@@ -155,3 +157,20 @@ def test_rubber_table_read_at_the_operating_temperature_by_hand():
     np.testing.assert_allclose([r[1] for r in rows], [70e3 / 3, 3.4e4 / 3 + 1.6e4, 1.2e4 + 1.6e4], rtol=1e-12)
     np.testing.assert_allclose(rows[0][2], 0.2 / 3 + 0.2, rtol=1e-12)
     assert table_at_temperature(groups, 100.0) == tuple(tuple(r) for r in groups[80.0])  # held, not extrapolated
+
+
+def test_rubber_damper_designs_keep_the_loss_factor_of_a_real_rubber():
+    """Den Hartog's absorber optimum asks η = 2ζ/f = 0.55 at μ = 0.25 (ζ = √(3μ/(8(1+μ)³)),
+    f = 1/(1+μ)), beyond damper rubbers: the design holds η at the range's top, keeps the tuning,
+    and the optimiser never leaves the range, even when a higher loss would lower the peak."""
+    from fetorsion.design.dampers import RUBBER_LOSS_FACTOR_RANGE
+
+    mu = 0.25
+    f_opt, zeta, _ = tuned_optimum(mu)
+    assert 2 * zeta / f_opt == pytest.approx(2 * math.sqrt(3 * mu / (8 * (1 + mu) ** 3)) * (1 + mu), rel=1e-12)
+    d = den_hartog_damper("rubber", mu, J, WN)
+    assert d.loss_factor == RUBBER_LOSS_FACTOR_RANGE[1] < 2 * zeta / f_opt
+    assert d.stiffness == pytest.approx(mu * J * (f_opt * WN) ** 2, rel=1e-12)
+    best, _ = optimise_damper(lambda x: 1.0 / x.loss_factor + (math.log(x.stiffness / d.stiffness)) ** 2, d)
+    lo, hi = RUBBER_LOSS_FACTOR_RANGE
+    assert lo <= best.loss_factor <= hi and best.loss_factor == pytest.approx(hi, rel=1e-9)
