@@ -104,6 +104,14 @@ def test_a_chain_files_dampers_and_limits_reach_campbell_response_and_verdict(tm
     # The torque verdict reads the worst section torque of the same response.
     assert row["value"] == pytest.approx(with_d.section_torque_nm.max(), rel=1e-12)
     assert row["limit"] == 4000.0 and v.limits.kind == "torque"
+    assert row["damper_heat"] == "not rated" and row["damper_power_w"] > 0
+    # rated below and above the heat its worst speed dissipates: the row fails and passes on heat alone
+    heat = row["damper_power_w"]
+    for rating, expected in ((0.5 * heat, "over the rating"), (2.0 * heat, "within the rating")):
+        path.write_text(text.replace("damping_nms_per_rad = 60.0\n", f"damping_nms_per_rad = 60.0\nallowed_power_w = {rating}\n"))
+        r = run_verdict(fetorsion.load(path), optimise=False, rpm=rpm).rows()[1]
+        assert r["damper_heat"] == expected and r["damper_power_w"] == pytest.approx(heat, rel=1e-12)
+        assert (r["verdict"] == "fail (damper heat)") == (expected == "over the rating")
 
 
 @pytest.mark.parametrize("damper", [

@@ -469,7 +469,8 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
     (or a ``dynamic_table`` of [frequency Hz, stiffness N m/rad, loss factor] rows, frequency
     ascending) and takes ``hub_inertia_kgm2``; ``tuned`` needs ``stiffness_nm_per_rad`` and takes
     ``hub_inertia_kgm2`` and ``damping_nms_per_rad``. ``at``: ``front`` (pulley end, default) or
-    ``rear`` (flywheel side).
+    ``rear`` (flywheel side). ``allowed_power_w`` (optional, > 0): the heat it may dissipate
+    continuously, its maker's rating, which the verdict checks.
     """
     out = []
     for t in root.tables("dampers", required=False):
@@ -493,10 +494,11 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
             k = t.number("stiffness_nm_per_rad", positive=True)
             c = t.number("damping_nms_per_rad", 0.0, nonnegative=True)
         name = t.text("name", default=kind)
+        allowed = t.number("allowed_power_w", 0.0, positive=True) if "allowed_power_w" in t.data else 0.0
         t.used.add("source")
         t.finish()
         if kind in DAMPER_TYPES and at in DAMPER_STATIONS:
-            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", ""))))
+            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", "")), allowed))
     return tuple(out)
 
 

@@ -218,7 +218,8 @@ class Damper:
     ``loss_factor``, optionally ``table`` rows (frequency Hz, dynamic stiffness N·m/rad, loss
     factor) interpolated linearly in frequency, held constant outside) or ``"tuned"`` (a plain
     tuned absorber: spring ``stiffness`` and an optional viscous ``damping``). Inertias kg·m²;
-    ``hub_inertia`` is the housing (viscous) or hub (rubber, tuned), added to the station.
+    ``hub_inertia`` is the housing (viscous) or hub (rubber, tuned), added to the station;
+    ``allowed_power`` the continuous heat it may dissipate (W), checked by the verdict.
     """
 
     kind: str
@@ -231,6 +232,8 @@ class Damper:
     table: tuple[tuple[float, float, float], ...] = ()
     name: str = ""
     source: str = ""
+    #: The heat the damper may dissipate continuously, W (its maker's rating); 0: not given.
+    allowed_power: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -46,6 +46,8 @@ class VerdictCase:
     where: list  # the worst section's label at each speed
     damper_power_w: float = 0.0
     damper_power_by_order_w: dict = field(default_factory=dict)
+    #: The dampers' allowed continuous dissipation (their makers' ratings), W; 0: not given.
+    allowed_power_w: float = 0.0
 
     def worst(self) -> int:
         return int(np.argmax(self.value))
@@ -76,11 +78,16 @@ class VerdictResult:
                 b["passable"] = bool(self.limits.transient and b["peak"] <= self.limits.transient
                                      and b["from_rpm"] > c.rpm[0] and b["to_rpm"] < c.rpm[-1])
             verdict = "pass" if not bars else ("pass with barred ranges" if all(b["passable"] for b in bars) else "fail")
+            heat = ("not rated" if not c.allowed_power_w else
+                    "within the rating" if c.damper_power_w <= c.allowed_power_w else "over the rating")
+            if heat == "over the rating":
+                verdict = "fail (damper heat)"
             out.append({"case": c.name, "speed_range_rpm": [float(c.rpm[0]), float(c.rpm[-1])],
                         "worst_section": c.where[i], "worst_rpm": float(c.rpm[i]), "value": float(c.value[i]),
                         "limit": self.limits.continuous, "margin": 1.0 - float(c.value[i]) / self.limits.continuous,
                         "barred_ranges": bars, "transient_limit": self.limits.transient, "verdict": verdict,
-                        "damper_power_w": c.damper_power_w, "damper_power_by_order_w": c.damper_power_by_order_w})
+                        "damper_power_w": c.damper_power_w, "damper_power_by_order_w": c.damper_power_by_order_w,
+                        "damper_allowed_power_w": c.allowed_power_w, "damper_heat": heat if c.damper_power_w else "-"})
         return out
 
     def to_dict(self) -> dict:
@@ -145,6 +152,14 @@ def worst_case(name: str, crank, response, scf, limits: Limits, fillets) -> Verd
     return VerdictCase(name, response.rpm, value, where, power, by_order)
 
 
+def rated(case: VerdictCase, dampers) -> VerdictCase:
+    """``case`` with its dampers' allowed dissipation (when every one is rated; else unrated)."""
+    from dataclasses import replace
+
+    allowed = [d.allowed_power for d in dampers]
+    return replace(case, allowed_power_w=float(sum(allowed)) if allowed and all(a > 0 for a in allowed) else 0.0)
+
+
 def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
                 misfire: bool = True, scf: dict | None = None, rpm=None, setup=None, fillets=None) -> VerdictResult:
     """The verdict table of a crank (or chain file) with ``[limits]``.
@@ -179,8 +194,8 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // 100)))
     cases = [worst_case("without damper", crank, solve_response(setup, ()), scf, limits, fillets)]
     if crank.dampers:
-        cases.append(worst_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf, limits,
-                           fillets))
+        cases.append(rated(worst_case("with the description's damper(s)", crank, solve_response(setup, crank.dampers), scf,
+                                      limits, fillets), crank.dampers))
     objective = "stress" if limits.kind == "stress" else "twist"
     tuned = run_damper(crank, kind, mu, optimise, objective, scf=scf, setup=coarse, fillets=fillets)
     options = [("Den Hartog " + kind + f" damper (mu = {mu:g})", tuned.den_hartog)]
