@@ -353,7 +353,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     s = int(np.flatnonzero(cycle.rpm == nominal.worst_rpm[g])[0])
     images = (ctx.save(nominal.plot().figure, "fatigue_safety.png"),
               ctx.save(nominal.haigh().figure, "fatigue_haigh.png"),
-              ctx.save(cycle.plot(s, g).figure, "fatigue_load_cycle.png"))
+              ctx.save(cycle.plot(s, nominal.cuts[g]).figure, "fatigue_load_cycle.png"))
     ctx.results["fatigue"] = {**nominal.to_dict(), "band": [dict(zip(("damping_ratio", "safety", "fillet", "rpm", "required"), b))
                                                              for b in band],
                               "damping_source": ex.damping_source, "worst_case": worst.to_dict()["governing"],

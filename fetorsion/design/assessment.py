@@ -92,7 +92,9 @@ class CrankAssessment:
     worst_rpm: np.ndarray
     scf_source: str = ""
     notes: list = field(default_factory=list)
-    worst_diameters: np.ndarray | None = None  # each fillet's section diameter, m
+    worst_diameters: np.ndarray | None = None  # each location's section diameter, m
+    #: The load cycle's cut each location reads (an oil bore: the first of its section's cuts).
+    cuts: tuple = ()
 
     @property
     def governing(self) -> int:
@@ -192,6 +194,7 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     kts = [_scf(scf, f.kind) for f in fillets]
     labels, kinds, radii, diameters = [f.label for f in fillets], [f"{f.kind}-fillet" for f in fillets], \
         [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
+    cuts_read = list(range(len(fillets)))
     bores = oil_bore_sections(crank, fillets)
     if bores:
         if "oil_bore_bending" not in scf or "oil_bore_torsion" not in scf:
@@ -207,6 +210,7 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
             kinds.append("oil-bore")
             radii.append(0.5 * crank.oil_holes.diameter)
             diameters.append(diameter)
+            cuts_read.append(cuts[0])
     s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
     t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
     where = list(zip(labels, kinds, diameters, radii, kts))
@@ -233,4 +237,5 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
     return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), labels, safety, worst,
-                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes, np.array(diameters))
+                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes, np.array(diameters),
+                           tuple(cuts_read))

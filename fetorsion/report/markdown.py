@@ -323,6 +323,15 @@ def summary_lines(run: RunOutcome) -> list[str]:
         out.append(f"- **Barred speed ranges without a damper:** {', '.join(bars) or 'none'} "
                    f"(checked {r['speed_range_rpm'][0]:.0f}-{r['speed_range_rpm'][1]:.0f} rpm, to overspeed; "
                    f"{ver.model or 'lumped chain'}).")
+    fat = run.fatigue
+    if fat is not None and not isinstance(fat, Skipped):
+        w = fat.worst_case
+        g = w.governing
+        safety, required = float(w.safety[:, g].min()), float(w.worst.locations[g].required)
+        zeta = min(b[0] for b in fat.band)
+        out.append(f"- **Fatigue, bending and torsion ({w.method}): {w.labels[g]} at {w.worst_rpm[g]:.0f} rpm, safety "
+                   f"{safety:.2f} against {required:.2f} at the damping band's low end (ζ = {zeta:.4f}): "
+                   f"{'pass' if safety >= required else 'FAIL'}** ({fat.model}).")
     return ["## Summary", "", *out, ""] if out else []
 
 
