@@ -13,8 +13,12 @@ GEOMETRY = ROOT / "geometry"
 
 # Studies keep every sample's result in a store (default ~/.cache/fetorsion/samples): the tests,
 # and the command lines they start, use a store of their own that lives as long as the session.
-os.environ["FETORSION_STORE"] = tempfile.mkdtemp(prefix="fetorsion-test-store-")
-atexit.register(shutil.rmtree, os.environ["FETORSION_STORE"], ignore_errors=True)
+# A process the session starts that imports this file again (a Dask worker unpickling a test's
+# model, a spawned studies process) inherits the store and makes none of its own: it would leave
+# it behind, since such processes end without running their exit handlers.
+if "FETORSION_TEST_STORE" not in os.environ:
+    os.environ["FETORSION_STORE"] = os.environ["FETORSION_TEST_STORE"] = tempfile.mkdtemp(prefix="fetorsion-test-store-")
+    atexit.register(shutil.rmtree, os.environ["FETORSION_STORE"], ignore_errors=True)
 
 
 def read_raw(name: str) -> dict:
