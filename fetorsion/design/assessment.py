@@ -196,9 +196,8 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
     cuts_read = list(range(len(fillets)))
     bores = oil_bore_sections(crank, fillets)
-    if bores:
-        if "oil_bore_bending" not in scf or "oil_bore_torsion" not in scf:
-            raise FetorsionError(f"the crank has oil bores but no oil-bore SCFs in {scf.get('source', 'the SCFs given')}")
+    unassessed = bores and not ("oil_bore_bending" in scf and "oil_bore_torsion" in scf)
+    if not unassessed:
         for label, cuts, diameter, bore in bores:
             # the bore's exit at mid-length: the mean of the section's own fillet cuts' nominal
             # stresses (the moment is linear along a pin or journal between its webs, the torque
@@ -233,6 +232,9 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
                                            for a, st in zip(worst.locations, stresses)))
     notes = [f"local stresses: nominal section stresses × SCF (bending {kts[0][0]:.2f} …, torsion {kts[0][1]:.2f} …)"]
+    if unassessed:
+        notes.append(f"oil-bore exits NOT assessed ({', '.join(b[0] for b in bores)}): no oil-bore SCF in "
+                     f"{scf.get('source', 'the SCFs given')}")
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")

@@ -42,7 +42,7 @@ from ..description.model import Crank
 from ..errors import FetorsionError
 from ..fe.assembly import lame
 from ..fe.tetmesh import TetMesh
-from ..webs.throwfe import TORQUE, default_mesh_size, stepped_shaft_mesh, throw_of, torsion_solution
+from ..webs.throwfe import TORQUE, default_mesh_size, stepped_shaft_mesh, throw_of
 
 #: Nodes within this share of the fillet radius outside the fillet's nominal zone still count
 #: as the fillet (the curved mesh's nodes sit on the true surface up to round-off).
@@ -77,19 +77,75 @@ def peterson_stepped_torsion(D: float, d: float, r: float) -> float:
     return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
 
 
+def peterson_stepped_bending(D: float, d: float, r: float) -> float:
+    """Kt of a stepped round bar in bending (shoulder fillet), Peterson's curve fit (Pilkey &
+    Pilkey, *Peterson's Stress Concentration Factors*, 3rd ed., chapter 3, stepped bar in
+    bending), as printed on AMES Web, "Stepped shaft with shoulder fillet" (0.1 ≤ h/r ≤ 20; one
+    coefficient set to h/r = 2, another above). Same form and nominal stress as
+    :func:`roark_stepped_bending`."""
+    h = 0.5 * (D - d)
+    hr = h / r
+    if not 0.1 <= hr <= 20.0:
+        raise FetorsionError(f"Peterson's bending fit holds for 0.1 <= h/r <= 20, got h/r = {hr:.3g}")
+    s = math.sqrt(hr)
+    if hr <= 2.0:
+        c = (0.947 + 1.206 * s - 0.131 * hr, 0.022 - 3.405 * s + 0.915 * hr,
+             0.869 + 1.777 * s - 0.555 * hr, -0.810 + 0.422 * s - 0.260 * hr)
+    else:
+        c = (1.232 + 0.832 * s - 0.008 * hr, -3.813 + 0.968 * s - 0.260 * hr,
+             7.423 - 4.868 * s + 0.869 * hr, -3.839 + 3.070 * s - 0.600 * hr)
+    t = 2 * h / D
+    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+
+
+def roark_stepped_bending(D: float, d: float, r: float) -> float:
+    """Kt of a stepped round bar in bending (square shoulder with a fillet), the curve fit of
+    [Roark] Table 17.1 (after Peterson's charts), as printed on eng-calculations.com, "Square
+    shoulder with fillet in circular shaft for elastic stress, bending" (0.25 ≤ h/r ≤ 20):
+    Kt = C1 + C2 (2h/D) + C3 (2h/D)² + C4 (2h/D)³, C_i = a + b √(h/r) + c h/r, one coefficient
+    set for h/r ≤ 2 and another above. Nominal stress σ_nom = 32 M / (π d³).
+
+    Parameters
+    ----------
+    D, d : float
+        Larger and smaller diameter (any one length unit).
+    r : float
+        Fillet radius, same unit.
+    """
+    h = 0.5 * (D - d)
+    hr = h / r
+    if not 0.25 <= hr <= 20.0:
+        raise FetorsionError(f"Roark's bending fit holds for 0.25 <= h/r <= 20, got h/r = {hr:.3g}")
+    s = math.sqrt(hr)
+    if hr <= 2.0:
+        c = (0.927 + 1.149 * s - 0.086 * hr, 0.015 - 3.281 * s + 0.837 * hr,
+             0.847 + 1.716 * s - 0.506 * hr, -0.790 + 0.417 * s - 0.246 * hr)
+    else:
+        c = (1.225 + 0.831 * s - 0.010 * hr, -3.790 + 0.958 * s - 0.257 * hr,
+             7.374 - 4.834 * s + 0.862 * hr, -3.809 + 3.046 * s - 0.595 * hr)
+    t = 2 * h / D
+    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+
+
+def nominal_bending(moment, diameter: float, bore: float = 0.0):
+    """σ_nom = 32 M D / (π (D⁴ − d_i⁴)), Pa, for a bending moment M (N·m), outer diameter D and bore d_i (m)."""
+    return 32.0 * np.asarray(moment) * diameter / (math.pi * (diameter**4 - bore**4))
+
+
 def nominal_shear(torque, diameter: float, bore: float = 0.0):
     """τ_nom = 16 T D / (π (D⁴ − d_i⁴)), Pa, for torque T (N·m, scalar or array), outer
     diameter D and bore d_i (m)."""
     return 16.0 * np.asarray(torque) * diameter / (math.pi * (diameter**4 - bore**4))
 
 
-def nodal_stress(sol, material) -> tuple[np.ndarray, np.ndarray]:
+def nodal_stress(sol, material, measure=None) -> tuple[np.ndarray, np.ndarray]:
     """Stress at every DOF-numbered node, from each element's P2 gradient at its own nodes.
 
     Returns the stress tensors averaged over the elements sharing each node (Pa, shape
     (nodes, 3, 3)) and, per node, the largest shear (σ₁ − σ₃)/2 of any one of those elements
     (Pa, shape (nodes,)): the averaged value is the usual nodal stress, the element-wise largest
-    an upper estimate; their gap measures the discretisation error at a peak.
+    an upper estimate; their gap measures the discretisation error at a peak. ``measure``: the
+    element-wise quantity instead of the largest shear (e.g. :func:`max_principal`).
     """
     from skfem import Basis, ElementTetP2
 
@@ -107,8 +163,13 @@ def nodal_stress(sol, material) -> tuple[np.ndarray, np.ndarray]:
     total = np.stack([np.bincount(dofs, flat[k], minlength=n) for k in range(9)], axis=1)
     count = np.bincount(dofs, minlength=n)
     each = np.zeros(n)
-    np.maximum.at(each, dofs, max_shear(flat.T.reshape(-1, 3, 3)))
+    np.maximum.at(each, dofs, (measure or max_shear)(flat.T.reshape(-1, 3, 3)))
     return (total / np.maximum(count, 1)[:, None]).reshape(n, 3, 3), each
+
+
+def max_principal(stress: np.ndarray) -> np.ndarray:
+    """σ₁, the largest principal stress of tensors (..., 3, 3), Pa."""
+    return np.linalg.eigvalsh(stress)[..., -1]
 
 
 def max_shear(stress: np.ndarray) -> np.ndarray:
@@ -152,14 +213,19 @@ class FilletStress:
 
 
 def stepped_shaft_scf(d: float, D: float, fillet: float, size: float, fillet_size: float | None = None,
-                      material=None) -> tuple[FilletStress, dict]:
-    """FE torsional SCF of a stepped round bar (lengths 3 d and 2 D either side of the step).
+                      material=None, load: str = "torsion") -> tuple[FilletStress, dict]:
+    """FE SCF of a stepped round bar (lengths 3 d and 2 D either side of the step) under a pure
+    end couple: ``torsion`` (peak largest shear over 16 T/(π d³)) or ``bending`` (peak largest
+    principal stress over 32 M/(π d³)).
 
     Returns the fillet's :class:`FilletStress` and the mesh figures (``nodes``, ``elements``,
     ``dofs``, ``seconds``).
     """
     from ..description.model import Material
+    from ..webs.throwfe import end_load_solutions
 
+    if load not in SCF_LOADS:
+        raise FetorsionError(f"load must be one of {', '.join(SCF_LOADS)}, got {load!r}")
     material = material or Material(210e9, 0.3, 7850.0, "steel")
     t0 = time.perf_counter()
     l_small, l_large = 3 * d, 2 * D
@@ -168,11 +234,13 @@ def stepped_shaft_scf(d: float, D: float, fillet: float, size: float, fillet_siz
     # Gmsh in a child process: a mesher abort becomes a message, not the end of the caller.
     mesh = call_isolated(stepped_shaft_mesh, d, D, l_small, l_large, fillet, size, fillet_size,
                          what="Gmsh, stepped shaft")
-    sol = torsion_solution(mesh, material)
-    tau = _shear(sol, material)
+    sol = end_load_solutions(mesh, material, (SCF_LOADS[load],))[0]
     xyz = sol.skfem_mesh.doflocs.T
     zone = fillet_zone(xyz, l_small, -1, (0.0, 0.0), 0.5 * d, fillet)
-    res = _peak("step fillet", tau, xyz, zone, float(nominal_shear(TORQUE, d)))
+    if load == "torsion":
+        res = _peak("step fillet", _shear(sol, material), xyz, zone, float(nominal_shear(TORQUE, d)))
+    else:
+        res = _peak("step fillet", _principal(sol, material), xyz, zone, float(nominal_bending(TORQUE, d)))
     return res, {"nodes": int(mesh.n_nodes), "elements": int(mesh.n_elements), "dofs": int(sol.dofs),
                  "seconds": time.perf_counter() - t0}
 
@@ -191,44 +259,76 @@ def _shear(sol, material):
     return max_shear(avg), each
 
 
+def _principal(sol, material):
+    """(σ₁ of the averaged nodal stress, the element-wise largest σ₁)."""
+    avg, each = nodal_stress(sol, material, max_principal)
+    return max_principal(avg), each
+
+
+#: Loads of the SCF cases at the loaded face: torsion about x and bending about z (for a throw at
+#: crank angle 0, whose pin lies on +y: bending in the throw's plane), N·m.
+BENDING_LOAD = (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)
+#: The SCF load cases by name.
+SCF_LOADS = {"torsion": (0.0, 0.0, 0.0, TORQUE, 0.0, 0.0), "bending": BENDING_LOAD}
+
+
 def throw_fillet_scf(crank: Crank, index: int = 0, mesh_size: float | None = None,
                      fillet_size: float | None = None) -> tuple[list[FilletStress], dict]:
-    """FE torsional SCFs of the four fillets of throw ``index`` (0-based) of ``crank``.
+    """FE torsional SCFs of the four fillets of throw ``index`` (0-based) of ``crank``
+    (:func:`throw_scfs`' torsion case)."""
+    cases, info = throw_scfs(crank, index, mesh_size, fillet_size, ("torsion",))
+    return cases["torsion"], info
 
-    The throw (journal centre to journal centre) is meshed with the mesher's ``stress``
-    purpose and twisted between its rigid end faces. Returns the fillets (journal, web 1),
-    (pin, web 1), (pin, web 2), (journal, web 2) and the mesh figures.
+
+def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fillet_size: float | None = None,
+               loads=tuple(SCF_LOADS)) -> tuple[dict, dict]:
+    """FE SCFs of the four fillets of throw ``index`` (0-based) of ``crank`` under each of ``loads``.
+
+    The throw (journal centre to journal centre, crank angle 0: its pin on +y) is meshed with the
+    mesher's ``stress`` purpose and loaded between its rigid end faces by a pure couple, every
+    case from one factorisation: ``torsion`` (about x; peak largest shear over 16 T D/(π(D⁴ − d⁴)))
+    and ``bending`` in the throw's plane (about z; peak largest principal stress over
+    32 M D/(π(D⁴ − d⁴))). A couple loads every pin and journal section by itself (statics).
+    Returns {load: the fillets (journal, web 1), (pin, web 1), (pin, web 2), (journal, web 2)}
+    and the mesh figures.
     """
     from ..solid.mesh import default_fillet_size, mesh_crank
+    from ..webs.throwfe import end_load_solutions
 
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         raise FetorsionError(f"{crank.name}: fillet SCFs need fillets.journal and fillets.pin > 0")
+    unknown = [k for k in loads if k not in SCF_LOADS]
+    if unknown:
+        raise FetorsionError(f"load must be one of {', '.join(SCF_LOADS)}, got {unknown[0]!r}")
     t0 = time.perf_counter()
     throw = throw_of(crank, index)
     size = default_mesh_size(throw) if mesh_size is None else mesh_size
     fine = default_fillet_size(throw, size, "stress") if fillet_size is None else fillet_size
     cm = mesh_crank(throw, size, fine, "stress")
     mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
-    sol = torsion_solution(mesh, throw.material)
-    tau = _shear(sol, throw.material)
-    xyz = sol.skfem_mesh.doflocs.T
+    sols = end_load_solutions(mesh, throw.material, [SCF_LOADS[k] for k in loads])
     j1, j2 = throw.journals
     w1, w2 = throw.webs
     pin = throw.pins[0]
     R = throw.engine.crank_radius
     x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, w2.thickness])  # faces of the stack
     rj, rp = crank.fillets.journal, crank.fillets.pin
-    out = [
-        _peak("journal fillet, web 1", tau, xyz, fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
-              float(nominal_shear(TORQUE, j1.diameter, j1.bore))),
-        _peak("pin fillet, web 1", tau, xyz, fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
-              float(nominal_shear(TORQUE, pin.diameter, pin.bore))),
-        _peak("pin fillet, web 2", tau, xyz, fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
-              float(nominal_shear(TORQUE, pin.diameter, pin.bore))),
-        _peak("journal fillet, web 2", tau, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
-              float(nominal_shear(TORQUE, j2.diameter, j2.bore))),
-    ]
-    return out, {"nodes": int(mesh.n_nodes), "elements": int(mesh.n_elements), "dofs": int(sol.dofs),
+    out = {}
+    for load, sol in zip(loads, sols):
+        xyz = sol.skfem_mesh.doflocs.T
+        stress = _shear(sol, throw.material) if load == "torsion" else _principal(sol, throw.material)
+        nominal = nominal_shear if load == "torsion" else nominal_bending
+        out[load] = [
+            _peak("journal fillet, web 1", stress, xyz, fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
+                  float(nominal(TORQUE, j1.diameter, j1.bore))),
+            _peak("pin fillet, web 1", stress, xyz, fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
+                  float(nominal(TORQUE, pin.diameter, pin.bore))),
+            _peak("pin fillet, web 2", stress, xyz, fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
+                  float(nominal(TORQUE, pin.diameter, pin.bore))),
+            _peak("journal fillet, web 2", stress, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
+                  float(nominal(TORQUE, j2.diameter, j2.bore))),
+        ]
+    return out, {"nodes": int(mesh.n_nodes), "elements": int(mesh.n_elements), "dofs": int(sols[0].dofs),
                  "mesh_size_m": size, "fillet_size_m": fine, "seconds": time.perf_counter() - t0}
 
 
@@ -257,7 +357,8 @@ class FilletSCFResult:
     def to_dict(self) -> dict:
         return {"name": self.name, "throw": self.throw + 1, "rows": self.rows,
                 "pin_scf": self.pin_scf, "journal_scf": self.journal_scf,
-                "definition": "peak (sigma1 - sigma3)/2 on the fillet / (16 T D / (pi (D^4 - d_i^4)))"}
+                "definition": "torsion: peak (sigma1 - sigma3)/2 on the fillet / (16 T D / (pi (D^4 - d_i^4))); "
+                              "bending in the throw's plane: peak sigma1 / (32 M D / (pi (D^4 - d_i^4)))"}
 
     def table(self) -> str:
         head = (f"{'size [mm]':>9} {'fillet [mm]':>11} {'elements':>9} {'DOF':>9} {'time [s]':>8} "
@@ -306,11 +407,20 @@ def run_fillet_scf(crank: Crank, refinements=(1.0, 0.5, 0.33, 0.25), throw: int 
     fine = default_fillet_size(throw_of(crank, throw), base, "stress")
     res = FilletSCFResult(crank.name, throw)
     for f in refinements:
-        fillets, info = throw_fillet_scf(crank, throw, base, fine * f)
-        res.rows.append({**info, "pin_scf": max(s.scf for s in fillets if s.name.startswith("pin")),
-                         "journal_scf": max(s.scf for s in fillets if s.name.startswith("journal")),
-                         "fillets": [s.__dict__ for s in fillets]})
+        cases, info = throw_scfs(crank, throw, base, fine * f)
+        res.rows.append({**info, **_larger_of_each(cases), "fillets": [s.__dict__ for s in cases["torsion"]],
+                         "bending_fillets": [s.__dict__ for s in cases["bending"]]})
     return res
+
+
+def _larger_of_each(cases: dict) -> dict:
+    """The larger SCF of each pair of fillets (pin, journal), per load case."""
+    out = {}
+    for load, fillets in cases.items():
+        tag = "" if load == "torsion" else "_bending"
+        for kind in ("pin", "journal"):
+            out[f"{kind}{tag}_scf"] = max(s.scf for s in fillets if s.name.startswith(kind))
+    return out
 
 
 #: Fillet SCFs of the reference cranks' throws from the convergence study
@@ -331,8 +441,9 @@ def scf_key(crank: Crank, throw: int = 0) -> str:
 def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
     """Pin and journal fillet SCFs of ``crank`` (its throw ``throw`` stands for all): shipped
     values of the reference cranks' convergence study when the throw matches, else one static FE
-    at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns ``pin``, ``journal`` and
-    ``source`` (how they were obtained)."""
+    at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns ``pin``, ``journal``
+    (torsion), ``pin_bending``, ``journal_bending`` (bending in the throw's plane) and ``source``
+    (how they were obtained)."""
     shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
     entry = shipped.get(scf_key(crank, throw))
     if entry is not None:
@@ -341,7 +452,8 @@ def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
 
     t = throw_of(crank, throw)
     fine = DEFAULT_FILLET_SHARE * default_fillet_size(t, default_mesh_size(t), "stress")
-    fillets, info = throw_fillet_scf(crank, throw, fillet_size=fine)
-    return {"pin": max(s.scf for s in fillets if s.name.startswith("pin")),
-            "journal": max(s.scf for s in fillets if s.name.startswith("journal")),
+    cases, info = throw_scfs(crank, throw, fillet_size=fine)
+    each = _larger_of_each(cases)
+    return {"pin": each["pin_scf"], "journal": each["journal_scf"], "pin_bending": each["pin_bending_scf"],
+            "journal_bending": each["journal_bending_scf"],
             "source": f"static 3D FE of throw {throw + 1}, fillet elements {fine * 1e3:.2f} mm, {info['dofs']} DOF"}

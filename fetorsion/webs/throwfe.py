@@ -179,6 +179,20 @@ def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded:
                      backend: str = "auto") -> TorsionSolution:
     """Solve the static torsion of :func:`static_torsion` and keep the whole displacement field
     (for stresses: :mod:`fetorsion.design.scf`). Arguments as for :func:`static_torsion`."""
+    return end_load_solutions(mesh, material, (TORSION_LOAD,), fixed, loaded, backend)[0]
+
+
+#: The loaded face's six generalised forces (Fx, Fy, Fz, Mx, My, Mz) of the torsion case, N and N·m.
+TORSION_LOAD = (0.0, 0.0, 0.0, TORQUE, 0.0, 0.0)
+
+
+def end_load_solutions(mesh: TetMesh, material, loads, fixed: str = "front_face", loaded: str = "rear_face",
+                       backend: str = "auto") -> list[TorsionSolution]:
+    """Static fields of a solid held at one rigidly coupled end face and loaded at the other, one
+    per load in ``loads`` ((Fx, Fy, Fz, Mx, My, Mz) at the loaded face's point on the x axis, N
+    and N·m), from one factorisation. A pure couple at the end loads every section by that
+    couple (statics). ``twist`` is the loaded face's rotation about the load's moment axis
+    (rad; torsion: θx)."""
     m, dof_of_node = assembly.skfem_mesh(mesh)
     basis = assembly.p2_basis(m)
     K = assembly.stiffness(basis, material.youngs_modulus, material.poisson_ratio)
@@ -187,7 +201,7 @@ def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded:
     for name in (fixed, loaded):
         nodes = dof_of_node[mesh.node_sets[name]]
         if len(nodes) == 0 or (nodes < 0).any():
-            raise FetorsionError(f"static torsion: node set {name!r} is empty or not in the mesh")
+            raise FetorsionError(f"static end load: node set {name!r} is empty or not in the mesh")
         # Reference point on the x axis in the face plane: θx there is the section's twist.
         centre = np.array([xyz[nodes, 0].mean(), 0.0, 0.0])
         bodies.append(RigidBody(name, nodes, 0.0, np.zeros((3, 3)), centre))
@@ -197,16 +211,21 @@ def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded:
     n = red.n_free
     keep = np.r_[np.arange(n), np.arange(n + 6, n + 12)]
     Kk = Kr[keep][:, keep]
-    f = np.zeros(len(keep))
-    f[n + 3] = TORQUE  # θx of the loaded body
+    F = np.zeros((len(keep), len(loads)))
+    F[n:n + 6] = np.asarray(loads, float).T
     solve = factorize(Kk.tocsc(), backend)
-    q_kept = solve(f)
-    phi = float(q_kept[n + 3])
-    if not phi > 0:
-        raise FetorsionError(f"static torsion: non-positive twist {phi:.3g} rad (singular model?)")
-    q = np.zeros(Kr.shape[0])
-    q[keep] = q_kept
-    return TorsionSolution(m, basis, red.T @ q, phi, len(keep), dof_of_node)
+    Q = np.asarray(solve(F)).reshape(len(keep), len(loads))
+    out = []
+    for j, load in enumerate(loads):
+        moment = np.asarray(load[3:], float)
+        axis = moment / np.linalg.norm(moment) if np.linalg.norm(moment) > 0 else np.zeros(3)
+        turn = float(axis @ Q[n + 3:n + 6, j])
+        if np.linalg.norm(moment) > 0 and not turn > 0:
+            raise FetorsionError(f"static end load: non-positive rotation {turn:.3g} rad (singular model?)")
+        q = np.zeros(Kr.shape[0])
+        q[keep] = Q[:, j]
+        out.append(TorsionSolution(m, basis, red.T @ q, turn, len(keep), dof_of_node))
+    return out
 
 
 def torsional_stiffness_fe(description: Crank, mesh_size: float | None = None,
