@@ -362,10 +362,13 @@ class FilletSCFResult:
 
     def table(self) -> str:
         head = (f"{'size [mm]':>9} {'fillet [mm]':>11} {'elements':>9} {'DOF':>9} {'time [s]':>8} "
-                f"{'pin SCF':>8} {'journal SCF':>11}")
-        lines = [f"{self.name}: torsional SCF at the fillets of throw {self.throw + 1} (static 3D FE)", head]
+                f"{'pin SCF':>8} {'journal SCF':>11} {'pin bending':>11} {'journal bending':>15}")
+        lines = [f"{self.name}: SCFs at the fillets of throw {self.throw + 1} (static 3D FE; torsion, and bending "
+                 "in the throw's plane)", head]
         lines += [f"{r['mesh_size_m'] * 1e3:9.2f} {r['fillet_size_m'] * 1e3:11.3f} {r['elements']:9d} {r['dofs']:9d} "
-                  f"{r['seconds']:8.1f} {r['pin_scf']:8.3f} {r['journal_scf']:11.3f}" for r in self.rows]
+                  f"{r['seconds']:8.1f} {r['pin_scf']:8.3f} {r['journal_scf']:11.3f} "
+                  f"{r.get('pin_bending_scf', float('nan')):11.3f} {r.get('journal_bending_scf', float('nan')):15.3f}"
+                  for r in self.rows]
         return "\n".join(lines)
 
     def plot(self, ax=None):
