@@ -168,6 +168,7 @@ API_ONLY = {
     "load_condensed": "reads the .npz that 'fetorsion condense --npz' writes",
     "run_fillet_scf": "the SCF mesh-convergence study (benchmarks/bench_fillet_scf.py, docs/fillet-stress.md)",
     "stepped_shaft_scf": "the SCF method on Peterson's stepped shaft: the validation of fillet_scfs",
+    "peterson_stepped_bending": "Peterson's bending fit: the published check of the bending SCF (tests/test_scf.py)",
     "step_fillet_length": "Nestorides' fillet length: the check of the FE throw stiffness",
     "chart_point": "one point of the computed web chart (scripts/web_chart.py builds the chart from it)",
     "render_gif": "an animated mode shape for slides, beside the report's still images",

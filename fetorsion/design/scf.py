@@ -272,14 +272,6 @@ BENDING_LOAD = (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)
 SCF_LOADS = {"torsion": (0.0, 0.0, 0.0, TORQUE, 0.0, 0.0), "bending": BENDING_LOAD}
 
 
-def throw_fillet_scf(crank: Crank, index: int = 0, mesh_size: float | None = None,
-                     fillet_size: float | None = None) -> tuple[list[FilletStress], dict]:
-    """FE torsional SCFs of the four fillets of throw ``index`` (0-based) of ``crank``
-    (:func:`throw_scfs`' torsion case)."""
-    cases, info = throw_scfs(crank, index, mesh_size, fillet_size, ("torsion",))
-    return cases["torsion"], info
-
-
 def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fillet_size: float | None = None,
                loads=tuple(SCF_LOADS)) -> tuple[dict, dict]:
     """FE SCFs of the four fillets of throw ``index`` (0-based) of ``crank`` under each of ``loads``.
