@@ -77,25 +77,28 @@ def peterson_stepped_torsion(D: float, d: float, r: float) -> float:
     return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
 
 
+def _shoulder_fit(D: float, d: float, r: float, low, high, hr_min: float, name: str) -> float:
+    """Kt = C1 + C2 (2h/D) + C3 (2h/D)² + C4 (2h/D)³ with C_i = a + b √(h/r) + c h/r, the (a, b, c)
+    rows ``low`` for h/r ≤ 2 and ``high`` above (hr_min ≤ h/r ≤ 20)."""
+    h = 0.5 * (D - d)
+    hr = h / r
+    if not hr_min <= hr <= 20.0:
+        raise FetorsionError(f"{name}'s bending fit holds for {hr_min:g} <= h/r <= 20, got h/r = {hr:.3g}")
+    s = math.sqrt(hr)
+    t = 2 * h / D
+    return sum((a + b * s + c * hr) * t**k for k, (a, b, c) in enumerate(low if hr <= 2.0 else high))
+
+
 def peterson_stepped_bending(D: float, d: float, r: float) -> float:
     """Kt of a stepped round bar in bending (shoulder fillet), Peterson's curve fit (Pilkey &
     Pilkey, *Peterson's Stress Concentration Factors*, 3rd ed., chapter 3, stepped bar in
     bending), as printed on AMES Web, "Stepped shaft with shoulder fillet" (0.1 ≤ h/r ≤ 20; one
     coefficient set to h/r = 2, another above). Same form and nominal stress as
     :func:`roark_stepped_bending`."""
-    h = 0.5 * (D - d)
-    hr = h / r
-    if not 0.1 <= hr <= 20.0:
-        raise FetorsionError(f"Peterson's bending fit holds for 0.1 <= h/r <= 20, got h/r = {hr:.3g}")
-    s = math.sqrt(hr)
-    if hr <= 2.0:
-        c = (0.947 + 1.206 * s - 0.131 * hr, 0.022 - 3.405 * s + 0.915 * hr,
-             0.869 + 1.777 * s - 0.555 * hr, -0.810 + 0.422 * s - 0.260 * hr)
-    else:
-        c = (1.232 + 0.832 * s - 0.008 * hr, -3.813 + 0.968 * s - 0.260 * hr,
-             7.423 - 4.868 * s + 0.869 * hr, -3.839 + 3.070 * s - 0.600 * hr)
-    t = 2 * h / D
-    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+    return _shoulder_fit(D, d, r, ((0.947, 1.206, -0.131), (0.022, -3.405, 0.915), (0.869, 1.777, -0.555),
+                                   (-0.810, 0.422, -0.260)),
+                         ((1.232, 0.832, -0.008), (-3.813, 0.968, -0.260), (7.423, -4.868, 0.869),
+                          (-3.839, 3.070, -0.600)), 0.1, "Peterson")
 
 
 def roark_stepped_bending(D: float, d: float, r: float) -> float:
@@ -112,19 +115,10 @@ def roark_stepped_bending(D: float, d: float, r: float) -> float:
     r : float
         Fillet radius, same unit.
     """
-    h = 0.5 * (D - d)
-    hr = h / r
-    if not 0.25 <= hr <= 20.0:
-        raise FetorsionError(f"Roark's bending fit holds for 0.25 <= h/r <= 20, got h/r = {hr:.3g}")
-    s = math.sqrt(hr)
-    if hr <= 2.0:
-        c = (0.927 + 1.149 * s - 0.086 * hr, 0.015 - 3.281 * s + 0.837 * hr,
-             0.847 + 1.716 * s - 0.506 * hr, -0.790 + 0.417 * s - 0.246 * hr)
-    else:
-        c = (1.225 + 0.831 * s - 0.010 * hr, -3.790 + 0.958 * s - 0.257 * hr,
-             7.374 - 4.834 * s + 0.862 * hr, -3.809 + 3.046 * s - 0.595 * hr)
-    t = 2 * h / D
-    return c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3
+    return _shoulder_fit(D, d, r, ((0.927, 1.149, -0.086), (0.015, -3.281, 0.837), (0.847, 1.716, -0.506),
+                                   (-0.790, 0.417, -0.246)),
+                         ((1.225, 0.831, -0.010), (-3.790, 0.958, -0.257), (7.374, -4.834, 0.862),
+                          (-3.809, 3.046, -0.595)), 0.25, "Roark")
 
 
 def nominal_bending(moment, diameter: float, bore: float = 0.0):
