@@ -226,6 +226,9 @@ class CondensedCrank:
     #: (:func:`run_condensed` ``start_modes``; :func:`fetorsion.fe.crankfe.run_modal` ``ritz``);
     #: None unless asked for.
     free_ritz: tuple | None = field(default=None, repr=False)
+    #: Static centrifugal load of the crank's own mass per unit Ω², (r,):
+    #: order 0 in the rotating frame (the mean load cycle adds Ω² times it); None without.
+    centrifugal: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def n_master_dofs(self) -> int:
@@ -398,13 +401,16 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
         ritz = (w2[:start_modes], red.basis @ V[:, :start_modes])
     red.basis = sys_.expand(red.basis)
     tg = time.perf_counter()
-    gyro = None
+    gyro = centrifugal = None
     if sys_.node_mass_matrix is not None:
-        from .rotating import attachment_rotating_matrices, reduced_coriolis
+        from .rotating import attachment_rotating_matrices, reduced_centrifugal, reduced_coriolis
 
         gyro = reduced_coriolis(sys_.node_mass_matrix, red.basis)
         m = 6 * len(labels)
         gyro[:m, :m] += attachment_rotating_matrices(sys_.attachment_mass, positions)[0]
+        # the crank's own mass only: a pin's attachment lumps the rod's rotating mass with half the
+        # reciprocating one, whose mean inertia force the pin forces carry already
+        centrifugal = reduced_centrifugal(sys_.node_mass_matrix, red.basis, sys_.xyz)
     if not keep_basis:
         red.basis = None
     t3 = time.perf_counter()
@@ -414,7 +420,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
                           sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,
-                          gyro, ritz)
+                          gyro, ritz, centrifugal)
 
 
 #: Layout tag of the saved file; bump when the layout changes.

@@ -103,6 +103,13 @@ def reduced_coriolis(node_mass, basis: np.ndarray) -> np.ndarray:
     return 0.5 * (G - G.T)
 
 
+def reduced_centrifugal(node_mass, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
+    """:func:`centrifugal_load` from the scalar node mass matrix m (M = m ⊗ I₃): Bᵀ N X reads
+    B_yᵀ m y + B_zᵀ m z, B_y, B_z the y and z rows of the basis (per unit Ω², (r,))."""
+    xyz = np.asarray(dof_xyz, float)
+    return basis[1::3].T @ np.asarray(node_mass @ xyz[:, 1]) + basis[2::3].T @ np.asarray(node_mass @ xyz[:, 2])
+
+
 def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
     """Reduced static centrifugal load per unit Ω², Bᵀ N X (N·s² per unit coordinate).
 

@@ -17,8 +17,10 @@ the axis and its pin direction e_r = (0, cos a, sin a); the bending moment **in*
 the component about e_t = (0, −sin a, cos a), the one that bends the pin fillets open and shut
 under the radial gas and inertia forces.
 
-Left out: the centrifugal load of the crank's own rotating masses (counterweights, webs) and
-of the rods' rotating parts, which adds a constant bending to the mean.
+The mean also carries the centrifugal load of the crank's own mass (Ω² times
+``CondensedCrank.centrifugal``: counterweights, webs, pins). Left out: that of the rods'
+rotating big ends (a pin's attachment lumps it with half the reciprocating mass, whose mean
+inertia force the pin forces carry already).
 """
 
 from __future__ import annotations
@@ -48,7 +50,8 @@ def mean_master_loads(cc: CondensedCrank, rpm) -> np.ndarray:
 
 
 def static_solution(cc: CondensedCrank, loads: np.ndarray, support: str = "bearings") -> np.ndarray:
-    """Reduced coordinates (..., r) under static master loads (..., 6·masters), N and N·m.
+    """Reduced coordinates (..., r) under static loads on the master DOF (..., 6·masters; N and
+    N·m) or on every reduced coordinate (..., r).
 
     What ``support`` leaves free is held at the last master (the flywheel end): its θx (the load
     torque the driveline reacts) and, if the crank can still slide, its axial motion; every
@@ -73,7 +76,7 @@ def static_solution(cc: CondensedCrank, loads: np.ndarray, support: str = "beari
     if np.linalg.eigvalsh(Kk / np.abs(K).max())[0] <= 1e-10:
         raise FetorsionError(f"{cc.crank.name}: the crank is not held against every rigid motion in {support}")
     F = np.zeros(loads.shape[:-1] + (r,))
-    F[..., :m] = loads
+    F[..., :loads.shape[-1]] = loads
     z = np.zeros_like(F)
     z[..., keep] = np.linalg.solve(Kk, F[..., keep].T).T
     return z
@@ -183,7 +186,12 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
     n = len(keep)
     vib = np.einsum("cjd,sod->scjo", rows, theta[:, :, :n])  # complex per order
     angles = np.arange(samples) * cycle_angle(cc.crank.engine) / samples
-    z0 = static_solution(cc, mean_master_loads(cc, setup.rpm))
+    m = cc.n_master_dofs
+    loads = np.zeros((len(setup.rpm), cc.reduced.size))
+    loads[:, :m] = mean_master_loads(cc, setup.rpm)
+    if cc.centrifugal is not None:  # the crank's own rotating mass (counterweights, webs, pins)
+        loads += np.outer((np.asarray(setup.rpm) * 2 * np.pi / 60) ** 2, cc.centrifugal)
+    z0 = static_solution(cc, loads)
     mean = np.einsum("cjr,sr->scj", cc.cut_rows, z0)
     history = mean[..., None] + waveform(vib, setup.orders, angles)
     labels = list(setup.section_labels) if len(setup.section_labels) == len(rows) else \
