@@ -176,7 +176,6 @@ API_ONLY = {
     # the rotating-frame terms of the condensed crank (fe/rotating.py), tested on a spinning shaft
     # and on point-mass bodies; wired into run_condensed and the coupled response next
     "rotating_frame_matrices": "Coriolis and spin-softening matrices on the Craig–Bampton basis",
-    "centrifugal_load": "the static (order 0) centrifugal load on the reduced coordinates",
     "attachment_rotating_matrices": "the attachments' rotating-frame terms on the masters",
     "rotating_modes": "natural frequencies in the rotating frame",
     "rotating_harmonic": "harmonic response in the rotating frame",

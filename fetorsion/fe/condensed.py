@@ -403,14 +403,14 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     tg = time.perf_counter()
     gyro = centrifugal = None
     if sys_.node_mass_matrix is not None:
-        from .rotating import attachment_rotating_matrices, reduced_centrifugal, reduced_coriolis
+        from .rotating import attachment_rotating_matrices, centrifugal_load, reduced_coriolis
 
         gyro = reduced_coriolis(sys_.node_mass_matrix, red.basis)
         m = 6 * len(labels)
         gyro[:m, :m] += attachment_rotating_matrices(sys_.attachment_mass, positions)[0]
         # the crank's own mass only: a pin's attachment lumps the rod's rotating mass with half the
         # reciprocating one, whose mean inertia force the pin forces carry already
-        centrifugal = reduced_centrifugal(sys_.node_mass_matrix, red.basis, sys_.xyz)
+        centrifugal = centrifugal_load(sys_.node_mass_matrix, red.basis, sys_.xyz)
     if not keep_basis:
         red.basis = None
     t3 = time.perf_counter()

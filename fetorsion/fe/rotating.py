@@ -103,13 +103,6 @@ def reduced_coriolis(node_mass, basis: np.ndarray) -> np.ndarray:
     return 0.5 * (G - G.T)
 
 
-def reduced_centrifugal(node_mass, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
-    """:func:`centrifugal_load` from the scalar node mass matrix m (M = m ⊗ I₃): Bᵀ N X reads
-    B_yᵀ m y + B_zᵀ m z, B_y, B_z the y and z rows of the basis (per unit Ω², (r,))."""
-    xyz = np.asarray(dof_xyz, float)
-    return basis[1::3].T @ np.asarray(node_mass @ xyz[:, 1]) + basis[2::3].T @ np.asarray(node_mass @ xyz[:, 2])
-
-
 def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
     """Reduced static centrifugal load per unit Ω², Bᵀ N X (N·s² per unit coordinate).
 
@@ -118,13 +111,18 @@ def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
 
     Parameters
     ----------
-    M : sparse (n, n)
-        Consistent mass, kg, of the form m ⊗ I₃.
+    M : sparse (n, n) or (n / 3, n / 3)
+        Consistent mass, kg, of the form m ⊗ I₃, or the scalar node mass m itself (then
+        Bᵀ N X reads B_yᵀ m y + B_zᵀ m z, B_y, B_z the y and z rows of the basis: products with
+        a matrix a ninth of M's size).
     basis : ndarray (n, r)
     dof_xyz : ndarray (n / 3, 3)
         Position of each DOF-node, m (``skfem`` ``doflocs.T``).
     """
-    X = _per_node(np.asarray(dof_xyz, float).ravel(), ACROSS)
+    xyz = np.asarray(dof_xyz, float)
+    if M.shape[0] == len(xyz):
+        return basis[1::3].T @ np.asarray(M @ xyz[:, 1]) + basis[2::3].T @ np.asarray(M @ xyz[:, 2])
+    X = _per_node(xyz.ravel(), ACROSS)
     return np.asarray(basis).T @ (M @ X)
 
 
