@@ -389,18 +389,11 @@ BACKGROUND_NICENESS = 19
 
 
 def _background_process(parent: int):
-    """Initialiser of the studies' process: on Linux, have the kernel kill it when the run dies
-    (a killed run leaves nothing working on) and leave at once if the run is gone already;
-    then lower its priority (where the platform allows)."""
-    try:
-        import ctypes
-        import signal
+    """Initialiser of the studies' process: tied to the run (:func:`fetorsion.solid.isolate.die_with_parent`),
+    then at a lower priority (where the platform allows)."""
+    from ..solid.isolate import die_with_parent
 
-        ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
-    except (OSError, AttributeError):
-        pass
-    if os.getppid() != parent:
-        os._exit(1)
+    die_with_parent(parent)
     try:
         os.nice(BACKGROUND_NICENESS)
     except (AttributeError, OSError):

@@ -60,19 +60,25 @@ def call_isolated(fn, *args, what: str = "the call", **kwargs):
     raise RuntimeError(f"{what} failed in its child process:\n{trace}")
 
 
-# The child's first act, before it imports anything heavy: on Linux, have the kernel kill it
-# when its parent dies (a SIGKILLed run must not leave Gmsh working on as an orphan), and
-# leave at once if the parent is already gone.
+def die_with_parent(parent: int) -> None:
+    """A child process's first act: on Linux, have the kernel kill it when its parent dies (a
+    SIGKILLed run must not leave Gmsh or its studies working on as orphans), and leave at once
+    if the parent (pid ``parent``) is already gone."""
+    try:
+        import ctypes
+
+        ctypes.CDLL(None).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+    if os.getppid() != parent:
+        os._exit(1)
+
+
+# Only this module (numpy-free) is imported before the child ties itself to its parent.
 _CHILD = f"""
-import os, signal
-try:
-    import ctypes
-    ctypes.CDLL(None).prctl(1, signal.SIGKILL)
-except (OSError, AttributeError):
-    pass
-if os.getppid() != int(os.environ["{_PARENT_ENV}"]):
-    os._exit(1)
-from fetorsion.solid.isolate import serve
+import os
+from fetorsion.solid.isolate import die_with_parent, serve
+die_with_parent(int(os.environ["{_PARENT_ENV}"]))
 serve()
 """
 
