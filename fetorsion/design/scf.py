@@ -42,7 +42,7 @@ from ..description.model import Crank
 from ..errors import FetorsionError
 from ..fe.assembly import lame
 from ..fe.tetmesh import TetMesh
-from ..webs.throwfe import TORQUE, default_mesh_size, stepped_shaft_mesh, throw_of
+from ..webs.throwfe import TORQUE, TORSION_LOAD, default_mesh_size, stepped_shaft_mesh, throw_of
 
 #: Nodes within this share of the fillet radius outside the fillet's nominal zone still count
 #: as the fillet (the curved mesh's nodes sit on the true surface up to round-off).
@@ -259,11 +259,9 @@ def _principal(sol, material):
     return max_principal(avg), each
 
 
-#: Loads of the SCF cases at the loaded face: torsion about x and bending about z (for a throw at
-#: crank angle 0, whose pin lies on +y: bending in the throw's plane), N·m.
-BENDING_LOAD = (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)
-#: The SCF load cases by name.
-SCF_LOADS = {"torsion": (0.0, 0.0, 0.0, TORQUE, 0.0, 0.0), "bending": BENDING_LOAD}
+#: The SCF load cases at the loaded face by name: torsion about x, and bending about z (for a
+#: throw at crank angle 0, whose pin lies on +y: bending in the throw's plane), N·m.
+SCF_LOADS = {"torsion": TORSION_LOAD, "bending": (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)}
 
 
 def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fillet_size: float | None = None,

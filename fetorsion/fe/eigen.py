@@ -387,11 +387,6 @@ def m_orthonormalize(W: np.ndarray, MW: np.ndarray, drop: float = ORTHO_DROP):
     return W @ C, MW @ C, (U * s).T
 
 
-def matmul(A, X: np.ndarray) -> np.ndarray:
-    """A @ X for a sparse ``A`` and a dense block ``X`` (n × k)."""
-    return np.asarray(A @ X)
-
-
 def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int | None = None,
                   max_dim: int | None = None, max_restarts: int = 20, project=None, known=None, start=None):
     """The ``k`` largest eigenpairs θ of the M-self-adjoint operator A = S⁻¹M.

@@ -34,7 +34,7 @@ import scipy.linalg
 import scipy.sparse as sp
 
 from ..errors import FetorsionError
-from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, drop_zeros, factorize, matmul, numpy_blas_threads, shifted, svqb_coefficients
+from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, drop_zeros, factorize, numpy_blas_threads, shifted, svqb_coefficients
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -140,14 +140,14 @@ def _constraint_modes(itf: Interface, tol: float, iterations: int | None):
     eye = np.eye(itf.n_master_dofs)
     C = scipy.linalg.cho_factor(itf.C)
     psi = itf.Y @ scipy.linalg.cho_solve(C, eye)
-    Mpsi = matmul(itf.M, psi)
+    Mpsi = np.asarray(itf.M @ psi)
     Kpsi = itf.sigma * Mpsi + itf.G.T @ scipy.linalg.cho_solve(C, eye)  # S Ψ_σ = S Y C⁻¹ = Gᵀ C⁻¹
     for it in range(1, (PSI_MAX_ITER if iterations is None else iterations) + 1):
         b = -itf.sigma * Mpsi
         new, mu = solve(b, eye, forces=True)
         change = np.abs(new - psi).max() / np.abs(new).max()
         psi = new
-        Mpsi = matmul(itf.M, psi)
+        Mpsi = np.asarray(itf.M @ psi)
         Kpsi = b + itf.sigma * Mpsi - itf.G.T @ mu
         if change < tol or (iterations is not None and it == iterations):
             return psi, it, Mpsi, Kpsi
@@ -232,7 +232,7 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
         w2 = scipy.linalg.eigvalsh(Kq)
     else:
         w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((itf.K.shape[0], 0)))
-        phis, kphis, Kq = [phi], [matmul(itf.K, phi)], np.diag(w2)
+        phis, kphis, Kq = [phi], [np.asarray(itf.K @ phi)], np.diag(w2)
     m = itf.n_master_dofs
     r = m + len(w2)
     # one layout of the basis and of its nodal forces, written block by block (no copies of copies)
@@ -373,11 +373,11 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
     updates cost a fraction of one.
     """
     solve = prescribed_solver(itf)
-    V, MV = psi, (matmul(itf.M, psi) if mpsi is None else mpsi)
+    V, MV = psi, (np.asarray(itf.M @ psi) if mpsi is None else mpsi)
     basis, mbasis, kbasis = [], [], []
     for _ in range(blocks):
         W, mu = solve(MV, forces=True)
-        MW = matmul(itf.M, W)
+        MW = np.asarray(itf.M @ W)
         KW = MV + itf.sigma * MW - itf.G.T @ mu
         for _ in range(2):
             for Q, MQ, KQ in zip(basis, mbasis, kbasis):
