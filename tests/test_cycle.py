@@ -69,12 +69,15 @@ def test_mean_torque_through_the_crank_is_the_sum_of_the_cylinders_mean_torques(
         np.testing.assert_allclose(np.abs(torque[:, k]), ahead * np.abs(one), rtol=1e-2)
 
 
-def _cycle(bending, torque, fillets):
-    """A LoadCycle with the given in-plane moments and torques (speeds, cuts, angles), throw angle 0."""
+def _cycle(bending, torque, fillets, my=None):
+    """A LoadCycle with the given moments about z (in-plane for a throw at angle 0), torques and
+    moments about y (speeds, cuts, angles)."""
     s, c, n = bending.shape
     history = np.zeros((s, c, 6, n))
     history[:, :, 5] = bending  # about z = e_t for a throw at angle 0
     history[:, :, 3] = torque
+    if my is not None:
+        history[:, :, 4] = my
     return LoadCycle("made up", np.linspace(1000, 3000, s), np.linspace(0, 4 * np.pi, n, endpoint=False),
                      [f.label for f in fillets], history.mean(axis=3), history, np.zeros(c))
 
@@ -88,9 +91,11 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
     speeds = np.array([1.0, 1.7])[:, None, None]
     bending = speeds * np.array([300.0, 120.0])[None, :, None] * (0.4 + np.sin(2 * th))[None, None, :]
     torque = speeds * np.array([150.0, 400.0])[None, :, None] * (0.1 + np.cos(th + 0.3))[None, None, :]
-    scf = {"pin": 1.6, "journal": 1.4, "pin_bending": 2.6, "journal_bending": 2.1, "oil_bore_bending": 1.9,
-           "oil_bore_torsion": 3.6, "source": "made up"}
-    res = run_assessment(crank, _cycle(bending, torque, fillets), fillets, scf, "iacs-m53")
+    my = speeds * np.array([-200.0, 250.0])[None, :, None] * (0.2 + np.cos(3 * th + 1.0))[None, None, :]
+    scf = {"pin": 1.6, "journal": 1.4, "pin_bending": 2.6, "journal_bending": 2.1, "pin_oil_bore_bending": 1.9,
+           "pin_oil_bore_torsion": 3.6, "journal_oil_bore_bending": 2.2, "journal_oil_bore_torsion": 3.3,
+           "source": "made up"}
+    res = run_assessment(crank, _cycle(bending, torque, fillets, my), fillets, scf, "iacs-m53")
     # the Renault 21 drills pins and journals: one oil bore per drilled section here (P1, J2), its
     # nominal stresses those of its section (one fillet cut each here)
     assert res.labels == [f.label for f in fillets] + ["P1 oil bore", "J2 oil bore"]
@@ -107,9 +112,14 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
             assert res.safety[s, j] == pytest.approx(dw / sv, rel=1e-9)
             assert float(m53_equivalent_fillet(sa, ta)) == pytest.approx(sv, rel=1e-12)
         assert res.worst_rpm[j] == res.rpm[1]  # the larger loads govern
-        # the oil bore of the same section: M53's σ_V = σ_B/3 (1 + 2 √(1 + 9/4 (τ/σ_B)²)), radius d/2
-        sb = scf["oil_bore_bending"] * 0.5 * np.ptp(32 * w * bending[1, j])
-        tb = scf["oil_bore_torsion"] * 0.5 * np.ptp(16 * w * torque[1, j])
+        # the oil bore of the same section: M53's σ_V = σ_B/3 (1 + 2 √(1 + 9/4 (τ/σ_B)²)), radius d/2;
+        # the drilling runs along throw a's tangent, so its exits see the moment about e_r(a)
+        a = crank.engine.crank_angles[f.index]
+        m_r = math.cos(a) * my[1, j] + math.sin(a) * bending[1, j]
+        part = (crank.pins if f.kind == "pin" else crank.journals)[f.index]  # the drilled section's own
+        wb = part.diameter / (math.pi * (part.diameter**4 - part.bore**4))
+        sb = scf[f"{f.kind}_oil_bore_bending"] * 0.5 * np.ptp(32 * wb * m_r)
+        tb = scf[f"{f.kind}_oil_bore_torsion"] * 0.5 * np.ptp(16 * wb * torque[1, j])
         sv = sb / 3 * (1 + 2 * math.sqrt(1 + 9 / 4 * (tb / sb) ** 2))
         dw = m53_fatigue_strength(mat.tensile_strength, f.diameter, 0.5 * crank.oil_holes.diameter, mat.process, "oil-bore")
         assert res.safety[1, 2 + j] == pytest.approx(dw / sv, rel=1e-9)

@@ -77,7 +77,7 @@ def test_rubber_damper_loss_factor_is_hysteretic_stiffness():
 
 from fetorsion.lumped_model.damped import DampedSystem, damped_modes, damper_spring  # noqa: E402
 from fetorsion.lumped_model.lumped import chain_matrices  # noqa: E402
-from fetorsion.design.dampers import den_hartog_damper, equivalent_sdof, optimise_damper  # noqa: E402
+from fetorsion.design.dampers import den_hartog_damper, equivalent_sdof  # noqa: E402
 
 
 def test_energy_balance_input_power_equals_damper_heat():

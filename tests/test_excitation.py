@@ -1,6 +1,5 @@
 """Cylinder torque harmonics, phase-vector sums, Campbell crossings and forced response."""
 
-import copy
 import math
 
 import numpy as np
@@ -10,7 +9,7 @@ import fetorsion
 from fetorsion.excitation.campbell import lumped_modes, run_campbell
 from fetorsion.modes import TorsionalModes
 from fetorsion.description.crank import parse_crank
-from fetorsion.excitation.torque import (cycle_grid, cylinder_pressure, cylinder_torque, cylinder_volume, firing_angles,
+from fetorsion.excitation.torque import (cylinder_pressure, cylinder_torque, cylinder_volume, firing_angles,
                                   harmonics)
 from fetorsion.excitation.kinematics import piston_velocity
 from fetorsion.lumped_model.lumped import chain_matrices

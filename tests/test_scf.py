@@ -70,3 +70,40 @@ def test_bending_fits_by_hand():
            -3.809 + 3.046 * s - 0.595 * hr]
     for fit, c in ((peterson_stepped_bending, pet), (roark_stepped_bending, roa)):
         assert fit(0.060, 0.040, 0.004) == pytest.approx(c[0] + c[1] * t + c[2] * t**2 + c[3] * t**3, rel=1e-12)
+
+
+def test_transverse_hole_fits_by_hand():
+    """Peterson's tube-with-a-transverse-hole fits, written out for a solid bar (d_i = 0) and a tube."""
+    from fetorsion.design.oilbore import peterson_transverse_hole_bending, peterson_transverse_hole_torsion
+
+    a = 0.1
+    assert peterson_transverse_hole_torsion(40.0, 4.0) == pytest.approx(
+        4 - 6.055 * a + 32.764 * a**2 - 38.33 * a**3, rel=1e-12)
+    assert peterson_transverse_hole_bending(40.0, 4.0) == pytest.approx(3 - 6.25 * a + 41 * a**2 - 45 * a**3, rel=1e-12)
+    q, a = 0.5, 0.2
+    c = (-6.055 + 3.184 * q - 3.461 * q**2, 32.764 - 30.121 * q + 39.887 * q**2, -38.33 + 51.542 * math.sqrt(q) - 27.483 * q)
+    assert peterson_transverse_hole_torsion(50.0, 10.0, 25.0) == pytest.approx(4 + c[0] * a + c[1] * a**2 + c[2] * a**3,
+                                                                               rel=1e-12)
+    with pytest.raises(Exception, match="0 < d < D"):
+        peterson_transverse_hole_torsion(40.0, 40.0)
+
+
+@pytest.mark.fe
+@pytest.mark.slow
+def test_transverse_hole_scf_converges_within_ten_percent_of_peterson():
+    """A 4 mm hole through a 40 mm bar (the oil bore's model): the peak σ₁ on the drilling's wall
+    at wall elements d/16 and d/24 (issue 27: two successive levels within 2 %, and within 10 % of
+    Peterson's value). Measured (2-core EPYC): torsion 4.026 → 3.980 (1.2 %), bending 3.004 →
+    2.971 (1.1 %); Peterson 3.684 and 2.740, the FE 8.0 % and 8.4 % above and still coming down
+    (d/32 on a coarser grading: torsion 3.92, bending 2.96)."""
+    from fetorsion.design.oilbore import (peterson_transverse_hole_bending, peterson_transverse_hole_torsion,
+                                          run_oil_bore_scf)
+
+    D, d = 0.040, 0.004
+    res = run_oil_bore_scf(D, d, material=STEEL)
+    for load, fit in (("torsion", peterson_transverse_hole_torsion), ("bending", peterson_transverse_hole_bending)):
+        assert res.change(load) < 0.02, res.table()
+        assert getattr(res, load) == pytest.approx(fit(D, d), rel=0.10), res.table()
+        # the peak is inside the drilling, not at its edge, and not deeper than the hole's diameter
+        depth = res.rows[-1][f"{load}_depth_m"]
+        assert 0 < depth < d, res.table()

@@ -10,7 +10,6 @@ from conftest import GEOMETRY
 from fetorsion.description.model import Limits
 from fetorsion.response.forced import run_response
 from fetorsion.design.stress import fillet_stress, fillets_of
-from fetorsion.response.synthesis import waveform
 from fetorsion.design.verdict import VerdictCase, VerdictResult, barred_ranges
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")

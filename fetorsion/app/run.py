@@ -103,12 +103,21 @@ class RunContext:
             self.crank, parts=None if isinstance(self.crank, Chain) else self.parts()))
 
     def scf(self) -> dict:
-        """The fillet SCFs of the crank (shipped, or one static FE of a throw), found once."""
+        """The fillet SCFs of the crank (shipped, or one static FE of a throw) and its oil bores'
+        (shipped, or one static FE of a drilled bar per drilled kind of section), found once."""
         def build():
+            from ..design.oilbore import oil_bore_scfs
             from ..design.scf import fillet_scfs
 
-            _progress("  fillet SCFs (static 3D FE of a throw, or the stored study) ...")
-            return fillet_scfs(self.crank)
+            _progress("  fillet and oil-bore SCFs (static 3D FE, or the stored studies) ...")
+            out = dict(fillet_scfs(self.crank))
+            bores = oil_bore_scfs(self.crank)
+            for kind in ("pin", "journal"):
+                if kind in bores:
+                    out[f"{kind}_oil_bore_bending"], out[f"{kind}_oil_bore_torsion"] = bores[kind]
+            if bores:
+                out["oil_bore_source"] = bores["source"]
+            return out
 
         return self.once("scf", build)
 
@@ -335,7 +344,8 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     labels = [f.label for f in fillets]
     runs = {}
     for zeta in sorted({ex.damping_band[0], ex.modal_damping_ratio, ex.damping_band[1]}):
-        setup = condensed_setup(cc, "bearings", damping_ratio=zeta, section_labels=labels)
+        setup = ctx.engine_setup() if zeta == ex.modal_damping_ratio else condensed_setup(
+            cc, "bearings", damping_ratio=zeta, section_labels=labels)  # the nominal ζ's: the run's own
         cycle = run_load_cycle(cc, setup, crank.dampers)
         runs[zeta] = (run_assessment(crank, cycle, fillets, scf, method), cycle)
     nominal, cycle = runs[ex.modal_damping_ratio]

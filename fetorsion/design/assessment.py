@@ -9,7 +9,9 @@ At each fillet the section's in-plane bending moment M(θ) and torque T(θ) over
 which the fillet's bending and torsional SCFs (:func:`fetorsion.design.scf.fillet_scfs`) carry
 to the fillet surface; their mean and alternating parts (half the range) go to the chosen
 strength method (:func:`fetorsion.design.fatigue.run_fatigue`: IACS UR M53 or the textbook
-path). Every speed is assessed; each location's worst speed is then assessed again with its
+path). Oil-bore exits take the bending about the throw's radius and the torque of their
+section (:func:`oil_bore_stress_histories`) and the drilled bar's SCFs
+(:func:`fetorsion.design.oilbore.oil_bore_scfs`). Every speed is assessed; each location's worst speed is then assessed again with its
 whole history for the multiaxial cross-checks (Crossland, Findley).
 """
 
@@ -38,21 +40,53 @@ def fillet_stress_histories(crank, cycle, fillets) -> tuple[np.ndarray, np.ndarr
     return 32 * w * cycle.bending_in_plane(), 16 * w * cycle.torque()
 
 
-def oil_bore_sections(crank, fillets) -> list[tuple[str, list[int], float, float]]:
-    """Every drilled pin and journal of ``crank``: (label, indices of its fillets in ``fillets``,
-    diameter m, bore m); none without ``[oil_holes]``."""
+@dataclass(frozen=True)
+class OilBoreSection:
+    """A drilled pin or journal: ``label``, ``kind`` (``pin``/``journal``), the indices of its fillet
+    cuts in the fillet list, diameter and bore (m), and ``angle`` (rad), the throw angle whose
+    tangent the drilling runs along (the solid model's drillings: perpendicular to the crank radius
+    of the nearest throw)."""
+
+    label: str
+    kind: str
+    cuts: tuple
+    diameter: float
+    bore: float
+    angle: float
+
+
+def oil_bore_sections(crank, fillets) -> list[OilBoreSection]:
+    """Every drilled pin and journal of ``crank``; none without ``[oil_holes]``."""
     holes = crank.oil_holes
     if holes is None or not holes.diameter > 0:
         return []
+    angles = crank.engine.crank_angles
     out = []
     for kind, drilled, parts in (("pin", holes.in_pins, crank.pins), ("journal", holes.in_journals, crank.journals)):
         if not drilled:
             continue
         for i, part in enumerate(parts):
-            cuts = [j for j, f in enumerate(fillets) if f.kind == kind and f.index == i]
+            cuts = tuple(j for j, f in enumerate(fillets) if f.kind == kind and f.index == i)
             if cuts:
-                out.append((f"{'P' if kind == 'pin' else 'J'}{i + 1} oil bore", cuts, part.diameter, part.bore))
+                out.append(OilBoreSection(f"{'P' if kind == 'pin' else 'J'}{i + 1} oil bore", kind, cuts,
+                                          part.diameter, part.bore, float(angles[min(i, len(angles) - 1)])))
     return out
+
+
+def oil_bore_stress_histories(cycle, bore: OilBoreSection) -> tuple[np.ndarray, np.ndarray]:
+    """Nominal (σ, τ) at a drilling's exits over the cycle: (speeds, angles) each, Pa.
+
+    The drilling runs along the throw's tangent e_t, so its exits sit at ±e_t: the bending that
+    loads them is the moment about the throw's radius e_r, M_r = M_y cos a + M_z sin a (the
+    in-plane moment about e_t puts the drilling on the neutral axis). As [IACSM53] takes the
+    bending at the oil bore, the moment resolved on the bore's direction. The exit is at
+    mid-length: the mean of the section's own fillet cuts (the moment is linear along a pin or
+    journal between its webs, the torque constant)."""
+    c, s = math.cos(bore.angle), math.sin(bore.angle)
+    h = cycle.history[:, list(bore.cuts)]
+    w = section_modulus_factor(bore.diameter, bore.bore)
+    moment = (c * h[:, :, 4] + s * h[:, :, 5]).mean(axis=1)
+    return 32 * w * moment, 16 * w * h[:, :, 3].mean(axis=1)
 
 
 def _scf(scf: dict, kind: str) -> tuple[float, float]:
@@ -184,7 +218,9 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     fillets : list of Fillet
         :func:`fetorsion.design.stress.fillets_of` the crank, in the cuts' order.
     scf : dict
-        ``pin``, ``journal`` (torsion) and ``pin_bending``, ``journal_bending`` SCFs.
+        ``pin``, ``journal`` (torsion) and ``pin_bending``, ``journal_bending`` SCFs; for the oil
+        bores ``pin_oil_bore_bending``, ``pin_oil_bore_torsion`` and the journal's (a drilled kind
+        without them is noted as not assessed).
     method : {"iacs-m53", "textbook"}
     required : float, optional
         Required safety (default the method's: :func:`fetorsion.design.fatigue.run_fatigue`).
@@ -196,20 +232,18 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
     cuts_read = list(range(len(fillets)))
     bores = oil_bore_sections(crank, fillets)
-    unassessed = bores and not ("oil_bore_bending" in scf and "oil_bore_torsion" in scf)
-    if not unassessed:
-        for label, cuts, diameter, bore in bores:
-            # the bore's exit at mid-length: the mean of the section's own fillet cuts' nominal
-            # stresses (the moment is linear along a pin or journal between its webs, the torque
-            # constant; the same diameter and bore)
-            sigma = np.concatenate([sigma, sigma[:, cuts].mean(axis=1, keepdims=True)], axis=1)
-            tau = np.concatenate([tau, tau[:, cuts].mean(axis=1, keepdims=True)], axis=1)
-            kts.append((float(scf["oil_bore_bending"]), float(scf["oil_bore_torsion"])))
-            labels.append(label)
-            kinds.append("oil-bore")
-            radii.append(0.5 * crank.oil_holes.diameter)
-            diameters.append(diameter)
-            cuts_read.append(cuts[0])
+    missing = sorted({b.kind for b in bores if not (f"{b.kind}_oil_bore_bending" in scf
+                                                     and f"{b.kind}_oil_bore_torsion" in scf)})
+    for b in [b for b in bores if b.kind not in missing]:
+        sb, tb = oil_bore_stress_histories(cycle, b)
+        sigma = np.concatenate([sigma, sb[:, None]], axis=1)
+        tau = np.concatenate([tau, tb[:, None]], axis=1)
+        kts.append((float(scf[f"{b.kind}_oil_bore_bending"]), float(scf[f"{b.kind}_oil_bore_torsion"])))
+        labels.append(b.label)
+        kinds.append("oil-bore")
+        radii.append(0.5 * crank.oil_holes.diameter)
+        diameters.append(b.diameter)
+        cuts_read.append(b.cuts[0])
     s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
     t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
     where = list(zip(labels, kinds, diameters, radii, kts))
@@ -232,9 +266,12 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
                                            for a, st in zip(worst.locations, stresses)))
     notes = [f"local stresses: nominal section stresses × SCF (bending {kts[0][0]:.2f} …, torsion {kts[0][1]:.2f} …)"]
-    if unassessed:
-        notes.append(f"oil-bore exits NOT assessed ({', '.join(b[0] for b in bores)}): no oil-bore SCF in "
-                     f"{scf.get('source', 'the SCFs given')}")
+    if missing:
+        notes.append(f"oil-bore exits NOT assessed ({', '.join(b.label for b in bores if b.kind in missing)}): "
+                     f"no {' or '.join(missing)} oil-bore SCF in {scf.get('source', 'the SCFs given')}")
+    elif bores:
+        notes.append(f"oil-bore exits: the bending about the throw's radius (the drillings run along its tangent), "
+                     f"SCFs {scf.get('oil_bore_source', '')}")
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")

@@ -47,7 +47,7 @@ P(θ; k, −α) = P(−θ; k, α), so α ≥ 0 loses nothing.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 

@@ -80,13 +80,25 @@ class CrankMesh:
     quality: MeshQuality | None = None
 
 
-def _size_fields(size: float, groups, growth: float = 1.0) -> None:
+def _size_fields(size: float, groups, growth: float = 1.0, expression: str = "") -> None:
     """Global size ``size``, with each ``(fine, surfaces)`` of ``groups`` setting ``fine`` on (and
     growing away from) its surfaces; model units. ``growth``: element size gained per length
-    travelled away from them."""
+    travelled away from them. ``expression``: a Gmsh MathEval size of x, y, z instead (model
+    units), for a surface whose distance is known in closed form."""
     f = gmsh.model.mesh.field
     gmsh.option.setNumber("Mesh.MeshSizeMax", size)
     gmsh.option.setNumber("Mesh.MeshSizeMin", 0.0)
+    if expression:
+        # A Distance field samples each surface at 20 x 20 parameter points: on a long, thin
+        # drilling (40 mm by 12.6 mm) they lie 2 mm apart, and the mesh between them is coarser
+        # than asked (a 4 mm transverse hole at "d/16" came out with 37 k nodes against 106 k at
+        # 200 x 200 samples). A closed-form distance has no such gaps and costs nothing.
+        m = f.add("MathEval")
+        f.setString(m, "F", f"Min({size!r}, {expression})")
+        f.setAsBackgroundMesh(m)
+        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+        return
     groups = [(fine, list(surfaces)) for fine, surfaces in groups if surfaces and 0 < fine < size]
     if not groups:
         return
@@ -117,7 +129,7 @@ def _size_fields(size: float, groups, growth: float = 1.0) -> None:
 def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[int]], size: float,
                fine: float = 0.0, fine_surfaces: list[int] = (), name: str = "model",
                material: Material | None = None, untangle: str = "optimize", growth: float = 1.0,
-               refine=()) -> CrankMesh:
+               refine=(), size_expression: str = "") -> CrankMesh:
     """Mesh the solid in the current (synchronised) Gmsh model with curved 10-node tets.
 
     Parameters
@@ -146,6 +158,9 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
     growth : float
         Element size gained per length travelled away from ``fine_surfaces`` (1: the stress
         mesh's gentle grading; 2: a thinner refined skin, fewer elements).
+    size_expression : str
+        Element size as a Gmsh MathEval expression of x, y, z (model units), capped at ``size``;
+        replaces ``fine``/``fine_surfaces``/``refine`` when given.
 
     Raises
     ------
@@ -153,7 +168,7 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
         If Gmsh fails, or the curved mesh has an invalid element (SICN <= 0).
     """
     t0 = time.perf_counter()
-    _size_fields(size, [(fine, fine_surfaces), *refine], growth)
+    _size_fields(size, [(fine, fine_surfaces), *refine], growth, size_expression)
     gmsh.option.setNumber("Mesh.ElementOrder", 2)
     gmsh.option.setNumber("Mesh.HighOrderOptimize", 0)
     try:

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..description.model import Crank, Cylinder, Engine, Fillets, Material, OilHoles, Web
 from ..errors import FetorsionError
-from ..extrapolation import convergence_rate, richardson
+from ..extrapolation import richardson
 
 CHART_FILE = Path(__file__).with_name("data") / "web_chart.json"
 
