@@ -452,6 +452,84 @@ WARNINGS = [
 ]
 
 
+# ---------------------------------------------------------------------------
+# Measured data (fetorsion.measured): each bad file is one FetorsionError naming the file and the
+# problem, raised before any work, and the folder is left as it was.
+
+
+def uff_bytes(binary: bool = True, kind: str = "frf") -> bytes:
+    """A valid dataset-58 file (one FRF, or one order cut), as bytes."""
+    import tempfile
+    from pathlib import Path
+
+    import numpy as np
+
+    from fetorsion.measured import MeasuredFunction, write_uff58
+
+    f = np.arange(1.0, 65.0)
+    if kind == "frf":
+        function = MeasuredFunction("frf", f, "frequency", 1 / (1e4 - f**2 + 1j * f), "rad", (1, 4), (1, 4), "N m")
+    else:
+        function = MeasuredFunction("order function", 1000 + 50 * f, "speed", 1e-3 / f, "rad", (1, 4), order=2.0)
+    with tempfile.TemporaryDirectory() as folder:
+        return write_uff58(Path(folder) / "f.uff", [function], binary=binary).read_bytes()
+
+
+HEADER_151 = """    -1
+   151
+crank
+NONE
+fetorsion
+24-Nov-26 06:00:00           1         0         0
+24-Nov-26 06:00:00
+fetorsion
+24-Nov-26 06:12:52
+    -1
+"""
+
+
+def measured(call: str):
+    """A call of the measured-data API on the case's folder ``d``."""
+    import fetorsion.measured as m
+
+    return lambda d: eval(call, {"m": m, "d": d})
+
+
+# (id, call on the folder d, extra files, texts the message must hold)
+MEASURED_CASES = [
+    ("uff-missing", "m.read_uff58(d / 'none.uff')", {}, ["none.uff", "not a file"]),
+    ("uff-text", "m.read_uff58(d / 'notes.txt')", {}, ["notes.txt", "not a universal file"]),
+    ("uff-truncated-ascii", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(False)[:1500]}, ["f.uff", "truncated"]),
+    ("uff-truncated-binary", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True)[:-200]}, ["f.uff", "truncated"]),
+    ("uff-values-cut", "m.read_uff58(d / 'f.uff')",  # data lines removed, the closing line kept
+     {"f.uff": b"\n".join(uff_bytes(False).split(b"\n")[:30] + [b"    -1", b""])}, ["f.uff", "truncated", "64 values"]),
+    ("uff-151-only", "m.read_uff58(d / 'f.uff')", {"f.uff": HEADER_151}, ["f.uff", "151", "no dataset 58"]),
+    ("uff-time-response", "m.read_uff58(d / 'f.uff')",
+     {"f.uff": uff_bytes(False).replace(b"\n    4         0", b"\n    1         0", 1)}, ["f.uff", "function type 1"]),
+    ("uff-no-unit", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True, "order").replace(
+        b" rad                 ", b" NONE                ", 1)}, ["f.uff", "ordinate has no unit label"]),
+    ("uff-unknown-unit", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True, "order").replace(
+        b" rad                 ", b" furlong             ", 1)}, ["f.uff", "'furlong' is not known"]),
+    ("uff-bad-units-key", "m.read_uff58(d / 'f.uff', units={'y': 'rad'})", {"f.uff": uff_bytes()}, ["f.uff", "'y'"]),
+]
+
+
+@pytest.mark.parametrize("case", MEASURED_CASES, ids=["measured-" + c[0] for c in MEASURED_CASES])
+def test_bad_measured_file_is_one_message_naming_it(case, tmp_path):
+    from fetorsion.errors import FetorsionError
+
+    name, call, extra, needles = case
+    folder = make_folder(tmp_path, extra)
+    before = snapshot(folder)
+    with pytest.raises(FetorsionError) as info:
+        measured(call)(folder)
+    text = str(info.value)
+    for needle in needles:
+        assert needle in text, f"{name}: message does not name {needle!r}: {text}"
+    assert "\n" not in text, f"{name}: more than one message: {text}"
+    assert snapshot(folder) == before, f"{name}: the folder changed"
+
+
 def snapshot(folder) -> dict:
     """Every entry below ``folder``: kind, mode and content hash."""
     out = {}

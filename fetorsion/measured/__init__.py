@@ -1,0 +1,15 @@
+"""Measured data in: what test systems export, read and turned into quantities a model is
+compared with. Universal-file dataset 58 functions (FRFs, spectra, order functions) in and
+out (:mod:`.uff`), order cuts from CSV (:mod:`.ordercut`), a torsiograph's tooth-edge
+timestamps to angular speed, order amplitudes against speed and the twist between two
+wheels (:mod:`.torsiograph`), and natural frequencies, damping ratios and mode shapes fitted
+to measured FRFs (:mod:`.modal`). Units are read from the files and checked (:mod:`.units`);
+everything handed on is SI.
+
+Uses no FE and no model: the stages that compare with a model or calibrate it take these
+results.
+"""
+
+from .uff import MeasuredFunction, read_uff58, write_uff58
+
+__all__ = ["MeasuredFunction", "read_uff58", "write_uff58"]
