@@ -510,6 +510,18 @@ MEASURED_CASES = [
         b" rad                 ", b" NONE                ", 1)}, ["f.uff", "ordinate has no unit label"]),
     ("uff-unknown-unit", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True, "order").replace(
         b" rad                 ", b" furlong             ", 1)}, ["f.uff", "'furlong' is not known"]),
+    ("cut-no-unit", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "1000, 1\n2000, 2\n3000, 1\n"},
+     ["c.csv", "no unit"]),
+    ("cut-units-disagree", "m.read_order_cut_csv(d / 'c.csv', unit='rad')", {"c.csv": "# unit = deg\n" + CURVE[13:]},
+     ["c.csv", "'# unit = deg'", "'rad'"]),
+    ("cut-unknown-unit", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "# unit = furlong\n" + CURVE[13:]},
+     ["c.csv", "'furlong' is not known"]),
+    ("cut-speed-unit", "m.read_order_cut_csv(d / 'c.csv', unit='rpm')", {"c.csv": CURVE[13:]},
+     ["c.csv", "'rpm' is a unit of speed"]),
+    ("cut-four-columns", "m.read_order_cut_csv(d / 'c.csv', unit='deg')", {"c.csv": "1, 2, 3, 4\n" * 3},
+     ["c.csv", "rpm, amplitude[, phase_deg]"]),
+    ("cut-order-word", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "# order = second\n" + CURVE},
+     ["c.csv", "'# order = second' is not a number"]),
     ("uff-bad-units-key", "m.read_uff58(d / 'f.uff', units={'y': 'rad'})", {"f.uff": uff_bytes()}, ["f.uff", "'y'"]),
 ]
 

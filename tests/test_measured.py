@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from fetorsion.errors import FetorsionError
-from fetorsion.measured import MeasuredFunction, read_uff58, write_uff58
+from fetorsion.measured import MeasuredFunction, read_order_cut_csv, read_uff58, write_uff58
 
 # ---------------------------------------------------------------------------
 # UFF dataset 58
@@ -108,3 +108,22 @@ def test_uff58_write_leaves_nothing_after_an_error(tmp_path, monkeypatch):
         write_uff58(tmp_path / "m.uff", good)
     assert os.listdir(tmp_path) == ["m.uff"]
     assert (tmp_path / "m.uff").read_bytes() == b"the user's earlier file"
+
+
+# ---------------------------------------------------------------------------
+# Order cuts from CSV
+
+
+def test_order_cut_csv_in_si_with_its_phase(tmp_path):
+    path = tmp_path / "cut.csv"
+    path.write_text("# name = pulley, 2nd order\n# unit = mrad\n# order = 2\n"
+                    "1000, 0.5, 10\n2000, 1.5, -80\n3000, 0.75, -170\n")
+    cut = read_order_cut_csv(path)
+    assert (cut.kind, cut.abscissa_quantity, cut.unit, cut.order, cut.label) == \
+           ("order function", "speed", "rad", 2.0, "pulley, 2nd order")
+    assert np.allclose(cut.ordinate, 1e-3 * np.array([0.5, 1.5, 0.75]) * np.exp(1j * np.radians([10, -80, -170])),
+                       rtol=1e-14)
+    path.write_text("1000, 0.5\n2000, 1.5\n3000, 0.75\n")  # no unit in the file: the caller's
+    assert np.allclose(read_order_cut_csv(path, unit="deg").ordinate, np.radians([0.5, 1.5, 0.75]), rtol=1e-14)
+    with pytest.raises(FetorsionError, match="cut.csv: the amplitude has no unit"):
+        read_order_cut_csv(path)

@@ -10,6 +10,7 @@ Uses no FE and no model: the stages that compare with a model or calibrate it ta
 results.
 """
 
+from .ordercut import read_curve_csv, read_order_cut_csv
 from .uff import MeasuredFunction, read_uff58, write_uff58
 
-__all__ = ["MeasuredFunction", "read_uff58", "write_uff58"]
+__all__ = ["MeasuredFunction", "read_uff58", "write_uff58", "read_curve_csv", "read_order_cut_csv"]

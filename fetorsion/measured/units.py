@@ -51,6 +51,8 @@ def _table() -> dict[str, Unit]:
 
 
 UNITS = _table()
+#: what a measured amplitude may be (the rest are the abscissae's quantities)
+RESPONSE_QUANTITIES = tuple(sorted({u.quantity for u in UNITS.values()} - {"frequency", "speed", "order", "time"}))
 
 
 def normalise(text: str) -> str:
