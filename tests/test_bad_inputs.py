@@ -488,6 +488,10 @@ fetorsion
 """
 
 
+# two channels of tooth-edge times: a pulley of 4 teeth, a flywheel
+EDGES = "# unit = s\npulley, flywheel\n" + "".join(f"{i * 1e-3:g}, {i * 1e-3 + 1e-4:g}\n" for i in range(9))
+
+
 def measured(call: str):
     """A call of the measured-data API on the case's folder ``d``."""
     import fetorsion.measured as m
@@ -522,6 +526,22 @@ MEASURED_CASES = [
      ["c.csv", "rpm, amplitude[, phase_deg]"]),
     ("cut-order-word", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "# order = second\n" + CURVE},
      ["c.csv", "'# order = second' is not a number"]),
+    ("edges-no-unit", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("# unit = s\n", "")},
+     ["e.csv", "no unit"]),
+    ("edges-backwards", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.003,", "0.0015,")},
+     ["e.csv", "'pulley'", "not increasing", "edge 4"]),
+    ("edges-no-pulses", "m.read_edges_csv(d / 'e.csv')", {"e.csv": "# unit = s\npulley, flywheel\n" + "".join(
+        f"{i * 1e-3},\n" for i in range(9))}, ["e.csv", "'flywheel'", "no pulses"]),
+    ("edges-one-revolution", "m.read_edges_csv(d / 'e.csv', teeth={'pulley': 60})",
+     {"e.csv": EDGES}, ["e.csv", "'pulley'", "9 pulses", "too few", "60 teeth"]),
+    ("edges-word", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.004,", "four,")},
+     ["e.csv", "line 7", "'four' is not a number"]),
+    ("edges-gap", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.0021", "")},
+     ["e.csv", "'flywheel'", "empty cell", "line 5"]),
+    ("edges-same-names", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("flywheel", "pulley")},
+     ["e.csv", "distinct channel names"]),
+    ("edges-no-teeth", "m.run_torsiograph(m.read_edges_csv(d / 'e.csv'), {'pulley': 4}, 1)", {"e.csv": EDGES},
+     ["'flywheel'", "no teeth per revolution"]),
     ("uff-bad-units-key", "m.read_uff58(d / 'f.uff', units={'y': 'rad'})", {"f.uff": uff_bytes()}, ["f.uff", "'y'"]),
 ]
 

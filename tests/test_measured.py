@@ -127,3 +127,147 @@ def test_order_cut_csv_in_si_with_its_phase(tmp_path):
     assert np.allclose(read_order_cut_csv(path, unit="deg").ordinate, np.radians([0.5, 1.5, 0.75]), rtol=1e-14)
     with pytest.raises(FetorsionError, match="cut.csv: the amplitude has no unit"):
         read_order_cut_csv(path)
+
+
+# ---------------------------------------------------------------------------
+# Torsiograph
+
+TEETH = 60  # a pulley's trigger wheel
+JITTER_S = 10e-9  # timestamp noise (1 sigma): one tick of a 100 MHz edge counter
+
+
+def edge_times(theta, dtheta, targets, guess_speed):
+    """The times at which the angle theta(t) reaches each target angle: Newton's method on all
+    edges at once (theta is increasing, so each root is the only one)."""
+    t = targets / guess_speed
+    for _ in range(50):
+        residual = theta(t) - targets
+        if np.max(np.abs(residual)) < 1e-12:
+            return t
+        t = t - residual / dtheta(t)
+    raise AssertionError("Newton did not converge")
+
+
+def wheel(theta, dtheta, teeth, revolutions, errors, speed, rng):
+    """Edge timestamps of a wheel whose true tooth i sits at 2 pi i / z + e_(i mod z), turning by
+    theta(t), with timing noise."""
+    i = np.arange(revolutions * teeth + 1)
+    t = edge_times(theta, dtheta, 2 * np.pi * i / teeth + errors[i % teeth], speed)
+    return t + rng.normal(0.0, JITTER_S, t.size)
+
+
+def sines(speed, terms):
+    """theta(t) = speed t + sum a sin(k speed t + phi), and its derivative."""
+    def theta(t):
+        return speed * t + sum(a * np.sin(k * speed * t + p) for a, k, p in terms)
+
+    def dtheta(t):
+        return speed + sum(a * k * speed * np.cos(k * speed * t + p) for a, k, p in terms)
+
+    return theta, dtheta
+
+
+def expected(a, phi):
+    """The complex amplitude of a sin(k theta + phi) in OrderTrack's convention Re c exp(i k theta)."""
+    return a * np.exp(1j * (phi - np.pi / 2))
+
+
+@pytest.fixture(scope="module")
+def engine():
+    """A pulley at 3000 rpm vibrating in orders 2 (a four-cylinder's firing order) and 1.5 (a half
+    order), with tooth spacing errors of ~0.05 deg; a flywheel wheel of 132 teeth; and a
+    coast-down of both at 800 rpm without vibration, to calibrate their teeth."""
+    rng = np.random.default_rng(28)
+    speed = 2 * np.pi * 3000 / 60
+    pulley = [(np.radians(0.12), 2.0, 0.7), (np.radians(0.04), 1.5, -2.0)]
+    flywheel = [(np.radians(0.03), 2.0, 2.2)]
+    teeth = {"pulley": TEETH, "flywheel": 132}
+    # fixed tooth errors: an eccentric (order 1) and oval (order 2) wheel, plus random pitch errors
+    errors = {}
+    for name, z in teeth.items():
+        at = 2 * np.pi * np.arange(z) / z
+        e = np.radians(0.04 * np.cos(at) + 0.05 * np.sin(2 * at + 0.3) + rng.normal(0, 0.02, z))
+        errors[name] = e - e.mean()
+    coast, slowing = 2 * np.pi * 800 / 60, -5.0  # rad/s, rad/s^2
+
+    def coasting(t):
+        return coast * t + 0.5 * slowing * t**2
+
+    edges = {name: wheel(*sines(speed, terms), teeth[name], 40, errors[name], speed, rng)
+             for name, terms in (("pulley", pulley), ("flywheel", flywheel))}
+    calibration = {name: wheel(coasting, lambda t: coast + slowing * t, teeth[name], 30, errors[name], coast, rng)
+                   for name in teeth}
+    return dict(edges=edges, calibration=calibration, errors=errors, teeth=teeth, pulley=pulley, flywheel=flywheel)
+
+
+def test_tooth_errors_from_a_coast_down(engine):
+    from fetorsion.measured.torsiograph import tooth_errors
+
+    for name, e in engine["errors"].items():
+        found = tooth_errors(engine["calibration"][name], engine["teeth"][name])
+        # the timing noise, 10 ns at 84 rad/s, is 1e-6 rad an edge, averaged over 30 revolutions;
+        # 1e-4 deg is 0.2 % of the errors' 0.05 deg
+        assert np.max(np.abs(np.degrees(found - e))) < 1e-4, name
+
+
+def test_torsiograph_order_amplitudes_and_phases(engine):
+    from fetorsion.measured.torsiograph import run_torsiograph
+
+    result = run_torsiograph(engine["edges"], engine["teeth"], 2, engine["calibration"])
+    track = result.tracks["pulley"]
+    assert len(track.rpm) == 20 and np.allclose(track.rpm, 3000, rtol=1e-5)
+    for a, k, phi in engine["pulley"]:
+        c = track.at(k)
+        # 1 % and 1 deg (the issue's): the timing noise leaves ~0.2 % and ~0.1 deg on the weaker order
+        assert np.max(np.abs(np.abs(c) / a - 1)) < 0.01, k
+        assert np.max(np.abs(np.degrees(np.angle(c / expected(a, phi))))) < 1.0, k
+    # The tooth errors matter: uncorrected, the oval wheel's 0.05 deg is read as order-2
+    # vibration (the half order is untouched: the teeth repeat every revolution)
+    plain = run_torsiograph(engine["edges"], engine["teeth"], 2).tracks["pulley"]
+    a, k, _ = engine["pulley"][0]
+    assert np.max(np.abs(np.abs(plain.at(k)) / a - 1)) > 0.2
+
+
+def test_torsiograph_twist_of_two_wheels(engine):
+    from fetorsion.measured.torsiograph import run_torsiograph
+
+    result = run_torsiograph(engine["edges"], engine["teeth"], 2, engine["calibration"], ("pulley", "flywheel"))
+    twist = result.tracks["twist"]
+    (a2, k2, p2), (a15, k15, p15) = engine["pulley"]
+    (b2, _, q2), = engine["flywheel"]
+    for k, x in ((k2, expected(a2, p2) - expected(b2, q2)), (k15, expected(a15, p15))):
+        c = twist.at(k)
+        assert np.max(np.abs(np.abs(c) / abs(x) - 1)) < 0.01, k  # as for one wheel
+        assert np.max(np.abs(np.degrees(np.angle(c / x)))) < 1.0, k
+    fly = result.tracks["flywheel"].at(k2)  # the flywheel alone: its own tooth 0 is its angle's origin
+    assert np.max(np.abs(np.abs(fly) / b2 - 1)) < 0.01
+    d = result.to_dict()
+    assert set(d["tracks"]) == {"pulley", "flywheel", "twist"} and len(d["tooth_errors_deg"]["flywheel"]) == 132
+
+
+def test_instantaneous_speed_and_the_edge_file(tmp_path, engine):
+    from fetorsion.measured.torsiograph import instantaneous_speed, read_edges_csv
+
+    t = engine["edges"]["pulley"]
+    mid, omega = instantaneous_speed(t, TEETH, engine["errors"]["pulley"])
+    _, dtheta = sines(2 * np.pi * 50, engine["pulley"])
+    # the speed between edges is the mean over a pitch: it differs from the speed at the mid-time
+    # by (k dtheta)^2/24 of the vibration's part (~5e-4 of 4 %), and the timing noise adds
+    # sqrt(2) 10 ns / 333 us = 4e-5 rms: 3e-4 is over 6 sigma
+    assert np.max(np.abs(omega / dtheta(mid) - 1)) < 3e-4
+    short = engine["edges"]["flywheel"][:100]
+    ms = [repr(float(x)) for x in t * 1e3]  # repr: every digit of the double
+    rows = [f"{a}, {float(short[i]) * 1e3!r}" if i < len(short) else f"{a}," for i, a in enumerate(ms)]
+    (tmp_path / "e.csv").write_text("# unit = ms\npulley, flywheel\n" + "\n".join(rows) + "\n")
+    read = read_edges_csv(tmp_path / "e.csv")
+    assert np.allclose(read["pulley"], t, rtol=1e-15) and np.allclose(read["flywheel"], short, rtol=1e-15)
+
+
+def test_torsiograph_plot(engine):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from fetorsion.measured.torsiograph import run_torsiograph
+
+    ax = run_torsiograph(engine["edges"], engine["teeth"], 2, engine["calibration"]).plot(orders=(1.5, 2))
+    assert len(ax.lines) == 4

@@ -11,6 +11,10 @@ results.
 """
 
 from .ordercut import read_curve_csv, read_order_cut_csv
+from .torsiograph import (OrderTrack, TorsiographResult, instantaneous_speed, order_track, read_edges_csv,
+                          run_torsiograph, tooth_errors, twist)
 from .uff import MeasuredFunction, read_uff58, write_uff58
 
-__all__ = ["MeasuredFunction", "read_uff58", "write_uff58", "read_curve_csv", "read_order_cut_csv"]
+__all__ = ["MeasuredFunction", "read_uff58", "write_uff58", "read_curve_csv", "read_order_cut_csv",
+           "read_edges_csv", "instantaneous_speed", "tooth_errors", "order_track", "twist", "run_torsiograph",
+           "OrderTrack", "TorsiographResult"]

@@ -30,7 +30,7 @@ def _table() -> dict[str, Unit]:
         "frequency": ("Hz", {"Hz": 1.0, "kHz": 1e3, "1/s": 1.0}),
         "speed": ("rpm", {"rpm": 1.0, "1/min": 1.0, "r/min": 1.0, "rev/min": 1.0}),
         "order": ("-", {"order": 1.0, "-": 1.0, "1": 1.0}),
-        "time": ("s", {"s": 1.0, "ms": 1e-3}),
+        "time": ("s", {"s": 1.0, "ms": 1e-3, "us": 1e-6, "µs": 1e-6, "ns": 1e-9}),
         # ordinates: torsional quantities first, then the translational ones of accelerometers
         "angle": ("rad", {"rad": 1.0, "mrad": 1e-3, "urad": 1e-6, "µrad": 1e-6, "deg": math.pi / 180.0,
                           "°": math.pi / 180.0}),
