@@ -10,6 +10,7 @@ Uses no FE and no model: the stages that compare with a model or calibrate it ta
 results.
 """
 
+from .modal import ModalEstimate, estimate_modes, frf_matrix, mac, run_modal_fit
 from .ordercut import read_curve_csv, read_order_cut_csv
 from .torsiograph import (OrderTrack, TorsiographResult, instantaneous_speed, order_track, read_edges_csv,
                           run_torsiograph, tooth_errors, twist)
@@ -17,4 +18,5 @@ from .uff import MeasuredFunction, read_uff58, write_uff58
 
 __all__ = ["MeasuredFunction", "read_uff58", "write_uff58", "read_curve_csv", "read_order_cut_csv",
            "read_edges_csv", "instantaneous_speed", "tooth_errors", "order_track", "twist", "run_torsiograph",
-           "OrderTrack", "TorsiographResult"]
+           "OrderTrack", "TorsiographResult", "frf_matrix", "estimate_modes", "run_modal_fit", "mac",
+           "ModalEstimate"]
