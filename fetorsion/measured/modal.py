@@ -61,6 +61,14 @@ class ModalEstimate:
                 "shapes": self.shapes.tolist(), "stations": [list(s) for s in self.stations],
                 "mass_normalised": self.mass_normalised}
 
+    def table(self) -> str:
+        scale = "mass-normalised" if self.mass_normalised else "largest component 1"
+        lines = [f"modes fitted to measured FRFs (shapes {scale})",
+                 f"{'mode':>4} {'f [Hz]':>10} {'zeta [%]':>9}  shape at " + ", ".join(f"{n}:{d}" for n, d in self.stations)]
+        lines += [f"{r + 1:4d} {f:10.3f} {100 * z:9.3f}  " + " ".join(f"{v:9.4g}" for v in self.shapes[:, r])
+                  for r, (f, z) in enumerate(zip(self.frequencies_hz, self.damping_ratios))]
+        return "\n".join(lines)
+
     def plot(self, ax=None):
         """Each mode's shape against the station. Returns the Axes."""
         import matplotlib.pyplot as plt

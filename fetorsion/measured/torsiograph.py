@@ -389,6 +389,20 @@ class TorsiographResult:
                 "definition": "vibration angle psi(theta) = Re sum_k c_k exp(i k theta), theta from tooth 0; "
                               "amplitude |c_k|, phase arg c_k; twist = first wheel - second wheel"}
 
+    def table(self, count: int = 4) -> str:
+        """Each track's ``count`` strongest orders per block: amplitude [deg] and phase [deg]."""
+        lines = [f"torsiograph: {self.revolutions} revolution(s) a block; vibration angle by order "
+                 "(amplitude deg / phase deg)"]
+        for name, track in self.tracks.items():
+            strongest = np.sort(np.argsort(np.abs(track.amplitudes).max(axis=0))[::-1][:count])
+            lines.append(f"{name}:")
+            lines.append(f"{'rpm':>8} " + " ".join(f"{'order ' + format(k, 'g'):>17}" for k in track.orders[strongest]))
+            for b, rpm in enumerate(track.rpm):
+                c = track.amplitudes[b, strongest]
+                lines.append(f"{rpm:8.1f} " + " ".join(f"{a:8.4f} / {p:6.1f}" for a, p in
+                                                       zip(np.degrees(np.abs(c)), np.degrees(np.angle(c)))))
+        return "\n".join(lines)
+
     def plot(self, orders=(1.0, 2.0), ax=None):
         """Order cuts: amplitude [deg] against mean speed, one line per track and order. Returns the Axes."""
         import matplotlib.pyplot as plt
