@@ -339,3 +339,21 @@ def test_mac():
     assert np.allclose(np.diag(m), 1.0) and m[0, 1] < 0.5  # mass-orthogonal is not orthogonal: not 0
     assert mac(V[:, 0], -3j * V[:, 0]) == pytest.approx(1.0)  # scale and phase do not matter
     assert mac(np.array([1.0, 0.0]), np.array([0.0, 1.0])) == 0.0
+
+
+def test_modal_fit_refuses_what_it_cannot_fit():
+    from fetorsion.measured import estimate_modes, frf_matrix
+
+    f, H, *_ = three_discs()
+    with pytest.raises(FetorsionError, match="evenly spaced"):
+        estimate_modes(f**1.01, H, (20, 380))
+    with pytest.raises(FetorsionError, match="band 20 to 900 Hz is not within the data's 0 to 400 Hz"):
+        estimate_modes(f, H, (20, 900))
+    with pytest.raises(FetorsionError, match="no stable mode between 300 and 380 Hz"):
+        estimate_modes(f, H, (300, 380))
+    frfs = [MeasuredFunction("frf", f, "frequency", H[i], "rad", (i + 1, 4), (1, 4), "N m", f"d{i}") for i in range(2)]
+    other = MeasuredFunction("frf", f, "frequency", H[2], "rad", (3, 4), (2, 4), "N m", "d2 by d1")
+    with pytest.raises(FetorsionError, match="FRF d2 by d1: reference \\(2, 4\\)"):
+        frf_matrix(frfs + [other])
+    speed = MeasuredFunction("frf", f, "frequency", H[2], "rad/s", (3, 4), (1, 4), "N m")
+    assert frf_matrix([speed])[3] == "mobility"
