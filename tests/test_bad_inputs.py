@@ -540,6 +540,8 @@ MEASURED_CASES = [
      ["e.csv", "'flywheel'", "empty cell", "line 5"]),
     ("edges-same-names", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("flywheel", "pulley")},
      ["e.csv", "distinct channel names"]),
+    ("edges-no-header", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("pulley, flywheel\n", "")},
+     ["e.csv", "must name the channels"]),
     ("edges-no-teeth", "m.run_torsiograph(m.read_edges_csv(d / 'e.csv'), {'pulley': 4}, 1)", {"e.csv": EDGES},
      ["'flywheel'", "no teeth per revolution"]),
     ("uff-bad-units-key", "m.read_uff58(d / 'f.uff', units={'y': 'rad'})", {"f.uff": uff_bytes()}, ["f.uff", "'y'"]),

@@ -115,6 +115,10 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> 
     if not rows:
         fail("has no header row naming the channels")
     names = [c.strip() for c in rows[0][1].split(",")]
+    numeric = [n for n in names if _is_number(n)]
+    if numeric:
+        fail(f"line {rows[0][0]}: the first row must name the channels (pulley, flywheel), not hold "
+             f"timestamps ({numeric[0]})")
     if not all(names) or len(set(names)) != len(names):
         fail(f"line {rows[0][0]}: the header row needs distinct channel names, got {rows[0][1]!r}")
     written = header.get("unit")
@@ -147,6 +151,14 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> 
         out[name] = check_edges(column[: present.size] * factor, z or 1, f"{path}: channel {name!r}",
                                 revolutions=1 if z else 0)
     return out
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
 
 
 # ---------------------------------------------------------------------------

@@ -235,7 +235,7 @@ def _record(f: MeasuredFunction, binary: bool) -> dict:
     elif f.rpm is not None and f.abscissa_quantity == "order":
         z_code, z = ABSCISSA_CODES["speed"], float(f.rpm)
     dset = {
-        "type": 58, "binary": int(binary), "func_type": written, "id1": (f.label or NONE)[:ID_WIDTH],
+        "type": 58, "binary": int(binary), "func_type": written, "id1": (" ".join(f.label.split()) or NONE)[:ID_WIDTH],
         "rsp_node": int(f.response[0]), "rsp_dir": int(f.response[1]),
         "ref_node": int(reference[0]), "ref_dir": int(reference[1]),
         # uneven spacing: the abscissa goes into the data (doubles in 58b), not into record 7's
