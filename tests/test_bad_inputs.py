@@ -452,6 +452,118 @@ WARNINGS = [
 ]
 
 
+# ---------------------------------------------------------------------------
+# Measured data (fetorsion.measured): each bad file is one FetorsionError naming the file and the
+# problem, raised before any work, and the folder is left as it was.
+
+
+def uff_bytes(binary: bool = True, kind: str = "frf") -> bytes:
+    """A valid dataset-58 file (one FRF, or one order cut), as bytes."""
+    import tempfile
+    from pathlib import Path
+
+    import numpy as np
+
+    from fetorsion.measured import MeasuredFunction, write_uff58
+
+    f = np.arange(1.0, 65.0)
+    if kind == "frf":
+        function = MeasuredFunction("frf", f, "frequency", 1 / (1e4 - f**2 + 1j * f), "rad", (1, 4), (1, 4), "N m")
+    else:
+        function = MeasuredFunction("order function", 1000 + 50 * f, "speed", 1e-3 / f, "rad", (1, 4), order=2.0)
+    with tempfile.TemporaryDirectory() as folder:
+        return write_uff58(Path(folder) / "f.uff", [function], binary=binary).read_bytes()
+
+
+HEADER_151 = """    -1
+   151
+crank
+NONE
+fetorsion
+24-Nov-26 06:00:00           1         0         0
+24-Nov-26 06:00:00
+fetorsion
+24-Nov-26 06:12:52
+    -1
+"""
+
+
+# two channels of tooth-edge times: a pulley of 4 teeth, a flywheel
+EDGES = "# unit = s\npulley, flywheel\n" + "".join(f"{i * 1e-3:g}, {i * 1e-3 + 1e-4:g}\n" for i in range(9))
+
+
+def measured(call: str):
+    """A call of the measured-data API on the case's folder ``d``."""
+    import fetorsion.measured as m
+
+    return lambda d: eval(call, {"m": m, "d": d})
+
+
+# (id, call on the folder d, extra files, texts the message must hold)
+MEASURED_CASES = [
+    ("uff-missing", "m.read_uff58(d / 'none.uff')", {}, ["none.uff", "not a file"]),
+    ("uff-text", "m.read_uff58(d / 'notes.txt')", {}, ["notes.txt", "not a universal file"]),
+    ("uff-truncated-ascii", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(False)[:1500]}, ["f.uff", "truncated"]),
+    ("uff-truncated-binary", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True)[:-200]}, ["f.uff", "truncated"]),
+    ("uff-values-cut", "m.read_uff58(d / 'f.uff')",  # data lines removed, the closing line kept
+     {"f.uff": b"\n".join(uff_bytes(False).split(b"\n")[:30] + [b"    -1", b""])}, ["f.uff", "truncated", "64 values"]),
+    ("uff-151-only", "m.read_uff58(d / 'f.uff')", {"f.uff": HEADER_151}, ["f.uff", "151", "no dataset 58"]),
+    ("uff-time-response", "m.read_uff58(d / 'f.uff')",
+     {"f.uff": uff_bytes(False).replace(b"\n    4         0", b"\n    1         0", 1)}, ["f.uff", "function type 1"]),
+    ("uff-no-unit", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True, "order").replace(
+        b" rad                 ", b" NONE                ", 1)}, ["f.uff", "ordinate has no unit label"]),
+    ("uff-unknown-unit", "m.read_uff58(d / 'f.uff')", {"f.uff": uff_bytes(True, "order").replace(
+        b" rad                 ", b" furlong             ", 1)}, ["f.uff", "'furlong' is not known"]),
+    ("cut-no-unit", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "1000, 1\n2000, 2\n3000, 1\n"},
+     ["c.csv", "no unit"]),
+    ("cut-units-disagree", "m.read_order_cut_csv(d / 'c.csv', unit='rad')", {"c.csv": "# unit = deg\n" + CURVE[13:]},
+     ["c.csv", "'# unit = deg'", "'rad'"]),
+    ("cut-unknown-unit", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "# unit = furlong\n" + CURVE[13:]},
+     ["c.csv", "'furlong' is not known"]),
+    ("cut-speed-unit", "m.read_order_cut_csv(d / 'c.csv', unit='rpm')", {"c.csv": CURVE[13:]},
+     ["c.csv", "'rpm' is a unit of speed"]),
+    ("cut-four-columns", "m.read_order_cut_csv(d / 'c.csv', unit='deg')", {"c.csv": "1, 2, 3, 4\n" * 3},
+     ["c.csv", "rpm, amplitude[, phase_deg]"]),
+    ("cut-order-word", "m.read_order_cut_csv(d / 'c.csv')", {"c.csv": "# order = second\n" + CURVE},
+     ["c.csv", "'# order = second' is not a number"]),
+    ("edges-no-unit", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("# unit = s\n", "")},
+     ["e.csv", "no unit"]),
+    ("edges-backwards", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.003,", "0.0015,")},
+     ["e.csv", "'pulley'", "not increasing", "edge 4"]),
+    ("edges-no-pulses", "m.read_edges_csv(d / 'e.csv')", {"e.csv": "# unit = s\npulley, flywheel\n" + "".join(
+        f"{i * 1e-3},\n" for i in range(9))}, ["e.csv", "'flywheel'", "no pulses"]),
+    ("edges-one-revolution", "m.read_edges_csv(d / 'e.csv', teeth={'pulley': 60})",
+     {"e.csv": EDGES}, ["e.csv", "'pulley'", "9 pulses", "too few", "60 teeth"]),
+    ("edges-word", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.004,", "four,")},
+     ["e.csv", "line 7", "'four' is not a number"]),
+    ("edges-gap", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("0.0021", "")},
+     ["e.csv", "'flywheel'", "empty cell", "line 5"]),
+    ("edges-same-names", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("flywheel", "pulley")},
+     ["e.csv", "distinct channel names"]),
+    ("edges-no-header", "m.read_edges_csv(d / 'e.csv')", {"e.csv": EDGES.replace("pulley, flywheel\n", "")},
+     ["e.csv", "must name the channels"]),
+    ("edges-no-teeth", "m.run_torsiograph(m.read_edges_csv(d / 'e.csv'), {'pulley': 4}, 1)", {"e.csv": EDGES},
+     ["'flywheel'", "no teeth per revolution"]),
+    ("uff-bad-units-key", "m.read_uff58(d / 'f.uff', units={'y': 'rad'})", {"f.uff": uff_bytes()}, ["f.uff", "'y'"]),
+]
+
+
+@pytest.mark.parametrize("case", MEASURED_CASES, ids=["measured-" + c[0] for c in MEASURED_CASES])
+def test_bad_measured_file_is_one_message_naming_it(case, tmp_path):
+    from fetorsion.errors import FetorsionError
+
+    name, call, extra, needles = case
+    folder = make_folder(tmp_path, extra)
+    before = snapshot(folder)
+    with pytest.raises(FetorsionError) as info:
+        measured(call)(folder)
+    text = str(info.value)
+    for needle in needles:
+        assert needle in text, f"{name}: message does not name {needle!r}: {text}"
+    assert "\n" not in text, f"{name}: more than one message: {text}"
+    assert snapshot(folder) == before, f"{name}: the folder changed"
+
+
 def snapshot(folder) -> dict:
     """Every entry below ``folder``: kind, mode and content hash."""
     out = {}

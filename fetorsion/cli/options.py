@@ -60,53 +60,27 @@ MM = 1e-3  # m per mm
 def read_compare_csv(path, name: str | None, unit: str | None):
     """The ``--compare`` curve: (rpm, value, name, unit), or one clear message naming the option.
 
-    Rows ``rpm, value`` (rpm ascending, values finite and >= 0); ``#`` lines are comments, and
-    ``# name = ...`` / ``# unit = ...`` give the curve's name and unit unless the options do.
+    Rows ``rpm, value`` (rpm ascending, values finite and >= 0, read by
+    :func:`~fetorsion.measured.ordercut.read_curve_csv`); ``# name = ...`` / ``# unit = ...``
+    lines give the curve's name and unit unless the options do.
     """
     from pathlib import Path
 
-    import numpy as np
-
-    from ..description.reader import MAX_DESCRIPTION_BYTES
     from ..errors import FetorsionError
+    from ..measured.ordercut import read_curve_csv
     from ..response.forced import COMPARE_UNITS
 
-    path = Path(path)
-    rows = "rows of 'rpm, value'"
-
-    def fail(rule):
-        raise FetorsionError(f"--compare {path}: {rule}")
-
-    if not path.is_file():
-        fail("is not a file")
-    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
-        fail(f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB")
     try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        fail(f"could not be read as UTF-8 text ({exc})")
-    header = {}
-    for line in text.splitlines():
-        key, eq, value = line.lstrip("#").partition("=")
-        if line.startswith("#") and eq and key.strip() in ("name", "unit"):
-            header[key.strip()] = value.strip()
-    try:
-        table = np.loadtxt(text.splitlines(), delimiter=",", comments="#", ndmin=2)
-    except ValueError as exc:
-        fail(f"could not be read as {rows} ({exc})")
-    if table.ndim != 2 or table.shape[1] != 2 or len(table) < 3:
-        fail(f"needs >= 3 {rows}")
-    if not np.all(np.isfinite(table)):
-        fail(f"row {int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0]) + 1} holds a non-finite number")
-    if np.any(np.diff(table[:, 0]) <= 0) or np.any(table[:, 0] <= 0) or np.any(table[:, 1] < 0):
-        fail(f"needs {rows} with rpm > 0 ascending and values >= 0")
+        table, header = read_curve_csv(path, ("rpm", "value"))
+    except FetorsionError as exc:
+        raise FetorsionError(f"--compare {exc}") from None
     unit = unit or header.get("unit")
     if unit is None:
         raise FetorsionError(f"--compare-unit: give the unit of {path} ({', '.join(COMPARE_UNITS)}) "
                              "or a '# unit = ...' line in it")
     if unit not in COMPARE_UNITS:
         raise FetorsionError(f"--compare-unit: {path} says '# unit = {unit}'; use one of {', '.join(COMPARE_UNITS)}")
-    return table[:, 0], table[:, 1], name or header.get("name") or path.stem, unit
+    return table[:, 0], table[:, 1], name or header.get("name") or Path(path).stem, unit
 
 
 #: Parameters of the API whose command-line option is not ``--`` + the parameter's name.

@@ -1,0 +1,254 @@
+"""Natural frequencies, damping ratios and mode shapes fitted to measured FRFs, and the modal
+assurance criterion that compares shapes.
+
+The poles come from sdypy-EMA's [Sdypy] least-squares complex-frequency estimator (LSCF, the
+single-reference core of PolyMAX [Peeters]) over model orders 2 to 2 n; the modal constants at
+the measured stations from its least-squares frequency-domain fit (LSFD) with lower and upper
+residuals. sdypy-EMA leaves the choice of poles to a person at a stability chart, or to a
+list of approximate frequencies; here it is automatic, by the stability chart's own rule
+[Peeters]: a pole is stable when the next lower order has one within a relative tolerance in
+frequency and in damping, and a mode is a cluster of stable physical poles (in the band,
+0 < ζ < ``MAX_DAMPING``) that recurs over a fraction of the model orders. Each mode takes
+the pole of the cluster's median frequency.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import FetorsionError
+
+FORMS = {"angle": "receptance", "length": "receptance", "angular velocity": "mobility", "velocity": "mobility",
+         "angular acceleration": "accelerance", "acceleration": "accelerance"}
+MAX_MODEL_ORDER = 30  # sdypy-EMA's pol_order_high: denominators of order 2 to 60
+FREQUENCY_STABLE = 1e-3  # relative change of a stable pole's frequency from one order to the next
+DAMPING_STABLE = 0.05  # and of its damping ratio
+MAX_DAMPING = 0.3  # a pole damped more than this is a computational one, not a structural mode
+CLUSTER_WIDTH = 5e-3  # stable poles closer than this (relative) are one mode
+RECURRENCE = 0.3  # a mode's stable poles appear in this fraction of the model orders at least
+
+
+@dataclass(frozen=True, eq=False)
+class ModalEstimate:
+    """Modes fitted to one reference's FRFs.
+
+    Attributes
+    ----------
+    frequencies_hz : ndarray, shape (modes,)
+        Undamped natural frequencies [Hz], ascending.
+    damping_ratios : ndarray, shape (modes,)
+        Viscous damping ratios [-].
+    shapes : ndarray, shape (stations, modes)
+        Real mode shapes: mass-normalised when the driving point is among the stations (in
+        1/sqrt of the FRF reference's inertia: kg^-1/2, or (kg m^2)^-1/2 for torsion), else
+        scaled to a largest component of +1.
+    stations : list of tuple
+        (node, direction) of each row of ``shapes``.
+    mass_normalised : bool
+        Whether ``shapes`` are mass-normalised.
+    """
+
+    frequencies_hz: np.ndarray
+    damping_ratios: np.ndarray
+    shapes: np.ndarray
+    stations: list
+    mass_normalised: bool
+
+    def to_dict(self) -> dict:
+        return {"frequencies_hz": self.frequencies_hz.tolist(), "damping_ratios": self.damping_ratios.tolist(),
+                "shapes": self.shapes.tolist(), "stations": [list(s) for s in self.stations],
+                "mass_normalised": self.mass_normalised}
+
+    def table(self) -> str:
+        scale = "mass-normalised" if self.mass_normalised else "largest component 1"
+        lines = [f"modes fitted to measured FRFs (shapes {scale})",
+                 f"{'mode':>4} {'f [Hz]':>10} {'zeta [%]':>9}  shape at " + ", ".join(f"{n}:{d}" for n, d in self.stations)]
+        lines += [f"{r + 1:4d} {f:10.3f} {100 * z:9.3f}  " + " ".join(f"{v:9.4g}" for v in self.shapes[:, r])
+                  for r, (f, z) in enumerate(zip(self.frequencies_hz, self.damping_ratios))]
+        return "\n".join(lines)
+
+    def plot(self, ax=None):
+        """Each mode's shape against the station. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4))
+        x = np.arange(len(self.stations))
+        for r, f in enumerate(self.frequencies_hz):
+            ax.plot(x, self.shapes[:, r], "o-", label=f"{f:.1f} Hz, ζ = {100 * self.damping_ratios[r]:.2f} %")
+        ax.set_xticks(x, [f"{n}:{d}" for n, d in self.stations])
+        ax.set_xlabel("station (node:direction)")
+        ax.set_ylabel("mode shape")
+        ax.axhline(0.0, color="0.7", lw=0.8)
+        ax.legend(fontsize=8)
+        return ax
+
+
+def mac(a, b) -> np.ndarray:
+    """Modal assurance criterion: |a_i^H b_j|^2 / ((a_i^H a_i)(b_j^H b_j)), 1 for shapes alike.
+
+    Parameters
+    ----------
+    a, b : array_like, shape (stations,) or (stations, modes)
+        Mode shapes, real or complex, at the same stations.
+
+    Returns
+    -------
+    ndarray or float
+        (modes of a, modes of b); a float when both are single shapes.
+    """
+    a, b = np.asarray(a), np.asarray(b)
+    single = a.ndim == 1 and b.ndim == 1
+    a, b = a.reshape(a.shape[0], -1), b.reshape(b.shape[0], -1)
+    if a.shape[0] != b.shape[0]:
+        raise FetorsionError(f"mac: shapes at {a.shape[0]} and {b.shape[0]} stations")
+    m = np.abs(a.conj().T @ b) ** 2 / np.outer(np.sum(np.abs(a) ** 2, axis=0), np.sum(np.abs(b) ** 2, axis=0))
+    return float(m[0, 0]) if single else m
+
+
+def frf_matrix(functions):
+    """The FRFs of one reference as a matrix, with what the fit needs to know of them.
+
+    Parameters
+    ----------
+    functions : list of MeasuredFunction
+        FRFs against frequency, one per response station, one reference, one pair of units,
+        on one evenly spaced frequency grid.
+
+    Returns
+    -------
+    frequency_hz : ndarray
+    frf : ndarray, complex, shape (stations, frequencies)
+    stations : list of tuple
+        (node, direction) of each response.
+    form : str
+        ``'receptance'``, ``'mobility'`` or ``'accelerance'``, from the response's unit.
+    driving_point : int or None
+        The row whose response is the reference.
+    """
+    from .units import unit
+
+    frfs = [f for f in functions if f.kind == "frf"]
+    if not frfs:
+        raise FetorsionError("frf_matrix: no FRF among the functions")
+    first = frfs[0]
+    for f in frfs:
+        what = f"FRF {f.label or f.response}"
+        if f.abscissa_quantity != "frequency":
+            raise FetorsionError(f"{what}: is against {f.abscissa_quantity}, not frequency")
+        if f.reference != first.reference or (f.unit, f.reference_unit) != (first.unit, first.reference_unit):
+            raise FetorsionError(f"{what}: reference {f.reference} in {f.unit}/{f.reference_unit}; the first FRF's "
+                                 f"is {first.reference} in {first.unit}/{first.reference_unit}")
+        if f.abscissa.shape != first.abscissa.shape or not np.allclose(f.abscissa, first.abscissa, rtol=1e-12):
+            raise FetorsionError(f"{what}: its frequencies differ from the first FRF's")
+    form = FORMS.get(unit(first.unit, "FRF response").quantity)
+    if form is None:
+        raise FetorsionError(f"FRF response unit {first.unit!r}: not a displacement, velocity or acceleration")
+    stations = [tuple(f.response) for f in frfs]
+    if len(set(stations)) != len(stations):
+        raise FetorsionError(f"frf_matrix: a station appears twice among {stations}")
+    driving = stations.index(tuple(first.reference)) if tuple(first.reference) in stations else None
+    return first.abscissa, np.array([f.ordinate for f in frfs]), stations, form, driving
+
+
+def _stable_modes(pole_freq, pole_xi, all_poles, band):
+    """One pole per mode: the stable physical poles of all orders, clustered by frequency."""
+    found = []  # (frequency, damping, pole)
+    for j in range(1, len(all_poles)):
+        f, z, p = np.asarray(pole_freq[j]), np.asarray(pole_xi[j]), np.asarray(all_poles[j])
+        f0, z0 = np.asarray(pole_freq[j - 1]), np.asarray(pole_xi[j - 1])
+        physical = (f > band[0]) & (f < band[1]) & (z > 0) & (z < MAX_DAMPING)
+        if not physical.any() or not f0.size:
+            continue
+        df = np.abs(f[physical, None] - f0[None, :]) / f[physical, None]
+        dz = np.abs(z[physical, None] - z0[None, :]) / z[physical, None]
+        stable = np.any((df < FREQUENCY_STABLE) & (dz < DAMPING_STABLE), axis=1)
+        found += [(fi, zi, pi, j) for fi, zi, pi in zip(f[physical][stable], z[physical][stable],
+                                                       p[physical][stable])]
+    if not found:
+        return []
+    found.sort(key=lambda x: x[0])
+    freqs = np.array([x[0] for x in found])
+    breaks = np.flatnonzero(np.diff(freqs) / freqs[:-1] > CLUSTER_WIDTH) + 1
+    modes = []
+    for cluster in np.split(np.arange(len(found)), breaks):
+        orders = {found[i][3] for i in cluster}
+        if len(orders) >= RECURRENCE * (len(all_poles) - 1):
+            median = cluster[len(cluster) // 2]
+            modes.append(found[median][2])
+    return modes
+
+
+def estimate_modes(frequency_hz, frf, band_hz, form: str = "receptance", stations=None,
+                   driving_point: int | None = None, max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:
+    """Modes of one reference's FRFs in a frequency band, poles chosen automatically.
+
+    Parameters
+    ----------
+    frequency_hz : array_like
+        Evenly spaced frequencies [Hz].
+    frf : array_like, complex, shape (stations, frequencies)
+        FRFs of each response station to the one reference, in SI.
+    band_hz : tuple of float
+        (low, high) [Hz]: the poles are sought and fitted there.
+    form : str
+        ``'receptance'`` (angle or displacement per load), ``'mobility'`` or ``'accelerance'``.
+    stations : list of tuple, optional
+        (node, direction) of each row, for the result; 0, 1, ... if None.
+    driving_point : int, optional
+        The row measured at the reference: the shapes are then mass-normalised.
+    max_order : int
+        The highest model order tried (the denominators run to twice it).
+    """
+    import warnings
+
+    from sdypy import EMA
+    from sdypy.EMA.EMA import LSFD
+
+    f = np.asarray(frequency_hz, dtype=float)
+    h = np.atleast_2d(np.asarray(frf))
+    low, high = map(float, band_hz)
+    if h.shape[1] != f.size or f.size < 3:
+        raise FetorsionError(f"estimate_modes: {h.shape[1]} FRF values for {f.size} frequencies")
+    step = np.diff(f)
+    if np.any(np.abs(step - step[0]) > 1e-6 * step[0]) or step[0] <= 0:
+        raise FetorsionError("estimate_modes: the frequencies must be evenly spaced and ascending (LSCF)")
+    if not (f[0] <= low < high <= f[-1]):
+        raise FetorsionError(f"estimate_modes: band {low:g} to {high:g} Hz is not within the data's "
+                             f"{f[0]:g} to {f[-1]:g} Hz")
+    if form not in set(FORMS.values()):
+        raise FetorsionError(f"estimate_modes: form {form!r}; choose receptance, mobility or accelerance")
+    with warnings.catch_warnings():  # sdypy warns of clamping the band to the last bin, and of 1/omega at 0 Hz
+        warnings.simplefilter("ignore", UserWarning)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        model = EMA.Model(frf=h, freq=f, lower=low, upper=high, pol_order_high=int(max_order), frf_form=form)
+        model.get_poles(method="lscf", show_progress=False)
+        poles = _stable_modes(model.pole_freq, model.pole_xi, model.all_poles, (low, high))
+        if not poles:
+            raise FetorsionError(f"estimate_modes: no stable mode between {low:g} and {high:g} Hz")
+        poles = np.array(sorted(poles, key=abs))
+        lower = int(np.argmin(np.abs(model.freq - low)))
+        upper = int(np.argmin(np.abs(model.freq - high)))
+        constants, *_ = LSFD(poles, model.frf, model.freq, True, True, lower, upper, form)
+    omega = np.abs(poles)
+    # A mode's residue at station i is phi_i phi_ref / (2 i omega_d) for mass-normalised phi
+    products = 2j * poles.imag * constants
+    if driving_point is not None:
+        shapes = products / np.sqrt(products[driving_point] + 0j)
+    else:
+        shapes = products / products[np.argmax(np.abs(products), axis=0), np.arange(products.shape[1])]
+    # proportional damping: real shapes, up to noise; each turned onto the real axis
+    turn = np.exp(-1j * np.angle(np.sum(shapes**2, axis=0)) / 2)
+    shapes = (shapes * turn).real
+    shapes *= np.where(shapes[np.argmax(np.abs(shapes), axis=0), np.arange(shapes.shape[1])] < 0, -1.0, 1.0)
+    return ModalEstimate(frequencies_hz=omega / (2 * np.pi), damping_ratios=-poles.real / omega, shapes=shapes,
+                         stations=list(stations) if stations is not None else [(i, 0) for i in range(h.shape[0])],
+                         mass_normalised=driving_point is not None)
+
+
+def run_modal_fit(functions, band_hz, max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:
+    """Modes of measured FRFs (:func:`~fetorsion.measured.uff.read_uff58`) in a band [Hz]."""
+    frequency, frf, stations, form, driving = frf_matrix(functions)
+    return estimate_modes(frequency, frf, band_hz, form, stations, driving, max_order)

@@ -1,0 +1,467 @@
+"""A torsiograph from toothed wheels: the time of every tooth edge a pickup saw, turned into
+the wheel's angle and speed, its vibration by engine order against speed, and the twist
+between two wheels on the shaft.
+
+Edge ``i`` of a wheel of ``z`` teeth is tooth ``j = i mod z`` of revolution ``r = i div z``;
+the first edge recorded is tooth 0 (the angle's origin), so a record needs no once-per-rev
+mark and whole revolutions are counted from its first edge. The wheel's angle at edge ``i`` is
+
+    θ_i = 2π i / z + e_j,
+
+with ``e`` the tooth spacing errors (mean zero), estimated by :func:`tooth_errors`. Between
+edges the angle is interpolated (a cubic spline of time against angle), so that the vibration
+is sampled at equal angles (computed order tracking, with a cubic rather than a linear
+interpolation [Fyfe]), and an FFT over N whole revolutions puts every order that is a
+multiple of 1/N on a bin.
+
+The tooth spacing errors are calibrated in place by averaging each tooth's deviation over
+many revolutions [Resor]. They repeat every revolution, and so does a vibration at a
+whole-number order: in one steady record the two cannot be told apart, and averaging leaves
+both. So the errors are estimated from a calibration record in which the whole-number orders
+are weak (a motored or coasting run at low speed) and applied to the records to analyse. Half
+orders (a four-stroke engine's) repeat only every second revolution and average out of the
+estimate over an even number of revolutions.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import FetorsionError
+from .units import unit as unit_of
+
+TWIST = "twist"  # the name of the twist's track in a TorsiographResult
+MAX_EDGE_FILE_BYTES = 1 << 30  # a tooth-edge record is large (tens of MB), but not this large
+
+
+# ---------------------------------------------------------------------------
+# Reading and checking edges
+
+
+def check_edges(times, teeth: int, where: str = "edges", revolutions: int = 1) -> np.ndarray:
+    """``times`` as a float array, or one message naming ``where`` if they are unusable.
+
+    Parameters
+    ----------
+    times : array_like
+        Edge timestamps [s].
+    teeth : int
+        Teeth (edges) per revolution.
+    where : str
+        The file and channel, for the message.
+    revolutions : int
+        The whole revolutions the caller needs.
+    """
+    if isinstance(teeth, bool) or not isinstance(teeth, (int, np.integer)) or teeth < 1:
+        raise FetorsionError(f"{where}: teeth = {teeth!r}: give the teeth per revolution, a whole number >= 1")
+    t = np.asarray(times, dtype=float)
+    if t.ndim != 1 or t.size == 0:
+        raise FetorsionError(f"{where}: has no pulses")
+    if not np.all(np.isfinite(t)):
+        raise FetorsionError(f"{where}: edge {int(np.flatnonzero(~np.isfinite(t))[0]) + 1} is not a finite time")
+    back = np.flatnonzero(np.diff(t) <= 0)
+    if back.size:
+        i = int(back[0]) + 1
+        raise FetorsionError(f"{where}: timestamps are not increasing: edge {i + 1} ({t[i]:.9g} s) "
+                             f"is not after edge {i} ({t[i - 1]:.9g} s)")
+    needed = revolutions * teeth + 1
+    if t.size < needed:
+        raise FetorsionError(f"{where}: has {t.size} pulses, too few for {revolutions} revolution(s) "
+                             f"of {teeth} teeth ({needed} edges)")
+    return t
+
+
+def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> dict[str, np.ndarray]:
+    """Tooth-edge timestamps per channel from a CSV file, in seconds.
+
+    Parameters
+    ----------
+    path : str or Path
+        Text: ``#`` comment lines (``# unit = s``, ``ms`` or ``us`` says the timestamps' unit),
+        a header row naming the channels (``pulley, flywheel``), then one row per edge; a
+        channel with fewer edges leaves its cells empty at the end.
+    unit : str, optional
+        The timestamps' unit, if the file has no ``# unit = ...`` line.
+    teeth : dict, optional
+        Channel -> teeth per revolution: each such channel must hold one revolution at least.
+
+    Returns
+    -------
+    dict
+        Channel name -> increasing timestamps [s], each checked for pulses and their order.
+    """
+    path = Path(path)
+
+    def fail(rule):
+        raise FetorsionError(f"{path}: {rule}")
+
+    if not path.is_file():
+        fail("is not a file")
+    if path.stat().st_size > MAX_EDGE_FILE_BYTES:
+        fail(f"is larger than {MAX_EDGE_FILE_BYTES >> 20} MiB")
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        fail(f"could not be read as UTF-8 text ({exc})")
+    header = {}
+    for line in lines:
+        key, eq, value = line.lstrip("#").partition("=")
+        if line.startswith("#") and eq:
+            header[key.strip()] = value.strip()
+    rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip() and not line.startswith("#")]
+    if not rows:
+        fail("has no header row naming the channels")
+    names = [c.strip() for c in rows[0][1].split(",")]
+    numeric = [n for n in names if _is_number(n)]
+    if numeric:
+        fail(f"line {rows[0][0]}: the first row must name the channels (pulley, flywheel), not hold "
+             f"timestamps ({numeric[0]})")
+    if not all(names) or len(set(names)) != len(names):
+        fail(f"line {rows[0][0]}: the header row needs distinct channel names, got {rows[0][1]!r}")
+    written = header.get("unit")
+    if written is None and unit is None:
+        fail("the timestamps have no unit: give one (unit=...) or a '# unit = s' line")
+    found = unit_of(written, f"{path}: '# unit'", ("time",)) if written is not None else None
+    given = unit_of(unit, f"{path}: stated unit", ("time",)) if unit is not None else None
+    if found and given and found.factor != given.factor:
+        fail(f"says '# unit = {written}', but {unit!r} was stated")
+    factor = (found or given).factor
+    table = np.full((len(rows) - 1, len(names)), np.nan)
+    for r, (number, line) in enumerate(rows[1:]):
+        cells = [c.strip() for c in line.split(",")]
+        if len(cells) > len(names):
+            fail(f"line {number}: {len(cells)} cells for {len(names)} channels")
+        for c, cell in enumerate(cells):
+            if cell:
+                try:
+                    table[r, c] = float(cell)
+                except ValueError:
+                    fail(f"line {number}: {cell!r} is not a number")
+    out = {}
+    for c, name in enumerate(names):
+        column = table[:, c]
+        present = np.flatnonzero(~np.isnan(column))
+        if present.size and present[-1] + 1 != present.size:
+            gap = int(np.flatnonzero(np.isnan(column[: present[-1]]))[0])
+            fail(f"channel {name!r}: an empty cell before its last edge (line {rows[1 + gap][0]})")
+        z = (teeth or {}).get(name)
+        out[name] = check_edges(column[: present.size] * factor, z or 1, f"{path}: channel {name!r}",
+                                revolutions=1 if z else 0)
+    return out
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+# ---------------------------------------------------------------------------
+# Angle, speed, tooth errors
+
+
+def edge_angles(n: int, teeth: int, errors=None) -> np.ndarray:
+    """The wheel's angle at its first ``n`` edges [rad]: 2π i / z, plus the tooth errors.
+
+    Parameters
+    ----------
+    n : int
+        Edges.
+    teeth : int
+        Teeth per revolution, z.
+    errors : array_like, optional
+        Tooth spacing errors e_j [rad], one per tooth, tooth 0 first (:func:`tooth_errors`).
+    """
+    theta = 2.0 * np.pi * np.arange(n) / teeth
+    if errors is not None:
+        e = np.asarray(errors, dtype=float)
+        if e.shape != (teeth,):
+            raise FetorsionError(f"tooth errors: {e.shape[0] if e.ndim == 1 else e.shape} values for {teeth} teeth")
+        if np.any(np.diff(np.append(e, e[0] + 2 * np.pi)) + 2 * np.pi / teeth <= 0):
+            raise FetorsionError("tooth errors: larger than the tooth pitch (the edges would run backwards)")
+        theta = theta + np.resize(e, n)
+    return theta
+
+
+def instantaneous_speed(times, teeth: int, errors=None):
+    """The wheel's speed between consecutive edges.
+
+    Parameters
+    ----------
+    times : array_like
+        Edge timestamps [s].
+    teeth : int
+        Teeth per revolution.
+    errors : array_like, optional
+        Tooth spacing errors [rad] (:func:`tooth_errors`).
+
+    Returns
+    -------
+    t : ndarray
+        Mid-times between edges [s].
+    omega : ndarray
+        Angular speed [rad/s], the angle between the edges over the time between them.
+    """
+    t = check_edges(times, teeth)
+    theta = edge_angles(t.size, teeth, errors)
+    return 0.5 * (t[1:] + t[:-1]), np.diff(theta) / np.diff(t)
+
+
+def tooth_errors(times, teeth: int) -> np.ndarray:
+    """Tooth spacing errors of a wheel from a calibration record, averaged over its whole
+    revolutions [rad], mean zero, tooth 0 first.
+
+    The rotation is taken to be smooth between once-per-revolution marks (tooth 0): a cubic
+    spline of angle against time through the marks, which follows a run-up or a coast-down.
+    Each edge's angle on that spline, less its nominal 2π i / z, is its tooth's error plus
+    what the spline misses (vibration, timing noise); averaged over revolutions, what repeats
+    every revolution is left. Whole-number orders of vibration repeat too: record the
+    calibration where they are weak.
+
+    Parameters
+    ----------
+    times : array_like
+        Edge timestamps [s] of at least two whole revolutions (more average the noise).
+    teeth : int
+        Teeth per revolution.
+    """
+    from scipy.interpolate import CubicSpline
+
+    t = check_edges(times, teeth, "calibration record", revolutions=2)
+    revs = (t.size - 1) // teeth
+    marks = t[: revs * teeth + 1 : teeth]
+    smooth = CubicSpline(marks, 2.0 * np.pi * np.arange(revs + 1))
+    i = np.arange(revs * teeth)
+    deviation = (smooth(t[i]) - 2.0 * np.pi * i / teeth).reshape(revs, teeth).mean(axis=0)
+    return deviation - deviation.mean()
+
+
+# ---------------------------------------------------------------------------
+# Order tracking
+
+
+@dataclass(frozen=True, eq=False)
+class OrderTrack:
+    """Vibration of one angle by order, per block of whole revolutions.
+
+    The angle's vibration in block b is ψ(θ) = Re Σ_k c_bk exp(i k θ), θ the wheel's angle
+    from tooth 0 of the record [rad]; so a vibration a sin(kθ + φ) has c = a exp(i(φ − π/2)).
+
+    Attributes
+    ----------
+    name : str
+        The channel, or ``'twist'``.
+    rpm : ndarray, shape (blocks,)
+        Mean speed of each block [rpm].
+    orders : ndarray, shape (orders,)
+        Engine orders, multiples of 1 / (revolutions per block).
+    amplitudes : ndarray, complex, shape (blocks, orders)
+        c_bk [rad].
+    """
+
+    name: str
+    rpm: np.ndarray
+    orders: np.ndarray
+    amplitudes: np.ndarray
+
+    def at(self, order: float) -> np.ndarray:
+        """The complex amplitudes of one order, per block [rad] (an order cut)."""
+        k = np.flatnonzero(np.isclose(self.orders, order, rtol=0, atol=1e-9))
+        if not k.size:
+            raise FetorsionError(f"{self.name}: order {order:g} is not on the tracked orders "
+                                 f"(multiples of {self.orders[0]:g} up to {self.orders[-1]:g})")
+        return self.amplitudes[:, int(k[0])]
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "rpm": self.rpm.tolist(), "orders": self.orders.tolist(),
+                "amplitude_deg": np.degrees(np.abs(self.amplitudes)).tolist(),
+                "phase_deg": np.degrees(np.angle(self.amplitudes)).tolist()}
+
+
+def _blocks(t_grid: np.ndarray, psi: np.ndarray, per_block: int, revolutions: int, theta0: np.ndarray):
+    """Mean speed [rpm] and complex order amplitudes of ψ sampled at equal angles."""
+    fft = np.fft.rfft(psi[:, :-1], axis=1) * (2.0 / per_block)  # the closing edge is the next block's first
+    orders = np.arange(1, fft.shape[1]) / revolutions
+    if per_block % 2 == 0:  # the Nyquist bin holds a real number, not an amplitude and a phase
+        orders = orders[:-1]
+    c = fft[:, 1: 1 + orders.size] * np.exp(-1j * np.outer(theta0, orders))  # phase from tooth 0 of the record
+    rpm = 60.0 * revolutions / (t_grid[:, -1] - t_grid[:, 0])
+    return rpm, orders, c
+
+
+def _grid(times, teeth: int, revolutions: int, errors, name: str):
+    """Times of equal angles (the tooth pitch) in whole blocks: (times, angles), shape (blocks, N z + 1)."""
+    from scipy.interpolate import CubicSpline
+
+    t = check_edges(times, teeth, name, revolutions=revolutions)
+    theta = edge_angles(t.size, teeth, errors)
+    per_block = revolutions * teeth
+    blocks = (t.size - 1) // per_block
+    index = np.arange(blocks)[:, None] * per_block + np.arange(per_block + 1)
+    nominal = 2.0 * np.pi * index / teeth
+    # Without tooth errors the edges are the equal angles; with them, time is interpolated at
+    # the nominal angles (angle is a smooth function of time, and so time of angle)
+    t_grid = t[index] if errors is None else CubicSpline(theta, t)(nominal)
+    return t_grid, nominal
+
+
+def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel") -> OrderTrack:
+    """The angle's vibration by order per block of ``revolutions`` whole revolutions.
+
+    In each block the angle is sampled at equal angles (the tooth pitch), the block's mean
+    rotation (the straight line through its first and last edge) is taken off, and the rest
+    is Fourier transformed over the block; orders run from 1/N to below z/2.
+
+    Parameters
+    ----------
+    times : array_like
+        Edge timestamps [s].
+    teeth : int
+        Teeth per revolution, z.
+    revolutions : int
+        Revolutions per block, N: 2 puts a four-stroke engine's half orders on bins.
+    errors : array_like, optional
+        Tooth spacing errors [rad] (:func:`tooth_errors`).
+    name : str
+        The channel, for messages and the result.
+    """
+    revolutions = _whole(revolutions, "revolutions")
+    t_grid, theta = _grid(times, teeth, revolutions, errors, name)
+    speed = (theta[:, -1:] - theta[:, :1]) / (t_grid[:, -1:] - t_grid[:, :1])
+    psi = (theta - theta[:, :1]) - speed * (t_grid - t_grid[:, :1])
+    rpm, orders, c = _blocks(t_grid, psi, revolutions * teeth, revolutions, theta[:, 0])
+    return OrderTrack(name, rpm, orders, c)
+
+
+def twist(times_a, times_b, teeth_a: int, teeth_b: int, revolutions: int, errors_a=None, errors_b=None,
+          names=("a", "b")) -> OrderTrack:
+    """The twist θ_a − θ_b between two wheels on one shaft, by order, in wheel a's blocks.
+
+    Wheel b's angle is interpolated (a cubic spline against time) at the times of wheel a's
+    equal angles; the static twist (and the wheels' different tooth 0) is the mean, left out.
+
+    Parameters
+    ----------
+    times_a, times_b : array_like
+        Edge timestamps of the two wheels [s], on one clock.
+    teeth_a, teeth_b : int
+        Their teeth per revolution.
+    revolutions : int
+        Revolutions per block (of wheel a).
+    errors_a, errors_b : array_like, optional
+        Their tooth spacing errors [rad].
+    names : tuple of str
+        The two channels, for messages.
+    """
+    from scipy.interpolate import CubicSpline
+
+    revolutions = _whole(revolutions, "revolutions")
+    t_grid, theta = _grid(times_a, teeth_a, revolutions, errors_a, names[0])
+    tb = check_edges(times_b, teeth_b, names[1], revolutions=1)
+    inside = (t_grid[:, 0] >= tb[0]) & (t_grid[:, -1] <= tb[-1])
+    if not inside.any():
+        raise FetorsionError(f"{names[0]} and {names[1]}: no block of {revolutions} revolution(s) of "
+                             f"{names[0]} lies within {names[1]}'s record")
+    t_grid, theta = t_grid[inside], theta[inside]
+    theta_b = CubicSpline(tb, edge_angles(tb.size, teeth_b, errors_b))(t_grid)
+    psi = theta - theta_b
+    rpm, orders, c = _blocks(t_grid, psi - psi.mean(axis=1, keepdims=True), revolutions * teeth_a,
+                             revolutions, theta[:, 0])
+    return OrderTrack(TWIST, rpm, orders, c)
+
+
+def _whole(value, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise FetorsionError(f"{name} = {value!r}: give a whole number >= 1")
+    return int(value)
+
+
+# ---------------------------------------------------------------------------
+# The whole analysis
+
+
+@dataclass(frozen=True, eq=False)
+class TorsiographResult:
+    """Order tracks of each wheel and of the twist between two, per block of revolutions."""
+
+    tracks: dict[str, OrderTrack]
+    teeth: dict[str, int]
+    revolutions: int
+    errors: dict[str, np.ndarray] = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return {"teeth": dict(self.teeth), "revolutions_per_block": self.revolutions,
+                "tooth_errors_deg": {k: np.degrees(v).tolist() for k, v in self.errors.items()},
+                "tracks": {k: v.to_dict() for k, v in self.tracks.items()},
+                "definition": "vibration angle psi(theta) = Re sum_k c_k exp(i k theta), theta from tooth 0; "
+                              "amplitude |c_k|, phase arg c_k; twist = first wheel - second wheel"}
+
+    def table(self, count: int = 4) -> str:
+        """Each track's ``count`` strongest orders per block: amplitude [deg] and phase [deg]."""
+        lines = [f"torsiograph: {self.revolutions} revolution(s) a block; vibration angle by order "
+                 "(amplitude deg / phase deg)"]
+        for name, track in self.tracks.items():
+            strongest = np.sort(np.argsort(np.abs(track.amplitudes).max(axis=0))[::-1][:count])
+            lines.append(f"{name}:")
+            lines.append(f"{'rpm':>8} " + " ".join(f"{'order ' + format(k, 'g'):>17}" for k in track.orders[strongest]))
+            for b, rpm in enumerate(track.rpm):
+                c = track.amplitudes[b, strongest]
+                lines.append(f"{rpm:8.1f} " + " ".join(f"{a:8.4f} / {p:6.1f}" for a, p in
+                                                       zip(np.degrees(np.abs(c)), np.degrees(np.angle(c)))))
+        return "\n".join(lines)
+
+    def plot(self, orders=(1.0, 2.0), ax=None):
+        """Order cuts: amplitude [deg] against mean speed, one line per track and order. Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4))
+        for name, track in self.tracks.items():
+            for k in orders:
+                ax.plot(track.rpm, np.degrees(np.abs(track.at(k))), "o-", ms=3, label=f"{name}, order {k:g}")
+        ax.set_xlabel("mean speed [rpm]")
+        ax.set_ylabel("vibration amplitude [deg]")
+        ax.set_title(f"torsiograph: order cuts ({self.revolutions} revolution(s) a block)", fontsize=10)
+        ax.legend(fontsize=8)
+        return ax
+
+
+def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dict | None = None,
+                    twist_of: tuple[str, str] | None = None) -> TorsiographResult:
+    """Order tracks of every wheel, tooth errors corrected, and the twist between two of them.
+
+    Parameters
+    ----------
+    edges : dict
+        Channel -> edge timestamps [s] (:func:`read_edges_csv`).
+    teeth : dict
+        Channel -> teeth per revolution.
+    revolutions : int
+        Revolutions per block.
+    calibration : dict, optional
+        Channel -> edge timestamps [s] of a calibration record (:func:`tooth_errors`); a
+        channel without one is analysed with uniform teeth.
+    twist_of : tuple of str, optional
+        The two channels whose twist (first less second) is tracked.
+    """
+    calibration = calibration or {}
+    missing = [c for c in list(edges) + list(calibration) + list(twist_of or ()) if c not in teeth]
+    if missing:
+        raise FetorsionError(f"channel {missing[0]!r}: no teeth per revolution given (teeth has {sorted(teeth)})")
+    unknown = [c for c in list(calibration) + list(twist_of or ()) if c not in edges]
+    if unknown:
+        raise FetorsionError(f"channel {unknown[0]!r}: not among the recorded channels {sorted(edges)}")
+    for name, t in edges.items():  # every channel is checked before any is processed
+        check_edges(t, teeth[name], name, revolutions=_whole(revolutions, "revolutions"))
+    errors = {name: tooth_errors(t, teeth[name]) for name, t in calibration.items()}
+    tracks = {name: order_track(t, teeth[name], revolutions, errors.get(name), name) for name, t in edges.items()}
+    if twist_of is not None:
+        a, b = twist_of
+        tracks[TWIST] = twist(edges[a], edges[b], teeth[a], teeth[b], revolutions, errors.get(a), errors.get(b),
+                              (a, b))
+    return TorsiographResult(tracks, {k: int(teeth[k]) for k in edges}, int(revolutions), errors)

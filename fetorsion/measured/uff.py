@@ -1,0 +1,317 @@
+"""Universal File Format dataset 58 (function at nodal DOF): FRFs, spectra and order functions
+as test systems export them, read and written with pyuff [Pyuff] against the dataset's
+specification [Uff58].
+
+What the file says is checked before it is used: the function type (record 6), the abscissa's
+specific data type (record 8: frequency, rpm or order) and the unit labels of records 8 to 10,
+which must name a known unit of the quantity the record's data type says. A record without a
+unit label takes the unit the caller states; with neither, the file is refused. Values are
+converted to SI on reading (abscissae: Hz, rpm or order).
+
+pyuff 2.5.8 writes function types 0, 1, 2, 3, 4, 6 and 9 only; a spectrum (type 12) and an
+order function (type 27) are written as type 0 and their record 6 set afterwards, so that
+other programs read them as what they are. The order of an order cut (abscissa rpm), or the
+speed of an order spectrum (abscissa order), is the record's z-axis value (record 7 field 6,
+with record 11's data type 20 or 19), which pyuff reads and writes with 6 significant digits.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import FetorsionError
+from .units import unit
+
+#: record 6 field 1: the function types read, and what each is called here
+FUNCTION_TYPES = {4: "frf", 12: "spectrum", 27: "order function"}
+KIND_TYPES = {kind: code for code, kind in FUNCTION_TYPES.items()}
+GENERAL = 0  # record 6's 'general or unknown': an order function when its abscissa is rpm or order
+#: record 8 field 1 of the abscissa -> the quantity (the units module's name)
+ABSCISSA_TYPES = {18: "frequency", 19: "speed", 20: "order"}
+ABSCISSA_CODES = {q: code for code, q in ABSCISSA_TYPES.items()}
+ABSCISSA_UNITS = {"frequency": "Hz", "speed": "rpm", "order": "-"}
+#: records 9 and 10 field 1 -> the quantities its unit may be of (the other types are not checked)
+ORDINATE_TYPES = {8: ("angle", "length"), 11: ("angular velocity", "velocity"),
+                  12: ("angular acceleration", "acceleration"), 9: ("torque", "force"),
+                  13: ("torque", "force"), 15: ("pressure",)}
+ORDINATE_CODES = {"angle": 8, "length": 8, "angular velocity": 11, "velocity": 11, "angular acceleration": 12,
+                  "acceleration": 12, "torque": 13, "force": 13, "pressure": 15}
+NONE = "NONE"  # the UFF's word for an unused text field
+DELIMITER = re.compile(rb"    -1(?=\r|\n| {74}|$)")  # the lines that open and close each dataset
+ID_WIDTH = 80  # characters of an ID line
+
+
+@dataclass(frozen=True, eq=False)
+class MeasuredFunction:
+    """One measured function, in SI.
+
+    Attributes
+    ----------
+    kind : str
+        ``'frf'``, ``'spectrum'`` or ``'order function'``.
+    abscissa : ndarray
+        Ascending abscissa: frequency [Hz], speed [rpm] or order [-], by ``abscissa_quantity``.
+    abscissa_quantity : str
+        ``'frequency'``, ``'speed'`` or ``'order'``.
+    ordinate : ndarray
+        Real or complex values, in ``unit`` (per ``reference_unit`` for an FRF).
+    unit : str
+        The SI unit of the ordinate (the response, for an FRF): ``'rad'``, ``'m/s^2'``, ...
+    response : tuple of int
+        (node, direction) of the response; UFF directions: 1-3 translation, 4-6 rotation.
+    reference : tuple of int, optional
+        (node, direction) of the excitation of an FRF.
+    reference_unit : str, optional
+        The SI unit of an FRF's excitation (``'N m'``, ``'N'``).
+    label : str
+        A description (the UFF's ID line 1).
+    order : float, optional
+        The engine order of an order function against speed (an order cut).
+    rpm : float, optional
+        The speed [rpm] of an order function against order (an order spectrum).
+    """
+
+    kind: str
+    abscissa: np.ndarray
+    abscissa_quantity: str
+    ordinate: np.ndarray
+    unit: str
+    response: tuple[int, int]
+    reference: tuple[int, int] | None = None
+    reference_unit: str | None = None
+    label: str = ""
+    order: float | None = None
+    rpm: float | None = None
+
+    @property
+    def abscissa_unit(self) -> str:
+        """The abscissa's unit: ``'Hz'``, ``'rpm'`` or ``'-'`` (order)."""
+        return ABSCISSA_UNITS[self.abscissa_quantity]
+
+
+# ---------------------------------------------------------------------------
+# Reading
+
+
+def _label(text) -> str | None:
+    text = str(text).strip()
+    return None if not text or text.upper() == NONE else text
+
+
+def _units_of(dset, where: str, units: dict, record: str, key: str, quantities):
+    """The Unit of one record: its label, else the caller's; both -> they must agree."""
+    labelled = _label(dset.get(f"{key}_axis_units_lab", ""))
+    stated = units.get(record)
+    if labelled is None and stated is None:
+        raise FetorsionError(f"{where}: the {record} has no unit label; state its unit (units={{'{record}': ...}})")
+    found = unit(labelled, f"{where}: {record} unit label", quantities) if labelled is not None else None
+    given = unit(stated, f"{where}: stated {record} unit", quantities) if stated is not None else None
+    if found is not None and given is not None and (found.quantity, found.factor) != (given.quantity, given.factor):
+        raise FetorsionError(f"{where}: the file's {record} unit is {labelled!r}, but {stated!r} was stated")
+    return found or given
+
+
+def _function(dset, where: str, units: dict) -> MeasuredFunction:
+    code = int(dset["func_type"])
+    abscissa_code = int(dset["abscissa_spec_data_type"])
+    quantity = ABSCISSA_TYPES.get(abscissa_code)
+    kind = FUNCTION_TYPES.get(code)
+    if code == GENERAL and quantity in ("speed", "order"):
+        kind = "order function"
+    if kind is None:
+        raise FetorsionError(f"{where}: function type {code} is not read; fetorsion reads FRFs (4), "
+                             "spectra (12) and order functions (27)")
+    if quantity is None:
+        raise FetorsionError(f"{where}: abscissa data type {abscissa_code} (record 8) is not frequency (18), "
+                             "rpm (19) or order (20)")
+    if kind == "order function" and quantity == "frequency":
+        raise FetorsionError(f"{where}: an order function needs an abscissa of rpm (19) or order (20), not frequency")
+    x, y = np.asarray(dset["x"], dtype=float), np.asarray(dset["data"])
+    n = int(dset["num_pts"])
+    if len(y) != n or len(x) != n:
+        raise FetorsionError(f"{where}: is truncated: record 7 says {n} values, the data holds {len(y)}")
+    if n < 2 or not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))):
+        raise FetorsionError(f"{where}: needs >= 2 finite values")
+    if np.any(np.diff(x) <= 0):
+        raise FetorsionError(f"{where}: the abscissa is not ascending")
+    xu = _units_of(dset, where, units, "abscissa", "abscissa", (quantity,))
+    ordinate_code = int(dset["ordinate_spec_data_type"])
+    yu = _units_of(dset, where, units, "ordinate", "ordinate", ORDINATE_TYPES.get(ordinate_code))
+    reference = ru = None
+    scale = yu.factor
+    if kind == "frf":
+        denominator_code = int(dset["orddenom_spec_data_type"])
+        ru = _units_of(dset, where, units, "reference", "orddenom", ORDINATE_TYPES.get(denominator_code))
+        scale /= ru.factor
+        reference = (int(dset["ref_node"]), int(dset["ref_dir"]))
+    z_code, z = int(dset.get("z_axis_spec_data_type", 0)), float(dset.get("z_axis_value", 0.0))
+    return MeasuredFunction(
+        kind=kind, abscissa=x * xu.factor, abscissa_quantity=quantity, ordinate=y * scale, unit=yu.si,
+        response=(int(dset["rsp_node"]), int(dset["rsp_dir"])), reference=reference,
+        reference_unit=ru.si if ru else None, label=_label(dset.get("id1", "")) or "",
+        order=z if quantity == "speed" and z_code == ABSCISSA_CODES["order"] else None,
+        rpm=z if quantity == "order" and z_code == ABSCISSA_CODES["speed"] else None)
+
+
+def read_uff58(path, units: dict | None = None) -> list[MeasuredFunction]:
+    """The dataset-58 functions of a universal file, in SI, or one message naming the file.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.uff``/``.unv`` file (ASCII 58 or binary 58b). Other datasets in it (151 header,
+        164 units, 55 modes) are passed over; a file with no dataset 58 is refused.
+    units : dict, optional
+        Units for records without a unit label: keys ``'abscissa'``, ``'ordinate'`` and
+        ``'reference'`` (an FRF's excitation), values such as ``'Hz'``, ``'rad'``, ``'N m'``.
+        A record with a label keeps it; a stated unit that disagrees with it is refused.
+
+    Returns
+    -------
+    list of MeasuredFunction
+        In file order.
+    """
+    import pyuff
+
+    path, units = Path(path), dict(units or {})
+    if not path.is_file():
+        raise FetorsionError(f"{path}: is not a file")
+    unknown = set(units) - {"abscissa", "ordinate", "reference"}
+    if unknown:
+        raise FetorsionError(f"{path}: units has keys {sorted(unknown)}; use 'abscissa', 'ordinate', 'reference'")
+    delimiters = len(DELIMITER.findall(path.read_bytes()))
+    if delimiters == 0:
+        raise FetorsionError(f"{path}: is not a universal file (no '    -1' dataset delimiter)")
+    if delimiters % 2:
+        raise FetorsionError(f"{path}: is truncated: its last dataset has no closing '    -1' line")
+    try:
+        uff = pyuff.UFF(str(path))
+        types = [int(t) for t in uff.get_set_types()]
+        found = [i for i, t in enumerate(types) if t == 58]
+        if not found:
+            raise FetorsionError(f"{path}: holds dataset(s) {', '.join(map(str, sorted(set(types))))} "
+                                 "but no dataset 58 (function at nodal DOF)")
+        sets = [uff.read_sets(i) for i in found]
+    except FetorsionError:
+        raise
+    except Exception as exc:  # pyuff raises bare Exceptions on a malformed record
+        raise FetorsionError(f"{path}: is not a readable dataset 58 ({exc})") from None
+    return [_function(d, f"{path} (dataset {i + 1})", units) for i, d in zip(found, sets)]
+
+
+# ---------------------------------------------------------------------------
+# Writing
+
+
+def _check(f: MeasuredFunction, where: str) -> None:
+    if f.kind not in KIND_TYPES:
+        raise FetorsionError(f"{where}: kind {f.kind!r}; choose one of {', '.join(KIND_TYPES)}")
+    if f.abscissa_quantity not in ABSCISSA_CODES:
+        raise FetorsionError(f"{where}: abscissa_quantity {f.abscissa_quantity!r}; choose one of "
+                             f"{', '.join(ABSCISSA_CODES)}")
+    x, y = np.asarray(f.abscissa), np.asarray(f.ordinate)
+    if x.ndim != 1 or x.shape != y.shape or len(x) < 2:
+        raise FetorsionError(f"{where}: abscissa and ordinate need the same length, >= 2")
+    if not (np.all(np.isfinite(x)) and np.all(np.isfinite(y))) or np.any(np.diff(x) <= 0):
+        raise FetorsionError(f"{where}: needs finite values and an ascending abscissa")
+    unit(f.unit, f"{where}: unit")
+    if f.kind == "frf" and (f.reference is None or f.reference_unit is None):
+        raise FetorsionError(f"{where}: an FRF needs a reference (node, direction) and a reference_unit")
+
+
+def _record(f: MeasuredFunction, binary: bool) -> dict:
+    yu = unit(f.unit, "unit")
+    written = KIND_TYPES[f.kind] if KIND_TYPES[f.kind] == KIND_TYPES["frf"] else GENERAL
+    reference = f.reference or (0, 0)
+    z_code, z = 0, 0.0
+    if f.order is not None and f.abscissa_quantity == "speed":
+        z_code, z = ABSCISSA_CODES["order"], float(f.order)
+    elif f.rpm is not None and f.abscissa_quantity == "order":
+        z_code, z = ABSCISSA_CODES["speed"], float(f.rpm)
+    dset = {
+        "type": 58, "binary": int(binary), "func_type": written, "id1": (" ".join(f.label.split()) or NONE)[:ID_WIDTH],
+        "rsp_node": int(f.response[0]), "rsp_dir": int(f.response[1]),
+        "ref_node": int(reference[0]), "ref_dir": int(reference[1]),
+        # uneven spacing: the abscissa goes into the data (doubles in 58b), not into record 7's
+        # minimum and increment, which are written with 6 significant digits
+        "abscissa_spacing": 0, "x": np.asarray(f.abscissa, dtype=float),
+        "data": np.asarray(f.ordinate) if np.iscomplexobj(f.ordinate) else np.asarray(f.ordinate, dtype=float),
+        "abscissa_spec_data_type": ABSCISSA_CODES[f.abscissa_quantity],
+        "abscissa_axis_lab": f.abscissa_quantity, "abscissa_axis_units_lab": f.abscissa_unit,
+        "ordinate_spec_data_type": ORDINATE_CODES.get(yu.quantity, 1),
+        "ordinate_axis_lab": yu.quantity, "ordinate_axis_units_lab": yu.si,
+        "orddenom_spec_data_type": 0,  # records 10 and 11 unused: data type 0 [Uff58]
+        "z_axis_spec_data_type": z_code, "z_axis_value": z,
+    }
+    if f.kind == "frf":
+        ru = unit(f.reference_unit, "reference_unit")
+        dset.update({"orddenom_spec_data_type": ORDINATE_CODES.get(ru.quantity, 1),
+                     "orddenom_axis_lab": ru.quantity, "orddenom_axis_units_lab": ru.si})
+    return dset
+
+
+def _set_function_type(block: bytes, code: int) -> bytes:
+    """``block`` (one dataset as pyuff wrote it) with record 6's function type set to ``code``."""
+    lines = block.split(b"\n", 8)  # the delimiter, the id line and five ID lines come first
+    record6 = lines[7]
+    if int(record6[:5]) != GENERAL:
+        raise RuntimeError(f"unexpected record 6 from pyuff: {record6!r}")
+    lines[7] = b"%5i" % code + record6[5:]
+    return b"\n".join(lines)
+
+
+def write_uff58(path, functions, binary: bool = True) -> Path:
+    """Write measured functions to a universal file as dataset 58 (58b when ``binary``).
+
+    The file is written beside its destination under a temporary name and renamed over it, so
+    a reader never sees half a file and an error leaves nothing behind.
+
+    Parameters
+    ----------
+    path : str or Path
+        The destination.
+    functions : list of MeasuredFunction
+        What to write, in SI (the units written are the SI ones).
+    binary : bool
+        58b (doubles, abscissa included: a round trip is exact) if True; ASCII 58 if False
+        (ordinates with 12 significant digits, abscissae with 6, by the dataset's formats).
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
+    import pyuff
+
+    path, functions = Path(path), list(functions)
+    if not functions:
+        raise FetorsionError(f"{path}: nothing to write")
+    for i, f in enumerate(functions):
+        _check(f, f"{path} (function {i + 1})")
+    if not path.parent.is_dir():
+        raise FetorsionError(f"{path}: the folder {path.parent} does not exist")
+    blocks = []
+    with tempfile.TemporaryDirectory(prefix="fetorsion-uff-") as scratch:
+        for i, f in enumerate(functions):
+            piece = Path(scratch) / f"{i}.uff"
+            # 'add' to a new file: pyuff 2.5.8's 'overwrite' reopens the file for the binary data
+            # of a 58b and so truncates the header it has just written
+            pyuff.UFF(str(piece)).write_sets([_record(f, binary)], mode="add")
+            block = piece.read_bytes()
+            code = KIND_TYPES[f.kind]
+            blocks.append(block if code == KIND_TYPES["frf"] else _set_function_type(block, code))
+    fd, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(b"".join(blocks))
+        os.replace(temporary, path)
+    except BaseException:
+        Path(temporary).unlink(missing_ok=True)
+        raise
+    return path
