@@ -451,7 +451,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
     ("lumped models", "lumped", step_lumped),
     ("Campbell diagram and forced response", "campbell", step_campbell),
     ("fillet stress, dampers and verdict", "verdict", step_verdict),
-    ("fatigue of the fillets", "fatigue", step_fatigue),
+    ("fatigue of the fillets and oil bores", "fatigue", step_fatigue),
     # last: the studies, started in the background when the run began, finish in the cores the
     # steps before leave idle (the verdict's many small solves keep one busy, not two)
     ("sensitivity of f1", "sensitivity", step_sensitivity),

@@ -145,8 +145,8 @@ class CrankAssessment:
                               "required": float(self.worst.locations[g].required)}}
 
     def table(self) -> str:
-        lines = [f"{self.name}: fatigue of the fillets ({self.method}), each at its worst speed",
-                 f"{'fillet':<28} {'rpm':>6} {'σ_a [MPa]':>10} {'σ_m [MPa]':>10} {'τ_a [MPa]':>10} "
+        lines = [f"{self.name}: fatigue of the fillets and oil bores ({self.method}), each at its worst speed",
+                 f"{'location':<28} {'rpm':>6} {'σ_a [MPa]':>10} {'σ_m [MPa]':>10} {'τ_a [MPa]':>10} "
                  f"{'τ_m [MPa]':>10} {'safety':>7} {'required':>8}"]
         for j, a in enumerate(self.worst.locations):
             st = a.factors.get("stresses", {})
@@ -200,7 +200,7 @@ class CrankAssessment:
         ax.axhline(self.worst.locations[0].required, color="k", ls="--", lw=0.8, label="required")
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("fatigue safety factor [-]")
-        ax.set_title(f"{self.name}: fillet fatigue ({self.method})", fontsize=10)
+        ax.set_title(f"{self.name}: fatigue of fillets and oil bores ({self.method})", fontsize=10)
         ax.legend(fontsize=6, ncol=2)
         return ax
 

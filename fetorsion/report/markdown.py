@@ -239,35 +239,46 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
     return lines + [f"![]({outcome.image})", ""]
 
 
+
+def _oil_bore_scf_text(scf: dict) -> str:
+    """The oil-bore SCFs as a clause of the fatigue paragraph; empty without drilled sections."""
+    kinds = [k for k in ("pin", "journal") if f"{k}_oil_bore_torsion" in scf]
+    if not kinds:
+        return ""
+    each = ", ".join(f"{k} bending **{scf[f'{k}_oil_bore_bending']:.3f}**, torsion **{scf[f'{k}_oil_bore_torsion']:.3f}**"
+                     for k in kinds)
+    return f"; at the oil-bore exits the moment about the throw's radius and the torque, SCFs {each} (peak σ₁ on the drilling)"
+
 def fatigue_section(crank: Crank, outcome) -> list[str]:
     """The fatigue assessment of every fillet: bending and torsion, mean and alternating, the
     safety at each fillet's worst speed, and how the governing safety moves with damping."""
     if isinstance(outcome, Skipped):
-        return ["## Fatigue of the fillets", "", f"Not run: {outcome.reason}.", ""]
+        return ["## Fatigue of the fillets and oil bores", "", f"Not run: {outcome.reason}.", ""]
     a, w = outcome.assessment, outcome.worst_case
     scf = outcome.scf
     g, gw = a.governing, w.governing
     mat = a.worst.material
-    lines = ["## Fatigue of the fillets (bending and torsion)", "",
+    lines = ["## Fatigue of the fillets and oil bores (bending and torsion)", "",
              f"Computed on the **{outcome.model}** with the description's dampers: at every speed, each fillet "
              "section's in-plane bending moment and torque over the cycle (the mean of the gas and inertia "
              "forces solved statically, the flywheel end reacting the load torque, plus every vibratory order), "
              f"nominal stresses × SCFs (bending: pin **{scf['pin_bending']:.3f}**, journal **{scf['journal_bending']:.3f}**; "
-             f"torsion: pin **{scf['pin']:.3f}**, journal **{scf['journal']:.3f}**; {scf.get('source', '')}), "
+             f"torsion: pin **{scf['pin']:.3f}**, journal **{scf['journal']:.3f}**; {scf.get('source', '')})"
+             + _oil_bore_scf_text(scf) + ", "
              f"assessed by **{a.method}** ({'IACS UR M53: Q = sigma_DW / sqrt(sigma_B^2 + 3 tau^2) of the alternating stresses' if a.method == 'iacs-m53' else 'Budynas-Nisbett: Marin factors, Neuber K_f, von Mises, Goodman'}); "
              f"material {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa ({mat.source or 'the description'}).", "",
              f"Damping: the description's modal damping ratio, and the band {outcome.damping_source}:", "",
-             "| damping ratio | governing fillet | at rpm | safety | required |", "|---|---|---|---|---|"]
+             "| damping ratio | governing location | at rpm | safety | required |", "|---|---|---|---|---|"]
     for zeta, safety, where, rpm, required in outcome.band:
         lines.append(f"| {zeta:.4f} | {where} | {rpm:.0f} | {safety:.2f} | {required:.2f} |")
     verdict = "pass" if w.safety[:, gw].min() >= w.worst.locations[gw].required else "FAIL"
     lines += ["", f"**Verdict at the band's low end (the worst case): {w.labels[gw]} at {w.worst_rpm[gw]:.0f} rpm, "
               f"safety {w.safety[:, gw].min():.2f} against {w.worst.locations[gw].required:.2f}: {verdict}.**", "",
-              "Every fillet at the description's damping ratio, each at its worst speed (local stresses, amplitude "
+              "Every fillet and oil bore at the description's damping ratio, each at its worst speed (local stresses, amplitude "
               "and mean):", "", "```", a.table(), "```", ""]
     crit = a.worst.locations[g].criteria
     if crit:
-        lines.append(f"Cross-checks on the governing fillet's whole history: Crossland safety "
+        lines.append(f"Cross-checks on the governing location's whole history: Crossland safety "
                      f"{crit['crossland'].get('safety', float('nan')):.2f}, Findley safety "
                      f"{crit['findley'].get('safety', float('nan')):.2f}.")
     lines += [""] + [f"- {n}" for n in a.notes] + [""]
