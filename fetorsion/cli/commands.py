@@ -1,7 +1,7 @@
 """Command line: ``fetorsion <command> ...``. User mistakes print one clear message, exit 2.
 
 Each family of commands is a module of its own (:mod:`.lumped`, :mod:`.fe`, :mod:`.dynamics`,
-:mod:`.study`, :mod:`.mechanics`, :mod:`.run`) that adds its parsers; what they share is in
+:mod:`.study`, :mod:`.mechanics`, :mod:`.run`, :mod:`.measured`) that adds its parsers; what they share is in
 :mod:`.common` and :mod:`.options`. Here: the parser, the checks made before any work, ``main``.
 """
 
@@ -17,6 +17,7 @@ from ..io import check_output_file
 from . import dynamics as cli_dynamics
 from . import fe as cli_fe
 from . import lumped as cli_lumped
+from . import measured as cli_measured
 from . import mechanics as cli_mechanics
 from . import run as cli_run
 from . import study as cli_study
@@ -32,6 +33,7 @@ def build_parser() -> argparse.ArgumentParser:
     cli_study.add_parser(sub)
     cli_run.add_parser(sub)
     cli_fe.add_parsers(sub)
+    cli_measured.add_parsers(sub)
     return p
 
 

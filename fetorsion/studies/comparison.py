@@ -1,0 +1,264 @@
+"""The model against measurement: natural frequencies from a modal test and order cuts from a
+torsiograph or an analyser, one table and one figure per quantity.
+
+Frequencies: the modes fitted to measured FRFs (:func:`fetorsion.measured.modal.run_modal_fit`)
+are paired, each with the nearest model frequency; the difference is (model − measured) /
+measured. The model's are the free-free torsional modes of the lumped chain (``lumped17``, the
+fast model) or every labelled mode of the free-free 3D FE (``fe``): a modal test hangs the crank
+free.
+
+Order cuts: a measured cut of engine order k against speed (a UFF 58 order function, a CSV cut,
+or a torsiograph's tracked order) is set beside the model's own order-k amplitude of the same
+angle at the station the sensor sat on (default the pulley end, where a torsiograph usually
+sits), on the forced response of the lumped chain. Compared are the peaks (amplitude in %,
+speed in rpm) and, over the speeds both cover, the model's amplitude interpolated to each
+measured speed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import FetorsionError
+
+#: Model sources for the natural frequencies.
+FREQUENCY_SOURCES = ("lumped17", "fe")
+
+
+@dataclass
+class FrequencyComparison:
+    """Measured natural frequencies, each with its nearest model frequency.
+
+    Attributes
+    ----------
+    measured_hz, damping_ratios : ndarray (modes,)
+        The fitted modes.
+    model_hz : ndarray (modes,)
+        The nearest model frequency of each, Hz.
+    model_kinds : list of str
+        What the paired model modes are (``torsional``, ``bending``, ...).
+    source : str
+        Which model.
+    """
+
+    source: str
+    measured_hz: np.ndarray
+    damping_ratios: np.ndarray
+    model_hz: np.ndarray
+    model_kinds: list
+
+    @property
+    def difference_percent(self) -> np.ndarray:
+        return 100.0 * (self.model_hz - self.measured_hz) / self.measured_hz
+
+    def to_dict(self) -> dict:
+        return {"source": self.source, "measured_hz": self.measured_hz.tolist(),
+                "damping_ratios": self.damping_ratios.tolist(), "model_hz": self.model_hz.tolist(),
+                "model_kinds": list(self.model_kinds), "difference_percent": self.difference_percent.tolist()}
+
+    def lines(self) -> list[str]:
+        out = [f"natural frequencies: measured (fitted modes) against the nearest mode of the {self.source} model",
+               f"{'mode':>4} {'measured [Hz]':>13} {'zeta [%]':>8} {'model [Hz]':>10} {'kind':>10} {'diff [%]':>8}"]
+        out += [f"{j + 1:4d} {m:13.2f} {100 * z:8.3f} {f:10.2f} {k:>10} {d:+8.2f}" for j, (m, z, f, k, d) in
+                enumerate(zip(self.measured_hz, self.damping_ratios, self.model_hz, self.model_kinds,
+                              self.difference_percent))]
+        return out
+
+
+def pair_frequencies(measured_hz, model_hz, model_kinds=None) -> tuple[np.ndarray, list]:
+    """The nearest model frequency (and its kind) to each measured one."""
+    measured_hz, model_hz = np.asarray(measured_hz, float), np.asarray(model_hz, float)
+    if model_hz.size == 0:
+        raise FetorsionError("compare: the model has no elastic mode to pair the measured frequencies with")
+    kinds = list(model_kinds) if model_kinds is not None else ["torsional"] * model_hz.size
+    j = np.argmin(np.abs(model_hz[None, :] - measured_hz[:, None]), axis=1)
+    return model_hz[j], [kinds[i] for i in j]
+
+
+@dataclass
+class OrderCutComparison:
+    """One measured order cut beside the model's.
+
+    Attributes
+    ----------
+    order : float
+    rpm, measured_deg : ndarray
+        The measured cut: speed and amplitude (zero to peak), degrees.
+    model_rpm, model_deg : ndarray
+        The model's cut of the same order at the same station.
+    """
+
+    name: str
+    order: float
+    station: str
+    rpm: np.ndarray
+    measured_deg: np.ndarray
+    model_rpm: np.ndarray
+    model_deg: np.ndarray
+
+    def _overlap(self):
+        both = (self.rpm >= self.model_rpm.min()) & (self.rpm <= self.model_rpm.max())
+        if not both.any():
+            raise FetorsionError(f"compare: {self.name} ({self.rpm.min():.0f}-{self.rpm.max():.0f} rpm) does not "
+                                 f"overlap the model's speeds ({self.model_rpm.min():.0f}-{self.model_rpm.max():.0f} rpm)")
+        return both
+
+    def peaks(self) -> dict:
+        """Both peaks inside the speeds both cover, and their differences (model against measured)."""
+        both = self._overlap()
+        mine = (self.model_rpm >= self.rpm[both].min()) & (self.model_rpm <= self.rpm[both].max())
+        c = int(np.flatnonzero(both)[np.argmax(self.measured_deg[both])])
+        m = int(np.flatnonzero(mine)[np.argmax(self.model_deg[mine])]) if mine.any() else int(
+            np.argmin(np.abs(self.model_rpm - self.rpm[c])))
+        model_at = np.interp(self.rpm[both], self.model_rpm, self.model_deg)
+        return {"measured_peak_deg": float(self.measured_deg[c]), "measured_peak_rpm": float(self.rpm[c]),
+                "model_peak_deg": float(self.model_deg[m]), "model_peak_rpm": float(self.model_rpm[m]),
+                "peak_difference_percent": float(100 * (self.model_deg[m] - self.measured_deg[c]) / self.measured_deg[c]),
+                "peak_rpm_difference": float(self.model_rpm[m] - self.rpm[c]),
+                "rms_difference_deg": float(np.sqrt(np.mean((model_at - self.measured_deg[both]) ** 2)))}
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "order": self.order, "station": self.station, "rpm": self.rpm.tolist(),
+                "measured_deg": self.measured_deg.tolist(), "model_rpm": self.model_rpm.tolist(),
+                "model_deg": self.model_deg.tolist(), **self.peaks()}
+
+    def lines(self) -> list[str]:
+        p = self.peaks()
+        return [f"order {self.order:g} at {self.station} ({self.name}): measured peak {p['measured_peak_deg']:.4g} deg at "
+                f"{p['measured_peak_rpm']:.0f} rpm, model {p['model_peak_deg']:.4g} deg at {p['model_peak_rpm']:.0f} rpm: "
+                f"{p['peak_difference_percent']:+.1f} %, {p['peak_rpm_difference']:+.0f} rpm; rms difference over the "
+                f"common speeds {p['rms_difference_deg']:.3g} deg"]
+
+
+@dataclass
+class ComparisonResult:
+    """The model against every measured quantity given."""
+
+    name: str
+    frequencies: list = field(default_factory=list)
+    order_cuts: list = field(default_factory=list)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "frequencies": [f.to_dict() for f in self.frequencies],
+                "order_cuts": [c.to_dict() for c in self.order_cuts]}
+
+    def table(self) -> str:
+        lines = [f"{self.name}: model against measurement"]
+        for f in self.frequencies:
+            lines += f.lines()
+        for c in self.order_cuts:
+            lines += c.lines()
+        return "\n".join(lines)
+
+    def plot(self):
+        """One panel per quantity: the frequencies (model against measured, the diagonal) and each
+        order cut (measured points, model line). Returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        n = len(self.frequencies) + len(self.order_cuts)
+        if n == 0:
+            raise FetorsionError("compare: nothing measured to plot")
+        fig, axes = plt.subplots(n, 1, figsize=(7, 3.2 * n), squeeze=False)
+        k = 0
+        for f in self.frequencies:
+            ax = axes[k, 0]
+            lim = [0, 1.1 * max(f.measured_hz.max(), f.model_hz.max())]
+            ax.plot(lim, lim, "k--", lw=0.7)
+            ax.plot(f.measured_hz, f.model_hz, "o")
+            for m, mod, d in zip(f.measured_hz, f.model_hz, f.difference_percent):
+                ax.annotate(f"{d:+.1f} %", (m, mod), fontsize=7, xytext=(4, -8), textcoords="offset points")
+            ax.set_xlabel("measured [Hz]")
+            ax.set_ylabel(f"model ({f.source}) [Hz]")
+            k += 1
+        for c in self.order_cuts:
+            ax = axes[k, 0]
+            ax.plot(c.rpm, c.measured_deg, ".", label=f"measured: {c.name}")
+            ax.plot(c.model_rpm, c.model_deg, "-", label="model")
+            ax.set_xlabel("engine speed [rpm]")
+            ax.set_ylabel(f"order {c.order:g} at {c.station} [deg]")
+            ax.legend(fontsize=7)
+            k += 1
+        fig.suptitle(f"{self.name}: model against measurement", fontsize=10)
+        fig.tight_layout()
+        return fig
+
+
+def model_frequencies(crank, source: str = "lumped17") -> tuple[np.ndarray, list]:
+    """Free-free elastic frequencies (Hz) and their kinds of the ``source`` model of ``crank``."""
+    if source not in FREQUENCY_SOURCES:
+        raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(FREQUENCY_SOURCES)}")
+    if source == "lumped17":
+        from ..lumped_model.lumped import lumped
+
+        f = np.asarray(lumped(crank, 17).frequencies_hz, float)
+        return f, ["torsional"] * f.size
+    from ..fe.crankfe import run_modal
+
+    res = run_modal(crank)
+    return np.asarray(res.frequencies_hz, float), list(res.kinds)
+
+
+def compare_frequencies(estimate, crank, source: str = "lumped17") -> FrequencyComparison:
+    """Pair the fitted modes of ``estimate`` (:class:`~fetorsion.measured.modal.ModalEstimate`)
+    with the model's."""
+    f, kinds = model_frequencies(crank, source)
+    model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
+    return FrequencyComparison(source, np.asarray(estimate.frequencies_hz, float),
+                               np.asarray(estimate.damping_ratios, float), model_hz, model_kinds)
+
+
+def station_index(response, station: str | None) -> tuple[int, str]:
+    """The response's station for a sensor: ``None`` the pulley end (the first station), else the
+    label (case-insensitive) or its 1-based number."""
+    labels = list(response.labels)
+    if station is None or station.lower() == "pulley":  # the chain's first station carries the pulley
+        return 0, f"{labels[0]} (pulley end)"
+    if station.lower() == "flywheel":
+        return len(labels) - 1, f"{labels[-1]} (flywheel end)"
+    if station.isdigit() and 1 <= int(station) <= len(labels):
+        return int(station) - 1, labels[int(station) - 1]
+    low = [lb.lower() for lb in labels]
+    if station.lower() in low:
+        j = low.index(station.lower())
+        return j, labels[j]
+    raise FetorsionError(f"compare: station {station!r} is not in the model; give pulley, flywheel or one of "
+                         f"{', '.join(labels)}")
+
+
+def model_order_cut(response, order: float, station: int) -> np.ndarray:
+    """The model's order-``order`` angle amplitude (zero to peak, degrees) at ``station`` against
+    the response's speeds."""
+    k = np.flatnonzero(np.isclose(response.orders, order, rtol=0, atol=1e-9))
+    if not k.size:
+        raise FetorsionError(f"compare: order {order:g} is not among the model's orders "
+                             f"({response.orders.min():g}-{response.orders.max():g})")
+    return np.degrees(np.abs(response.theta[:, int(k[0]), station]))
+
+
+def compare_order_cut(function, response, station: str | None = None) -> OrderCutComparison:
+    """Set a measured order cut (a :class:`~fetorsion.measured.uff.MeasuredFunction` of kind
+    ``order function`` against speed, angle in rad) beside the model's."""
+    if function.kind != "order function" or function.abscissa_quantity != "speed" or function.order is None:
+        raise FetorsionError(f"compare: {function.label or 'a function'} is not an order cut against speed "
+                             "(kind 'order function', abscissa rpm, its order stated)")
+    if function.unit != "rad":
+        raise FetorsionError(f"compare: {function.label or 'an order cut'} is in {function.unit}; the model's "
+                             "order cuts are angles (deg, mrad or rad)")
+    j, name = station_index(response, station)
+    return OrderCutComparison(function.label or f"order {function.order:g}", float(function.order), name,
+                              np.asarray(function.abscissa, float), np.degrees(np.abs(function.ordinate)),
+                              np.asarray(response.rpm, float), model_order_cut(response, function.order, j))
+
+
+def track_order_cut(track, order: float, name: str):
+    """A torsiograph's tracked order (:class:`~fetorsion.measured.torsiograph.OrderTrack`) as a
+    measured order cut against its blocks' mean speeds."""
+    from ..measured.uff import MeasuredFunction
+
+    rpm = np.asarray(track.rpm, float)
+    amp = np.asarray(track.at(order))
+    keep = np.argsort(rpm)
+    return MeasuredFunction("order function", rpm[keep], "speed", amp[keep], "rad", (0, 4),
+                            label=f"{name}, torsiograph", order=float(order))

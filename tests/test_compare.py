@@ -1,0 +1,94 @@
+"""``fetorsion compare``: the model against measured files, on measurements made from a known
+system, so that the differences the command reports are known before it runs."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import fetorsion
+from conftest import GEOMETRY
+from fetorsion.cli import main
+from fetorsion.measured import MeasuredFunction, write_uff58
+
+
+def chain_frfs(crank, zeta=0.01, stations=(0, 8, 16)):
+    """Receptances (rad/N m) of the crank's own free-free 17-DOF chain to a torque at station 1,
+    with modal damping ζ on every elastic mode: a "modal test" whose natural frequencies are the
+    chain's eigenvalues."""
+    import scipy.linalg
+
+    from fetorsion.lumped_model.lumped import lumped
+
+    res = lumped(crank, 17)
+    J, k = np.asarray(res.inertias_kgm2), np.asarray(res.stiffnesses_nm_per_rad)
+    K = np.diag(np.r_[k, 0.0] + np.r_[0.0, k]) - np.diag(k, 1) - np.diag(k, -1)
+    w2, phi = scipy.linalg.eigh(K, np.diag(J))
+    w = np.sqrt(np.clip(w2, 0, None))
+    f = np.linspace(0.5 * res.frequencies_hz[0], 1.15 * res.frequencies_hz[2], 3000)
+    om = 2 * np.pi * f
+    H = []
+    for s in stations:
+        h = np.zeros_like(om, dtype=complex)
+        for r in range(1, len(w)):  # elastic modes (mode 0 is the rigid rotation: left out)
+            h += phi[s, r] * phi[0, r] / (w[r] ** 2 - om**2 + 2j * zeta * w[r] * om)
+        H.append(MeasuredFunction("frf", f, "frequency", h, "rad", response=(s + 1, 4), reference=(1, 4),
+                                  reference_unit="N m", label=f"station {s + 1}"))
+    return H, res.frequencies_hz[:3]
+
+
+def test_compare_finds_the_chains_own_frequencies_in_its_frfs(tmp_path, capsys):
+    """The FRFs of the lumped chain itself, through a universal file and the modal fit, compared
+    with the same chain: every difference is the fit's error, below 0.1 % (the fit's own test
+    bound on a three-disc system)."""
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    frfs, exact = chain_frfs(crank)
+    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    band = [f"{0.6 * exact[0]:.1f}", f"{1.1 * exact[2]:.1f}"]
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), str(path), "--band", *band,
+                 "--json", str(tmp_path / "c.json"), "--plot", str(tmp_path / "c.png")]) == 0
+    out = json.loads((tmp_path / "c.json").read_text())
+    freq = out["frequencies"][0]
+    assert len(freq["measured_hz"]) == 3
+    assert np.allclose(freq["model_hz"], exact, rtol=1e-12)  # paired with the right modes
+    assert np.max(np.abs(freq["difference_percent"])) < 0.1
+    assert np.allclose(freq["damping_ratios"], 0.01, rtol=0.05)
+    assert (tmp_path / "c.png").stat().st_size > 10_000
+    assert "natural frequencies" in capsys.readouterr().out
+
+
+def test_compare_an_order_cut_in_mrad_at_the_flywheel(tmp_path):
+    """A 'measured' order-2 cut = the model's own flywheel-end cut × 1.2, written in mrad: the
+    command must give model peak −16.67 % (1/1.2 − 1) at the same speed (unit conversion and
+    station exact: 1e-6 allows the CSV's 12 printed digits)."""
+    from fetorsion.response.forced import run_response
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    r = run_response(crank)
+    k = int(np.flatnonzero(np.isclose(r.orders, 2.0))[0])
+    model = np.abs(r.theta[:, k, -1])  # rad
+    rows = "\n".join(f"{s:.12g}, {1.2 * 1e3 * a:.12g}" for s, a in zip(r.rpm, model))
+    (tmp_path / "cut.csv").write_text(f"# unit = mrad\n# order = 2\n{rows}\n")
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), str(tmp_path / "cut.csv"), "--station", "flywheel",
+                 "--json", str(tmp_path / "c.json")]) == 0
+    cut = json.loads((tmp_path / "c.json").read_text())["order_cuts"][0]
+    assert cut["peak_difference_percent"] == pytest.approx(100 * (1 / 1.2 - 1), abs=1e-6)
+    assert cut["peak_rpm_difference"] == 0.0
+    assert cut["station"].endswith("(flywheel end)")
+
+
+@pytest.mark.parametrize("args, message", [
+    (["nowhere.uff"], "no such file"),
+    (["{tmp}/x.txt"], "give a UFF file"),
+    (["{tmp}/cut.csv", "--station", "X9"], "station 'X9' is not in the model"),
+    (["{tmp}/cut.csv", "--band", "10", "5"], "--band 10 5"),
+])
+def test_compare_bad_options_give_one_message(tmp_path, capsys, args, message):
+    (tmp_path / "x.txt").write_text("1\n")
+    (tmp_path / "cut.csv").write_text("# unit = deg\n# order = 2\n1000, 0.01\n2000, 0.02\n")
+    args = [a.replace("{tmp}", str(tmp_path)) for a in args]
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), *args]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
