@@ -246,6 +246,30 @@ def run_oil_bore_scf(D: float, d: float, d_i: float = 0.0, shares=OIL_BORE_SHARE
 SHIPPED_OIL_BORE = Path(__file__).with_name("data") / "oil_bore_scf.json"
 
 
+#: A solid section's SCFs against d/D at the finer wall size (``benchmarks/bench_oil_bore_table.py``),
+#: for ν = 0.3: a user's crank reads them here instead of meshing a drilled bar during its run.
+OIL_BORE_TABLE = Path(__file__).with_name("data") / "oil_bore_table.json"
+#: The table's d/D; the reference cranks' ratios (0.083 – 0.104) fall between them and check it.
+TABLE_RATIOS = (0.05, 0.07, 0.09, 0.11, 0.13, 0.16, 0.20)
+
+
+def table_scfs(D: float, d: float, d_i: float, poisson: float) -> dict | None:
+    """(bending, torsion) SCFs of a drilled section from :data:`OIL_BORE_TABLE` (a monotone cubic
+    through the table's d/D), or None where the table does not hold (a bore, another ν, d/D
+    outside it)."""
+    if not OIL_BORE_TABLE.exists() or d_i > 0:
+        return None
+    table = json.loads(OIL_BORE_TABLE.read_text())
+    ratios = np.array([r["d_over_D"] for r in table["rows"]])
+    if abs(poisson - table["poisson_ratio"]) > 1e-9 or not ratios[0] <= d / D <= ratios[-1]:
+        return None
+    from scipy.interpolate import PchipInterpolator
+
+    at = {k: float(PchipInterpolator(ratios, [r[k] for r in table["rows"]])(d / D)) for k in ("bending", "torsion")}
+    return {**at, "source": f"interpolated in the shipped table of a drilled solid bar (wall elements "
+                            f"{table['wall_size']}, d/D {ratios[0]:g}-{ratios[-1]:g}) at d/D = {d / D:.4f}"}
+
+
 def oil_bore_key(D: float, d: float, d_i: float, poisson: float) -> str:
     """What a drilled section's SCFs depend on: the ratios and Poisson's ratio."""
     return f"d/D={d / D:.6f} di/D={d_i / D:.6f} nu={poisson:.4f}"
@@ -254,7 +278,8 @@ def oil_bore_key(D: float, d: float, d_i: float, poisson: float) -> str:
 def oil_bore_scfs(crank) -> dict:
     """Oil-bore SCFs of every drilled kind of section of ``crank``: ``{"pin": (bending, torsion),
     "journal": (...)}`` for the kinds ``[oil_holes]`` drills, and ``source``. Shipped values for the
-    reference cranks' sections, else one FE at the wall size ``OIL_BORE_SHARES[0]`` · d per
+    reference cranks' sections, else the shipped table of a solid section against d/D
+    (:func:`table_scfs`), else one FE at the wall size ``OIL_BORE_SHARES[0]`` · d per
     distinct section (the first pin or journal stands for its kind: their diameters are one
     number in practice)."""
     holes = crank.oil_holes
@@ -267,7 +292,7 @@ def oil_bore_scfs(crank) -> dict:
             continue
         part = parts[0]
         key = oil_bore_key(part.diameter, holes.diameter, part.bore, crank.material.poisson_ratio)
-        entry = shipped.get(key)
+        entry = shipped.get(key) or table_scfs(part.diameter, holes.diameter, part.bore, crank.material.poisson_ratio)
         if entry is None:
             peaks, info = transverse_hole_scfs(part.diameter, holes.diameter, part.bore, material=crank.material)
             entry = {"bending": peaks["bending"].scf, "torsion": peaks["torsion"].scf,

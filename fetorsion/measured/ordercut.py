@@ -20,6 +20,20 @@ from .uff import MeasuredFunction
 MIN_ROWS = 3  # a curve of fewer points has no shape to compare
 
 
+def checked_text(path, limit: int) -> str:
+    """The UTF-8 text of a measured file, or one message naming it: not a file, over ``limit``
+    bytes, or not text."""
+    path = Path(path)
+    if not path.is_file():
+        raise FetorsionError(f"{path}: is not a file")
+    if path.stat().st_size > limit:
+        raise FetorsionError(f"{path}: is larger than {limit >> 20} MiB")
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise FetorsionError(f"{path}: could not be read as UTF-8 text ({exc})") from None
+
+
 def read_curve_csv(path, columns=("rpm", "value"), optional=()):
     """The rows and header of a curve against rpm, or one message naming the file.
 
@@ -47,14 +61,7 @@ def read_curve_csv(path, columns=("rpm", "value"), optional=()):
     def fail(rule):
         raise FetorsionError(f"{path}: {rule}")
 
-    if not path.is_file():
-        fail("is not a file")
-    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
-        fail(f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        fail(f"could not be read as UTF-8 text ({exc})")
+    text = checked_text(path, MAX_DESCRIPTION_BYTES)
     header = {}
     for line in text.splitlines():
         key, eq, value = line.lstrip("#").partition("=")

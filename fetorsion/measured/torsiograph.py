@@ -32,6 +32,7 @@ import numpy as np
 
 from ..errors import FetorsionError
 from .units import unit as unit_of
+from .ordercut import checked_text
 
 TWIST = "twist"  # the name of the twist's track in a TorsiographResult
 MAX_EDGE_FILE_BYTES = 1 << 30  # a tooth-edge record is large (tens of MB), but not this large
@@ -98,14 +99,7 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> 
     def fail(rule):
         raise FetorsionError(f"{path}: {rule}")
 
-    if not path.is_file():
-        fail("is not a file")
-    if path.stat().st_size > MAX_EDGE_FILE_BYTES:
-        fail(f"is larger than {MAX_EDGE_FILE_BYTES >> 20} MiB")
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError) as exc:
-        fail(f"could not be read as UTF-8 text ({exc})")
+    lines = checked_text(path, MAX_EDGE_FILE_BYTES).splitlines()
     header = {}
     for line in lines:
         key, eq, value = line.lstrip("#").partition("=")
