@@ -223,3 +223,21 @@ def test_each_bad_strength_value_gives_one_error_naming_the_key(key, value, rule
         parse_crank(_renault(**fields), check_uncertainty=False)
     problems = err.value.problems
     assert len(problems) == 1 and problems[0].field == f"material.{key}" and rule in problems[0].rule
+
+
+def test_limits_strength_replaces_the_methods_own_by_hand():
+    """[limits] fatigue_strength_bending_pa (against local stresses) in place of M53's σ_DW and of
+    the textbook's S_e (then with the full K_t: q = 1), and fatigue_required_safety in place of the
+    method's margin; written out by hand to 1e-12."""
+    from fetorsion.description.model import Limits
+
+    lim = Limits(continuous_shear=1e8, source="bench test", fatigue_strength_bending=310e6, fatigue_required_safety=1.4)
+    loc = F.LocationStress("p", "pin-fillet", 0.06, 0.003, 30e6, 20e6, 15e6, 5e6, kt_bending=3.0, kt_torsion=2.0)
+    m53 = F.run_fatigue([loc], None, "iacs-m53", limits=lim).locations[0]
+    assert m53.strength == 310e6 and m53.required == 1.4
+    assert m53.safety == pytest.approx(310e6 / math.sqrt(90e6**2 + 3 * 40e6**2), rel=1e-12)
+    tb = F.run_fatigue([loc], None, "textbook", limits=lim).locations[0]
+    sa, sm = math.sqrt(90e6**2 + 3 * 40e6**2), math.sqrt(45e6**2 + 3 * 10e6**2)
+    assert tb.safety == pytest.approx(1 / (sa / 310e6 + sm / F.DEFAULT_FORGING_STEEL.tensile_strength), rel=1e-12)
+    plain = F.run_fatigue([loc], None, "iacs-m53").locations[0]  # without it: the rule's own
+    assert plain.strength != 310e6 and plain.required == F.M53_REQUIRED_Q

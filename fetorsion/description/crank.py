@@ -563,12 +563,18 @@ def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float,
     return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
 
 
+#: ``[limits]`` keys of the fatigue assessment's own strength and margin (opt-in overrides).
+FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety")
+
+
 def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     """The ``[limits]`` table: permissible vibratory shear stress (Pa) for continuous running
     (``continuous_shear_pa``, or ``fatigue_strength_shear_pa`` / ``safety_factor``) and for passing
     through (``transient_shear_pa``), or the same as torques (``continuous_torque_nm``,
     ``transient_torque_nm``; the only kind for a chain file, which has no sections). ``source``
-    (required) says where the numbers come from."""
+    (required) says where the numbers come from. Optional for a crank: ``fatigue_strength_bending_pa``
+    (the crank's alternating bending fatigue strength as built, against local stresses, replacing
+    the fatigue assessment's own) and ``fatigue_required_safety``."""
     if "limits" not in root.data:
         return None
     t = root.table("limits")
@@ -580,7 +586,7 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     if torque_only and any(k in t.data for k in (*stress_keys, "transient_shear_pa")):
         t.problems.append(Problem(t.path, sorted(t.data), "a chain file has no shaft sections: give "
                                                          "continuous_torque_nm (and transient_torque_nm)"))
-        t.used.update((*stress_keys, "transient_shear_pa", "safety_factor"))
+        t.used.update((*stress_keys, "transient_shear_pa", "safety_factor", *FATIGUE_LIMIT_KEYS))
         t.finish()
         return None
     if len(given) != 1:
@@ -588,7 +594,7 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
                                   "give exactly one of continuous_shear_pa, fatigue_strength_shear_pa (with "
                                   "safety_factor), continuous_torque_nm"))
         t.used.update((*stress_keys, "continuous_torque_nm", "transient_shear_pa", "transient_torque_nm",
-                       "safety_factor"))
+                       "safety_factor", *FATIGUE_LIMIT_KEYS))
         t.finish()
         return None
     lim = Limits(source=source)
@@ -603,6 +609,14 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
         tr = t.number("transient_shear_pa", 0.0, nonnegative=True)
         lim = Limits(continuous_shear=c, transient_shear=tr, fatigue_strength=strength, safety_factor=factor,
                      source=source)
+    # The fatigue assessment's strength and margin, when the user has them (a bench test of the
+    # crank's throws, a supplier's figure): opt-in keys of their own, so that the shear limits'
+    # polished-specimen strength never silently replaces the assessment's.
+    lim = replace(lim, fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
+                  fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True))
+    if 0 < lim.fatigue_required_safety < 1.0:
+        t.problems.append(Problem(f"{t.path}.fatigue_required_safety", lim.fatigue_required_safety,
+                                  "must be >= 1 (a safety factor)"))
     t.finish()
     if lim.transient and lim.continuous and lim.transient < lim.continuous:
         key = "transient_torque_nm" if lim.kind == "torque" else "transient_shear_pa"

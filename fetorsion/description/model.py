@@ -253,6 +253,12 @@ class Limits:
     fatigue_strength: float = 0.0
     safety_factor: float = 0.0
     source: str = ""
+    #: The user's alternating bending fatigue strength of the crank as built, against local
+    #: stresses (SCF × nominal), Pa: replaces the fatigue assessment's own strength (M53's σ_DW,
+    #: the textbook's S_e) when > 0.
+    fatigue_strength_bending: float = 0.0
+    #: The fatigue assessment's required safety, when > 0 (else the method's own).
+    fatigue_required_safety: float = 0.0
 
     @property
     def kind(self) -> str:

@@ -174,7 +174,7 @@ class CrankAssessment:
             sm = float(von_mises(st.get("bending_mean", 0.0), st.get("torsion_mean", 0.0)))
             sa = float(von_mises(st.get("bending_alt", 0.0), st.get("torsion_alt", 0.0)))
             d = float(self.worst_diameters[j]) if self.worst_diameters is not None else 0.05
-            se = endurance_limit(mat.tensile_strength, d, mat.surface)
+            se = mat.fatigue_strength or endurance_limit(mat.tensile_strength, d, mat.surface)
             line, = ax.plot([0, mat.tensile_strength / 1e6], [se / 1e6, 0], lw=0.8, ls="--",
                             label=f"Goodman, {self.labels[j]}")
             ax.plot([sm / 1e6], [sa / 1e6], "o", color=line.get_color(), label=f"{self.labels[j]}, {self.worst_rpm[j]:.0f} rpm")
@@ -252,12 +252,12 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         locs = [LocationStress(lb, kind, d, r, s_alt[s, j], t_alt[s, j], s_mean[s, j], t_mean[s, j],
                                kt_bending=kb, kt_torsion=kt)
                 for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
-        safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required).locations]
+        safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required, limits=crank.limits).locations]
     worst_speed = np.argmin(safety, axis=0)
     locs = [LocationStress.from_history(lb, kind, d, r, sigma[worst_speed[j], j], tau[worst_speed[j], j],
                                         kt_bending=kb, kt_torsion=kt)
             for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
-    worst = run_fatigue(locs, crank.material, method, required)
+    worst = run_fatigue(locs, crank.material, method, required, limits=crank.limits)
     stresses = [{"bending_alt": kb * loc.bending_alt, "bending_mean": kb * loc.bending_mean,
                  "torsion_alt": kt * loc.torsion_alt, "torsion_mean": kt * loc.torsion_mean}
                 for loc, (kb, kt) in zip(locs, kts)]
@@ -272,6 +272,9 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     elif bores:
         notes.append(f"oil-bore exits: the bending about the throw's radius (the drillings run along its tangent), "
                      f"SCFs {scf.get('oil_bore_source', '')}")
+    if worst.material.fatigue_strength:
+        notes.append(f"fatigue strength {worst.material.fatigue_strength / 1e6:.0f} MPa against local stresses: "
+                     f"{worst.material.fatigue_strength_source}, in place of the method's own")
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")

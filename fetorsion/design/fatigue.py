@@ -74,6 +74,10 @@ class FatigueMaterial:
     process: str
     name: str = ""
     source: str = ""
+    #: The user's alternating bending fatigue strength against local stresses, Pa (``[limits]
+    #: fatigue_strength_bending_pa``): replaces M53's σ_DW and the textbook's S_e when set.
+    fatigue_strength: float | None = None
+    fatigue_strength_source: str = ""
 
 
 #: Used where the description gives no strength: 42CrMo4 (1.7225, ~SAE 4140) quenched and
@@ -423,7 +427,8 @@ def assess_m53(loc: LocationStress, mat: FatigueMaterial, required: float = M53_
         sv = float(m53_equivalent_oil_bore(sb, tb))
     else:
         sv = float(m53_equivalent_fillet(sb, tb, loc.additional_bending))
-    dw = m53_fatigue_strength(mat.tensile_strength, loc.diameter, loc.notch_radius, mat.process, loc.kind)
+    dw = mat.fatigue_strength or m53_fatigue_strength(mat.tensile_strength, loc.diameter, loc.notch_radius,
+                                                      mat.process, loc.kind)
     return FatigueAssessment(loc.name, loc.kind, "iacs-m53", dw, sv, 0.0, dw / sv if sv > 0 else math.inf,
                              required, factors={"K": M53_PROCESS_FACTOR[mat.process] if loc.kind != "oil-bore"
                                                 else min(M53_PROCESS_FACTOR[mat.process], 1.0)})
@@ -437,12 +442,16 @@ def assess_textbook(loc: LocationStress, mat: FatigueMaterial, required: float =
     _check_kind(loc.kind)
     if mean_stress not in ("goodman", "gerber"):
         raise FetorsionError(f"mean_stress must be goodman or gerber, got {mean_stress!r}")
-    q = notch_sensitivity(mat.tensile_strength, loc.notch_radius)
-    qs = notch_sensitivity(mat.tensile_strength, loc.notch_radius, torsion=True)
+    if mat.fatigue_strength:  # the user's strength is against local stresses: full K_t (q = 1)
+        q = qs = 1.0
+    else:
+        q = notch_sensitivity(mat.tensile_strength, loc.notch_radius)
+        qs = notch_sensitivity(mat.tensile_strength, loc.notch_radius, torsion=True)
     kf, kfs = fatigue_notch_factor(loc.kt_bending, q), fatigue_notch_factor(loc.kt_torsion, qs)
     sa = float(von_mises(kf * loc.bending_alt, kfs * loc.torsion_alt))
     sm = float(von_mises(kf * loc.bending_mean, kfs * loc.torsion_mean))
-    se = endurance_limit(mat.tensile_strength, loc.diameter, mat.surface, reliability, "bending", temperature_factor)
+    se = mat.fatigue_strength or endurance_limit(mat.tensile_strength, loc.diameter, mat.surface, reliability,
+                                                 "bending", temperature_factor)
     n = (goodman_safety if mean_stress == "goodman" else gerber_safety)(sa, sm, se, mat.tensile_strength)
     smax = float(von_mises(kf * (abs(loc.bending_mean) + abs(loc.bending_alt)),
                            kfs * (abs(loc.torsion_mean) + abs(loc.torsion_alt))))
@@ -455,7 +464,7 @@ def assess_textbook(loc: LocationStress, mat: FatigueMaterial, required: float =
 
 def run_fatigue(locations, material: Material | FatigueMaterial | None = None, method: str = "iacs-m53",
                 required: float | None = None, mean_stress: str = "goodman",
-                reliability: float = DEFAULT_RELIABILITY) -> FatigueResult:
+                reliability: float = DEFAULT_RELIABILITY, limits=None) -> FatigueResult:
     """Assess every location by one method and name the governing one.
 
     Parameters
@@ -472,6 +481,10 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
         Textbook path only.
     reliability : float
         Textbook path only, a key of :data:`RELIABILITY_FACTOR`.
+    limits : Limits, optional
+        The description's ``[limits]``: its ``fatigue_strength_bending`` (Pa, against local
+        stresses) replaces the method's strength, its ``fatigue_required_safety`` the default
+        required safety (an explicit ``required`` still wins).
 
     Where a location carries histories, its ``criteria`` hold the Crossland and Findley safety
     factors with f₋₁ = S_e (the location's fully corrected endurance limit) and t₋₁ = S_e/√3
@@ -483,6 +496,11 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
         mat, defaulted = material, []
     else:
         mat, defaulted = fatigue_material(material)
+    if limits is not None and getattr(limits, "fatigue_strength_bending", 0.0) > 0:
+        mat = replace(mat, fatigue_strength=float(limits.fatigue_strength_bending),
+                      fatigue_strength_source=f"[limits] fatigue_strength_bending_pa ({limits.source})")
+    if required is None and limits is not None and getattr(limits, "fatigue_required_safety", 0.0) > 0:
+        required = float(limits.fatigue_required_safety)
     out = []
     for loc in locations:
         if method == "iacs-m53":
@@ -490,7 +508,7 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
         else:
             a = assess_textbook(loc, mat, 1.0 if required is None else required, mean_stress, reliability)
         if loc.bending_history is not None:
-            f = endurance_limit(mat.tensile_strength, loc.diameter, mat.surface, reliability)
+            f = mat.fatigue_strength or endurance_limit(mat.tensile_strength, loc.diameter, mat.surface, reliability)
             s = loc.kt_bending * np.asarray(loc.bending_history)
             t = loc.kt_torsion * np.asarray(loc.torsion_history)
             crit = {"crossland": crossland(s, t, f, f / math.sqrt(3.0)),
