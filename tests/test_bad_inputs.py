@@ -286,6 +286,21 @@ CASES = [
      {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
                                          "temperature_c = 60.0\ndynamic_table = [[20.0, 300.0, 2.4e4, 0.2], "
                                          "[80.0, 400.0, 2.6e4, 0.2]]\n")}, 2, ["dampers.1.dynamic_table", ">= 2 per temperature"]),
+    ("damper-heat-and-temperature", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "temperature_c = 60.0\nambient_c = 30.0\nthermal_conductance_w_per_k = 3.0\n"
+                                         "dynamic_table = [[20.0, 300.0, 2.4e4, 0.2], [20.0, 400.0, 2.6e4, 0.2]]\n")}, 2,
+     ["dampers.1.temperature_c", "not both"]),
+    ("damper-heat-conductance-zero", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "ambient_c = 30.0\nthermal_conductance_w_per_k = 0.0\n"
+                                         "dynamic_table = [[20.0, 300.0, 2.4e4, 0.2], [20.0, 400.0, 2.6e4, 0.2]]\n")}, 2,
+     ["dampers.1.thermal_conductance_w_per_k", "> 0"]),
+    ("damper-heat-no-column", "response {d}/x.toml",
+     {"x.toml": RENAULT + DAMPER.replace("stiffness_nm_per_rad = 2.6e4\nloss_factor = 0.2\n",
+                                         "ambient_c = 30.0\nthermal_conductance_w_per_k = 3.0\n"
+                                         "dynamic_table = [[300.0, 2.4e4, 0.2], [400.0, 2.6e4, 0.2]]\n")}, 2,
+     ["dampers.1.ambient_c", "temperature column"]),
     ("chain-damper", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + DAMPER.replace("2.6e4", "nan")}, 2,
      ["dampers.1.stiffness_nm_per_rad", "finite"]),
     ("limits-nothing", "run {d}/x.toml --out {d}/new --no-fe", {"x.toml": edit("[limits]", "[limits]\nfatigue_was = 1\n",

@@ -147,7 +147,7 @@ def test_crank_optimiser_finds_den_hartogs_tuned_optimum_from_a_poor_start():
 
 
 def test_rubber_table_read_at_the_operating_temperature_by_hand():
-    from fetorsion.description.crank import table_at_temperature
+    from fetorsion.description.model import table_at_temperature
 
     groups = {20.0: [[300.0, 3.0e4, 0.20], [600.0, 3.6e4, 0.25]], 80.0: [[300.0, 2.0e4, 0.30], [500.0, 2.4e4, 0.32]]}
     rows = table_at_temperature(groups, 60.0)
@@ -174,3 +174,38 @@ def test_rubber_damper_designs_keep_the_loss_factor_of_a_real_rubber():
     best, _ = optimise_damper(lambda x: 1.0 / x.loss_factor + (math.log(x.stiffness / d.stiffness)) ** 2, d)
     lo, hi = RUBBER_LOSS_FACTOR_RANGE
     assert lo <= best.loss_factor <= hi and best.loss_factor == pytest.approx(hi, rel=1e-9)
+
+
+def heated_rubber(conductance=2.0, ambient=40.0):
+    """A rubber damper on the Renault 21's pulley whose rubber softens and loses damping with heat
+    (made-up table: 20 °C stiff, 120 °C soft), following its own heat through ``conductance`` W/K."""
+    rows = ((20.0, 200.0, 6.0e4, 0.30), (20.0, 800.0, 7.0e4, 0.32),
+            (120.0, 200.0, 3.0e4, 0.12), (120.0, 800.0, 3.5e4, 0.14))
+    return Damper("rubber", "front", 2e-3, 5e-3, name="hot rubber", temperature_table=rows,
+                  ambient_c=ambient, thermal_conductance=conductance).at_temperature(ambient)
+
+
+def test_heat_following_rubber_sits_where_its_own_heat_holds_it():
+    """The response puts the damper at T = T_air + P_max/G: checked on the returned response
+    itself (0.05 K: the iteration's stopping step), and against the same damper stated at that
+    temperature, whose response must be the same to round-off (one table, one solve)."""
+    from dataclasses import replace
+
+    import fetorsion
+    from conftest import GEOMETRY
+    from fetorsion.response.forced import response_setup, solve_response
+
+    setup = response_setup(fetorsion.load(GEOMETRY / "renault21.toml"))
+    damper = heated_rubber()
+    hot = solve_response(setup, (damper,))
+    T = hot.damper_temperatures_c[0]
+    P = float(hot.damper_power_w.sum(axis=2).max(axis=0)[0])
+    assert T == pytest.approx(40.0 + P / 2.0, abs=0.05)
+    assert T > 45.0  # it does heat up: the test would not tell otherwise
+    stated = solve_response(setup, (replace(damper.at_temperature(T), thermal_conductance=0.0),))
+    np.testing.assert_allclose(stated.section_torque_nm, hot.section_torque_nm, rtol=1e-12)
+    cold = solve_response(setup, (replace(damper, thermal_conductance=0.0),))  # held at the air's 40 °C
+    assert not np.allclose(cold.section_torque_nm, hot.section_torque_nm, rtol=1e-3)
+    # a better heat path keeps it cooler
+    cooler = solve_response(setup, (heated_rubber(conductance=20.0),)).damper_temperatures_c[0]
+    assert 40.0 < cooler < T

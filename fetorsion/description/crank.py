@@ -17,7 +17,7 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
-from .model import (ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
+from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
@@ -481,11 +481,12 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
         hub = t.number(hub_key, 0.0, nonnegative=True) if hub_key else 0.0
         k = eta = c = 0.0
         table: tuple = ()
+        heat: dict = {}
         if kind == "viscous":
             c = t.number("damping_nms_per_rad", positive=True)
         elif kind == "rubber":
             if "dynamic_table" in t.data:
-                table = _dynamic_table(t)
+                table, heat = _dynamic_table(t)
                 k, eta = (table[0][1], table[0][2]) if table else (math.nan, math.nan)
             else:
                 k = t.number("stiffness_nm_per_rad", positive=True)
@@ -498,21 +499,26 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
         t.used.add("source")
         t.finish()
         if kind in DAMPER_TYPES and at in DAMPER_STATIONS:
-            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", "")), allowed))
+            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", "")), allowed,
+                              **heat))
     return tuple(out)
 
 
-def _dynamic_table(t: Table) -> tuple[tuple[float, float, float], ...]:
+def _dynamic_table(t: Table) -> tuple[tuple, dict]:
     """``dynamic_table`` rows [frequency Hz, stiffness N m/rad, loss factor], or [temperature °C,
-    frequency Hz, stiffness, loss factor] with ``temperature_c`` (the operating temperature) to
-    read the table at: reduced here to the frequency table at that temperature
-    (:func:`table_at_temperature`)."""
+    frequency Hz, stiffness, loss factor] read either at the stated operating ``temperature_c``
+    or, with ``ambient_c`` and ``thermal_conductance_w_per_k`` (W/K, the rubber's heat path to the
+    air), at the temperature its own dissipation holds (found by the response). Returns the
+    frequency table (at ``temperature_c``, or at ``ambient_c`` to start from) and the
+    :class:`Damper`'s temperature fields."""
     raw = t.get("dynamic_table")
     temperature = t.get("temperature_c", None)
+    heat_keys = [k for k in ("ambient_c", "thermal_conductance_w_per_k") if k in t.data]
     width = len(raw[0]) if isinstance(raw, list) and raw and isinstance(raw[0], list) else 0
     rule = ("must be >= 2 rows [frequency_hz > 0, stiffness_nm_per_rad > 0, loss_factor >= 0] with frequency "
             "ascending, or rows [temperature_c, frequency_hz, stiffness_nm_per_rad, loss_factor] with frequency "
-            "ascending within each temperature (>= 2 per temperature) and temperature_c given")
+            "ascending within each temperature (>= 2 per temperature) and temperature_c (or ambient_c and "
+            "thermal_conductance_w_per_k) given")
     rows = raw if isinstance(raw, list) else []
     ok = (width in (3, 4) and len(rows) >= 2
           and all(isinstance(r, list) and len(r) == width and all(finite_number(v) for v in r) for r in rows))
@@ -525,42 +531,35 @@ def _dynamic_table(t: Table) -> tuple[tuple[float, float, float], ...]:
             groups.setdefault(r[0] if width == 4 else None, []).append(r[-3:])
         ok = all(len(g) >= 2 and all(a[0] < b[0] for a, b in zip(g, g[1:])) for g in groups.values())
     if not ok:
+        t.used.update(heat_keys)
         t.problems.append(Problem(f"{t.path}.dynamic_table", raw, rule))
-        return ()
+        return (), {}
     if width == 3:
-        if temperature is not None:
-            t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+        for key, value in [("temperature_c", temperature)] * (temperature is not None) + [(k, t.data[k]) for k in heat_keys]:
+            t.used.add(key)
+            t.problems.append(Problem(f"{t.path}.{key}", value,
                                       "needs dynamic_table rows with a temperature column [temperature_c, frequency_hz, "
                                       "stiffness_nm_per_rad, loss_factor]"))
-        return tuple((float(f), float(k), float(e)) for f, k, e in rows)
+        return tuple((float(f), float(k), float(e)) for f, k, e in rows), {}
+    rows4 = tuple((float(T), float(f), float(k), float(e)) for T, f, k, e in rows)
+    if heat_keys:
+        ambient = t.number("ambient_c")
+        conductance = t.number("thermal_conductance_w_per_k", positive=True)
+        if temperature is not None:
+            t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                      "give either temperature_c (a stated operating temperature) or ambient_c and "
+                                      "thermal_conductance_w_per_k (the damper's own heat sets it), not both"))
+        if not (finite_number(ambient) and conductance > 0):
+            return (), {}
+        return table_at_temperature(groups, ambient), {"temperature_table": rows4, "temperature_c": ambient,
+                                                       "ambient_c": ambient, "thermal_conductance": conductance}
     if not finite_number(temperature):
         t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
                                   "a dynamic_table with a temperature column needs the operating temperature_c "
-                                  "(a finite number, °C)"))
-        return ()
-    return table_at_temperature(groups, float(temperature))
-
-
-def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float, float, float], ...]:
-    """A frequency table (f, k, η) at ``temperature`` from tables at several temperatures
-    (``groups``: temperature -> rows [f, k, η], f ascending): linear in temperature between the two
-    nearest, each read linearly in frequency on the union of their frequencies; the end
-    temperature's table outside the range (no extrapolation of a measured property)."""
-    import numpy as np
-
-    temps = sorted(groups)
-    lo = max([T for T in temps if T <= temperature], default=temps[0])
-    hi = min([T for T in temps if T >= temperature], default=temps[-1])
-    w = 0.0 if hi == lo else (temperature - lo) / (hi - lo)
-    f = np.union1d([r[0] for r in groups[lo]], [r[0] for r in groups[hi]])
-
-    def at(T, col):
-        g = groups[T]
-        return np.interp(f, [r[0] for r in g], [r[col] for r in g])
-
-    k = (1 - w) * at(lo, 1) + w * at(hi, 1)
-    eta = (1 - w) * at(lo, 2) + w * at(hi, 2)
-    return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
+                                  "(a finite number, °C), or ambient_c and thermal_conductance_w_per_k"))
+        return (), {}
+    return table_at_temperature(groups, float(temperature)), {"temperature_table": rows4,
+                                                              "temperature_c": float(temperature)}
 
 
 #: ``[limits]`` keys of the fatigue assessment's own strength and margin (opt-in overrides).

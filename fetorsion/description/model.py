@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
@@ -208,6 +208,29 @@ DAMPER_TYPES = ("viscous", "rubber", "tuned")
 DAMPER_STATIONS = ("front", "rear")
 
 
+def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float, float, float], ...]:
+    """A frequency table (f, k, η) at ``temperature`` from tables at several temperatures
+    (``groups``: temperature -> rows [f, k, η], f ascending): linear in temperature between the two
+    nearest, each read linearly in frequency on the union of their frequencies; the end
+    temperature's table outside the range (no extrapolation of a measured property)."""
+    import numpy as np
+
+    temps = sorted(groups)
+    lo = max([T for T in temps if T <= temperature], default=temps[0])
+    hi = min([T for T in temps if T >= temperature], default=temps[-1])
+    w = 0.0 if hi == lo else (temperature - lo) / (hi - lo)
+    f = np.union1d([r[0] for r in groups[lo]], [r[0] for r in groups[hi]])
+
+    def at(T, col):
+        g = groups[T]
+        return np.interp(f, [r[0] for r in g], [r[col] for r in g])
+
+    k = (1 - w) * at(lo, 1) + w * at(hi, 1)
+    eta = (1 - w) * at(lo, 2) + w * at(hi, 2)
+    return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
+
+
+
 @dataclass(frozen=True)
 class Damper:
     """A torsional damper: a seismic ring joined to the pulley-end (``front``) or flywheel-side
@@ -234,6 +257,28 @@ class Damper:
     source: str = ""
     #: The heat the damper may dissipate continuously, W (its maker's rating); 0: not given.
     allowed_power: float = 0.0
+    #: A rubber's dynamic table at several temperatures: rows (°C, Hz, N·m/rad, loss factor);
+    #: ``table`` is its frequency table at ``temperature_c``.
+    temperature_table: tuple = ()
+    temperature_c: float = math.nan
+    #: Heat-following rubber: the air around it (°C) and its heat path to that air (W/K); the
+    #: response puts it at the temperature its own dissipation holds
+    #: (:func:`fetorsion.response.forced.solve_theta`). 0: the stated ``temperature_c``.
+    ambient_c: float = math.nan
+    thermal_conductance: float = 0.0
+
+    @property
+    def follows_heat(self) -> bool:
+        return self.thermal_conductance > 0 and bool(self.temperature_table)
+
+    def at_temperature(self, temperature: float) -> "Damper":
+        """This damper with its rubber's frequency table read at ``temperature`` (°C)."""
+        groups: dict = {}
+        for T, f, k, e in self.temperature_table:
+            groups.setdefault(T, []).append((f, k, e))
+        table = table_at_temperature(groups, float(temperature))
+        return replace(self, table=table, stiffness=table[0][1], loss_factor=table[0][2],
+                       temperature_c=float(temperature))
 
 
 @dataclass(frozen=True)

@@ -48,6 +48,9 @@ class VerdictCase:
     damper_power_by_order_w: dict = field(default_factory=dict)
     #: The dampers' allowed continuous dissipation (their makers' ratings), W; 0: not given.
     allowed_power_w: float = 0.0
+    #: Each damper's rubber temperature in this case, °C (NaN: none stated; a heat-following
+    #: damper's as its own heat holds it).
+    damper_temperatures_c: tuple = ()
 
     def worst(self) -> int:
         return int(np.argmax(self.value))
@@ -87,7 +90,8 @@ class VerdictResult:
                         "limit": self.limits.continuous, "margin": 1.0 - float(c.value[i]) / self.limits.continuous,
                         "barred_ranges": bars, "transient_limit": self.limits.transient, "verdict": verdict,
                         "damper_power_w": c.damper_power_w, "damper_power_by_order_w": c.damper_power_by_order_w,
-                        "damper_allowed_power_w": c.allowed_power_w, "damper_heat": heat if c.damper_power_w else "-"})
+                        "damper_allowed_power_w": c.allowed_power_w, "damper_heat": heat if c.damper_power_w else "-",
+                        "damper_temperatures_c": [float(t) for t in c.damper_temperatures_c if t == t]})
         return out
 
     def to_dict(self) -> dict:
@@ -109,7 +113,8 @@ class VerdictResult:
                              for b in r["barred_ranges"]) or "none"
             lines.append(f"  {r['case']}: worst {r['value'] / s:.4g} {u} at {r['worst_rpm']:.0f} rpm in "
                          f"{r['worst_section']}, margin {100 * r['margin']:+.1f} %, barred: {bars}; {r['verdict']}"
-                         + (f"; damper heat up to {r['damper_power_w']:.1f} W" if r["damper_power_w"] else ""))
+                         + (f"; damper heat up to {r['damper_power_w']:.1f} W" if r["damper_power_w"] else "")
+                         + "".join(f", rubber at {t:.0f} °C" for t in r["damper_temperatures_c"]))
         return "\n".join(lines + [f"  note: {n}" for n in self.notes])
 
     def plot(self, ax=None):
@@ -149,7 +154,8 @@ def worst_case(name: str, crank, response, scf, limits: Limits, fillets) -> Verd
         s = int(np.argmax(total))
         power = float(total[s])
         by_order = {f"{q:g}": float(p) for q, p in zip(response.orders, response.damper_power_w[s].sum(axis=0))}
-    return VerdictCase(name, response.rpm, value, where, power, by_order)
+    return VerdictCase(name, response.rpm, value, where, power, by_order,
+                       damper_temperatures_c=tuple(response.damper_temperatures_c))
 
 
 def rated(case: VerdictCase, dampers) -> VerdictCase:

@@ -226,6 +226,7 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
         heat = f"{r['damper_power_w']:.1f}" if r["damper_power_w"] else "-"
         if r.get("damper_allowed_power_w"):
             heat += f" of {r['damper_allowed_power_w']:.0f} allowed ({r['damper_heat']})"
+        heat += "".join(f", rubber at {t:.0f} °C" for t in r.get("damper_temperatures_c", ()))
         lines.append(f"| {r['case']} | {r['speed_range_rpm'][0]:.0f}-{r['speed_range_rpm'][1]:.0f} | "
                      f"{r['worst_section']} | {r['worst_rpm']:.0f} | {r['value'] / scale:.4g} {unit} | "
                      f"{r['limit'] / scale:.4g} {unit} | {100 * r['margin']:+.1f} % | {bars} | {heat} | "

@@ -76,6 +76,8 @@ class ResponseResult:
     cycle_rad: float = 4 * np.pi
     damper_names: list = field(default_factory=list)
     damper_power_w: np.ndarray | None = None
+    #: Each damper's rubber temperature, °C (a heat-following one's as its heat holds it; NaN: none stated).
+    damper_temperatures_c: list = field(default_factory=list)
     misfire: int | None = None
     positions_m: np.ndarray | None = None
     section_labels: list = field(default_factory=list)
@@ -100,7 +102,8 @@ class ResponseResult:
                        pulley_angle_peak_to_peak_deg=(2 * self.pulley_angle_deg).tolist())
         if self.damper_names:
             out.update(dampers=self.damper_names, damper_power_w=self.damper_power_w.sum(axis=2).tolist(),
-                       damper_power_per_order_w=self.damper_power_w.tolist())
+                       damper_power_per_order_w=self.damper_power_w.tolist(),
+                       damper_temperatures_c=[None if t != t else t for t in self.damper_temperatures_c])
         return out
 
     def waveform(self, speed: int, samples: int = 720) -> dict:
@@ -353,10 +356,44 @@ def misfire_harmonics(crank, setup: ResponseSetup) -> np.ndarray:
     return pin_force_harmonics(crank, setup.rpm, setup.orders, misfire=True)
 
 
+#: A heat-following damper's temperature is settled when an iteration moves it less than this, K.
+HEAT_TOLERANCE_K = 0.05
+#: Iterations allowed (each a whole solve); relaxed by :data:`HEAT_RELAXATION` against overshoot.
+HEAT_ITERATIONS = 60
+HEAT_RELAXATION = 0.5
+
+
 def solve_theta(setup: ResponseSetup, dampers=()):
     """(theta (speeds, orders, DOF) complex, ω (speeds, orders) rad/s, the DampedSystem) of a
     setup with ``dampers``: the solve without the synthesis. A chain is solved directly; a large
-    reduced model in the basis of its modes (:func:`fetorsion.lumped_model.damped.projected_solve`)."""
+    reduced model in the basis of its modes (:func:`fetorsion.lumped_model.damped.projected_solve`).
+
+    A heat-following rubber damper (``Damper.follows_heat``) is put at the temperature its own
+    heat holds: T = T_air + P/G, P its largest mean dissipation over the speed range (all orders)
+    and G its heat path to the air. Rubber softens and loses damping when hot, so the hot damper
+    is the design case; a damper's thermal time is minutes, so it sits at the steady temperature
+    of a sustained speed. Found by relaxed fixed-point iteration (a fixed point exists: the table
+    is held above its top temperature, so P is bounded); the returned system's dampers carry it.
+    """
+    dampers = tuple(dampers)
+    if not any(d.follows_heat for d in dampers):
+        return _solve_theta(setup, dampers)
+    temps = np.array([d.ambient_c if d.follows_heat else np.nan for d in dampers])
+    hot = np.isfinite(temps)
+    for _ in range(HEAT_ITERATIONS):
+        current = tuple(d.at_temperature(T) if h else d for d, T, h in zip(dampers, temps, hot))
+        theta, omegas, system = _solve_theta(setup, current)
+        power = system.dissipated_power(theta, omegas).sum(axis=1).max(axis=0)  # (dampers,)
+        held = np.array([d.ambient_c + p / d.thermal_conductance if h else np.nan
+                         for d, p, h in zip(dampers, power, hot)])
+        if np.all(np.abs(held[hot] - temps[hot]) < HEAT_TOLERANCE_K):
+            return theta, omegas, system
+        temps[hot] += HEAT_RELAXATION * (held[hot] - temps[hot])
+    raise FetorsionError(f"{setup.name}: the rubber dampers' temperatures did not settle in {HEAT_ITERATIONS} "
+                         f"iterations (last {', '.join(f'{T:.1f}' for T in temps[hot])} °C)")
+
+
+def _solve_theta(setup: ResponseSetup, dampers):
     from ..lumped_model.damped import projected_solve
 
     n = len(setup.labels)
@@ -401,6 +438,7 @@ def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
         section_torque_peak_nm=torque_peak, pulley_angle_peak_deg=np.degrees(pulley_peak), theta=theta,
         stiffnesses_nm_per_rad=None if setup.stiffnesses is None else np.real(setup.stiffnesses),
         cycle_rad=period, damper_names=[d.name for d in dampers],
+        damper_temperatures_c=[float(d.temperature_c) for d in system.dampers],
         damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=setup.misfire,
         positions_m=setup.positions_m, section_labels=list(setup.section_labels), section_rows=setup.section_rows,
         section_x=setup.section_x, model=setup.model, pulley=p,
