@@ -92,3 +92,33 @@ def test_compare_bad_options_give_one_message(tmp_path, capsys, args, message):
     assert main(["compare", str(GEOMETRY / "renault21.toml"), *args]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+def test_run_sets_the_model_against_measurement_in_its_report(tmp_path):
+    """``fetorsion run --no-fe --measured``: the comparison is a section of the report, its summary
+    line and its figure, with the same numbers as ``fetorsion compare``."""
+    from fetorsion.response.forced import run_response
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    r = run_response(crank)
+    k = int(np.flatnonzero(np.isclose(r.orders, 2.0))[0])
+    rows = "\n".join(f"{s:.12g}, {0.9 * np.degrees(a):.12g}" for s, a in zip(r.rpm, np.abs(r.theta[:, k, 0])))
+    (tmp_path / "cut.csv").write_text(f"# unit = deg\n# order = 2\n{rows}\n")
+    out = tmp_path / "report"
+    assert main(["run", str(GEOMETRY / "renault21.toml"), "--no-fe", "--no-html", "--out", str(out),
+                 "--measured", str(tmp_path / "cut.csv")]) == 0
+    text = (out / "report.md").read_text()
+    assert "## Model against measurement" in text and "(measured.png)" in text
+    assert "model peak +11.1 %" in text  # 1/0.9 - 1
+    res = json.loads((out / "results.json").read_text())["measured"]["order_cuts"][0]
+    assert res["peak_difference_percent"] == pytest.approx(100 * (1 / 0.9 - 1), abs=1e-6)
+    assert (out / "measured.png").stat().st_size > 10_000
+
+
+def test_run_measured_options_are_checked_before_any_work(tmp_path, capsys):
+    for args, message in ((["--band", "1", "2"], "go with --measured"),
+                          (["--measured", str(tmp_path / "none.csv")], "no such file")):
+        assert main(["run", str(GEOMETRY / "renault21.toml"), "--no-fe", "--out", str(tmp_path / "r"), *args]) == 2
+        err = capsys.readouterr().err
+        assert message in err and "Traceback" not in err
+        assert not (tmp_path / "r").exists()

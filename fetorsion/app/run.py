@@ -31,7 +31,7 @@ from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DE
                                     DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..report.markdown import report_markdown
-from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome,
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome,
                                ModeImage,
                                RunOutcome, SensitivityOutcome, Skipped, VerdictOutcome)
 
@@ -422,6 +422,18 @@ def background_executor():
                                initargs=(os.getpid(),))
 
 
+def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
+    """The model against the measured files the run was given (none: no section)."""
+    measured = ctx.options.get("measured")
+    if not measured:
+        return None
+    from ..studies.comparison import run_comparison
+
+    res = run_comparison(ctx.crank, measured, "lumped17", ctx.options.get("station"))
+    ctx.results["measured"] = res.to_dict()
+    return MeasuredOutcome(res, ctx.save(res.plot(), "measured.png"))
+
+
 def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
     """f1 against each reconstructed input and the resulting band (needs [uncertainty]); the
     Monte Carlo distribution and Sobol' indices of f1; the FE check of the largest inputs
@@ -452,6 +464,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
     ("Campbell diagram and forced response", "campbell", step_campbell),
     ("fillet stress, dampers and verdict", "verdict", step_verdict),
     ("fatigue of the fillets and oil bores", "fatigue", step_fatigue),
+    ("the model against measurement", "measured", step_measured),
     # last: the studies, started in the background when the run began, finish in the cores the
     # steps before leave idle (the verdict's many small solves keep one busy, not two)
     ("sensitivity of f1", "sensitivity", step_sensitivity),

@@ -29,52 +29,74 @@ def _measured_kind(path: str, teeth) -> str:
                          "(an order cut, or tooth-edge times with --teeth)")
 
 
-def cmd_compare(args) -> int:
-    from ..measured.modal import run_modal_fit
+def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutions: int = 2,
+                  track_orders=(2.0,)) -> dict:
+    """Every measured file read and checked, before any model is solved: ``frfs`` (UFF FRFs),
+    ``cuts`` (order cuts against speed, in SI) and the options the comparison takes. One message
+    naming the file or option otherwise."""
     from ..measured.ordercut import read_order_cut_csv
     from ..measured.torsiograph import read_edges_csv, run_torsiograph
     from ..measured.uff import read_uff58
-    from ..studies.comparison import (ComparisonResult, compare_frequencies, compare_order_cut,
-                                      track_order_cut)
+    from ..studies.comparison import track_order_cut
 
-    kinds = [_measured_kind(m, args.teeth) for m in args.measured]
-    if args.band is not None and not 0 <= args.band[0] < args.band[1]:
-        raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
-    crank = load_description(args.file)
-    if args.station is not None and args.station.lower() not in ("pulley", "flywheel"):
-        from ..lumped_model.lumped import lumped
-        from ..studies.comparison import station_index
-
-        station_index(lumped(crank, 17), args.station)  # the chain's labels: a wrong station named now
-    # every file read and checked before any model is solved
+    kinds = [_measured_kind(m, teeth) for m in paths]
+    if band is not None and not 0 <= band[0] < band[1]:
+        raise FetorsionError(f"--band {band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     frfs, cuts = [], []
-    for path, kind in zip(args.measured, kinds):
+    for path, kind in zip(paths, kinds):
         if kind == "uff":
             functions = read_uff58(path)
             frfs += [f for f in functions if f.kind == "frf"]
             cuts += [f for f in functions if f.kind == "order function" and f.abscissa_quantity == "speed"]
         elif kind == "order-cut":
-            cuts.append(read_order_cut_csv(path, args.unit, args.order))
+            cuts.append(read_order_cut_csv(path, unit, order))
         else:
             edges = read_edges_csv(path)
-            res = run_torsiograph(edges, {c: args.teeth for c in edges}, args.revolutions)
+            res = run_torsiograph(edges, {c: teeth for c in edges}, revolutions)
             for channel, track in res.tracks.items():
-                for order in args.track_orders:
-                    cuts.append(track_order_cut(track, order, f"{Path(path).name}: {channel}"))
-    if frfs and args.band is None:
+                for k in track_orders:
+                    cuts.append(track_order_cut(track, k, f"{Path(path).name}: {channel}"))
+    if frfs and band is None:
         raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
-    out = ComparisonResult(crank.name)
-    if frfs:
-        out.frequencies.append(compare_frequencies(run_modal_fit(frfs, tuple(args.band)), crank, args.source))
-    if cuts:
-        if getattr(crank, "excitation", None) is None:
-            raise FetorsionError(f"compare: {args.file} has no [excitation] table: the model has no order cuts")
-        from ..response.forced import run_response
-
-        response = run_response(crank)
-        out.order_cuts += [compare_order_cut(c, response, args.station) for c in cuts]
-    if not (out.frequencies or out.order_cuts):
+    if not (frfs or cuts):
         raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
+    return {"frfs": frfs, "cuts": cuts, "band": None if band is None else tuple(band)}
+
+
+def check_measured(crank, measured: dict, station: str | None) -> None:
+    """What the model needs of the measured data, checked before it is solved: order cuts need an
+    ``[excitation]`` and must be angles; the station must exist."""
+    if measured["cuts"] and getattr(crank, "excitation", None) is None:
+        raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
+    for c in measured["cuts"]:
+        if c.unit != "rad":
+            raise FetorsionError(f"compare: {c.label or 'an order cut'} is in {c.unit}; the model's order cuts are "
+                                 "angles (deg, mrad or rad)")
+    check_station(crank, station)
+
+
+def check_station(crank, station: str | None) -> None:
+    """A station that is not the pulley or flywheel end must be a label of the lumped chain."""
+    if station is not None and station.lower() not in ("pulley", "flywheel"):
+        from ..lumped_model.lumped import lumped
+        from ..studies.comparison import station_index
+
+        station_index(lumped(crank, 17), station)
+
+
+def cmd_compare(args) -> int:
+    from ..studies.comparison import run_comparison
+
+    for m in args.measured:
+        _measured_kind(m, args.teeth)
+    if args.band is not None and not 0 <= args.band[0] < args.band[1]:
+        raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
+    crank = load_description(args.file)
+    check_station(crank, args.station)
+    measured = read_measured(args.measured, args.band, args.unit, args.order, args.teeth, args.revolutions,
+                             args.track_orders)
+    check_measured(crank, measured, args.station)
+    out = run_comparison(crank, measured, args.source, args.station)
     print(out.table())
     emit_json(out.to_dict(), args.json)
     if args.plot:

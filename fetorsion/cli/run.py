@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .options import MM, millimetres, real
+from .options import MM, integer, millimetres, real
 from ..description.model import Chain
 from ..errors import FetorsionError
 from ..io import check_report_folder
@@ -45,6 +45,10 @@ def cmd_run(args) -> int:
     from ..app.run import FAST_STEPS, run
 
     jobs = run_jobs(args)
+    if args.measured and args.all:
+        raise FetorsionError("--measured belongs to one crank; give FILE instead of --all")
+    if not args.measured and (args.band or args.station or args.teeth):
+        raise FetorsionError("--band, --station and --teeth go with --measured FILE ...")
     for file, out in jobs:  # every destination and description is checked before any work
         check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
         crank = load_description(str(file))
@@ -52,6 +56,13 @@ def cmd_run(args) -> int:
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,
                "source": args.source}
+    if args.measured:  # read and checked now, before any work
+        from .measured import check_measured, check_station, read_measured
+
+        check_station(crank, args.station)
+        measured = read_measured(args.measured, args.band, teeth=args.teeth)
+        check_measured(crank, measured, args.station)
+        options.update(measured=measured, station=args.station)
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,
                      **({"steps": FAST_STEPS} if args.no_fe else {}))
@@ -78,6 +89,14 @@ def add_parser(sub) -> None:
                          "always with --no-fe); the report states the other's gap")
     up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
+    up.add_argument("--measured", nargs="+", metavar="FILE",
+                    help="measured files to set the model against in the report (as 'fetorsion compare': UFF 58 "
+                         "FRFs and order functions, CSV order cuts, tooth-edge CSV with --teeth)")
+    up.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
+                    help="frequency band (Hz) to fit the measured FRFs' modes in")
+    up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
+                    "station label of the lumped chain")
+    up.add_argument("--teeth", type=integer(1), help="teeth per revolution of a tooth-edge CSV's wheels")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

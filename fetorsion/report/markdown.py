@@ -286,8 +286,21 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     return lines + [f"![]({im})" for im in outcome.images] + [""]
 
 
+def measured_section(crank: Crank, outcome) -> list[str]:
+    """The model against the measured files the run was given: every table and the figure."""
+    if isinstance(outcome, Skipped):
+        return ["## Model against measurement", "", f"Not run: {outcome.reason}.", ""]
+    c = outcome.comparison
+    return ["## Model against measurement", "",
+            "Natural frequencies: the modes fitted to the measured FRFs, each against the nearest free-free mode "
+            "of the model named; order cuts: the measured amplitude against the lumped chain's own order at the "
+            "sensor's station (docs/measured-data.md).", "", "```", c.table(), "```", "",
+            f"![]({outcome.image})", ""]
+
+
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),
-            ("sensitivity", sensitivity_section), ("verdict", verdict_section), ("fatigue", fatigue_section))
+            ("sensitivity", sensitivity_section), ("verdict", verdict_section), ("fatigue", fatigue_section),
+            ("measured", measured_section))
 
 
 def summary_lines(run: RunOutcome) -> list[str]:
@@ -344,6 +357,16 @@ def summary_lines(run: RunOutcome) -> list[str]:
         out.append(f"- **Fatigue, bending and torsion ({w.method}): {w.labels[g]} at {w.worst_rpm[g]:.0f} rpm, safety "
                    f"{safety:.2f} against {required:.2f} at the damping band's low end (ζ = {zeta:.4f}): "
                    f"{'pass' if safety >= required else 'FAIL'}** ({fat.model}).")
+    mea = run.measured
+    if mea is not None and not isinstance(mea, Skipped):
+        for f in mea.comparison.frequencies:
+            d = f.difference_percent
+            out.append(f"- **Measured frequencies: {len(d)} modes, model ({f.source}) {d.min():+.1f} to {d.max():+.1f} %** "
+                       f"against the modal test.")
+        for c in mea.comparison.order_cuts:
+            p = c.peaks()
+            out.append(f"- **Order {c.order:g} at {c.station} ({c.name}): model peak {p['peak_difference_percent']:+.1f} %, "
+                       f"{p['peak_rpm_difference']:+.0f} rpm** against the measurement (lumped chain).")
     return ["## Summary", "", *out, ""] if out else []
 
 

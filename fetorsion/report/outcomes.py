@@ -131,6 +131,15 @@ class FatigueOutcome:
 
 
 @dataclass
+class MeasuredOutcome:
+    """The model against the measured files given to the run (:func:`fetorsion.studies.comparison.run_comparison`)
+    and its figure."""
+
+    comparison: object
+    image: str
+
+
+@dataclass
 class RunOutcome:
     """Every section of one run, in pipeline order, and each step's wall time (s)."""
 
@@ -143,4 +152,5 @@ class RunOutcome:
     sensitivity: SensitivityOutcome | Skipped | None = None
     verdict: VerdictOutcome | Skipped | None = None
     fatigue: FatigueOutcome | Skipped | None = None
+    measured: MeasuredOutcome | Skipped | None = None
     timings_s: dict | None = None

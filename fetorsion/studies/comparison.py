@@ -262,3 +262,23 @@ def track_order_cut(track, order: float, name: str):
     keep = np.argsort(rpm)
     return MeasuredFunction("order function", rpm[keep], "speed", amp[keep], "rad", (0, 4),
                             label=f"{name}, torsiograph", order=float(order))
+
+
+def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None) -> ComparisonResult:
+    """The model of ``crank`` against ``measured`` (``frfs``, ``cuts``, ``band``: the measured
+    files as read by the command line). Frequencies from ``source``; order cuts on the lumped
+    chain's forced response at ``station``."""
+    from ..measured.modal import run_modal_fit
+
+    out = ComparisonResult(crank.name)
+    if measured.get("frfs"):
+        out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
+                                                   source))
+    if measured.get("cuts"):
+        if getattr(crank, "excitation", None) is None:
+            raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
+        from ..response.forced import run_response
+
+        response = run_response(crank)
+        out.order_cuts += [compare_order_cut(c, response, station) for c in measured["cuts"]]
+    return out
