@@ -122,3 +122,31 @@ def test_run_measured_options_are_checked_before_any_work(tmp_path, capsys):
         err = capsys.readouterr().err
         assert message in err and "Traceback" not in err
         assert not (tmp_path / "r").exists()
+
+
+def test_compare_writes_the_models_predictions_as_a_universal_file(tmp_path):
+    """``--uff``: the model's order cut goes out equal to its response (1e-9, the 58b file's
+    doubles), and its receptances, fitted like a measurement, give back the chain's own first
+    frequency (within the fit's 0.1 %)."""
+    from fetorsion.lumped_model.lumped import lumped
+    from fetorsion.measured import read_uff58
+    from fetorsion.measured.modal import run_modal_fit
+    from fetorsion.response.forced import run_response
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    frfs, exact = chain_frfs(crank)
+    r = run_response(crank)
+    k = int(np.flatnonzero(np.isclose(r.orders, 2.0))[0])
+    rows = "\n".join(f"{s:.12g}, {np.degrees(a):.12g}" for s, a in zip(r.rpm, np.abs(r.theta[:, k, 0])))
+    (tmp_path / "cut.csv").write_text(f"# unit = deg\n# order = 2\n{rows}\n")
+    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    band = [f"{0.6 * exact[0]:.1f}", f"{1.1 * exact[0]:.1f}"]
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), str(path), str(tmp_path / "cut.csv"), "--band", *band,
+                 "--uff", str(tmp_path / "model.uff")]) == 0
+    written = read_uff58(tmp_path / "model.uff")
+    cut = [f for f in written if f.kind == "order function"][0]
+    np.testing.assert_allclose(cut.ordinate, r.theta[:, k, 0], rtol=1e-9)
+    model_frfs = [f for f in written if f.kind == "frf"]
+    assert len(model_frfs) == 2
+    fit = run_modal_fit(model_frfs, (0.85 * exact[0], 1.15 * exact[0]))  # inside the written band (±20 %)
+    assert fit.frequencies_hz[0] == pytest.approx(lumped(crank, 17).frequencies_hz[0], rel=1e-3)

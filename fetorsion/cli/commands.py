@@ -39,7 +39,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 # Output options: (attribute, option name, accepted suffixes); "-" means standard output.
 OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS), ("html", "--html", (".html",)),
-                  ("output", "-o", None), ("png", "--png", (".png",)), ("npz", "--npz", (".npz",)))
+                  ("output", "-o", None), ("png", "--png", (".png",)), ("npz", "--npz", (".npz",)),
+                  ("uff", "--uff", (".uff", ".unv")))
 
 
 def check_options(args) -> None:

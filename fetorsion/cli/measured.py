@@ -102,6 +102,12 @@ def cmd_compare(args) -> int:
     if args.plot:
         save_figure_atomic(out.plot(), args.plot, close=True, dpi=120)
         print(f"figure: {args.plot}", file=sys.stderr)
+    if args.uff:
+        from ..measured.uff import write_uff58
+        from ..studies.comparison import model_predictions
+
+        write_uff58(args.uff, model_predictions(crank, out))
+        print(f"the model's predictions (UFF 58): {args.uff}", file=sys.stderr)
     return 0
 
 
@@ -129,5 +135,8 @@ def add_parsers(sub) -> None:
     cp.add_argument("--track-orders", type=real(0.0), nargs="+", default=[2.0], metavar="K",
                     help="orders of a torsiograph's recording to compare (default 2)")
     cp.add_argument("--plot", metavar="PATH", help="figure of every comparison (.png, .pdf, .svg)")
+    cp.add_argument("--uff", metavar="PATH", help="write the model's predictions as UFF 58 (its order cuts at the "
+                    "sensor's station; its receptances at the pulley and flywheel ends over the measured band), to "
+                    "overlay in a test system's own tools")
     add_json_option(cp)
     cp.set_defaults(func=cmd_compare)

@@ -282,3 +282,56 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
         response = run_response(crank)
         out.order_cuts += [compare_order_cut(c, response, station) for c in measured["cuts"]]
     return out
+
+
+def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None) -> np.ndarray:
+    """The lumped chain's receptances (rad/N·m) at ``stations`` (0-based; default the pulley and the
+    flywheel end) to a torque at the pulley end, free-free, with the description's modal damping
+    ratio on every elastic mode: (stations, frequencies) complex."""
+    from ..description.defaults import DEFAULT_DAMPING_RATIO
+    from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix
+
+    res = lumped(crank, 17)
+    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    zeta = damping_ratio if damping_ratio is not None else getattr(getattr(crank, "excitation", None),
+                                                                   "modal_damping_ratio", DEFAULT_DAMPING_RATIO)
+    C = modal_damping_matrix(M, K, zeta)
+    w = 2 * np.pi * np.asarray(frequency_hz, float)
+    w = np.where(w > 0, w, np.nan)  # the free chain has no static receptance
+    Z = K[None] - w[:, None, None] ** 2 * M[None] + 1j * w[:, None, None] * C[None]
+    f = np.zeros(len(M))
+    f[0] = 1.0
+    H = np.linalg.solve(np.nan_to_num(Z), np.broadcast_to(f, (len(w), len(M)))[..., None])[..., 0]
+    return H[:, list(stations)].T
+
+
+def model_predictions(crank, comparison: ComparisonResult, response=None) -> list:
+    """The model's side of a comparison as measured functions, for a universal file (UFF 58): its
+    order cut (complex, rad, against rpm) at the station of each compared cut, and, where modes
+    were compared, its receptances at the pulley and flywheel ends to a torque at the pulley end
+    over the measured band (rad/N·m). Nodes: the chain's 1-based station numbers, direction 4
+    (rotation about x)."""
+    from ..measured.uff import MeasuredFunction
+
+    out = []
+    if comparison.order_cuts:
+        if response is None:
+            from ..response.forced import run_response
+
+            response = run_response(crank)
+        labels = list(response.labels)
+        for c in comparison.order_cuts:
+            j = labels.index(c.station.split(" (")[0])
+            k = int(np.flatnonzero(np.isclose(response.orders, c.order, rtol=0, atol=1e-9))[0])
+            out.append(MeasuredFunction("order function", np.asarray(response.rpm, float), "speed",
+                                        np.asarray(response.theta[:, k, j]), "rad", (j + 1, 4),
+                                        label=f"model order {c.order:g} at {c.station}", order=float(c.order)))
+    for f in comparison.frequencies:
+        lo, hi = 0.8 * f.measured_hz.min(), 1.2 * f.measured_hz.max()
+        hz = np.linspace(lo, hi, 2000)
+        H = model_receptances(crank, hz)
+        n = len(list(getattr(response, "labels", []))) or 17
+        for row, node in zip(H, (1, n)):
+            out.append(MeasuredFunction("frf", hz, "frequency", row, "rad", (node, 4), reference=(1, 4),
+                                        reference_unit="N m", label=f"model receptance {node}:4 / 1:4"))
+    return out
