@@ -12,6 +12,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 py="${FETORSION_DOCS_PYTHON:-.venv/bin/python}"
+if [ ! -x "$py" ]; then
+  echo "docs: $py not found: run scripts/setup.sh first" >&2
+  exit 1
+fi
 if ! "$py" -c "import sphinx, pydata_sphinx_theme, numpydoc, sphinx_gallery, myst_parser" 2>/dev/null; then
   echo "docs: installing the docs extra into $(dirname "$(dirname "$py")")"
   "$py" -m pip install -q -e ".[docs]"
