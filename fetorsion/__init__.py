@@ -38,8 +38,22 @@ def __getattr__(name: str):
 def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, **kwargs):
     """3D FE free-free modes of a crank (lazy import: gmsh and scikit-fem load on first use).
 
-    See :func:`fetorsion.fe.crankfe.run_modal`; returns a :class:`fetorsion.fe.crankfe.CrankModal`
-    (a :class:`fetorsion.fe.modal.ModalResult` that also holds the crank and its mesh).
+    Parameters
+    ----------
+    crank : Crank
+        The description.
+    mesh_size : float
+        Global element size, m (finer at fillets and drillings).
+    modes : int
+        Number of elastic modes.
+    **kwargs
+        To :func:`fetorsion.fe.crankfe.run_modal` (purpose, fillet size, solver, support).
+
+    Returns
+    -------
+    CrankModal
+        A :class:`fetorsion.fe.modal.ModalResult` (frequencies in Hz, labelled mode shapes) that
+        also holds the crank and its mesh.
     """
     from .fe.crankfe import run_modal as _run
 

@@ -17,6 +17,7 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .fields import CHAIN_SCHEMA, CRANK_SCHEMA
 from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
@@ -70,7 +71,7 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     station (1-based) carries each cylinder.
     """
     problems: list[Problem] = []
-    root = Table(data, "", problems)
+    root = Table(data, "", problems, schema=CHAIN_SCHEMA)
     unit = read_length_unit(root, source) if ("engine" in data or "units" in data) else "m"
     t = root.table("chain")
     root.used.add("meta")  # free-form notes, not checked
@@ -364,7 +365,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     the description with that input at that bound must obey every rule.
     """
     problems: list[Problem] = []
-    root = Table(data, "", problems)
+    root = Table(data, "", problems, schema=CRANK_SCHEMA)
     unit = read_length_unit(root, source)
 
     meta = root.table("meta", required=False)

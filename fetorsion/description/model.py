@@ -426,6 +426,7 @@ class Crank:
         return web_index // 2 + web_index % 2
 
     def attachments_at(self, at: AttachPoint | str) -> tuple[Attachment, ...]:
+        """The attachments at ``at`` (``front``, ``rear`` or ``pins``), in the file's order."""
         return tuple(a for a in self.attachments if a.at == at)
 
 

@@ -7,6 +7,7 @@ mechanics input file.
 from __future__ import annotations
 
 import math
+import re
 import tomllib
 from pathlib import Path
 
@@ -17,8 +18,11 @@ from .units import LENGTH_UNITS
 class Table:
     """Typed access to one TOML table that records problems instead of raising."""
 
-    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0, absent: bool = False):
+    def __init__(self, data, path: str, problems: list[Problem], scale: float = 1.0, absent: bool = False,
+                 schema: dict | None = None):
         self.path = path
+        # The declared fields (fetorsion.description.fields): table name -> keys, None for free keys.
+        self.schema = schema
         self.problems = problems
         self.scale = scale
         # A required table that is missing is reported once, not once more for each field.
@@ -120,15 +124,28 @@ class Table:
         if not isinstance(raw, list) or not all(isinstance(t, dict) for t in raw):
             self.problems.append(Problem(self._name(key), raw, "must be an array of tables ([[...]])"))
             return []
-        return [Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale) for i, t in enumerate(raw)]
+        return [Table(t, f"{self._name(key)}.{i + 1}", self.problems, self.scale, schema=self.schema)
+                for i, t in enumerate(raw)]
 
     def table(self, key, *, required=True):
         raw = self._get(key, _REQUIRED if required else {})
         return Table({} if raw is _MISSING else raw, self._name(key), self.problems, self.scale,
-                     absent=raw is _MISSING or self.absent)
+                     absent=raw is _MISSING or self.absent, schema=self.schema)
 
     def finish(self):
-        """Report keys the reader never asked for: they are typos or unsupported."""
+        """Report keys the reader never asked for: they are typos or unsupported.
+
+        With a ``schema``, a key the reader asked for that the schema does not declare is a bug
+        of the reader, not of the file: it raises, so that the documented fields (generated from
+        the schema) always cover what the reader accepts.
+        """
+        if self.schema is not None:
+            table = re.sub(r"\.\d+", "", self.path)  # webs.3 -> webs
+            declared = self.schema.get(table, frozenset())
+            undeclared = set() if declared is None else self.used - declared
+            if undeclared or table not in self.schema:
+                raise RuntimeError(f"the reader reads [{table}] {sorted(undeclared)}, which "
+                                   "fetorsion/description/fields.py does not declare")
         for key in self.data:
             if key not in self.used:
                 self.problems.append(Problem(self._name(key), self.data[key], "is not a known field here"))

@@ -244,11 +244,21 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         Fillet SCFs for ``stress`` (default :func:`fetorsion.design.scf.fillet_scfs`).
     rpm : array_like, optional
         Speeds, rpm (default the response's).
+    partition : int
+        Lumped partition (5, 6, 17, 19, 21) of the response model; ignored for a chain.
     setup : ResponseSetup, optional
         The crank's :func:`~fetorsion.response.forced.response_setup` when the caller has it
         (then ``rpm``, ``partition`` and ``setup_options`` are its own).
     fillets : list of Fillet, optional
         :func:`fetorsion.design.stress.fillets_of` the crank, when the caller has them.
+    **setup_options
+        To :func:`~fetorsion.response.forced.response_setup` when ``setup`` is not given.
+
+    Returns
+    -------
+    DamperResult
+        The Den Hartog and optimised dampers (inertia kg·m², stiffness N·m/rad, damping
+        N·m·s/rad) and the response with each.
     """
     if objective not in OBJECTIVES:
         raise ParameterError("objective", f"{objective!r}: choose {' or '.join(OBJECTIVES)}")

@@ -180,6 +180,13 @@ def run_stress(crank: Crank, response=None, scf: dict | None = None, **response_
     scf : dict, optional
         ``pin`` and ``journal`` SCFs and their ``source``; default
         :func:`fetorsion.design.scf.fillet_scfs` (shipped reference values or one static FE).
+    **response_options
+        To :func:`~fetorsion.response.forced.run_response` when ``response`` is not given.
+
+    Returns
+    -------
+    StressResult
+        Vibratory shear stress (Pa) at every fillet against speed (rpm).
     """
     from .scf import fillet_scfs
     from ..response.forced import run_response

@@ -176,9 +176,37 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     objective: the limited quantity); and the misfire of the cylinder that makes it worst, with
     the best of those dampers.
 
-    ``setup`` (the crank's :func:`~fetorsion.response.forced.response_setup`; then ``rpm`` is
-    its own) and ``fillets`` (:func:`fetorsion.design.stress.fillets_of`) are built here unless
-    the caller has them; every case, the damper tuning and the misfires are derived from them.
+    ``setup`` and ``fillets`` are built here unless the caller has them; every case, the damper
+    tuning and the misfires are derived from them.
+
+    Parameters
+    ----------
+    crank : Crank or Chain
+        With ``[excitation]`` and ``[limits]``.
+    mu : float
+        Ring inertia of the designed damper over the equivalent inertia of the first mode at the
+        pulley (-).
+    kind : str
+        Type of the designed damper: ``viscous``, ``rubber`` or ``tuned``.
+    optimise : bool
+        Add the case of that damper optimised on the whole crank.
+    misfire : bool
+        Add the misfire case.
+    scf : dict, optional
+        Fillet SCFs (``pin``, ``journal``, ``source``); default
+        :func:`fetorsion.design.scf.fillet_scfs`.
+    rpm : array_like, optional
+        Speeds, rpm; default the response's (the speed range to overspeed).
+    setup : ResponseSetup, optional
+        The crank's :func:`~fetorsion.response.forced.response_setup` (then ``rpm`` is its own).
+    fillets : list of Fillet, optional
+        :func:`fetorsion.design.stress.fillets_of` the crank.
+
+    Returns
+    -------
+    VerdictResult
+        One row per case: worst stress (Pa) or section torque (N·m) against the limit, barred
+        speed ranges (rpm), damper heat (W).
     """
     from ..response.forced import misfire_harmonics, response_setup, solve_response
     from .dampers import run_damper

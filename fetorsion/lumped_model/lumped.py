@@ -137,7 +137,7 @@ class LumpedResult:
         Elastic natural frequencies, ascending, Hz.
     mode_shapes : ndarray, shape (modes, stations)
         Row j is the shape of ``frequencies_hz[j]``, 1 at the front station (the
-        paper's normalisation) unless that station is a node, then max |θ| = 1.
+        paper's normalisation) unless that station is a node, then ``max |θ| = 1``.
     rigid_body_hz : float
         The free-free rigid-body root (≈ 0; its size shows the round-off).
     pin_weights : ndarray, shape (cylinders, stations), or None

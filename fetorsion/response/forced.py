@@ -203,6 +203,9 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     damping_ratio : float, optional
         Modal damping ratio; default the description's. A chain's absolute, relative and
         hysteretic dampers act in addition.
+    web_method : str
+        Web-stiffness method of the lumped model (a key of
+        :data:`fetorsion.webs.methods.WEB_METHODS`); ignored for a chain.
     dampers : sequence of Damper, optional
         Torsional dampers (:class:`fetorsion.description.model.Damper`); default the
         description's ``[[dampers]]``; ``()`` for none.

@@ -122,8 +122,23 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
 
 def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
                     parts=None) -> SensitivityResult:
-    """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band (``parts``:
-    the nominal crank's PartChain for ``stiffness``, when the caller has it).
+    """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band.
+
+    Parameters
+    ----------
+    crank : Crank
+        A description with an ``[uncertainty]`` table (ranges in file units).
+    dof : int
+        Lumped partition (5, 6, 17, 19, 21).
+    stiffness : str
+        Web-stiffness method (a key of :data:`fetorsion.webs.methods.WEB_METHODS`).
+    parts : PartChain, optional
+        The nominal crank's parts for ``stiffness``, when the caller has them.
+
+    Returns
+    -------
+    SensitivityResult
+        f1 (Hz) at each input's bounds and the band with every input at its worst bound.
 
     Examples
     --------

@@ -280,6 +280,10 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int | None = Non
     model : str
         ``lumpedN`` (N = 5, 6, 17, 19, 21) or ``fe`` (3D FE without fillets and drillings at
         ``mesh_size``, m; their inputs are then held at nominal).
+    stiffness : str, optional
+        Web-stiffness method of a lumped model; default :data:`~fetorsion.description.defaults.DEFAULT_WEB_METHOD`.
+    mesh_size : float, optional
+        Global FE element size of the ``fe`` model, m.
     outputs : sequence of str
         ``f1``, ``f2``, ``f3``, ``severity`` (lumped) or ``f1``, ``f2`` (fe); Hz, degrees.
     inputs : sequence of str, optional
@@ -288,6 +292,10 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int | None = Non
         An existing Dask scheduler's address, or the local cluster's worker count (started
         only if some sample is not stored). ``client`` overrides both (None of the three:
         a local cluster).
+    client : distributed.Client or False, optional
+        A Dask client to use; ``False`` runs the samples in this process.
+    store : SampleStore, optional
+        Where each sample's result is kept (default the user's sample store).
     **kwargs
         To :func:`run_study` (``batch_size``, ``retry_failed``, ``on_record``, ``progress``).
 

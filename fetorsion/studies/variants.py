@@ -16,6 +16,21 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     ``[distributions]``) are dropped.
     ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
     checks, where those details would dominate the element count.
+
+    Parameters
+    ----------
+    crank : Crank
+        The description to vary.
+    changes : dict of str to float
+        Field path (``"webs.*.thickness"``, 1-based indices, ``*`` = every entry) to its new
+        value, in the file's units (lengths in ``[units] length``).
+    details : bool
+        Keep the fillets and oil holes.
+
+    Returns
+    -------
+    Crank
+        The variant, checked by every rule of the description.
     """
     raw = copy.deepcopy(crank.raw)
     raw.pop("uncertainty", None)

@@ -1,0 +1,343 @@
+"""Every table and field a crank description or a chain file may hold, as data.
+
+The reader (:mod:`fetorsion.description.crank`) asks for each field by name; this module
+declares those names with their meaning and rule, and :meth:`Table.finish
+<fetorsion.description.reader.Table.finish>` refuses to run when the reader has read a field
+that is not declared here. The documentation's description-format page is generated from these
+declarations (:func:`markdown`), so a field the reader accepts cannot be missing from the page.
+The rules themselves are enforced by the reader; the ``rule`` text here says them in words.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PROCESSES, SURFACES
+from .units import LENGTH_UNITS
+
+
+@dataclass(frozen=True)
+class Field:
+    """One key of a table: its name, what it means (with its unit), and the rule it must obey."""
+
+    key: str
+    meaning: str
+    rule: str = ""
+
+
+@dataclass(frozen=True)
+class Section:
+    """One TOML table: ``[name]`` (``array=False``) or ``[[name]]`` (``array=True``).
+
+    ``free`` tables take keys of the user's choosing (notes, field paths); ``fields`` then
+    lists the keys that have a meaning of their own.
+    """
+
+    name: str
+    intro: str
+    fields: tuple[Field, ...]
+    array: bool = False
+    free: bool = False
+    required: bool = False
+
+    @property
+    def keys(self) -> frozenset[str]:
+        return frozenset(f.key for f in self.fields)
+
+    @property
+    def header(self) -> str:
+        return f"[[{self.name}]]" if self.array else f"[{self.name}]"
+
+
+def _one_of(values) -> str:
+    return "one of " + ", ".join(f"`{v}`" for v in values)
+
+
+_ROUND = (
+    Field("diameter", "outer diameter (file length unit)", "> 0"),
+    Field("length", "axial length (file length unit)", "> 0"),
+    Field("bore", "diameter of a central bore (file length unit); default 0", ">= 0, smaller than `diameter`"),
+)
+
+
+def _round(name: str, intro: str, required: bool) -> Section:
+    return Section(name, intro, _ROUND, array=True, required=required)
+
+
+META = Section("meta", "Free notes: any key is kept with the description (e.g. `source`, "
+               "`measured_first_torsional_hz`).", (
+    Field("name", "name used in tables and plots; default the file's name", "a string"),
+), free=True)
+
+UNITS = Section("units", "The unit of every length in the file; every other quantity carries its SI unit "
+                "in its key name, angles end in `_deg`. Inside fetorsion all is SI.", (
+    Field("length", "length unit", _one_of(LENGTH_UNITS)),
+), required=True)
+
+MATERIAL = Section("material", "An isotropic elastic steel; the strengths feed the fatigue assessment "
+                   "(see {doc}`fatigue`).", (
+    Field("youngs_modulus_pa", "Young's modulus E, Pa", "> 0"),
+    Field("poisson_ratio", "Poisson's ratio ν", "0 < ν < 0.5"),
+    Field("density_kgm3", "density ρ, kg/m³", "> 0"),
+    Field("name", "material name", "a string"),
+    Field("tensile_strength_pa", "optional ultimate tensile strength, Pa; absent: the default forging steel "
+          "(42CrMo4 +QT, EN 10083-3, 900 MPa)", "> 0"),
+    Field("yield_strength_pa", "optional yield strength, Pa; absent: the default forging steel (650 MPa)",
+          "> 0, at most `tensile_strength_pa`"),
+    Field("surface", "optional fillet finish, for the Marin surface factor", _one_of(SURFACES)),
+    Field("process", "optional manufacturing route, for the IACS M53 factor K (1.05, 1.05, 1.0, 0.93)",
+          _one_of(PROCESSES)),
+    Field("source", "where the numbers come from", "a string"),
+), required=True)
+
+ENGINE = Section("engine", "The slider-crank data; read the same way in a crank description and in a "
+                 "chain file.", (
+    Field("cylinders", "number of cylinders N", "integer >= 1"),
+    Field("cycle_strokes", "4 (default) or 2", "one of `2`, `4`"),
+    Field("stroke", "piston stroke (file length unit); the crank radius is R = stroke/2", "> 0"),
+    Field("rod_length", "connecting-rod length, eye centre to eye centre (file length unit)",
+          "> 0, longer than R"),
+    Field("bore", "cylinder bore (file length unit); needed for the gas force", ">= 0; > 0 with a synthetic cycle"),
+    Field("crank_angles_deg", "angle of each throw, deg: cylinder c reaches TDC this far after cylinder 1",
+          "one per cylinder"),
+    Field("firing_order", "cylinders in firing sequence", "a permutation of 1..N that `crank_angles_deg` can fire"),
+), required=True)
+
+JOURNALS = _round("journals", "Main journals, front to rear: N + 1 of them.", True)
+PINS = _round("pins", "Crank pins, front to rear: N of them.", True)
+WEBS = Section("webs", "Crank webs, front to rear: 2N of them; webs 2i−1 and 2i belong to throw i. The outline "
+               "is the convex hull of the circle of diameter `width_journal` around the crank axis and the "
+               "circle of diameter `width_pin` around the pin centre, united with the counterweight sector.", (
+    Field("thickness", "axial thickness L_b (file length unit)", "> 0"),
+    Field("width_journal", "B_max: diameter of the web's circle around the crank axis (file length unit)",
+          ">= its journal's diameter"),
+    Field("width_pin", "B_min: diameter of the web's circle around the pin centre (file length unit)",
+          ">= its pin's diameter (the pin lies inside its web)"),
+    Field("counterweight_radius", "optional counterweight sector opposite the pin: its radius (file length unit)",
+          ">= 0; with `counterweight_angle_deg`"),
+    Field("counterweight_angle_deg", "the counterweight sector's angle, deg", "0 to 360; with `counterweight_radius`"),
+), array=True, required=True)
+FRONT = _round("front", "Round sections ahead of journal 1, tip first (pulley end).", False)
+REAR = _round("rear", "Round sections behind the last journal, flywheel flange last.", False)
+
+FILLETS = Section("fillets", "Fillet radii where journals and pins meet the webs.", (
+    Field("journal", "journal fillet radius (file length unit); default 0", ">= 0, < half of every web's thickness"),
+    Field("pin", "pin fillet radius (file length unit); default 0", ">= 0, < half of every web's thickness"),
+))
+
+OIL_HOLES = Section("oil_holes", "Diametral oil drillings.", (
+    Field("diameter", "drilling diameter (file length unit); default 0", ">= 0, smaller than the length and "
+          "wall of each drilled part"),
+    Field("in_journals", "drill every main journal", "true or false"),
+    Field("in_pins", "drill every pin", "true or false"),
+))
+
+ATTACHMENTS = Section("attachments", "Rigid bodies fixed to the shaft.", (
+    Field("name", "label", "a string"),
+    Field("at", "where: `front` (pulley face), `rear` (flywheel flange face), `pins` (one on every pin: piston "
+          "and rod, inertia per cylinder about the crank axis)", _one_of(ATTACH_POINTS)),
+    Field("polar_inertia_kgm2", "polar moment of inertia about the crank axis, kg·m²", "> 0"),
+    Field("mass_kg", "mass, kg; default 0", ">= 0"),
+    Field("diametral_inertia_kgm2", "moment of inertia about a diameter, kg·m²; default 0", ">= 0"),
+    Field("offset", "axial offset of its centre from the face (file length unit); default 0", "a number"),
+    Field("source", "where the numbers come from", "a string"),
+), array=True)
+
+BEARINGS = Section("bearings", "Main bearings for the condensed crank and the FE with supports (see "
+                   "{doc}`condensed-crank`). Either a radial stiffness and damping, or an oil film (`clearance`, "
+                   "`oil_viscosity_pa_s`, `load_n`, `speed_rpm`). Without the table the bearings are rigid.", (
+    Field("radial_stiffness_n_per_m", "main-bearing radial stiffness, N/m: one value, one per journal, or "
+          "`\"rigid\"` (the default)", "> 0 or `\"rigid\"`; a list has one entry per journal"),
+    Field("radial_damping_ns_per_m", "radial damping, N·s/m: one value or one per journal; default 0", ">= 0"),
+    Field("clearance", "oil film: radial clearance (file length unit), one value or one per journal",
+          "> 0, smaller than the journal radius; not with `radial_stiffness_n_per_m` or `radial_damping_ns_per_m`"),
+    Field("oil_viscosity_pa_s", "oil film: the oil's dynamic viscosity at the film temperature, Pa·s (SAE 10W-40 "
+          "near 100 °C: about 0.01)", "> 0; required with an oil film"),
+    Field("load_n", "oil film: static load per journal, N, one value or one per journal; default each journal's "
+          "mean load over the cycle from the crank's own gas and inertia forces", "> 0; required when there is "
+          "no `[excitation]`"),
+    Field("speed_rpm", "oil film: the speed the film coefficients are taken at, rpm; default the top of "
+          "`[excitation] speed_range_rpm`", "> 0; required with an oil film when there is no speed range"),
+    Field("width", "bearing width (file length unit), centred on the journal; default the journal's length",
+          "> 0, at most the journal's length"),
+    Field("axial_stiffness_n_per_m", "thrust bearing stiffness, N/m or `\"rigid\"`; default none (axially free)",
+          ">= 0 or `\"rigid\"`"),
+    Field("thrust_journal", "the journal (1-based) that carries the thrust bearing", "an existing journal; "
+          "required with `axial_stiffness_n_per_m`"),
+    Field("source", "where the numbers come from", "a string"),
+))
+
+UNCERTAINTY = Section("uncertainty", "The range of each reconstructed input, for `fetorsion study`. A key is a "
+                      "field path (`\"webs.*.thickness\"`, 1-based indices, `*` = every entry) with "
+                      "`[low, high]` in file units; or a group name with an inline table of such paths that move "
+                      "together (low with low), e.g. a material's E and density.", (
+    Field("<field path>", "`[low, high]`: the range of one input (file units)", "names a numeric field; low < high; "
+          "contains the nominal value; the description with the input at either bound obeys every rule"),
+    Field("<group name>", "`{ \"path\" = [low, high], ... }`: inputs that move together", "as above, per member"),
+), free=True)
+
+DISTRIBUTIONS = Section("distributions", "Optional: how `fetorsion study` draws an `[uncertainty]` entry in "
+                        "Monte Carlo and Sobol' studies (a group: its first member, the others at the same fraction "
+                        "of their ranges). An entry not named is uniform; Morris levels and grids span the ranges.", (
+    Field("<uncertainty entry>", "`\"uniform\"`, `\"triangular\"` (peaks at the nominal value) or "
+          "`{ kind = \"normal\", sd = S }` (centred on the nominal value, standard deviation S in file units, "
+          "truncated to the range)", "names an `[uncertainty]` entry; triangular: nominal below the high bound; "
+          "normal: S > 0"),
+), free=True)
+
+EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure (exactly one of `pressure_csv`, "
+                     "`imep_pa`, `peak_pressure_pa`), the reciprocating mass, the speed range and the damping "
+                     "assumed. Read the same way in a crank description and in a chain file.", (
+    Field("reciprocating_mass_kg", "per-cylinder reciprocating mass (piston, pin, rod small-end share), kg", ">= 0"),
+    Field("speed_range_rpm", "operating range `[low, high]`, rpm (high = rated speed)", "0 < low < high"),
+    Field("overspeed_factor", "the forced response, Campbell diagram and verdict cover [low, factor × high] rpm "
+          f"(default {DEFAULT_OVERSPEED}: crank fatigue is checked to overspeed)", ">= 1"),
+    Field("pressure_csv", "cylinder pressure: a CSV of rows `angle_deg, pressure_pa` (0 = firing TDC, over one "
+          "cycle; path relative to the description)", ">= 8 rows of finite numbers, angles ascending, pressure > 0, "
+          "covering one whole cycle (720° for a 4-stroke, 360° for a 2-stroke; one step short at most)"),
+    Field("imep_pa", "synthetic 4-stroke cycle scaled to this indicated mean effective pressure, Pa: a value or "
+          "`[[rpm, Pa], ...]`", "> 0; exactly one of `pressure_csv`, `imep_pa`, `peak_pressure_pa`"),
+    Field("peak_pressure_pa", "synthetic 4-stroke cycle scaled to this peak pressure, Pa: a value or "
+          "`[[rpm, Pa], ...]`", "above the motored peak p_intake·CR^n at every speed"),
+    Field("compression_ratio", "synthetic cycle: compression ratio", "> 1; required with a synthetic cycle"),
+    Field("intake_pressure_pa", "synthetic cycle: intake pressure, Pa; default 1 bar", "> 0"),
+    Field("polytropic_exponent", "synthetic cycle: polytropic exponent n of compression and expansion; "
+          "default 1.3", "1 < n < 1.67"),
+    Field("combustion_start_deg", "synthetic cycle: start of the Wiebe heat release, deg after TDC; default −15",
+          "−90 to 90"),
+    Field("combustion_duration_deg", "synthetic cycle: duration of the heat release, deg; default 50",
+          "0 to 180"),
+    Field("wiebe_a", "synthetic cycle: Wiebe efficiency parameter a; default 5", "> 0"),
+    Field("wiebe_m", "synthetic cycle: Wiebe form factor m; default 2", ">= 0"),
+    Field("modal_damping_ratio", "ζ for the Campbell severities and the forced response; default "
+          f"{DEFAULT_DAMPING_RATIO}", "0 < ζ < 1 (a chain that states its own damping may give 0)"),
+    Field("modal_damping_band", "`[low, high]` of ζ: the fatigue assessment is given across it and its verdict at "
+          "the low end (the worst case); default [1/120, 1/60] (dynamic magnifier Q = 30–60, stated as engine "
+          "practice, no published table read)", "0 < low <= high < 1"),
+    Field("modal_damping_source", "where the damping band comes from", "required with `modal_damping_band`"),
+))
+
+DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain files. A damper's ring is one more "
+                  "degree of freedom joined to the pulley-end (or flywheel-end) station; its hub or housing adds "
+                  "to that station. The forced response and the Campbell diagram include every damper; "
+                  "`fetorsion damper` designs one (see {doc}`dampers`).", (
+    Field("type", "`viscous` (Houdaille), `rubber` (tuned rubber) or `tuned` (plain tuned absorber)",
+          _one_of(DAMPER_TYPES)),
+    Field("at", "`front` (pulley end, default) or `rear` (flywheel side): the first or last station of the chain",
+          _one_of(DAMPER_STATIONS)),
+    Field("ring_inertia_kgm2", "inertia of the seismic ring, kg·m²", "> 0, required"),
+    Field("housing_inertia_kgm2", "viscous: housing inertia added to the station, kg·m²; default 0",
+          ">= 0; refused for the other types"),
+    Field("hub_inertia_kgm2", "rubber, tuned: hub inertia added to the station, kg·m²; default 0",
+          ">= 0; refused for a viscous damper"),
+    Field("damping_nms_per_rad", "viscous coefficient between station and ring, N·m·s/rad",
+          "viscous: > 0, required; tuned: >= 0, optional"),
+    Field("stiffness_nm_per_rad", "rubber, tuned: the spring between station and ring, N·m/rad "
+          "(rubber: k (1 + iη))", "> 0"),
+    Field("loss_factor", "rubber: hysteretic loss factor η", "> 0"),
+    Field("dynamic_table", "rubber, instead of `stiffness_nm_per_rad` / `loss_factor`: rows "
+          "`[frequency_hz, stiffness_nm_per_rad, loss_factor]`, linear in frequency, held at the end rows outside; "
+          "or rows `[temperature_c, frequency_hz, stiffness_nm_per_rad, loss_factor]` read linearly between the two "
+          "nearest temperatures (the end one outside the range)", ">= 2 rows (per temperature), frequency "
+          "ascending, k > 0, η >= 0"),
+    Field("temperature_c", "the operating temperature, °C, at which a `dynamic_table` with a temperature column "
+          "is read", "a finite number; only with a temperature column"),
+    Field("ambient_c", "instead of `temperature_c`: the air around the damper, °C; with "
+          "`thermal_conductance_w_per_k` the rubber sits at the temperature its own dissipation holds, "
+          "T = T_air + P_max/G (P_max its largest mean dissipation over the speed range), found by the response",
+          "a finite number; only with a temperature column and `thermal_conductance_w_per_k`; not with "
+          "`temperature_c`"),
+    Field("thermal_conductance_w_per_k", "the damper's heat path to the air G, W/K (with `ambient_c`)", "> 0"),
+    Field("allowed_power_w", "the heat the damper may dissipate continuously (its maker's rating), W: the "
+          "verdict fails when the damper's heat at the worst speed exceeds it", "> 0; optional"),
+    Field("name", "label; default the type", "a string"),
+    Field("source", "where the data come from", "a string"),
+), array=True)
+
+LIMITS = Section("limits", "What `fetorsion run`'s verdict checks: the worst vibratory stress at any pin or journal "
+                 "fillet (the synthesised torque amplitude, half peak-to-peak, of the section × the FE stress "
+                 "concentration factor) against speed, the barred speed ranges, the misfire case and the damper's "
+                 "heat. Give exactly one of `continuous_shear_pa`, `fatigue_strength_shear_pa` (with "
+                 "`safety_factor`) or `continuous_torque_nm`; a chain file, which has no sections, takes only the "
+                 "torques.", (
+    Field("continuous_shear_pa", "permissible vibratory shear stress amplitude at the fillets (SCF × nominal) "
+          "for continuous running, Pa", "> 0"),
+    Field("fatigue_strength_shear_pa", "shear fatigue strength, Pa: the continuous limit is strength / "
+          "`safety_factor`", "> 0"),
+    Field("safety_factor", "with `fatigue_strength_shear_pa`", "> 1"),
+    Field("transient_shear_pa", "permissible amplitude while passing through a barred range, Pa; optional",
+          ">= the continuous limit"),
+    Field("continuous_torque_nm", "the continuous limit as a section torque amplitude, N·m", "> 0"),
+    Field("transient_torque_nm", "the transient limit as a section torque amplitude, N·m; optional",
+          ">= the continuous limit"),
+    Field("fatigue_strength_bending_pa", "the crank's alternating bending fatigue strength as built (a bench test "
+          "of its throws, a supplier's figure), against local stresses (SCF × nominal), Pa: replaces the fatigue "
+          "assessment's own (M53's σ_DW; the textbook's S_e, then with the full K_t)", ">= 0; optional "
+          "(0: the method's own)"),
+    Field("fatigue_required_safety", "the fatigue assessment's required safety", ">= 1; optional (default the "
+          "method's: M53 1.15)"),
+    Field("source", "where every number of the table comes from", "required, not empty"),
+))
+
+CHAIN = Section("chain", "A torsional chain given directly: inertias joined by springs, station 1 at the front "
+                "(pulley).", (
+    Field("name", "name used in tables and plots; default the file's name", "a string"),
+    Field("inertias_kgm2", "the stations' inertias, kg·m²; with an engine each must already hold its cylinder's "
+          "rotating mass and mean reciprocating inertia (m_rot R² + m_rec R²/2)", "at least 2, each > 0"),
+    Field("stiffnesses_nm_per_rad", "the springs between consecutive stations, N·m/rad",
+          "one fewer than inertias, each > 0"),
+    Field("labels", "a name for each station; default `inertia 1`, `inertia 2`, ...",
+          "one string per inertia"),
+    Field("absolute_damping_nms_per_rad", "viscous damper from each inertia to ground, N·m·s/rad (the "
+          "diagonal of C)", "one per inertia, each >= 0"),
+    Field("relative_damping_nms_per_rad", "viscous damper across each spring, N·m·s/rad (tridiagonal C)",
+          "one per spring, each >= 0"),
+    Field("loss_factors", "hysteretic loss factor η of each spring (complex stiffness k(1 + iη), marine and "
+          "diesel practice)", "one number, or one per spring; each >= 0"),
+    Field("cylinder_stations", "the station (1-based) that carries each cylinder's whole torque; several may "
+          "share one", "one per cylinder of `[engine]`, each 1..number of inertias; needs `[engine]`"),
+), required=True)
+
+#: The tables of a crank description, in the order the documentation shows them.
+CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
+                  BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
+#: The tables of a chain file.
+CHAIN_SECTIONS = (META, UNITS, CHAIN, ENGINE, EXCITATION, DAMPERS, LIMITS)
+
+
+def schema(sections) -> dict[str, frozenset[str] | None]:
+    """What :class:`~fetorsion.description.reader.Table` checks against: table name → its
+    declared keys (None for a free table), and ``""`` (the file's top level) → the table names."""
+    out: dict[str, frozenset[str] | None] = {s.name: None if s.free else s.keys for s in sections}
+    out[""] = frozenset(s.name for s in sections)
+    return out
+
+
+CRANK_SCHEMA = schema(CRANK_SECTIONS)
+CHAIN_SCHEMA = schema(CHAIN_SECTIONS)
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|") or "—"
+
+
+def markdown(sections, heading: str = "###") -> str:
+    """The tables and fields of ``sections`` as Markdown: one heading and one table per TOML table.
+
+    Examples
+    --------
+    >>> "youngs_modulus_pa" in markdown(CRANK_SECTIONS)
+    True
+    """
+    parts = []
+    for s in sections:
+        flags = ", ".join(w for w, on in (("required", s.required), ("array of tables", s.array),
+                                          ("free keys", s.free)) if on) or "optional"
+        parts.append(f"{heading} `{s.header}`\n\n*{flags}.* {s.intro}\n\n| key | meaning | rule |\n|---|---|---|")
+        for f in s.fields:
+            # "<field path>": a key of the user's choosing, shown in italics (MyST would take <...> for HTML)
+            key = f"*{f.key[1:-1]}*" if f.key.startswith("<") else f"`{f.key}`"
+            parts.append(f"| {_cell(key)} | {_cell(f.meaning)} | {_cell(f.rule)} |")
+        parts.append("")
+    return "\n".join(parts)
