@@ -222,8 +222,11 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         bores ``pin_oil_bore_bending``, ``pin_oil_bore_torsion`` and the journal's (a drilled kind
         without them is noted as not assessed).
     method : {"iacs-m53", "textbook"}
+        The strength and criterion: IACS UR M53 (alternating stresses, σ_DW, Q ≥ 1.15) or the
+        textbook path (Marin factors, Neuber's K_f, Goodman).
     required : float, optional
-        Required safety (default the method's: :func:`fetorsion.design.fatigue.run_fatigue`).
+        Required safety (default the description's ``[limits] fatigue_required_safety``, else the
+        method's: :func:`fetorsion.design.fatigue.run_fatigue`).
     """
     sigma, tau = fillet_stress_histories(crank, cycle, fillets)
     radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}

@@ -470,10 +470,13 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
     Parameters
     ----------
     locations : iterable of LocationStress
+        Each location's nominal stresses (Pa), SCFs, diameter and notch radius (m).
     material : Material, FatigueMaterial or None
         The description's material (missing strength fields from :data:`DEFAULT_FORGING_STEEL`),
         or strengths directly.
     method : {"iacs-m53", "textbook"}
+        IACS UR M53 (alternating stresses against σ_DW) or the textbook path (Marin, Neuber,
+        Goodman or Gerber).
     required : float, optional
         Required safety: default :data:`M53_REQUIRED_Q` for M53, 1.0 (the criterion itself) for
         the textbook path, where the caller states its design factor.

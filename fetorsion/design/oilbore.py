@@ -231,7 +231,26 @@ class OilBoreSCFResult:
 
 
 def run_oil_bore_scf(D: float, d: float, d_i: float = 0.0, shares=OIL_BORE_SHARES, material=None) -> OilBoreSCFResult:
-    """:func:`transverse_hole_scfs` at each wall size ``share`` · d (coarse to fine)."""
+    """:func:`transverse_hole_scfs` at each wall size ``share`` · d (coarse to fine): a convergence study.
+
+    Parameters
+    ----------
+    D : float
+        Outer diameter of the drilled section, m.
+    d : float
+        Diameter of the oil drilling, m.
+    d_i : float
+        Bore of the section, m (0: solid).
+    shares : sequence of float
+        Element size on the drilling's wall as shares of ``d``, coarse to fine.
+    material : Material, optional
+        E (Pa) and ν; default steel (210 GPa, 0.3). The SCFs depend on ν only.
+
+    Returns
+    -------
+    OilBoreSCFResult
+        One row per mesh; ``torsion`` and ``bending`` the finest mesh's SCFs.
+    """
     res = OilBoreSCFResult(D, d_i, d)
     for share in shares:
         peaks, info = transverse_hole_scfs(D, d, d_i, share, material)
@@ -278,8 +297,20 @@ def oil_bore_key(D: float, d: float, d_i: float, poisson: float) -> str:
 
 
 def oil_bore_scfs(crank) -> dict:
-    """Oil-bore SCFs of every drilled kind of section of ``crank``: ``{"pin": (bending, torsion),
-    "journal": (...)}`` for the kinds ``[oil_holes]`` drills, and ``source``. Shipped values for the
+    """Oil-bore SCFs of every drilled kind of section of ``crank``.
+
+    Parameters
+    ----------
+    crank : Crank
+        Its ``[oil_holes]``, first pin and journal (diameter, bore) and material's ν.
+
+    Returns
+    -------
+    dict
+        ``{"pin": (bending, torsion), "journal": (...)}`` for the kinds ``[oil_holes]`` drills, and
+        ``source``; empty without drillings.
+
+    Shipped values for the
     reference cranks' sections, else the shipped table of a solid section against d/D
     (:func:`table_scfs`), else one FE at the wall size ``OIL_BORE_SHARES[0]`` · d per
     distinct section (the first pin or journal stands for its kind: their diameters are one

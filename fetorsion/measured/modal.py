@@ -249,6 +249,20 @@ def estimate_modes(frequency_hz, frf, band_hz, form: str = "receptance", station
 
 
 def run_modal_fit(functions, band_hz, max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:
-    """Modes of measured FRFs (:func:`~fetorsion.measured.uff.read_uff58`) in a band [Hz]."""
+    """Modes of measured FRFs (:func:`~fetorsion.measured.uff.read_uff58`) in a band.
+
+    Parameters
+    ----------
+    functions : sequence of MeasuredFunction
+        FRFs of one reference, on one frequency axis [Hz].
+    band_hz : tuple of float
+        (low, high) frequency band to fit [Hz], inside the data's.
+    max_order : int
+        Highest model order of the LSCF stabilisation.
+
+    Returns
+    -------
+    ModalEstimate
+    """
     frequency, frf, stations, form, driving = frf_matrix(functions)
     return estimate_modes(frequency, frf, band_hz, form, stations, driving, max_order)

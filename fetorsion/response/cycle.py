@@ -170,6 +170,8 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
     setup : ResponseSetup
         The crank's condensed setup in ``bearings``; its speeds and orders are used.
     dampers : sequence of Damper
+        Torsional dampers on the crank (the description's ``[[dampers]]``); a heat-following
+        rubber is put at its own temperature.
     samples : int
         Crank-angle samples over one cycle.
     """

@@ -265,9 +265,25 @@ def track_order_cut(track, order: float, name: str):
 
 
 def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None) -> ComparisonResult:
-    """The model of ``crank`` against ``measured`` (``frfs``, ``cuts``, ``band``: the measured
-    files as read by the command line). Frequencies from ``source``; order cuts on the lumped
-    chain's forced response at ``station``."""
+    """The model of a crank against measured data.
+
+    Parameters
+    ----------
+    crank : Crank
+        With an ``[excitation]`` where order cuts are compared.
+    measured : dict
+        ``frfs`` (FRFs, :class:`~fetorsion.measured.uff.MeasuredFunction`), ``cuts`` (order cuts
+        against speed, angles in rad) and ``band`` ((low, high) Hz to fit the FRFs' modes in), as
+        ``fetorsion.cli.measured.read_measured`` reads them.
+    source : {"lumped17", "fe"}
+        The model of the natural frequencies.
+    station : str, optional
+        Where the order cuts were measured: ``pulley`` (default), ``flywheel`` or a chain label.
+
+    Returns
+    -------
+    ComparisonResult
+    """
     from ..measured.modal import run_modal_fit
 
     out = ComparisonResult(crank.name)
@@ -306,7 +322,21 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
 
 
 def model_predictions(crank, comparison: ComparisonResult, response=None) -> list:
-    """The model's side of a comparison as measured functions, for a universal file (UFF 58): its
+    """The model's side of a comparison as measured functions, for a universal file (UFF 58).
+
+    Parameters
+    ----------
+    crank : Crank
+        The crank compared.
+    comparison : ComparisonResult
+        What was compared (:func:`run_comparison`).
+    response : ResponseResult, optional
+        The lumped chain's forced response, if already solved.
+
+    Returns
+    -------
+    list of MeasuredFunction
+        Its
     order cut (complex, rad, against rpm) at the station of each compared cut, and, where modes
     were compared, its receptances at the pulley and flywheel ends to a torque at the pulley end
     over the measured band (rad/N·m). Nodes: the chain's 1-based station numbers, direction 4
