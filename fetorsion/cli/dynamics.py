@@ -20,7 +20,8 @@ from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..design.dampers import OBJECTIVES
-from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, report,
+from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, refuse_network,
+                     report,
                      stiffness_for)
 from .fe import condensed
 
@@ -111,6 +112,7 @@ def cmd_damper(args) -> int:
     if args.source in ("fe", "condensed"):
         raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
     crank = load_excited(args.file, args.source)
+    refuse_network(crank, args.file, "damper")
     if args.objective == "stress" and isinstance(crank, Chain):
         raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
                              "use --objective twist")
