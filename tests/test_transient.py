@@ -135,7 +135,7 @@ def test_slow_run_up_approaches_the_steady_state(passage):
 
 def test_fast_run_up_peaks_lower_and_later(passage):
     # Passage through resonance: the faster the sweep, the lower the peak and the later (higher
-    # speed in a run-up) it comes [Cowan2019].
+    # speed in a run-up) it comes [Cowan].
     k = passage["k"]
     peaks = {key: order_envelope(tr, k, passage["q"]) for key, tr in passage["runs"].items()}
     top = {key: (e.max(), r[e.argmax()]) for key, (r, e) in peaks.items()}
@@ -144,7 +144,7 @@ def test_fast_run_up_peaks_lower_and_later(passage):
 
 
 def test_peak_delay_follows_the_leading_order_formula(passage):
-    # Cowan, Morris-Costigliola & Nichols (2019) [Cowan2019]: swept through resonance, the peak
+    # Cowan, Morris-Costigliola & Nichols (2019) [Cowan]: swept through resonance, the peak
     # comes late by twice the ring-down time to leading order, Δt = 2/(ζω_n) (τ = 1/(ζω_n), the
     # amplitude's decay time), i.e. Δn = 2 (dn/dt)/(ζω_n) rpm. At α/Γ² = 0.1 (α the sweep rate of
     # the exciting frequency, rad/s², Γ = ζω_n) the next terms are of order α/Γ²: tested within 25 %.

@@ -16,7 +16,8 @@ from ..io import write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
-                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD)
+                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_TEETH,
+                                    DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..design.dampers import OBJECTIVES
@@ -234,9 +235,9 @@ def add_parsers(sub) -> None:
                        help="run from A to B rpm (A > B: a run-down), at --rate")
     tp.add_argument("--rate", type=real(0.0, 1.0e6, unit="rpm/s"), metavar="RPM_PER_S",
                     help="|dn/dt| of the run, rpm/s")
-    tp.add_argument("--cycles", type=integer(1, 10_000), default=8,
+    tp.add_argument("--cycles", type=integer(1, 10_000), default=DEFAULT_TRANSIENT_CYCLES,
                     help="working cycles kept after settling, steady running (default %(default)s)")
-    tp.add_argument("--teeth", type=integer(8, 10_000), default=120,
+    tp.add_argument("--teeth", type=integer(8, 10_000), default=DEFAULT_TEETH,
                     help="teeth of the simulated wheel the order tracking reads (default %(default)s)")
     tp.add_argument("--station", type=integer(1), metavar="N",
                     help="1-based coordinate of the model whose angle is order-tracked (default 1, the pulley)")

@@ -10,7 +10,8 @@ constraints θ = T q: q holds one angle per gear group (the group's first statio
 
     M_r = Tᵀ M T,   K_r = Tᵀ K T,   C_r = Tᵀ C T,   H_r = Tᵀ H T,   F_r = Tᵀ F
 
-(the virtual work of the constraint forces vanishes) [Friswell2010] §9.6. M_r stays diagonal
+(the virtual work of the constraint forces vanishes; the form [OpenTorsion] assembles and
+[Friswell] ch. 9 states, the book not read here). M_r stays diagonal
 (each station belongs to one group): Σ J_s f_s² per group. Referring every station to the
 speed of station 1 instead (θ'_s = θ_s / f_s with f_s its speed over station 1's, J' = J f²,
 k' = k f², gear pairs merged) gives the same eigenvalues: :func:`referred` builds that form,

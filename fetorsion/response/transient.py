@@ -23,8 +23,8 @@ force linear between samples (first-order hold) each z advances exactly:
 
     z_{k+1} = e^{λh} z_k + g_k (I₀ − I₁/h) + g_{k+1} I₁/h,   I₀ = (e^{λh} − 1)/λ,   I₁ = (e^{λh} − 1 − λh)/λ²
 
-a first-order recursion that :func:`scipy.signal.lfilter` runs in compiled code for every mode
-at once over the whole record [Ogata] (ch. on discretisation with a hold). There is no period
+a first-order recursion (derived here: the convolution integral over one step with the load
+linear in it) that :func:`scipy.signal.lfilter` runs in compiled code over the whole record. There is no period
 elongation or numerical damping at any step (Newmark's average acceleration elongates periods
 by (ωh)²/12 and would need a loop in Python over 10⁵–10⁶ steps); the only error is the
 force's linear interpolation between samples (0.5° of crank angle by default at the top speed). The
@@ -54,7 +54,7 @@ import scipy.signal
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
 from ..measured.torsiograph import OrderTrack, order_track
-from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD
 
 #: Crank angle per time step at the top speed, rad: 0.5° (orders to 360 sampled; the force's
 #: linear interpolation errs by (qΔθ)²/8 at order q: 1.4e-3 at order 12).
@@ -66,8 +66,6 @@ TABLE_RPM_STEP = 25.0
 TABLE_SAMPLES = 1440
 #: A steady run settles until the slowest elastic transient is this fraction of its start.
 SETTLED = 1e-6
-#: Teeth of the simulated toothed wheel that the order tracking reads.
-DEFAULT_TEETH = 120
 #: Samples computed per lfilter call: bounds the memory of a long record.
 CHUNK = 1 << 16
 
@@ -354,7 +352,8 @@ def edge_times(t, angle, teeth: int) -> np.ndarray:
 
 
 def run_transient(model, rpm: float | None = None, run: tuple[float, float] | None = None,
-                  rate_rpm_per_s: float | None = None, cycles: int = 8, damping_ratio: float | None = None,
+                  rate_rpm_per_s: float | None = None, cycles: int = DEFAULT_TRANSIENT_CYCLES,
+                  damping_ratio: float | None = None,
                   partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
                   step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
                   track_station: int = 0) -> TransientResult:
