@@ -26,8 +26,8 @@ from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.damped import DampedSystem, damped_modes
-from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, modal_damping_matrix, modal_damping_ratios,
-                                   stated_damping)
+from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_matrix,
+                                   modal_damping_ratios, stated_damping)
 from ..modes import TorsionalModes
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
 
@@ -50,10 +50,6 @@ def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.nd
     return np.linalg.solve(system.matrix(omegas), loads[..., None])[..., 0, 0]
 
 
-def lumped_modes_source(res) -> str:
-    """How a lumped result's modes are named in the Campbell diagram."""
-    return (f"lumped {res.dof} DOF ({res.inputs.get('stiffness_method')})" if res.partition
-            else f"chain of {res.dof} inertias")
 
 
 def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,

@@ -209,8 +209,7 @@ class LumpedResult:
                                  "(give [engine] and chain.cylinder_stations)")
         shapes = self.mode_shapes
         return TorsionalModes(
-            source=(f"lumped {self.dof} DOF ({self.inputs.get('stiffness_method')})" if self.partition
-                    else f"chain of {self.dof} inertias"),
+            source=lumped_modes_source(self),
             frequencies_hz=self.frequencies_hz,
             pin_amplitudes=shapes @ self.pin_weights.T,
             pulley_amplitude=shapes[:, 0],
@@ -237,6 +236,14 @@ class LumpedResult:
         ax.legend(fontsize=8)
         ax.figure.tight_layout()
         return ax
+
+
+def lumped_modes_source(res: LumpedResult) -> str:
+    """How a lumped result's modes are named (Campbell diagram, tables)."""
+    if res.network is not None:
+        return f"network of {len(res.network.labels)} stations ({res.dof} coordinates after the gears)"
+    return (f"lumped {res.dof} DOF ({res.inputs.get('stiffness_method')})" if res.partition
+            else f"chain of {res.dof} inertias")
 
 
 def solve_chain(inertias, stiffnesses):

@@ -253,8 +253,8 @@ class TransientResult:
     angle_rad : ndarray (coordinates, N)
         The vibration angle of every coordinate of the model, rad.
     block_rpm, block_peak_nm : ndarray
-        Mean speed of each block of ``revolutions`` crank revolutions and the largest |torque| of
-        each section in it (blocks × sections): the run-up's envelope.
+        Mean speed of each working cycle and the largest |torque| of each section in it (cycles ×
+        sections): the run-up's envelope (a steady run: its settled cycles only).
     track : OrderTrack
         The order track of station ``track_station`` from its simulated tooth edges
         (:func:`fetorsion.measured.torsiograph.order_track`).
@@ -459,12 +459,15 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     track = order_track(edge_times(t, angle, teeth), teeth, revs, name=setup.labels[track_station])
     # the envelope per block of whole cycles, from the crank's mean motion
     block = np.floor(phi / period).astype(int)
-    full = block < max(block[-1], 1)  # the last, unfinished cycle left out
+    # the last, unfinished cycle left out, and in a steady run the cycles before it settled
+    full = (block < max(block[-1], 1)) & (t >= settle)
     nb = int(block[full].max()) + 1 if full.any() else 0
     peak = np.zeros((nb, torque.shape[0]))
     for s in range(torque.shape[0]):
         np.maximum.at(peak[:, s], block[full], np.abs(torque[s, full]))
-    block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(np.bincount(block[full], None, nb), 1)
+    count = np.bincount(block[full], None, nb)
+    block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
+    block_rpm, peak = block_rpm[count > 0], peak[count > 0]
     scheme = "exact modal propagator, first-order hold, lfilter"
     return TransientResult(model.name, mode, list(setup.labels), list(setup.section_labels), t, n_t, phi, torque, q,
                            block_rpm, peak, track, h, settle, scheme, notes, setup.labels[track_station])
