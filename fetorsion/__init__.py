@@ -8,7 +8,7 @@ True
 """
 
 from .description.crank import load
-from .description.model import Chain, Crank
+from .description.model import Chain, Crank, Network
 from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
 
@@ -18,7 +18,7 @@ from .errors import DescriptionError, FetorsionError
 _LAZY = {
     "run_campbell": "excitation.campbell",
     "PARTITIONS": "lumped_model.lumped", "LumpedResult": "lumped_model.lumped", "lumped": "lumped_model.lumped",
-    "run_response": "response.forced",
+    "run_response": "response.forced", "run_transient": "response.transient",
     "run_sensitivity": "studies.sensitivity", "with_values": "studies.sensitivity",
     "run_crank_study": "studies.study",
     "run_stress": "design.stress", "run_damper": "design.dampers", "run_verdict": "design.verdict",
@@ -60,7 +60,7 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
     return _run(crank, mesh_size, modes, **kwargs)
 
 
-__all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "PARTITIONS", "load", "lumped",
-           "run_campbell", "run_crank_study", "run_damper", "run_modal", "run_response", "run_sensitivity", "run_stress",
-           "run_verdict", "with_values"]
+__all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "Network", "PARTITIONS", "load",
+           "lumped", "run_campbell", "run_crank_study", "run_damper", "run_modal", "run_response", "run_sensitivity",
+           "run_stress", "run_transient", "run_verdict", "with_values"]
 __version__ = "0.1.0"

@@ -44,6 +44,35 @@ speed_range_rpm = [1000.0, 5000.0]
 compression_ratio = 16.0
 imep_pa = 1.0e6
 """
+# A geared network (issue 29): a disc, a gear pair, a load; one cylinder on the disc.
+NETWORK = """
+[chain]
+name = "geared"
+cylinder_stations = ["disc"]
+[[chain.stations]]
+name = "disc"
+inertia_kgm2 = 0.1
+[[chain.stations]]
+name = "pinion"
+inertia_kgm2 = 0.01
+[[chain.stations]]
+name = "wheel"
+inertia_kgm2 = 0.05
+[[chain.stations]]
+name = "load"
+inertia_kgm2 = 0.5
+[[chain.shafts]]
+between = ["disc", "pinion"]
+stiffness_nm_per_rad = 1.0e4
+loss_factor = 0.05
+[[chain.shafts]]
+between = ["wheel", "load"]
+stiffness_nm_per_rad = 2.0e4
+loss_factor = 0.05
+[[chain.gears]]
+between = ["pinion", "wheel"]
+ratio = 0.5
+""" + ENGINE_CHAIN.split("loss_factors = 0.05\n")[1]
 DAMPER = """
 [[dampers]]
 type = "rubber"
@@ -243,6 +272,38 @@ CASES = [
     ("chain-source-fe", "campbell {d}/c.toml --source fe", {"c.toml": ENGINE_CHAIN}, 2, ["--source fe", "chain file"]),
     ("chain-no-units", "campbell {d}/c.toml", {"c.toml": ENGINE_CHAIN.replace('[units]\nlength = "mm"\n', "")}, 2,
      ["units"]),
+    # --- networks and the time domain (issue 29)
+    ("network-gear-loop", "lumped {d}/n.toml", {"n.toml": NETWORK + '[[chain.gears]]\nbetween = ["wheel", "pinion"]\nratio = 2.0\n'},
+     2, ["chain.gears", "loop"]),
+    ("network-unknown-station", "lumped {d}/n.toml", {"n.toml": NETWORK.replace('["wheel", "load"]', '["wheel", "lod"]')},
+     2, ["chain.shafts.2.between", "two different stations"]),
+    ("network-list-form", "lumped {d}/n.toml", {"n.toml": NETWORK.replace('name = "geared"', 'name = "geared"\nlabels = ["a"]')},
+     2, ["chain.labels", "per station"]),
+    ("network-cylinder-name", "campbell {d}/n.toml", {"n.toml": NETWORK.replace('["disc"]', '["dsic"]')},
+     2, ["chain.cylinder_stations"]),
+    ("network-dampers", "response {d}/n.toml", {"n.toml": NETWORK + DAMPER}, 2, ["dampers", "network"]),
+    ("network-damper-command", "damper {d}/n.toml --objective twist", {"n.toml": NETWORK}, 2,
+     ["'damper' does not take a network"]),
+    ("transient-no-speed", "transient {d}/c.toml", {"c.toml": ENGINE_CHAIN}, 2, ["--rpm", "--run-up"]),
+    ("transient-both", "transient {d}/c.toml --rpm 2000 --run-up 1000 2000 --rate 100", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--run-up", "not allowed"]),
+    ("transient-no-rate", "transient {d}/c.toml --run-up 1000 3000", {"c.toml": ENGINE_CHAIN}, 2, ["--rate"]),
+    ("transient-rate-alone", "transient {d}/c.toml --rpm 2000 --rate 100", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--rate", "--run-up"]),
+    ("transient-same-speeds", "transient {d}/c.toml --run-up 2000 2000 --rate 100", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--run-up 2000 2000", "differ"]),
+    ("transient-negative-rate", "transient {d}/c.toml --run-up 1000 2000 --rate -5", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--rate"]),
+    ("transient-zero-rpm", "transient {d}/c.toml --rpm 0", {"c.toml": ENGINE_CHAIN}, 2, ["--rpm", "> 0"]),
+    ("transient-station", "transient {d}/c.toml --rpm 2000 --station 5", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--station 5", "1..2"]),
+    ("transient-source-fe", "transient {d}/c.toml --rpm 2000 --source fe", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--source fe", "lumped"]),
+    ("transient-dampers", "transient {d}/c.toml --rpm 2000", {"c.toml": ENGINE_CHAIN + DAMPER}, 2,
+     ["[[dampers]]", "time domain"]),
+    ("transient-no-excitation", "transient {d}/c.toml --rpm 2000", {"c.toml": CHAIN}, 2, ["[excitation]"]),
+    ("transient-plot-format", "transient {d}/n.toml --rpm 2000 --plot {d}/t.txt", {"n.toml": NETWORK}, 2,
+     ["--plot"]),
     # --- [[dampers]] and [limits] (issue 14)
     ("damper-type", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace('"rubber"', '"hydraulic"')}, 2,
      ["dampers.1.type", "viscous, rubber, tuned"]),

@@ -8,7 +8,7 @@ import sys
 
 from .options import MM
 from ..description.crank import load
-from ..description.model import Chain
+from ..description.model import Chain, Network
 from ..description.plausibility import plausibility_warnings
 from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
@@ -33,7 +33,7 @@ def emit_json(payload: dict, target: str | None) -> None:
 def load_description(path: str):
     """Read a description; print a warning line for each implausible dimension."""
     model = load(path)
-    if not isinstance(model, Chain):
+    if not isinstance(model, (Chain, Network)):
         for line in plausibility_warnings(model):
             print(f"fetorsion: warning: {path}: {line}", file=sys.stderr)
     return model
@@ -41,7 +41,7 @@ def load_description(path: str):
 
 def load_crank(path: str, needs: str):
     crank = load_description(path)
-    if isinstance(crank, Chain):
+    if isinstance(crank, (Chain, Network)):
         raise FetorsionError(f"{path}: this command needs a crank description with {needs}, not a chain file")
     return crank
 
@@ -71,13 +71,20 @@ def report(res, text: str, args) -> int:
 def load_excited(path: str, source: str):
     """A crank description or chain file with an [excitation] table (a chain: lumped modes only)."""
     model = load_description(path)
-    if isinstance(model, Chain) and source in ("fe", "condensed"):
+    if isinstance(model, (Chain, Network)) and source in ("fe", "condensed"):
         raise FetorsionError(f"--source {source}: {path} is a chain file, it has no geometry to mesh; leave --source out")
     if model.excitation is None:
         raise FetorsionError(f"{path}: the description has no [excitation] table"
                              + (" (a chain file needs [engine], [excitation] and chain.cylinder_stations)"
-                                if isinstance(model, Chain) else ""))
+                                if isinstance(model, (Chain, Network)) else ""))
     return model
+
+
+def refuse_network(model, path: str, command: str) -> None:
+    """A network file (geared or branched) where ``command`` does not handle one yet: one message."""
+    if isinstance(model, Network):
+        raise FetorsionError(f"{path}: '{command}' does not take a network (stations, shafts and gears) yet; "
+                             "'lumped', 'campbell', 'response' and 'transient' do")
 
 
 def stiffness_for(args) -> str:

@@ -16,11 +16,13 @@ from ..io import write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
-                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD)
+                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_TEETH,
+                                    DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..design.dampers import OBJECTIVES
-from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, report,
+from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, refuse_network,
+                     report,
                      stiffness_for)
 from .fe import condensed
 
@@ -111,6 +113,7 @@ def cmd_damper(args) -> int:
     if args.source in ("fe", "condensed"):
         raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
     crank = load_excited(args.file, args.source)
+    refuse_network(crank, args.file, "damper")
     if args.objective == "stress" and isinstance(crank, Chain):
         raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
                              "use --objective twist")
@@ -121,6 +124,33 @@ def cmd_damper(args) -> int:
     res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
                      rpm=rpm, partition=partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
                      web_method=stiffness_for(args))
+    return report(res, res.table(), args)
+
+
+def cmd_transient(args) -> int:
+    from ..response.transient import run_transient
+
+    if args.source in ("fe", "condensed"):
+        raise FetorsionError(f"--source {args.source}: the time domain uses a lumped model; choose --source lumpedN")
+    if args.run_up is not None and args.rate is None:
+        raise FetorsionError("--run-up A B needs --rate RPM_PER_S (how fast the speed changes)")
+    if args.rate is not None and args.run_up is None:
+        raise FetorsionError("--rate goes with --run-up A B (a steady --rpm has no rate)")
+    if args.run_up is not None and args.run_up[0] == args.run_up[1]:
+        raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
+                             "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
+    crank = load_excited(args.file, args.source)
+    if crank.dampers:
+        raise FetorsionError(f"{args.file}: [[dampers]] are not in the time domain yet (a rubber damper's stiffness "
+                             "depends on frequency); 'response' includes them")
+    if args.station is not None:
+        dof = lumped(crank, partition_of(args.source), args.stiffness).dof
+        if args.station > dof:
+            raise FetorsionError(f"--station {args.station}: the model has coordinates 1..{dof}")
+    res = run_transient(crank, rpm=args.rpm, run=None if args.run_up is None else tuple(args.run_up),
+                        rate_rpm_per_s=args.rate, cycles=args.cycles, damping_ratio=args.damping,
+                        partition=partition_of(args.source), web_method=stiffness_for(args), teeth=args.teeth,
+                        track_station=0 if args.station is None else args.station - 1)
     return report(res, res.table(), args)
 
 
@@ -196,3 +226,26 @@ def add_parsers(sub) -> None:
     rp.add_argument("--compare-section", type=integer(1), metavar="N",
                     help="1-based shaft section (spring) whose torque is compared (default the most loaded)")
     rp.set_defaults(func=cmd_response)
+
+    tp = sub.add_parser("transient", help="linear time domain: steady running or a run-up/run-down, order-tracked")
+    tp.add_argument("file", help="chain, network or crank description with [engine] and [excitation] (.toml)")
+    speed = tp.add_mutually_exclusive_group(required=True)
+    speed.add_argument("--rpm", type=real(0.0, 100_000.0, unit="rpm"), help="steady running at this speed, rpm")
+    speed.add_argument("--run-up", nargs=2, type=real(0.0, 100_000.0, unit="rpm"), metavar=("A", "B"),
+                       help="run from A to B rpm (A > B: a run-down), at --rate")
+    tp.add_argument("--rate", type=real(0.0, 1.0e6, unit="rpm/s"), metavar="RPM_PER_S",
+                    help="|dn/dt| of the run, rpm/s")
+    tp.add_argument("--cycles", type=integer(1, 10_000), default=DEFAULT_TRANSIENT_CYCLES,
+                    help="working cycles kept after settling, steady running (default %(default)s)")
+    tp.add_argument("--teeth", type=integer(8, 10_000), default=DEFAULT_TEETH,
+                    help="teeth of the simulated wheel the order tracking reads (default %(default)s)")
+    tp.add_argument("--station", type=integer(1), metavar="N",
+                    help="1-based coordinate of the model whose angle is order-tracked (default 1, the pulley)")
+    tp.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
+                    help="a crank's lumped model (default %(default)s; chains and networks are their own model)")
+    tp.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings", help=argparse.SUPPRESS)
+    tp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
+    tp.add_argument("--damping", type=real(0.0, 1.0), help="modal damping ratio, 0 < ζ < 1 (default from the file)")
+    add_json_option(tp)
+    tp.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
+    tp.set_defaults(func=cmd_transient)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from ..description.model import Chain
+from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..lumped_model.lumped import MODES_SHOWN, PARTITIONS, lumped
 from ..lumped_model.parts import build_parts
@@ -30,11 +30,11 @@ def _dof_list(text: str) -> list[int]:
 
 def cmd_lumped(args) -> int:
     model = load_description(args.file)
-    results = [lumped(model)] if isinstance(model, Chain) else [lumped(model, d, args.stiffness) for d in args.dof]
+    results = [lumped(model)] if isinstance(model, (Chain, Network)) else [lumped(model, d, args.stiffness) for d in args.dof]
     out = sys.stderr if args.json == "-" else sys.stdout
     print(format_lumped_table(results), file=out)
     payload = {"file": args.file, "models": [r.to_dict() for r in results]}
-    if not isinstance(model, Chain):
+    if not isinstance(model, (Chain, Network)):
         payload.update(stiffness_method=args.stiffness, parts=parts_table(build_parts(model, args.stiffness)),
                        web_inertia="analytic web outline (fetorsion.solid.outline), no fillets", description=model.raw)
     emit_json(payload, args.json)

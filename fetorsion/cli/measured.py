@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .common import add_json_option, emit_json, load_description
+from .common import add_json_option, emit_json, load_description, refuse_network
 from .options import integer, real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -92,6 +92,7 @@ def cmd_compare(args) -> int:
     if args.band is not None and not 0 <= args.band[0] < args.band[1]:
         raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     crank = load_description(args.file)
+    refuse_network(crank, args.file, "compare")
     check_station(crank, args.station)
     measured = read_measured(args.measured, args.band, args.unit, args.order, args.teeth, args.revolutions,
                              args.track_orders)

@@ -10,7 +10,7 @@ from ..description.model import Chain
 from ..errors import FetorsionError
 from ..io import check_report_folder
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE
-from .common import SUPPORT_CHOICES, check_mesh_size, load_description
+from .common import SUPPORT_CHOICES, check_mesh_size, load_description, refuse_network
 
 
 REFERENCE_CRANKS = ("renault21", "peugeot_glx")
@@ -52,6 +52,7 @@ def cmd_run(args) -> int:
     for file, out in jobs:  # every destination and description is checked before any work
         check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
         crank = load_description(str(file))
+        refuse_network(crank, str(file), "run")
         if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,

@@ -19,6 +19,7 @@ from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .fields import CHAIN_SCHEMA, CRANK_SCHEMA
 from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
+                    GROUND, GearPair, Network, Shaft,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
@@ -27,8 +28,9 @@ from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_uni
 MECHANICS_TABLES = {"slider_crank", "masses", "balance", "flywheel", "planetary"}
 
 
-def load(path) -> Crank | Chain:
-    """Read a crank description or a chain file (``[chain]`` table) from TOML.
+def load(path) -> Crank | Chain | Network:
+    """Read a crank description or a chain file (``[chain]`` table) from TOML; a chain file
+    with ``[[chain.stations]]`` is a :class:`Network` (shafts and gear pairs between named stations).
 
     Parameters
     ----------
@@ -59,6 +61,8 @@ def load(path) -> Crank | Chain:
             "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
             "or chain file"))])
     if "chain" in data:
+        if isinstance(data["chain"], dict) and "stations" in data["chain"]:
+            return parse_network(data, source=str(path))
         return parse_chain(data, source=str(path))
     return parse_crank(data, source=str(path))
 
@@ -147,6 +151,136 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
     labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
     return Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
                  tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits)
+
+
+def parse_network(data: dict, source: str = "<network>") -> Network:
+    """Build a :class:`Network` from a parsed TOML mapping whose ``[chain]`` table has
+    ``[[chain.stations]]`` (names and inertias), ``[[chain.shafts]]`` (springs between two named
+    stations, or a station and ``"ground"``) and optional ``[[chain.gears]]`` (rigid meshes with
+    a speed ratio). ``[engine]``, ``[excitation]`` and ``[limits]`` are read as for a chain;
+    ``chain.cylinder_stations`` names a station per cylinder (names or 1-based numbers).
+    """
+    problems: list[Problem] = []
+    root = Table(data, "", problems, schema=CHAIN_SCHEMA)
+    unit = read_length_unit(root, source) if ("engine" in data or "units" in data) else "m"
+    t = root.table("chain")
+    root.used.add("meta")
+    name = t.text("name", default=Path(source).stem)
+    for key in ("inertias_kgm2", "stiffnesses_nm_per_rad", "labels", "absolute_damping_nms_per_rad",
+                "relative_damping_nms_per_rad", "loss_factors"):
+        if key in t.data:
+            t.used.add(key)
+            problems.append(Problem(f"chain.{key}", t.data[key], "a network ([[chain.stations]]) states this per "
+                                    "station or shaft, not as a list"))
+    labels, inertias, absolute = [], [], []
+    for st in t.tables("stations"):
+        label = st.text("name")
+        if label in labels or label == GROUND:
+            problems.append(Problem(f"{st.path}.name", label, "must be unique and not 'ground'"))
+        labels.append(label)
+        inertias.append(st.number("inertia_kgm2", positive=True))
+        absolute.append(st.number("damping_nms_per_rad", 0.0, nonnegative=True))
+        st.finish()
+    index = {s: i for i, s in enumerate(labels)}
+
+    def ends(tt: Table, ground: bool):
+        raw = tt.raw("between")
+        ok = (isinstance(raw, list) and len(raw) == 2 and all(isinstance(s, str) for s in raw)
+              and all(s in index or (ground and s == GROUND) for s in raw) and raw[0] != raw[1])
+        if raw is not None and not ok:
+            problems.append(Problem(f"{tt.path}.between", raw, "must name two different stations"
+                                    + (" (or a station and 'ground')" if ground else "")))
+        if not ok:
+            return None
+        a, b = raw if raw[0] != GROUND else raw[::-1]
+        return index[a], index.get(b, -1)
+
+    shafts = []
+    for sh in t.tables("shafts"):
+        pair = ends(sh, ground=True)
+        k = sh.number("stiffness_nm_per_rad", positive=True)
+        c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
+        eta = sh.number("loss_factor", 0.0, nonnegative=True)
+        sh.finish()
+        if pair:
+            shafts.append(Shaft(pair[0], pair[1], k, c, eta))
+    gears = []
+    for g in t.tables("gears", required=False):
+        pair = ends(g, ground=False)
+        ratio = g.number("ratio", positive=True)
+        g.finish()
+        if pair:
+            gears.append(GearPair(pair[0], pair[1], ratio))
+    stations = t.get("cylinder_stations", [])
+    t.finish()
+    if not problems:
+        problems += _network_topology(labels, shafts, gears)
+    engine = read_engine(root) if "engine" in data else None
+    picked = []
+    if not isinstance(stations, list) or not all(
+            (isinstance(c, str) and c in index) or (isinstance(c, int) and not isinstance(c, bool)
+                                                    and 1 <= c <= len(labels)) for c in stations):
+        problems.append(Problem("chain.cylinder_stations", stations, "must name a station (its name or 1-based "
+                                "number) per cylinder"))
+    else:
+        picked = [index[c] if isinstance(c, str) else c - 1 for c in stations]
+        if engine is not None and engine.cylinders and len(picked) != engine.cylinders:
+            problems.append(Problem("chain.cylinder_stations", stations,
+                                    f"must name one station per cylinder ({engine.cylinders})"))
+        elif engine is None and picked:
+            problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    if "dampers" in data:
+        root.used.add("dampers")
+        problems.append(Problem("dampers", "[[dampers]]", "is not read for a network yet: join the damper's ring "
+                                "as a station with a shaft (tuned) or an absolute/relative damper"))
+    limits = read_limits(root, torque_only=True)
+    excitation = None
+    has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
+    if "excitation" in data:
+        if engine is None:
+            problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
+        ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
+        excitation = _excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
+        if "modal_damping_ratio" not in ex_table and has_dampers:
+            excitation = replace(excitation, modal_damping_ratio=0.0)  # stated damping, not counted twice
+        elif not excitation.modal_damping_ratio > 0 and not has_dampers:
+            problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
+                                    "must be > 0 when the network states no absolute, relative or hysteretic "
+                                    "damping (an undamped resonance has no finite response)"))
+    root.finish()
+    if problems:
+        raise DescriptionError(source, _unique(problems))
+    return Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
+                   tuple(picked), engine, excitation, unit, data, limits)
+
+
+def _network_topology(labels, shafts, gears) -> list[Problem]:
+    """A network must hang together (one piece through shafts and gears), and its gears must not
+    close a loop (a loop of rigid meshes over-constrains the angles)."""
+    n = len(labels)
+    if n < 2:
+        return [Problem("chain.stations", list(labels), "needs at least 2 stations")]
+    parent = list(range(n))
+
+    def root(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    out = []
+    for g in gears:
+        a, b = root(g.i), root(g.j)
+        if a == b:
+            out.append(Problem("chain.gears", [labels[g.i], labels[g.j]], "closes a loop of gears"))
+        parent[a] = b
+    for s in shafts:
+        if s.j >= 0:
+            parent[root(s.i)] = root(s.j)
+    apart = sorted({labels[i] for i in range(n) if root(i) != root(0)})
+    if apart:
+        out.append(Problem("chain.stations", apart, f"are not joined to '{labels[0]}' by any shaft or gear"))
+    return out
 
 
 def _per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:

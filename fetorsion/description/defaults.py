@@ -27,3 +27,8 @@ DEFAULT_TORSIONAL_MODES = 3  # torsional modes labelled, tabulated and in the Ca
 # Runs of a study by method (Sobol': base samples, N·(inputs + 2) runs; Morris: trajectories;
 # grid: levels per input): a 5-95 % band, indices with confidence intervals of a few hundredths.
 DEFAULT_STUDY_SAMPLES = {"sobol": 512, "morris": 20, "montecarlo": 2000, "grid": 5}
+
+#: Working cycles a steady time-domain run keeps after its transients have settled.
+DEFAULT_TRANSIENT_CYCLES = 8
+#: Teeth of the simulated toothed wheel whose edges the time domain's order tracking reads.
+DEFAULT_TEETH = 120

@@ -295,15 +295,37 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
           "one per spring, each >= 0"),
     Field("loss_factors", "hysteretic loss factor η of each spring (complex stiffness k(1 + iη), marine and "
           "diesel practice)", "one number, or one per spring; each >= 0"),
-    Field("cylinder_stations", "the station (1-based) that carries each cylinder's whole torque; several may "
-          "share one", "one per cylinder of `[engine]`, each 1..number of inertias; needs `[engine]`"),
+    Field("cylinder_stations", "the station (1-based, or its name in a network) that carries each cylinder's "
+          "whole torque; several may share one", "one per cylinder of `[engine]`, each 1..number of inertias; "
+          "needs `[engine]`"),
+    Field("stations", "network form, instead of the lists above: `[[chain.stations]]` (below)",
+          "at least 2; not with the list keys"),
+    Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop"),
+    Field("gears", "network form: `[[chain.gears]]` (below); optional", "—"),
 ), required=True)
+
+STATIONS = Section("chain.stations", "Network form: the stations, by name (docs/networks-and-transients.md).", (
+    Field("name", "the station's name, used by shafts, gears and `cylinder_stations`", "unique; not `ground`"),
+    Field("inertia_kgm2", "its inertia, kg·m²", "> 0"),
+    Field("damping_nms_per_rad", "a viscous damper to ground, N·m·s/rad; default 0", ">= 0"),
+), array=True)
+SHAFTS = Section("chain.shafts", "Network form: springs between two stations, or a station and `ground`.", (
+    Field("between", "the two stations it joins (`ground` for a spring to ground)", "two different names"),
+    Field("stiffness_nm_per_rad", "N·m/rad", "> 0"),
+    Field("damping_nms_per_rad", "viscous damper across it, N·m·s/rad; default 0", ">= 0"),
+    Field("loss_factor", "hysteretic loss factor η; default 0", ">= 0"),
+), array=True)
+GEARS = Section("chain.gears", "Network form: rigid gear meshes; a branch is solved with the gear constraint "
+                "(K_r = TᵀKT) at the reference speed of the first station.", (
+    Field("between", "the driving and the driven station", "two different stations"),
+    Field("ratio", "speed of the second station over the first", "> 0"),
+), array=True)
 
 #: The tables of a crank description, in the order the documentation shows them.
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
                   BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 #: The tables of a chain file.
-CHAIN_SECTIONS = (META, UNITS, CHAIN, ENGINE, EXCITATION, DAMPERS, LIMITS)
+CHAIN_SECTIONS = (META, UNITS, CHAIN, STATIONS, SHAFTS, GEARS, ENGINE, EXCITATION, DAMPERS, LIMITS)
 
 
 def schema(sections) -> dict[str, frozenset[str] | None]:

@@ -463,3 +463,72 @@ class Chain:
     def has_dampers(self) -> bool:
         """Whether the file states any absolute, relative or hysteretic damping."""
         return any(v > 0 for v in (*self.absolute_damping, *self.relative_damping, *self.loss_factors))
+
+
+#: The name a shaft's end takes in a network to be joined to ground (a ground spring).
+GROUND = "ground"
+
+
+@dataclass(frozen=True)
+class Shaft:
+    """A torsional spring of a network between two stations (0-based; ``j`` = -1: ground).
+
+    ``stiffness`` N·m/rad; ``damping`` a viscous damper across it, N·m·s/rad; ``loss_factor``
+    its hysteretic η (k (1 + iη) in a steady-state solve).
+    """
+
+    i: int
+    j: int
+    stiffness: float
+    damping: float = 0.0
+    loss_factor: float = 0.0
+
+
+@dataclass(frozen=True)
+class GearPair:
+    """A rigid gear mesh between stations ``i`` and ``j`` (0-based): θ_j = ``ratio`` θ_i, the
+    ratio being the speed of j over the speed of i (the pitch radius of i over that of j).
+    The rotation's sense is left out: a reversal flips the sign of one branch's angles and
+    changes no frequency, amplitude or torque magnitude."""
+
+    i: int
+    j: int
+    ratio: float
+
+
+@dataclass(frozen=True)
+class Network:
+    """A torsional network: named stations joined by shafts and gear pairs, branches allowed.
+
+    The file form of a chain with ``[[chain.stations]]``, ``[[chain.shafts]]`` and
+    ``[[chain.gears]]`` (docs/networks-and-transients.md). Inertias kg·m² per station,
+    ``absolute_damping`` N·m·s/rad per station (to ground). With ``engine`` and ``excitation``
+    the cylinders act on ``cylinder_stations`` (0-based, as a :class:`Chain`'s). The first
+    station is the "pulley" of the tables: the reference of the speed (its speed is the
+    engine's).
+    """
+
+    name: str
+    labels: tuple[str, ...]
+    inertias: tuple[float, ...]
+    shafts: tuple[Shaft, ...]
+    gears: tuple[GearPair, ...] = ()
+    absolute_damping: tuple[float, ...] = ()
+    source: str = ""
+    cylinder_stations: tuple[int, ...] = ()
+    engine: Engine | None = None
+    excitation: Excitation | None = None
+    length_unit: str = "m"
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+    limits: Limits | None = None
+    dampers: tuple[Damper, ...] = ()  # not yet read for a network: always empty
+
+    @property
+    def has_dampers(self) -> bool:
+        """Whether the file states any absolute, relative or hysteretic damping."""
+        return any(v > 0 for v in (*self.absolute_damping, *(s.damping for s in self.shafts),
+                                   *(s.loss_factor for s in self.shafts)))
+
+    @property
+    def loss_factors(self) -> tuple[float, ...]:
+        return tuple(s.loss_factor for s in self.shafts)

@@ -22,11 +22,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..description.model import Chain, Crank
+from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.damped import DampedSystem, damped_modes
-from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix, modal_damping_ratios
+from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_matrix,
+                                   modal_damping_ratios, stated_damping)
 from ..modes import TorsionalModes
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
 
@@ -49,10 +50,6 @@ def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.nd
     return np.linalg.solve(system.matrix(omegas), loads[..., None])[..., 0, 0]
 
 
-def lumped_modes_source(res) -> str:
-    """How a lumped result's modes are named in the Campbell diagram."""
-    return (f"lumped {res.dof} DOF ({res.inputs.get('stiffness_method')})" if res.partition
-            else f"chain of {res.dof} inertias")
 
 
 def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
@@ -202,10 +199,9 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     k = min(n_modes, len(modes.frequencies_hz))
     f = modes.frequencies_hz[:k]
     zeta_modes = np.full(k, zeta)
-    if isinstance(crank, Chain) and crank.has_dampers:
+    if isinstance(crank, (Chain, Network)) and crank.has_dampers:
         res = lumped(crank)
-        C, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping, crank.relative_damping,
-                             crank.loss_factors)
+        C, H = stated_damping(crank, res)
         zeta_modes = zeta + modal_damping_ratios(res.frequencies_hz[:k], res.mode_shapes[:k], res.inertias_kgm2, C, H)
         zeta = tuple(float(z) for z in zeta_modes)
     if gained is not None:

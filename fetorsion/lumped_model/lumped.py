@@ -35,9 +35,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
-from ..description.model import Chain, Crank
+from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError, ParameterError
 from ..modes import TorsionalModes
+from .network import NetworkMatrices, network_matrices, network_modes
 from .parts import PartChain, build_parts
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
@@ -156,6 +157,15 @@ class LumpedResult:
     rigid_body_hz: float
     inputs: dict = field(default_factory=dict)
     pin_weights: np.ndarray | None = None
+    #: A network's matrices (its labels, inertias and shapes are then in its reduced
+    #: coordinates, one per gear group; its stiffnesses are its shafts'); None for a chain or crank.
+    network: NetworkMatrices | None = None
+
+    def matrices(self):
+        """(M, K): the model's mass and stiffness matrices (a chain's tridiagonal, a network's reduced)."""
+        if self.network is not None:
+            return self.network.M, self.network.K
+        return chain_matrices(self.inertias_kgm2, self.stiffnesses_nm_per_rad)
 
     @property
     def dof(self) -> int:
@@ -170,17 +180,24 @@ class LumpedResult:
             "labels": list(self.labels),
             "positions_m": [None if np.isnan(x) else float(x) for x in self.positions_m],
             "frequencies_hz": self.frequencies_hz.tolist(),
-            "rigid_body_hz": float(self.rigid_body_hz),
+            "rigid_body_hz": None if np.isnan(self.rigid_body_hz) else float(self.rigid_body_hz),
             "inertias_kgm2": self.inertias_kgm2.tolist(),
             "stiffnesses_nm_per_rad": self.stiffnesses_nm_per_rad.tolist(),
             "mode_shapes": self.mode_shapes.tolist(),
             **self.inputs,
+            **({} if self.network is None else {
+                "network": self.network.to_dict(),
+                "station_mode_shapes": (self.mode_shapes @ self.network.T.T).tolist()}),
         }
 
     def table(self) -> str:
         """Every elastic mode: frequency and the station of largest twist."""
         kind = f"{self.dof}-DOF ({self.inputs.get('stiffness_method')} webs)" if self.partition else "chain"
-        lines = [f"{self.name}: {kind} free-free torsional modes", f"{'mode':>4} {'f [Hz]':>10}  largest twist at"]
+        support = "free-free"
+        if self.network is not None:
+            kind = f"network of {len(self.network.labels)} stations ({self.dof} coordinates after the gears)"
+            support = "grounded" if self.network.grounded else "free-free"
+        lines = [f"{self.name}: {kind} {support} torsional modes", f"{'mode':>4} {'f [Hz]':>10}  largest twist at"]
         lines += [f"{j + 1:>4} {f:10.1f}  {self.labels[int(np.abs(s).argmax())]}"
                   for j, (f, s) in enumerate(zip(self.frequencies_hz, self.mode_shapes))]
         return "\n".join(lines)
@@ -192,8 +209,7 @@ class LumpedResult:
                                  "(give [engine] and chain.cylinder_stations)")
         shapes = self.mode_shapes
         return TorsionalModes(
-            source=(f"lumped {self.dof} DOF ({self.inputs.get('stiffness_method')})" if self.partition
-                    else f"chain of {self.dof} inertias"),
+            source=lumped_modes_source(self),
             frequencies_hz=self.frequencies_hz,
             pin_amplitudes=shapes @ self.pin_weights.T,
             pulley_amplitude=shapes[:, 0],
@@ -222,6 +238,14 @@ class LumpedResult:
         return ax
 
 
+def lumped_modes_source(res: LumpedResult) -> str:
+    """How a lumped result's modes are named (Campbell diagram, tables)."""
+    if res.network is not None:
+        return f"network of {len(res.network.labels)} stations ({res.dof} coordinates after the gears)"
+    return (f"lumped {res.dof} DOF ({res.inputs.get('stiffness_method')})" if res.partition
+            else f"chain of {res.dof} inertias")
+
+
 def solve_chain(inertias, stiffnesses):
     """Free-free modes of a chain: (rigid-body Hz, elastic Hz ascending, shapes per row)."""
     M, K = chain_matrices(inertias, stiffnesses)
@@ -238,7 +262,7 @@ def solve_chain(inertias, stiffnesses):
     return float(hz[0]), hz[1:], shapes
 
 
-def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
+def lumped(model: Crank | Chain | Network, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
            parts: PartChain | None = None) -> LumpedResult:
     """Free-free lumped torsional model of a crank (one partition) or of a chain file.
 
@@ -268,6 +292,8 @@ def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = 
     >>> res.dof, bool(res.frequencies_hz[0] > 0)
     (17, True)
     """
+    if isinstance(model, Network):
+        return network_lumped(model)
     if isinstance(model, Chain):
         rigid, hz, shapes = solve_chain(model.inertias, model.stiffnesses)
         weights = None
@@ -283,6 +309,32 @@ def lumped(model: Crank | Chain, dof: int = DEFAULT_PARTITION, stiffness: str = 
     rigid, hz, shapes = solve_chain(inertias, springs)
     return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,
                         {"stiffness_method": stiffness, "source": model.source}, pin_weights(chain, dof))
+
+
+def network_lumped(net: Network) -> LumpedResult:
+    """Modes of a network (free-free, or grounded when a shaft goes to ground) in its reduced
+    coordinates (:mod:`fetorsion.lumped_model.network`); the cylinders' weights are T's rows of
+    their stations (a torque on a geared station does f times its work on the group's angle)."""
+    mats = network_matrices(net)
+    rigid, hz, shapes = network_modes(mats)
+    weights = None
+    if net.cylinder_stations:
+        weights = mats.T[list(net.cylinder_stations)]
+    labels = [net.labels[m] for m in mats.masters]
+    return LumpedResult(net.name, None, labels, np.full(len(labels), np.nan), np.diag(mats.M).copy(),
+                        np.array([s.stiffness for s in net.shafts]), hz, shapes, rigid, {"source": net.source},
+                        weights, mats)
+
+
+def stated_damping(model, res: LumpedResult):
+    """(C, H) of the dampers a chain or network file states, in the model's coordinates
+    (zeros for a crank): viscous N·m·s/rad and hysteretic N·m/rad."""
+    if res.network is not None:
+        return res.network.C, res.network.H
+    if isinstance(model, Chain):
+        return chain_damping(res.dof, res.stiffnesses_nm_per_rad, model.absolute_damping, model.relative_damping,
+                             model.loss_factors)
+    return np.zeros((res.dof, res.dof)), np.zeros((res.dof, res.dof))
 
 
 def pin_weights(chain: PartChain, partition: int) -> np.ndarray:

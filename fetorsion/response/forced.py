@@ -21,10 +21,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..excitation.campbell import default_orders
-from ..description.model import Chain, Crank
+from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
-from ..lumped_model.lumped import chain_damping, chain_matrices, lumped, modal_damping_matrix  # noqa: F401 (re-exported)
+from ..lumped_model.lumped import lumped, modal_damping_matrix, stated_damping
+from ..lumped_model.network import modal_damping as network_modal_damping, speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
@@ -313,16 +314,15 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
         raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
     res = lumped(crank, partition, web_method, parts=parts)
-    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    M, K = res.matrices()
     # The modal damping ratio stands for the crank's own losses: it is set on the chain's modes
     # without the dampers, which bring their own damping.
-    C = modal_damping_matrix(M, K, zeta)
+    C = modal_damping_matrix(M, K, zeta) if res.network is None else network_modal_damping(M, K, zeta)
     stated = ""
-    if isinstance(crank, Chain):
-        C_stated, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping,
-                                    crank.relative_damping, crank.loss_factors)
+    if isinstance(crank, (Chain, Network)):
+        C_stated, H = stated_damping(crank, res)
         C, K = C + C_stated, K + 1j * H
-        stated = "stated dampers of the chain" if crank.has_dampers else ""
+        stated = f"stated dampers of the {'network' if res.network else 'chain'}" if crank.has_dampers else ""
     if res.pin_weights is None:
         res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
@@ -330,14 +330,24 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
-    k = np.real(res.stiffnesses_nm_per_rad)
     n = len(res.labels)
-    rows = np.zeros((n - 1, n))
-    rows[np.arange(n - 1), np.arange(n - 1)], rows[np.arange(n - 1), np.arange(1, n)] = k, -k  # k (θ_i − θ_i+1)
+    if res.network is not None:
+        rows, section_labels = res.network.section_rows, list(res.network.section_labels)
+        # the pulley twist is read against the last station that turns at the pulley's speed
+        # and is a coordinate of its own (factor 1 in its column)
+        f = speed_factors(crank)[res.network.masters]
+        flywheel = int(np.flatnonzero(np.isclose(f, 1.0))[-1])
+        model_name = f"network of {len(res.network.labels)} stations"
+    else:
+        k = np.real(res.stiffnesses_nm_per_rad)
+        rows = np.zeros((n - 1, n))
+        rows[np.arange(n - 1), np.arange(n - 1)], rows[np.arange(n - 1), np.arange(1, n)] = k, -k  # k (θ_i − θ_i+1)
+        section_labels = [f"{a}-{b}" for a, b in zip(res.labels, res.labels[1:])]
+        flywheel, model_name = n - 1, f"lumped {res.dof}-DOF chain ({web_method})"
     setup = ResponseSetup(crank.name, res.labels, M, K, C, forces, rpm, orders, period, zeta, stated, None,
                           Tq[:, :, None], phasors, W[:, None, :], rows,
-                          [f"{a}-{b}" for a, b in zip(res.labels, res.labels[1:])], positions_m=res.positions_m,
-                          pulley=0, flywheel=n - 1, model=f"lumped {res.dof}-DOF chain ({web_method})",
+                          section_labels, positions_m=res.positions_m,
+                          pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad)
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))

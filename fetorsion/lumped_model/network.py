@@ -1,0 +1,214 @@
+"""Geared and branched torsional networks: matrices in the stations' own angles, the gear
+constraint that removes the driven gear of every mesh, and the same network referred to one speed.
+
+A network (:class:`~fetorsion.description.model.Network`) has n stations with angles θ (rad,
+each in its own shaft's rotation), shafts (springs, optionally to ground) and rigid gear pairs
+θ_j = n_g θ_i. Assembled without the gears, M = diag(J), K = Σ k (e_i − e_j)(e_i − e_j)ᵀ, C
+likewise (absolute dampers on the diagonal), H = Σ η k (…) the hysteretic part. The gears are
+constraints θ = T q: q holds one angle per gear group (the group's first station, its
+"master"), and row s of T holds the speed factor f_s of station s relative to its master. Then
+
+    M_r = Tᵀ M T,   K_r = Tᵀ K T,   C_r = Tᵀ C T,   H_r = Tᵀ H T,   F_r = Tᵀ F
+
+(the virtual work of the constraint forces vanishes; the form [OpenTorsion] assembles and
+[Friswell] ch. 9 states, the book not read here). M_r stays diagonal
+(each station belongs to one group): Σ J_s f_s² per group. Referring every station to the
+speed of station 1 instead (θ'_s = θ_s / f_s with f_s its speed over station 1's, J' = J f²,
+k' = k f², gear pairs merged) gives the same eigenvalues: :func:`referred` builds that form,
+the textbook's "equivalent system"; the tests check the two agree to 1e-9.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+from ..description.model import Network, Shaft
+from ..errors import FetorsionError
+
+
+def spring_matrix(n: int, i, j, values) -> np.ndarray:
+    """Σ v (e_i − e_j)(e_i − e_j)ᵀ over springs i–j (j = -1: to ground), shape (n, n).
+
+    Parameters
+    ----------
+    n : int
+        Stations.
+    i, j : array_like of int
+        0-based ends of each spring; j = -1 joins i to ground.
+    values : array_like
+        Stiffness (N·m/rad) or damping (N·m·s/rad) of each spring.
+    """
+    i, j, v = np.asarray(i, int), np.asarray(j, int), np.asarray(values, float)
+    A = np.zeros((n, n))
+    np.add.at(A, (i, i), v)
+    free = j >= 0
+    np.add.at(A, (j[free], j[free]), v[free])
+    np.add.at(A, (i[free], j[free]), -v[free])
+    np.add.at(A, (j[free], i[free]), -v[free])
+    return A
+
+
+def gear_constraint(n: int, gears) -> tuple[np.ndarray, np.ndarray]:
+    """The constraint matrix T (n × r) of the gear pairs and the master station of each column.
+
+    Parameters
+    ----------
+    n : int
+        Stations.
+    gears : sequence of GearPair
+        θ_j = ratio θ_i for each (loops of gears are refused when the file is read).
+
+    Returns
+    -------
+    T : ndarray (n, r)
+        θ = T q; row s holds station s's speed factor against its group's master.
+    masters : ndarray (r,) of int
+        The station whose angle is column q_k (the group's lowest-numbered station).
+    """
+    factor = np.ones(n)
+    group = np.arange(n)
+    links = {s: [] for s in range(n)}
+    for g in gears:
+        links[g.i].append((g.j, g.ratio))
+        links[g.j].append((g.i, 1.0 / g.ratio))
+    seen = np.zeros(n, bool)
+    for s in range(n):  # breadth-first from the lowest station of each group: it is the master
+        if seen[s]:
+            continue
+        seen[s], queue = True, [s]
+        while queue:
+            a = queue.pop()
+            for b, r in links[a]:
+                if not seen[b]:
+                    seen[b], factor[b], group[b] = True, factor[a] * r, s
+                    queue.append(b)
+    masters = np.unique(group)
+    T = np.zeros((n, masters.size))
+    T[np.arange(n), np.searchsorted(masters, group)] = factor
+    return T, masters
+
+
+@dataclass(frozen=True)
+class NetworkMatrices:
+    """A network's matrices in the reduced coordinates q (one angle per gear group).
+
+    ``M, K, C, H`` (r × r): inertia kg·m², stiffness N·m/rad, stated viscous damping
+    N·m·s/rad, hysteretic part N·m/rad; ``T`` (n × r) maps q to the stations' angles;
+    ``masters`` the station of each q; ``section_rows`` (shafts × r) the elastic torque
+    k (θ_i − θ_j) of each shaft per unit q (N·m/rad); ``section_labels`` their names;
+    ``grounded``: some shaft goes to ground (no rigid-body mode).
+    """
+
+    M: np.ndarray
+    K: np.ndarray
+    C: np.ndarray
+    H: np.ndarray
+    T: np.ndarray
+    masters: np.ndarray
+    labels: tuple
+    section_rows: np.ndarray
+    section_labels: tuple
+    grounded: bool
+
+    def to_dict(self) -> dict:
+        return {"stations": list(self.labels), "coordinates": [self.labels[m] for m in self.masters],
+                "speed_factors": self.T.sum(axis=1).tolist(), "sections": list(self.section_labels),
+                "grounded": self.grounded}
+
+
+def network_matrices(net: Network) -> NetworkMatrices:
+    """The constraint form of a network (module docs): M_r = TᵀMT, K_r = TᵀKT, … ."""
+    n = len(net.inertias)
+    sh = net.shafts
+    i, j = [s.i for s in sh], [s.j for s in sh]
+    k = np.array([s.stiffness for s in sh])
+    K = spring_matrix(n, i, j, k)
+    C = spring_matrix(n, i, j, [s.damping for s in sh])
+    if net.absolute_damping:
+        C += np.diag(net.absolute_damping)
+    H = spring_matrix(n, i, j, k * np.array([s.loss_factor for s in sh]))
+    T, masters = gear_constraint(n, net.gears)
+    rows = np.zeros((len(sh), n))
+    rows[np.arange(len(sh)), i] = k
+    free = np.flatnonzero(np.array(j) >= 0)
+    rows[free, np.array(j)[free]] = -k[free]
+    names = tuple(f"{net.labels[s.i]}-{net.labels[s.j] if s.j >= 0 else 'ground'}" for s in sh)
+    red = lambda A: T.T @ A @ T  # noqa: E731
+    return NetworkMatrices(red(np.diag(net.inertias)), red(K), red(C), red(H), T, masters, tuple(net.labels),
+                           rows @ T, names, any(s.j < 0 for s in sh))
+
+
+def speed_factors(net: Network) -> np.ndarray:
+    """Each station's speed over station 1's (shafts keep the speed, a gear multiplies it by its ratio)."""
+    n = len(net.inertias)
+    links = {s: [] for s in range(n)}
+    for s in net.shafts:
+        if s.j >= 0:
+            links[s.i].append((s.j, 1.0))
+            links[s.j].append((s.i, 1.0))
+    for g in net.gears:
+        links[g.i].append((g.j, g.ratio))
+        links[g.j].append((g.i, 1.0 / g.ratio))
+    f = np.full(n, np.nan)
+    f[0], queue = 1.0, [0]
+    while queue:
+        a = queue.pop()
+        for b, r in links[a]:
+            if np.isnan(f[b]):
+                f[b] = f[a] * r
+                queue.append(b)
+    return f
+
+
+def referred(net: Network) -> Network:
+    """The same network referred to the speed of station 1, with no gears: each station's J f²,
+    each shaft's k f² and c f² (f: :func:`speed_factors`), the two stations of a gear pair
+    merged into one (labels joined by '+'). Exact for rigid gears; the textbook's equivalent
+    system. Its angles are θ_s / f_s. Absolute dampers are referred as the shafts' (c f²)."""
+    f = speed_factors(net)
+    T, masters = gear_constraint(len(net.inertias), net.gears)
+    col = np.argmax(T != 0, axis=1)  # the merged station of each station
+    J = np.zeros(masters.size)
+    np.add.at(J, col, np.asarray(net.inertias) * f**2)
+    ca = np.zeros(masters.size)
+    if net.absolute_damping:
+        np.add.at(ca, col, np.asarray(net.absolute_damping) * f**2)
+    labels = tuple("+".join(net.labels[s] for s in np.flatnonzero(col == c)) for c in range(masters.size))
+    shafts = tuple(Shaft(int(col[s.i]), int(col[s.j]) if s.j >= 0 else -1, s.stiffness * f[s.i] ** 2,
+                         s.damping * f[s.i] ** 2, s.loss_factor) for s in net.shafts)
+    stations = tuple(int(col[c]) for c in net.cylinder_stations)
+    return Network(f"{net.name} (referred to station 1's speed)", labels, tuple(J.tolist()), shafts, (),
+                   tuple(ca.tolist()) if net.absolute_damping else (), net.source, stations, net.engine,
+                   net.excitation, net.length_unit, net.raw, net.limits)
+
+
+def network_modes(mats: NetworkMatrices):
+    """Natural frequencies and shapes of a network in its reduced coordinates.
+
+    Returns (rigid-body Hz or nan when grounded, elastic Hz ascending, shapes (modes × r), one
+    row per elastic mode, 1 at the first coordinate unless it is a node, then max |q| = 1).
+    """
+    lam, vec = scipy.linalg.eigh(mats.K, mats.M)
+    rigid = np.nan
+    if not mats.grounded:
+        if abs(lam[0]) > 1e-8 * abs(lam[-1]):
+            raise FetorsionError(f"the free network has no rigid-body root (smallest eigenvalue {lam[0]:.3g})")
+        rigid, lam, vec = float(np.sqrt(abs(lam[0])) / (2 * np.pi)), lam[1:], vec[:, 1:]
+    shapes = vec.T
+    ref = shapes[:, 0]
+    scale = np.where(np.abs(ref) > 1e-6 * np.abs(shapes).max(axis=1), ref,
+                     shapes[np.arange(len(shapes)), np.abs(shapes).argmax(axis=1)])
+    return rigid, np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi), shapes / scale[:, None]
+
+
+def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
+    """C with damping ratio ``ratio`` on every elastic mode; a rigid-body mode (ω ≈ 0 against
+    the largest ω, as round-off leaves it) stays undamped. Unlike the chain's version, a
+    grounded network's first mode is elastic and is damped."""
+    lam, Phi = scipy.linalg.eigh(K, M)
+    omega = np.sqrt(np.clip(lam, 0.0, None))
+    omega[np.abs(lam) <= 1e-8 * np.abs(lam).max()] = 0.0
+    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M

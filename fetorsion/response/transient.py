@@ -1,0 +1,473 @@
+"""The linear time domain: a chain, network or lumped crank at a fixed speed or in a run-up or
+run-down at a stated rate, excited by crank-angle-resolved gas and inertia torques.
+
+The shaft turns with a prescribed mean motion φ(t) (the speed schedule); the vibration q
+(rad, the model's coordinates) is superposed on it:
+
+    M q̈ + C q̇ + K q = F(t),   F = W_rᵀ T_c(φ(t) − φ_c, n(t))
+
+with M, K, C the very matrices of the steady-state response (:func:`fetorsion.response.forced.response_setup`:
+modal ζ on the undamped modes plus the file's stated viscous dampers), W_r where each cylinder
+acts and T_c one cylinder's torque (gas + reciprocating inertia, :func:`fetorsion.excitation.torque.cylinder_torque`)
+read at its own crank angle, less its mean over the cycle: like the frequency-domain response,
+only the alternating torque (the orders) drives the vibration; the mean drive torque and the
+static wind-up against its load are left out. The torque is tabulated over a cycle on a grid of
+speeds and read bilinearly (in angle and speed); in a run-up the piston's tangential inertia
+term m S'(θ) dω/dt is left out (at 1000 rpm/s and 1000 rpm it is 1 % of m S''(θ) ω², and it
+falls as ω²).
+
+**Scheme.** The matrices are constant, so the exact propagator of a step is a matrix exponential:
+in the basis of the undamped modes Φ (ΦᵀMΦ = I) the equations become η̈ + ΦᵀCΦ η̇ + Λ η = ΦᵀF,
+and the first-order state x = (η, η̇) is diagonalised once, x = V z, ż = λ z + V⁻¹B g. With the
+force linear between samples (first-order hold) each z advances exactly:
+
+    z_{k+1} = e^{λh} z_k + g_k (I₀ − I₁/h) + g_{k+1} I₁/h,   I₀ = (e^{λh} − 1)/λ,   I₁ = (e^{λh} − 1 − λh)/λ²
+
+a first-order recursion (derived here: the convolution integral over one step with the load
+linear in it) that :func:`scipy.signal.lfilter` runs in compiled code over the whole record. There is no period
+elongation or numerical damping at any step (Newmark's average acceleration elongates periods
+by (ωh)²/12 and would need a loop in Python over 10⁵–10⁶ steps); the only error is the
+force's linear interpolation between samples (0.5° of crank angle by default at the top speed). The
+free-free rigid-body mode, undamped and decoupled (Cφ₀ = 0 for relative and modal dampers), is
+integrated apart as a double integral of its force (exact for the same hold); with absolute
+dampers it is damped and coupled, and the full basis is diagonalised (λ = 0 is then simple).
+
+Hysteretic loss factors (k(1 + iη)) have no causal time-domain form: each enters as the viscous
+damping that dissipates as much at the resonance of every mode, C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM
+(exact at each mode's resonance, not between them). Not yet: [[dampers]], nonlinear elements
+(clutch stages, dual-mass flywheel friction), the slider-crank's variable inertia.
+
+**Order tracking.** A station's simulated angle (mean motion plus vibration) is turned into the
+tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go through the same
+:func:`fetorsion.measured.torsiograph.order_track` as a measured record.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg
+import scipy.signal
+
+from ..errors import FetorsionError, ParameterError
+from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
+from ..measured.torsiograph import OrderTrack, order_track
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD
+
+#: Crank angle per time step at the top speed, rad: 0.5° (orders to 360 sampled; the force's
+#: linear interpolation errs by (qΔθ)²/8 at order q: 1.4e-3 at order 12).
+DEFAULT_STEP_RAD = math.radians(0.5)
+#: Speed grid of the torque tables, rpm (the gas torque's load and the inertia torque's ω² are
+#: read linearly between; the inertia torque is exactly ∝ ω², so its error is ≤ (Δn/n)²/4).
+TABLE_RPM_STEP = 25.0
+#: Samples of a torque table over one cycle.
+TABLE_SAMPLES = 1440
+#: A steady run settles until the slowest elastic transient is this fraction of its start.
+SETTLED = 1e-6
+#: Samples computed per lfilter call: bounds the memory of a long record.
+CHUNK = 1 << 16
+
+
+def speed_schedule(start_rpm: float, end_rpm: float | None = None, rate_rpm_per_s: float | None = None,
+                   duration_s: float | None = None):
+    """The mean motion: (duration s, n(t) rpm, φ(t) rad) as functions of t (numpy-vectorised).
+
+    Parameters
+    ----------
+    start_rpm : float
+        Speed at t = 0, rpm.
+    end_rpm : float, optional
+        Speed at the end of a run-up (above ``start_rpm``) or run-down (below), rpm; None: steady.
+    rate_rpm_per_s : float, optional
+        The magnitude of dn/dt of the run, rpm/s (required with ``end_rpm``).
+    duration_s : float, optional
+        Length of a steady run, s.
+    """
+    if end_rpm is None:
+        w = start_rpm * math.pi / 30
+        return duration_s, (lambda t: np.full_like(np.asarray(t, float), start_rpm)), (lambda t: w * np.asarray(t))
+    a = math.copysign(rate_rpm_per_s, end_rpm - start_rpm)
+    T = (end_rpm - start_rpm) / a
+    return T, (lambda t: start_rpm + a * np.asarray(t)), \
+        (lambda t: math.pi / 30 * (start_rpm * np.asarray(t) + 0.5 * a * np.asarray(t) ** 2))
+
+
+def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES):
+    """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
+
+    Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
+    """
+    lo, hi = min(rpm_lo, rpm_hi), max(rpm_lo, rpm_hi)
+    n = max(2, int(math.ceil((hi - lo) / TABLE_RPM_STEP)) + 1)
+    grid = np.linspace(lo, hi, n) if hi > lo else np.array([lo, lo + 1.0])
+    period = cycle_angle(crank.engine)
+    theta = np.arange(samples) * (period / samples)
+    table = np.array([cylinder_torque(crank, r, theta)["total"] for r in grid])
+    return grid, period / samples, table - table.mean(axis=1, keepdims=True)
+
+
+def read_table(grid, step, table, theta, rpm):
+    """Bilinear read of :func:`torque_table` at crank angles ``theta`` (rad, any, periodic) and
+    speeds ``rpm`` (clipped to the grid)."""
+    G = table.shape[1]
+    x = np.mod(theta / step, G)
+    i0 = np.floor(x).astype(int) % G
+    fx = x - np.floor(x)
+    i1 = (i0 + 1) % G
+    s = np.clip(np.interp(rpm, grid, np.arange(grid.size)), 0, grid.size - 1)
+    j0 = np.minimum(np.floor(s).astype(int), grid.size - 2)
+    fs = s - j0
+    lo = table[j0, i0] * (1 - fx) + table[j0, i1] * fx
+    hi = table[j0 + 1, i0] * (1 - fx) + table[j0 + 1, i1] * fx
+    return lo * (1 - fs) + hi * fs
+
+
+def hysteretic_equivalent(M, K, H) -> np.ndarray:
+    """Viscous C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM: the loss factors' dissipation at each elastic
+    mode's resonance (module docs); the rigid-body mode gets none."""
+    lam, Phi = scipy.linalg.eigh(K, M)
+    elastic = lam > 1e-8 * np.abs(lam).max()
+    c = np.zeros_like(lam)
+    c[elastic] = np.einsum("ij,ik,kj->j", Phi[:, elastic], H, Phi[:, elastic]) / np.sqrt(lam[elastic])
+    return M @ Phi @ np.diag(c) @ Phi.T @ M
+
+
+@dataclass(frozen=True)
+class Propagator:
+    """The exact first-order-hold propagator of M q̈ + C q̇ + K q = F at step ``h`` (module docs).
+
+    ``Phi`` (r × m) the modes integrated by the filters, ``lam`` (2m) their state eigenvalues,
+    ``Vq``/``Vv`` (m × 2m) the modal states' share of η and η̇, ``Vinv_B`` (2m × m) the load's
+    input to each, ``E, a, b`` the recursion's coefficients; ``rigid`` (r,) the mass-normalised
+    rigid-body mode integrated apart, or None.
+    """
+
+    h: float
+    Phi: np.ndarray
+    lam: np.ndarray
+    Vq: np.ndarray
+    Vv: np.ndarray
+    Vinv_B: np.ndarray
+    E: np.ndarray
+    a: np.ndarray
+    b: np.ndarray
+    rigid: np.ndarray | None
+
+    @property
+    def settling_s(self) -> float:
+        """Time for the slowest decaying modal state to fall to :data:`SETTLED` of its start, s."""
+        # a λ = 0 state is the angle of a damped rigid-body mode: an offset, nothing to settle
+        decay = -self.lam.real[np.abs(self.lam) > 1e-9 * np.abs(self.lam).max()]
+        if np.any(decay <= 0):
+            return math.inf
+        return math.log(1 / SETTLED) / decay.min()
+
+
+def propagator(M, K, C, h: float, grounded: bool = False) -> Propagator:
+    """Build the :class:`Propagator` (one eigen-decomposition per model and step)."""
+    lam_u, Phi = scipy.linalg.eigh(K, M)  # ΦᵀMΦ = I
+    rigid = None
+    if not grounded:
+        phi0 = Phi[:, 0]
+        if abs(lam_u[0]) <= 1e-8 * abs(lam_u[-1]) and phi0 @ C @ phi0 <= 1e-12 * np.abs(C).max(initial=0.0) * (phi0 @ phi0):
+            rigid, Phi, lam_u = phi0, Phi[:, 1:], lam_u[1:]
+    m = Phi.shape[1]
+    Cm = Phi.T @ C @ Phi
+    A = np.block([[np.zeros((m, m)), np.eye(m)], [-np.diag(lam_u), -Cm]])
+    lam, V = scipy.linalg.eig(A)
+    Vinv = np.linalg.inv(V)
+    lh = lam * h
+    E = np.exp(lh)
+    small = np.abs(lh) < 1e-5  # series: the closed forms lose digits as λh → 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        I0 = np.where(small, h * (1 + lh / 2 + lh**2 / 6), (E - 1) / lam)
+        I1 = np.where(small, h * h * (0.5 + lh / 6 + lh**2 / 24), (E - 1 - lh) / lam**2)
+    return Propagator(h, Phi, lam, V[:m], V[m:], Vinv[:, m:], E, I0 - I1 / h, I1 / h, rigid)
+
+
+def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.ndarray:
+    """q(t_k) (r × N), starting at rest (the rigid-body mode at ``rigid_speed``, rad/s of η₀), under the load ``load(start, stop)`` → F (r × (stop − start))
+    sampled every ``prop.h``. Runs in chunks of :data:`CHUNK` samples (the filters' states, the
+    last load and the rigid mode's angle and speed carried on), so the memory is the output's.
+    Conjugate modal states are one: only those with Im λ ≥ 0 are run, the others' share is the
+    conjugate of theirs (the system is real)."""
+    r = prop.Phi.shape[0]
+    q = np.empty((r, N))
+    up = prop.lam.imag > 1e-12 * np.abs(prop.lam).max()
+    keep = up | (np.abs(prop.lam.imag) <= 1e-12 * np.abs(prop.lam).max())
+    weight = np.where(up, 2.0, 1.0)[keep]
+    E, a, b = prop.E[keep], prop.a[keep], prop.b[keep]
+    Vq = prop.Phi @ (prop.Vq[:, keep] * weight)  # coordinates from the kept states
+    B = prop.Vinv_B[keep] @ prop.Phi.T  # (kept states × r): the load's input to each
+    state = np.zeros(keep.sum(), complex)
+    u_last = None
+    v, eta = rigid_speed, 0.0
+    g_last = None
+    h = prop.h
+    for start in range(0, N, CHUNK):
+        stop = min(N, start + CHUNK)
+        F = load(start, stop)
+        u = B @ F
+        w = np.empty_like(u)
+        w[:, 1:] = a[:, None] * u[:, :-1] + b[:, None] * u[:, 1:]
+        if u_last is None:
+            w[:, 0] = 0.0  # z_0 = 0: the run starts at rest
+            zi = np.zeros_like(state)
+        else:
+            w[:, 0] = a * u_last + b * u[:, 0]
+            zi = E * state
+        z = np.empty_like(u)
+        for s_ in range(len(state)):
+            z[s_], _ = scipy.signal.lfilter([1.0], [1.0, -E[s_]], w[s_], zi=[zi[s_]])
+        state, u_last = z[:, -1], u[:, -1]
+        q[:, start:stop] = np.real(Vq @ z)
+        if prop.rigid is not None:
+            # η₀'' = φ₀ᵀF, exact for the linear hold: the speed by trapezoids, the angle by its integral
+            g0 = prop.rigid @ F
+            g = g0 if g_last is None else np.concatenate([[g_last], g0])
+            dv = 0.5 * h * (g[:-1] + g[1:])
+            vs = v + np.concatenate([[0.0], np.cumsum(dv)])
+            deta = h * vs[:-1] + h * h * (g[:-1] / 3 + g[1:] / 6)
+            etas = eta + np.concatenate([[0.0], np.cumsum(deta)])
+            if g_last is not None:
+                vs, etas = vs[1:], etas[1:]
+            q[:, start:stop] += np.outer(prop.rigid, etas)
+            v, eta, g_last = vs[-1], etas[-1], g0[-1]
+    return q
+
+
+@dataclass
+class TransientResult:
+    """A simulated run: time signals, their per-block envelope and the order track of a station.
+
+    Attributes
+    ----------
+    time_s, rpm : ndarray (N,)
+        Sample times (s) and the mean speed at each (rpm).
+    crank_angle_rad : ndarray (N,)
+        The mean motion φ(t) of station 1, rad.
+    section_torque_nm : ndarray (sections, N)
+        The elastic torque of every shaft section, N·m (vibratory: the mean drive torque left out).
+    angle_rad : ndarray (coordinates, N)
+        The vibration angle of every coordinate of the model, rad.
+    block_rpm, block_peak_nm : ndarray
+        Mean speed of each working cycle and the largest |torque| of each section in it (cycles ×
+        sections): the run-up's envelope (a steady run: its settled cycles only).
+    track : OrderTrack
+        The order track of station ``track_station`` from its simulated tooth edges
+        (:func:`fetorsion.measured.torsiograph.order_track`).
+    """
+
+    name: str
+    mode: str
+    labels: list
+    section_labels: list
+    time_s: np.ndarray
+    rpm: np.ndarray
+    crank_angle_rad: np.ndarray
+    section_torque_nm: np.ndarray
+    angle_rad: np.ndarray
+    block_rpm: np.ndarray
+    block_peak_nm: np.ndarray
+    track: OrderTrack
+    step_s: float
+    settle_s: float = 0.0
+    scheme: str = ""
+    notes: list = field(default_factory=list)
+    track_station: str = ""
+
+    def steady_peak_nm(self) -> np.ndarray:
+        """Largest |torque| of each section after the settling time (a steady run), N·m."""
+        keep = self.time_s >= self.settle_s
+        return np.abs(self.section_torque_nm[:, keep]).max(axis=1)
+
+    def to_dict(self, every: int | None = None) -> dict:
+        """JSON-ready: the envelope, the order track, and the signals thinned to at most ~20 000
+        samples (``every``: keep every so many)."""
+        every = every or max(1, self.time_s.size // 20000)
+        return {"name": self.name, "mode": self.mode, "scheme": self.scheme, "step_s": self.step_s,
+                "settle_s": self.settle_s, "labels": self.labels, "sections": self.section_labels,
+                "notes": self.notes,
+                "block_rpm": self.block_rpm.tolist(), "block_peak_torque_nm": self.block_peak_nm.tolist(),
+                "order_track": {"station": self.track_station, **self.track.to_dict()},
+                "signals": {"every": every, "time_s": self.time_s[::every].tolist(),
+                            "rpm": self.rpm[::every].tolist(),
+                            "section_torque_nm": self.section_torque_nm[:, ::every].tolist()}}
+
+    def table(self) -> str:
+        k = int(np.argmax(self.block_peak_nm.max(axis=0)))
+        b = int(np.argmax(self.block_peak_nm[:, k]))
+        lines = [f"{self.name}: {self.mode}, {self.time_s[-1]:.2f} s in steps of {self.step_s * 1e6:.1f} us "
+                 f"({self.scheme})",
+                 f"  largest section torque {self.block_peak_nm[b, k]:.1f} N m in {self.section_labels[k]} "
+                 f"at {self.block_rpm[b]:.0f} rpm"]
+        if self.mode.startswith("steady"):
+            peaks = self.steady_peak_nm()
+            lines.append("  steady peak |torque| per section [N m]: "
+                         + ", ".join(f"{s} {p:.1f}" for s, p in zip(self.section_labels, peaks)))
+        strongest = np.argsort(np.abs(self.track.amplitudes).max(axis=0))[::-1][:4]
+        lines.append(f"  order track of {self.track_station}: strongest orders "
+                     + ", ".join(f"{self.track.orders[j]:g} ({np.degrees(np.abs(self.track.amplitudes[:, j])).max():.4f} deg)"
+                                 for j in sorted(strongest)))
+        return "\n".join(lines + [f"  note: {n}" for n in self.notes])
+
+    def plot(self, ax=None, orders=(1.0, 2.0)):
+        """The most loaded section's torque against time (and its block envelope), and the order
+        cuts of the tracked station against speed. Returns the first Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            fig = plt.figure(figsize=(9, 7))
+            a1, a2 = fig.subplots(2, 1)
+        else:
+            fig, a1, a2 = ax.figure, ax, None
+        k = int(np.argmax(self.block_peak_nm.max(axis=0)))
+        every = max(1, self.time_s.size // 50000)
+        a1.plot(self.time_s[::every], self.section_torque_nm[k, ::every], lw=0.5, color="C0",
+                label=f"section {self.section_labels[k]}")
+        a1.set_xlabel("time [s]")
+        a1.set_ylabel("vibratory torque [N m]")
+        a1.set_title(f"{self.name}: {self.mode}", fontsize=10)
+        a1.legend(fontsize=8)
+        if a2 is not None:
+            for q in orders:
+                if np.any(np.isclose(self.track.orders, q)):
+                    a2.plot(self.track.rpm, np.degrees(np.abs(self.track.at(q))), label=f"order {q:g}")
+            a2.set_xlabel("mean speed [rpm]")
+            a2.set_ylabel(f"{self.track_station}: vibration [deg]")
+            a2.legend(fontsize=8)
+            fig.tight_layout()
+        return a1
+
+
+def edge_times(t, angle, teeth: int) -> np.ndarray:
+    """The times a wheel of ``teeth`` teeth turning through ``angle`` (rad, increasing, sampled
+    at ``t``) passes each tooth edge, the first at the record's first angle: linear between
+    samples (the angle is smooth on the scale of a step)."""
+    pitch = 2 * np.pi / teeth
+    edges = angle[0] + pitch * np.arange(int((angle[-1] - angle[0]) / pitch) + 1)
+    return np.interp(edges, angle, t)
+
+
+def run_transient(model, rpm: float | None = None, run: tuple[float, float] | None = None,
+                  rate_rpm_per_s: float | None = None, cycles: int = DEFAULT_TRANSIENT_CYCLES,
+                  damping_ratio: float | None = None,
+                  partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
+                  step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
+                  track_station: int = 0) -> TransientResult:
+    """Simulate a model with an engine in the linear time domain (module docs).
+
+    Parameters
+    ----------
+    model : Crank, Chain or Network
+        With ``[engine]`` and ``[excitation]`` (a chain or network: ``cylinder_stations``).
+    rpm : float, optional
+        Steady running at this speed, rpm: the run lasts until every elastic transient has
+        decayed to :data:`SETTLED` of its start, then ``cycles`` more working cycles.
+    run : (float, float), optional
+        Run-up (A < B) or run-down (A > B) from A to B rpm, instead of ``rpm``.
+    rate_rpm_per_s : float, optional
+        The magnitude of dn/dt of the run, rpm/s (required with ``run``).
+    cycles : int
+        Working cycles analysed after settling in a steady run.
+    damping_ratio : float, optional
+        Modal damping ratio ζ; default the description's (as :func:`run_response`).
+    partition, web_method
+        The lumped model of a crank (ignored for a chain or network).
+    step_rad : float
+        Crank angle per step at the run's top speed, rad (the step is constant in time).
+    teeth : int
+        Teeth of the simulated wheel whose edges the order tracking reads.
+    track_station : int
+        0-based station (a coordinate of the model) whose angle is order-tracked.
+
+    Returns
+    -------
+    TransientResult
+    """
+    from .forced import response_setup
+
+    if (rpm is None) == (run is None):
+        raise ParameterError("rpm", "give either a steady speed (rpm) or a run (run=(A, B) with rate_rpm_per_s)")
+    if model.excitation is None or model.engine is None:
+        raise FetorsionError(f"{model.source or model.name}: the description has no [engine] and [excitation]")
+    if getattr(model, "dampers", ()):
+        raise FetorsionError(f"{model.source or model.name}: [[dampers]] are not in the time domain yet "
+                             "(a rubber damper's stiffness depends on frequency)")
+    top = rpm if run is None else max(run)
+    lo = rpm if run is None else min(run)
+    setup = response_setup(model, partition, rpm=[top], orders=[1.0], damping_ratio=damping_ratio,
+                           web_method=web_method)
+    M, Kc, C = setup.M, setup.K, np.real(setup.C)
+    K, H = np.real(Kc), np.imag(Kc)
+    notes = []
+    if np.any(H):
+        C = C + hysteretic_equivalent(M, K, H)
+        notes.append("loss factors enter as the viscous damping that dissipates as much at each mode's "
+                     "resonance (exact there, not between)")
+    h = step_rad / (top * math.pi / 30)
+    from ..lumped_model.lumped import lumped
+    from ..lumped_model.network import speed_factors
+
+    res = lumped(model, partition, web_method)
+    grounded = res.network is not None and res.network.grounded
+    prop = propagator(M, K, C, h, grounded)
+    period = cycle_angle(model.engine)
+    if run is None:
+        if not math.isfinite(prop.settling_s):
+            raise FetorsionError(f"{model.name}: an elastic mode has no damping, a steady run never settles; "
+                                 "give a modal damping ratio")
+        settle = prop.settling_s
+        w = rpm * math.pi / 30
+        duration = settle + cycles * period / w
+        duration, n_of_t, phi_of_t = speed_schedule(rpm, duration_s=duration)
+        mode = f"steady running at {rpm:g} rpm"
+    else:
+        if not (rate_rpm_per_s and rate_rpm_per_s > 0):
+            raise ParameterError("rate_rpm_per_s", "a run needs a rate > 0 rpm/s")
+        settle = 0.0
+        duration, n_of_t, phi_of_t = speed_schedule(run[0], run[1], rate_rpm_per_s)
+        mode = f"{'run-up' if run[1] > run[0] else 'run-down'} {run[0]:g}-{run[1]:g} rpm at {rate_rpm_per_s:g} rpm/s"
+    N = int(duration / h) + 1
+    t = np.arange(N) * h
+    n_t, phi = n_of_t(t), phi_of_t(t)
+    grid, step, table = torque_table(model, lo, top)
+    W = setup.load_map[:, 0, :].real  # (cylinders, coordinates)
+    fire = firing_angles(model.engine)
+
+    def load(a, b):  # the cylinders' alternating torques on the coordinates, samples a..b
+        T = np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])  # (cylinders, n)
+        return W.T @ T
+
+    rigid_speed = 0.0
+    if prop.rigid is not None:
+        # The mean motion is the schedule's: the rigid-body mode starts at the speed that leaves
+        # its first cycle's mean speed zero (from rest it would drift at the mean of ∫φ₀ᵀF dt, and the
+        # torque would no longer be in step with the angle that carries it).
+        n1 = min(N, int(np.searchsorted(phi, period)) + 1)
+        g0 = prop.rigid @ load(0, n1)
+        v = np.concatenate([[0.0], np.cumsum(0.5 * h * (g0[:-1] + g0[1:]))])
+        rigid_speed = -float(np.trapezoid(v, dx=h) / (h * (n1 - 1)))
+    q = integrate(prop, load, N, rigid_speed)
+    torque = np.real(setup.section_rows) @ q
+    # the tracked station turns at its speed factor times the crank: its angle for the wheel
+    factor = 1.0 if res.network is None else float(speed_factors(model)[res.network.masters[track_station]])
+    angle = factor * phi + q[track_station]
+    revs = int(round(period / (2 * np.pi)))
+    track = order_track(edge_times(t, angle, teeth), teeth, revs, name=setup.labels[track_station])
+    # the envelope per block of whole cycles, from the crank's mean motion
+    block = np.floor(phi / period).astype(int)
+    # the last, unfinished cycle left out, and in a steady run the cycles before it settled
+    full = (block < max(block[-1], 1)) & (t >= settle)
+    nb = int(block[full].max()) + 1 if full.any() else 0
+    peak = np.zeros((nb, torque.shape[0]))
+    for s in range(torque.shape[0]):
+        np.maximum.at(peak[:, s], block[full], np.abs(torque[s, full]))
+    count = np.bincount(block[full], None, nb)
+    block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
+    block_rpm, peak = block_rpm[count > 0], peak[count > 0]
+    scheme = "exact modal propagator, first-order hold, lfilter"
+    return TransientResult(model.name, mode, list(setup.labels), list(setup.section_labels), t, n_t, phi, torque, q,
+                           block_rpm, peak, track, h, settle, scheme, notes, setup.labels[track_station])

@@ -1,0 +1,185 @@
+"""Geared and branched networks in chain files (issue 29): reading, the gear constraint, the
+referred (one-speed) form, modes against printed and closed-form values, and the forced
+response of a network against its referred chain."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import fetorsion
+from conftest import ROOT
+from fetorsion.description.crank import parse_chain, parse_network
+from fetorsion.description.model import Chain, GearPair, Network, Shaft
+from fetorsion.errors import DescriptionError
+from fetorsion.lumped_model.network import gear_constraint, network_matrices, referred, speed_factors
+from fetorsion.response.forced import run_response
+
+NETWORKS = ROOT / "examples" / "networks"
+
+
+def test_chain_files_still_read_as_chains():
+    chain = fetorsion.load(ROOT / "examples" / "mendes2008" / "mwm6_chain.toml")
+    assert isinstance(chain, Chain) and len(chain.inertias) == 9
+
+
+def test_friswell_example_9_6_3_to_its_printed_digits():
+    # Printed 10.304, 20.479, 24.423 Hz (Friswell et al. 2010 ex. 9.6.3 as openTorsion's tests
+    # transcribe it, examples/networks/friswell_9_6_3.toml): rounded to the printed 3 decimals.
+    res = fetorsion.lumped(fetorsion.load(NETWORKS / "friswell_9_6_3.toml"))
+    assert np.round(res.frequencies_hz, 3).tolist() == [10.304, 20.479, 24.423]
+    assert abs(res.rigid_body_hz) < 1e-3
+
+
+def test_friswell_gear_branch_example_to_its_printed_digits():
+    # openTorsion's "friswell_pagex" (Friswell et al. 2010, ch. 9): a motor, a 1:1 gear pair whose
+    # driving gear also carries a branch, two rotors; printed 425.4, 634.1, 3247.2 Hz.
+    Im, Ir, Ig, km, kR = 400e-6, 700e-6, 25e-6, 1.0e4, 5.0e3
+    net = Network("pagex", ("motor", "gear 1", "gear 2", "rotor A", "rotor B"), (Im, Ig, Ig, Ir, Ir),
+                  (Shaft(0, 1, km), Shaft(2, 3, kR), Shaft(1, 4, kR)), (GearPair(1, 2, 1.0),))
+    assert np.round(fetorsion.lumped(net).frequencies_hz, 1).tolist() == [425.4, 634.1, 3247.2]
+
+
+def test_two_inertias_through_a_gear_closed_form():
+    # J1 —k— J2 =gear n= J3: the gear group's inertia is J2 + n² J3 at J2's angle, so the one
+    # elastic root is ω² = k (1/J1 + 1/(J2 + n² J3)) (derived here, a 2-DOF chain).
+    J1, J2, J3, k, n = 2.0, 0.1, 0.5, 1.0e5, 3.0
+    net = Network("two", ("a", "b", "c"), (J1, J2, J3), (Shaft(0, 1, k),), (GearPair(1, 2, n),))
+    f = fetorsion.lumped(net).frequencies_hz
+    expected = math.sqrt(k * (1 / J1 + 1 / (J2 + n**2 * J3))) / (2 * math.pi)
+    assert f.shape == (1,) and f[0] == pytest.approx(expected, rel=1e-12)
+
+
+def test_ground_springs_closed_form():
+    # One disc on a ground spring: ω² = k/J; a geared disc on it: ω² = k/(J1 + n² J2).
+    one = Network("g", ("a", "b"), (0.5, 0.2), (Shaft(0, -1, 2.0e4),), (GearPair(0, 1, 2.0),))
+    res = fetorsion.lumped(one)
+    assert np.isnan(res.rigid_body_hz)
+    assert res.frequencies_hz[0] == pytest.approx(math.sqrt(2.0e4 / (0.5 + 4 * 0.2)) / (2 * math.pi), rel=1e-12)
+
+
+def line_network(n=0.4):
+    """Engine-side chain, a gear pair, a driven chain: one line, so its referred form is a chain."""
+    return Network("line", ("p", "c1", "fw", "pinion", "wheel", "load"), (0.01, 0.02, 0.3, 0.004, 0.08, 1.2),
+                   (Shaft(0, 1, 4e5, 0.0, 0.03), Shaft(1, 2, 5e5, 0.0, 0.03), Shaft(2, 3, 4e3, 0.0, 0.1),
+                    Shaft(4, 5, 6e4, 0.0, 0.03)), (GearPair(3, 4, n),))
+
+
+def test_branch_equals_its_chain_referred_to_one_speed():
+    n = 0.4
+    net = line_network(n)
+    # referred by hand: pinion + wheel merged (J_p + n² J_w), the load J n², the propeller shaft k n²
+    chain = Chain("ref", (0.01, 0.02, 0.3, 0.004 + n**2 * 0.08, n**2 * 1.2), (4e5, 5e5, 4e3, n**2 * 6e4),
+                  ("p", "c1", "fw", "gears", "load"))
+    a, b = fetorsion.lumped(net).frequencies_hz, fetorsion.lumped(chain).frequencies_hz
+    assert np.max(np.abs(a / b - 1)) < 1e-9
+    # the constraint form TᵀKT and the referred network are the same matrices (angles scaled by f)
+    mats, ref = network_matrices(net), network_matrices(referred(net))
+    f = speed_factors(net)[mats.masters]
+    S = np.diag(f)  # q = S q'
+    assert np.allclose(S @ mats.K @ S, ref.K, rtol=1e-12, atol=1e-9 * np.abs(ref.K).max())
+    assert np.allclose(S @ mats.M @ S, ref.M, rtol=1e-12, atol=0)
+
+
+def test_branched_network_equals_its_referred_network():
+    net = fetorsion.load(NETWORKS / "geared_engine.toml")
+    a = fetorsion.lumped(net).frequencies_hz
+    b = fetorsion.lumped(referred(net)).frequencies_hz
+    assert np.max(np.abs(a / b - 1)) < 1e-9
+
+
+def test_gear_constraint_rows_are_speed_factors():
+    T, masters = gear_constraint(4, [GearPair(0, 1, 2.0), GearPair(1, 2, 0.5)])
+    assert masters.tolist() == [0, 3]
+    assert T[:, 0].tolist() == [1.0, 2.0, 1.0, 0.0] and T[:, 1].tolist() == [0, 0, 0, 1.0]
+
+
+def test_network_response_equals_its_referred_chain():
+    # The forced response of the geared line (constraint form, physical angles) and of the chain
+    # referred to the engine's speed: a referred shaft carries f × the physical torque, f = n on
+    # the driven side; the whole solve agrees to round-off (1e-9).
+    n = 0.4
+    engine = fetorsion.load(NETWORKS / "geared_engine.toml")
+    net = line_network(n)
+    from dataclasses import replace
+
+    net = replace(net, cylinder_stations=(1, 1, 1, 1), engine=engine.engine, excitation=engine.excitation)
+    chain = Chain("ref", (0.01, 0.02, 0.3, 0.004 + n**2 * 0.08, n**2 * 1.2), (4e5, 5e5, 4e3, n**2 * 6e4),
+                  ("p", "c1", "fw", "gears", "load"), loss_factors=(0.03, 0.03, 0.1, 0.03), cylinder_stations=(1, 1, 1, 1),
+                  engine=engine.engine, excitation=engine.excitation)
+    rpm = np.linspace(900, 4000, 40)
+    a, b = run_response(net, rpm=rpm), run_response(chain, rpm=rpm)
+    scale = np.array([1, 1, 1, n])  # referred torque / physical torque
+    assert np.max(np.abs(a.section_torque_peak_nm * scale / b.section_torque_peak_nm - 1)) < 1e-9
+    assert np.max(np.abs(a.pulley_angle_deg / b.pulley_angle_deg - 1)) < 1e-9
+
+
+def test_network_campbell_and_response_run():
+    net = fetorsion.load(NETWORKS / "geared_engine.toml")
+    from fetorsion.excitation.campbell import run_campbell
+
+    res = run_campbell(net)
+    assert res.crossings and all(c["rpm"] > 0 for c in res.crossings)
+    r = run_response(net, rpm=[1000.0, 2000.0])
+    assert r.section_torque_nm.shape == (2, len(net.shafts))
+    assert r.to_dict()["sections"][-1] == "pump gear-pump"
+
+
+NET = """
+[chain]
+name = "n"
+[[chain.stations]]
+name = "a"
+inertia_kgm2 = 1.0
+[[chain.stations]]
+name = "b"
+inertia_kgm2 = 1.0
+[[chain.stations]]
+name = "c"
+inertia_kgm2 = 1.0
+[[chain.shafts]]
+between = ["a", "b"]
+stiffness_nm_per_rad = 1.0e4
+"""
+
+
+def read(text: str):
+    import tomllib
+
+    return parse_network(tomllib.loads(text))
+
+
+@pytest.mark.parametrize("extra, field, rule", [
+    ("", "chain.stations", "not joined"),
+    ('[[chain.gears]]\nbetween = ["b", "x"]\nratio = 2.0\n', "chain.gears.1.between", "two different stations"),
+    ('[[chain.gears]]\nbetween = ["b", "c"]\nratio = -2.0\n', "chain.gears.1.ratio", "> 0"),
+    ('[[chain.gears]]\nbetween = ["b", "c"]\nratio = 2.0\n[[chain.gears]]\nbetween = ["c", "b"]\nratio = 0.5\n',
+     "chain.gears", "loop"),
+    ('[[chain.gears]]\nbetween = ["b", "ground"]\nratio = 2.0\n', "chain.gears.1.between", "two different"),
+])
+def test_bad_network_is_refused_by_field(extra, field, rule):
+    with pytest.raises(DescriptionError) as err:
+        read(NET + extra)
+    assert any(p.field == field and rule in p.rule for p in err.value.problems), err.value.problems
+
+
+def test_network_ground_shaft_reads():
+    net = read(NET + '[[chain.shafts]]\nbetween = ["ground", "c"]\nstiffness_nm_per_rad = 1.0e3\n'
+               '[[chain.gears]]\nbetween = ["b", "c"]\nratio = 2.0\n')
+    assert net.shafts[-1] == Shaft(2, -1, 1.0e3)
+    assert network_matrices(net).grounded
+
+
+def test_chain_lists_are_refused_in_a_network():
+    with pytest.raises(DescriptionError) as err:
+        read(NET.replace('name = "n"', 'name = "n"\ninertias_kgm2 = [1.0, 2.0]'))
+    assert any(p.field == "chain.inertias_kgm2" for p in err.value.problems)
+
+
+def test_parse_chain_unchanged_for_list_form():
+    import tomllib
+
+    c = parse_chain(tomllib.loads('[chain]\ninertias_kgm2 = [0.1, 0.2]\nstiffnesses_nm_per_rad = [1e4]\n'))
+    assert isinstance(c, Chain) and c.stiffnesses == (1e4,)
