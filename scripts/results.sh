@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates everything under results/ (run from anywhere, after scripts/setup.sh):
-#   results/renault21, results/peugeot_glx  the full reports (fetorsion run --all, ~2 min)
+#   results/renault21, results/peugeot_glx, results/peugeot_glx_engine  the full reports (fetorsion run --all, ~4 min)
 #   results/mechanics                       balancing, flywheel, planetary figures (seconds)
 #   results/chart                           the web stiffness methods against 3D FE (~3 min)
 #   results/validation.*                    FE f1 and its [uncertainty] band against the measurements (~4 min)

@@ -127,6 +127,14 @@ BASE = {
 
 # (id, argv with {d} for the folder, extra files, expected exit status, texts the message must hold)
 CASES = [
+    # extends: a variant read on top of a base description
+    ("extends-missing", "lumped {d}/x.toml", {"x.toml": 'extends = "nowhere.toml"\n'}, 2, ["nowhere.toml", "does not exist"]),
+    ("extends-number", "lumped {d}/x.toml", {"x.toml": 'extends = 3\n'}, 2, ["extends = 3", "file name of the crank description"]),
+    ("extends-cycle", "lumped {d}/x.toml", {"x.toml": 'extends = "y.toml"\n', "y.toml": 'extends = "x.toml"\n'},
+     2, ["extends", "cycle (x.toml -> y.toml -> x.toml)"]),
+    ("extends-chain", "lumped {d}/x.toml", {"x.toml": 'extends = "chain.toml"\n'}, 2, ["extends", "chain files do not extend"]),
+    ("extends-bad-override", "lumped {d}/x.toml", {"x.toml": 'extends = "crank.toml"\n[fillets]\npin = -1.0\n'},
+     2, ["fillets.pin", "-1"]),
     # [bearings] (issue 13)
     ("bearings-negative", "lumped {d}/x.toml", {"x.toml": edit("[uncertainty]", "[bearings]\nradial_stiffness_n_per_m = -1e8\n\n[uncertainty]")},
      2, ["bearings.radial_stiffness_n_per_m", "rigid"]),

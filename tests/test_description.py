@@ -122,3 +122,25 @@ def test_missing_file_and_bad_toml(tmp_path):
     bad.write_text("[units\nlength = 'mm'")
     with pytest.raises(DescriptionError, match="not valid TOML"):
         fetorsion.load(bad)
+
+
+def test_a_variant_is_its_base_with_its_own_tables_replaced_whole(tmp_path):
+    """peugeot_glx_engine.toml extends peugeot_glx.toml: the geometry is the base's to the
+    number, the tables the variant gives are the variant's alone (attachments: none in the
+    base, four here; [meta]: the base's measured frequency of the crank ALONE is not inherited)."""
+    base = fetorsion.load(GEOMETRY / "peugeot_glx.toml")
+    engine = fetorsion.load(GEOMETRY / "peugeot_glx_engine.toml")
+    for part in ("journals", "pins", "webs", "front", "rear", "fillets", "oil_holes", "material", "uncertainty"):
+        assert getattr(engine, part) == getattr(base, part), part
+    assert len(base.attachments) == 0 and len(engine.attachments) == 4
+    assert base.excitation is None and engine.excitation is not None
+    assert "measured_first_torsional_hz" in base.notes and "measured_first_torsional_hz" not in engine.notes
+    # whole-table replacement: a variant's [fillets] with one key does not keep the base's other,
+    # so the base's range on fillets.journal now names nothing and is refused by name
+    (tmp_path / "base.toml").write_text((GEOMETRY / "peugeot_glx.toml").read_text())
+    (tmp_path / "v.toml").write_text('extends = "base.toml"\n[fillets]\npin = 3.0\n')
+    with pytest.raises(DescriptionError, match="fillets.journal.*does not name a numeric field"):
+        fetorsion.load(tmp_path / "v.toml")
+    (tmp_path / "w.toml").write_text('extends = "v.toml"\n[uncertainty]\n"fillets.pin" = [2.0, 4.0]\n')
+    w = fetorsion.load(tmp_path / "w.toml")  # a variant of a variant
+    assert w.fillets.pin == pytest.approx(3.0e-3) and w.fillets.journal == 0.0 and len(w.uncertainty) == 1

@@ -56,6 +56,8 @@ def load(path) -> Crank | Chain | Network:
     """
     path = Path(path)
     data = read_toml(path)
+    if "extends" in data:
+        data = extended(path, data)
     if "engine" not in data and "chain" not in data and MECHANICS_TABLES & set(data):
         raise DescriptionError(str(path), [Problem("file", str(path), (
             "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
@@ -65,6 +67,57 @@ def load(path) -> Crank | Chain | Network:
             return parse_network(data, source=str(path))
         return parse_chain(data, source=str(path))
     return parse_crank(data, source=str(path))
+
+
+#: How many descriptions deep ``extends`` may go (a variant of a variant of ...): far beyond any real
+#: use, low enough that a mistake is named rather than followed.
+MAX_EXTENDS_DEPTH = 8
+
+
+def extended(path: Path, data: dict, seen: tuple[Path, ...] = ()) -> dict:
+    """A description that names another in ``extends`` read on top of it: its own top-level
+    tables replace the base's tables of the same name whole (a table is never merged key by key,
+    so what a variant states is all there is of that table); the base's other tables are kept.
+
+    One design in two assemblies (the crank alone on a modal test, the same crank in its engine)
+    is then one geometry file and a short variant, and the two cannot drift apart.
+
+    Parameters
+    ----------
+    path : Path
+        The file ``data`` was read from; ``extends`` is relative to its folder.
+    data : dict
+        Its parsed TOML, with an ``extends`` key.
+    seen : tuple of Path
+        The files already on this chain of ``extends`` (a cycle is refused).
+
+    Returns
+    -------
+    dict
+        The merged mapping, without ``extends``.
+    """
+    base_name = data["extends"]
+    here = path.resolve()
+    if not isinstance(base_name, str) or not base_name.strip():
+        raise DescriptionError(str(path), [Problem("extends", base_name, (
+            "the file name of the crank description this one is a variant of, relative to this file's folder"))])
+    base_path = (path.parent / base_name).resolve()
+    chain = seen + (here,)
+    if base_path in chain:
+        names = " -> ".join(p.name for p in chain + (base_path,))
+        raise DescriptionError(str(path), [Problem("extends", base_name, f"the descriptions extend each other in a cycle ({names})")])
+    if len(chain) > MAX_EXTENDS_DEPTH:
+        raise DescriptionError(str(path), [Problem("extends", base_name, (
+            f"more than {MAX_EXTENDS_DEPTH} descriptions deep; is the chain of extends a mistake?"))])
+    base = read_toml(base_path)
+    if "extends" in base:
+        base = extended(base_path, base, chain)
+    if "chain" in base or "chain" in data or "engine" not in base:
+        raise DescriptionError(str(path), [Problem("extends", base_name, (
+            "must name a crank description (with [engine]), and be named by one: chain files do not extend"))])
+    merged = dict(base)
+    merged.update({k: v for k, v in data.items() if k != "extends"})
+    return merged
 
 
 def parse_chain(data: dict, source: str = "<chain>") -> Chain:
