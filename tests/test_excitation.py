@@ -163,3 +163,22 @@ def test_inline4_engine_torque_has_only_major_orders_and_four_times_the_mean(ren
     # Orders 2, 4, 6 … of the four cylinders add in phase; all others cancel (1-3-4-2).
     np.testing.assert_allclose(four.at(orders[major]), 4 * one.at(orders[major]), rtol=1e-9)
     assert np.abs(four.at(orders[~major])).max() < 1e-9 * np.abs(one.complex_nm).max()
+
+
+def test_the_rotating_big_end_adds_its_centrifugal_force_to_the_mean_radial_pin_force_only(renault):
+    """m_rot R Ω² outwards, to round-off (a closed form), at every angle; the tangential force and
+    every vibratory order of the radial force are those of the crank without it."""
+    from dataclasses import replace
+
+    from fetorsion.excitation.torque import cylinder_pin_forces, pin_force_harmonics
+
+    assert renault.excitation.rotating_mass == 0.53
+    bare = replace(renault, excitation=replace(renault.excitation, rotating_mass=0.0))
+    rpm = 7150.0
+    f, g = cylinder_pin_forces(renault, rpm), cylinder_pin_forces(bare, rpm)
+    push = 0.53 * renault.engine.crank_radius * (rpm * math.pi / 30) ** 2
+    np.testing.assert_allclose(f["radial"] - g["radial"], push, rtol=1e-12)
+    np.testing.assert_array_equal(f["tangential"], g["tangential"])
+    orders = np.arange(1, 25) / 2
+    h, k = pin_force_harmonics(renault, [rpm], orders), pin_force_harmonics(bare, [rpm], orders)
+    np.testing.assert_allclose(h, k, rtol=0, atol=1e-9 * push)

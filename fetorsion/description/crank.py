@@ -823,6 +823,7 @@ def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: 
     peak pressure above the motored one)."""
     strokes = engine.strokes_per_cycle if engine else 4
     mass = t.number("reciprocating_mass_kg", nonnegative=True)
+    rotating = t.number("rotating_mass_kg", 0.0, nonnegative=True)
     speeds = t.numbers("speed_range_rpm")
     if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
         t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
@@ -840,7 +841,7 @@ def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: 
     if "modal_damping_band" in t.data and not source.strip():
         t.problems.append(Problem(f"{t.path}.modal_damping_source", source,
                                   "is required with modal_damping_band: say where the band comes from"))
-    common = dict(reciprocating_mass=mass, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
+    common = dict(reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
                   damping_band=(float(band[0]), float(band[1])),
                   damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE)
     given = [k for k in EXCITATION_SOURCES if k in t.data]

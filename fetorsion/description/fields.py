@@ -190,6 +190,9 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
                      "`imep_pa`, `peak_pressure_pa`), the reciprocating mass, the speed range and the damping "
                      "assumed. Read the same way in a crank description and in a chain file.", (
     Field("reciprocating_mass_kg", "per-cylinder reciprocating mass (piston, pin, rod small-end share), kg", ">= 0"),
+    Field("rotating_mass_kg", "per-cylinder mass turning with the crank pin (the rod's big-end share), kg: its "
+          "centrifugal force m R Ω² adds to the radial pin force, so it loads the fatigue assessment's mean "
+          "stress and an oil film's mean load, not the vibration; default 0 (left out)", ">= 0"),
     Field("speed_range_rpm", "operating range `[low, high]`, rpm (high = rated speed)", "0 < low < high"),
     Field("overspeed_factor", "the forced response, Campbell diagram and verdict cover [low, factor × high] rpm "
           f"(default {DEFAULT_OVERSPEED}: crank fatigue is checked to overspeed)", ">= 1"),

@@ -182,6 +182,9 @@ class Excitation:
 
     reciprocating_mass: float  # kg per cylinder (piston, pin, rod small-end share)
     speed_range: tuple[float, float]  # rpm
+    #: kg per cylinder turning with the pin (the rod's big-end share): its centrifugal force
+    #: m R Ω² adds to the radial pin force, a constant, so it loads the mean and no order
+    rotating_mass: float = 0.0
     compression_ratio: float = 0.0
     load_kind: str = "imep"  # "imep" or "peak"
     load: tuple[tuple[float, float], ...] = ()

@@ -207,8 +207,9 @@ def harmonics(torque, period: float) -> Harmonics:
 
 def cylinder_pin_forces(crank, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
     """Tangential and radial force on cylinder 1's pin over a cycle at ``rpm`` (N), from its gas
-    force and reciprocating inertia; ``theta`` rad from firing TDC. ``misfire``: the cylinder
-    does not fire (its motored cycle)."""
+    force and reciprocating inertia, and the centrifugal force of the rod's rotating big end
+    (``rotating_mass``: a constant outwards, so only the mean has it); ``theta`` rad from firing
+    TDC. ``misfire``: the cylinder does not fire (its motored cycle)."""
     ex = crank.excitation
     theta, p = cylinder_pressure(crank, rpm, misfire=misfire)
     e = crank.engine
@@ -216,7 +217,8 @@ def cylinder_pin_forces(crank, rpm: float, misfire: bool = False) -> dict[str, n
     force = math.pi / 4 * e.bore**2 * (p - ex.intake_pressure) \
         + ex.reciprocating_mass * piston_acceleration(theta, e.crank_radius, e.rod_length, omega)
     f = pin_forces(theta, force, e.crank_radius, e.rod_length)
-    return {"theta": theta, "tangential": f["tangential"], "radial": f["radial"]}
+    radial = f["radial"] + ex.rotating_mass * e.crank_radius * omega**2
+    return {"theta": theta, "tangential": f["tangential"], "radial": radial}
 
 
 def pin_force_harmonics(crank, rpm, orders, misfire: bool = False) -> np.ndarray:

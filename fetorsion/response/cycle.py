@@ -18,9 +18,9 @@ the component about e_t = (0, −sin a, cos a), the one that bends the pin fille
 under the radial gas and inertia forces.
 
 The mean also carries the centrifugal load of the crank's own mass (Ω² times
-``CondensedCrank.centrifugal``: counterweights, webs, pins). Left out: that of the rods'
-rotating big ends (a pin's attachment lumps it with half the reciprocating mass, whose mean
-inertia force the pin forces carry already).
+``CondensedCrank.centrifugal``: counterweights, webs, pins) and that of the rods' rotating big
+ends, ``[excitation] rotating_mass_kg``, which the radial pin forces carry (a pin's attachment
+gives the vibration its inertia, not its force).
 """
 
 from __future__ import annotations
