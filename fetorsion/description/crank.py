@@ -16,8 +16,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .defaults import (DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED,
-                       DEFAULT_STICK_FACTOR)
+from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .fields import CHAIN_SCHEMA, CRANK_SCHEMA
 from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
                     GROUND, GearPair, Network, NonlinearSpring, Shaft,
@@ -280,7 +279,7 @@ def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSprin
     if len(problems) > before or pair is None:
         return None
     return NonlinearSpring(pair[0], pair[1], k, tuple(math.radians(a) for a in angles), friction,
-                           stick or DEFAULT_STICK_FACTOR * max(k), preload, name, source)
+                           stick, preload, name, source)
 
 
 def _network_topology(labels, shafts, gears) -> list[Problem]:

@@ -11,7 +11,8 @@ import math
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
-from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import (DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED,
+                       DEFAULT_STICK_FACTOR)
 
 class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
@@ -518,6 +519,10 @@ class NonlinearSpring:
     preload: float = 0.0
     name: str = ""
     source: str = ""
+
+    def __post_init__(self):
+        if not self.stick_stiffness > 0:  # the default: stiff against every stage
+            object.__setattr__(self, "stick_stiffness", DEFAULT_STICK_FACTOR * max(self.stiffnesses))
 
     def elastic(self, x):
         """The elastic torque at twist ``x`` (rad, array), N·m: odd, piecewise linear, continuous."""
