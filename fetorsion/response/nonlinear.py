@@ -148,7 +148,7 @@ class Elements:
     def friction_rate(self, z, xdot) -> np.ndarray:
         """ż of the friction elements: the twist rate while sticking, falling to 0 as the stick
         spring reaches the slip limit while the twist goes on the same way (Bouc–Wen's form
-        ż = ẋ (1 − H(ẋz) |z/z_s|^n) [BoucWen], z_s = T_f/k_s, n = :data:`SLIP_EXPONENT`: the
+        ż = ẋ (1 − H(ẋz) |z/z_s|^n) [Bouc], z_s = T_f/k_s, n = :data:`SLIP_EXPONENT`: the
         Jenkins element with its corner rounded so that ż is continuous, which a stiff integrator
         needs); 0 for an element without friction."""
         limit = self.friction / self.stick
