@@ -36,3 +36,6 @@ DEFAULT_TEETH = 120
 # its stages (an elastic-perfectly-plastic, Jenkins, element): stiff enough that the loop is the
 # Coulomb parallelogram within 1/STICK_FACTOR of its width at twists of a stage's size.
 DEFAULT_STICK_FACTOR = 20.0
+# The nonlinear time domain's integrators (scipy solve_ivp), the default first: LSODA switches between
+# Adams (non-stiff) and BDF (stiff, a friction element sticking) by itself.
+NONLINEAR_METHODS = ("LSODA", "Radau", "BDF")

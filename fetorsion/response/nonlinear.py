@@ -38,6 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.integrate
 
+from ..description.defaults import NONLINEAR_METHODS
 from ..excitation.kinematics import piston_velocity
 
 #: Relative tolerance of the error-controlled integration: the slider-crank's inertia terms and the
@@ -46,7 +47,7 @@ RTOL = 1e-6
 #: Samples integrated per call of solve_ivp (the memory of a long record is the output's only).
 SPAN = 1 << 14
 #: Integrators offered (scipy's stiff and switching ones).
-METHODS = ("LSODA", "Radau", "BDF")
+METHODS = NONLINEAR_METHODS
 #: The friction elements' corner exponent n: the loop is the Jenkins parallelogram but for a rounding
 #: of about z_s ln(n)/n at each slip onset (0.15 z_s: loop areas within (T_f/k_s A) × 0.15 of it).
 SLIP_EXPONENT = 20
