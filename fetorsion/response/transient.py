@@ -34,8 +34,7 @@ dampers it is damped and coupled, and the full basis is diagonalised (λ = 0 is 
 
 Hysteretic loss factors (k(1 + iη)) have no causal time-domain form: each enters as the viscous
 damping that dissipates as much at the resonance of every mode, C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM
-(exact at each mode's resonance, not between them). Not yet: [[dampers]], nonlinear elements
-(clutch stages, dual-mass flywheel friction), the slider-crank's variable inertia.
+(exact at each mode's resonance, not between them). Not yet: [[dampers]].
 
 **Order tracking.** A station's simulated angle (mean motion plus vibration) is turned into the
 tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go through the same
