@@ -73,6 +73,20 @@ loss_factor = 0.05
 between = ["pinion", "wheel"]
 ratio = 0.5
 """ + ENGINE_CHAIN.split("loss_factors = 0.05\n")[1]
+NL = """[[chain.nonlinear]]
+name = "clutch"
+between = ["load", "ground"]
+stiffnesses_nm_per_rad = [520.0, 44000.0]
+stage_angles_deg = [5.5]
+friction_torque_nm = 10.0
+"""
+
+
+def with_nonlinear(old: str, new: str) -> str:
+    """The network with a [[chain.nonlinear]] element, ``old`` in it replaced by ``new``."""
+    return NETWORK.replace("ratio = 0.5\n", "ratio = 0.5\n" + NL.replace(old, new))
+
+
 DAMPER = """
 [[dampers]]
 type = "rubber"
@@ -312,6 +326,23 @@ CASES = [
     ("transient-no-excitation", "transient {d}/c.toml --rpm 2000", {"c.toml": CHAIN}, 2, ["[excitation]"]),
     ("transient-plot-format", "transient {d}/n.toml --rpm 2000 --plot {d}/t.txt", {"n.toml": NETWORK}, 2,
      ["--plot"]),
+    # --- [[chain.nonlinear]] (clutch dampers, DMF arc springs)
+    ("nonlinear-stiffness", "transient {d}/n.toml --rpm 2000", {"n.toml": with_nonlinear("520.0", "-520.0")}, 2,
+     ["chain.nonlinear.1.stiffnesses_nm_per_rad", "each > 0"]),
+    ("nonlinear-stage-count", "lumped {d}/n.toml", {"n.toml": with_nonlinear("[5.5]", "[5.5, 9.0]")}, 2,
+     ["chain.nonlinear.1.stage_angles_deg", "one fewer"]),
+    ("nonlinear-stage-order", "lumped {d}/n.toml", {"n.toml": with_nonlinear(
+        "[520.0, 44000.0]\nstage_angles_deg = [5.5]", "[520.0, 9e3, 44000.0]\nstage_angles_deg = [9.0, 5.5]")}, 2,
+     ["chain.nonlinear.1.stage_angles_deg", "ascending"]),
+    ("nonlinear-friction", "campbell {d}/n.toml", {"n.toml": with_nonlinear("= 10.0", "= -10.0")}, 2,
+     ["chain.nonlinear.1.friction_torque_nm", ">= 0"]),
+    ("nonlinear-stick", "transient {d}/n.toml --rpm 2000", {"n.toml": with_nonlinear(
+        "friction_torque_nm = 10.0", "friction_torque_nm = 10.0\nstick_stiffness_nm_per_rad = 1000.0")}, 2,
+     ["chain.nonlinear.1.stick_stiffness_nm_per_rad", "stiffest stage"]),
+    ("nonlinear-station", "response {d}/n.toml", {"n.toml": with_nonlinear('"load", "ground"', '"lod", "ground"')},
+     2, ["chain.nonlinear.1.between", "two different stations"]),
+    ("nonlinear-unknown-key", "lumped {d}/n.toml", {"n.toml": with_nonlinear("friction_torque_nm", "friction_nm")},
+     2, ["friction_nm"]),
     # --- [[dampers]] and [limits] (issue 14)
     ("damper-type", "response {d}/x.toml", {"x.toml": RENAULT + DAMPER.replace('"rubber"', '"hydraulic"')}, 2,
      ["dampers.1.type", "viscous, rubber, tuned"]),

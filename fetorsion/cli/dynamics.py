@@ -15,7 +15,7 @@ from ..errors import FetorsionError
 from ..io import write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..response.forced import COMPARE_UNITS
-from ..description.defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
+from ..description.defaults import (NONLINEAR_METHODS, DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
                                     DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_TEETH,
                                     DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
@@ -150,7 +150,8 @@ def cmd_transient(args) -> int:
     res = run_transient(crank, rpm=args.rpm, run=None if args.run_up is None else tuple(args.run_up),
                         rate_rpm_per_s=args.rate, cycles=args.cycles, damping_ratio=args.damping,
                         partition=partition_of(args.source), web_method=stiffness_for(args), teeth=args.teeth,
-                        track_station=0 if args.station is None else args.station - 1)
+                        track_station=0 if args.station is None else args.station - 1,
+                        variable_inertia=args.variable_inertia, method=args.integrator)
     return report(res, res.table(), args)
 
 
@@ -227,7 +228,8 @@ def add_parsers(sub) -> None:
                     help="1-based shaft section (spring) whose torque is compared (default the most loaded)")
     rp.set_defaults(func=cmd_response)
 
-    tp = sub.add_parser("transient", help="linear time domain: steady running or a run-up/run-down, order-tracked")
+    tp = sub.add_parser("transient", help="time domain: steady running or a run-up/run-down, order-tracked (linear, "
+                        "or nonlinear with --variable-inertia or [[chain.nonlinear]] elements)")
     tp.add_argument("file", help="chain, network or crank description with [engine] and [excitation] (.toml)")
     speed = tp.add_mutually_exclusive_group(required=True)
     speed.add_argument("--rpm", type=real(0.0, 100_000.0, unit="rpm"), help="steady running at this speed, rpm")
@@ -246,6 +248,11 @@ def add_parsers(sub) -> None:
     tp.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings", help=argparse.SUPPRESS)
     tp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     tp.add_argument("--damping", type=real(0.0, 1.0), help="modal damping ratio, 0 < ζ < 1 (default from the file)")
+    tp.add_argument("--variable-inertia", action="store_true",
+                    help="each cylinder's reciprocating mass as the crank-angle-dependent inertia m S'(θ)² "
+                         "(nonlinear integrator)")
+    tp.add_argument("--integrator", choices=NONLINEAR_METHODS, default=NONLINEAR_METHODS[0],
+                    help="scipy solve_ivp method of the nonlinear integrator (default %(default)s)")
     add_json_option(tp)
     tp.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
     tp.set_defaults(func=cmd_transient)

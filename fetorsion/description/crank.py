@@ -19,7 +19,7 @@ from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .fields import CHAIN_SCHEMA, CRANK_SCHEMA
 from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
-                    GROUND, GearPair, Network, Shaft,
+                    GROUND, GearPair, Network, NonlinearSpring, Shaft,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
@@ -264,10 +264,12 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
         g.finish()
         if pair:
             gears.append(GearPair(pair[0], pair[1], ratio))
+    nonlinear = [e for e in (_nonlinear_spring(nl, ends(nl, ground=True), problems)
+                             for nl in t.tables("nonlinear", required=False)) if e is not None]
     stations = t.get("cylinder_stations", [])
     t.finish()
     if not problems:
-        problems += _network_topology(labels, shafts, gears)
+        problems += _network_topology(labels, shafts + [Shaft(e.i, e.j, 1.0) for e in nonlinear], gears)
     engine = read_engine(root) if "engine" in data else None
     picked = []
     if not isinstance(stations, list) or not all(
@@ -304,7 +306,33 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
     if problems:
         raise DescriptionError(source, _unique(problems))
     return Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
-                   tuple(picked), engine, excitation, unit, data, limits)
+                   tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear))
+
+
+def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSpring | None:
+    """One ``[[chain.nonlinear]]`` element (a clutch damper's or a DMF's springs with friction):
+    every field checked here, by name, before any analysis."""
+    name = t.text("name")
+    k = t.numbers("stiffnesses_nm_per_rad")
+    angles = t.numbers("stage_angles_deg", required=False)
+    friction = t.number("friction_torque_nm", 0.0, nonnegative=True)
+    stick = t.number("stick_stiffness_nm_per_rad", 0.0, nonnegative=True)
+    preload = t.number("preload_nm", 0.0)
+    source = t.text("source")
+    t.finish()
+    before = len(problems)
+    if not k or not all(v > 0 for v in k):
+        problems.append(Problem(f"{t.path}.stiffnesses_nm_per_rad", list(k), "must be a list of stiffnesses, each > 0"))
+    if len(angles) != max(len(k) - 1, 0) or not all(a > 0 for a in angles) or list(angles) != sorted(set(angles)):
+        problems.append(Problem(f"{t.path}.stage_angles_deg", list(angles), "must give where each stage after the "
+                                "first begins: one fewer than the stiffnesses, each > 0, ascending"))
+    if stick and stick <= max(k, default=0.0):
+        problems.append(Problem(f"{t.path}.stick_stiffness_nm_per_rad", stick, "must exceed the stiffest stage "
+                                "(the friction sticks through it)"))
+    if len(problems) > before or pair is None:
+        return None
+    return NonlinearSpring(pair[0], pair[1], k, tuple(math.radians(a) for a in angles), friction,
+                           stick, preload, name, source)
 
 
 def _network_topology(labels, shafts, gears) -> list[Problem]:

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_STICK_FACTOR
 from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PROCESSES, SURFACES
 from .units import LENGTH_UNITS
 
@@ -305,6 +305,7 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
           "at least 2; not with the list keys"),
     Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop"),
     Field("gears", "network form: `[[chain.gears]]` (below); optional", "—"),
+    Field("nonlinear", "network form: `[[chain.nonlinear]]` (below); optional", "—"),
 ), required=True)
 
 STATIONS = Section("chain.stations", "Network form: the stations, by name (docs/networks-and-transients.md).", (
@@ -324,11 +325,32 @@ GEARS = Section("chain.gears", "Network form: rigid gear meshes; a branch is sol
     Field("ratio", "speed of the second station over the first", "> 0"),
 ), array=True)
 
+NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element between two stations (or a station and "
+                    "`ground`): a multi-stage clutch damper or a dual-mass flywheel's arc springs. Its elastic torque "
+                    "is piecewise linear and odd in the twist x (first station's angle less the second's), with "
+                    "Coulomb friction in parallel that sticks through a stiff spring (an elastic-perfectly-plastic "
+                    "element, docs/networks-and-transients.md). The time domain integrates it as it is; modes, "
+                    "Campbell and the forced response take the stage's stiffness at `preload_nm`.", (
+    Field("name", "the element's name (its section label)", "a string"),
+    Field("between", "the two stations it joins (`ground` for one end to ground)", "two different names"),
+    Field("stiffnesses_nm_per_rad", "the stages' stiffnesses, from the first (small twists) outwards, N·m/rad",
+          "a list, each > 0"),
+    Field("stage_angles_deg", "the twist at which each stage after the first begins, deg",
+          "one fewer than the stiffnesses, each > 0, ascending"),
+    Field("friction_torque_nm", "the Coulomb friction torque (the hysteresis loop's half height), N·m; default 0",
+          ">= 0"),
+    Field("stick_stiffness_nm_per_rad", "the stiffness through which the friction sticks, N·m/rad; default "
+          "20 × the stiffest stage", "> the stiffest stage"),
+    Field("preload_nm", "the mean torque the element carries (the drive torque through a clutch), N·m; default 0",
+          "a finite number"),
+    Field("source", "where the numbers come from", "a string"),
+), array=True)
+
 #: The tables of a crank description, in the order the documentation shows them.
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
                   BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 #: The tables of a chain file.
-CHAIN_SECTIONS = (META, UNITS, CHAIN, STATIONS, SHAFTS, GEARS, ENGINE, EXCITATION, DAMPERS, LIMITS)
+CHAIN_SECTIONS = (META, UNITS, CHAIN, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS)
 
 
 def schema(sections) -> dict[str, frozenset[str] | None]:

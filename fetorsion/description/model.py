@@ -11,7 +11,8 @@ import math
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
-from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import (DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED,
+                       DEFAULT_STICK_FACTOR)
 
 class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
@@ -500,6 +501,67 @@ class GearPair:
 
 
 @dataclass(frozen=True)
+class NonlinearSpring:
+    """A nonlinear element of a network between stations ``i`` and ``j`` (0-based; ``j`` = -1:
+    ground): a clutch damper's or a dual-mass flywheel's springs.
+
+    The elastic torque is piecewise linear and odd in the twist x = θ_i − θ_j (rad):
+    ``stiffnesses[0]`` (N·m/rad) up to ``stage_angles[0]`` (rad), ``stiffnesses[1]`` beyond it, …;
+    in parallel a Coulomb friction ``friction`` (N·m) that sticks through ``stick_stiffness``
+    (N·m/rad; an elastic-perfectly-plastic element, its loop a parallelogram). ``preload`` (N·m)
+    is the mean torque it carries: it sets the operating point x0 on the elastic curve, and the
+    steady-state analyses take the stage's stiffness there (:meth:`tangent`).
+    """
+
+    i: int
+    j: int
+    stiffnesses: tuple[float, ...]
+    stage_angles: tuple[float, ...] = ()
+    friction: float = 0.0
+    stick_stiffness: float = 0.0
+    preload: float = 0.0
+    name: str = ""
+    source: str = ""
+
+    def __post_init__(self):
+        if not self.stick_stiffness > 0:  # the default: stiff against every stage
+            object.__setattr__(self, "stick_stiffness", DEFAULT_STICK_FACTOR * max(self.stiffnesses))
+
+    def elastic(self, x):
+        """The elastic torque at twist ``x`` (rad, array), N·m: odd, piecewise linear, continuous."""
+        import numpy as np
+
+        x = np.asarray(x, dtype=float)
+        a = np.abs(x)
+        edges = (0.0, *self.stage_angles)
+        torque = np.zeros_like(a)
+        for s, k in enumerate(self.stiffnesses):
+            hi = edges[s + 1] if s + 1 < len(edges) else np.inf
+            torque += k * np.clip(a - edges[s], 0.0, hi - edges[s])
+        return np.sign(x) * torque
+
+    @property
+    def operating_twist(self) -> float:
+        """x0 with elastic(x0) = ``preload``, rad (the curve is increasing, so x0 is unique)."""
+        edges = (0.0, *self.stage_angles)
+        target, x, torque = abs(self.preload), 0.0, 0.0
+        for s, k in enumerate(self.stiffnesses):
+            width = edges[s + 1] - edges[s] if s + 1 < len(edges) else math.inf
+            if torque + k * width >= target:
+                x += (target - torque) / k
+                break
+            x, torque = x + width, torque + k * width
+        return math.copysign(x, self.preload)
+
+    @property
+    def tangent(self) -> float:
+        """The stiffness of the stage at the operating point (the upper one on a boundary), N·m/rad."""
+        x0 = abs(self.operating_twist)
+        stage = sum(1 for a in self.stage_angles if x0 >= a)
+        return self.stiffnesses[stage]
+
+
+@dataclass(frozen=True)
 class Network:
     """A torsional network: named stations joined by shafts and gear pairs, branches allowed.
 
@@ -525,6 +587,13 @@ class Network:
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     limits: Limits | None = None
     dampers: tuple[Damper, ...] = ()  # not yet read for a network: always empty
+    nonlinear: tuple[NonlinearSpring, ...] = ()
+
+    @property
+    def linear_shafts(self) -> tuple[Shaft, ...]:
+        """The shafts, then each nonlinear element as a shaft of its stage's stiffness at its
+        operating point: what the steady-state analyses (modes, Campbell, response) see."""
+        return self.shafts + tuple(Shaft(e.i, e.j, e.tangent) for e in self.nonlinear)
 
     @property
     def has_dampers(self) -> bool:

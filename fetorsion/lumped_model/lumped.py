@@ -322,7 +322,7 @@ def network_lumped(net: Network) -> LumpedResult:
         weights = mats.T[list(net.cylinder_stations)]
     labels = [net.labels[m] for m in mats.masters]
     return LumpedResult(net.name, None, labels, np.full(len(labels), np.nan), np.diag(mats.M).copy(),
-                        np.array([s.stiffness for s in net.shafts]), hz, shapes, rigid, {"source": net.source},
+                        np.array([s.stiffness for s in net.linear_shafts]), hz, shapes, rigid, {"source": net.source},
                         weights, mats)
 
 

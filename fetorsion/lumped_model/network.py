@@ -122,7 +122,7 @@ class NetworkMatrices:
 def network_matrices(net: Network) -> NetworkMatrices:
     """The constraint form of a network (module docs): M_r = TᵀMT, K_r = TᵀKT, … ."""
     n = len(net.inertias)
-    sh = net.shafts
+    sh = net.linear_shafts  # the nonlinear elements last, at their operating stiffness
     i, j = [s.i for s in sh], [s.j for s in sh]
     k = np.array([s.stiffness for s in sh])
     K = spring_matrix(n, i, j, k)
@@ -136,6 +136,7 @@ def network_matrices(net: Network) -> NetworkMatrices:
     free = np.flatnonzero(np.array(j) >= 0)
     rows[free, np.array(j)[free]] = -k[free]
     names = tuple(f"{net.labels[s.i]}-{net.labels[s.j] if s.j >= 0 else 'ground'}" for s in sh)
+    names = names[:len(net.shafts)] + tuple(e.name or n for e, n in zip(net.nonlinear, names[len(net.shafts):]))
     red = lambda A: T.T @ A @ T  # noqa: E731
     return NetworkMatrices(red(np.diag(net.inertias)), red(K), red(C), red(H), T, masters, tuple(net.labels),
                            rows @ T, names, any(s.j < 0 for s in sh))
@@ -145,7 +146,7 @@ def speed_factors(net: Network) -> np.ndarray:
     """Each station's speed over station 1's (shafts keep the speed, a gear multiplies it by its ratio)."""
     n = len(net.inertias)
     links = {s: [] for s in range(n)}
-    for s in net.shafts:
+    for s in net.linear_shafts:
         if s.j >= 0:
             links[s.i].append((s.j, 1.0))
             links[s.j].append((s.i, 1.0))
@@ -178,7 +179,7 @@ def referred(net: Network) -> Network:
         np.add.at(ca, col, np.asarray(net.absolute_damping) * f**2)
     labels = tuple("+".join(net.labels[s] for s in np.flatnonzero(col == c)) for c in range(masters.size))
     shafts = tuple(Shaft(int(col[s.i]), int(col[s.j]) if s.j >= 0 else -1, s.stiffness * f[s.i] ** 2,
-                         s.damping * f[s.i] ** 2, s.loss_factor) for s in net.shafts)
+                         s.damping * f[s.i] ** 2, s.loss_factor) for s in net.linear_shafts)
     stations = tuple(int(col[c]) for c in net.cylinder_stations)
     return Network(f"{net.name} (referred to station 1's speed)", labels, tuple(J.tolist()), shafts, (),
                    tuple(ca.tolist()) if net.absolute_damping else (), net.source, stations, net.engine,

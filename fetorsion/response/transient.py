@@ -34,8 +34,7 @@ dampers it is damped and coupled, and the full basis is diagonalised (λ = 0 is 
 
 Hysteretic loss factors (k(1 + iη)) have no causal time-domain form: each enters as the viscous
 damping that dissipates as much at the resonance of every mode, C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM
-(exact at each mode's resonance, not between them). Not yet: [[dampers]], nonlinear elements
-(clutch stages, dual-mass flywheel friction), the slider-crank's variable inertia.
+(exact at each mode's resonance, not between them). Not yet: [[dampers]].
 
 **Order tracking.** A station's simulated angle (mean motion plus vibration) is turned into the
 tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go through the same
@@ -54,6 +53,7 @@ import scipy.signal
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
 from ..measured.torsiograph import OrderTrack, order_track
+from .nonlinear import METHODS, RTOL, Elements, SliderCranks, integrate_nonlinear
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD
 
 #: Crank angle per time step at the top speed, rad: 0.5° (orders to 360 sampled; the force's
@@ -94,17 +94,18 @@ def speed_schedule(start_rpm: float, end_rpm: float | None = None, rate_rpm_per_
         (lambda t: math.pi / 30 * (start_rpm * np.asarray(t) + 0.5 * a * np.asarray(t) ** 2))
 
 
-def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES):
+def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total"):
     """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
 
-    Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
+    ``part``: ``"total"`` (gas and reciprocating inertia) or ``"gas"`` (the variable-inertia model
+    makes the inertia torque itself). Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
     """
     lo, hi = min(rpm_lo, rpm_hi), max(rpm_lo, rpm_hi)
     n = max(2, int(math.ceil((hi - lo) / TABLE_RPM_STEP)) + 1)
     grid = np.linspace(lo, hi, n) if hi > lo else np.array([lo, lo + 1.0])
     period = cycle_angle(crank.engine)
     theta = np.arange(samples) * (period / samples)
-    table = np.array([cylinder_torque(crank, r, theta)["total"] for r in grid])
+    table = np.array([cylinder_torque(crank, r, theta)[part] for r in grid])
     return grid, period / samples, table - table.mean(axis=1, keepdims=True)
 
 
@@ -356,8 +357,10 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
                   damping_ratio: float | None = None,
                   partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
                   step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
-                  track_station: int = 0) -> TransientResult:
-    """Simulate a model with an engine in the linear time domain (module docs).
+                  track_station: int = 0, variable_inertia: bool = False, method: str = "LSODA") -> TransientResult:
+    """Simulate a model with an engine in the time domain (module docs): linear by the exact
+    propagator; with ``variable_inertia`` or a network's nonlinear elements by the nonlinear
+    integrator of :mod:`fetorsion.response.nonlinear`.
 
     Parameters
     ----------
@@ -382,6 +385,13 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         Teeth of the simulated wheel whose edges the order tracking reads.
     track_station : int
         0-based station (a coordinate of the model) whose angle is order-tracked.
+    variable_inertia : bool
+        Each cylinder's reciprocating mass as the crank-angle-dependent inertia m S'(θ)² on its
+        station (:mod:`fetorsion.response.nonlinear`), instead of its mean in the station's inertia
+        and its inertia torque as a load.
+    method : str
+        The nonlinear integrator: one of :data:`fetorsion.response.nonlinear.METHODS` (scipy's
+        ``solve_ivp``); the linear case ignores it.
 
     Returns
     -------
@@ -435,6 +445,9 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     n_t, phi = n_of_t(t), phi_of_t(t)
     grid, step, table = torque_table(model, lo, top)
     W = setup.load_map[:, 0, :].real  # (cylinders, coordinates)
+    elements = tuple(getattr(model, "nonlinear", ()))
+    if method not in METHODS:
+        raise ParameterError("method", f"must be one of {', '.join(METHODS)}")
     fire = firing_angles(model.engine)
 
     def load(a, b):  # the cylinders' alternating torques on the coordinates, samples a..b
@@ -450,8 +463,14 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         g0 = prop.rigid @ load(0, n1)
         v = np.concatenate([[0.0], np.cumsum(0.5 * h * (g0[:-1] + g0[1:]))])
         rigid_speed = -float(np.trapezoid(v, dx=h) / (h * (n1 - 1)))
-    q = integrate(prop, load, N, rigid_speed)
-    torque = np.real(setup.section_rows) @ q
+    rows = np.real(setup.section_rows)
+    if variable_inertia or elements:
+        q, torque, scheme = _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t,
+                                           run, rate_rpm_per_s, lo, top, elements, variable_inertia, method)
+    else:
+        q = integrate(prop, load, N, rigid_speed)
+        torque = rows @ q
+        scheme = "exact modal propagator, first-order hold, lfilter"
     # the tracked station turns at its speed factor times the crank: its angle for the wheel
     factor = 1.0 if res.network is None else float(speed_factors(model)[res.network.masters[track_station]])
     angle = factor * phi + q[track_station]
@@ -468,6 +487,36 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     count = np.bincount(block[full], None, nb)
     block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
     block_rpm, peak = block_rpm[count > 0], peak[count > 0]
-    scheme = "exact modal propagator, first-order hold, lfilter"
     return TransientResult(model.name, mode, list(setup.labels), list(setup.section_labels), t, n_t, phi, torque, q,
                            block_rpm, peak, track, h, settle, scheme, notes, setup.labels[track_station])
+
+
+def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t, run, rate, lo, top,
+                   elements, variable_inertia, method):
+    """q (coordinates × N), the section torques and the scheme's description of a nonlinear run."""
+    ne = len(elements)
+    tangent = np.array([e.tangent for e in elements])
+    D = rows[rows.shape[0] - ne:] / tangent[:, None] if ne else np.zeros((0, M.shape[0]))
+    K_lin = K - D.T @ (tangent[:, None] * D)  # the elements' operating stiffness out: they act as they are
+    cranks = None
+    if variable_inertia:
+        if np.any(np.abs(W.sum(axis=1) - 1) > 1e-9):
+            raise FetorsionError(f"{model.name}: variable inertia needs every cylinder on a station that turns at "
+                                 "the engine's speed (its weights summing to 1)")
+        e, ex = model.engine, model.excitation
+        cranks = SliderCranks(W, fire, e.crank_radius, e.rod_length, ex.reciprocating_mass)
+    grid, step, table = torque_table(model, lo, top, part="gas" if variable_inertia else "total")
+    alpha = 0.0 if run is None else math.copysign(rate, run[1] - run[0]) * math.pi / 30
+
+    def force(tt):
+        return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
+
+    v0 = None if prop.rigid is None else rigid_speed * prop.rigid
+    q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha, force,
+                                     cranks, Elements(D, elements) if ne else None, v0, method)
+    torque = rows @ q
+    if ne:
+        torque[rows.shape[0] - ne:] = Elements(D, elements).torque(D @ q, z)
+    what = " and ".join(w for w, on in (("variable inertia", variable_inertia),
+                                        (f"{ne} nonlinear element{'s' * (ne > 1)}", ne)) if on)
+    return q, torque, f"{method} (scipy solve_ivp, rtol {RTOL:g}, {nfev} evaluations): {what}"

@@ -1,0 +1,258 @@
+"""The nonlinear time domain: the slider-crank's variable inertia and a network's nonlinear
+elements (multi-stage clutch dampers, dual-mass flywheel arc springs, both with friction).
+
+**Variable inertia.** Cylinder c's reciprocating mass m moves with the piston, S(θ) its distance
+from the crank axis (:func:`fetorsion.excitation.kinematics.piston_position`, exact rod geometry);
+its kinetic energy ½ m Ṡ² = ½ m S'(θ)² θ̇² is that of an inertia J_c(θ) = m S'(θ)² about the crank
+axis. A chain's station already holds the mean ⟨m S'²⟩ (≈ m R²/2), so the model adds the
+fluctuation δJ_c(θ) = m (S'(θ)² − ⟨S'²⟩). Lagrange's equation for the station's angle then reads
+
+    (J + δJ_c(θ)) θ̈ + ½ δJ_c'(θ) θ̇² + (elastic and damping torques) = gas torque,
+
+(derived here: d/dt(J θ̇) − ½ J' θ̇² = J θ̈ + ½ J' θ̇²). At constant speed ½ δJ_c' ω² = m S' S'' ω² is exactly the
+reciprocating inertia torque of the constant-inertia model (:func:`~fetorsion.excitation.torque.cylinder_torque`'s
+"inertia" part, with the sign of a load), so with variable inertia that torque is no longer a load: it
+comes out of the equation, evaluated at the crank's actual angle θ = φ(t) − φ_c + wᵀq and speed.
+The gas torque is still read at the mean angle (as the linear time domain reads it: the gas
+torque's dependence on the vibration angle, Draminsky's "impulse distortion", is left out).
+
+**Nonlinear elements** (:class:`~fetorsion.description.model.NonlinearSpring`): torque
+g(x0 + x) − P + T_f(z) across the twist x, with g the piecewise-linear elastic curve, P the preload
+(g(x0) = P) and an elastic-perfectly-plastic (Jenkins) friction element: a spring k_s in series with
+a Coulomb slider of limit T_f, its state z (the spring's twist) following ż = ẋ while
+|k_s z| < T_f or the twist turns back, ż = 0 while it slides. Under a harmonic twist of amplitude A
+its loop is a parallelogram of area 4 T_f (A − T_f/k_s), the Coulomb loop 4 T_f A as k_s → ∞.
+
+**Integrator.** With either, the equations have a state-dependent mass matrix and a non-smooth
+restoring force, so the exact propagator of the linear case does not apply. They are written as a
+first-order system y = (q, q̇, z) and integrated by :func:`scipy.integrate.solve_ivp` with LSODA
+(Adams while non-stiff, BDF when the friction's stick spring makes the system stiff; the linear
+part's Jacobian is supplied), error-controlled (``rtol``), and sampled on the same time grid as the
+linear scheme so that the same envelope and order-tracking code reads it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.integrate
+
+from ..description.defaults import NONLINEAR_METHODS
+from ..excitation.kinematics import piston_velocity
+
+#: Relative tolerance of the error-controlled integration: the slider-crank's inertia terms and the
+#: element torques are resolved to this fraction of themselves per step.
+RTOL = 1e-6
+#: Samples integrated per call of solve_ivp (the memory of a long record is the output's only).
+SPAN = 1 << 14
+#: Integrators offered (scipy's stiff and switching ones).
+METHODS = NONLINEAR_METHODS
+#: The friction elements' corner exponent n: the loop is the Jenkins parallelogram but for a rounding
+#: of about z_s ln(n)/n at each slip onset (0.15 z_s: loop areas within (T_f/k_s A) × 0.15 of it).
+SLIP_EXPONENT = 20
+#: Samples of the crank angle over which the mean of S'² is taken.
+MEAN_SAMPLES = 4096
+
+
+def mean_square_slope(r: float, l: float) -> float:
+    """⟨S'(θ)²⟩ over a revolution, m²/rad² (the rectangle rule on a periodic function is spectral)."""
+    grid = np.arange(MEAN_SAMPLES) * (2 * np.pi / MEAN_SAMPLES)
+    return float(np.mean(piston_velocity(grid, r, l, 1.0) ** 2))
+
+
+def slider_inertia(theta, r: float, l: float, m: float, mean: float | None = None):
+    """The fluctuating part of a slider-crank's inertia about the crank axis and its derivative.
+
+    Parameters
+    ----------
+    theta : array_like
+        Crank angle from TDC, rad.
+    r, l : float
+        Crank radius and rod length, m.
+    m : float
+        Reciprocating mass, kg.
+    mean : float, optional
+        ⟨S'²⟩, m² (:func:`mean_square_slope`; computed when not given).
+
+    Returns
+    -------
+    dJ, dJ_dtheta : ndarray
+        δJ(θ) = m (S'(θ)² − ⟨S'²⟩), kg·m², and δJ'(θ) = 2 m S' S'', kg·m²/rad (S' = dS/dθ, m/rad).
+
+    Examples
+    --------
+    >>> dJ, _ = slider_inertia(np.pi / 2, 0.05, 0.2, 1.0)   # S' = -r at 90°; ⟨S'²⟩ = r²(1/2 + λ²/8 + …)
+    >>> round(float(dJ) / (0.05**2), 3)
+    0.492
+    """
+    # S' and S'' as kinematics.piston_velocity/acceleration at ω = 1, written out once: this runs at
+    # every evaluation of the equations
+    lam = r / l
+    sn, cs = np.sin(theta), np.cos(theta)
+    D = 1.0 - (lam * sn) ** 2
+    rD = np.sqrt(D)
+    s1 = -r * (sn + lam * sn * cs / rD)
+    s2 = -r * (cs + lam * (cs * cs - sn * sn + lam * lam * sn**4) / (D * rD))
+    mean = mean_square_slope(r, l) if mean is None else mean
+    return m * (s1**2 - mean), 2 * m * s1 * s2
+
+
+@dataclass(frozen=True)
+class SliderCranks:
+    """The cylinders' variable inertia on a model's coordinates: ``weights`` (cylinders × coordinates,
+    the pin's angle is wᵀq), ``fire`` (rad), crank radius ``r`` and rod ``l`` (m), mass ``m`` (kg)."""
+
+    weights: np.ndarray
+    fire: np.ndarray
+    r: float
+    l: float
+    m: float
+
+    def __post_init__(self):
+        object.__setattr__(self, "mean", mean_square_slope(self.r, self.l))
+
+
+@dataclass(frozen=True)
+class Elements:
+    """A network's nonlinear elements on its coordinates: ``rows`` (elements × coordinates, the
+    twist per unit q), the :class:`~fetorsion.description.model.NonlinearSpring` of each."""
+
+    rows: np.ndarray
+    springs: tuple
+
+    @property
+    def x0(self) -> np.ndarray:
+        return np.array([e.operating_twist for e in self.springs])
+
+    @property
+    def friction(self) -> np.ndarray:
+        return np.array([e.friction for e in self.springs])
+
+    @property
+    def stick(self) -> np.ndarray:
+        return np.array([e.stick_stiffness for e in self.springs])
+
+    @property
+    def tangent(self) -> np.ndarray:
+        return np.array([e.tangent for e in self.springs])
+
+    def torque(self, x, z) -> np.ndarray:
+        """Each element's vibratory torque (its preload taken off), N·m, at twists ``x`` and friction
+        states ``z`` (rad; arrays (elements,) or (elements, samples))."""
+        x, z = np.asarray(x, float), np.asarray(z, float)
+        shape = (-1,) + (1,) * (x.ndim - 1)
+        x0, tf = self.x0.reshape(shape), self.friction.reshape(shape)
+        elastic = np.stack([e.elastic(x0[i] + x[i]) - e.preload for i, e in enumerate(self.springs)])
+        return elastic + np.clip(self.stick.reshape(shape) * z, -tf, tf)
+
+    def friction_rate(self, z, xdot) -> np.ndarray:
+        """ż of the friction elements: the twist rate while sticking, falling to 0 as the stick
+        spring reaches the slip limit while the twist goes on the same way (Bouc–Wen's form
+        ż = ẋ (1 − H(ẋz) |z/z_s|^n) [Bouc], z_s = T_f/k_s, n = :data:`SLIP_EXPONENT`: the
+        Jenkins element with its corner rounded so that ż is continuous, which a stiff integrator
+        needs); 0 for an element without friction."""
+        limit = self.friction / self.stick
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(limit > 0, np.abs(z) / limit, 0.0)
+        loading = z * xdot > 0
+        return np.where(self.friction > 0, xdot * (1.0 - np.where(loading, ratio**SLIP_EXPONENT, 0.0)), 0.0)
+
+
+def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: SliderCranks | None = None,
+                        elements: Elements | None = None, v0=None, method: str = "LSODA", rtol: float = RTOL):
+    """Integrate M(q, t) q̈ + (slider-crank terms) + C q̇ + K q + Σ dᵀ T_e = F(t) (module docs).
+
+    Parameters
+    ----------
+    M, K, C : ndarray (r, r)
+        Mean inertia (kg·m²), the linear stiffness without the nonlinear elements (N·m/rad), damping
+        (N·m·s/rad).
+    t : ndarray (N,)
+        Sample times, s, uniform.
+    phi, omega : callable
+        The mean motion φ(t), rad, and its speed, rad/s, of station 1.
+    alpha : float
+        The mean motion's angular acceleration, rad/s² (0 in a steady run).
+    force : callable
+        F(t) → (r,) the loads on the coordinates, N·m.
+    cranks : SliderCranks, optional
+        The cylinders' variable inertia (None: constant).
+    elements : Elements, optional
+        The nonlinear elements.
+    v0 : ndarray (r,), optional
+        Initial q̇, rad/s (rest otherwise).
+    method : str
+        One of :data:`METHODS`.
+    rtol : float
+        Relative tolerance of the error control.
+
+    Returns
+    -------
+    q : ndarray (r, N)
+        The vibration angles, rad.
+    z : ndarray (elements, N)
+        The friction states, rad.
+    nfev : int
+        Right-hand-side evaluations.
+    """
+    r = M.shape[0]
+    ne = 0 if elements is None else elements.rows.shape[0]
+    D = np.zeros((0, r)) if elements is None else elements.rows
+    Minv = np.linalg.inv(M)
+    sticking = np.zeros(ne) if elements is None else np.where(elements.friction > 0, elements.stick, 0.0)
+    K_t = K + (0 if elements is None else D.T @ ((elements.tangent + sticking)[:, None] * D))
+    jac = np.zeros((2 * r + ne, 2 * r + ne))
+    jac[:r, r:2 * r] = np.eye(r)
+    jac[r:2 * r, :r] = -Minv @ K_t
+    jac[r:2 * r, r:2 * r] = -Minv @ C
+    if ne:
+        jac[2 * r:, r:2 * r] = np.where(elements.friction[:, None] > 0, D, 0.0)
+
+    def rhs(tt, y):
+        q, v, z = y[:r], y[r:2 * r], y[2 * r:]
+        F = force(tt) - C @ v - K @ q
+        Meff = M
+        if cranks is not None:
+            W = cranks.weights
+            th = phi(tt) - cranks.fire + W @ q
+            thd = omega(tt) + W @ v
+            dJ, dJp = slider_inertia(th, cranks.r, cranks.l, cranks.m, cranks.mean)
+            F = F - W.T @ (0.5 * dJp * thd**2 + dJ * alpha)
+            Meff = M + (W.T * dJ) @ W
+        if ne:
+            x, xd = D @ q, D @ v
+            F = F - D.T @ elements.torque(x, z)
+            zdot = elements.friction_rate(z, xd)
+        else:
+            zdot = np.zeros(0)
+        a = Minv @ F if cranks is None else np.linalg.solve(Meff, F)
+        return np.concatenate([v, a, zdot])
+
+    N = t.size
+    q = np.empty((r, N))
+    zs = np.empty((ne, N))
+    y = np.zeros(2 * r + ne)
+    if v0 is not None:
+        y[r:2 * r] = v0
+    nfev = 0
+    start = 0
+    q[:, 0], zs[:, 0] = y[:r], y[2 * r:]
+    while start < N - 1:
+        stop = min(N - 1, start + SPAN)
+        sol = scipy.integrate.solve_ivp(rhs, (t[start], t[stop]), y, method=method, t_eval=t[start:stop + 1],
+                                        rtol=rtol, atol=_atol(r, ne),
+                                        jac=None if ne else (lambda tt, yy: jac))
+        if sol.status < 0:
+            raise RuntimeError(f"the {method} integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+        q[:, start:stop + 1] = sol.y[:r]
+        zs[:, start:stop + 1] = sol.y[2 * r:]
+        y = sol.y[:, -1]
+        nfev += sol.nfev
+        start = stop
+    return q, zs, nfev
+
+
+def _atol(r: int, ne: int) -> np.ndarray:
+    # absolute floors far below any angle (1e-10 rad) or speed (1e-7 rad/s) a result is read to
+    return np.concatenate([np.full(r, 1e-10), np.full(r, 1e-7), np.full(ne, 1e-10)])
