@@ -125,6 +125,20 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
         assert res.safety[1, 2 + j] == pytest.approx(dw / sv, rel=1e-9)
     assert section_modulus_factor(0.048, 0.0) == pytest.approx(0.048 / (math.pi * 0.048**4), rel=1e-15)
     assert res.labels[res.governing] in (f.label for f in fillets)
+    # [limits] additional_bending_pa: M53's σ_add joins the fillets' alternating bending,
+    # σ_V = √((σ_B + σ_add)² + 3τ²); the oil bores' equivalent has no such term
+    from dataclasses import replace
+
+    added = replace(crank, limits=replace(crank.limits, additional_bending=10e6))
+    res2 = run_assessment(added, _cycle(bending, torque, fillets, my), fillets, scf, "iacs-m53")
+    for j, f in enumerate(fillets):
+        w = f.diameter / (math.pi * (f.diameter**4 - f.bore**4))
+        sa = scf[f"{f.kind}_bending"] * 0.5 * np.ptp(32 * w * bending[1, j])
+        ta = scf[f.kind] * 0.5 * np.ptp(16 * w * torque[1, j])
+        r = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
+        dw = m53_fatigue_strength(mat.tensile_strength, f.diameter, r, mat.process, f"{f.kind}-fillet")
+        assert res2.safety[1, j] == pytest.approx(dw / math.sqrt((sa + 10e6) ** 2 + 3 * ta**2), rel=1e-9)
+    np.testing.assert_array_equal(res2.safety[:, 2:], res.safety[:, 2:])
     for name, ax in (("haigh", res.haigh()), ("safety", res.plot())):  # the report's pictures show something
         ax.figure.savefig(tmp_path / f"{name}.png")
         assert_picture(tmp_path / f"{name}.png")

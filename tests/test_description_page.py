@@ -68,7 +68,8 @@ def _every_option(raw: dict) -> dict:
         {"type": "tuned", "ring_inertia_kgm2": 6e-3, "stiffness_nm_per_rad": 3e4, "damping_nms_per_rad": 1.0},
     ]
     raw["limits"] = {"fatigue_strength_shear_pa": 2.3e8, "safety_factor": 2.0, "transient_shear_pa": 2.3e8,
-                     "fatigue_strength_bending_pa": 4e8, "fatigue_required_safety": 1.2, "source": "test"}
+                     "fatigue_strength_bending_pa": 4e8, "fatigue_required_safety": 1.2, "additional_bending_pa": 1e7,
+                     "source": "test"}
     ex = raw["excitation"]
     for key in ("pressure_csv", "imep_pa", "peak_pressure_pa"):
         ex.pop(key, None)

@@ -779,7 +779,7 @@ def _dynamic_table(t: Table) -> tuple[tuple, dict]:
 
 
 #: ``[limits]`` keys of the fatigue assessment's own strength and margin (opt-in overrides).
-FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety")
+FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety", "additional_bending_pa")
 
 
 def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
@@ -789,7 +789,8 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     ``transient_torque_nm``; the only kind for a chain file, which has no sections). ``source``
     (required) says where the numbers come from. Optional for a crank: ``fatigue_strength_bending_pa``
     (the crank's alternating bending fatigue strength as built, against local stresses, replacing
-    the fatigue assessment's own) and ``fatigue_required_safety``."""
+    the fatigue assessment's own), ``fatigue_required_safety`` and ``additional_bending_pa`` (M53's σ_add
+    at the fillets)."""
     if "limits" not in root.data:
         return None
     t = root.table("limits")
@@ -828,7 +829,8 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     # crank's throws, a supplier's figure): opt-in keys of their own, so that the shear limits'
     # polished-specimen strength never silently replaces the assessment's.
     lim = replace(lim, fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
-                  fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True))
+                  fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True),
+                  additional_bending=t.number("additional_bending_pa", 0.0, nonnegative=True))
     if 0 < lim.fatigue_required_safety < 1.0:
         t.problems.append(Problem(f"{t.path}.fatigue_required_safety", lim.fatigue_required_safety,
                                   "must be >= 1 (a safety factor)"))

@@ -278,6 +278,9 @@ LIMITS = Section("limits", "What `fetorsion run`'s verdict checks: the worst vib
           "of its throws, a supplier's figure), against local stresses (SCF × nominal), Pa: replaces the fatigue "
           "assessment's own (M53's σ_DW; the textbook's S_e, then with the full K_t)", ">= 0; optional "
           "(0: the method's own)"),
+    Field("additional_bending_pa", "IACS UR M53's additional bending stress σ_add at the fillets (misalignment, "
+          "bedplate deformation, axial and bending vibration), Pa: added to the fillets' alternating bending "
+          "stress by the M53 assessment; default 0 (not applied: give your class society's value)", ">= 0; optional"),
     Field("fatigue_required_safety", "the fatigue assessment's required safety", ">= 1; optional (default the "
           "method's: M53 1.15)"),
     Field("source", "where every number of the table comes from", "required, not empty"),

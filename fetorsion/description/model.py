@@ -308,6 +308,10 @@ class Limits:
     fatigue_strength_bending: float = 0.0
     #: The fatigue assessment's required safety, when > 0 (else the method's own).
     fatigue_required_safety: float = 0.0
+    #: [IACSM53] §4's additional bending stress σ_add at the fillets (misalignment, bedplate
+    #: deformation, axial and bending vibration), Pa, added to the fillets' alternating bending by
+    #: the M53 path; 0 unless stated (the value is the class society's, or the user's own analysis)
+    additional_bending: float = 0.0
 
     @property
     def kind(self) -> str:

@@ -250,15 +250,17 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
     t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
     where = list(zip(labels, kinds, diameters, radii, kts))
+    # M53's σ_add loads the fillets only; the rule's oil-bore equivalent has no such term
+    add = [getattr(crank.limits, "additional_bending", 0.0) if kind != "oil-bore" else 0.0 for kind in kinds]
     safety = np.empty(sigma.shape[:2])
     for s in range(sigma.shape[0]):
         locs = [LocationStress(lb, kind, d, r, s_alt[s, j], t_alt[s, j], s_mean[s, j], t_mean[s, j],
-                               kt_bending=kb, kt_torsion=kt)
+                               kt_bending=kb, kt_torsion=kt, additional_bending=add[j])
                 for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
         safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required, limits=crank.limits).locations]
     worst_speed = np.argmin(safety, axis=0)
     locs = [LocationStress.from_history(lb, kind, d, r, sigma[worst_speed[j], j], tau[worst_speed[j], j],
-                                        kt_bending=kb, kt_torsion=kt)
+                                        kt_bending=kb, kt_torsion=kt, additional_bending=add[j])
             for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
     worst = run_fatigue(locs, crank.material, method, required, limits=crank.limits)
     stresses = [{"bending_alt": kb * loc.bending_alt, "bending_mean": kb * loc.bending_mean,
@@ -269,6 +271,11 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
                                            for a, st in zip(worst.locations, stresses)))
     notes = [f"local stresses: nominal section stresses × SCF (bending {kts[0][0]:.2f} …, torsion {kts[0][1]:.2f} …)"]
+    if method == "iacs-m53":
+        sigma_add = getattr(crank.limits, "additional_bending", 0.0)
+        notes.append(f"M53's additional bending σ_add {sigma_add / 1e6:g} MPa at the fillets ([limits] additional_bending_pa)"
+                     if sigma_add > 0 else "M53's additional bending σ_add not applied (0): give the class society's "
+                     "value as [limits] additional_bending_pa")
     if missing:
         notes.append(f"oil-bore exits NOT assessed ({', '.join(b.label for b in bores if b.kind in missing)}): "
                      f"no {' or '.join(missing)} oil-bore SCF in {scf.get('source', 'the SCFs given')}")
