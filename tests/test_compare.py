@@ -150,3 +150,51 @@ def test_compare_writes_the_models_predictions_as_a_universal_file(tmp_path):
     assert len(model_frfs) == 2
     fit = run_modal_fit(model_frfs, (0.85 * exact[0], 1.15 * exact[0]))  # inside the written band (±20 %)
     assert fit.frequencies_hz[0] == pytest.approx(lumped(crank, 17).frequencies_hz[0], rel=1e-3)
+
+
+def test_waterfall_marks_the_model_crossings_on_the_measured_order_map(tmp_path):
+    """A run-up's order map whose order 6 resonates (a damped single-mode curve) at the chain's
+    mode-1 crossing 60 f1 / 6: every crossing listed lies on its order at 60 f / k of one of the
+    chain's frequencies (1e-12: the same arithmetic, no solver between), all of the chain's
+    crossings inside the speeds are there, the line names the measured peak at the crossing,
+    and the map is drawn."""
+    from conftest import assert_picture
+    from fetorsion.lumped_model.lumped import lumped
+    from fetorsion.measured.torsiograph import OrderTrack
+    from fetorsion.studies.comparison import ComparisonResult, waterfall
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    f = np.asarray(lumped(crank, 17).frequencies_hz)
+    rpm = np.linspace(1000.0, 6500.0, 111)
+    orders = np.arange(1, 25) / 2
+    n6 = 60 * f[0] / 6
+    resonance = 1e-3 / np.abs(1 - (rpm / n6) ** 2 + 2j * 0.02 * rpm / n6)  # rad, order 6 only
+    amplitudes = np.full((rpm.size, orders.size), 1e-6, complex)
+    amplitudes[:, int(np.flatnonzero(orders == 6.0)[0])] = resonance
+    w = waterfall("run-up.csv: pulley", OrderTrack("pulley", rpm, orders, amplitudes), crank)
+    for m, k, n in w.crossings:
+        assert n * k / 60 == pytest.approx(f[m - 1], rel=1e-12) and rpm[0] <= n <= rpm[-1]
+    assert sorted(n for m, k, n in w.crossings if k == 6.0) == pytest.approx(sorted(
+        60 * x / 6 for x in f if rpm[0] <= 60 * x / 6 <= rpm[-1]), rel=1e-12)
+    b = int(np.argmin(np.abs(rpm - n6)))
+    assert f"mode 1 x order 6 at {n6:.0f} rpm (measured {np.degrees(resonance[b]):.3g} deg" in w.lines()[0]
+    fig = ComparisonResult(crank.name, waterfalls=[w]).plot()
+    fig.savefig(tmp_path / "w.png")
+    assert_picture(tmp_path / "w.png")
+
+
+def test_compare_with_a_tooth_edge_file_adds_its_waterfall(tmp_path):
+    """`fetorsion compare` with a torsiograph record: the JSON carries the record's order map, and
+    its order 2 is the vibration put into the edges (2 mrad, within 1 %: the order-tracking's own
+    tested accuracy)."""
+    from test_measured import sines, wheel
+
+    speed = 3000 * np.pi / 30
+    theta, dtheta = sines(speed, [(2e-3, 2.0, 0.3)])
+    t = wheel(theta, dtheta, 60, 40, np.zeros(60), speed, np.random.default_rng(3))
+    (tmp_path / "edges.csv").write_text("# unit = s\npulley\n" + "".join(f"{x:.12e}\n" for x in t))
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), str(tmp_path / "edges.csv"), "--teeth", "60",
+                 "--json", str(tmp_path / "c.json")]) == 0
+    w = json.loads((tmp_path / "c.json").read_text())["waterfalls"][0]
+    k = w["track"]["orders"].index(2.0)
+    assert np.radians(np.array(w["track"]["amplitude_deg"])[:, k]) == pytest.approx(2e-3, rel=0.01)

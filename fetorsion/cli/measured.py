@@ -42,7 +42,7 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
     kinds = [_measured_kind(m, teeth) for m in paths]
     if band is not None and not 0 <= band[0] < band[1]:
         raise FetorsionError(f"--band {band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
-    frfs, cuts = [], []
+    frfs, cuts, tracks = [], [], []
     for path, kind in zip(paths, kinds):
         if kind == "uff":
             functions = read_uff58(path)
@@ -56,11 +56,12 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
             for channel, track in res.tracks.items():
                 for k in track_orders:
                     cuts.append(track_order_cut(track, k, f"{Path(path).name}: {channel}"))
+                tracks.append((f"{Path(path).name}: {channel}", track))
     if frfs and band is None:
         raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
     if not (frfs or cuts):
         raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
-    return {"frfs": frfs, "cuts": cuts, "band": None if band is None else tuple(band)}
+    return {"frfs": frfs, "cuts": cuts, "tracks": tracks, "band": None if band is None else tuple(band)}
 
 
 def check_measured(crank, measured: dict, station: str | None) -> None:

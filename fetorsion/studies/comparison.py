@@ -13,6 +13,11 @@ angle at the station the sensor sat on (default the pulley end, where a torsiogr
 sits), on the forced response of the lumped chain. Compared are the peaks (amplitude in %,
 speed in rpm) and, over the speeds both cover, the model's amplitude interpolated to each
 measured speed.
+
+Waterfall: a torsiograph's every tracked order against mean speed (the measurement's own Campbell
+diagram, as an order map), with the model's crossings on it: mode n meets order k at
+60 f_n / k rpm, f_n the lumped chain's natural frequencies (the model of the order cuts). A
+resonance the model places right lights up where its crossing is marked.
 """
 
 from __future__ import annotations
@@ -25,6 +30,8 @@ from ..errors import FetorsionError
 
 #: Model sources for the natural frequencies.
 FREQUENCY_SOURCES = ("lumped17", "fe")
+#: Crossings a waterfall's summary line quotes (those the measurement responds to most).
+WATERFALL_LINES = 4
 
 
 @dataclass
@@ -133,16 +140,93 @@ class OrderCutComparison:
 
 
 @dataclass
+class Waterfall:
+    """A torsiograph track's order map and the model's crossings on it.
+
+    Attributes
+    ----------
+    name : str
+        The file and channel.
+    track : OrderTrack
+        Every tracked order per block (:class:`~fetorsion.measured.torsiograph.OrderTrack`).
+    model_hz : ndarray
+        The model's natural frequencies, Hz.
+    crossings : list of (int, float, float)
+        (mode number from 1, order, rpm) of every crossing inside the track's speeds and orders.
+    """
+
+    name: str
+    track: object
+    model_hz: np.ndarray
+    crossings: list
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "track": self.track.to_dict(), "model_hz": self.model_hz.tolist(),
+                "crossings": [{"mode": m, "order": k, "rpm": n} for m, k, n in self.crossings]}
+
+    def lines(self, count: int = WATERFALL_LINES) -> list[str]:
+        """One line: how many crossings, and the ``count`` the measurement responds to most."""
+        near = []
+        for m, k, n in self.crossings:
+            b = int(np.argmin(np.abs(self.track.rpm - n)))
+            a = float(np.degrees(abs(self.track.at(k)[b])))
+            near.append((a, f"mode {m} x order {k:g} at {n:.0f} rpm (measured {a:.3g} deg at {self.track.rpm[b]:.0f} rpm)"))
+        near = [text for _, text in sorted(near, key=lambda x: -x[0])[:count]]
+        return [f"- waterfall {self.name}: {len(self.crossings)} model crossing(s) in the measured speeds and orders"
+                + ("; the strongest measured: " + "; ".join(near) if near else "")]
+
+    def plot(self, ax):
+        """The order map (amplitude in deg, logarithmic colours) with the crossings marked."""
+        from matplotlib.colors import LogNorm
+
+        order = np.argsort(self.track.rpm)
+        amp = np.degrees(np.abs(self.track.amplitudes[order]))
+        positive = amp[amp > 0]
+        low = max(positive.max() * 1e-4, positive.min()) if positive.size else 1e-12
+        mesh = ax.pcolormesh(self.track.rpm[order], self.track.orders, np.maximum(amp, low).T, shading="nearest",
+                             norm=LogNorm(vmin=low, vmax=max(low * 10, amp.max())), cmap="viridis")
+        ax.figure.colorbar(mesh, ax=ax, label="vibration [deg]")
+        for m, k, n in self.crossings:
+            ax.plot(n, k, "o", mfc="none", mec="w", ms=7)
+            ax.annotate(f"{m}", (n, k), color="w", fontsize=7, xytext=(4, 3), textcoords="offset points")
+        ax.set_xlabel("mean speed [rpm]")
+        ax.set_ylabel("order")
+        ax.set_title(f"{self.name}: measured order map, model crossings (o: mode number)", fontsize=9)
+
+
+def model_crossings(model_hz, orders, rpm) -> list:
+    """(mode from 1, order, rpm) where each natural frequency meets each order, 60 f / k rpm, kept
+    inside the span of ``rpm``."""
+    lo, hi = float(np.min(rpm)), float(np.max(rpm))
+    out = []
+    for m, f in enumerate(np.asarray(model_hz, float), start=1):
+        for k in np.asarray(orders, float):
+            n = 60.0 * f / k
+            if lo <= n <= hi:
+                out.append((m, float(k), float(n)))
+    return out
+
+
+def waterfall(name: str, track, crank) -> Waterfall:
+    """A torsiograph track (:class:`~fetorsion.measured.torsiograph.OrderTrack`) with the crossings
+    of ``crank``'s lumped chain (the model of the order cuts)."""
+    f, _ = model_frequencies(crank, "lumped17")
+    return Waterfall(name, track, f, model_crossings(f, track.orders, track.rpm))
+
+
+@dataclass
 class ComparisonResult:
     """The model against every measured quantity given."""
 
     name: str
     frequencies: list = field(default_factory=list)
     order_cuts: list = field(default_factory=list)
+    waterfalls: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return {"name": self.name, "frequencies": [f.to_dict() for f in self.frequencies],
-                "order_cuts": [c.to_dict() for c in self.order_cuts]}
+                "order_cuts": [c.to_dict() for c in self.order_cuts],
+                "waterfalls": [w.to_dict() for w in self.waterfalls]}
 
     def table(self) -> str:
         lines = [f"{self.name}: model against measurement"]
@@ -150,6 +234,8 @@ class ComparisonResult:
             lines += f.lines()
         for c in self.order_cuts:
             lines += c.lines()
+        for w in self.waterfalls:
+            lines += w.lines()
         return "\n".join(lines)
 
     def plot(self):
@@ -157,7 +243,7 @@ class ComparisonResult:
         order cut (measured points, model line). Returns the Figure."""
         import matplotlib.pyplot as plt
 
-        n = len(self.frequencies) + len(self.order_cuts)
+        n = len(self.frequencies) + len(self.order_cuts) + len(self.waterfalls)
         if n == 0:
             raise FetorsionError("compare: nothing measured to plot")
         fig, axes = plt.subplots(n, 1, figsize=(7, 3.2 * n), squeeze=False)
@@ -179,6 +265,9 @@ class ComparisonResult:
             ax.set_xlabel("engine speed [rpm]")
             ax.set_ylabel(f"order {c.order:g} at {c.station} [deg]")
             ax.legend(fontsize=7)
+            k += 1
+        for w in self.waterfalls:
+            w.plot(axes[k, 0])
             k += 1
         fig.suptitle(f"{self.name}: model against measurement", fontsize=10)
         fig.tight_layout()
@@ -297,6 +386,7 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
 
         response = run_response(crank)
         out.order_cuts += [compare_order_cut(c, response, station) for c in measured["cuts"]]
+    out.waterfalls += [waterfall(name, track, crank) for name, track in measured.get("tracks", ())]
     return out
 
 
