@@ -229,6 +229,11 @@ class CondensedCrank:
     #: Static centrifugal load of the crank's own mass per unit Ω², (r,):
     #: order 0 in the rotating frame (the mean load cycle adds Ω² times it); None without.
     centrifugal: np.ndarray | None = field(default=None, repr=False)
+    #: support -> every mode of the reduced model in it (reduced_modes' output): a run asks for the
+    #: bearings' modes a dozen times (Campbell, response setup, film, dampers, fatigue), each a dense
+    #: generalised eigenproblem of the whole reduced size. Not an init field, so dataclasses.replace
+    #: (other bearings) starts with an empty one.
+    _modes: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     @property
     def n_master_dofs(self) -> int:
@@ -248,8 +253,9 @@ class CondensedCrank:
 
     def modes(self, support: str = "bearings", count: int | None = None) -> CondensedModes:
         """Elastic modes of the reduced model in ``support`` (all of them unless ``count``)."""
-        Dk, Dm, held = self.support_terms(support)
-        w2, V, keep = reduced_modes(self.reduced, Dk, Dm, held)
+        if support not in self._modes:
+            self._modes[support] = reduced_modes(self.reduced, *self.support_terms(support))
+        w2, V, keep = self._modes[support]
         scale = max(float(np.abs(w2).max()), 1.0)
         free = int((np.abs(w2) < 1e-8 * scale).sum())
         w2, V = w2[free:], V[:, free:]
