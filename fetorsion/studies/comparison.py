@@ -55,6 +55,11 @@ class FrequencyComparison:
     damping_ratios: np.ndarray
     model_hz: np.ndarray
     model_kinds: list
+    #: MAC of each fitted shape with its paired model mode at the measured stations (a measured
+    #: response node n is the chain's station n), or None where the shapes cannot be set side by side
+    mac: np.ndarray | None = None
+    #: Why there is no MAC, when there is none
+    mac_note: str = ""
 
     @property
     def difference_percent(self) -> np.ndarray:
@@ -63,25 +68,71 @@ class FrequencyComparison:
     def to_dict(self) -> dict:
         return {"source": self.source, "measured_hz": self.measured_hz.tolist(),
                 "damping_ratios": self.damping_ratios.tolist(), "model_hz": self.model_hz.tolist(),
-                "model_kinds": list(self.model_kinds), "difference_percent": self.difference_percent.tolist()}
+                "model_kinds": list(self.model_kinds), "difference_percent": self.difference_percent.tolist(),
+                "mac": None if self.mac is None else self.mac.tolist(), "mac_note": self.mac_note}
 
     def lines(self) -> list[str]:
         out = [f"natural frequencies: measured (fitted modes) against the nearest mode of the {self.source} model",
-               f"{'mode':>4} {'measured [Hz]':>13} {'zeta [%]':>8} {'model [Hz]':>10} {'kind':>10} {'diff [%]':>8}"]
-        out += [f"{j + 1:4d} {m:13.2f} {100 * z:8.3f} {f:10.2f} {k:>10} {d:+8.2f}" for j, (m, z, f, k, d) in
-                enumerate(zip(self.measured_hz, self.damping_ratios, self.model_hz, self.model_kinds,
-                              self.difference_percent))]
+               f"{'mode':>4} {'measured [Hz]':>13} {'zeta [%]':>8} {'model [Hz]':>10} {'kind':>10} {'diff [%]':>8}"
+               + (f" {'MAC':>6}" if self.mac is not None else "")]
+        macs = self.mac if self.mac is not None else (None,) * len(self.measured_hz)
+        out += [f"{j + 1:4d} {m:13.2f} {100 * z:8.3f} {f:10.2f} {k:>10} {d:+8.2f}" + ("" if c is None else f" {c:6.3f}")
+                for j, (m, z, f, k, d, c) in enumerate(zip(self.measured_hz, self.damping_ratios, self.model_hz,
+                                                            self.model_kinds, self.difference_percent, macs))]
+        if self.mac_note:
+            out.append(f"(no MAC: {self.mac_note})")
         return out
 
 
 def pair_frequencies(measured_hz, model_hz, model_kinds=None) -> tuple[np.ndarray, list]:
     """The nearest model frequency (and its kind) to each measured one."""
+    j = nearest_modes(measured_hz, model_hz)
+    kinds = list(model_kinds) if model_kinds is not None else ["torsional"] * len(model_hz)
+    return np.asarray(model_hz, float)[j], [kinds[i] for i in j]
+
+
+def nearest_modes(measured_hz, model_hz) -> np.ndarray:
+    """Index of the nearest model frequency to each measured one."""
     measured_hz, model_hz = np.asarray(measured_hz, float), np.asarray(model_hz, float)
     if model_hz.size == 0:
         raise FetorsionError("compare: the model has no elastic mode to pair the measured frequencies with")
-    kinds = list(model_kinds) if model_kinds is not None else ["torsional"] * model_hz.size
-    j = np.argmin(np.abs(model_hz[None, :] - measured_hz[:, None]), axis=1)
-    return model_hz[j], [kinds[i] for i in j]
+    return np.argmin(np.abs(model_hz[None, :] - measured_hz[:, None]), axis=1)
+
+
+def paired_mac(estimate, model_shapes: np.ndarray, paired: np.ndarray) -> tuple[np.ndarray | None, str]:
+    """MAC of each fitted shape of ``estimate`` with its paired model shape, at the measured stations.
+
+    A measured response node n is the model's station n (1-based, the chain's order from the
+    pulley end), as the model's own receptances are written (:func:`model_predictions`).
+
+    Parameters
+    ----------
+    estimate : ModalEstimate
+        Fitted modes, ``shapes`` (stations, modes) at ``stations`` ((node, direction), ...).
+    model_shapes : ndarray, shape (modes, model stations)
+        The model's mode shapes, row j that of model mode j.
+    paired : ndarray of int
+        The model mode paired with each fitted mode.
+
+    Returns
+    -------
+    mac : ndarray (fitted modes,) or None
+        None when fewer than two stations were measured (a MAC of one component is 1 whatever
+        the shapes) or a node is not a model station.
+    note : str
+        Why there is no MAC, else empty.
+    """
+    from ..measured.modal import mac
+
+    nodes = [int(n) for n, _ in estimate.stations]
+    if len(set(nodes)) < 2:
+        return None, "shapes measured at fewer than two stations"
+    stations = model_shapes.shape[1]
+    outside = [n for n in nodes if not 1 <= n <= stations]
+    if outside:
+        return None, f"measured node {outside[0]} is not one of the model's stations 1-{stations}"
+    model = model_shapes[np.ix_(paired, np.asarray(nodes) - 1)].T  # (measured stations, fitted modes)
+    return np.array([mac(estimate.shapes[:, i], model[:, i]) for i in range(len(paired))]), ""
 
 
 @dataclass
@@ -294,8 +345,14 @@ def compare_frequencies(estimate, crank, source: str = "lumped17") -> FrequencyC
     with the model's."""
     f, kinds = model_frequencies(crank, source)
     model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
+    values, note = None, "mode shapes are set beside the lumped chain's only (source lumped17)"
+    if source == "lumped17":
+        from ..lumped_model.lumped import lumped
+
+        values, note = paired_mac(estimate, np.asarray(lumped(crank, 17).mode_shapes),
+                                  nearest_modes(estimate.frequencies_hz, f))
     return FrequencyComparison(source, np.asarray(estimate.frequencies_hz, float),
-                               np.asarray(estimate.damping_ratios, float), model_hz, model_kinds)
+                               np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
 
 def station_index(response, station: str | None) -> tuple[int, str]:
