@@ -30,10 +30,13 @@ Measured modes are matched to the model's by order: the k frequencies given are 
 elastic torsional modes of the free-free lumped chain, in ascending order. A modal test whose
 lowest mode was not measured must leave the calibration out, or give every mode below it.
 
-Each input moves every entry of its field (and every member of its group) by the same fraction
-of its range from the file's own value, so that the nominal point is the description as written
-even where a ``*`` field's entries differ; the value reported is the first member's mean, as in
-:mod:`.sampling`.
+An input's coordinate x runs over its first member's range [a, b] (its nominal x0: the mean of a
+``*`` field's entries in the file). Every entry it moves (each entry of a ``*`` field, each member
+of a group) follows x by the map through (a, x0, b) -> (its low, its own value in the file, its
+high), linear on each side of x0: at x0 the description is the file as written, even where a
+``*`` field's entries differ (a nose of two steps) or a group's members sit at different places in
+their ranges (E and density of a steel between the bounds of a cast iron and a steel); at the
+bounds every entry is at its bound, as in :mod:`.sampling`; and no entry ever leaves its range.
 """
 
 from __future__ import annotations
@@ -92,10 +95,9 @@ class CalibrationInput:
         The ``[uncertainty]`` entry.
     nominal, low, high : float
         The first member's value in the file (mean of a ``*`` field's entries) and range, file units.
-    entries : tuple of (str, float, float)
-        Every concrete field (``webs.3.thickness``) it moves: its value in the file and its change
-        per unit change of the first member (its own range over the first member's, times its
-        value over its field's mean where a ``*`` field's entries differ).
+    entries : tuple of (str, float, float, float)
+        Every concrete field (``webs.3.thickness``) it moves: its value in the file and its
+        member's range (low, high).
     distribution : str
         ``uniform``, ``triangular`` (peak at the nominal) or ``normal`` (truncated to the range).
     sd : float or None
@@ -111,8 +113,17 @@ class CalibrationInput:
     sd: float | None = None
 
     def values(self, x: float) -> dict[str, float]:
-        """Every concrete field's value with the input at ``x`` (file units)."""
-        return {path: v0 + (x - self.nominal) * scale for path, v0, scale in self.entries}
+        """Every concrete field's value with the input at ``x`` (file units): the map through
+        (low, nominal, high) -> (its low, its value in the file, its high), linear on each side."""
+        out = {}
+        for path, v0, low, high in self.entries:
+            if x >= self.nominal:
+                t = (x - self.nominal) / (self.high - self.nominal) if self.high > self.nominal else 0.0
+                out[path] = v0 + t * (high - v0)
+            else:
+                t = (self.nominal - x) / (self.nominal - self.low)
+                out[path] = v0 - t * (v0 - low)
+        return out
 
     def prior(self):
         """The prior as a frozen ``scipy.stats`` distribution over [low, high]."""
@@ -165,12 +176,7 @@ def calibration_inputs(crank: Crank, names=None) -> list[CalibrationInput]:
         (path0, lo, hi) = s.members[0]
         entries = []
         for path, low, high in s.members:
-            scale = (high - low) / (hi - lo)
-            found = [(where, float(v)) for where, v in resolve_field(crank.raw, path)]
-            mean = sum(v for _, v in found) / len(found)
-            # Entries that differ (a nose of two steps) keep their proportions: each moves by its
-            # share of the member's mean, so none is pushed through zero by a shift sized for the mean.
-            entries += [(where, v, scale * v / mean if mean else scale) for where, v in found]
+            entries += [(where, float(v), float(low), float(high)) for where, v in resolve_field(crank.raw, path)]
         out.append(CalibrationInput(s.name, float(s.nominal), float(lo), float(hi), tuple(entries),
                                     s.distribution, s.sd))
     return out
