@@ -149,9 +149,13 @@ def _calibration_frequencies(args) -> list[float] | None:
     """The measured frequencies: typed (``--measured-hz``), or None when they come from the FRFs
     of ``--measured`` files (fitted after every other check)."""
     if args.measured_hz is not None:
+        if args.band is not None:
+            raise FetorsionError("--band goes with --measured (the FRFs' modes are fitted in it), not with --measured-hz")
         return list(args.measured_hz)
     for m in args.measured:
-        if _measured_kind(m, None) != "uff":
+        if not Path(m).is_file():
+            raise FetorsionError(f"--measured {m}: no such file")
+        if Path(m).suffix.lower() not in UFF_SUFFIXES:
             raise FetorsionError(f"--measured {m}: give a universal file of FRFs ({', '.join(UFF_SUFFIXES)}); "
                                  "the modes fitted in --band are the measured frequencies")
     if args.band is None:

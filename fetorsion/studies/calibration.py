@@ -648,6 +648,7 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
     Posterior
     """
     import emcee
+    from scipy.special import expit
 
     m, d = measured_hz.size, len(inputs)
     priors = [i.prior() for i in inputs]
@@ -659,7 +660,7 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
     def log_prob(z):
         # The walkers move in z = logit of each input's place in its range: unbounded, so that no
         # proposal falls outside a range; the prior density carries the Jacobian dx/dz.
-        t = 1.0 / (1.0 + np.exp(-z))
+        t = expit(z)
         x = lo + width * t
         if np.any(t <= 0) or np.any(t >= 1):
             return -np.inf, np.full(model.modes, np.nan)
@@ -690,7 +691,7 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
     sampler.random_state = np.random.RandomState(seed).get_state()
     t0 = (p0 - lo) / width
     sampler.run_mcmc(np.log(t0 / (1 - t0)), burn + steps, progress=False)
-    chain = lo + width / (1.0 + np.exp(-sampler.get_chain(discard=burn, flat=True)))
+    chain = lo + width * expit(sampler.get_chain(discard=burn, flat=True))
     blobs = sampler.get_blobs(discard=burn, flat=True)["f"]
     tau = sampler.get_autocorr_time(discard=burn, quiet=True, tol=0)
     return Posterior(chain, np.asarray(blobs, float), float(np.mean(sampler.acceptance_fraction)),
