@@ -429,6 +429,8 @@ class CalibrationResult:
     # -- the results protocol
 
     def to_dict(self) -> dict:
+        """JSON-ready: the inputs' and predictions' rows, the settings and the sampler's diagnostics
+        (frequencies in Hz, inputs in file units)."""
         out = {"name": self.name, "source": self.source, "model": self.model, "method": self.method,
                "measured_hz": self.measured_hz.tolist(), "sigma_hz": self.sigma_hz.tolist(),
                "matching": "by order: the measured frequencies are the lowest elastic modes, ascending",
@@ -447,6 +449,8 @@ class CalibrationResult:
         return out
 
     def table(self) -> str:
+        """Plain text: each input (nominal, range, estimate, posterior interval, identified) and
+        each natural frequency (measured, nominal, calibrated, band)."""
         lines = [f"{self.name}: calibrated to measured natural frequencies ({self.model}, {self.method})",
                  "measured modes matched by order to the model's lowest elastic modes"]
         head = f"{'input':<30} {'nominal':>10} {'range':>19}"
