@@ -68,12 +68,13 @@ IDENTIFIED_RATIO = 0.5
 PREDICTED_MODES = 4
 #: Posterior and prior interval reported: 5-95 %.
 CREDIBLE_PERCENT = (5.0, 95.0)
-#: The ensemble's default size and length: 32 walkers (at least 2 per input plus 2), 600 steps
-#: kept after 200 of burn-in (the Renault 21's 15 inputs: autocorrelation time ~45 steps, so
-#: ~13 per walker, ~400 independent samples for the 5-95 % intervals; ~25 000 model runs).
+#: The ensemble's default size and length: 32 walkers (at least 2 per input plus 2), 500 steps
+#: kept after 150 of burn-in: on the Renault 21's 15 inputs the autocorrelation time was 35-45
+#: steps, so 11-14 per walker, ~400 independent samples for the 5-95 % intervals, in ~21 000
+#: model runs (35-50 s on this project's 2 shared cores).
 DEFAULT_WALKERS = 32
-DEFAULT_STEPS = 600
-DEFAULT_BURN = 200
+DEFAULT_STEPS = 500
+DEFAULT_BURN = 150
 #: Share of differential-evolution moves; the rest are its snooker variant (emcee's example mix).
 DE_SHARE = 0.8
 #: Fewest steps kept: an autocorrelation time cannot be estimated from fewer.
