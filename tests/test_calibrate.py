@@ -93,6 +93,15 @@ def test_inputs_reproduce_the_file_at_nominal_and_stay_in_their_ranges():
         assert all(v == resolve_field(crank.raw, p)[0][1] for p, v in at_nominal.items()), inp.name
         for x, k in ((inp.low, 2), (inp.high, 3)):
             assert all(v == pytest.approx(e[k]) for (p, v), e in zip(inp.values(x).items(), inp.entries))
+    # The calibration's own variant (it copies only the changed tables) is with_values' crank.
+    from fetorsion.studies.calibration import variant
+
+    changes = {}
+    for inp in calibration_inputs(crank):
+        changes.update(inp.values(inp.low + 0.3 * (inp.high - inp.low)))
+    assert np.array_equal(fetorsion.lumped(variant(crank, changes)).frequencies_hz,
+                          fetorsion.lumped(with_values(crank, changes)).frequencies_hz)
+    assert crank.raw["webs"][0]["thickness"] == 22.0  # the nominal description untouched
 
 
 def test_calibrated_file_is_new_commented_and_reads_back(tmp_path, capsys):

@@ -17,8 +17,9 @@ Two paths over the same inputs, prior and model:
   ensemble sampler [Emcee] [Goodman]: the prior is each input's ``[uncertainty]`` range, uniform,
   or its ``[distributions]`` entry (triangular or truncated normal); the likelihood is Gaussian,
   independent per mode, of standard deviation σ_j (measurement and model error together). The
-  walkers start from the Laplace approximation around the least-squares estimate, clipped to the
-  ranges; a burn-in is discarded; the seed is fixed, so a run is reproducible.
+  walkers move in the logit of each input's place in its range with differential-evolution moves
+  [TerBraak], starting from the Laplace approximation around the least-squares estimate truncated
+  to the ranges; a burn-in is discarded; the seed is fixed, so a run is reproducible.
 
   An input is **identified** when its posterior 5–95 % interval is narrower than half its prior
   5–95 % interval (:data:`IDENTIFIED_RATIO`): the data have at least halved the range it may take.
@@ -881,7 +882,6 @@ def write_calibrated(result: CalibrationResult, out, force: bool = False):
     dict
         Every concrete field changed and its value (file units), as read back from ``out``.
     """
-    import os
     import tomllib
     from pathlib import Path
 
@@ -898,8 +898,6 @@ def write_calibrated(result: CalibrationResult, out, force: bool = False):
     if back != fields:
         raise FetorsionError(f"calibrate: the calibrated description would read back other values: {back}")
     write_text_atomic(out, text)
-    if os.path.samefile(out, src):  # pragma: no cover - refused above
-        raise FetorsionError(f"calibrate: {out} is the original description")
     return back
 
 
