@@ -549,6 +549,7 @@ CASES = [
      ["--walkers", "at least"]),
     ("calibrate-steps-few", "calibrate {d}/crank.toml --measured-hz 530 --steps 10", {}, 2, ["--steps", "at least"]),
     ("calibrate-model-fe", "calibrate {d}/crank.toml --measured-hz 530 --model fe", {}, 2, ["--model"]),
+    ("calibrate-stiffness-fe", "calibrate {d}/crank.toml --measured-hz 530 --stiffness fe", {}, 2, ["--stiffness", "fe"]),
     ("calibrate-method", "calibrate {d}/crank.toml --measured-hz 530 --method mcmc", {}, 2, ["--method", "mcmc"]),
     ("calibrate-chain", "calibrate {d}/chain.toml --measured-hz 530", {}, 2, ["chain.toml", "chain file"]),
     ("calibrate-out-is-input", "calibrate {d}/crank.toml --measured-hz 530 --out {d}/crank.toml --force", {}, 2,

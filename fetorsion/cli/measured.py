@@ -225,9 +225,8 @@ def cmd_calibrate(args) -> int:
 
 def add_calibrate_parser(sub) -> None:
     from ..description.defaults import DEFAULT_WEB_METHOD
-    from ..studies.calibration import (CALIBRATION_MODELS, DEFAULT_BURN, DEFAULT_SIGMA_PERCENT, DEFAULT_STEPS,
-                                       DEFAULT_WALKERS, IDENTIFIED_RATIO, METHODS)
-    from ..webs.methods import WEB_METHODS
+    from ..studies.calibration import (CALIBRATION_MODELS, CALIBRATION_STIFFNESS, DEFAULT_BURN, DEFAULT_SIGMA_PERCENT,
+                                       DEFAULT_STEPS, DEFAULT_WALKERS, IDENTIFIED_RATIO, METHODS)
 
     cp = sub.add_parser("calibrate", help="fit the description's [uncertainty] inputs to measured natural frequencies: "
                         "regularised least squares and a Bayesian posterior (MCMC); the calibrated description "
@@ -254,8 +253,9 @@ def add_calibrate_parser(sub) -> None:
     cp.add_argument("--method", choices=METHODS, default="both",
                     help="lsq: regularised least squares; bayes: the MCMC posterior (emcee); both (default)")
     cp.add_argument("--model", choices=CALIBRATION_MODELS, default="lumped17", help="lumped chain (default %(default)s)")
-    cp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD,
-                    help="web stiffness method of the lumped model (default %(default)s)")
+    cp.add_argument("--stiffness", choices=CALIBRATION_STIFFNESS, default=DEFAULT_WEB_METHOD,
+                    help="web stiffness method of the lumped model (default %(default)s; not an FE method, which "
+                         "would mesh every variant)")
     cp.add_argument("--walkers", type=integer(2), metavar="N",
                     help=f"walkers of the ensemble (default {DEFAULT_WALKERS}, at least 2 per input plus 2)")
     cp.add_argument("--steps", type=integer(1), default=DEFAULT_STEPS, metavar="N",
@@ -270,5 +270,5 @@ def add_calibrate_parser(sub) -> None:
                     "(.png, .pdf, .svg)")
     add_json_option(cp)
     cp.set_defaults(func=cmd_calibrate)
-    cp.epilog = (f"An input is reported identified when its posterior 5-95 %% interval is narrower than "
+    cp.epilog = (f"An input is reported identified when its posterior 5-95 % interval is narrower than "
                  f"{IDENTIFIED_RATIO:g} of its prior's.")

@@ -54,9 +54,13 @@ from ..description.model import Crank
 from ..description.reader import resolve_field
 from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
+from ..webs.methods import WEB_METHODS
 from .sampling import study_inputs
 
 METHODS = ("lsq", "bayes", "both")
+#: Web-stiffness methods a calibration can run: not the static FE of each throw (``fe``,
+#: ``fe-held``), which every new variant would mesh and solve again.
+CALIBRATION_STIFFNESS = tuple(sorted(m for m in WEB_METHODS if not m.startswith("fe")))
 #: Models a calibration can run: the lumped chains (the 3D FE is too slow for an MCMC).
 CALIBRATION_MODELS = tuple(f"lumped{d}" for d in PARTITIONS)
 #: Standard deviation of a measured frequency when none is stated, in % of it: the lumped
@@ -732,7 +736,7 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
         Regularised least squares, the MCMC posterior (it starts from the least-squares
         estimate), or both reported.
     stiffness : str
-        Web-stiffness method of the lumped model.
+        Web-stiffness method of the lumped model, one of :data:`CALIBRATION_STIFFNESS` (not the FE ones).
     walkers : int, optional
         Walkers of the ensemble (default 32, at least 2 per input plus 2).
     steps, burn : int
@@ -756,6 +760,9 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
     if method not in METHODS:
         raise ParameterError("method", f"{method}: choose from {', '.join(METHODS)}")
     dof = _partition(model)
+    if stiffness not in CALIBRATION_STIFFNESS:
+        raise ParameterError("stiffness", f"{stiffness}: choose from {', '.join(CALIBRATION_STIFFNESS)} (an FE web "
+                             "method would mesh every one of the calibration's thousands of variants)")
     f_meas, sig = check_measured_hz(measured_hz, sigma_hz, sigma_percent)
     if f_meas.size > dof - 1:
         raise ParameterError("measured_hz", f"{f_meas.size} frequencies: the {dof}-DOF chain has {dof - 1} elastic modes")
