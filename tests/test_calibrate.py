@@ -1,0 +1,173 @@
+"""``fetorsion calibrate``: the description's ``[uncertainty]`` inputs fitted to measured natural
+frequencies, on a "measurement" made by the same lumped model from a known truth, so that what the
+calibration must find is known before it runs."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+
+import numpy as np
+import pytest
+
+import fetorsion
+from conftest import GEOMETRY
+from fetorsion.cli import main
+from fetorsion.studies.calibration import IDENTIFIED_RATIO, calibration_inputs, run_calibration
+from fetorsion.studies.variants import with_values
+
+# The Peugeot GLX crank alone, three inputs moved inside their ranges. They are the best-posed
+# three of its inputs for four frequencies (the largest smallest singular value of the normalised
+# sensitivity matrix of f1..f4 over every triple): a pin's length and a web's thickness and width
+# change the stiffness of the pin, the web's bending and its inertia in different proportions, so
+# the four modes' shares of them differ. The fillet radius has no effect on the lumped chain: no
+# frequency can identify it.
+TRUTH = {"pins.*.length": 24.5, "webs.*.thickness": 21.5, "webs.*.width_pin": 68.5}
+UNIDENTIFIABLE = "fillets.pin"
+# Exact model frequencies: the stated sigma is a precise modal test's (0.05 Hz, 5e-5 of f1). The
+# sensitivity vectors are nearly parallel (every input scales all four frequencies alike, to 0.1 %),
+# so the three are told apart only by ~1 Hz per prior standard deviation: the test asserts that
+# margin (smallest singular value over sigma > 10) before it asserts the recovery.
+SIGMA_HZ = 0.05
+RECOVERY = 0.02  # the least-squares estimate within 2 % of the truth (the issue's bound)
+
+
+@pytest.fixture(scope="module")
+def synthetic():
+    crank = fetorsion.load(GEOMETRY / "peugeot_glx.toml")
+    truth = with_values(crank, TRUTH)
+    measured = fetorsion.lumped(truth, 17).frequencies_hz[:4]
+    res = run_calibration(crank, measured, sigma_hz=SIGMA_HZ, inputs=[*TRUTH, UNIDENTIFIABLE], method="both",
+                          walkers=16, steps=300, burn=200, seed=1)
+    return crank, measured, res
+
+
+def test_least_squares_recovers_the_moved_inputs(synthetic):
+    crank, measured, res = synthetic
+    S = res.lsq.sensitivity_hz[:, :3]  # Hz per prior standard deviation, the three moved inputs
+    s_min = np.linalg.svd(S, compute_uv=False)[-1]
+    assert s_min / SIGMA_HZ > 10, "the problem is not posed well enough for this sigma"
+    assert np.all(res.lsq.sensitivity_hz[:, 3] == 0.0)  # the fillet: no effect on the chain
+    rows = {r["input"]: r for r in res.input_rows()}
+    for name, true in TRUTH.items():
+        assert abs(rows[name]["lsq"] - true) / true < RECOVERY, (name, rows[name]["lsq"], true)
+    assert rows[UNIDENTIFIABLE]["lsq"] == pytest.approx(rows[UNIDENTIFIABLE]["nominal"])  # the prior's centre
+    np.testing.assert_allclose(res.lsq.frequencies_hz, measured, atol=5 * SIGMA_HZ)
+
+
+def test_posterior_covers_the_truth_and_says_what_is_identified(synthetic):
+    _, measured, res = synthetic
+    rows = {r["input"]: r for r in res.input_rows()}
+    for name, true in TRUTH.items():
+        assert rows[name]["q5"] <= true <= rows[name]["q95"], (name, rows[name], true)
+        assert rows[name]["identified"]
+    fillet = rows[UNIDENTIFIABLE]
+    assert not fillet["identified"] and fillet["width_ratio"] > IDENTIFIED_RATIO
+    for j, p in enumerate(res.prediction_rows()):
+        assert p["q5_hz"] <= measured[j] <= p["q95_hz"]
+    assert res.posterior.acceptance > 0.1
+    text = res.table()
+    assert "identified" in text and UNIDENTIFIABLE in text
+    d = json.loads(json.dumps(res.to_dict()))
+    assert d["inputs"][3]["identified"] is False
+
+
+def test_same_seed_same_posterior():
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    args = dict(inputs=["webs.*.counterweight_radius", "material"], method="bayes", walkers=8, steps=50, burn=0)
+    a = run_calibration(crank, [530.0], seed=3, **args).posterior.samples
+    b = run_calibration(crank, [530.0], seed=3, **args).posterior.samples
+    c = run_calibration(crank, [530.0], seed=4, **args).posterior.samples
+    assert np.array_equal(a, b) and not np.array_equal(a, c)
+
+
+def test_inputs_reproduce_the_file_at_nominal_and_stay_in_their_ranges():
+    """Every input at its nominal gives the description as written (a ``*`` field whose entries
+    differ, a group whose members sit at different places in their ranges); at a bound every entry
+    is at its bound."""
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    from fetorsion.description.reader import resolve_field
+
+    for inp in calibration_inputs(crank):
+        at_nominal = inp.values(inp.nominal)
+        assert all(v == resolve_field(crank.raw, p)[0][1] for p, v in at_nominal.items()), inp.name
+        for x, k in ((inp.low, 2), (inp.high, 3)):
+            assert all(v == pytest.approx(e[k]) for (p, v), e in zip(inp.values(x).items(), inp.entries))
+    # The calibration's own variant (it copies only the changed tables) is with_values' crank.
+    from fetorsion.studies.calibration import variant
+
+    changes = {}
+    for inp in calibration_inputs(crank):
+        changes.update(inp.values(inp.low + 0.3 * (inp.high - inp.low)))
+    assert np.array_equal(fetorsion.lumped(variant(crank, changes)).frequencies_hz,
+                          fetorsion.lumped(with_values(crank, changes)).frequencies_hz)
+    assert crank.raw["webs"][0]["thickness"] == 22.0  # the nominal description untouched
+
+
+def test_calibrated_file_is_new_commented_and_reads_back(tmp_path, capsys):
+    src = tmp_path / "r21.toml"
+    src.write_bytes((GEOMETRY / "renault21.toml").read_bytes())
+    before = hashlib.sha256(src.read_bytes()).hexdigest()
+    out = tmp_path / "r21-calibrated.toml"
+    argv = ["calibrate", str(src), "--measured-hz", "530", "--method", "lsq", "--inputs",
+            "webs.*.counterweight_radius", "material", "front.*.length", "--out", str(out), "--json", str(tmp_path / "c.json")]
+    assert main(argv) == 0
+    assert hashlib.sha256(src.read_bytes()).hexdigest() == before  # the original untouched
+    res = json.loads((tmp_path / "c.json").read_text())
+    values = res["calibrated_values"]
+    assert set(values) == {"webs.*.counterweight_radius", "material", "front.*.length"}
+    new = fetorsion.load(out)
+    text = out.read_text()
+    assert "calibrated to 530 Hz measured, fetorsion calibrate lsq" in text
+    # Read back equal: the file's values (file units) are the ones the calibration reports.
+    from fetorsion.description.reader import resolve_field
+
+    assert [v for _, v in resolve_field(new.raw, "webs.*.counterweight_radius")] == \
+        [values["webs.*.counterweight_radius"]] * 8
+    assert new.material.youngs_modulus == values["material"]
+    assert new.material.density == 7870.0  # its group's member, at its own high bound with E
+    assert text.count("# was 72.0: calibrated to 530 Hz") == 8  # every web's line, commented
+    # The file's own chain gives the least-squares frequency (inputs written to 6 digits: 1e-5).
+    assert fetorsion.lumped(new, 17).frequencies_hz[0] == pytest.approx(res["predictions"][0]["lsq_hz"], rel=1e-5)
+    # Again onto the same file: refused without --force, replaced with it; never the original.
+    assert main(argv) == 2 and "exists" in capsys.readouterr().err
+    assert main(argv + ["--force"]) == 0
+    assert main(argv[:-4] + ["--out", str(src), "--force"]) == 2
+    assert "never over the original" in capsys.readouterr().err
+    assert hashlib.sha256(src.read_bytes()).hexdigest() == before
+
+
+def test_calibrate_from_the_frfs_of_a_modal_test(tmp_path):
+    """``--measured FILE.uff --band``: the modes fitted to the Renault chain's own receptances are
+    its frequencies (within the fit's 0.1 %), so the calibration leaves the nominal description
+    where it is: each estimate within 0.1 prior standard deviation of the nominal."""
+    from fetorsion.measured import write_uff58
+    from test_compare import chain_frfs
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    frfs, exact = chain_frfs(crank)
+    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    band = [f"{0.6 * exact[0]:.1f}", f"{1.1 * exact[2]:.1f}"]
+    assert main(["calibrate", str(GEOMETRY / "renault21.toml"), "--measured", str(path), "--band", *band,
+                 "--method", "lsq", "--inputs", "webs.*.counterweight_radius", "--json", str(tmp_path / "c.json")]) == 0
+    res = json.loads((tmp_path / "c.json").read_text())
+    assert len(res["measured_hz"]) == 3
+    np.testing.assert_allclose(res["measured_hz"], exact, rtol=1e-3)
+    row = res["inputs"][0]
+    sd = (row["high"] - row["low"]) / np.sqrt(12)
+    assert abs(row["lsq"] - row["nominal"]) < 0.1 * sd
+
+
+@pytest.mark.slow
+def test_renault_calibrated_on_its_measured_530_hz(tmp_path):
+    """The default calibration of the Renault 21 (every input, both methods): the predicted f1's
+    90 % band holds the measured 530 Hz, and the counterweights come out lighter than nominal
+    (the largest elasticity of f1, negative)."""
+    assert main(["calibrate", str(GEOMETRY / "renault21.toml"), "--measured-hz", "530",
+                 "--json", str(tmp_path / "c.json"), "--plot", str(tmp_path / "c.png")]) == 0
+    res = json.loads((tmp_path / "c.json").read_text())
+    f1 = res["predictions"][0]
+    assert f1["q5_hz"] <= 530.0 <= f1["q95_hz"]
+    cw = {r["input"]: r for r in res["inputs"]}["webs.*.counterweight_radius"]
+    assert cw["median"] < cw["nominal"] and cw["lsq"] < cw["nominal"]
+    assert (tmp_path / "c.png").stat().st_size > 10_000
