@@ -201,7 +201,7 @@ def order_cuts_figure(transient, response, cuts, div: str) -> str:
                                  line={"color": color, "dash": "dash"}))
     fig.update_layout(title=f"{transient.name}: order cuts against the steady-state response",
                       xaxis_title="mean speed [rpm]", yaxis_title=f"{transient.track_station}: vibration [deg]",
-                      height=520, hovermode="x unified")
+                      height=520, hovermode="x unified", yaxis_type="log")
     return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
 
 

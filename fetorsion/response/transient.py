@@ -485,9 +485,10 @@ def plot_order_cuts(result: TransientResult, response, cuts, ax=None):
                 label=f"order {q:g}, run-up")
         ax.plot(response.rpm, response.order_pulley_deg[:, k], color=f"C{i}", lw=1.0, ls="--",
                 label=f"order {q:g}, steady state")
+    ax.set_yscale("log")  # a low order's rigid-body swing at idle would flatten the resonances
     ax.set_xlabel("mean speed [rpm]")
     ax.set_ylabel(f"{result.track_station}: vibration [deg]")
-    ax.set_title(f"{result.name}: order cuts of the {result.mode} against the steady-state response", fontsize=10)
+    ax.set_title(f"{result.name}: order cuts, {result.mode} (solid) and steady state (dashed)", fontsize=9)
     ax.legend(fontsize=8, ncol=2)
     ax.figure.tight_layout()
     return ax
