@@ -73,6 +73,22 @@ loss_factor = 0.05
 between = ["pinion", "wheel"]
 ratio = 0.5
 """ + ENGINE_CHAIN.split("loss_factors = 0.05\n")[1]
+# The Renault crank (crank.toml of the user's folder) as a part of a network, a load behind its flywheel.
+CRANK_NETWORK = """
+[chain]
+name = "crank and load"
+[[chain.cranks]]
+name = "r21"
+file = "crank.toml"
+dof = 17
+stiffness = "carter"
+[[chain.stations]]
+name = "load"
+inertia_kgm2 = 0.5
+[[chain.shafts]]
+between = ["r21.flywheel", "load"]
+stiffness_nm_per_rad = 2.0e4
+"""
 NL = """[[chain.nonlinear]]
 name = "clutch"
 between = ["load", "ground"]
@@ -306,6 +322,32 @@ CASES = [
     ("network-dampers", "response {d}/n.toml", {"n.toml": NETWORK + DAMPER}, 2, ["dampers", "network"]),
     ("network-damper-command", "damper {d}/n.toml --objective twist", {"n.toml": NETWORK}, 2,
      ["'damper' does not take a network"]),
+    # --- a crank description as a part of a network ([[chain.cranks]])
+    ("network-crank-missing", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"crank.toml"', '"nowhere.toml"')},
+     2, ["chain.cranks.1.file", "nowhere.toml", "no such file"]),
+    ("network-crank-is-chain", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"crank.toml"', '"chain.toml"')},
+     2, ["chain.cranks.1.file", "not a chain file"]),
+    ("network-crank-invalid", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"crank.toml"', '"bad.toml"'),
+                                                   "bad.toml": edit("density_kgm3 = 7850.0", "density_kgm3 = -1.0")},
+     2, ["chain.cranks.1.file", "material.density_kgm3"]),
+    ("network-crank-partition", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace("dof = 17", "dof = 18")},
+     2, ["chain.cranks.1.dof", "one of 5, 6, 17, 19, 21"]),
+    ("network-crank-stiffness", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"carter"', '"carters"')},
+     2, ["chain.cranks.1.stiffness", "carter"]),
+    ("network-crank-station", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"r21.flywheel"', '"r21.P9"')},
+     2, ["chain.shafts.1.between", "'r21.P9' is not a station of the crank 'r21'", "r21.J1"]),
+    ("network-crank-name", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('name = "r21"', 'name = "r.21"')},
+     2, ["chain.cranks.1.name", "without '.'"]),
+    ("network-two-cranks", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK + '[[chain.cranks]]\nname = "b"\nfile = "crank.toml"\n'},
+     2, ["chain.cranks", "at most one"]),
+    ("network-crank-cylinders", "campbell {d}/n.toml", {"n.toml": CRANK_NETWORK.replace(
+        'name = "crank and load"', 'name = "crank and load"\ncylinder_stations = ["load"]')}, 2,
+     ["chain.cylinder_stations", "crank's pins carry its cylinders"]),
+    ("network-crank-clash", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('name = "load"', 'name = "r21.J1"')
+                                                 .replace('"load"]', '"r21.J1"]')}, 2, ["chain.stations.1.name", "unique"]),
+    ("network-crank-dampers", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"crank.toml"', '"damped.toml"'),
+                                                   "damped.toml": RENAULT + DAMPER}, 2,
+     ["chain.cranks.1.file", "[[dampers]]"]),
     ("transient-no-speed", "transient {d}/c.toml", {"c.toml": ENGINE_CHAIN}, 2, ["--rpm", "--run-up"]),
     ("transient-both", "transient {d}/c.toml --rpm 2000 --run-up 1000 2000 --rate 100", {"c.toml": ENGINE_CHAIN}, 2,
      ["--run-up", "not allowed"]),

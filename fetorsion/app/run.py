@@ -22,18 +22,18 @@ from typing import Callable
 import numpy as np
 
 from ..description.crank import load
-from ..description.model import Chain, Crank
+from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from ..studies.runner import machine_workers
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_PARTITION,
-                                    DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
+                                    DEFAULT_RUNUP_RATE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
 from ..webs.methods import WEB_METHODS
 from ..report.markdown import report_markdown
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome,
                                ModeImage,
-                               RunOutcome, SensitivityOutcome, Skipped, VerdictOutcome)
+                               RunOutcome, SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 
 @dataclass
@@ -100,7 +100,7 @@ class RunContext:
         from ..response.forced import response_setup
 
         return self.once("lumped_setup", lambda: response_setup(
-            self.crank, parts=None if isinstance(self.crank, Chain) else self.parts()))
+            self.crank, parts=None if isinstance(self.crank, (Chain, Network)) else self.parts()))
 
     def scf(self) -> dict:
         """The fillet SCFs of the crank (shipped, or one static FE of a throw) and its oil bores'
@@ -141,7 +141,7 @@ def step_lumped(ctx: RunContext) -> LumpedOutcome | ChainOutcome:
     import matplotlib
 
     matplotlib.use("Agg")
-    if isinstance(ctx.crank, Chain):
+    if isinstance(ctx.crank, (Chain, Network)):
         res = lumped(ctx.crank)
         ctx.results["lumped"] = {"chain": res.to_dict()}
         return ChainOutcome(res, ctx.save(res.plot().figure, "chain_modes.png"))
@@ -253,7 +253,7 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
             c["worst_section"] = ctx.fillets()[c.pop("worst_cut")].label
     else:
         camp = run_campbell(ctx.crank, fe.modal.torsional_modes() if fe is not None else None,
-                            parts=None if isinstance(ctx.crank, Chain) else ctx.parts())
+                            parts=None if isinstance(ctx.crank, (Chain, Network)) else ctx.parts())
     resp = solve_response(ctx.setup(), ctx.crank.dampers)
     ctx.results["campbell"] = camp.to_dict()
     ctx.results["response"] = resp.to_dict()
@@ -454,6 +454,42 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
          "sobol": ctx.save(studies["sobol"].plot(kind="indices").figure, "f1_sobol.png")})
 
 
+def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
+    """A chain's or network's run-up over its checked speed range at ``options["runup_rate"]``
+    (default :data:`~fetorsion.description.defaults.DEFAULT_RUNUP_RATE`) in the time domain: the
+    exact linear propagator, or the nonlinear integrator when the network has nonlinear elements;
+    its waterfall, and its order cuts against the steady-state response at the Campbell crossings.
+    A crank description's run leaves the section out (its response runs on the condensed crank;
+    ``fetorsion transient`` takes its lumped model)."""
+    from ..response.transient import order_cuts, plot_order_cuts, run_transient
+
+    if not isinstance(ctx.crank, (Chain, Network)):
+        return None
+    camp = ctx.outcome.campbell
+    if not isinstance(camp, CampbellOutcome):
+        return Skipped(camp.reason if isinstance(camp, Skipped) else "no Campbell diagram and forced response")
+    rate = ctx.options.get("runup_rate") or DEFAULT_RUNUP_RATE
+    lo, hi = ctx.crank.excitation.checked_range
+    t0 = time.perf_counter()
+    res = run_transient(ctx.crank, run=(lo, hi), rate_rpm_per_s=rate, settled_start=True)
+    seconds = time.perf_counter() - t0
+    crossings = [c for c in camp.campbell.crossings if c["in_range"]]
+    crossings.sort(key=lambda c: -c["severity"])
+    cuts = order_cuts(res, camp.response, crossings[:REPORT_CROSSINGS], camp.campbell.damping_ratio, rate)
+    top = float(np.max(camp.response.orders))
+    ctx.results["transient"] = {**res.to_dict(every=max(1, res.time_s.size // REPORT_SIGNAL_SAMPLES)),
+                                "rate_rpm_per_s": rate, "seconds": seconds, "order_cuts": [c.to_dict() for c in cuts]}
+    waterfall = ctx.save(res.waterfall(max_order=top).figure, "runup_waterfall.png")
+    image = ctx.save(plot_order_cuts(res, camp.response, cuts).figure, "runup_order_cuts.png")
+    return TransientOutcome(res, rate, cuts, seconds, waterfall, image)
+
+
+#: The most severe crossings whose orders the report's run-up compares with the steady state.
+REPORT_CROSSINGS = 3
+#: About so many samples of each time signal go to ``results.json`` (the figures use every sample).
+REPORT_SIGNAL_SAMPLES = 2000
+
+
 #: (what the progress line says, the RunOutcome field its outcome fills, the step), in order. The
 #: FE steps come first: the condensed crank they build also gives the in-bearing throw stiffness
 #: that the lumped models' ``fe-held`` web method reads (one condensation per run, not two).
@@ -465,6 +501,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
     ("fillet stress, dampers and verdict", "verdict", step_verdict),
     ("fatigue of the fillets and oil bores", "fatigue", step_fatigue),
     ("the model against measurement", "measured", step_measured),
+    ("run-up in the time domain", "transient", step_transient),
     # last: the studies, started in the background when the run began, finish in the cores the
     # steps before leave idle (the verdict's many small solves keep one busy, not two)
     ("sensitivity of f1", "sensitivity", step_sensitivity),
@@ -499,7 +536,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
-    if isinstance(crank, Chain):  # no geometry: the report without the mesh and FE sections
+    if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={})

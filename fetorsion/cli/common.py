@@ -84,7 +84,7 @@ def refuse_network(model, path: str, command: str) -> None:
     """A network file (geared or branched) where ``command`` does not handle one yet: one message."""
     if isinstance(model, Network):
         raise FetorsionError(f"{path}: '{command}' does not take a network (stations, shafts and gears) yet; "
-                             "'lumped', 'campbell', 'response' and 'transient' do")
+                             "'lumped', 'campbell', 'response', 'transient' and 'run' do")
 
 
 def stiffness_for(args) -> str:

@@ -6,11 +6,11 @@ from __future__ import annotations
 from pathlib import Path
 
 from .options import MM, integer, millimetres, real
-from ..description.model import Chain
+from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..io import check_report_folder
-from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE
-from .common import SUPPORT_CHOICES, check_mesh_size, load_description, refuse_network
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_RUNUP_RATE
+from .common import SUPPORT_CHOICES, check_mesh_size, load_description
 
 
 # The Peugeot GLX twice: alone (its measured 905.9 Hz) and in its engine (its fatigue assessment)
@@ -53,11 +53,10 @@ def cmd_run(args) -> int:
     for file, out in jobs:  # every destination and description is checked before any work
         check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
         crank = load_description(str(file))
-        refuse_network(crank, str(file), "run")
-        if not args.no_fe and not isinstance(crank, Chain):  # a chain has no geometry: no FE step
+        if not args.no_fe and not isinstance(crank, (Chain, Network)):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,
-               "source": args.source}
+               "source": args.source, "runup_rate": args.run_up_rate}
     if args.measured:  # read and checked now, before any work
         from .measured import check_measured, check_station, read_measured
 
@@ -75,8 +74,9 @@ def cmd_run(args) -> int:
 def add_parser(sub) -> None:
     """The ``run`` commands."""
     up = sub.add_parser("run", help="the main job: every analysis of a crank into one report folder")
-    up.add_argument("file", nargs="?", help="crank description or chain file (default geometry/renault21.toml; "
-                                            "a chain gets the report without the FE sections)")
+    up.add_argument("file", nargs="?", help="crank description, chain or network file (default "
+                                            "geometry/renault21.toml; a chain or network gets the report without the "
+                                            "FE sections, with a run-up in the time domain)")
     up.add_argument("--out", metavar="DIR", help="report folder (default out/<name>; with --all, the parent folder)")
     up.add_argument("--all", action="store_true", help="the reference cranks (Renault 21; Peugeot GLX alone and in its engine) into results/<name>/")
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
@@ -99,6 +99,9 @@ def add_parser(sub) -> None:
     up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
                     "station label of the lumped chain")
     up.add_argument("--teeth", type=integer(1), help="teeth per revolution of a tooth-edge CSV's wheels")
+    up.add_argument("--run-up-rate", type=real(0.0, 1.0e5, unit="rpm/s"), default=DEFAULT_RUNUP_RATE,
+                    metavar="RPM_PER_S", help="a chain's or network's time-domain run-up over its checked range: "
+                    "|dn/dt| in rpm/s (default %(default)g; the cost grows as the rate falls)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

@@ -16,10 +16,12 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .defaults import (DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED,
+                       DEFAULT_PARTITION, DEFAULT_WEB_METHOD)
 from .fields import CHAIN_SCHEMA, CRANK_SCHEMA
 from .model import (ATTACH_POINTS, table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Attachment, AttachPoint, Bearings, Chain, Crank,
-                    GROUND, GearPair, Network, NonlinearSpring, Shaft,
+                    CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, GearPair, Network, NetworkCrank,
+                    NonlinearSpring, Shaft,
                     Cylinder, Damper, Engine, Excitation, Fillets, Limits, Material, OilFilm, OilHoles, PROCESSES,
                     SURFACES, Web)
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number, read_length_unit, read_toml, resolve_field
@@ -63,7 +65,7 @@ def load(path) -> Crank | Chain | Network:
             "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
             "or chain file"))])
     if "chain" in data:
-        if isinstance(data["chain"], dict) and "stations" in data["chain"]:
+        if isinstance(data["chain"], dict) and ("stations" in data["chain"] or "cranks" in data["chain"]):
             return parse_network(data, source=str(path))
         return parse_chain(data, source=str(path))
     return parse_crank(data, source=str(path))
@@ -225,8 +227,17 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
             t.used.add(key)
             problems.append(Problem(f"chain.{key}", t.data[key], "a network ([[chain.stations]]) states this per "
                                     "station or shaft, not as a list"))
+    cranks = _network_cranks(t, Path(source).parent, problems)
     labels, inertias, absolute = [], [], []
-    for st in t.tables("stations"):
+    index = {}
+    for k, c in enumerate(cranks):  # the crank's stations first: its pulley is station 1, the reference speed
+        first = len(labels)
+        cranks[k] = replace(c, first=first)
+        labels += c.labels
+        inertias += [math.nan] * len(c.labels)  # the lumped model's, when resolved
+        absolute += [0.0] * len(c.labels)
+        index.update({f"{c.name}.{CRANK_END_ALIASES[0]}": first, f"{c.name}.{CRANK_END_ALIASES[1]}": len(labels) - 1})
+    for st in t.tables("stations", required=not cranks):
         label = st.text("name")
         if label in labels or label == GROUND:
             problems.append(Problem(f"{st.path}.name", label, "must be unique and not 'ground'"))
@@ -234,13 +245,20 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
         inertias.append(st.number("inertia_kgm2", positive=True))
         absolute.append(st.number("damping_nms_per_rad", 0.0, nonnegative=True))
         st.finish()
-    index = {s: i for i, s in enumerate(labels)}
+    index.update({s: i for i, s in enumerate(labels)})
 
     def ends(tt: Table, ground: bool):
         raw = tt.raw("between")
         ok = (isinstance(raw, list) and len(raw) == 2 and all(isinstance(s, str) for s in raw)
               and all(s in index or (ground and s == GROUND) for s in raw) and raw[0] != raw[1])
-        if raw is not None and not ok:
+        unknown = [s for s in (raw if isinstance(raw, list) else []) if isinstance(s, str) and s not in index
+                   and any(s.startswith(f"{c.name}.") for c in cranks)]
+        if unknown:
+            c = next(c for c in cranks if unknown[0].startswith(f"{c.name}."))
+            problems.append(Problem(f"{tt.path}.between", raw, f"'{unknown[0]}' is not a station of the crank "
+                                    f"'{c.name}': its stations are {c.name}.pulley, {c.name}.flywheel and "
+                                    + ", ".join(c.labels)))
+        elif raw is not None and not ok:
             problems.append(Problem(f"{tt.path}.between", raw, "must name two different stations"
                                     + (" (or a station and 'ground')" if ground else "")))
         if not ok:
@@ -249,7 +267,7 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
         return index[a], index.get(b, -1)
 
     shafts = []
-    for sh in t.tables("shafts"):
+    for sh in t.tables("shafts", required=not cranks):
         pair = ends(sh, ground=True)
         k = sh.number("stiffness_nm_per_rad", positive=True)
         c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
@@ -269,8 +287,17 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
     stations = t.get("cylinder_stations", [])
     t.finish()
     if not problems:
-        problems += _network_topology(labels, shafts + [Shaft(e.i, e.j, 1.0) for e in nonlinear], gears)
+        inside = [Shaft(c.first + s, c.first + s + 1, 1.0) for c in cranks for s in range(len(c.labels) - 1)]
+        problems += _network_topology(labels, inside + shafts + [Shaft(e.i, e.j, 1.0) for e in nonlinear], gears)
     engine = read_engine(root) if "engine" in data else None
+    driver = cranks[0] if cranks and engine is None else None  # the crank's own engine drives its pins
+    if driver is not None:
+        engine = driver.crank.engine
+        if stations:
+            problems.append(Problem("chain.cylinder_stations", stations, "the crank's pins carry its cylinders "
+                                    "when the chain file gives no [engine]; give [engine] to place them yourself"))
+            stations = []
+    cranks = [replace(c, drives=c is driver) for c in cranks]
     picked = []
     if not isinstance(stations, list) or not all(
             (isinstance(c, str) and c in index) or (isinstance(c, int) and not isinstance(c, bool)
@@ -279,10 +306,10 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
                                 "number) per cylinder"))
     else:
         picked = [index[c] if isinstance(c, str) else c - 1 for c in stations]
-        if engine is not None and engine.cylinders and len(picked) != engine.cylinders:
+        if driver is None and engine is not None and engine.cylinders and len(picked) != engine.cylinders:
             problems.append(Problem("chain.cylinder_stations", stations,
                                     f"must name one station per cylinder ({engine.cylinders})"))
-        elif engine is None and picked:
+        elif "engine" not in data and picked:
             problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
     if "dampers" in data:
         root.used.add("dampers")
@@ -291,11 +318,16 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
     limits = read_limits(root, torque_only=True)
     excitation = None
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
+    ex_table = None
     if "excitation" in data:
         if engine is None:
             problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
         ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
         excitation = _excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
+    elif cranks and cranks[0].crank.excitation is not None and engine is cranks[0].crank.engine:
+        # the crank's own [excitation] (its pressure file already read relative to the crank's folder)
+        excitation, ex_table = cranks[0].crank.excitation, cranks[0].crank.raw.get("excitation", {})
+    if excitation is not None:
         if "modal_damping_ratio" not in ex_table and has_dampers:
             excitation = replace(excitation, modal_damping_ratio=0.0)  # stated damping, not counted twice
         elif not excitation.modal_damping_ratio > 0 and not has_dampers:
@@ -306,7 +338,49 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
     if problems:
         raise DescriptionError(source, _unique(problems))
     return Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
-                   tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear))
+                   tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
+                   cranks=tuple(cranks))
+
+
+def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[NetworkCrank]:
+    """The ``[[chain.cranks]]`` of a network: each crank description read (every rule of its own
+    checked) and placed at the front of the station list; its lumped model is built later
+    (:func:`fetorsion.lumped_model.network.resolved`), which the description stage cannot import."""
+    out = []
+    tables = t.tables("cranks", required=False)
+    if len(tables) > 1:
+        problems.append(Problem("chain.cranks", f"{len(tables)} cranks", "at most one crank per network (two "
+                                "engines on one gearbox need an excitation each: not yet)"))
+    for ct in tables[:1]:
+        name = ct.text("name", "crank")
+        file = ct.text("file")
+        dof = ct.choice("dof", PARTITIONS, DEFAULT_PARTITION)
+        method = ct.text("stiffness", DEFAULT_WEB_METHOD, choices=WEB_METHOD_NAMES)
+        ct.finish()
+        if not name or name == GROUND or "." in name:
+            problems.append(Problem(f"{ct.path}.name", name, "must be a name without '.', not 'ground'"))
+        if not file:
+            continue
+        path = folder / file
+        if not path.is_file():
+            problems.append(Problem(f"{ct.path}.file", file, f"no such file ({path}); give the crank description's "
+                                    "path relative to this chain file's folder"))
+            continue
+        try:
+            crank = load(path)
+        except DescriptionError as exc:
+            problems.append(Problem(f"{ct.path}.file", file, f"is not a valid crank description: {exc}"))
+            continue
+        if not isinstance(crank, Crank):
+            problems.append(Problem(f"{ct.path}.file", file, "must name a crank description (journals, pins, webs "
+                                    "and [engine]), not a chain file"))
+            continue
+        if crank.dampers:
+            problems.append(Problem(f"{ct.path}.file", file, "its [[dampers]] are not read in a network yet: join "
+                                    "the damper's ring as a station with a shaft, and leave [[dampers]] out"))
+            continue
+        out.append(NetworkCrank(name, crank, dof, method))
+    return out
 
 
 def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSpring | None:

@@ -39,3 +39,8 @@ DEFAULT_STICK_FACTOR = 20.0
 # The nonlinear time domain's integrators (scipy solve_ivp), the default first: LSODA switches between
 # Adams (non-stiff) and BDF (stiff, a friction element sticking) by itself.
 NONLINEAR_METHODS = ("LSODA", "Radau", "BDF")
+#: The run-up of ``fetorsion run``'s time-domain section, rpm/s: the rate of the issue's benchmark. Slow
+#: for the crank's own modes (their passage parameter α/Γ² = q (dΩ/dt) / (ζω)² is ~0.1–0.2 at 500 Hz and
+#: ζ = 0.02), fast for a driveline's (the report states α/Γ² of each crossing it compares), and a whole run
+#: stays a few seconds of computation (a slower rate costs proportionally more steps).
+DEFAULT_RUNUP_RATE = 1000.0

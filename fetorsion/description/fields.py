@@ -12,8 +12,9 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_STICK_FACTOR
-from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PROCESSES, SURFACES
+from .defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_PARTITION, DEFAULT_STICK_FACTOR,
+                       DEFAULT_WEB_METHOD)
+from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PARTITIONS, PROCESSES, SURFACES, WEB_METHOD_NAMES
 from .units import LENGTH_UNITS
 
 
@@ -305,11 +306,28 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
           "whole torque; several may share one", "one per cylinder of `[engine]`, each 1..number of inertias; "
           "needs `[engine]`"),
     Field("stations", "network form, instead of the lists above: `[[chain.stations]]` (below)",
-          "at least 2; not with the list keys"),
-    Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop"),
+          "at least 2 (with a crank's: any); not with the list keys"),
+    Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop; "
+          "optional with a crank"),
     Field("gears", "network form: `[[chain.gears]]` (below); optional", "—"),
     Field("nonlinear", "network form: `[[chain.nonlinear]]` (below); optional", "—"),
+    Field("cranks", "network form: `[[chain.cranks]]` (below), a crank description as a part of the network; "
+          "optional", "at most one"),
 ), required=True)
+
+CRANKS = Section("chain.cranks", "Network form: a crank description as one part of the network, by its lumped "
+                 "model. Its stations come first (its pulley is station 1, the speed the orders refer to), named "
+                 "`<name>.<label>` with the partition's labels (17 DOF: `J1`, `W1`, `P1`, …; "
+                 "docs/networks-and-transients.md), and `<name>.pulley` / `<name>.flywheel` name its first and last "
+                 "station; shafts, gears and nonlinear elements join them to the other stations. Without an "
+                 "`[engine]` of the chain file's own, the crank's `[engine]` and `[excitation]` drive its pins "
+                 "(spread over the stations as its lumped model spreads them).", (
+    Field("name", "the crank's name, the prefix of its stations' names; default `crank`", "no `.`, not `ground`"),
+    Field("file", "the crank description (.toml), relative to this chain file's folder", "an existing crank "
+          "description (not a chain file), valid by its own rules, without `[[dampers]]`"),
+    Field("dof", f"its lumped partition; default {DEFAULT_PARTITION}", _one_of(PARTITIONS)),
+    Field("stiffness", f"its web-stiffness method; default `{DEFAULT_WEB_METHOD}`", _one_of(WEB_METHOD_NAMES)),
+), array=True)
 
 STATIONS = Section("chain.stations", "Network form: the stations, by name (docs/networks-and-transients.md).", (
     Field("name", "the station's name, used by shafts, gears and `cylinder_stations`", "unique; not `ground`"),
@@ -353,7 +371,7 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
                   BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 #: The tables of a chain file.
-CHAIN_SECTIONS = (META, UNITS, CHAIN, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS)
+CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS)
 
 
 def schema(sections) -> dict[str, frozenset[str] | None]:

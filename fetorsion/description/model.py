@@ -565,6 +565,57 @@ class NonlinearSpring:
         return self.stiffnesses[stage]
 
 
+#: The lumped partitions of a crank (:mod:`fetorsion.lumped_model.lumped`), named by their number of
+#: stations on an inline four.
+PARTITIONS = (5, 6, 17, 19, 21)
+#: The web-stiffness methods' names (the registry :data:`fetorsion.webs.methods.WEB_METHODS` holds the
+#: functions and checks it has exactly these): a description may name one before the webs stage is loaded.
+WEB_METHOD_NAMES = ("carter", "ker-wilson", "beam", "fe", "fe-held", "chart")
+#: What a network may call a crank's first and last station besides their own labels.
+CRANK_END_ALIASES = ("pulley", "flywheel")
+
+
+def partition_labels(cylinders: int, partition: int) -> tuple[str, ...]:
+    """The station labels of a crank's lumped ``partition`` (one of :data:`PARTITIONS`) for a crank
+    of ``cylinders`` throws, front to rear: journals ``J1`` …, webs ``W1`` …, pins ``P1`` …, the end
+    stations ``front``/``rear`` (``front inner``/``rear inner`` in the 21-DOF model), ``throw k`` in
+    the 6-DOF model. The one source of the names (:func:`fetorsion.lumped_model.parts.stations`)."""
+    n = cylinders
+    if partition == 5:
+        return ("front", *(f"J{j + 1}" for j in range(1, n)), "rear")
+    if partition == 6:
+        return ("front", *(f"throw {t + 1}" for t in range(n)), "rear")
+    body = tuple(x for t in range(n) for x in (f"J{t + 1}", f"W{2 * t + 1}", f"P{t + 1}", f"W{2 * t + 2}")) + (f"J{n + 1}",)
+    if partition == 17:
+        return body
+    if partition == 19:
+        return ("front", *body, "rear")
+    if partition == 21:
+        return ("front", "front inner", *body, "rear inner", "rear")
+    raise ValueError(f"{partition!r} is not a partition; choose from {PARTITIONS}")
+
+
+@dataclass(frozen=True)
+class NetworkCrank:
+    """A crank description as one part of a network (``[[chain.cranks]]``): its lumped
+    ``partition`` with the web method ``web_method``, its stations named ``"<name>.<label>"``
+    (:func:`partition_labels`) from station ``first`` (0-based) of the network on. ``drives``:
+    its pins carry the network's cylinders (the chain file gives no ``[engine]`` of its own).
+    The stations' inertias and the shafts between them are the lumped model's
+    (:func:`fetorsion.lumped_model.network.resolved`)."""
+
+    name: str
+    crank: Crank
+    partition: int
+    web_method: str
+    first: int = 0
+    drives: bool = True
+
+    @property
+    def labels(self) -> tuple[str, ...]:
+        return tuple(f"{self.name}.{lb}" for lb in partition_labels(self.crank.cylinders, self.partition))
+
+
 @dataclass(frozen=True)
 class Network:
     """A torsional network: named stations joined by shafts and gear pairs, branches allowed.
@@ -592,6 +643,13 @@ class Network:
     limits: Limits | None = None
     dampers: tuple[Damper, ...] = ()  # not yet read for a network: always empty
     nonlinear: tuple[NonlinearSpring, ...] = ()
+    #: The crank descriptions that are parts of the network; until they are resolved
+    #: (:func:`fetorsion.lumped_model.network.resolved`) their stations' inertias are NaN and the
+    #: shafts between them absent, so an unresolved network cannot be analysed by mistake.
+    cranks: tuple[NetworkCrank, ...] = ()
+    #: (cylinders × stations) share of each cylinder's torque on each station, when it is not all on
+    #: one station (a crank's pins spread as its lumped model spreads them); empty: ``cylinder_stations``.
+    cylinder_weights: tuple[tuple[float, ...], ...] = ()
 
     @property
     def linear_shafts(self) -> tuple[Shaft, ...]:

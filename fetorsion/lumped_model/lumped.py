@@ -38,77 +38,14 @@ import scipy.linalg
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError, ParameterError
 from ..modes import TorsionalModes
-from .network import NetworkMatrices, network_matrices, network_modes
-from .parts import PartChain, build_parts
+from .network import NetworkMatrices, network_matrices, network_modes, resolved
+from .parts import PartChain, build_parts, partition_matrices, pin_weights
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
-
-PARTITIONS = (5, 6, 17, 19, 21)
+from ..description.model import PARTITIONS
 
 #: Elastic modes a lumped model's table and mode-shape plot show.
 MODES_SHOWN = 4
 
-
-
-@dataclass(frozen=True)
-class Station:
-    label: str
-    lo: float
-    hi: float
-    anchor: float
-
-
-def stations(chain: PartChain, partition: int) -> list[Station]:
-    """The stations of ``partition`` (one of :data:`PARTITIONS`) on ``chain``."""
-    journals, webs, pins = chain.of_kind("journal"), chain.of_kind("web"), chain.of_kind("pin")
-    L = chain.length
-    mid = lambda p: 0.5 * (p.x0 + p.x1)  # noqa: E731
-    front_end, rear_end = journals[0].x0, journals[-1].x1
-    if partition == 5:
-        cuts = [0.0] + [mid(p) for p in pins] + [L]
-        anchors = [0.0] + [mid(j) for j in journals[1:-1]] + [L]
-        labels = ["front"] + [j.label for j in journals[1:-1]] + ["rear"]
-        return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors)]
-    if partition == 6:
-        cuts = [0.0] + [mid(j) for j in journals] + [L]
-        anchors = [0.0] + [mid(p) for p in pins] + [L]
-        labels = ["front"] + [f"throw {p.index + 1}" for p in pins] + ["rear"]
-        return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors)]
-    if partition not in PARTITIONS:
-        raise ParameterError("dof", f"{partition!r} is not a partition; choose from {PARTITIONS}")
-    inner = sorted(journals + webs + pins, key=lambda p: p.x0)
-    body = [Station(p.label, p.x0, p.x1, mid(p)) for p in inner]
-    if partition == 17:
-        body[0] = Station(body[0].label, 0.0, body[0].hi, body[0].anchor)
-        body[-1] = Station(body[-1].label, body[-1].lo, L, body[-1].anchor)
-        return body
-    if partition == 19:
-        return [Station("front", 0.0, front_end, 0.0)] + body + [Station("rear", rear_end, L, L)]
-    half_f, half_r = 0.5 * front_end, 0.5 * (L + rear_end)
-    return ([Station("front", 0.0, half_f, 0.0), Station("front inner", half_f, front_end, 0.5 * (half_f + front_end))]
-            + body
-            + [Station("rear inner", rear_end, half_r, 0.5 * (rear_end + half_r)), Station("rear", half_r, L, L)])
-
-
-def partition_matrices(chain: PartChain, partition: int):
-    """Station inertias (kg·m²), springs (N·m/rad), labels and anchors of a partition."""
-    st = stations(chain, partition)
-    edges = np.array([chain.parts[0].x0] + [p.x1 for p in chain.parts])
-    cum_compliance = np.concatenate([[0.0], np.cumsum([p.compliance for p in chain.parts])])
-    cum_inertia = np.concatenate([[0.0], np.cumsum([p.inertia + p.attached_inertia for p in chain.parts])])
-    lo = np.array([s.lo for s in st])
-    hi = np.array([s.hi for s in st])
-    anchors = np.array([s.anchor for s in st])
-    # Both cumulative functions are piecewise linear in x, so interpolation is exact.
-    inertias = np.interp(hi, edges, cum_inertia) - np.interp(lo, edges, cum_inertia)
-    inertias[0] += chain.front_inertia
-    inertias[-1] += chain.rear_inertia
-    springs = 1.0 / np.diff(np.interp(anchors, edges, cum_compliance))
-    empty = [s.label for s, i in zip(st, inertias) if not i > 0]
-    if empty:
-        raise FetorsionError(
-            f"the {partition}-DOF partition has stations without inertia ({', '.join(empty)}): "
-            "it needs front/rear sections or attachments at the crank ends")
-    return inertias, springs, [s.label for s in st], anchors
 
 
 def chain_matrices(inertias, stiffnesses):
@@ -315,10 +252,13 @@ def network_lumped(net: Network) -> LumpedResult:
     """Modes of a network (free-free, or grounded when a shaft goes to ground) in its reduced
     coordinates (:mod:`fetorsion.lumped_model.network`); the cylinders' weights are T's rows of
     their stations (a torque on a geared station does f times its work on the group's angle)."""
+    net = resolved(net)
     mats = network_matrices(net)
     rigid, hz, shapes = network_modes(mats)
     weights = None
-    if net.cylinder_stations:
+    if net.cylinder_weights:
+        weights = np.array(net.cylinder_weights) @ mats.T
+    elif net.cylinder_stations:
         weights = mats.T[list(net.cylinder_stations)]
     labels = [net.labels[m] for m in mats.masters]
     return LumpedResult(net.name, None, labels, np.full(len(labels), np.nan), np.diag(mats.M).copy(),
@@ -335,22 +275,6 @@ def stated_damping(model, res: LumpedResult):
         return chain_damping(res.dof, res.stiffnesses_nm_per_rad, model.absolute_damping, model.relative_damping,
                              model.loss_factors)
     return np.zeros((res.dof, res.dof)), np.zeros((res.dof, res.dof))
-
-
-def pin_weights(chain: PartChain, partition: int) -> np.ndarray:
-    """(cylinders × stations) share of each pin in each station of a lumped partition.
-
-    The cylinder torque acts where the pin is; a pin split between two stations (the 5-DOF
-    model) passes its torque on in the same shares as its inertia.
-    """
-    st = stations(chain, partition)
-    lo = np.array([s.lo for s in st])
-    hi = np.array([s.hi for s in st])
-    pins = chain.of_kind("pin")
-    x0 = np.array([p.x0 for p in pins])[:, None]
-    x1 = np.array([p.x1 for p in pins])[:, None]
-    overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
-    return overlap / (x1 - x0)
 
 
 def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:

@@ -20,13 +20,15 @@ the textbook's "equivalent system"; the tests check the two agree to 1e-9.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import functools
+from dataclasses import dataclass, replace
 
 import numpy as np
 import scipy.linalg
 
 from ..description.model import Network, Shaft
 from ..errors import FetorsionError
+from .parts import build_parts, partition_matrices, pin_weights
 
 
 def spring_matrix(n: int, i, j, values) -> np.ndarray:
@@ -119,8 +121,43 @@ class NetworkMatrices:
                 "grounded": self.grounded}
 
 
+@functools.lru_cache(maxsize=16)
+def resolved(net: Network) -> Network:
+    """The network with each of its ``[[chain.cranks]]`` replaced by the crank's lumped model: the
+    partition's station inertias (kg·m²) in the crank's stations, the springs between them (N·m/rad)
+    as shafts ahead of the file's, and, when the crank's engine drives, its pins' weights on those
+    stations (:func:`~fetorsion.lumped_model.parts.pin_weights`, as the crank's own lumped model
+    spreads them). A network without cranks is returned as it is; the result has none.
+
+    Parameters
+    ----------
+    net : Network
+        As read (:func:`fetorsion.load`).
+
+    Returns
+    -------
+    Network
+    """
+    if not net.cranks:
+        return net
+    inertias, inside, weights = list(net.inertias), [], net.cylinder_weights
+    for c in net.cranks:
+        parts = build_parts(c.crank, c.web_method)
+        J, k, _, _ = partition_matrices(parts, c.partition)
+        inertias[c.first:c.first + len(J)] = J.tolist()
+        inside += [Shaft(c.first + s, c.first + s + 1, float(v)) for s, v in enumerate(k)]
+        if c.drives:
+            W = np.zeros((c.crank.cylinders, len(inertias)))
+            W[:, c.first:c.first + len(J)] = pin_weights(parts, c.partition)
+            weights = tuple(map(tuple, W.tolist()))
+    return replace(net, inertias=tuple(inertias), shafts=tuple(inside) + net.shafts, cranks=(),
+                   cylinder_weights=weights)
+
+
 def network_matrices(net: Network) -> NetworkMatrices:
-    """The constraint form of a network (module docs): M_r = TᵀMT, K_r = TᵀKT, … ."""
+    """The constraint form of a network (module docs): M_r = TᵀMT, K_r = TᵀKT, … (a crank in it
+    resolved to its lumped model first, :func:`resolved`)."""
+    net = resolved(net)
     n = len(net.inertias)
     sh = net.linear_shafts  # the nonlinear elements last, at their operating stiffness
     i, j = [s.i for s in sh], [s.j for s in sh]
@@ -144,6 +181,7 @@ def network_matrices(net: Network) -> NetworkMatrices:
 
 def speed_factors(net: Network) -> np.ndarray:
     """Each station's speed over station 1's (shafts keep the speed, a gear multiplies it by its ratio)."""
+    net = resolved(net)
     n = len(net.inertias)
     links = {s: [] for s in range(n)}
     for s in net.linear_shafts:
@@ -169,6 +207,7 @@ def referred(net: Network) -> Network:
     each shaft's k f² and c f² (f: :func:`speed_factors`), the two stations of a gear pair
     merged into one (labels joined by '+'). Exact for rigid gears; the textbook's equivalent
     system. Its angles are θ_s / f_s. Absolute dampers are referred as the shafts' (c f²)."""
+    net = resolved(net)
     f = speed_factors(net)
     T, masters = gear_constraint(len(net.inertias), net.gears)
     col = np.argmax(T != 0, axis=1)  # the merged station of each station
@@ -181,9 +220,15 @@ def referred(net: Network) -> Network:
     shafts = tuple(Shaft(int(col[s.i]), int(col[s.j]) if s.j >= 0 else -1, s.stiffness * f[s.i] ** 2,
                          s.damping * f[s.i] ** 2, s.loss_factor) for s in net.linear_shafts)
     stations = tuple(int(col[c]) for c in net.cylinder_stations)
+    weights = ()
+    if net.cylinder_weights:  # a torque T on station s does T f_s of work per unit referred angle θ_s / f_s
+        W = np.zeros((len(net.cylinder_weights), masters.size))
+        for c, row in enumerate(net.cylinder_weights):
+            np.add.at(W[c], col, np.asarray(row) * f)
+        weights = tuple(map(tuple, W.tolist()))
     return Network(f"{net.name} (referred to station 1's speed)", labels, tuple(J.tolist()), shafts, (),
                    tuple(ca.tolist()) if net.absolute_damping else (), net.source, stations, net.engine,
-                   net.excitation, net.length_unit, net.raw, net.limits)
+                   net.excitation, net.length_unit, net.raw, net.limits, cylinder_weights=weights)
 
 
 def network_modes(mats: NetworkMatrices):

@@ -12,7 +12,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..description.model import AttachPoint, Crank, Cylinder
+from ..description.model import PARTITIONS, AttachPoint, Crank, Cylinder, partition_labels
+from ..errors import FetorsionError, ParameterError
 from ..description.defaults import DEFAULT_WEB_METHOD
 from ..webs.methods import web_equivalent_length
 from ..webs.sections import cylinder_equivalent_length
@@ -140,3 +141,81 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
         shear_modulus=G,
         web_method=web_method,
     )
+
+
+@dataclass(frozen=True)
+class Station:
+    label: str
+    lo: float
+    hi: float
+    anchor: float
+
+
+def stations(chain: PartChain, partition: int) -> list[Station]:
+    """The stations of ``partition`` (one of :data:`~fetorsion.description.model.PARTITIONS`) on
+    ``chain``, named by :func:`~fetorsion.description.model.partition_labels` (the names a network
+    file uses for a crank's stations)."""
+    if partition not in PARTITIONS:
+        raise ParameterError("dof", f"{partition!r} is not a partition; choose from {PARTITIONS}")
+    journals, webs, pins = chain.of_kind("journal"), chain.of_kind("web"), chain.of_kind("pin")
+    labels = partition_labels(len(pins), partition)
+    L = chain.length
+    mid = lambda p: 0.5 * (p.x0 + p.x1)  # noqa: E731
+    front_end, rear_end = journals[0].x0, journals[-1].x1
+    if partition == 5:
+        cuts = [0.0] + [mid(p) for p in pins] + [L]
+        anchors = [0.0] + [mid(j) for j in journals[1:-1]] + [L]
+    elif partition == 6:
+        cuts = [0.0] + [mid(j) for j in journals] + [L]
+        anchors = [0.0] + [mid(p) for p in pins] + [L]
+    else:
+        inner = sorted(journals + webs + pins, key=lambda p: p.x0)
+        cuts = [p.x0 for p in inner] + [inner[-1].x1]
+        anchors = [mid(p) for p in inner]
+        if partition == 17:
+            cuts[0], cuts[-1] = 0.0, L
+        elif partition == 19:
+            cuts, anchors = [0.0] + cuts + [L], [0.0] + anchors + [L]
+        else:
+            half_f, half_r = 0.5 * front_end, 0.5 * (L + rear_end)
+            cuts = [0.0, half_f] + cuts + [half_r, L]
+            anchors = [0.0, 0.5 * (half_f + front_end)] + anchors + [0.5 * (rear_end + half_r), L]
+    return [Station(n, a, b, x) for n, a, b, x in zip(labels, cuts[:-1], cuts[1:], anchors, strict=True)]
+
+
+def partition_matrices(chain: PartChain, partition: int):
+    """Station inertias (kg·m²), springs (N·m/rad), labels and anchors of a partition."""
+    st = stations(chain, partition)
+    edges = np.array([chain.parts[0].x0] + [p.x1 for p in chain.parts])
+    cum_compliance = np.concatenate([[0.0], np.cumsum([p.compliance for p in chain.parts])])
+    cum_inertia = np.concatenate([[0.0], np.cumsum([p.inertia + p.attached_inertia for p in chain.parts])])
+    lo = np.array([s.lo for s in st])
+    hi = np.array([s.hi for s in st])
+    anchors = np.array([s.anchor for s in st])
+    # Both cumulative functions are piecewise linear in x, so interpolation is exact.
+    inertias = np.interp(hi, edges, cum_inertia) - np.interp(lo, edges, cum_inertia)
+    inertias[0] += chain.front_inertia
+    inertias[-1] += chain.rear_inertia
+    springs = 1.0 / np.diff(np.interp(anchors, edges, cum_compliance))
+    empty = [s.label for s, i in zip(st, inertias) if not i > 0]
+    if empty:
+        raise FetorsionError(
+            f"the {partition}-DOF partition has stations without inertia ({', '.join(empty)}): "
+            "it needs front/rear sections or attachments at the crank ends")
+    return inertias, springs, [s.label for s in st], anchors
+
+
+def pin_weights(chain: PartChain, partition: int) -> np.ndarray:
+    """(cylinders × stations) share of each pin in each station of a lumped partition.
+
+    The cylinder torque acts where the pin is; a pin split between two stations (the 5-DOF
+    model) passes its torque on in the same shares as its inertia.
+    """
+    st = stations(chain, partition)
+    lo = np.array([s.lo for s in st])
+    hi = np.array([s.hi for s in st])
+    pins = chain.of_kind("pin")
+    x0 = np.array([p.x0 for p in pins])[:, None]
+    x1 = np.array([p.x1 for p in pins])[:, None]
+    overlap = np.clip(np.minimum(x1, hi) - np.maximum(x0, lo), 0.0, None)
+    return overlap / (x1 - x0)

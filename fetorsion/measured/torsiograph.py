@@ -304,12 +304,20 @@ def _grid(times, teeth: int, revolutions: int, errors, name: str):
     return t_grid, nominal
 
 
-def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel") -> OrderTrack:
+def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel",
+                accelerating: bool = False) -> OrderTrack:
     """The angle's vibration by order per block of ``revolutions`` whole revolutions.
 
     In each block the angle is sampled at equal angles (the tooth pitch), the block's mean
     rotation (the straight line through its first and last edge) is taken off, and the rest
     is Fourier transformed over the block; orders run from 1/N to below z/2.
+
+    In a run-up the mean rotation is not a straight line: at acceleration α over a block of T
+    seconds it bows from its chord by α T²/8 (at 1000 rpm/s and 900 rpm over two revolutions,
+    14°), which the transform reads as low orders falling as 1/k². With ``accelerating`` the bow
+    ½ α τ (τ − T) (τ the time into the block; zero at both ends, so the chord's exactness for
+    whole orders is kept) is taken off as well, α from the neighbouring blocks' mean speeds
+    (their chords: whole-order vibration does not move them); a steady record has α ≈ 0.
 
     Parameters
     ----------
@@ -323,11 +331,17 @@ def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "w
         Tooth spacing errors [rad] (:func:`tooth_errors`).
     name : str
         The channel, for messages and the result.
+    accelerating : bool
+        Take off each block's bow of constant acceleration too (a run-up or run-down).
     """
     revolutions = _whole(revolutions, "revolutions")
     t_grid, theta = _grid(times, teeth, revolutions, errors, name)
     speed = (theta[:, -1:] - theta[:, :1]) / (t_grid[:, -1:] - t_grid[:, :1])
-    psi = (theta - theta[:, :1]) - speed * (t_grid - t_grid[:, :1])
+    tau = t_grid - t_grid[:, :1]
+    psi = (theta - theta[:, :1]) - speed * tau
+    if accelerating and speed.shape[0] > 1:
+        alpha = np.gradient(speed[:, 0], 0.5 * (t_grid[:, 0] + t_grid[:, -1]))[:, None]
+        psi -= 0.5 * alpha * tau * (tau - tau[:, -1:])
     rpm, orders, c = _blocks(t_grid, psi, revolutions * teeth, revolutions, theta[:, 0])
     return OrderTrack(name, rpm, orders, c)
 

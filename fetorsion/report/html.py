@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .outcomes import CampbellOutcome, RunOutcome, SensitivityOutcome
+from .outcomes import CampbellOutcome, RunOutcome, SensitivityOutcome, TransientOutcome
 
 # The faces of a tetrahedron by its corner indices (VTK order: corners 0-3).
 _TET_FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
@@ -171,6 +171,44 @@ def response_figure(resp, div: str) -> str:
     return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
 
 
+def waterfall_figure(transient, max_order: float, div: str) -> str:
+    """The run-up's order track as a heat map (log10 of the vibration in deg) against speed and order."""
+    import plotly.graph_objects as go
+
+    tr = transient.track
+    keep = tr.orders <= max_order
+    amp = np.degrees(np.abs(tr.amplitudes[:, keep])).T
+    floor = amp.max() * 1e-3 if amp.size and amp.max() > 0 else 1.0
+    fig = go.Figure(go.Heatmap(x=tr.rpm, y=tr.orders[keep], z=np.log10(np.maximum(amp, floor)), customdata=amp,
+                               colorscale="Viridis", colorbar={"title": "log10 deg"},
+                               hovertemplate="%{x:.0f} rpm<br>order %{y:g}<br>%{customdata:.4g} deg<extra></extra>"))
+    fig.update_layout(title=f"{transient.name}: {transient.mode}, order track of {transient.track_station}",
+                      xaxis_title="mean speed [rpm]", yaxis_title="order", height=520)
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+def order_cuts_figure(transient, response, cuts, div: str) -> str:
+    """Each compared order: the run-up's cut (solid) and the steady-state response (dashed)."""
+    import plotly.graph_objects as go
+
+    fig = go.Figure()
+    for i, q in enumerate(dict.fromkeys(c.order for c in cuts)):
+        k = int(np.flatnonzero(np.isclose(response.orders, q))[0])
+        color = _PALETTE[i % len(_PALETTE)]
+        fig.add_trace(go.Scatter(x=transient.track.rpm, y=np.degrees(np.abs(transient.track.at(q))),
+                                 name=f"order {q:g}, run-up", line={"color": color}))
+        fig.add_trace(go.Scatter(x=response.rpm, y=response.order_pulley_deg[:, k], name=f"order {q:g}, steady state",
+                                 line={"color": color, "dash": "dash"}))
+    fig.update_layout(title=f"{transient.name}: order cuts against the steady-state response",
+                      xaxis_title="mean speed [rpm]", yaxis_title=f"{transient.track_station}: vibration [deg]",
+                      height=520, hovermode="x unified", yaxis_type="log")
+    return fig.to_html(full_html=False, include_plotlyjs=False, div_id=div)
+
+
+#: Plotly's default colours, so that a run-up's cut and its steady state share one.
+_PALETTE = ("#636efa", "#ef553b", "#00cc96", "#ab63fa", "#ffa15a", "#19d3f3")
+
+
 def sensitivity_figure(sens, div: str) -> str:
     """Tornado chart: f1 at each input's bounds, largest swing on top."""
     import plotly.graph_objects as go
@@ -274,6 +312,11 @@ def report_html(run: RunOutcome, folder: Path) -> str:
     if isinstance(camp, CampbellOutcome):
         figures[camp.campbell_image] = campbell_figure(camp.campbell, "campbell")
         figures[camp.response_image] = response_figure(camp.response, "response")
+    tra = run.transient
+    if isinstance(tra, TransientOutcome) and isinstance(camp, CampbellOutcome):
+        figures[tra.waterfall_image] = waterfall_figure(tra.transient, float(np.max(camp.response.orders)), "waterfall")
+        if tra.cuts:
+            figures[tra.cuts_image] = order_cuts_figure(tra.transient, camp.response, tra.cuts, "order_cuts")
     sens = run.sensitivity
     if isinstance(sens, SensitivityOutcome):
         figures[sens.image] = sensitivity_figure(sens.sensitivity, "sensitivity")

@@ -14,7 +14,7 @@ from ..description.model import Crank
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
-                       SensitivityOutcome, Skipped, VerdictOutcome)
+                       SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 
 def _with_error(f: float, measured) -> str:
@@ -25,6 +25,15 @@ def lumped_section(crank: Crank, outcome: LumpedOutcome | ChainOutcome) -> list[
     """f1 of every partition and web method against the measurement; the 17-DOF shapes (a chain: its modes)."""
     if isinstance(outcome, ChainOutcome):
         res = outcome.chain
+        if res.network is not None:
+            net = res.network
+            parts = [f"`{c.name}`: {c.crank.name} ({c.partition}-DOF lumped model, {c.web_method} webs, from "
+                     f"`{c.crank.source}`)" for c in getattr(crank, "cranks", ())]
+            return (["## Torsional network (stations, shafts and gears from the file)", "",
+                     f"{len(net.labels)} stations, {res.dof} coordinates after the gears, "
+                     f"{'grounded' if net.grounded else 'free-free'}."]
+                    + ([f"Crank part: {p}." for p in parts]) + ["", "```", res.table(), "```", "",
+                    f"Mode shapes in the coordinates (one per gear group), unit at the first: ![]({outcome.image})", ""])
         return ["## Torsional chain (inertias and stiffnesses from the file)", "",
                 f"{res.dof} inertias, free-free.", "", "```", res.table(), "```", "",
                 f"Mode shapes, unit twist at the first station: ![]({outcome.image})", ""]
@@ -298,9 +307,39 @@ def measured_section(crank: Crank, outcome) -> list[str]:
             f"![]({outcome.image})", ""]
 
 
+def transient_section(crank, outcome: TransientOutcome | Skipped) -> list[str]:
+    """The run-up: which integrator ran and its time, the waterfall, the order cuts against the
+    steady-state response at the most severe crossings, with each passage's α/Γ²."""
+    if isinstance(outcome, Skipped):
+        return ["## Time domain: run-up", "", f"Not run: {outcome.reason}.", ""]
+    res = outcome.transient
+    lines = ["## Time domain: run-up", "",
+             f"A {res.mode} over the checked range, after {res.settle_s:.2f} s at its start speed (the start's "
+             f"transient settled), {res.time_s.size:,} steps of {res.step_s * 1e6:.1f} µs "
+             f"({res.scheme}): {outcome.seconds:.1f} s of computation. Only the alternating torque drives it, as in "
+             f"the steady state; the order track reads the simulated tooth edges of `{res.track_station}` "
+             "with the code that processes measured torsiograph records.",
+             *[f"Note: {n}." for n in res.notes], "", "```", res.table(), "```", "",
+             f"Waterfall, the vibration of `{res.track_station}` by order and speed: ![]({outcome.waterfall_image})", ""]
+    if outcome.cuts:
+        lines += ["The run-up's order cuts against the steady-state forced response at the most severe crossings "
+                  "(peaks within ±10 % of the crossing's speed). α/Γ² = q (dΩ/dt)/(ζω)² is the passage's speed "
+                  "[Cowan]: well below 0.1 the run-up's peak approaches the steady state's; above it the peak is "
+                  "lower and later.", "",
+                  "| order | mode (Hz) | crossing [rpm] | α/Γ² | steady peak [deg] at [rpm] | run-up peak [deg] at [rpm] "
+                  "| run-up / steady − 1 |", "|---|---|---|---|---|---|---|"]
+        lines += [f"| {c.order:g} | {c.mode} ({c.mode_hz:.1f}) | {c.crossing_rpm:.0f} | {c.passage:.3g} | "
+                  f"{c.steady_deg:.4g} at {c.steady_rpm:.0f} | {c.runup_deg:.4g} at {c.runup_rpm:.0f} | "
+                  f"{100 * c.difference:+.1f} % |" for c in outcome.cuts]
+        lines += ["", f"![]({outcome.cuts_image})", ""]
+    else:
+        lines += ["No crossing of the Campbell diagram lies inside the run on an order both analyses carry.", ""]
+    return lines
+
+
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),
             ("sensitivity", sensitivity_section), ("verdict", verdict_section), ("fatigue", fatigue_section),
-            ("measured", measured_section))
+            ("measured", measured_section), ("transient", transient_section))
 
 
 def summary_lines(run: RunOutcome) -> list[str]:

@@ -139,6 +139,22 @@ class MeasuredOutcome:
     image: str
 
 
+@dataclass(frozen=True)
+class TransientOutcome:
+    """The time-domain run-up of a chain or network over its checked speed range: the
+    :class:`~fetorsion.response.transient.TransientResult`, its rate (rpm/s), the order cuts
+    compared with the steady-state response at the Campbell crossings
+    (:class:`~fetorsion.response.transient.OrderCut`), the wall time of the run (s) and the
+    pictures (the waterfall, the order cuts against the steady state)."""
+
+    transient: object
+    rate_rpm_per_s: float
+    cuts: tuple
+    seconds: float
+    waterfall_image: str
+    cuts_image: str
+
+
 @dataclass
 class RunOutcome:
     """Every section of one run, in pipeline order, and each step's wall time (s)."""
@@ -153,4 +169,5 @@ class RunOutcome:
     verdict: VerdictOutcome | Skipped | None = None
     fatigue: FatigueOutcome | Skipped | None = None
     measured: MeasuredOutcome | Skipped | None = None
+    transient: TransientOutcome | Skipped | None = None
     timings_s: dict | None = None

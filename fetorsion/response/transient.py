@@ -94,6 +94,29 @@ def speed_schedule(start_rpm: float, end_rpm: float | None = None, rate_rpm_per_
         (lambda t: math.pi / 30 * (start_rpm * np.asarray(t) + 0.5 * a * np.asarray(t) ** 2))
 
 
+#: A held start (:func:`run_transient` ``settled_start``) lasts until the slowest elastic transient is
+#: this fraction of its start: the residue is 0.1 % of the start's ringing, below the order track's own
+#: resampling error (docs/networks-and-transients.md), at half the cost of :data:`SETTLED`.
+START_SETTLED = 1e-3
+
+
+def held_schedule(hold_s: float, duration_s: float, n_of_t, phi_of_t):
+    """The schedule ``(duration_s, n_of_t, phi_of_t)`` of :func:`speed_schedule` after ``hold_s``
+    seconds at its start speed: (duration s, n(t) rpm, φ(t) rad), φ continuous at the hold's end."""
+    n0 = float(n_of_t(0.0))
+    w0 = n0 * math.pi / 30
+
+    def n(t):
+        t = np.asarray(t, float)
+        return np.where(t < hold_s, n0, n_of_t(np.maximum(t - hold_s, 0.0)))
+
+    def phi(t):
+        t = np.asarray(t, float)
+        return np.where(t < hold_s, w0 * t, w0 * hold_s + phi_of_t(np.maximum(t - hold_s, 0.0)))
+
+    return hold_s + duration_s, n, phi
+
+
 def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total"):
     """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
 
@@ -239,6 +262,10 @@ def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.nd
     return q
 
 
+#: Decades of amplitude below its largest value that a waterfall's colour scale shows.
+WATERFALL_SPAN = 3.0
+
+
 @dataclass
 class TransientResult:
     """A simulated run: time signals, their per-block envelope and the order track of a station.
@@ -342,6 +369,130 @@ class TransientResult:
             fig.tight_layout()
         return a1
 
+    def waterfall(self, ax=None, max_order: float | None = None, span: float = WATERFALL_SPAN):
+        """The order track as a map: the tracked station's vibration (deg, colour on a log scale
+        over ``span`` decades below its largest value) against mean speed (rpm) and order, orders
+        up to ``max_order`` (default all tracked). Returns the Axes."""
+        import matplotlib.pyplot as plt
+        from matplotlib.colors import LogNorm
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(9, 5))
+        keep = self.track.orders <= (max_order if max_order is not None else np.inf)
+        amp = np.degrees(np.abs(self.track.amplitudes[:, keep])).T  # (orders, blocks)
+        top = float(amp.max()) if amp.size and amp.max() > 0 else 1.0
+        mesh = ax.pcolormesh(self.track.rpm, self.track.orders[keep], np.maximum(amp, top * 10.0**-span),
+                             shading="nearest", norm=LogNorm(top * 10.0**-span, top), cmap="viridis")
+        ax.figure.colorbar(mesh, ax=ax, label=f"{self.track_station}: vibration [deg]")
+        ax.set_xlabel("mean speed [rpm]")
+        ax.set_ylabel("order")
+        ax.set_title(f"{self.name}: {self.mode}, order track of {self.track_station}", fontsize=10)
+        ax.figure.tight_layout()
+        return ax
+
+
+#: The speeds about a crossing, as a fraction of its speed either side, in which a run-up's order cut
+#: and the steady-state response are searched for their peaks.
+CROSSING_WINDOW = 0.1
+
+
+@dataclass(frozen=True)
+class OrderCut:
+    """One order of a run-up against the steady state about one crossing of the Campbell diagram.
+
+    ``passage`` is α/Γ² = q |dΩ/dt| / (ζ ω)² (the sweep rate of the order's frequency over the square of
+    the mode's half-power bandwidth, [Cowan]): ≪ 1 a slow passage, whose peak approaches the steady
+    state; ≳ 0.1 the peak is lower and later. Amplitudes in deg, speeds in rpm, at the tracked station.
+    """
+
+    order: float
+    mode: int
+    mode_hz: float
+    crossing_rpm: float
+    passage: float
+    steady_deg: float
+    steady_rpm: float
+    runup_deg: float
+    runup_rpm: float
+
+    @property
+    def difference(self) -> float:
+        """The run-up's peak over the steady state's, − 1."""
+        return self.runup_deg / self.steady_deg - 1.0
+
+    def to_dict(self) -> dict:
+        return {"order": self.order, "mode": self.mode, "mode_hz": self.mode_hz, "crossing_rpm": self.crossing_rpm,
+                "passage_alpha_over_gamma2": self.passage, "steady_peak_deg": self.steady_deg,
+                "steady_peak_rpm": self.steady_rpm, "runup_peak_deg": self.runup_deg,
+                "runup_peak_rpm": self.runup_rpm, "difference": self.difference}
+
+
+def order_cuts(result: TransientResult, response, crossings, damping_ratio, rate_rpm_per_s: float,
+               window: float = CROSSING_WINDOW) -> tuple[OrderCut, ...]:
+    """The run-up's order cuts against the steady-state response at each crossing.
+
+    Parameters
+    ----------
+    result : TransientResult
+        A run-up (or run-down) tracked at the response's first coordinate (its "pulley").
+    response : ResponseResult
+        The steady-state forced response of the same model: its ``order_pulley_deg`` (each
+        order's own amplitude, deg) is what the order track measures.
+    crossings : sequence of dict
+        Campbell crossings (``mode`` 1-based, ``frequency_hz``, ``order``, ``rpm``), each inside
+        both the run's and the response's speeds and on both their orders (others are left out).
+    damping_ratio : float or sequence of float
+        ζ of every mode, or of each mode (the Campbell diagram's), for the passage parameter.
+    rate_rpm_per_s : float
+        |dn/dt| of the run, rpm/s.
+    window : float
+        The peaks are searched within ``rpm (1 ± window)`` of each crossing.
+
+    Returns
+    -------
+    tuple of OrderCut
+    """
+    out = []
+    lo, hi = max(result.track.rpm.min(), response.rpm.min()), min(result.track.rpm.max(), response.rpm.max())
+    for c in crossings:
+        q, n = float(c["order"]), float(c["rpm"])
+        k = np.flatnonzero(np.isclose(response.orders, q))
+        if not (lo <= n <= hi and k.size and np.any(np.isclose(result.track.orders, q))):
+            continue
+        zeta = damping_ratio[c["mode"] - 1] if np.ndim(damping_ratio) else damping_ratio
+        omega = 2 * np.pi * c["frequency_hz"]
+        a, b = n * (1 - window), n * (1 + window)
+        s = (response.rpm >= a) & (response.rpm <= b)
+        r = (result.track.rpm >= a) & (result.track.rpm <= b)
+        steady, cut = response.order_pulley_deg[s, int(k[0])], np.degrees(np.abs(result.track.at(q)[r]))
+        i, j = int(np.argmax(steady)), int(np.argmax(cut))
+        out.append(OrderCut(q, int(c["mode"]), float(c["frequency_hz"]), n,
+                            float(q * rate_rpm_per_s * np.pi / 30 / (zeta * omega) ** 2) if zeta > 0 else math.inf,
+                            float(steady[i]), float(response.rpm[s][i]), float(cut[j]), float(result.track.rpm[r][j])))
+    return tuple(out)
+
+
+def plot_order_cuts(result: TransientResult, response, cuts, ax=None):
+    """Each compared order's cut of the run-up (solid) over the steady-state response's (dashed),
+    the tracked station's vibration in deg against speed. Returns the Axes."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(9, 5))
+    for i, q in enumerate(dict.fromkeys(c.order for c in cuts)):
+        k = int(np.flatnonzero(np.isclose(response.orders, q))[0])
+        ax.plot(result.track.rpm, np.degrees(np.abs(result.track.at(q))), color=f"C{i}", lw=1.2,
+                label=f"order {q:g}, run-up")
+        ax.plot(response.rpm, response.order_pulley_deg[:, k], color=f"C{i}", lw=1.0, ls="--",
+                label=f"order {q:g}, steady state")
+    ax.set_yscale("log")  # a low order's rigid-body swing at idle would flatten the resonances
+    ax.set_xlabel("mean speed [rpm]")
+    ax.set_ylabel(f"{result.track_station}: vibration [deg]")
+    ax.set_title(f"{result.name}: order cuts, {result.mode} (solid) and steady state (dashed)", fontsize=9)
+    ax.legend(fontsize=8, ncol=2)
+    ax.figure.tight_layout()
+    return ax
+
 
 def edge_times(t, angle, teeth: int) -> np.ndarray:
     """The times a wheel of ``teeth`` teeth turning through ``angle`` (rad, increasing, sampled
@@ -357,7 +508,8 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
                   damping_ratio: float | None = None,
                   partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
                   step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
-                  track_station: int = 0, variable_inertia: bool = False, method: str = "LSODA") -> TransientResult:
+                  track_station: int = 0, variable_inertia: bool = False, method: str = "LSODA",
+                  settled_start: bool = False) -> TransientResult:
     """Simulate a model with an engine in the time domain (module docs): linear by the exact
     propagator; with ``variable_inertia`` or a network's nonlinear elements by the nonlinear
     integrator of :mod:`fetorsion.response.nonlinear`.
@@ -392,6 +544,13 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     method : str
         The nonlinear integrator: one of :data:`fetorsion.response.nonlinear.METHODS` (scipy's
         ``solve_ivp``); the linear case ignores it.
+    settled_start : bool
+        A run first holds its start speed until the slowest elastic transient of starting from rest
+        has fallen to :data:`START_SETTLED` of its size, as an engine runs steadily before a test
+        cell's run-up; the envelope and the order track begin after the hold (``settle_s``). Without
+        it the run starts from rest at speed A and its first cycles ring with the lightly damped
+        modes (a driveline's, for seconds). Not with ``variable_inertia`` (its tangential term takes
+        one rate).
 
     Returns
     -------
@@ -440,6 +599,13 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         settle = 0.0
         duration, n_of_t, phi_of_t = speed_schedule(run[0], run[1], rate_rpm_per_s)
         mode = f"{'run-up' if run[1] > run[0] else 'run-down'} {run[0]:g}-{run[1]:g} rpm at {rate_rpm_per_s:g} rpm/s"
+        if settled_start:
+            if variable_inertia:
+                raise ParameterError("settled_start", "not with variable inertia (its tangential term takes one rate)")
+            if not math.isfinite(prop.settling_s):
+                raise FetorsionError(f"{model.name}: an elastic mode has no damping, a held start never settles")
+            settle = prop.settling_s * math.log(1 / START_SETTLED) / math.log(1 / SETTLED)
+            duration, n_of_t, phi_of_t = held_schedule(settle, duration, n_of_t, phi_of_t)
     N = int(duration / h) + 1
     t = np.arange(N) * h
     n_t, phi = n_of_t(t), phi_of_t(t)
@@ -475,7 +641,9 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     factor = 1.0 if res.network is None else float(speed_factors(model)[res.network.masters[track_station]])
     angle = factor * phi + q[track_station]
     revs = int(round(period / (2 * np.pi)))
-    track = order_track(edge_times(t, angle, teeth), teeth, revs, name=setup.labels[track_station])
+    k0 = int(np.searchsorted(t, settle)) if run is not None else 0  # a held start is not tracked
+    track = order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=setup.labels[track_station],
+                        accelerating=run is not None)
     # the envelope per block of whole cycles, from the crank's mean motion
     block = np.floor(phi / period).astype(int)
     # the last, unfinished cycle left out, and in a steady run the cycles before it settled
