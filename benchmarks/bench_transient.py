@@ -39,6 +39,8 @@ from dataclasses import replace  # noqa: E402
 from fetorsion.description.model import GearPair, Network, NonlinearSpring, Shaft  # noqa: E402
 from fetorsion.response.transient import run_transient  # noqa: E402
 
+from bench_run import cpu_name as cpu_model  # noqa: E402  (this folder is on the path: one CPU reader)
+
 
 #: The clutch damper's (first-stage) stiffness, N m/rad.
 CLUTCH_NM_PER_RAD = 3.0e3
@@ -90,19 +92,6 @@ def main() -> int:
     print(f"nonlinear: {res.mode}, {res.time_s.size:,} samples; {res.scheme}")
     print(f"  wall {wall:.2f} s, CPU {cpu:.2f} s on {cpu_model()}")
     return 0
-
-
-def cpu_model() -> str:
-    """The processor's name (Linux /proc/cpuinfo), or the platform's."""
-    import platform
-
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
 
 
 if __name__ == "__main__":

@@ -142,8 +142,6 @@ def test_variable_inertia_at_constant_speed_makes_the_inertia_torque(single):
 
 def one_mass_on_element(spring, J, v0, force=lambda t: np.zeros(1), t_end=1.0, n=20001, C=0.0):
     """A disc of inertia J on a nonlinear element to ground: q (rad) and the element's torque."""
-    from fetorsion.description.model import NonlinearSpring  # noqa: F401  (the element's type)
-
     el = Elements(np.ones((1, 1)), (spring,))
     t = np.linspace(0.0, t_end, n)
     q, z, _ = integrate_nonlinear(np.array([[J]]), np.zeros((1, 1)), np.array([[C]]), t, lambda tt: 0.0,

@@ -12,8 +12,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .defaults import (DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_PARTITION, DEFAULT_STICK_FACTOR,
-                       DEFAULT_WEB_METHOD)
+from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PARTITIONS, PROCESSES, SURFACES, WEB_METHOD_NAMES
 from .units import LENGTH_UNITS
 

@@ -36,7 +36,7 @@ import numpy as np
 import scipy.linalg
 
 from ..description.model import Chain, Crank, Network
-from ..errors import FetorsionError, ParameterError
+from ..errors import FetorsionError
 from ..modes import TorsionalModes
 from .network import NetworkMatrices, network_matrices, network_modes, resolved
 from .parts import PartChain, build_parts, partition_matrices, pin_weights
