@@ -89,3 +89,20 @@ def test_rubber_table_is_refused_by_the_nonlinear_integrator(chain):
     model = replace(chain, dampers=(DAMPERS["rubber"],))
     with pytest.raises(FetorsionError, match="Maxwell"):
         run_transient(model, rpm=1500.0, variable_inertia=True)
+
+
+def test_heat_following_rubber_runs_at_the_frequency_domains_temperature(chain):
+    # A rubber with tables at 20 and 100 °C (the hot one 40 % softer, illustrative) and a heat path
+    # of 20 W/K: the time domain reads its table at the temperature the frequency domain's heat
+    # balance finds at the run's speed, within that iteration's own tolerance.
+    from fetorsion.response.forced import HEAT_TOLERANCE_K
+
+    rows = tuple((T, f, s * 1.6e4 * (f / 200.0) ** ALPHA, 0.25)
+                 for T, s in ((20.0, 1.0), (100.0, 0.6)) for f in (25.0, 100.0, 400.0, 1600.0))
+    d = replace(Damper("rubber", hub_inertia=0.003, ring_inertia=0.01, name="hot", temperature_table=rows)
+                .at_temperature(20.0), ambient_c=20.0, thermal_conductance=20.0)
+    model = replace(chain, dampers=(d,))
+    tr = run_transient(model, rpm=2149.0)
+    fr = run_response(model, rpm=[2149.0], orders=ALL_ORDERS)
+    said = [n for n in tr.notes if "the temperature its heat holds" in n]
+    assert said and abs(float(said[0].split(" at ")[1].split(" °C")[0]) - fr.damper_temperatures_c[0]) < HEAT_TOLERANCE_K
