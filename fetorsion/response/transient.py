@@ -34,7 +34,12 @@ dampers it is damped and coupled, and the full basis is diagonalised (λ = 0 is 
 
 Hysteretic loss factors (k(1 + iη)) have no causal time-domain form: each enters as the viscous
 damping that dissipates as much at the resonance of every mode, C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM
-(exact at each mode's resonance, not between them). Not yet: [[dampers]].
+(exact at each mode's resonance, not between them).
+
+**Dampers** (:func:`with_dampers`): each ring is a coordinate, a viscous or tuned damper's dashpot
+and spring join C and K; a rubber damper's dynamic table is a generalised Maxwell model
+[ParkSchapery] (:func:`fetorsion.lumped_model.damped.maxwell_fit`), each branch one first-order
+state in the same exact propagator; a heat-following rubber at the frequency domain's temperature.
 
 **Order tracking.** A station's simulated angle (mean motion plus vibration) is turned into the
 tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go through the same
