@@ -140,9 +140,6 @@ def cmd_transient(args) -> int:
         raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
                              "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
     crank = load_excited(args.file, args.source)
-    if crank.dampers:
-        raise FetorsionError(f"{args.file}: [[dampers]] are not in the time domain yet (a rubber damper's stiffness "
-                             "depends on frequency); 'response' includes them")
     if args.station is not None:
         dof = lumped(crank, partition_of(args.source), args.stiffness).dof
         if args.station > dof:

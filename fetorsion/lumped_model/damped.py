@@ -6,6 +6,8 @@ classical optima and the tuning live in :mod:`fetorsion.design.dampers`.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
+
 import numpy as np
 
 from ..errors import FetorsionError
@@ -274,3 +276,80 @@ def complex_times(Z: np.ndarray, B: np.ndarray) -> np.ndarray:
     z = Z.reshape(-1, Z.shape[-1])
     out = (np.ascontiguousarray(z.real) @ B) + 1j * (np.ascontiguousarray(z.imag) @ B)
     return out.reshape(Z.shape[:-1] + (B.shape[1],))
+
+
+#: Maxwell branches per decade of the band a rubber damper's complex stiffness is fitted over
+#: (:func:`maxwell_fit`): each branch's loss peaks over about a decade, so three a decade leave
+#: little ripple on a flat loss factor.
+MAXWELL_PER_DECADE = 3
+#: The branches' relaxation frequencies reach this factor beyond the fitted band at each end (a
+#: band edge then lies inside the branches' reach, not on the last one's flank).
+MAXWELL_MARGIN = 2.0
+#: Fit points per decade of the band (besides the table's own rows).
+MAXWELL_SAMPLES = 40
+
+
+@dataclass(frozen=True)
+class MaxwellFit:
+    """A rubber's complex stiffness as a generalised Maxwell (Prony) model [ParkSchapery]: a
+    spring ``k_inf`` in parallel with branches of a spring ``stiffness[i]`` in series with a
+    dashpot ``damping[i]`` (relaxation time τ_i = c_i/k_i),
+
+        k*(ω) = k∞ + Σ k_i iωτ_i / (1 + iωτ_i),
+
+    fitted over ``band_hz``; ``stiffness_error`` (largest |k*_fit/k*_table − 1|) and ``loss_error``
+    (largest |η_fit − η_table|) at the table's own rows inside the band, and ``band_*`` the same
+    over the whole band's fit points."""
+
+    k_inf: float
+    stiffness: np.ndarray
+    damping: np.ndarray
+    band_hz: tuple
+    stiffness_error: float
+    loss_error: float
+    band_stiffness_error: float
+    band_loss_error: float
+
+    def spring(self, omegas) -> np.ndarray:
+        """k*(ω) of the fitted model, N·m/rad, at ``omegas`` (rad/s)."""
+        w = np.asarray(omegas, float)[..., None]
+        iwt = 1j * w * self.damping / self.stiffness
+        return self.k_inf + np.sum(self.stiffness * iwt / (1 + iwt), axis=-1)
+
+
+def maxwell_fit(damper) -> MaxwellFit:
+    """Fit a rubber damper's dynamic table (:func:`damper_spring`: linear between its rows) over
+    the table's frequencies by a generalised Maxwell model with relaxation frequencies fixed
+    log-uniformly and non-negative weights by least squares [ParkSchapery]: each point's real and
+    imaginary parts relative to its |k*| (a relative fit at every frequency). Returns a
+    :class:`MaxwellFit` with its error at the table's rows and over the band.
+    """
+    from scipy.optimize import nnls
+
+    rows = np.array(damper.table, float).reshape(-1, 3)
+    if len(rows) < 2:
+        raise FetorsionError(f"damper '{damper.name}': a Maxwell fit needs its dynamic table (>= 2 rows)")
+    f_lo, f_hi = rows[0, 0], rows[-1, 0]
+    decades = max(np.log10(f_hi / f_lo), 0.0)
+    band = np.logspace(np.log10(f_lo), np.log10(f_hi), max(2, int(np.ceil(decades * MAXWELL_SAMPLES)) + 1))
+    f = np.union1d(band, rows[:, 0])
+    reach = decades + 2 * np.log10(MAXWELL_MARGIN)
+    poles = np.logspace(np.log10(f_lo / MAXWELL_MARGIN), np.log10(f_hi * MAXWELL_MARGIN),
+                        max(2, int(np.ceil(reach * MAXWELL_PER_DECADE)) + 1))  # 1/(2πτ_i), Hz
+    target = damper_spring(damper, 2 * np.pi * f)
+    x = f[:, None] / poles[None, :]  # ωτ_i
+    basis = np.concatenate([np.ones((f.size, 1)), 1j * x / (1 + 1j * x)], axis=1) / np.abs(target)[:, None]
+    A = np.concatenate([basis.real, basis.imag])
+    b = np.concatenate([(target / np.abs(target)).real, (target / np.abs(target)).imag])
+    w, _ = nnls(A, b)
+    keep = w[1:] > 0
+    k = w[1:][keep]
+    fit = MaxwellFit(float(w[0]), k, k / (2 * np.pi * poles[keep]), (float(f_lo), float(f_hi)), 0.0, 0.0, 0.0, 0.0)
+
+    def errors(freqs):
+        ref, got = damper_spring(damper, 2 * np.pi * freqs), fit.spring(2 * np.pi * freqs)
+        return (float(np.max(np.abs(np.abs(got) / np.abs(ref) - 1))),
+                float(np.max(np.abs(got.imag / got.real - ref.imag / ref.real))))
+
+    return replace(fit, **dict(zip(("stiffness_error", "loss_error"), errors(rows[:, 0]))),
+                   **dict(zip(("band_stiffness_error", "band_loss_error"), errors(f))))

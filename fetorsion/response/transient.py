@@ -34,7 +34,12 @@ dampers it is damped and coupled, and the full basis is diagonalised (λ = 0 is 
 
 Hysteretic loss factors (k(1 + iη)) have no causal time-domain form: each enters as the viscous
 damping that dissipates as much at the resonance of every mode, C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM
-(exact at each mode's resonance, not between them). Not yet: [[dampers]].
+(exact at each mode's resonance, not between them).
+
+**Dampers** (:func:`with_dampers`): each ring is a coordinate, a viscous or tuned damper's dashpot
+and spring join C and K; a rubber damper's dynamic table is a generalised Maxwell model
+[ParkSchapery] (:func:`fetorsion.lumped_model.damped.maxwell_fit`), each branch one first-order
+state in the same exact propagator; a heat-following rubber at the frequency domain's temperature.
 
 **Order tracking.** A station's simulated angle (mean motion plus vibration) is turned into the
 tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go through the same
@@ -189,17 +194,37 @@ class Propagator:
         return math.log(1 / SETTLED) / decay.min()
 
 
-def propagator(M, K, C, h: float, grounded: bool = False) -> Propagator:
-    """Build the :class:`Propagator` (one eigen-decomposition per model and step)."""
+def propagator(M, K, C, h: float, grounded: bool = False, branches=None) -> Propagator:
+    """Build the :class:`Propagator` (one eigen-decomposition per model and step).
+
+    ``branches`` (D (b × r), k (b,), c (b,)), optional: Maxwell branches, each a spring k in
+    series with a dashpot c across the twist D q, with one first-order state u (the dashpot's
+    stroke): c u̇ = k (D q − u), its torque k (D q − u) on the coordinates through Dᵀ. The state
+    (η, η̇, u) is diagonalised as a whole, so the propagator stays exact.
+    """
     lam_u, Phi = scipy.linalg.eigh(K, M)  # ΦᵀMΦ = I
+    D, kb, cb = (np.zeros((0, len(M))), np.zeros(0), np.zeros(0)) if branches is None else branches
+    Kb = D.T @ (kb[:, None] * D)
     rigid = None
     if not grounded:
-        phi0 = Phi[:, 0]
-        if abs(lam_u[0]) <= 1e-8 * abs(lam_u[-1]) and phi0 @ C @ phi0 <= 1e-12 * np.abs(C).max(initial=0.0) * (phi0 @ phi0):
-            rigid, Phi, lam_u = phi0, Phi[:, 1:], lam_u[1:]
-    m = Phi.shape[1]
+        # A rigid-body mode: zero stiffness, and neither damping nor a Maxwell branch on it. Zero
+        # stiffness may have several shapes (a viscous damper's ring turns freely on its fluid):
+        # within them, the one that nothing damps.
+        zero = np.abs(lam_u) <= 1e-8 * abs(lam_u[-1])
+        if zero.any():
+            Z = Phi[:, zero]
+            s_, R = np.linalg.eigh(Z.T @ (C + Kb) @ Z)
+            Z = Z @ R
+            phi0 = Z[:, 0]
+            if s_[0] <= 1e-12 * max(np.abs(C).max(initial=0.0), np.abs(Kb).max(initial=0.0)) * (phi0 @ phi0):
+                rigid, Phi, lam_u = phi0, np.hstack([Z[:, 1:], Phi[:, ~zero]]), np.concatenate(
+                    [np.zeros(zero.sum() - 1), lam_u[~zero]])
+    m, nb = Phi.shape[1], len(kb)
     Cm = Phi.T @ C @ Phi
-    A = np.block([[np.zeros((m, m)), np.eye(m)], [-np.diag(lam_u), -Cm]])
+    P = D @ Phi  # each branch's twist per modal coordinate
+    A = np.block([[np.zeros((m, m)), np.eye(m), np.zeros((m, nb))],
+                  [-np.diag(lam_u) - P.T @ (kb[:, None] * P), -Cm, P.T * kb],
+                  [(kb / cb)[:, None] * P, np.zeros((nb, m)), -np.diag(kb / cb)]])
     lam, V = scipy.linalg.eig(A)
     Vinv = np.linalg.inv(V)
     lh = lam * h
@@ -208,7 +233,7 @@ def propagator(M, K, C, h: float, grounded: bool = False) -> Propagator:
     with np.errstate(divide="ignore", invalid="ignore"):
         I0 = np.where(small, h * (1 + lh / 2 + lh**2 / 6), (E - 1) / lam)
         I1 = np.where(small, h * h * (0.5 + lh / 6 + lh**2 / 24), (E - 1 - lh) / lam**2)
-    return Propagator(h, Phi, lam, V[:m], V[m:], Vinv[:, m:], E, I0 - I1 / h, I1 / h, rigid)
+    return Propagator(h, Phi, lam, V[:m], V[m:2 * m], Vinv[:, m:2 * m], E, I0 - I1 / h, I1 / h, rigid)
 
 
 def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.ndarray:
@@ -503,6 +528,61 @@ def edge_times(t, angle, teeth: int) -> np.ndarray:
     return np.interp(edges, angle, t)
 
 
+#: Speeds at which a heat-following rubber damper's temperature is found for a run (its
+#: dissipation's largest value over them sets it, as in the frequency domain).
+HEAT_SPEEDS = 60
+
+
+def with_dampers(model, setup, dampers, speeds, partition, damping_ratio, web_method, notes):
+    """The model's matrices with its ``[[dampers]]`` (module docs): (M, K complex, C, branches,
+    ring labels). A ring is a coordinate; a viscous or tuned damper's dashpot joins C, its spring
+    (with any loss factor, on ``K``'s imaginary part) K; a rubber damper with a dynamic table is
+    its :func:`fetorsion.lumped_model.damped.maxwell_fit`: k∞ joins K, each branch is one of
+    ``branches`` = (D, k, c, k at the band's middle) for :func:`propagator`, or None without any.
+    A heat-following rubber is read at the temperature the frequency domain finds for ``speeds``
+    (lowest, highest rpm: one speed when equal), with the default orders. Appends what it did to
+    ``notes``."""
+    from ..lumped_model.damped import DampedSystem, maxwell_fit
+    from .forced import response_setup, solve_theta
+
+    if not dampers:
+        return setup.M, setup.K, np.real(setup.C), None, []
+    if any(d.follows_heat for d in dampers):
+        lo, hi = speeds
+        grid = [lo] if hi == lo else np.linspace(lo, hi, HEAT_SPEEDS)
+        hot = response_setup(model, partition, rpm=grid, damping_ratio=damping_ratio, web_method=web_method)
+        dampers = solve_theta(hot, dampers)[2].dampers
+        notes.extend(f"damper '{d.name}': rubber at {d.temperature_c:.1f} °C, the temperature its heat holds "
+                     f"over {lo:g}-{hi:g} rpm in the frequency domain" for d in dampers if d.follows_heat)
+    n = len(setup.labels)
+    system = DampedSystem(setup.M, setup.K, np.real(setup.C), dampers, stations=n, at=setup.damper_station)
+    M, K, C = system.M, system.K.astype(complex), system.C
+    rows, kb, cb, kmid = [], [], [], []
+    for d, (s, r) in zip(dampers, system.joints):
+        u = np.zeros(len(M))
+        u[s], u[r] = 1.0, -1.0
+        if d.kind == "rubber" and d.table:
+            fit = maxwell_fit(d)
+            K = K + fit.k_inf * np.outer(u, u)
+            mid = 2 * np.pi * np.sqrt(fit.band_hz[0] * fit.band_hz[1])
+            for k, c in zip(fit.stiffness, fit.damping):
+                rows.append(u)
+                kb.append(k)
+                cb.append(c)
+                kmid.append(np.real(k * 1j * mid * c / k / (1 + 1j * mid * c / k)))
+            notes.append(f"damper '{d.name}': its dynamic table as k_inf = {fit.k_inf:.4g} N m/rad and "
+                         f"{fit.stiffness.size} Maxwell branches fitted over {fit.band_hz[0]:g}-{fit.band_hz[1]:g} Hz; "
+                         f"at the table's rows |k*| within {100 * fit.stiffness_error:.2f} %, the loss factor "
+                         f"within {fit.loss_error:.4f} (held at the end rows outside in the frequency domain, "
+                         "the model's own relaxation here)")
+        else:
+            K = K + d.stiffness * (1 + 1j * d.loss_factor) * np.outer(u, u)
+    labels = [f"damper '{d.name}' ring" for d in dampers]
+    if not kb:
+        return M, K, C, None, labels
+    return M, K, C, (np.array(rows), np.array(kb), np.array(cb), np.array(kmid)), labels
+
+
 def run_transient(model, rpm: float | None = None, run: tuple[float, float] | None = None,
                   rate_rpm_per_s: float | None = None, cycles: int = DEFAULT_TRANSIENT_CYCLES,
                   damping_ratio: float | None = None,
@@ -562,27 +642,30 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         raise ParameterError("rpm", "give either a steady speed (rpm) or a run (run=(A, B) with rate_rpm_per_s)")
     if model.excitation is None or model.engine is None:
         raise FetorsionError(f"{model.source or model.name}: the description has no [engine] and [excitation]")
-    if getattr(model, "dampers", ()):
-        raise FetorsionError(f"{model.source or model.name}: [[dampers]] are not in the time domain yet "
-                             "(a rubber damper's stiffness depends on frequency)")
     top = rpm if run is None else max(run)
     lo = rpm if run is None else min(run)
     setup = response_setup(model, partition, rpm=[top], orders=[1.0], damping_ratio=damping_ratio,
                            web_method=web_method)
-    M, Kc, C = setup.M, setup.K, np.real(setup.C)
-    K, H = np.real(Kc), np.imag(Kc)
+    dampers = tuple(getattr(model, "dampers", ()))
     notes = []
+    M, Kc, C, branches, ring_labels = with_dampers(model, setup, dampers, (lo, top), partition, damping_ratio,
+                                                   web_method, notes)
+    K, H = np.real(Kc), np.imag(Kc)
     if np.any(H):
-        C = C + hysteretic_equivalent(M, K, H)
+        # the Maxwell branches' stiffness at the middle of their band joins K for the modes C_η is set on
+        Kmid = K if branches is None else K + branches[0].T @ (branches[3][:, None] * branches[0])
+        C = C + hysteretic_equivalent(M, Kmid, H)
         notes.append("loss factors enter as the viscous damping that dissipates as much at each mode's "
                      "resonance (exact there, not between)")
+    if branches is not None:
+        branches = branches[:3]
     h = step_rad / (top * math.pi / 30)
     from ..lumped_model.lumped import lumped
     from ..lumped_model.network import speed_factors
 
     res = lumped(model, partition, web_method)
     grounded = res.network is not None and res.network.grounded
-    prop = propagator(M, K, C, h, grounded)
+    prop = propagator(M, K, C, h, grounded, branches)
     period = cycle_angle(model.engine)
     if run is None:
         if not math.isfinite(prop.settling_s):
@@ -610,7 +693,8 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     t = np.arange(N) * h
     n_t, phi = n_of_t(t), phi_of_t(t)
     grid, step, table = torque_table(model, lo, top)
-    W = setup.load_map[:, 0, :].real  # (cylinders, coordinates)
+    rings = len(M) - len(setup.labels)  # the dampers' rings: coordinates that no cylinder drives
+    W = np.pad(setup.load_map[:, 0, :].real, ((0, 0), (0, rings)))  # (cylinders, coordinates)
     elements = tuple(getattr(model, "nonlinear", ()))
     if method not in METHODS:
         raise ParameterError("method", f"must be one of {', '.join(METHODS)}")
@@ -629,8 +713,11 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         g0 = prop.rigid @ load(0, n1)
         v = np.concatenate([[0.0], np.cumsum(0.5 * h * (g0[:-1] + g0[1:]))])
         rigid_speed = -float(np.trapezoid(v, dx=h) / (h * (n1 - 1)))
-    rows = np.real(setup.section_rows)
+    rows = np.pad(np.real(setup.section_rows), ((0, 0), (0, rings)))
     if variable_inertia or elements:
+        if branches is not None:
+            raise FetorsionError(f"{model.source or model.name}: a rubber damper's dynamic table (its Maxwell "
+                                 "states) is not in the nonlinear integrator yet: run without variable inertia")
         q, torque, scheme = _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t,
                                            run, rate_rpm_per_s, lo, top, elements, variable_inertia, method)
     else:
@@ -655,8 +742,9 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     count = np.bincount(block[full], None, nb)
     block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
     block_rpm, peak = block_rpm[count > 0], peak[count > 0]
-    return TransientResult(model.name, mode, list(setup.labels), list(setup.section_labels), t, n_t, phi, torque, q,
-                           block_rpm, peak, track, h, settle, scheme, notes, setup.labels[track_station])
+    return TransientResult(model.name, mode, list(setup.labels) + ring_labels, list(setup.section_labels), t, n_t,
+                           phi, torque, q, block_rpm, peak, track, h, settle, scheme, notes,
+                           setup.labels[track_station])
 
 
 def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t, run, rate, lo, top,
