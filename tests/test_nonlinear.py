@@ -125,7 +125,10 @@ def test_secondary_resonance_of_the_variable_inertia(single):
                                 single.excitation.reciprocating_mass, ZETA, 4, 0.23 * wbar * np.pi / 30,
                                 0.27 * wbar * np.pi / 30) * 30 / np.pi
     assert peak == pytest.approx(floquet, rel=0.01), (peak, floquet, wbar / 4)
-    assert env[False][1].max() < 0.1 * env[True][1].max()
+    # "there": about the resonance (± 2 %, the location test's own tolerance), past the run's start,
+    # where both runs ring from rest with ω̄ (order 4.35 at the start speed, leaking into order 4)
+    near = np.abs(env[False][0] / peak - 1) < 0.02
+    assert env[False][1][near].max() < 0.1 * env[True][1].max()
 
 
 
