@@ -190,3 +190,50 @@ def test_engine_model_speeds_reach_overspeed(condensed_renault):
     faster = dataclasses.replace(cc, crank=dataclasses.replace(
         crank, excitation=dataclasses.replace(crank.excitation, overspeed=1.25)))
     assert condensed_setup(faster).rpm[-1] == pytest.approx(1.25 * 6500.0)
+
+
+
+@pytest.mark.fe
+def test_engine_model_with_dampers_is_the_exact_update_of_its_undamped_response(condensed_renault):
+    """The condensed crank's response with dampers comes from its response without them by a
+    low-rank (Woodbury) update. Given the undamped model's exact responses (dense direct solves
+    of the reduced model with its Coriolis term: under the loads, and under a unit torque at each
+    damper place), the update equals the dense direct solve with the rings as degrees of freedom
+    to round-off (1e-9 of the largest angle): rubber with a table, viscous and tuned dampers, at
+    either end and two on one station. The projected setup's own undamped responses are the
+    projected solve's (its block of right-hand sides equals one solve per load to 1e-12), whose
+    accuracy is tested above."""
+    from fetorsion.description.model import Damper
+    from fetorsion.lumped_model.damped import DampedSystem, projected_solve, with_dampers
+    from fetorsion.response.coupled import condensed_setup
+    from fetorsion.response.forced import solve_theta
+
+    crank, fillets, cc = condensed_renault
+    setup = condensed_setup(cc, rpm=np.linspace(1000.0, 7150.0, 25), section_labels=[f.label for f in fillets])
+    n = len(setup.labels)
+    omegas = setup.orders[None, :] * setup.rpm[:, None] * np.pi / 30
+    spin = setup.rpm[:, None] * np.pi / 30
+    bare = DampedSystem(setup.M, setup.K, setup.C, (), stations=n)
+    x0, unit, places = setup.damper_receptance
+    one = projected_solve(bare, setup.forces, omegas, setup.gyroscopic, spin)
+    assert np.abs(x0 - one).max() <= 1e-12 * np.abs(one).max()
+    G = (1j * omegas * spin)[..., None, None] * setup.gyroscopic
+    rhs = np.zeros(omegas.shape + (n, 1 + len(places)), complex)
+    rhs[..., 0] = setup.forces
+    for j, s in enumerate(places):
+        rhs[..., s, 1 + j] = 1.0
+    exact = np.linalg.solve(bare.matrix(omegas) + G, rhs)
+    rubber = Damper("rubber", "front", 2e-3, 8e-3, stiffness=5e4, damping=3.0, loss_factor=0.2,
+                    table=((200.0, 4e4, 0.15), (900.0, 7e4, 0.25)))
+    viscous = Damper("viscous", "front", 4e-3, 6e-3, damping=20.0)
+    tuned = Damper("tuned", "rear", 1e-3, 5e-3, stiffness=4e4, damping=2.0)
+    for dampers in ((rubber,), (viscous,), (tuned,), (rubber, viscous), (rubber, tuned)):
+        theta, _, system = solve_theta(setup, dampers)
+        assert theta.shape == omegas.shape + (len(system.M),)
+        A = system.matrix(omegas)
+        A[..., :n, :n] += G
+        F = np.zeros(omegas.shape + (len(system.M),), complex)
+        F[..., :n] = setup.forces
+        direct = np.linalg.solve(A, F[..., None])[..., 0]
+        updated = with_dampers(exact[..., 0], np.swapaxes(exact[..., 1:], -1, -2), places, system, omegas)
+        assert np.abs(updated - direct).max() <= 1e-9 * np.abs(direct).max(), [d.kind for d in dampers]

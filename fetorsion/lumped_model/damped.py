@@ -197,6 +197,22 @@ def damped_modes(inertias, stiffnesses, pin_weights, dampers, source: str = "cha
     return modes, loss / (2 * omega**2 * m)
 
 
+def ring_transmission(damper, omegas) -> np.ndarray:
+    """θ_ring / θ_station of ``damper``'s ring at ``omegas`` (rad/s): the ring J_r on its spring and
+    dashpot κ(ω) = k(ω) + iωc moves as κ / (κ − ω² J_r)."""
+    w = np.asarray(omegas, dtype=float)
+    kappa = damper_spring(damper, w) + 1j * w * damper.damping
+    return kappa / (kappa - w**2 * damper.ring_inertia)
+
+
+def damper_impedance(damper, omegas) -> np.ndarray:
+    """Dynamic stiffness (N·m/rad) that ``damper`` adds to its station at ``omegas`` (rad/s), its
+    ring condensed out exactly: −ω² J_hub + κ (θ_s − θ_r)/θ_s = −ω² J_hub − ω² J_r κ / (κ − ω² J_r)
+    (:func:`viscous_impedance` is the case k = 0, without the hub)."""
+    w = np.asarray(omegas, dtype=float)
+    return -(w**2) * (damper.hub_inertia + damper.ring_inertia * ring_transmission(damper, w))
+
+
 #: A projected solve keeps every undamped mode of the system (crank and rings) below this
 #: multiple of the highest excitation frequency, at least MIN_MODES; the modes above it act
 #: statically (their dynamic amplification there is at most 1/(1 − 1/3²) = 1.125, on a part
@@ -220,8 +236,14 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     ``gyroscopic`` (stations × stations, skew, per unit spin speed) with ``spin`` (rad/s,
     broadcast against ``omegas``) adds the rotating frame's Coriolis term i ω Ω G: a velocity
     coupling like damping, projected on the same modes (it has no static part).
+
+    ``forces`` of shape omegas.shape + (r, stations) are r right-hand sides at each frequency,
+    solved on one factorisation of that frequency's matrix; the result is then (..., r, N).
     """
     om = np.asarray(omegas, float)
+    block = forces.ndim == om.ndim + 2
+    if not block:
+        forces = forces[..., None, :]
     Mn, Kn, _, _ = system.nominal(float(om.max()) / 2)
     L = np.linalg.cholesky(Mn)
     Linv = np.linalg.inv(L)
@@ -238,7 +260,7 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     U = [low[s] - low[r] for s, r in system.joints]
     nominal = system._spring_terms(np.asarray(float(om.max()) / 2))
     A = np.multiply(1j * om[..., None, None], Cp)
-    rhs = complex_times(F, low)
+    rhs = complex_times(F, low)  # (..., r, kept)
     Fh = complex_times(F, high) / lam[count:] if high.shape[1] else None
     if gyroscopic is not None:
         # Coriolis coupling i ω Ω G: among the kept modes in full; with the others condensed out
@@ -255,19 +277,43 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
         if Fh is not None:
             H = (Glh / lam[count:]) @ Ghl
             A += (wO**2)[..., None, None] * H
-            rhs = rhs - (1j * wO)[..., None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
+            rhs = rhs - (1j * wO)[..., None, None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
     diag = np.einsum("...ii->...i", A)
     diag += lam[:count] - om[..., None] ** 2
     for d, u, (s, r) in zip(system.dampers, U, system.joints):
         k = damper_spring(d, om) - np.real(nominal[s, s])
         A += k[..., None, None] * np.outer(u, u)
-    xi = np.linalg.solve(A, rhs[..., None])[..., 0]
+    xi = np.swapaxes(np.linalg.solve(A, np.swapaxes(rhs, -1, -2)), -1, -2)
     x = complex_times(xi, np.ascontiguousarray(low.T))
     if Fh is not None:
         if gyroscopic is not None:
-            Fh = Fh - (1j * wO)[..., None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
+            Fh = Fh - (1j * wO)[..., None, None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
         x = x + complex_times(Fh, np.ascontiguousarray(high.T))
-    return x
+    return x if block else x[..., 0, :]
+
+
+def with_dampers(x0: np.ndarray, unit: np.ndarray, places: list, system: DampedSystem, omegas) -> np.ndarray:
+    """θ (..., N) of ``system`` — a model with its dampers' rings appended — from the model's own
+    response without them: ``x0`` (..., stations) under the loads and ``unit`` (..., places,
+    stations) under a unit torque at each DOF of ``places`` (those that carry a damper among them).
+
+    Each damper acts on its station as the dynamic stiffness :func:`damper_impedance` z(ω), so
+    with Z the stations' summed z and E their unit columns, (A + E Z Eᵀ) θ = F gives the stations'
+    angles y from (I + Eᵀ A⁻¹ E Z) y = Eᵀ x0 and θ = x0 − A⁻¹ E Z y (Woodbury): exact for any
+    number of dampers, a small solve per frequency instead of the damped model's own.
+    The rings follow their stations by :func:`ring_transmission`.
+    """
+    omegas = np.asarray(omegas, dtype=float)
+    at = sorted(set(system.carriers))
+    U = unit[..., [places.index(s) for s in at], :]  # (..., m, stations): response to a unit torque at each
+    Z = np.zeros(omegas.shape + (len(at),), complex)
+    for d, s in zip(system.dampers, system.carriers):
+        Z[..., at.index(s)] += damper_impedance(d, omegas)
+    A = np.eye(len(at)) + np.swapaxes(U[..., at], -1, -2) * Z[..., None, :]
+    y = np.linalg.solve(A, x0[..., at][..., None])[..., 0]
+    x = x0 - np.einsum("...j,...jn->...n", Z * y, U)
+    rings = [ring_transmission(d, omegas) * x[..., s] for d, s in zip(system.dampers, system.carriers)]
+    return np.concatenate([x, np.stack(rings, axis=-1)], axis=-1)
 
 
 def complex_times(Z: np.ndarray, B: np.ndarray) -> np.ndarray:

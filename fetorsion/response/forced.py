@@ -16,6 +16,8 @@ section torque is the elastic torque k Δθ of each spring (what a strain gauge 
 
 from __future__ import annotations
 
+import functools
+
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -297,6 +299,27 @@ class ResponseSetup:
             return damper_station(damper, len(self.labels))
         return self.damper_dof[damper.at]
 
+    @functools.cached_property
+    def damper_receptance(self) -> tuple[np.ndarray, np.ndarray, list]:
+        """(θ without dampers (speeds, orders, DOF), the response to a unit torque at each DOF a
+        damper can act on (speeds, orders, places, DOF), those DOFs) of a projected setup, from one
+        projected solve with the loads and the unit torques as a block of right-hand sides. Any
+        set of dampers then follows by a small exact update
+        (:func:`fetorsion.lumped_model.damped.with_dampers`): the damper designs and the heat
+        iteration solve the large model once, not once per trial damper."""
+        from ..lumped_model.damped import DampedSystem, projected_solve
+
+        n = len(self.labels)
+        places = sorted({0, n - 1} if self.damper_dof is None else set(self.damper_dof.values()))
+        rhs = np.zeros(self.forces.shape[:2] + (1 + len(places), n), complex)
+        rhs[:, :, 0] = self.forces
+        for j, s in enumerate(places):
+            rhs[:, :, 1 + j, s] = 1.0
+        omegas = self.orders[None, :] * self.rpm[:, None] * 2 * np.pi / 60
+        spin = self.rpm[:, None] * 2 * np.pi / 60
+        x = projected_solve(DampedSystem(self.M, self.K, self.C, (), stations=n), rhs, omegas, self.gyroscopic, spin)
+        return x[:, :, 0], x[:, :, 1:], places
+
 
 def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
                    damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
@@ -407,14 +430,14 @@ def solve_theta(setup: ResponseSetup, dampers=()):
 
 
 def _solve_theta(setup: ResponseSetup, dampers):
-    from ..lumped_model.damped import projected_solve
+    from ..lumped_model.damped import with_dampers
 
     n = len(setup.labels)
     system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station)
     omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     if setup.projected:
-        spin = setup.rpm[:, None] * 2 * np.pi / 60
-        return projected_solve(system, setup.forces, omegas, setup.gyroscopic, spin), omegas, system
+        x0, unit, places = setup.damper_receptance
+        return (with_dampers(x0, unit, places, system, omegas) if dampers else x0), omegas, system
     N = len(system.M)
     forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
     return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
