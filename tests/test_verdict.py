@@ -214,9 +214,11 @@ def test_engine_model_with_dampers_is_the_exact_update_of_its_undamped_response(
     omegas = setup.orders[None, :] * setup.rpm[:, None] * np.pi / 30
     spin = setup.rpm[:, None] * np.pi / 30
     bare = DampedSystem(setup.M, setup.K, setup.C, (), stations=n)
-    x0, unit, places = setup.damper_receptance
+    x0, (unit, places) = setup.free_response, setup.unit_response
     one = projected_solve(bare, setup.forces, omegas, setup.gyroscopic, spin)
     assert np.abs(x0 - one).max() <= 1e-12 * np.abs(one).max()
+    e = projected_solve(bare, np.broadcast_to(np.eye(n)[places[-1]], setup.forces.shape), omegas, setup.gyroscopic, spin)
+    assert np.abs(unit[:, :, -1] - e).max() <= 1e-12 * np.abs(e).max()
     G = (1j * omegas * spin)[..., None, None] * setup.gyroscopic
     rhs = np.zeros(omegas.shape + (n, 1 + len(places)), complex)
     rhs[..., 0] = setup.forces

@@ -281,8 +281,13 @@ class ResponseSetup:
         exactly: each speed's forces are its own."""
         from dataclasses import replace
 
-        return replace(self, rpm=self.rpm[index], forces=self.forces[index],
-                       cylinder_harmonics=self.cylinder_harmonics[index])
+        out = replace(self, rpm=self.rpm[index], forces=self.forces[index],
+                      cylinder_harmonics=self.cylinder_harmonics[index])
+        if "free_response" in self.__dict__:  # solved already: each speed's solve is its own
+            out.free_response = self.free_response[index]
+        if "unit_response" in self.__dict__:
+            out.unit_response = (self.unit_response[0][index], self.unit_response[1])
+        return out
 
     def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
         """The same engine with ``cylinder`` (0-based) not firing: its force harmonics replaced by
@@ -291,7 +296,10 @@ class ResponseSetup:
 
         delta = np.einsum("sok,o,kd->sod", motored - self.cylinder_harmonics, self.phasors[:, cylinder],
                           self.load_map[cylinder])
-        return replace(self, forces=self.forces + delta, misfire=cylinder)
+        out = replace(self, forces=self.forces + delta, misfire=cylinder)
+        if "unit_response" in self.__dict__:  # the same matrices and speeds
+            out.unit_response = self.unit_response
+        return out
 
     def damper_station(self, damper) -> int:
         """The DOF a damper at ``damper.at`` (front or rear) acts on."""
@@ -300,25 +308,33 @@ class ResponseSetup:
         return self.damper_dof[damper.at]
 
     @functools.cached_property
-    def damper_receptance(self) -> tuple[np.ndarray, np.ndarray, list]:
-        """(θ without dampers (speeds, orders, DOF), the response to a unit torque at each DOF a
-        damper can act on (speeds, orders, places, DOF), those DOFs) of a projected setup, from one
-        projected solve with the loads and the unit torques as a block of right-hand sides. Any
-        set of dampers then follows by a small exact update
-        (:func:`fetorsion.lumped_model.damped.with_dampers`): the damper designs and the heat
-        iteration solve the large model once, not once per trial damper."""
-        from ..lumped_model.damped import DampedSystem, projected_solve
+    def free_response(self) -> np.ndarray:
+        """θ (speeds, orders, DOF) of a projected setup without dampers: one projected solve."""
+        return self._projected(self.forces[:, :, None, :])[:, :, 0]
 
+    @functools.cached_property
+    def unit_response(self) -> tuple[np.ndarray, list]:
+        """(the response to a unit torque at each DOF a damper can act on (speeds, orders, places,
+        DOF), those DOFs) of a projected setup: one projected solve with the unit torques as a
+        block of right-hand sides. With :attr:`free_response`, any set of dampers follows by a
+        small exact update (:func:`fetorsion.lumped_model.damped.with_dampers`): the damper
+        designs and the heat iteration solve the large model once, not once per trial damper. It
+        depends on the matrices and speeds only, so a misfire or a subset of speeds reuses it."""
         n = len(self.labels)
         places = sorted({0, n - 1} if self.damper_dof is None else set(self.damper_dof.values()))
-        rhs = np.zeros(self.forces.shape[:2] + (1 + len(places), n), complex)
-        rhs[:, :, 0] = self.forces
+        rhs = np.zeros(self.forces.shape[:2] + (len(places), n))
         for j, s in enumerate(places):
-            rhs[:, :, 1 + j, s] = 1.0
+            rhs[:, :, j, s] = 1.0
+        return self._projected(rhs), places
+
+    def _projected(self, rhs: np.ndarray) -> np.ndarray:
+        """Projected solve of the undamped model for a block of right-hand sides (speeds, orders, r, DOF)."""
+        from ..lumped_model.damped import DampedSystem, projected_solve
+
         omegas = self.orders[None, :] * self.rpm[:, None] * 2 * np.pi / 60
         spin = self.rpm[:, None] * 2 * np.pi / 60
-        x = projected_solve(DampedSystem(self.M, self.K, self.C, (), stations=n), rhs, omegas, self.gyroscopic, spin)
-        return x[:, :, 0], x[:, :, 1:], places
+        return projected_solve(DampedSystem(self.M, self.K, self.C, (), stations=len(self.labels)), rhs, omegas,
+                               self.gyroscopic, spin)
 
 
 def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
@@ -436,8 +452,9 @@ def _solve_theta(setup: ResponseSetup, dampers):
     system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station)
     omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     if setup.projected:
-        x0, unit, places = setup.damper_receptance
-        return (with_dampers(x0, unit, places, system, omegas) if dampers else x0), omegas, system
+        if not dampers:
+            return setup.free_response, omegas, system
+        return with_dampers(setup.free_response, *setup.unit_response, system, omegas), omegas, system
     N = len(system.M)
     forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
     return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
