@@ -159,7 +159,20 @@ def cut_throw_angles(cc: CondensedCrank) -> np.ndarray:
     return out
 
 
-def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_SAMPLES) -> LoadCycle:
+def mean_cut_loads(cc: CondensedCrank, rpm) -> np.ndarray:
+    """(speeds, cuts, 6) cycle means of the fillet cuts' resultants at ``rpm``: the gas and inertia
+    pin forces' means and the crank's own centrifugal load, solved statically in the bearings
+    (the flywheel end reacting the load torque). Independent of damping and dampers."""
+    rpm = np.atleast_1d(np.asarray(rpm, dtype=float))
+    m = cc.n_master_dofs
+    loads = np.zeros((len(rpm), cc.reduced.size))
+    loads[:, :m] = mean_master_loads(cc, rpm)
+    if cc.centrifugal is not None:  # the crank's own rotating mass (counterweights, webs, pins)
+        loads += np.outer((rpm * 2 * np.pi / 60) ** 2, cc.centrifugal)
+    return np.einsum("cjr,sr->scj", cc.cut_rows, static_solution(cc, loads), optimize=True)
+
+
+def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_SAMPLES, mean=None) -> LoadCycle:
     """The fillet cuts' load histories of the condensed crank in its bearings at every speed of
     ``setup`` (:func:`fetorsion.response.coupled.condensed_setup`, with ``dampers``).
 
@@ -174,8 +187,12 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
         rubber is put at its own temperature.
     samples : int
         Crank-angle samples over one cycle.
+    mean : ndarray, optional
+        :func:`mean_cut_loads` at the setup's speeds, when the caller has it (it does not change
+        with the damping: an assessment across a damping band computes it once).
     """
     from ..errors import FetorsionError
+    from ..lumped_model.damped import complex_times
     from .forced import solve_theta
     from .synthesis import waveform
 
@@ -186,15 +203,13 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
     theta, _, _ = solve_theta(setup, dampers)
     rows = cc.cut_rows[:, :, keep]  # (cuts, 6, DOF)
     n = len(keep)
-    vib = np.einsum("cjd,sod->scjo", rows, theta[:, :, :n])  # complex per order
+    vib = complex_times(theta[:, :, :n], np.ascontiguousarray(rows.reshape(-1, n).T))  # (speeds, orders, cuts·6)
+    vib = np.moveaxis(vib.reshape(vib.shape[:2] + rows.shape[:2]), 1, -1)  # (speeds, cuts, 6, orders)
     angles = np.arange(samples) * cycle_angle(cc.crank.engine) / samples
-    m = cc.n_master_dofs
-    loads = np.zeros((len(setup.rpm), cc.reduced.size))
-    loads[:, :m] = mean_master_loads(cc, setup.rpm)
-    if cc.centrifugal is not None:  # the crank's own rotating mass (counterweights, webs, pins)
-        loads += np.outer((np.asarray(setup.rpm) * 2 * np.pi / 60) ** 2, cc.centrifugal)
-    z0 = static_solution(cc, loads)
-    mean = np.einsum("cjr,sr->scj", cc.cut_rows, z0)
+    if mean is None:
+        mean = mean_cut_loads(cc, setup.rpm)
+    elif len(mean) != len(setup.rpm):
+        raise FetorsionError(f"mean cut loads at {len(mean)} speeds for a setup of {len(setup.rpm)}")
     history = mean[..., None] + waveform(vib, setup.orders, angles)
     labels = list(setup.section_labels) if len(setup.section_labels) == len(rows) else \
         [f"cut {k + 1}" for k in range(len(rows))]
