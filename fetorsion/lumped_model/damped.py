@@ -144,9 +144,9 @@ class DampedSystem:
 def viscous_impedance(damper, omega) -> complex:
     """Dynamic stiffness a viscous damper's ring adds to its station at ω (rad/s), N·m/rad:
     the ring J_r on the dashpot c gives D(ω) = iωc (−ω²J_r) / (iωc − ω²J_r); its imaginary part
-    is the damping the station feels, its real part the ring inertia it drags along."""
-    iwc = 1j * omega * damper.damping
-    return iwc * (-(omega**2) * damper.ring_inertia) / (iwc - omega**2 * damper.ring_inertia)
+    is the damping the station feels, its real part the ring inertia it drags along (the ring
+    term of :func:`damper_impedance`, whose spring is zero here)."""
+    return -(omega**2) * damper.ring_inertia * ring_transmission(damper, omega)
 
 
 def damped_modes(inertias, stiffnesses, pin_weights, dampers, source: str = "chain"):
