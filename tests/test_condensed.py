@@ -272,6 +272,16 @@ def test_condensed_crank_with_damper_equals_direct_solve():
     np.testing.assert_allclose(z2[..., i], x[..., at], rtol=1e-2)
     assert np.abs(z2[..., i]).max() < np.abs(z0[..., i]).max()  # the damper does something at the resonance
     assert np.all(heat >= 0)
+    # two dampers on one master, one of them viscous (its ring has no spring: a zero-frequency
+    # mode of the damped system, which its own modal basis handled badly)
+    v = Damper("viscous", "front", hub_inertia=3e-3, ring_inertia=5e-3, damping=25.0, name="v")
+    z3, heat3 = damped_solution(cc, "bearings", loads, om, 0.02, (d, v))
+    sysd = DampedSystem(M[np.ix_(keep, keep)], K[np.ix_(keep, keep)], C, (d, v), at=at)
+    F = np.zeros(loads.shape[:-1] + (len(sysd.M),), complex)
+    F[..., :len(keep)] = np.pad(loads, ((0, 0), (0, 0), (0, cc.reduced.size - m)))[..., keep]
+    x = np.linalg.solve(sysd.matrix(om), F[..., None])[..., 0]
+    np.testing.assert_allclose(z3[..., i], x[..., at], rtol=1e-2)
+    assert heat3.shape[-1] == 2 and np.all(heat3 >= 0)
 
 
 @pytest.fixture(scope="module")

@@ -104,20 +104,28 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     twist, and each damper's dissipated power (..., dampers) in W.
 
     The crank's own modal damping (``damping_ratio`` on its undamped modes) and the bearings'
-    dampers stay as in :func:`harmonic_solution`; the dampers' rings are appended by
-    :class:`fetorsion.lumped_model.damped.DampedSystem` and the whole solved by
-    :func:`fetorsion.lumped_model.damped.projected_solve` (non-proportional damping). ``spin``
+    dampers stay as in :func:`harmonic_solution`; the crank without its dampers is solved by
+    :func:`fetorsion.lumped_model.damped.projected_solve` (non-proportional damping) for the
+    loads and a unit torque at each damper place in one block, and the dampers, their rings
+    condensed exactly, follow by :func:`fetorsion.lumped_model.damped.with_dampers`. ``spin``
     (rad/s, broadcast against ``omegas``): the crank's speed, for the Coriolis term of its
     rotating frame (``cc.gyroscopic``); None leaves it out.
     """
-    from ..lumped_model.damped import DampedSystem, projected_solve
+    from ..lumped_model.damped import DampedSystem, projected_solve, with_dampers
 
     Kk, Mk, Ck, keep = supported_damping(cc, support, damping_ratio)
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
     system = DampedSystem(Mk, Kk, Ck, dampers, stations=len(keep), at=lambda d: where[d.at])
     om = np.asarray(omegas, float)
     G = None if spin is None or cc.gyroscopic is None else cc.gyroscopic[np.ix_(keep, keep)]
-    x = projected_solve(system, loads_on(cc, loads, keep), om, G, spin)
+    F = loads_on(cc, loads, keep)
+    places = sorted(set(system.carriers))
+    rhs = np.zeros(F.shape[:-1] + (1 + len(places), len(keep)), complex)
+    rhs[..., 0, :] = F
+    for j, s in enumerate(places):
+        rhs[..., 1 + j, s] = 1.0
+    sol = projected_solve(DampedSystem(Mk, Kk, Ck, (), stations=len(keep)), rhs, om, G, spin)
+    x = with_dampers(sol[..., 0, :], sol[..., 1:, :], places, system, om) if dampers else sol[..., 0, :]
     z = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)
     z[..., keep] = x[..., :len(keep)]
     return z, system.dissipated_power(x, om)
