@@ -292,6 +292,15 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     return x if block else x[..., 0, :]
 
 
+def unit_torques(shape: tuple, stations: int, places) -> np.ndarray:
+    """A unit torque at each DOF of ``places``, as a block of right-hand sides of
+    :func:`projected_solve`: shape ``shape + (len(places), stations)``, the unit responses
+    :func:`with_dampers` reads."""
+    out = np.zeros(tuple(shape) + (len(places), stations))
+    out[..., np.arange(len(places)), list(places)] = 1.0
+    return out
+
+
 def with_dampers(x0: np.ndarray, unit: np.ndarray, places: list, system: DampedSystem, omegas) -> np.ndarray:
     """θ (..., N) of ``system`` — a model with its dampers' rings appended — from the model's own
     response without them: ``x0`` (..., stations) under the loads and ``unit`` (..., places,

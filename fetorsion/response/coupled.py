@@ -111,7 +111,7 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     (rad/s, broadcast against ``omegas``): the crank's speed, for the Coriolis term of its
     rotating frame (``cc.gyroscopic``); None leaves it out.
     """
-    from ..lumped_model.damped import DampedSystem, projected_solve, with_dampers
+    from ..lumped_model.damped import DampedSystem, projected_solve, unit_torques, with_dampers
 
     Kk, Mk, Ck, keep = supported_damping(cc, support, damping_ratio)
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
@@ -120,10 +120,7 @@ def damped_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas:
     G = None if spin is None or cc.gyroscopic is None else cc.gyroscopic[np.ix_(keep, keep)]
     F = loads_on(cc, loads, keep)
     places = sorted(set(system.carriers))
-    rhs = np.zeros(F.shape[:-1] + (1 + len(places), len(keep)), complex)
-    rhs[..., 0, :] = F
-    for j, s in enumerate(places):
-        rhs[..., 1 + j, s] = 1.0
+    rhs = np.concatenate([F[..., None, :], unit_torques(F.shape[:-1], len(keep), places)], axis=-2)
     sol = projected_solve(DampedSystem(Mk, Kk, Ck, (), stations=len(keep)), rhs, om, G, spin)
     x = with_dampers(sol[..., 0, :], sol[..., 1:, :], places, system, om) if dampers else sol[..., 0, :]
     z = np.zeros(loads.shape[:-1] + (cc.reduced.size,), complex)

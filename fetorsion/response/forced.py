@@ -322,10 +322,9 @@ class ResponseSetup:
         depends on the matrices and speeds only, so a misfire or a subset of speeds reuses it."""
         n = len(self.labels)
         places = sorted({0, n - 1} if self.damper_dof is None else set(self.damper_dof.values()))
-        rhs = np.zeros(self.forces.shape[:2] + (len(places), n))
-        for j, s in enumerate(places):
-            rhs[:, :, j, s] = 1.0
-        return self._projected(rhs), places
+        from ..lumped_model.damped import unit_torques
+
+        return self._projected(unit_torques(self.forces.shape[:2], n, places)), places
 
     def _projected(self, rhs: np.ndarray) -> np.ndarray:
         """Projected solve of the undamped model for a block of right-hand sides (speeds, orders, r, DOF)."""
