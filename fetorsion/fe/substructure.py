@@ -117,8 +117,8 @@ def prescribed_solver(itf: Interface):
         x0 = np.asarray(itf.solve(b))
         r = itf.G @ x0 if g is None else itf.G @ x0 - g
         mu = scipy.linalg.cho_solve(C, r)
-        x = x0 - itf.Y @ mu
-        return (x, mu) if forces else x
+        x0 -= itf.Y @ mu  # the solve's own fresh array
+        return (x0, mu) if forces else x0
 
     return solve
 
@@ -155,6 +155,36 @@ def _constraint_modes(itf: Interface, tol: float, iterations: int | None):
         return psi, 0, Mpsi, Kpsi
     raise FetorsionError(f"constraint modes did not converge ({change:.2g} after {PSI_MAX_ITER} iterations); "
                          "the shift is too close to the fixed-interface frequencies")
+
+
+def _constraint_modes_shared(itf: Interface, psi: np.ndarray, kpsi: np.ndarray):
+    """The constraint modes after one fixed-point step, written into ``psi`` and ``kpsi``
+    (K Ψ), from the block solve W₁ = A_c M Ψ_σ (G W₁ = 0) that is also the first block of the
+    interior Krylov space started from Ψ_σ. Returns (M Ψ, (W₁, M W₁, K W₁)).
+
+    The step Ψ_1 = solve(−σ M Ψ_σ, G Ψ = I) of :func:`_constraint_modes` equals Ψ_σ − σ W₁
+    (both satisfy S Ψ + GᵀΛ = −σ M Ψ_σ and G Ψ = I), so the constraint modes and the first
+    Ritz block share their solve; K W₁ = M Ψ_σ + σ M W₁ − Gᵀμ₁ and K Ψ_1 = σ M Ψ_1 − σ M Ψ_σ
+    + Gᵀ(C⁻¹ + σ μ₁) follow from the equilibria, without a sparse product with K.
+    """
+    solve = prescribed_solver(itf)
+    s = itf.sigma
+    Cinv = scipy.linalg.cho_solve(scipy.linalg.cho_factor(itf.C), np.eye(itf.n_master_dofs))
+    np.matmul(itf.Y, Cinv, out=psi)  # Ψ_σ for now
+    m_psi_s = np.asarray(itf.M @ psi)
+    W, mu = solve(m_psi_s, forces=True)
+    MW = np.asarray(itf.M @ W)
+    KW = s * MW
+    KW += m_psi_s
+    KW -= itf.G.T @ mu
+    psi -= s * W
+    Mpsi = MW * -s
+    Mpsi += m_psi_s
+    np.multiply(Mpsi, s, out=kpsi)
+    m_psi_s *= s
+    kpsi -= m_psi_s
+    kpsi += itf.G.T @ (Cinv + s * mu)
+    return Mpsi, (W, MW, KW)
 
 
 def fixed_interface_modes(itf: Interface, count: int, tol: float = EIGEN_TOL, seed: int = 0):
@@ -225,23 +255,31 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     eigenmodes, full for Ritz vectors, whose Ritz frequencies ``fixed_interface_hz`` gives).
     """
     t0 = time.perf_counter()
-    psi, its, Mpsi, Kpsi = _constraint_modes(itf, PSI_TOL, psi_iterations)
+    n, m = itf.K.shape[0], itf.n_master_dofs
+    # The basis and its nodal forces are written in place, block by block, into one layout each:
+    # fresh memory costs more here than the arithmetic (a first touch of a 170 MB block took
+    # 0.35 s in a process holding the factor, a reused one 0.02 s), so nothing is copied twice.
+    width = m * (1 + ritz_blocks) if ritz_blocks else m + modes
+    basis, forces = np.empty((n, width)), np.empty((n, width))
+    if ritz_blocks and psi_iterations == 1:
+        # Ψ_1 = Ψ_σ − σ W₁ with W₁ = A_c M Ψ_σ, the first Krylov block: one block solve gives both
+        Mpsi, first = _constraint_modes_shared(itf, basis[:, :m], forces[:, :m])
+        its = 1
+    else:
+        psi, its, Mpsi, Kpsi = _constraint_modes(itf, PSI_TOL, psi_iterations)
+        basis[:, :m], forces[:, :m] = psi, Kpsi
+        first = None
+    psi, Kpsi = basis[:, :m], forces[:, :m]
     t1 = time.perf_counter()
     if ritz_blocks:
-        phis, kphis, Kq = interface_ritz_vectors(itf, psi, ritz_blocks, mpsi=Mpsi)
+        k, Kq = interface_ritz_vectors(itf, psi, ritz_blocks, mpsi=Mpsi, first=first, out=(basis[:, m:], forces[:, m:]))
         w2 = scipy.linalg.eigvalsh(Kq)
     else:
-        w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((itf.K.shape[0], 0)))
-        phis, kphis, Kq = [phi], [np.asarray(itf.K @ phi)], np.diag(w2)
-    m = itf.n_master_dofs
-    r = m + len(w2)
-    # one layout of the basis and of its nodal forces, written block by block (no copies of copies)
-    basis, forces = np.empty((psi.shape[0], r)), np.empty((psi.shape[0], r))
-    basis[:, :m], forces[:, :m] = psi, Kpsi
-    j = m
-    for P, KP in zip(phis, kphis):
-        basis[:, j:j + P.shape[1]], forces[:, j:j + P.shape[1]] = P, KP
-        j += P.shape[1]
+        w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((n, 0)))
+        Kq, k = np.diag(w2), len(w2)
+        basis[:, m:], forces[:, m:] = phi, np.asarray(itf.K @ phi)
+    r = m + k
+    basis, forces = basis[:, :r], forces[:, :r]  # views: svqb may have dropped dependent directions
     phi = basis[:, m:]
     t2 = time.perf_counter()
     Kr, Mr = np.zeros((r, r)), np.zeros((r, r))
@@ -362,33 +400,47 @@ def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
 
 
 def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: float = ORTHO_DROP,
-                           mpsi: np.ndarray | None = None):
+                           mpsi: np.ndarray | None = None, first=None, out=None):
     """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis Q of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
-    G x = 0: ([Q blocks], [K Q blocks], Qᵀ K Q), the blocks as lists (the caller lays them out
-    once).
+    G x = 0: (k, Qᵀ K Q), with Q and K Q written into the first k columns of ``out`` = (Q, K Q),
+    arrays of n × (``blocks`` · Ψ's columns) (made here when not given; k is fewer where a block
+    was numerically dependent).
 
     K Q comes from each block solve's equilibrium (S W + Gᵀ μ = M V ⇒ K W = M V + σ M W − Gᵀ μ)
     carried through the orthogonalisation, not from a sparse product with K: the dense
-    updates cost a fraction of one.
+    updates cost a fraction of one. ``first``: the first block's (W, M W, K W) when the caller
+    has solved it already (:func:`_constraint_modes_shared`); the space is then started from the
+    block that W solves for, not from ``psi``.
     """
     solve = prescribed_solver(itf)
-    V, MV = psi, (np.asarray(itf.M @ psi) if mpsi is None else mpsi)
-    basis, mbasis, kbasis = [], [], []
-    for _ in range(blocks):
-        W, mu = solve(MV, forces=True)
-        MW = np.asarray(itf.M @ W)
-        KW = MV + itf.sigma * MW - itf.G.T @ mu
+    n, m = psi.shape
+    Q, KQ = out if out is not None else (np.empty((n, blocks * m)), np.empty((n, blocks * m)))
+    MV = np.asarray(itf.M @ psi) if mpsi is None else mpsi
+    mbasis, spans, j = [], [], 0
+    for b in range(blocks):
+        if b == 0 and first is not None:
+            W, MW, KW = first
+        else:
+            W, mu = solve(MV, forces=True)
+            MW = np.asarray(itf.M @ W)
+            KW = itf.sigma * MW
+            KW += MV
+            KW -= itf.G.T @ mu
         for _ in range(2):
-            for Q, MQ, KQ in zip(basis, mbasis, kbasis):
-                c = MQ.T @ W
-                W -= Q @ c
-                MW -= MQ @ c
-                KW -= KQ @ c
+            for (a, e), MB in zip(spans, mbasis):
+                c = MB.T @ W
+                W -= Q[:, a:e] @ c
+                MW -= MB @ c
+                KW -= KQ[:, a:e] @ c
         C = svqb_coefficients(W, MW, drop)
-        V, MV = W @ C, MW @ C
-        basis.append(V)
+        p = C.shape[1]
+        np.matmul(W, C, out=Q[:, j:j + p])
+        np.matmul(KW, C, out=KQ[:, j:j + p])
+        MV = MW @ C
         mbasis.append(MV)
-        kbasis.append(KW @ C)
-    Kq = np.block([[Q.T @ KQ for KQ in kbasis] for Q in basis]) if basis else np.zeros((0, 0))
-    return basis, kbasis, 0.5 * (Kq + Kq.T)
+        spans.append((j, j + p))
+        j += p
+        del W, MW, KW  # before the next block's solve makes its own
+    Kq = Q[:, :j].T @ KQ[:, :j]
+    return j, 0.5 * (Kq + Kq.T)
