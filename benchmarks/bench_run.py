@@ -73,7 +73,7 @@ def main() -> None:
     p.add_argument("file", nargs="?", default=str(ROOT / "geometry" / "renault21.toml"))
     p.add_argument("--six", action="store_true", help="the six-cylinder variant without shipped data")
     a = p.parse_args()
-    exe = [sys.executable, "-c", "import sys; from fetorsion.cli import main; sys.exit(main())"]
+    exe = [sys.executable, "-c", "import sys; from fetorsion.cli import console; sys.exit(console())"]
     load_before = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)

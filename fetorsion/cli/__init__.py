@@ -3,5 +3,6 @@ work, calls the stages, prints their tables. User mistakes print one message, ex
 """
 
 from .commands import build_parser, main
+from .process import console
 
-__all__ = ["build_parser", "main"]
+__all__ = ["build_parser", "console", "main"]

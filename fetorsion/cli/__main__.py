@@ -1,5 +1,5 @@
 import sys
 
-from .commands import main
+from .process import console
 
-sys.exit(main())
+sys.exit(console())

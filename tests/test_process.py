@@ -1,0 +1,65 @@
+"""The ``fetorsion`` program's process settings (fetorsion/cli/process.py)."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+# mallinfo2 (glibc ≥ 2.33) reports the heap's free bytes: what a freed block left there for reuse.
+PROBE = r"""
+import ctypes, sys
+import numpy as np
+if {set}:
+    from fetorsion.cli.process import keep_freed_memory
+    assert keep_freed_memory()
+class Info(ctypes.Structure):
+    _fields_ = [(n, ctypes.c_size_t) for n in ("arena", "ordblks", "smblks", "hblks", "hblkhd", "usmblks",
+                                                "fsmblks", "uordblks", "fordblks", "keepcost")]
+libc = ctypes.CDLL(None)
+libc.mallinfo2.restype = Info
+a = np.ones(100 * 2**20 // 8)  # 100 MB, over glibc's largest mmap threshold (32 MB)
+del a
+print(libc.mallinfo2().fordblks)
+"""
+
+
+def _glibc_with_mallinfo2() -> bool:
+    if not sys.platform.startswith("linux"):
+        return False
+    import ctypes
+
+    try:
+        return bool(ctypes.CDLL(None).mallinfo2)
+    except (OSError, AttributeError):
+        return False
+
+
+@pytest.mark.skipif(not _glibc_with_mallinfo2(), reason="glibc ≥ 2.33 only")
+def test_the_program_keeps_a_freed_large_block_for_reuse():
+    """A freed 100 MB block: with the program's setting it stays in the heap (≥ 100 MB free there),
+    without it glibc unmaps it (far less than that left). Fresh interpreters, a clean environment."""
+    env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
+    free = {}
+    for on in (False, True):
+        out = subprocess.run([sys.executable, "-c", PROBE.format(set=on)], env=env, capture_output=True, text=True,
+                             check=True)
+        free[on] = int(out.stdout.split()[-1])
+    assert free[True] >= 100 * 2**20
+    assert free[False] < 10 * 2**20
+
+
+def test_the_program_passes_its_setting_to_its_children_and_keeps_the_users():
+    """The studies' workers are new processes: they read glibc's environment variables, which the
+    program sets unless the user has."""
+    code = ("import os; from fetorsion.cli.process import keep_freed_memory; keep_freed_memory(); "
+            "print(os.environ.get('MALLOC_MMAP_MAX_'), os.environ.get('MALLOC_TRIM_THRESHOLD_'))")
+    env = {k: v for k, v in os.environ.items() if not k.startswith("MALLOC_")}
+    mine = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    users = subprocess.run([sys.executable, "-c", code], env={**env, "MALLOC_MMAP_MAX_": "7"}, capture_output=True,
+                           text=True, check=True)
+    if not sys.platform.startswith("linux"):
+        assert mine.stdout.split() == ["None", "None"]
+        return
+    assert mine.stdout.split() == ["0", str(2**31 - 1)]
+    assert users.stdout.split()[0] == "7"
