@@ -480,6 +480,12 @@ def batches(items: list, size: int) -> Iterable[list]:
         yield items[i:i + size]
 
 
+#: Without a cluster, the samples computed within this many seconds, at most this many, are stored
+#: in one transaction (the store's bound is kept at each transaction: a batch is what it can overshoot).
+SERIAL_FLUSH_S = 1.0
+SERIAL_BATCH = 32
+
+
 def run_samples(model, samples: list[dict], store: SampleStore, client=None, batch_size: int | None = None,
                 retry_failed: bool = False, label: str = "study",
                 on_record: Callable[[str, dict], None] | None = None, progress: bool = True) -> tuple[list[dict], RunSummary]:
@@ -531,8 +537,19 @@ def run_samples(model, samples: list[dict], store: SampleStore, client=None, bat
                 on_record(key, record)
 
     if todo and client is None:
-        for item in run_each(model, todo):
-            keep([item])
+        pending, since = [], time.perf_counter()
+        try:
+            for item in run_each(model, todo):
+                pending.append(item)
+                # one transaction per batch, not per sample: a store write (and its bound's check)
+                # costs more than a lumped sample; a kill loses at most one batch
+                if (len(pending) >= SERIAL_BATCH or time.perf_counter() - since >= SERIAL_FLUSH_S
+                        or getattr(model, "expensive", False)):
+                    batch, pending, since = pending, [], time.perf_counter()
+                    keep(batch)
+        finally:  # an interrupt keeps what was finished
+            if pending:
+                keep(pending)
     elif todo:
         client = client.get() if isinstance(client, ClusterOnDemand) else client
         batch_size = batch_size or auto_batch(len(todo), client, getattr(model, "expensive", False))

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import copy
-
 from ..description.crank import parse_crank
 from ..description.model import Crank
 from ..description.reader import resolve_field
@@ -32,7 +30,7 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     Crank
         The variant, checked by every rule of the description.
     """
-    raw = copy.deepcopy(crank.raw)
+    raw = _copied(crank.raw)
     raw.pop("uncertainty", None)
     raw.pop("distributions", None)
     if not details:
@@ -44,3 +42,13 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
         for _, parent in parents:
             parent[key] = value
     return parse_crank(raw, source=crank.source)
+
+
+def _copied(tree):
+    """A copy of a parsed TOML tree: new tables and arrays, the same immutable leaves (numbers,
+    strings, dates). A third of ``copy.deepcopy``'s time, paid once per study sample."""
+    if isinstance(tree, dict):
+        return {k: _copied(v) for k, v in tree.items()}
+    if isinstance(tree, list):
+        return [_copied(v) for v in tree]
+    return tree
