@@ -192,6 +192,22 @@ def test_engine_model_speeds_reach_overspeed(condensed_renault):
     assert condensed_setup(faster).rpm[-1] == pytest.approx(1.25 * 6500.0)
 
 
+def test_engine_model_at_another_damping_ratio_is_that_ratios_own_setup(condensed_renault):
+    # the fatigue band's setups reuse the nominal one's forces; built from scratch they are the same
+    from fetorsion.response.coupled import condensed_setup, with_damping_ratio
+    from fetorsion.response.forced import solve_response
+
+    _, _, cc = condensed_renault
+    rpm = np.linspace(1000.0, 7150.0, 12)
+    nominal = condensed_setup(cc, rpm=rpm)
+    derived, direct = with_damping_ratio(nominal, cc, "bearings", 0.04), condensed_setup(cc, rpm=rpm, damping_ratio=0.04)
+    assert derived.zeta == direct.zeta == 0.04
+    assert np.array_equal(derived.C, direct.C) and np.array_equal(derived.forces, direct.forces)
+    a, b = solve_response(derived).to_dict(), solve_response(direct).to_dict()
+    assert a == b
+    assert not np.array_equal(nominal.C, direct.C)
+
+
 @pytest.mark.fe
 def test_engine_model_with_dampers_is_the_exact_update_of_its_undamped_response(condensed_renault):
     """The condensed crank's response with dampers comes from its response without them by a

@@ -325,7 +325,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     in its bearings with the description's dampers; the safety factors at the nominal damping
     ratio and across the stated band, the verdict at its low end."""
     from ..design.assessment import run_assessment
-    from ..response.coupled import condensed_setup
+    from ..response.coupled import with_damping_ratio
     from ..response.cycle import mean_cut_loads, run_load_cycle
 
     crank = ctx.crank
@@ -342,12 +342,11 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
         return Skipped(f"no {', '.join(missing)} SCF in {scf.get('source', 'the SCFs')}")
     method = ctx.options.get("fatigue_method", DEFAULT_FATIGUE_METHOD)
     ex = crank.excitation
-    labels = [f.label for f in fillets]
     runs = {}
     mean = mean_cut_loads(cc, ctx.engine_setup().rpm)  # the same at every damping ratio
     for zeta in sorted({ex.damping_band[0], ex.modal_damping_ratio, ex.damping_band[1]}):
-        setup = ctx.engine_setup() if zeta == ex.modal_damping_ratio else condensed_setup(
-            cc, "bearings", damping_ratio=zeta, section_labels=labels)  # the nominal ζ's: the run's own
+        setup = ctx.engine_setup() if zeta == ex.modal_damping_ratio else with_damping_ratio(
+            ctx.engine_setup(), cc, "bearings", zeta)  # the nominal ζ's: the run's own
         cycle = run_load_cycle(cc, setup, crank.dampers, mean=mean)
         runs[zeta] = (run_assessment(crank, cycle, fillets, scf, method), cycle)
     nominal, cycle = runs[ex.modal_damping_ratio]

@@ -361,6 +361,15 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
                          gyroscopic=cc.gyroscopic[np.ix_(keep, keep)] if rotating and cc.gyroscopic is not None else None)
 
 
+def with_damping_ratio(setup, cc: CondensedCrank, support: str, damping_ratio: float):
+    """``setup`` (:func:`condensed_setup` of ``cc`` in ``support``) at another modal damping
+    ratio: its forces and sections kept (they do not depend on it), only C made anew."""
+    import dataclasses
+
+    _, _, Ck, _ = supported_damping(cc, support, damping_ratio)
+    return dataclasses.replace(setup, C=Ck, zeta=damping_ratio)
+
+
 def peak_of_phasor(v: np.ndarray) -> np.ndarray:
     """max over t of |Re(v e^{iωt})| for complex vectors v (..., k): the peak length of the ellipse
     a harmonic vector traces, √((|v|² + |v·v|)/2)."""
