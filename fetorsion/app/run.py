@@ -12,6 +12,7 @@ report); :mod:`fetorsion.report.markdown` and :mod:`fetorsion.report.html` prese
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import os
 import sys
@@ -52,6 +53,14 @@ class RunContext:
     #: What several steps derive from the crank, built once by the first that needs it: the
     #: crank's parts by web method, the forced response's setup, the fillets.
     built: dict = field(default_factory=dict)
+    #: Work whose outcome no later step reads (the mode images), kept for the moment the run
+    #: waits on its background studies: it then takes the core the waiting leaves idle.
+    deferred: list = field(default_factory=list)
+
+    def run_deferred(self) -> None:
+        """Do the deferred work now, in the order it was deferred."""
+        while self.deferred:
+            self.deferred.pop(0)()
 
     def once(self, key, build):
         """``built[key]``, made by ``build()`` the first time it is asked for."""
@@ -188,19 +197,18 @@ def step_fe(ctx: RunContext) -> FEOutcome:
                         "identify": fe.timings_s["identify"]}
     t["total"] = sum(t.values())
     _progress(f"  assembly {t['assembly']:.1f} s, factorisation {t['factorize']:.1f} s, condensation "
-              f"{t['condensation']:.1f} s, free-free modes ({fe.method}) {t['eigensolve']:.1f} s; rendering mode images ...")
+              f"{t['condensation']:.1f} s, free-free modes ({fe.method}) {t['eigensolve']:.1f} s (mode images drawn at the end)")
     cm = fe.mesh
     ctx.results["fe"] = {**fe.to_dict(), "first_torsional_hz": fe.first_torsional(), "mesh_size_m": size,
                          "min_sicn": cm.quality.min_sicn if cm.quality else None}
     picks = [j for j, k in enumerate(fe.kinds) if k == "torsional"][:3]
     picks += [j for j, k in enumerate(fe.kinds) if k == "bending"][:2]
-    images = []
-    for j in sorted(picks):
-        name = f"mode_{j + 1:02d}_{fe.kinds[j]}.png"
-        render_mode(cm.nodes, cm.tets, fe.shapes[j], ctx.folder / name,
-                    title=f"mode {j + 1}: {fe.frequencies_hz[j]:.1f} Hz, {fe.kinds[j]}")
-        images.append(ModeImage(j, name))
-    return FEOutcome(fe, size, tuple(images))
+    images = tuple(ModeImage(j, f"mode_{j + 1:02d}_{fe.kinds[j]}.png") for j in sorted(picks))
+    for im in images:  # drawn later (RunContext.deferred): nothing after reads them
+        ctx.deferred.append(functools.partial(
+            render_mode, cm.nodes, cm.tets, fe.shapes[im.mode], ctx.folder / im.file,
+            title=f"mode {im.mode + 1}: {fe.frequencies_hz[im.mode]:.1f} Hz, {fe.kinds[im.mode]}"))
+    return FEOutcome(fe, size, images)
 
 
 def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
@@ -446,6 +454,7 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
     if not getattr(ctx.crank, "uncertainty", ()):  # a chain file has none
         return Skipped("the description has no `[uncertainty]` table")
     pending = ctx.built.pop("studies", None)
+    ctx.run_deferred()  # while the studies finish
     sens, studies, checks = (pending.result() if pending is not None else
                              sensitivity_studies(ctx.crank, ctx.options.get("workers"), ctx.outcome.fe is not None,
                                                  ctx.parts()))
@@ -559,6 +568,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
             setattr(outcome, key, fn(ctx))
             outcome.timings_s[name] = time.perf_counter() - t0
             _progress(f"{name}: done in {outcome.timings_s[name]:.1f} s")
+        ctx.run_deferred()
         ctx.results["timings_s"] = outcome.timings_s
         write_text_atomic(work / "report.md", report_markdown(outcome))
         if ctx.options.get("html", True):
