@@ -130,3 +130,33 @@ def test_oil_bore_table_interpolates_the_direct_fe_of_the_reference_cranks():
                 assert table[load] == pytest.approx(fe[load], rel=0.02), (name, part, load)
     assert table_scfs(0.05, 0.005, 0.02, 0.3) is None  # a bored section: not the table's
     assert table_scfs(0.05, 0.015, 0.0, 0.3) is None  # d/D 0.3: outside it
+
+
+@pytest.mark.fe
+def test_a_throws_web_stiffness_and_its_fillet_scfs_are_one_fe(monkeypatch):
+    """The lumped ``fe`` column's throw stiffness and the fillet SCFs of the same throw: one mesh,
+    one factorisation. The stiffness is T / twist of the SCF run's own torsion field, and equals a
+    separate static-torsion solve of the same mesh (one more right-hand side changes nothing but
+    round-off: 1e-9)."""
+    import fetorsion
+    import fetorsion.solid.mesh as solid_mesh
+    from fetorsion.design.scf import throw_scfs
+    from fetorsion.fe.tetmesh import TetMesh
+    from fetorsion.webs import throwfe
+
+    crank = fetorsion.load("geometry/renault21.toml")
+    throw = throwfe.throw_of(crank, 0)
+    size, fine = 0.02, 0.5 * crank.fillets.pin  # coarse: what is checked is the sharing, not the value
+    meshes = []
+    real = solid_mesh.mesh_crank
+    monkeypatch.setattr(solid_mesh, "mesh_crank", lambda *a, **k: meshes.append(a) or real(*a, **k))
+    throwfe._LAST_END_LOADED.clear()
+    k = throwfe.torsional_stiffness_fe(throw, size, fine)
+    cases, info = throw_scfs(crank, 0, size, fine)
+    assert len(meshes) == 1 and info["dofs"] == k.dofs
+    fe = throwfe.end_loaded_fe(throw, size, fine)
+    assert k.stiffness == throwfe.TORQUE / fe.solutions[0].twist
+    cm = fe.mesh  # Gmsh's optimiser may place nodes differently on a second meshing: the same mesh
+    alone, _ = throwfe.static_torsion(TetMesh(cm.nodes, cm.tets, cm.node_sets), throw.material)
+    assert alone == pytest.approx(k.stiffness, rel=1e-9)
+    assert set(cases) == {"torsion", "bending"} and all(s.scf > 1 for c in cases.values() for s in c)

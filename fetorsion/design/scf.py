@@ -41,8 +41,7 @@ import numpy as np
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..fe.assembly import lame
-from ..fe.tetmesh import TetMesh
-from ..webs.throwfe import TORQUE, TORSION_LOAD, default_mesh_size, stepped_shaft_mesh, throw_of
+from ..webs.throwfe import BENDING_LOAD, TORQUE, TORSION_LOAD, default_mesh_size, stepped_shaft_mesh, throw_of
 
 #: Nodes within this share of the fillet radius outside the fillet's nominal zone still count
 #: as the fillet (the curved mesh's nodes sit on the true surface up to round-off).
@@ -261,7 +260,7 @@ def _principal(sol, material):
 
 #: The SCF load cases at the loaded face by name: torsion about x, and bending about z (for a
 #: throw at crank angle 0, whose pin lies on +y: bending in the throw's plane), N·m.
-SCF_LOADS = {"torsion": TORSION_LOAD, "bending": (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)}
+SCF_LOADS = {"torsion": TORSION_LOAD, "bending": BENDING_LOAD}
 
 
 def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fillet_size: float | None = None,
@@ -276,21 +275,20 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
     Returns {load: the fillets (journal, web 1), (pin, web 1), (pin, web 2), (journal, web 2)}
     and the mesh figures.
     """
-    from ..solid.mesh import default_fillet_size, mesh_crank
-    from ..webs.throwfe import end_load_solutions
+    from ..solid.mesh import default_fillet_size
+    from ..webs.throwfe import END_LOADS, end_loaded_fe
 
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         raise FetorsionError(f"{crank.name}: fillet SCFs need fillets.journal and fillets.pin > 0")
     unknown = [k for k in loads if k not in SCF_LOADS]
     if unknown:
         raise FetorsionError(f"load must be one of {', '.join(SCF_LOADS)}, got {unknown[0]!r}")
-    t0 = time.perf_counter()
     throw = throw_of(crank, index)
     size = default_mesh_size(throw) if mesh_size is None else mesh_size
     fine = default_fillet_size(throw, size, "stress") if fillet_size is None else fillet_size
-    cm = mesh_crank(throw, size, fine, "stress")
-    mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
-    sols = end_load_solutions(mesh, throw.material, [SCF_LOADS[k] for k in loads])
+    # the same FE as the throw's web stiffness (lumped method ``fe``) at these sizes: solved once
+    fe = end_loaded_fe(throw, size, fine)
+    sols = [fe.solutions[END_LOADS.index(SCF_LOADS[k])] for k in loads]
     j1, j2 = throw.journals
     w1, w2 = throw.webs
     pin = throw.pins[0]
@@ -312,8 +310,8 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
             _peak("journal fillet, web 2", stress, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
                   float(nominal(TORQUE, j2.diameter, j2.bore))),
         ]
-    return out, {"nodes": int(mesh.n_nodes), "elements": int(mesh.n_elements), "dofs": int(sols[0].dofs),
-                 "mesh_size_m": size, "fillet_size_m": fine, "seconds": time.perf_counter() - t0}
+    return out, {"nodes": len(fe.mesh.nodes), "elements": len(fe.mesh.tets), "dofs": int(sols[0].dofs),
+                 "mesh_size_m": size, "fillet_size_m": fine, "seconds": fe.seconds}
 
 
 @dataclass
