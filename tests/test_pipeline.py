@@ -168,3 +168,40 @@ def test_a_run_builds_what_its_steps_share_once(tmp_path, monkeypatch):
 
     assert calls == Counter({**{("build_parts", m): 1 for m in WEB_METHODS}, ("response_setup", ""): 1,
                              ("fillets_of", ""): 1})
+
+
+def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read(monkeypatch, tmp_path):
+    """A crank without stored throw data: its throw FE runs in the background process (first in
+    its queue) and the run's lumped ``fe`` column and fillet SCFs read that result, with no throw FE
+    of their own (which would raise here). Web length checked against the method's formula."""
+    import concurrent.futures
+    import dataclasses
+    import math
+
+    from fetorsion.app.run import RunContext, needs_throw_fe
+    from fetorsion.report.outcomes import RunOutcome
+    from fetorsion.studies.variants import with_values
+    from fetorsion.webs import throwfe
+
+    crank = with_values(fetorsion.load(GEOMETRY / "renault21.toml"), {"pins.*.diameter": 49.0})
+    assert needs_throw_fe(crank) and not needs_throw_fe(fetorsion.load(GEOMETRY / "renault21.toml"))
+    throw = throwfe.throw_of(crank, 0)
+    k = 7.5e5  # N·m/rad, any: what is checked is that this one is read
+    entry = dataclasses.asdict(throwfe.TorsionResult(k, 0.1, 1, 1, 3, 0.01, 0.001, 1.0))
+    keys = {throwfe.throw_key(throwfe.throw_of(crank, i), None) for i in range(len(crank.pins))}
+    scf = {"pin": 2.0, "journal": 2.1, "pin_bending": 3.0, "journal_bending": 1.5, "source": "background"}
+    done = concurrent.futures.Future()
+    done.set_result(({key: entry for key in keys}, scf))
+
+    def no_fe(*args, **kwargs):
+        raise AssertionError("a throw FE in the run's own process")
+
+    monkeypatch.setattr(throwfe, "torsional_stiffness_fe", no_fe)
+    monkeypatch.setattr(throwfe, "_CACHE", {})
+    ctx = RunContext(crank, tmp_path, {}, RunOutcome(crank, "x", timings_s={}), built={"throw_fe": done})
+    ctx.parts("fe")  # built from the background's stiffness: no FE here
+    assert ctx.scf()["pin_bending"] == 3.0 and ctx.scf()["source"] == "background"
+    d_e = crank.journals[0].diameter
+    l_throw = throw.material.shear_modulus * math.pi * d_e**4 / (32 * k)
+    assert throwfe.web_equivalent_length_fe(crank, 0, d_e) == pytest.approx(throwfe.web_term(throw, l_throw, d_e),
+                                                                            rel=1e-12)

@@ -68,6 +68,18 @@ class RunContext:
             self.built[key] = build()
         return self.built[key]
 
+    def throw_fe(self):
+        """The background throw FE's results, once: the throws' torsion entries go to the web
+        stiffness cache (:func:`fetorsion.webs.throwfe.throw_torsion`), the fillet SCFs are kept."""
+        pending = self.built.pop("throw_fe", None)
+        if pending is not None:
+            from ..webs.throwfe import remember_throw_torsion
+
+            torsion, scf = pending.result()
+            remember_throw_torsion(torsion)
+            self.built["fillet_scf"] = scf
+        return self.built.get("fillet_scf")
+
     def parts(self, method: str = DEFAULT_WEB_METHOD):
         """The crank cut into its parts with ``method``'s web stiffness (built once). With the
         run's condensed crank built, ``fe-held`` takes its throws' stiffness from it, at the
@@ -78,6 +90,8 @@ class RunContext:
         from ..webs.throwfe import held_throw_stiffnesses, web_equivalent_length_held
 
         def build():
+            if method == "fe":
+                self.throw_fe()
             web_length = None
             if method == "fe-held" and "condensed" in self.built:
                 size = self.options.get("mesh_size", DEFAULT_MESH_SIZE)
@@ -120,7 +134,7 @@ class RunContext:
             from ..design.scf import fillet_scfs
 
             _progress("  fillet and oil-bore SCFs (static 3D FE, or the stored studies) ...")
-            out = dict(fillet_scfs(self.crank))
+            out = dict(self.throw_fe() or fillet_scfs(self.crank))
             bores = oil_bore_scfs(self.crank)
             for kind in ("pin", "journal"):
                 if kind in bores:
@@ -405,6 +419,40 @@ def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, part
     return sens, studies, checks
 
 
+def throw_fe_results(crank: Crank) -> tuple[dict, dict | None]:
+    """({throw key: the throw's torsion entry}, the fillet SCFs or None) of every distinct throw
+    of ``crank``: its one throw FE each (:func:`fetorsion.webs.throwfe.end_loaded_fe`), found
+    stored or computed. Run in the background process, first, when the crank has no stored throw
+    data (:func:`needs_throw_fe`), so that the bearings step (the lumped ``fe`` column) and the
+    verdict find them done. SCFs that fail here are left to the verdict, which says why."""
+    from ..design.scf import fillet_scfs
+    from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
+
+    torsion = {}
+    for i in range(len(crank.pins)):
+        throw = throw_of(crank, i)
+        torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
+    scf = None
+    if crank.fillets.journal > 0 and crank.fillets.pin > 0:
+        try:
+            scf = fillet_scfs(crank)
+        except FetorsionError:
+            pass
+    forget_end_loaded()  # the studies follow in this process
+    return torsion, scf
+
+
+def needs_throw_fe(crank: Crank) -> bool:
+    """True when some throw of ``crank`` has its web stiffness, or the crank its fillet SCFs, not stored."""
+    from ..design.scf import SHIPPED_SCF, scf_key
+    from ..webs.throwfe import stored_throw_torsion, throw_of
+
+    if any(stored_throw_torsion(throw_of(crank, i)) is None for i in range(len(crank.pins))):
+        return True
+    shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
+    return crank.fillets.journal > 0 and crank.fillets.pin > 0 and scf_key(crank) not in shipped
+
+
 #: Niceness of the background studies' process (and the Dask workers it starts): they take the
 #: cores the FE work leaves idle (meshing, assembly, single-threaded stretches) instead of
 #: slowing its factorisation and block solves.
@@ -555,6 +603,9 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={})
         ctx = RunContext(crank, work, {"no_fe": not any(s[2] is step_fe for s in steps), **(options or {})}, outcome)
+        if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank):
+            # first in the queue: the bearings step (the lumped `fe` column) and the verdict read it
+            ctx.built["throw_fe"] = background.submit(throw_fe_results, crank)
         if BACKGROUND and any(s[2] is step_sensitivity for s in steps) and getattr(crank, "uncertainty", ()):
             # the studies run beside the FE steps on one core fewer than the machine has: the FE's
             # assembly and Lanczos iterations keep one core busy, not two (Renault 21 on 2 cores:

@@ -348,13 +348,30 @@ def _save_disk(key: str, entry: dict) -> None:
     os.replace(tmp, path)
 
 
+def stored_throw_torsion(throw: Crank, mesh_size: float | None = None) -> dict | None:
+    """:func:`throw_torsion`'s entry when it needs no FE (in memory, shipped or in the user's
+    file), else None."""
+    key = throw_key(throw, mesh_size)
+    return _CACHE.get(key) or _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
+
+
+def remember_throw_torsion(entries: dict) -> None:
+    """Keep ``{throw key: entry}`` (:func:`throw_torsion`'s, computed in another process) in memory."""
+    _CACHE.update(entries)
+
+
+def forget_end_loaded() -> None:
+    """Let go of the last :func:`end_loaded_fe` kept in memory."""
+    _LAST_END_LOADED.clear()
+
+
 def throw_torsion(throw: Crank, mesh_size: float | None = None) -> dict:
     """:func:`torsional_stiffness_fe` of ``throw`` as a dict of the :class:`TorsionResult`
     fields, cached: in memory, then the package's :data:`SHIPPED_CACHE`, then the user file
     named by :data:`CACHE_ENV` (written to when set); computed only when all miss."""
     key = throw_key(throw, mesh_size)
     if key not in _CACHE:
-        entry = _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
+        entry = stored_throw_torsion(throw, mesh_size)
         if entry is None:
             entry = dataclasses.asdict(torsional_stiffness_fe(throw, mesh_size))
             _save_disk(key, entry)
