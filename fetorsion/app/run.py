@@ -302,10 +302,9 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     if crank.limits.kind == "stress":
         if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
             return Skipped("stress limits need fillet radii (a sharp corner has no finite SCF)")
-        from ..design.scf import SHIPPED_SCF, scf_key
+        from ..design.scf import stored_fillet_scfs
 
-        shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
-        if scf_key(crank) not in shipped and ctx.options.get("no_fe"):
+        if stored_fillet_scfs(crank) is None and ctx.options.get("no_fe"):
             scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: no FE step in this run and no stored FE SCF)"}
         else:
             scf = ctx.scf()
@@ -419,12 +418,13 @@ def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, part
     return sens, studies, checks
 
 
-def throw_fe_results(crank: Crank) -> tuple[dict, dict | None]:
+def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, dict | None]:
     """({throw key: the throw's torsion entry}, the fillet SCFs or None) of every distinct throw
     of ``crank``: its one throw FE each (:func:`fetorsion.webs.throwfe.end_loaded_fe`), found
     stored or computed. Run in the background process, first, when the crank has no stored throw
     data (:func:`needs_throw_fe`), so that the bearings step (the lumped ``fe`` column) and the
-    verdict find them done. SCFs that fail here are left to the verdict, which says why."""
+    verdict find them done. ``scfs=False`` (a run without the FE steps, whose verdict takes no FE
+    SCF): the web stiffnesses only. SCFs that fail here are left to the verdict, which says why."""
     from ..design.scf import fillet_scfs
     from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
 
@@ -433,7 +433,7 @@ def throw_fe_results(crank: Crank) -> tuple[dict, dict | None]:
         throw = throw_of(crank, i)
         torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
     scf = None
-    if crank.fillets.journal > 0 and crank.fillets.pin > 0:
+    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0:
         try:
             scf = fillet_scfs(crank)
         except FetorsionError:
@@ -442,15 +442,15 @@ def throw_fe_results(crank: Crank) -> tuple[dict, dict | None]:
     return torsion, scf
 
 
-def needs_throw_fe(crank: Crank) -> bool:
-    """True when some throw of ``crank`` has its web stiffness, or the crank its fillet SCFs, not stored."""
-    from ..design.scf import SHIPPED_SCF, scf_key
+def needs_throw_fe(crank: Crank, scfs: bool = True) -> bool:
+    """True when some throw of ``crank`` has its web stiffness, or (``scfs``) the crank its fillet
+    SCFs, not stored."""
+    from ..design.scf import stored_fillet_scfs
     from ..webs.throwfe import stored_throw_torsion, throw_of
 
     if any(stored_throw_torsion(throw_of(crank, i)) is None for i in range(len(crank.pins))):
         return True
-    shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
-    return crank.fillets.journal > 0 and crank.fillets.pin > 0 and scf_key(crank) not in shipped
+    return scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and stored_fillet_scfs(crank) is None
 
 
 #: Niceness of the background studies' process (and the Dask workers it starts): they take the
@@ -603,9 +603,10 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={})
         ctx = RunContext(crank, work, {"no_fe": not any(s[2] is step_fe for s in steps), **(options or {})}, outcome)
-        if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank):
+        scfs = not ctx.options["no_fe"]  # without the FE steps the verdict takes no FE SCF
+        if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank, scfs):
             # first in the queue: the bearings step (the lumped `fe` column) and the verdict read it
-            ctx.built["throw_fe"] = background.submit(throw_fe_results, crank)
+            ctx.built["throw_fe"] = background.submit(throw_fe_results, crank, scfs)
         if BACKGROUND and any(s[2] is step_sensitivity for s in steps) and getattr(crank, "uncertainty", ()):
             # the studies run beside the FE steps on one core fewer than the machine has: the FE's
             # assembly and Lanczos iterations keep one core busy, not two (Renault 21 on 2 cores:

@@ -423,14 +423,19 @@ def scf_key(crank: Crank, throw: int = 0) -> str:
     return throw_key(throw_of(crank, throw), "fillet-scf")
 
 
+def stored_fillet_scfs(crank: Crank, throw: int = 0) -> dict | None:
+    """:func:`fillet_scfs` of ``crank`` when they are shipped (no FE needed), else None."""
+    shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
+    return shipped.get(scf_key(crank, throw))
+
+
 def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
     """Pin and journal fillet SCFs of ``crank`` (its throw ``throw`` stands for all): shipped
     values of the reference cranks' convergence study when the throw matches, else one static FE
     at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns ``pin``, ``journal``
     (torsion), ``pin_bending``, ``journal_bending`` (bending in the throw's plane) and ``source``
     (how they were obtained)."""
-    shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
-    entry = shipped.get(scf_key(crank, throw))
+    entry = stored_fillet_scfs(crank, throw)
     if entry is not None:
         return entry
     from ..solid.mesh import default_fillet_size
