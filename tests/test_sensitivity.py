@@ -25,6 +25,9 @@ def test_with_values_changes_only_the_named_field():
     assert all(w.thickness == pytest.approx(0.021) for w in changed.webs)
     assert changed.pins[1].length == pytest.approx(0.025) and changed.pins[0].length == crank.pins[0].length
     assert changed.journals == crank.journals and crank.webs[0].thickness == pytest.approx(0.023)
+    # the variant shares the tables off its changed paths: the nominal's own data stays as read
+    assert crank.raw == fetorsion.load(str(GEOMETRY / "peugeot_glx.toml")).raw
+    assert changed.raw["pins"][0] is crank.raw["pins"][0] and changed.raw["pins"][1] is not crank.raw["pins"][1]
 
 
 def test_f1_scales_with_sqrt_of_youngs_modulus():

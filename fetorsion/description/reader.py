@@ -72,6 +72,9 @@ class Table:
             self.problems.append(Problem(self._name(key), raw, "must be a finite number"))
             return math.nan
         value = float(raw)
+        if ((not positive or value > 0) and (not nonnegative or value >= 0) and (below is None or value < below)
+                and (above is None or value > above)):  # the common case, without building the messages
+            return value * self.scale if length else value
         broken = [rule for rule, ok in (("must be > 0", not positive or value > 0),
                                         ("must be >= 0", not nonnegative or value >= 0),
                                         (f"must be < {below}", below is None or value < below),

@@ -56,6 +56,7 @@ from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..webs.methods import WEB_METHODS
 from .sampling import study_inputs
+from .variants import with_values
 
 METHODS = ("lsq", "bayes", "both")
 #: Web-stiffness methods a calibration can run: not the static FE of each throw (``fe``,
@@ -188,45 +189,6 @@ def calibration_inputs(crank: Crank, names=None) -> list[CalibrationInput]:
     return out
 
 
-def variant(crank: Crank, changes: dict[str, float]) -> Crank:
-    """:func:`~fetorsion.studies.variants.with_values` for concrete paths (``webs.3.thickness``,
-    no ``*``), copying only the tables on each changed path instead of the whole description: an
-    MCMC builds tens of thousands of variants, and the deep copy was a third of each.
-
-    Parameters
-    ----------
-    crank : Crank
-        The description.
-    changes : dict of str to float
-        Concrete field path (1-based indices) to its value, file units.
-
-    Returns
-    -------
-    Crank
-        The variant, checked by every rule of the description; no ``[uncertainty]``.
-    """
-    from ..description.crank import parse_crank
-
-    raw = {k: v for k, v in crank.raw.items() if k not in ("uncertainty", "distributions")}
-    copied = set()
-    for path, value in changes.items():
-        *parents, key = path.split(".")
-        node, where = raw, ""
-        for part in parents:
-            where = f"{where}.{part}"
-            child = node[int(part) - 1] if isinstance(node, list) else node[part]
-            if where not in copied:
-                child = list(child) if isinstance(child, list) else dict(child)
-                if isinstance(node, list):
-                    node[int(part) - 1] = child
-                else:
-                    node[part] = child
-                copied.add(where)
-            node = child
-        node[key] = value
-    return parse_crank(raw, source=crank.source)
-
-
 class FrequencyModel:
     """The lowest elastic natural frequencies (Hz) of the free-free lumped chain of the crank
     with its inputs at ``x`` (file units); counts its evaluations.
@@ -255,7 +217,7 @@ class FrequencyModel:
         values = {}
         for inp, xi in zip(self.inputs, x):
             values.update(inp.values(float(xi)))
-        f = np.asarray(lumped(variant(self.crank, values), self.dof, self.stiffness).frequencies_hz, float)
+        f = np.asarray(lumped(with_values(self.crank, values), self.dof, self.stiffness).frequencies_hz, float)
         self.evaluations += 1
         self.seconds += time.perf_counter() - t0
         out = np.full(self.modes, np.nan)

@@ -13,6 +13,7 @@ import json
 import math
 import pickle
 from dataclasses import dataclass
+from functools import cached_property
 
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..description.model import Crank
@@ -70,7 +71,7 @@ class LumpedModel:
     def label(self) -> str:
         return f"lumped {self.dof} DOF, {self.stiffness}" + ("" if self.details else ", no fillets/drillings")
 
-    @property
+    @cached_property  # every stored sample names its model: one hash of the description, not one each
     def key(self) -> str:
         return (f"lumped{self.dof}/{self.stiffness}/details={self.details}/{','.join(sorted(self.outputs))}/"
                 f"{description_hash(self.crank)}")
@@ -108,7 +109,7 @@ class FEModel:
     def label(self) -> str:
         return f"FE {self.mesh_size * 1e3:g} mm" + ("" if self.details else ", no fillets/drillings")
 
-    @property
+    @cached_property  # every stored sample names its model: one hash of the description, not one each
     def key(self) -> str:
         return (f"fe/{self.mesh_size!r}/details={self.details}/modes={FE_MODES}/{','.join(sorted(self.outputs))}/"
                 f"{description_hash(self.crank)}")
