@@ -428,16 +428,18 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, dict | None
     from ..design.scf import fillet_scfs
     from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
 
+    scf = None
+    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0:
+        try:
+            # first: throw 1's FE is then the one kept in memory (the last one) when its web
+            # stiffness is asked for below, and is not built a second time
+            scf = fillet_scfs(crank)
+        except FetorsionError:
+            pass
     torsion = {}
     for i in range(len(crank.pins)):
         throw = throw_of(crank, i)
         torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
-    scf = None
-    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0:
-        try:
-            scf = fillet_scfs(crank)
-        except FetorsionError:
-            pass
     forget_end_loaded()  # the studies follow in this process
     return torsion, scf
 

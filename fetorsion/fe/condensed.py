@@ -425,7 +425,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
                "sections": tg - t2, "gyroscopic": t3 - tg,
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
-                          sys_.K.shape[0], timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,
+                          sys_.mesh_dofs, timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,
                           gyro, ritz, centrifugal)
 
 

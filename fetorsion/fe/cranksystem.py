@@ -140,8 +140,10 @@ class CrankSystem:
         The factor of K − σM over the solved DOF, and the couplings G to the masters.
     T : sparse (3·nodes, solved DOF) or None
         u = T x: the mesh displacement from the solved DOF (None: no rigid end ties).
-    K : sparse
-        Stiffness on the mesh DOF (N/m), for the section resultants.
+    K : sparse or None
+        Stiffness on the mesh DOF (N/m), kept only when asked (``keep_mesh_stiffness``): the
+        section resultants come from the basis' nodal forces, and with rigid end ties it would
+        be a second copy of the solved stiffness (280 MB at 323 k DOF) in the run's peak memory.
     dof_of_node : ndarray of int
         Mesh node → DOF node (−1: unused).
     xyz : ndarray (DOF nodes, 3)
@@ -158,7 +160,7 @@ class CrankSystem:
     positions: np.ndarray
     interface: Interface
     T: sp.csr_array | None
-    K: sp.csr_array
+    K: sp.csr_array | None
     dof_of_node: np.ndarray
     xyz: np.ndarray
     node_mass: np.ndarray
@@ -177,6 +179,11 @@ class CrankSystem:
         """Size of the solved system."""
         return self.interface.K.shape[0]
 
+    @property
+    def mesh_dofs(self) -> int:
+        """DOF of the mesh (3 per DOF node), before the end ties."""
+        return 3 * len(self.xyz)
+
     def expand(self, x: np.ndarray) -> np.ndarray:
         """Mesh-DOF displacements (3·nodes, …) from solved-DOF vectors (solved DOF, …)."""
         return np.asarray(self.T @ x) if self.T is not None else np.asarray(x)
@@ -184,7 +191,7 @@ class CrankSystem:
 
 def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: CrankMesh | None = None,
                  backend: str = "auto", end_ties: str = "rigid", fillet_size: float | None = None,
-                 purpose: str = "modal") -> CrankSystem:
+                 purpose: str = "modal", keep_mesh_stiffness: bool = False) -> CrankSystem:
     """Mesh (unless ``mesh`` is given), assemble, tie, couple and factorise a crank.
 
     Parameters
@@ -203,6 +210,8 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
         Element size at fillets and drillings, m (:func:`fetorsion.solid.mesh.default_fillet_size`).
     purpose : str
         ``modal`` or ``stress`` (the fillet size's default).
+    keep_mesh_stiffness : bool
+        Keep the stiffness on the mesh DOF as ``K`` (see :class:`CrankSystem`).
     """
     if end_ties not in END_TIES:
         raise FetorsionError(f"unknown end_ties {end_ties!r}; choose from {', '.join(END_TIES)}")
@@ -243,5 +252,5 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     positions = np.array([mst.position for mst in masters])
     timings = {"meshing": cm.quality.seconds if cm.quality and mesh is None else t1 - t0, "assembly": t2 - t1,
                **itf.timings_s}
-    return CrankSystem(crank, cm, labels, positions, itf, T, K, dof_of_node, xyz, w,
+    return CrankSystem(crank, cm, labels, positions, itf, T, K if keep_mesh_stiffness else None, dof_of_node, xyz, w,
                        attachment_masses(crank, labels, positions), end_ties, timings, free, m_scalar)

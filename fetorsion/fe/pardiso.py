@@ -143,6 +143,7 @@ class Factor:
         b = np.asarray(b)
         B = np.asfortranarray(b.reshape(self.n, -1), dtype=np.float64)
         x = self._call(_SOLVE, B)
+        del B  # before the copy out: two blocks of the caller's size at a time, not three
         order = "F" if b.ndim == 2 and b.flags.f_contiguous and not b.flags.c_contiguous else "C"
         return np.asarray(x, order=order).reshape(b.shape)
 

@@ -39,6 +39,27 @@ from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, drop_zeros, factorize, 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
 PSI_MAX_ITER = 40
+#: Rows per slice of the in-place block updates below: a slice's product is a few MB, where the
+#: whole block's would be one more fresh n × m array (162 MB at 323 k DOF and 66 master DOF),
+#: whose first touch costs more than its arithmetic on this project's machines
+#: (docs/performance.md).
+ROWS = 16384
+
+
+def _subtract_product(out: np.ndarray, A: np.ndarray, c: np.ndarray | None, scale: float = 1.0) -> None:
+    """out −= scale · A c (c None: scale · A) in place, slice by slice of rows (no n × k temporary)."""
+    for i in range(0, out.shape[0], ROWS):
+        part = A[i:i + ROWS] * scale if c is None else A[i:i + ROWS] @ c
+        if c is not None and scale != 1.0:
+            part *= scale
+        out[i:i + ROWS] -= part
+
+
+def _subtract_coupling(out: np.ndarray, G, mu: np.ndarray) -> None:
+    """out −= Gᵀ μ in place, on the DOF the couplings touch (Gᵀ μ is zero on every other)."""
+    G = sp.csr_array(G)
+    rows = np.unique(G.indices)
+    out[rows] -= G[:, rows].T @ mu
 
 
 @dataclass
@@ -117,7 +138,7 @@ def prescribed_solver(itf: Interface):
         x0 = np.asarray(itf.solve(b))
         r = itf.G @ x0 if g is None else itf.G @ x0 - g
         mu = scipy.linalg.cho_solve(C, r)
-        x0 -= itf.Y @ mu  # the solve's own fresh array
+        _subtract_product(x0, itf.Y, mu)  # x0 is the solve's own fresh array
         return (x0, mu) if forces else x0
 
     return solve
@@ -176,14 +197,15 @@ def _constraint_modes_shared(itf: Interface, psi: np.ndarray, kpsi: np.ndarray):
     MW = np.asarray(itf.M @ W)
     KW = s * MW
     KW += m_psi_s
-    KW -= itf.G.T @ mu
-    psi -= s * W
+    _subtract_coupling(KW, itf.G, mu)
+    _subtract_product(psi, W, None, s)  # Ψ_σ − σW₁
     Mpsi = MW * -s
     Mpsi += m_psi_s
     np.multiply(Mpsi, s, out=kpsi)
     m_psi_s *= s
     kpsi -= m_psi_s
-    kpsi += itf.G.T @ (Cinv + s * mu)
+    del m_psi_s
+    _subtract_coupling(kpsi, itf.G, -(Cinv + s * mu))
     return Mpsi, (W, MW, KW)
 
 
@@ -324,7 +346,8 @@ def supported_solver(itf: Interface, Dk: np.ndarray, Dm: np.ndarray, held: np.nd
         rhs = np.concatenate([z0, np.zeros((ne,) + z0.shape[1:])])
         sol = scipy.linalg.lu_solve(lu, rhs)
         mu = D @ sol[:m] + E.T @ sol[m:]
-        return x0 - itf.Y @ mu
+        _subtract_product(x0, itf.Y, mu)  # the solve's own fresh array
+        return x0
 
     return solve
 
@@ -426,13 +449,13 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
             MW = np.asarray(itf.M @ W)
             KW = itf.sigma * MW
             KW += MV
-            KW -= itf.G.T @ mu
+            _subtract_coupling(KW, itf.G, mu)
         for _ in range(2):
             for (a, e), MB in zip(spans, mbasis):
                 c = MB.T @ W
-                W -= Q[:, a:e] @ c
-                MW -= MB @ c
-                KW -= KQ[:, a:e] @ c
+                _subtract_product(W, Q[:, a:e], c)
+                _subtract_product(MW, MB, c)
+                _subtract_product(KW, KQ[:, a:e], c)
         C = svqb_coefficients(W, MW, drop)
         p = C.shape[1]
         np.matmul(W, C, out=Q[:, j:j + p])
