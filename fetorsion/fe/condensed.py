@@ -92,7 +92,13 @@ def section_rows(K, basis: np.ndarray, cm: CrankMesh, dof_of_node: np.ndarray, d
 
 def cut_resultants(sys_: CrankSystem, forces: np.ndarray, centres: np.ndarray) -> np.ndarray:
     """The rows of :func:`section_rows` for cuts at x = centre x, from the nodal forces of the
-    basis, ``forces`` = K [Ψ Φ] over the solved DOF (n × r): (cuts, 6, r).
+    basis, ``forces`` = K [Ψ Φ] over the solved DOF (n × r): (cuts, 6, r). See :func:`cut_recovery`."""
+    return cut_recovery(sys_, centres)(forces)
+
+
+def cut_recovery(sys_: CrankSystem, centres: np.ndarray):
+    """The map forces (n × k) ↦ :func:`cut_resultants` (cuts, 6, k), its node ordering made once
+    (for :func:`fetorsion.fe.substructure.craig_bampton` ``recover``, block by block).
 
     The resultant through a cut is −Σ Rᵢᵀ fᵢ over the DOF of nodes in left elements only
     (:func:`section_rows`): forces Σ fᵢ and moments Σ Xᵢ × fᵢ − c × Σ fᵢ. Sorting the nodes by
@@ -118,25 +124,30 @@ def cut_resultants(sys_: CrankSystem, forces: np.ndarray, centres: np.ndarray) -
     order = np.argsort(node_key[node], kind="stable")
     keys = node_key[node][order]
     centres = np.asarray(centres, float).reshape(-1, 3)
-    out = np.empty((len(centres), 6, forces.shape[1]))
-    running, start = np.zeros((6, forces.shape[1])), 0
-    body = None
-    if sys_.T is not None:
-        p = sys_.positions[0]
-        g = forces[len(free):len(free) + 6]
-        body = (g[:3], g[3:] + np.cross(p, g[:3].T).T)  # its force, and moment about the origin
-    for c in np.argsort(centres[:, 0], kind="stable"):
-        stop = int(np.searchsorted(keys, centres[c, 0], side="left"))
-        rows = order[start:stop]
-        running += coeff[:, rows] @ forces[rows]
-        start = stop
-        F, Mo = running[:3].copy(), running[3:].copy()
-        if body is not None:
-            F += body[0]
-            Mo += body[1]
-        out[c, :3] = -F
-        out[c, 3:] = -(Mo - np.cross(centres[c], F.T).T)
-    return out
+    along = np.argsort(centres[:, 0], kind="stable")
+    stops = np.searchsorted(keys, centres[along, 0], side="left")
+
+    def recover(forces: np.ndarray) -> np.ndarray:
+        out = np.empty((len(centres), 6, forces.shape[1]))
+        running, start = np.zeros((6, forces.shape[1])), 0
+        body = None
+        if sys_.T is not None:
+            p = sys_.positions[0]
+            g = forces[len(free):len(free) + 6]
+            body = (g[:3], g[3:] + np.cross(p, g[:3].T).T)  # its force, and moment about the origin
+        for c, stop in zip(along, stops):
+            rows = order[start:stop]
+            running += coeff[:, rows] @ forces[rows]
+            start = stop
+            F, Mo = running[:3].copy(), running[3:].copy()
+            if body is not None:
+                F += body[0]
+                Mo += body[1]
+            out[c, :3] = -F
+            out[c, 3:] = -(Mo - np.cross(centres[c], F.T).T)
+        return out
+
+    return recover
 
 
 @dataclass
@@ -393,36 +404,40 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     t0 = time.perf_counter()
     sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
     itf = sys_.interface
-    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True)
-    t2 = time.perf_counter()
     labels, positions = sys_.labels, sys_.positions
-    sections = np.zeros((len(labels), 6, red.size))
-    sections[1:-1] = cut_resultants(sys_, red.basis_forces, positions[1:-1])
     centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)
-    extra = None if centres is None else cut_resultants(sys_, red.basis_forces, centres)
-    red.basis_forces = None
+    inner = len(positions) - 2
+    every = positions[1:-1] if centres is None else np.vstack([positions[1:-1], centres])
+    # the section rows are taken from each block of the basis' nodal forces as it is done
+    red = craig_bampton(itf, ritz_blocks, fixed_interface_modes, keep_basis=True, recover=cut_recovery(sys_, every))
+    t2 = time.perf_counter()
+    sections = np.zeros((len(labels), 6, red.size))
+    sections[1:-1] = red.recovered[:inner]
+    extra = None if centres is None else red.recovered[inner:]
+    red.recovered = None
     ritz = None
     if start_modes:
         w2, V, _ = reduced_modes(red, None, sys_.attachment_mass)
         ritz = (w2[:start_modes], red.basis @ V[:, :start_modes])
-    red.basis = sys_.expand(red.basis)
     tg = time.perf_counter()
     gyro = centrifugal = None
     if sys_.node_mass_matrix is not None:
-        from .rotating import attachment_rotating_matrices, centrifugal_load, reduced_coriolis
+        from .rotating import attachment_rotating_matrices, node_mass_rotating_terms
 
-        gyro = reduced_coriolis(sys_.node_mass_matrix, red.basis)
+        # from the basis' y and z rows on the mesh, one at a time: never the whole expanded basis
+        # beside the solved one (two 490 MB blocks at 323 k DOF)
+        basis = red.basis
+        gyro, centrifugal = node_mass_rotating_terms(sys_.node_mass_matrix, lambda k: sys_.component(basis, k),
+                                                     sys_.xyz)
         m = 6 * len(labels)
         gyro[:m, :m] += attachment_rotating_matrices(sys_.attachment_mass, positions)[0]
-        # the crank's own mass only: a pin's attachment lumps the rod's rotating mass with half the
-        # reciprocating one, whose mean inertia force the pin forces carry already
-        centrifugal = centrifugal_load(sys_.node_mass_matrix, red.basis, sys_.xyz)
-    if not keep_basis:
-        red.basis = None
+        # (the load: the crank's own mass only: a pin's attachment lumps the rod's rotating mass with
+        # half the reciprocating one, whose mean inertia force the pin forces carry already)
+    red.basis = sys_.expand(red.basis) if keep_basis else None
     t3 = time.perf_counter()
     Kb, Cb, held = bearing_matrices(crank, labels)
     timings = {**({} if system is not None else sys_.timings_s), **red.timings_s,
-               "sections": tg - t2, "gyroscopic": t3 - tg,
+               "expansion": tg - t2, "gyroscopic": t3 - tg,
                "total": time.perf_counter() - t0}
     return CondensedCrank(crank, labels, positions, red, sys_.attachment_mass, Kb, Cb, held,
                           sys_.mesh_dofs, timings, sections, sys_.mesh, itf if keep_full else None, extra, centres,

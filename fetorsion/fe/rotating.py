@@ -94,13 +94,28 @@ def rotating_frame_matrices(M, basis: np.ndarray) -> tuple[np.ndarray, np.ndarra
 def reduced_coriolis(node_mass, basis: np.ndarray) -> np.ndarray:
     """G_r = Bᵀ G B (r × r, skew) from the scalar node mass matrix m (M = m ⊗ I₃) alone:
     (R2) reads G_r = 2 (B_zᵀ m B_y − B_yᵀ m B_z), B_y, B_z the y and z rows of the basis —
-    two products with a matrix a ninth of M's size, the same value as
-    :func:`rotating_frame_matrices`'s first."""
-    By, Bz = basis[1::3], basis[2::3]
+    the same value as :func:`rotating_frame_matrices`'s first (see :func:`node_mass_rotating_terms`)."""
+    return node_mass_rotating_terms(node_mass, lambda k: basis[k::3])[0]
+
+
+def node_mass_rotating_terms(node_mass, rows, dof_xyz: np.ndarray | None = None):
+    """(G_r r × r, the centrifugal load per unit Ω² (r,) or None) from the scalar node mass
+    matrix m and the basis' y and z rows alone, ``rows(k)`` (DOF nodes × r; k = 1 y, 2 z) made
+    on demand, so that no more than two such blocks are held.
+
+    With m symmetric, B_yᵀ m B_z = (B_zᵀ m B_y)ᵀ, so G_r = 2 (X − Xᵀ), X = B_zᵀ (m B_y): one
+    product with a matrix a ninth of M's size. The load (``dof_xyz`` given) is
+    :func:`centrifugal_load`'s, B_yᵀ m y + B_zᵀ m z.
+    """
+    By = rows(1)
     mBy = np.asarray(node_mass @ By)
-    mBz = np.asarray(node_mass @ Bz)
-    G = 2.0 * (Bz.T @ mBy - By.T @ mBz)
-    return 0.5 * (G - G.T)
+    load = None if dof_xyz is None else By.T @ np.asarray(node_mass @ np.asarray(dof_xyz, float)[:, 1])
+    del By
+    Bz = rows(2)
+    if load is not None:
+        load += Bz.T @ np.asarray(node_mass @ np.asarray(dof_xyz, float)[:, 2])
+    X = Bz.T @ mBy
+    return 2.0 * (X - X.T), load
 
 
 def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
@@ -121,7 +136,7 @@ def centrifugal_load(M, basis: np.ndarray, dof_xyz: np.ndarray) -> np.ndarray:
     """
     xyz = np.asarray(dof_xyz, float)
     if M.shape[0] == len(xyz):
-        return basis[1::3].T @ np.asarray(M @ xyz[:, 1]) + basis[2::3].T @ np.asarray(M @ xyz[:, 2])
+        return node_mass_rotating_terms(M, lambda k: basis[k::3], xyz)[1]
     X = _per_node(xyz.ravel(), ACROSS)
     return np.asarray(basis).T @ (M @ X)
 
