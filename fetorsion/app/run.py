@@ -38,6 +38,10 @@ from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, F
                                RunOutcome, SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 
+#: Figures a run keeps open, drawn later (:meth:`RunContext.save`), before it draws them at once.
+FIGURES_HELD = 16
+
+
 @dataclass
 class RunContext:
     """What the steps share: the crank, options, the working folder, and the run's outcome so
@@ -53,8 +57,9 @@ class RunContext:
     #: What several steps derive from the crank, built once by the first that needs it: the
     #: crank's parts by web method, the forced response's setup, the fillets.
     built: dict = field(default_factory=dict)
-    #: Work whose outcome no later step reads (the mode images), kept for the moment the run
-    #: waits on its background studies: it then takes the core the waiting leaves idle.
+    #: Work whose outcome no later step reads (the mode images and the figures), kept for the
+    #: moment the run waits on its background studies: it then takes the core the waiting
+    #: leaves idle.
     deferred: list = field(default_factory=list)
 
     def run_deferred(self) -> None:
@@ -152,7 +157,13 @@ class RunContext:
         return self.once("fillets", lambda: fillets_of(self.crank, self.parts()))
 
     def save(self, fig, name: str) -> str:
-        save_figure_atomic(fig, self.folder / name, close=True, dpi=120)
+        """``name``: the figure ``fig``, written into the report folder as deferred work
+        (:attr:`deferred`): nothing in the run reads an image back before the report."""
+        import matplotlib.pyplot as plt
+
+        if len(plt.get_fignums()) >= FIGURES_HELD:  # pyplot warns past 20 open figures
+            self.run_deferred()
+        self.deferred.append(functools.partial(save_figure_atomic, fig, self.folder / name, close=True, dpi=120))
         return name
 
 

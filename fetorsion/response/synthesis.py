@@ -42,16 +42,20 @@ def extremes(z: np.ndarray, orders: np.ndarray, cycle: float) -> tuple[np.ndarra
     theta = np.linspace(0.0, cycle, n, endpoint=False)
     half = 0.5 * cycle / n  # the extreme lies within half a sample of the best sample
     x = waveform(z, orders, theta)
+    z = np.asarray(z)
+    q2 = orders**2
     out = []
     for pick in (np.argmax, np.argmin):
         t0 = theta[pick(x, axis=-1)]  # (...,): the best sample of each signal
         t = t0
         for _ in range(NEWTON_STEPS):  # x'(t) = 0 by Newton, kept within the bracket
-            e = np.exp(1j * t[..., None] * orders)
-            d1 = np.real(np.sum(1j * orders * z * e, axis=-1))
-            d2 = np.real(np.sum(-(orders**2) * z * e, axis=-1))
+            w = z * np.exp(1j * t[..., None] * orders)  # the terms z_q e^{iqt}
+            # x' = Re Σ i q w = −Σ q Im w and x'' = −Σ q² Re w: products with the orders, not sums
+            # of complex temporaries
+            d1 = -(w.imag @ orders)
+            d2 = -(w.real @ q2)
             t = np.clip(t - np.divide(d1, d2, out=np.zeros_like(d1), where=d2 != 0), t0 - half, t0 + half)
-        out.append(np.real(np.sum(z * np.exp(1j * t[..., None] * orders), axis=-1)))
+        out.append((z * np.exp(1j * t[..., None] * orders)).real.sum(axis=-1))
     return out[0], out[1]
 
 
