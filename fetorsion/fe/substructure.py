@@ -186,26 +186,23 @@ def _constraint_modes_shared(itf: Interface, psi: np.ndarray, kpsi: np.ndarray):
     The step Ψ_1 = solve(−σ M Ψ_σ, G Ψ = I) of :func:`_constraint_modes` equals Ψ_σ − σ W₁
     (both satisfy S Ψ + GᵀΛ = −σ M Ψ_σ and G Ψ = I), so the constraint modes and the first
     Ritz block share their solve; K W₁ = M Ψ_σ + σ M W₁ − Gᵀμ₁ and K Ψ_1 = σ M Ψ_1 − σ M Ψ_σ
-    + Gᵀ(C⁻¹ + σ μ₁) follow from the equilibria, without a sparse product with K.
+    + Gᵀ(C⁻¹ + σ μ₁) = −σ² M W₁ + Gᵀ(C⁻¹ + σ μ₁) follow from the equilibria, without a sparse
+    product with K. Four blocks of n × m are made here, M Ψ_σ becoming M Ψ_1 in place.
     """
     solve = prescribed_solver(itf)
     s = itf.sigma
     Cinv = scipy.linalg.cho_solve(scipy.linalg.cho_factor(itf.C), np.eye(itf.n_master_dofs))
     np.matmul(itf.Y, Cinv, out=psi)  # Ψ_σ for now
-    m_psi_s = np.asarray(itf.M @ psi)
-    W, mu = solve(m_psi_s, forces=True)
+    Mpsi = np.asarray(itf.M @ psi)  # M Ψ_σ for now
+    W, mu = solve(Mpsi, forces=True)
     MW = np.asarray(itf.M @ W)
     KW = s * MW
-    KW += m_psi_s
+    KW += Mpsi
     _subtract_coupling(KW, itf.G, mu)
-    _subtract_product(psi, W, None, s)  # Ψ_σ − σW₁
-    Mpsi = MW * -s
-    Mpsi += m_psi_s
-    np.multiply(Mpsi, s, out=kpsi)
-    m_psi_s *= s
-    kpsi -= m_psi_s
-    del m_psi_s
+    _subtract_product(psi, W, None, s)  # Ψ_1 = Ψ_σ − σ W₁
+    np.multiply(MW, -s * s, out=kpsi)
     _subtract_coupling(kpsi, itf.G, -(Cinv + s * mu))
+    _subtract_product(Mpsi, MW, None, s)  # M Ψ_1 = M Ψ_σ − σ M W₁
     return Mpsi, [W, MW, KW]
 
 
@@ -305,7 +302,7 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
         basis[:, :m], forces[:, :m] = psi, Kpsi
         Kpsi, first = forces[:, :m], None
     psi = basis[:, :m]
-    Kpp = psi.T @ Kpsi
+    Kpp, Mpp = psi.T @ Kpsi, psi.T @ Mpsi
     parts, cross = [], []  # with streaming: the recovered rows and Φᵀ K Ψ = (K Φ)ᵀ Ψ, block by block
     if stream:
         parts.append(recover(Kpsi))
@@ -317,14 +314,19 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
 
     t1 = time.perf_counter()
     if ritz_blocks:
-        k, Kq = interface_ritz_vectors(itf, psi, ritz_blocks, mpsi=Mpsi, first=first,
-                                       out=(basis[:, m:], None if stream else forces[:, m:]),
-                                       on_forces=done if stream else None)
+        # M Ψ starts the Krylov space unless its first block is solved already; Φᵀ M Ψ then comes
+        # from the Ritz step's own M Φ, and M Ψ's memory goes before the Ritz step's solve
+        start, Mpsi = (Mpsi if first is None else None), None
+        k, Kq, Mqp = interface_ritz_vectors(itf, psi, ritz_blocks, mpsi=start, first=first,
+                                            out=(basis[:, m:], None if stream else forces[:, m:]),
+                                            on_forces=done if stream else None)
+        del start
         w2 = scipy.linalg.eigvalsh(Kq)
     else:
         w2, phi = fixed_interface_modes(itf, modes) if modes else (np.zeros(0), np.zeros((n, 0)))
         Kq, k = np.diag(w2), len(w2)
         basis[:, m:], forces[:, m:] = phi, np.asarray(itf.K @ phi)
+        Mqp = phi.T @ Mpsi
     r = m + k
     basis = basis[:, :r]  # a view: svqb may have dropped dependent directions
     if forces is not None:
@@ -336,8 +338,8 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     Kr[m:, :m] = np.vstack(cross) if stream else phi.T @ forces[:, :m]
     Kr[:m, m:] = Kr[m:, :m].T
     Kr[m:, m:] = Kq
-    Mr[:m, :m] = psi.T @ Mpsi
-    Mr[m:, :m] = phi.T @ Mpsi
+    Mr[:m, :m] = Mpp
+    Mr[m:, :m] = Mqp
     Mr[:m, m:] = Mr[m:, :m].T
     Mr[m:, m:] = np.eye(r - m)
     Kr, Mr = 0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T)
@@ -457,7 +459,7 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
                            mpsi: np.ndarray | None = None, first=None, out=None, on_forces=None):
     """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis Q of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
-    G x = 0: (k, Qᵀ K Q), with Q and K Q written into the first k columns of ``out`` = (Q, K Q),
+    G x = 0: (k, Qᵀ K Q, Qᵀ M Ψ), with Q and K Q written into the first k columns of ``out`` = (Q, K Q),
     arrays of n × (``blocks`` · Ψ's columns) (made here when not given; k is fewer where a block
     was numerically dependent).
 
@@ -474,7 +476,7 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
     Q, KQ = out if out is not None else (np.empty((n, blocks * m)), np.empty((n, blocks * m)))
     MV = np.asarray(itf.M @ psi) if mpsi is None else mpsi
     mbasis, kq, spans, j = [], [], [], 0
-    Kq = np.zeros((blocks * m, blocks * m))
+    Kq, Mqp = np.zeros((blocks * m, blocks * m)), np.zeros((blocks * m, m))
     for b in range(blocks):
         if b == 0 and first is not None:
             W, MW, KW = first
@@ -498,8 +500,9 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
         KB = np.matmul(KW, C, out=None if KQ is None else KQ[:, j:j + p])
         del KW
         Kq[:j + p, j:j + p] = Q[:, :j + p].T @ KB  # Qᵢᵀ K Qⱼ, i ≤ j: the upper triangle by blocks
+        MV = MW @ C
+        Mqp[j:j + p] = MV.T @ psi
         if b < blocks - 1:  # the next blocks' orthogonalisation reads M Q and K Q
-            MV = MW @ C
             mbasis.append(MV)
             kq.append(KB)
         spans.append((j, j + p))
@@ -510,4 +513,4 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
         del MW, KB  # before the next block's solve makes its own
     kq.clear()
     Kq = np.triu(Kq[:j, :j])
-    return j, Kq + np.triu(Kq, 1).T
+    return j, Kq + np.triu(Kq, 1).T, Mqp[:j]
