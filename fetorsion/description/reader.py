@@ -6,6 +6,7 @@ mechanics input file.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 import tomllib
@@ -143,7 +144,7 @@ class Table:
         the schema) always cover what the reader accepts.
         """
         if self.schema is not None:
-            table = re.sub(r"\.\d+", "", self.path)  # webs.3 -> webs
+            table = _schema_table(self.path)
             declared = self.schema.get(table, frozenset())
             undeclared = set() if declared is None else self.used - declared
             if undeclared or table not in self.schema:
@@ -156,6 +157,13 @@ class Table:
 
 _REQUIRED = object()
 _MISSING = object()
+
+
+@functools.lru_cache(maxsize=1024)
+def _schema_table(path: str) -> str:
+    """The schema's name of the table at ``path``: ``webs.3`` -> ``webs`` (asked once per table
+    of every study sample's description)."""
+    return re.sub(r"\.\d+", "", path)
 
 
 def finite_number(v) -> bool:
