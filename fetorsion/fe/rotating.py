@@ -91,20 +91,14 @@ def rotating_frame_matrices(M, basis: np.ndarray) -> tuple[np.ndarray, np.ndarra
     return 0.5 * (G - G.T), 0.5 * (N + N.T)
 
 
-def reduced_coriolis(node_mass, basis: np.ndarray) -> np.ndarray:
-    """G_r = Bᵀ G B (r × r, skew) from the scalar node mass matrix m (M = m ⊗ I₃) alone:
-    (R2) reads G_r = 2 (B_zᵀ m B_y − B_yᵀ m B_z), B_y, B_z the y and z rows of the basis —
-    the same value as :func:`rotating_frame_matrices`'s first (see :func:`node_mass_rotating_terms`)."""
-    return node_mass_rotating_terms(node_mass, lambda k: basis[k::3])[0]
-
-
 def node_mass_rotating_terms(node_mass, rows, dof_xyz: np.ndarray | None = None):
     """(G_r r × r, the centrifugal load per unit Ω² (r,) or None) from the scalar node mass
     matrix m and the basis' y and z rows alone, ``rows(k)`` (DOF nodes × r; k = 1 y, 2 z) made
     on demand, so that no more than two such blocks are held.
 
-    With m symmetric, B_yᵀ m B_z = (B_zᵀ m B_y)ᵀ, so G_r = 2 (X − Xᵀ), X = B_zᵀ (m B_y): one
-    product with a matrix a ninth of M's size. The load (``dof_xyz`` given) is
+    (R2) reads G_r = 2 (B_zᵀ m B_y − B_yᵀ m B_z), the same value as
+    :func:`rotating_frame_matrices`'s first; with m symmetric, B_yᵀ m B_z = (B_zᵀ m B_y)ᵀ, so
+    G_r = 2 (X − Xᵀ), X = B_zᵀ (m B_y): one product with a matrix a ninth of M's size. The load (``dof_xyz`` given) is
     :func:`centrifugal_load`'s, B_yᵀ m y + B_zᵀ m z.
     """
     By = rows(1)
