@@ -63,3 +63,26 @@ def test_the_program_passes_its_setting_to_its_children_and_keeps_the_users():
         return
     assert mine.stdout.split() == ["0", str(2**31 - 1)]
     assert users.stdout.split()[0] == "7"
+
+
+def test_the_program_lets_openblas_threads_sleep_here_and_in_its_children():
+    """OpenBLAS's idle threads: after the program's setting the loaded OpenBLAS reports the short
+    timeout (it re-read its environment), a product is still right on the restarted thread pool,
+    and the children inherit the variable; a user's own value is kept."""
+    code = ("import os, ctypes, numpy as np; from threadpoolctl import threadpool_info; "
+            "from fetorsion.cli.process import release_idle_blas_threads; ok = release_idle_blas_threads(); "
+            "libs = [i['filepath'] for i in threadpool_info() if i['internal_api'] == 'openblas']; "
+            "a = np.arange(600.0).reshape(30, 20); "
+            "right = np.allclose(a.T @ a, np.einsum('ki,kj->ij', a, a), rtol=1e-14, atol=0); "
+            "print(ok, [ctypes.CDLL(p).openblas_thread_timeout() for p in libs], right, "
+            "os.environ['OPENBLAS_THREAD_TIMEOUT'])")
+    env = {k: v for k, v in os.environ.items() if k != "OPENBLAS_THREAD_TIMEOUT"}
+    mine = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    words = mine.stdout.split()  # ok, [timeouts], right, the variable
+    if words[0] == "False":
+        pytest.skip("numpy's BLAS here is not an OpenBLAS with these entry points")
+    assert words[-2] == "True" and words[-1] == "4"
+    assert all(int(t.strip("[],")) == 4 for t in words[1:-2])
+    users = subprocess.run([sys.executable, "-c", code], env={**env, "OPENBLAS_THREAD_TIMEOUT": "9"},
+                           capture_output=True, text=True, check=True).stdout.split()
+    assert users[-1] == "9" and all(int(t.strip("[],")) == 9 for t in users[1:-2])

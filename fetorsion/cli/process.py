@@ -1,4 +1,5 @@
-"""The ``fetorsion`` program's process: what it sets before the command runs.
+"""The ``fetorsion`` program's process: what it sets before the command runs — the allocator
+(:func:`keep_freed_memory`) and OpenBLAS's idle threads (:func:`release_idle_blas_threads`).
 
 glibc's ``malloc`` serves every block over 32 MB with a fresh ``mmap`` and gives it back on
 ``free``. fetorsion's FE work allocates and frees many such blocks (a 322 k × 66 block of
@@ -44,9 +45,47 @@ def keep_freed_memory() -> bool:
     return ok
 
 
+#: OpenBLAS's idle-thread spin, log2 of CPU cycles: its least (its default, 28, spins ~0.1 s).
+BLAS_THREAD_TIMEOUT = 4
+
+
+def release_idle_blas_threads() -> bool:
+    """Make OpenBLAS's worker threads sleep as soon as their work is done, in this process and its
+    children; True when an OpenBLAS in this process was reset.
+
+    By default an idle OpenBLAS thread spins for 2^28 cycles after each call, and ``fetorsion
+    run``'s FE step makes thousands of calls: on 2 cores the spinning took the core its
+    background studies run on (six-cylinder benchmark: 115 → 106 CPU-s of user time, 71–73 →
+    66 s of wall; docs/performance.md). OpenBLAS reads ``OPENBLAS_THREAD_TIMEOUT`` when it loads,
+    which numpy has done by now: the variable is set (for the children, and any OpenBLAS loaded
+    later; a user's own setting wins), then read again by OpenBLAS's own ``openblas_read_env``, and
+    the thread pool shut down, to start again with it on the next call.
+    """
+    timeout = os.environ.setdefault("OPENBLAS_THREAD_TIMEOUT", str(BLAS_THREAD_TIMEOUT))
+    try:
+        from threadpoolctl import threadpool_info
+
+        libraries = [i["filepath"] for i in threadpool_info() if i.get("internal_api") == "openblas"]
+    except Exception:  # noqa: BLE001 - a probe of the BLAS in use; nothing to change without it
+        return False
+    done = False
+    for path in libraries:
+        try:
+            lib = ctypes.CDLL(path)
+            read_env, shutdown, current = lib.openblas_read_env, lib.blas_thread_shutdown_, lib.openblas_thread_timeout
+        except (OSError, AttributeError):
+            continue
+        read_env()
+        shutdown()
+        done = done or current() == int(timeout)
+    return done
+
+
 def console() -> int:
-    """The ``fetorsion`` program: :func:`fetorsion.cli.commands.main` with :func:`keep_freed_memory`."""
+    """The ``fetorsion`` program: :func:`fetorsion.cli.commands.main` with :func:`keep_freed_memory`
+    and :func:`release_idle_blas_threads`."""
     from .commands import main
 
     keep_freed_memory()
+    release_idle_blas_threads()
     return main()
