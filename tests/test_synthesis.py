@@ -4,7 +4,7 @@ two orders with known phases their analytic extremes, to round-off (not to the s
 import numpy as np
 import pytest
 
-from fetorsion.response.synthesis import extremes, half_peak_to_peak
+from fetorsion.response.synthesis import BATCH, extremes, half_peak_to_peak, largest_half_peak_to_peak
 
 CYCLE = 4 * np.pi  # a four-stroke cycle
 
@@ -29,3 +29,22 @@ def test_two_orders_with_known_phases_give_the_analytic_extremes():
     delay = 0.37
     shifted = z * np.exp(-1j * np.array([2.0, 4.0]) * delay)
     np.testing.assert_allclose(extremes(shifted, np.array([2.0, 4.0]), CYCLE), (top, bottom), rtol=1e-13)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_largest_half_peak_to_peak_is_the_max_of_the_whole_synthesis(seed):
+    """The pruned maximum (signals taken by their bound Σ|z_q| until it falls below the best found)
+    equals the maximum over every signal's synthesis, weights included: random signals whose
+    bound order differs from their peak-to-peak order, a few of them strong (a resonance), more
+    signals than one batch."""
+    rng = np.random.default_rng(seed)
+    orders = np.arange(0.5, 12.01, 0.5)
+    z = (rng.normal(size=(300, 7, len(orders))) + 1j * rng.normal(size=(300, 7, len(orders))))
+    z *= rng.uniform(0.2, 1.0, size=(300, 7, 1))
+    z[rng.integers(0, 300, 5), rng.integers(0, 7, 5)] *= 6.0
+    weights = rng.uniform(0.5, 2.0, size=7)
+    assert z.shape[0] * z.shape[1] > BATCH
+    full = (half_peak_to_peak(z, orders, CYCLE) * weights[None, :]).max()
+    assert largest_half_peak_to_peak(z, orders, CYCLE, weights[None, :]) == pytest.approx(full, rel=1e-13)
+    assert largest_half_peak_to_peak(z[:, 0], orders, CYCLE) == pytest.approx(
+        half_peak_to_peak(z[:, 0], orders, CYCLE).max(), rel=1e-13)

@@ -35,7 +35,7 @@ from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_PARTITION
 from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
 from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
-from ..response.synthesis import half_peak_to_peak
+from ..response.synthesis import half_peak_to_peak, largest_half_peak_to_peak
 
 OBJECTIVES = ("stress", "twist")
 
@@ -276,20 +276,27 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
 
         weights = stress_weights(crank, setup, fillet_scfs(crank) if scf is None else scf, fillets)
 
-    def curve(dampers):  # only the objective's synthesis: the optimiser calls this some 80 times
+    def signals(dampers):  # the objective's complex amplitudes by order, and their weights
         theta, _, _ = solve_theta(setup, dampers)
         if objective == "twist":
-            twist = theta[:, :, setup.pulley] - theta[:, :, setup.flywheel]
-            return np.degrees(half_peak_to_peak(twist, setup.orders, setup.period))
-        torque = half_peak_to_peak(section_torques(setup, theta), setup.orders, setup.period)
-        return (torque * weights[None, :]).max(axis=1)
+            return theta[:, :, setup.pulley] - theta[:, :, setup.flywheel], np.degrees(1.0)
+        return section_torques(setup, theta), weights[None, :]
+
+    def curve(dampers):  # the objective at each speed
+        z, scale = signals(dampers)
+        hpp = half_peak_to_peak(z, setup.orders, setup.period) * scale
+        return hpp if hpp.ndim == 1 else hpp.max(axis=1)
+
+    def peak(dampers):  # its largest value, what the optimiser calls some 80 times
+        z, scale = signals(dampers)
+        return largest_half_peak_to_peak(z, setup.orders, setup.period, scale)
 
     res = DamperResult(crank.name, kind, mu, objective, omega_n / (2 * np.pi), J_eq, start, None, setup.rpm)
     for key, dampers in (("none", ()), ("den_hartog", (start,))):
         res.curves[key] = curve(dampers)
         res.peaks[key] = float(res.curves[key].max())
     if optimise:
-        best, count = optimise_damper(lambda d: float(curve((d,)).max()), start)
+        best, count = optimise_damper(lambda d: peak((d,)), start)
         best = replace(best, name=f"optimised {kind}, mu = {mu:g}")
         res.optimised, res.evaluations = best, count
         res.curves["optimised"] = curve((best,))
