@@ -86,3 +86,13 @@ def test_the_program_lets_openblas_threads_sleep_here_and_in_its_children():
     users = subprocess.run([sys.executable, "-c", code], env={**env, "OPENBLAS_THREAD_TIMEOUT": "9"},
                            capture_output=True, text=True, check=True).stdout.split()
     assert users[-1] == "9" and all(int(t.strip("[],")) == 9 for t in users[1:-2])
+
+
+def test_a_user_timeout_openblas_cannot_read_does_not_stop_the_program():
+    """A value OpenBLAS ignores (not a number) is left to it: the program starts and says the
+    pool was reset."""
+    code = ("from fetorsion.cli.process import release_idle_blas_threads; import numpy; "
+            "print(release_idle_blas_threads())")
+    out = subprocess.run([sys.executable, "-c", code], env={**os.environ, "OPENBLAS_THREAD_TIMEOUT": "soon"},
+                         capture_output=True, text=True, check=True)
+    assert out.stdout.split()[-1] in ("True", "False")

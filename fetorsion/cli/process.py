@@ -61,7 +61,7 @@ def release_idle_blas_threads() -> bool:
     later; a user's own setting wins), then read again by OpenBLAS's own ``openblas_read_env``, and
     the thread pool shut down, to start again with it on the next call.
     """
-    timeout = os.environ.setdefault("OPENBLAS_THREAD_TIMEOUT", str(BLAS_THREAD_TIMEOUT))
+    os.environ.setdefault("OPENBLAS_THREAD_TIMEOUT", str(BLAS_THREAD_TIMEOUT))
     try:
         from threadpoolctl import threadpool_info
 
@@ -72,12 +72,12 @@ def release_idle_blas_threads() -> bool:
     for path in libraries:
         try:
             lib = ctypes.CDLL(path)
-            read_env, shutdown, current = lib.openblas_read_env, lib.blas_thread_shutdown_, lib.openblas_thread_timeout
+            read_env, shutdown = lib.openblas_read_env, lib.blas_thread_shutdown_
         except (OSError, AttributeError):
             continue
-        read_env()
+        read_env()  # a user's value OpenBLAS cannot read, it ignores, as at its own start
         shutdown()
-        done = done or current() == int(timeout)
+        done = True
     return done
 
 

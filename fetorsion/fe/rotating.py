@@ -98,8 +98,8 @@ def node_mass_rotating_terms(node_mass, rows, dof_xyz: np.ndarray | None = None)
 
     (R2) reads G_r = 2 (B_zᵀ m B_y − B_yᵀ m B_z), the same value as
     :func:`rotating_frame_matrices`'s first; with m symmetric, B_yᵀ m B_z = (B_zᵀ m B_y)ᵀ, so
-    G_r = 2 (X − Xᵀ), X = B_zᵀ (m B_y): one product with a matrix a ninth of M's size. The load (``dof_xyz`` given) is
-    :func:`centrifugal_load`'s, B_yᵀ m y + B_zᵀ m z.
+    G_r = 2 (X − Xᵀ), X = B_zᵀ (m B_y): one product with a matrix a ninth of M's size. The load
+    (``dof_xyz`` given) is :func:`centrifugal_load`'s, B_yᵀ m y + B_zᵀ m z.
     """
     By = rows(1)
     mBy = np.asarray(node_mass @ By)

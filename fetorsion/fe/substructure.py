@@ -459,15 +459,15 @@ def interface_ritz_vectors(itf: Interface, psi: np.ndarray, blocks: int, drop: f
                            mpsi: np.ndarray | None = None, first=None, out=None, on_forces=None):
     """Load-dependent Ritz vectors of the fixed-interface problem: an M-orthonormal basis Q of
     the block Krylov space A_c M Ψ, (A_c M)² Ψ, … (``blocks`` blocks), A_c = S⁻¹ restricted to
-    G x = 0: (k, Qᵀ K Q, Qᵀ M Ψ), with Q and K Q written into the first k columns of ``out`` = (Q, K Q),
-    arrays of n × (``blocks`` · Ψ's columns) (made here when not given; k is fewer where a block
-    was numerically dependent).
+    G x = 0: (k, Qᵀ K Q, Qᵀ M Ψ), with Q and K Q written into the first k columns of ``out`` =
+    (Q, K Q), arrays of n × (``blocks`` · Ψ's columns) (made here when not given; k is fewer where
+    a block was numerically dependent).
 
     K Q comes from each block solve's equilibrium (S W + Gᵀ μ = M V ⇒ K W = M V + σ M W − Gᵀ μ)
     carried through the orthogonalisation, not from a sparse product with K: the dense
     updates cost a fraction of one. ``first``: a list [W, M W, K W] of the first block, emptied
-    here, when the caller has solved it already (:func:`_constraint_modes_shared`); the space is then started from the
-    block that W solves for, not from ``psi``. ``out`` = (Q, None) with ``on_forces``: K Q is
+    here, when the caller has solved it already (:func:`_constraint_modes_shared`); the space is
+    then started from the block that W solves for, not from ``psi``. ``out`` = (Q, None) with ``on_forces``: K Q is
     not kept; each block's K Q is handed to ``on_forces(first column, end column, K Q block)``
     once no later block needs it, and dropped.
     """
