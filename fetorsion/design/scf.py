@@ -138,7 +138,8 @@ def nodal_stress(sol, material, measure=None) -> tuple[np.ndarray, np.ndarray]:
     (nodes, 3, 3)) and, per node, the largest shear (σ₁ − σ₃)/2 of any one of those elements
     (Pa, shape (nodes,)): the averaged value is the usual nodal stress, the element-wise largest
     an upper estimate; their gap measures the discretisation error at a peak. ``measure``: the
-    element-wise quantity instead of the largest shear (e.g. :func:`max_principal`).
+    element-wise quantity instead of the largest shear (e.g. :func:`max_principal`), or a tuple
+    of them (then a list of element-wise values, one per measure).
     """
     from skfem import Basis, ElementTetP2
 
@@ -155,14 +156,35 @@ def nodal_stress(sol, material, measure=None) -> tuple[np.ndarray, np.ndarray]:
     n = at_nodes.N
     total = np.stack([np.bincount(dofs, flat[k], minlength=n) for k in range(9)], axis=1)
     count = np.bincount(dofs, minlength=n)
-    each = np.zeros(n)
-    np.maximum.at(each, dofs, (measure or max_shear)(flat.T.reshape(-1, 3, 3)))
-    return (total / np.maximum(count, 1)[:, None]).reshape(n, 3, 3), each
+    tensors = flat.T.reshape(-1, 3, 3)
+    each = []
+    for m in (measure if isinstance(measure, (tuple, list)) else (measure or max_shear,)):
+        e = np.zeros(n)
+        np.maximum.at(e, dofs, m(tensors))
+        each.append(e)
+    avg = (total / np.maximum(count, 1)[:, None]).reshape(n, 3, 3)
+    return avg, (each if isinstance(measure, (tuple, list)) else each[0])
 
 
 def max_principal(stress: np.ndarray) -> np.ndarray:
     """σ₁, the largest principal stress of tensors (..., 3, 3), Pa."""
     return np.linalg.eigvalsh(stress)[..., -1]
+
+
+def largest_either_sign(stress: np.ndarray) -> np.ndarray:
+    """max(σ₁, −σ₃) of tensors (..., 3, 3), Pa: the largest tensile principal stress under the
+    load and under the same load reversed. A crank's bending alternates, so a fillet point in
+    compression under one sign is in tension under the other (the journal fillet's overlap side
+    under the in-plane couple)."""
+    w = np.linalg.eigvalsh(stress)
+    return np.maximum(w[..., -1], -w[..., 0])
+
+
+def von_mises_tensor(stress: np.ndarray) -> np.ndarray:
+    """The von Mises equivalent stress √(3 J₂) of tensors (..., 3, 3), Pa (the same under either
+    sign of the load): the measure [IACSM53] Appendix III takes for the bending SCFs."""
+    dev = stress - np.trace(stress, axis1=-2, axis2=-1)[..., None, None] * np.eye(3) / 3.0
+    return np.sqrt(1.5 * np.einsum("...ij,...ij->...", dev, dev))
 
 
 def max_shear(stress: np.ndarray) -> np.ndarray:
@@ -253,9 +275,17 @@ def _shear(sol, material):
 
 
 def _principal(sol, material):
-    """(σ₁ of the averaged nodal stress, the element-wise largest σ₁)."""
-    avg, each = nodal_stress(sol, material, max_principal)
-    return max_principal(avg), each
+    """(max(σ₁, −σ₃) of the averaged nodal stress, its element-wise largest): the largest tensile
+    principal stress under either sign of the load."""
+    avg, each = nodal_stress(sol, material, largest_either_sign)
+    return largest_either_sign(avg), each
+
+
+def _bending_measures(sol, material):
+    """{"principal": …, "von_mises": …} (in that order): each as (averaged nodal value, element-wise largest),
+    from one stress recovery."""
+    avg, (each_p, each_v) = nodal_stress(sol, material, (largest_either_sign, von_mises_tensor))
+    return {"principal": (largest_either_sign(avg), each_p), "von_mises": (von_mises_tensor(avg), each_v)}
 
 
 #: The SCF load cases at the loaded face by name: torsion about x, and bending about z (for a
@@ -270,10 +300,11 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
     The throw (journal centre to journal centre, crank angle 0: its pin on +y) is meshed with the
     mesher's ``stress`` purpose and loaded between its rigid end faces by a pure couple, every
     case from one factorisation: ``torsion`` (about x; peak largest shear over 16 T D/(π(D⁴ − d⁴)))
-    and ``bending`` in the throw's plane (about z; peak largest principal stress over
-    32 M D/(π(D⁴ − d⁴))). A couple loads every pin and journal section by itself (statics).
-    Returns {load: the fillets (journal, web 1), (pin, web 1), (pin, web 2), (journal, web 2)}
-    and the mesh figures.
+    and ``bending`` in the throw's plane (about z), which gives two cases: ``bending`` (peak
+    max(σ₁, −σ₃), the largest tensile principal stress under either sign of the alternating
+    load, over 32 M D/(π(D⁴ − d⁴))) and ``bending_vm`` (peak von Mises stress over the same).
+    A couple loads every pin and journal section by itself (statics). Returns {case: the fillets
+    (journal, web 1), (pin, web 1), (pin, web 2), (journal, web 2)} and the mesh figures.
     """
     from ..solid.mesh import default_fillet_size
     from ..webs.throwfe import END_LOADS, end_loaded_fe
@@ -298,18 +329,22 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
     out = {}
     for load, sol in zip(loads, sols):
         xyz = sol.skfem_mesh.doflocs.T
-        stress = _shear(sol, throw.material) if load == "torsion" else _principal(sol, throw.material)
         nominal = nominal_shear if load == "torsion" else nominal_bending
-        out[load] = [
-            _peak("journal fillet, web 1", stress, xyz, fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
-                  float(nominal(TORQUE, j1.diameter, j1.bore))),
-            _peak("pin fillet, web 1", stress, xyz, fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
-                  float(nominal(TORQUE, pin.diameter, pin.bore))),
-            _peak("pin fillet, web 2", stress, xyz, fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
-                  float(nominal(TORQUE, pin.diameter, pin.bore))),
-            _peak("journal fillet, web 2", stress, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
-                  float(nominal(TORQUE, j2.diameter, j2.bore))),
-        ]
+        # bending: the largest principal stress of either sign ("bending") and the von Mises
+        # stress ("bending_vm", [IACSM53] Appendix III's measure), from one stress recovery
+        measures = ({"torsion": _shear(sol, throw.material)} if load == "torsion" else
+                    dict(zip(("bending", "bending_vm"), _bending_measures(sol, throw.material).values())))
+        for case, stress in measures.items():
+            out[case] = [
+                _peak("journal fillet, web 1", stress, xyz, fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
+                      float(nominal(TORQUE, j1.diameter, j1.bore))),
+                _peak("pin fillet, web 1", stress, xyz, fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
+                      float(nominal(TORQUE, pin.diameter, pin.bore))),
+                _peak("pin fillet, web 2", stress, xyz, fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
+                      float(nominal(TORQUE, pin.diameter, pin.bore))),
+                _peak("journal fillet, web 2", stress, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
+                      float(nominal(TORQUE, j2.diameter, j2.bore))),
+            ]
     return out, {"nodes": len(fe.mesh.nodes), "elements": len(fe.mesh.tets), "dofs": int(sols[0].dofs),
                  "mesh_size_m": size, "fillet_size_m": fine, "seconds": fe.seconds}
 
@@ -340,16 +375,19 @@ class FilletSCFResult:
         return {"name": self.name, "throw": self.throw + 1, "rows": self.rows,
                 "pin_scf": self.pin_scf, "journal_scf": self.journal_scf,
                 "definition": "torsion: peak (sigma1 - sigma3)/2 on the fillet / (16 T D / (pi (D^4 - d_i^4))); "
-                              "bending in the throw's plane: peak sigma1 / (32 M D / (pi (D^4 - d_i^4)))"}
+                              "bending in the throw's plane: peak max(sigma1, -sigma3) (either sign of the load) "
+                              "and peak von Mises (bending_vm), each / (32 M D / (pi (D^4 - d_i^4)))"}
 
     def table(self) -> str:
         head = (f"{'size [mm]':>9} {'fillet [mm]':>11} {'elements':>9} {'DOF':>9} {'time [s]':>8} "
-                f"{'pin SCF':>8} {'journal SCF':>11} {'pin bending':>11} {'journal bending':>15}")
+                f"{'pin SCF':>8} {'journal SCF':>11} {'pin bending':>11} {'journal bending':>15} "
+                f"{'pin von Mises':>13} {'journal von Mises':>17}")
         lines = [f"{self.name}: SCFs at the fillets of throw {self.throw + 1} (static 3D FE; torsion, and bending "
                  "in the throw's plane)", head]
         lines += [f"{r['mesh_size_m'] * 1e3:9.2f} {r['fillet_size_m'] * 1e3:11.3f} {r['elements']:9d} {r['dofs']:9d} "
                   f"{r['seconds']:8.1f} {r['pin_scf']:8.3f} {r['journal_scf']:11.3f} "
-                  f"{r.get('pin_bending_scf', float('nan')):11.3f} {r.get('journal_bending_scf', float('nan')):15.3f}"
+                  f"{r.get('pin_bending_scf', float('nan')):11.3f} {r.get('journal_bending_scf', float('nan')):15.3f} "
+                  f"{r.get('pin_bending_vm_scf', float('nan')):13.3f} {r.get('journal_bending_vm_scf', float('nan')):17.3f}"
                   for r in self.rows]
         return "\n".join(lines)
 
@@ -394,7 +432,8 @@ def run_fillet_scf(crank: Crank, refinements=(1.0, 0.5, 0.33, 0.25), throw: int 
     for f in refinements:
         cases, info = throw_scfs(crank, throw, base, fine * f)
         res.rows.append({**info, **_larger_of_each(cases), "fillets": [s.__dict__ for s in cases["torsion"]],
-                         "bending_fillets": [s.__dict__ for s in cases["bending"]]})
+                         "bending_fillets": [s.__dict__ for s in cases["bending"]],
+                         "bending_vm_fillets": [s.__dict__ for s in cases["bending_vm"]]})
     return res
 
 
@@ -402,7 +441,7 @@ def _larger_of_each(cases: dict) -> dict:
     """The larger SCF of each pair of fillets (pin, journal), per load case."""
     out = {}
     for load, fillets in cases.items():
-        tag = "" if load == "torsion" else "_bending"
+        tag = "" if load == "torsion" else f"_{load}"
         for kind in ("pin", "journal"):
             out[f"{kind}{tag}_scf"] = max(s.scf for s in fillets if s.name.startswith(kind))
     return out
@@ -433,8 +472,12 @@ def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
     """Pin and journal fillet SCFs of ``crank`` (its throw ``throw`` stands for all): shipped
     values of the reference cranks' convergence study when the throw matches, else one static FE
     at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns ``pin``, ``journal``
-    (torsion), ``pin_bending``, ``journal_bending`` (bending in the throw's plane) and ``source``
-    (how they were obtained)."""
+    (torsion: peak largest shear over τ_nom), ``pin_bending``, ``journal_bending`` (bending in the
+    throw's plane: peak largest principal stress under either sign of the load over the pin or
+    journal section's σ_nom), ``pin_bending_vm``, ``journal_bending_vm`` (the same with the von
+    Mises stress, [IACSM53] Appendix III's measure) and ``source`` (how they were obtained).
+    Every factor is against the fillet's own section (32 M D/(π(D⁴ − d⁴))); :mod:`.m53`
+    converts them to the rule's web-section convention."""
     entry = stored_fillet_scfs(crank, throw)
     if entry is not None:
         return entry
@@ -445,5 +488,6 @@ def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
     cases, info = throw_scfs(crank, throw, fillet_size=fine)
     each = _larger_of_each(cases)
     return {"pin": each["pin_scf"], "journal": each["journal_scf"], "pin_bending": each["pin_bending_scf"],
-            "journal_bending": each["journal_bending_scf"],
+            "journal_bending": each["journal_bending_scf"], "pin_bending_vm": each["pin_bending_vm_scf"],
+            "journal_bending_vm": each["journal_bending_vm_scf"],
             "source": f"static 3D FE of throw {throw + 1}, fillet elements {fine * 1e3:.2f} mm, {info['dofs']} DOF"}

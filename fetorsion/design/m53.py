@@ -1,0 +1,576 @@
+"""IACS UR M53 as written: the statically determinate throw, nominal stresses on the web section,
+the rule's empirical stress concentration factors (or fetorsion's FE ones as its Appendix III
+defines them, where the geometry lies outside the formulas' ranges), σ_add, σ_V, σ_DW and Q.
+
+The rule's text is read from [KR-M53] (Korean Register, *Rules for the Classification of Steel
+Ships*, Pt 5, Annex 5-3 "Guidance for Calculation of Crankshaft Stress (2)", 2025), a
+reproduction of UR M53 whose formulas are legible; §6 agrees with the Indian Register of
+Shipping's restatement [IRS-CN]. Section numbers below are M53's (the same in [KR-M53]).
+
+* **§2.1 bending.** One throw, simply supported at the midpoints of its two main journals
+  (distance L3), loaded at the pin centre by the radial and tangential components of its
+  cylinder's rod force (gas and inertia) over one working cycle. The bending moment M_BRF and
+  the radial force Q_RF of the radial component act at the centre of each web (distance L1
+  from its main journal's midpoint); the moments M_BRO, M_BTO of the two components act at the
+  pin's oil bore (its centre). Alternating values X_N = ½ (X_max − X_min).
+  σ_BFN = M_BRFN / W_eqw · K_e,  σ_QFN = Q_RFN / F · K_e,  W_eqw = B W²/6,  F = B W,
+  K_e = 1.0 (4-stroke), 0.8 (2-stroke); σ_BON = M_BON / W_e, M_BO = M_BTO cos ψ + M_BRO sin ψ,
+  W_e = π (D⁴ − D_BH⁴)/(32 D).
+* **§2.2 torsion.** τ_N = M_TN / W_P, M_TN the largest alternating torque (half peak-to-peak of
+  the harmonic synthesis) at the most loaded section over the speed range, W_P = π (D⁴ −
+  D_BH⁴)/(16 D) (pin) or with D_G, D_BG (journal).
+* **§3 SCFs** α_B, α_T (pin fillet), β_B, β_Q, β_T (journal fillet), γ_B, γ_T (pin oil bore):
+  :func:`empirical_scfs`, valid inside :data:`VALIDITY`.
+* **§4** σ_add = ±10 N/mm² for trunk-piston engines (±30 crosshead), at both fillets.
+* **§5** σ_V = √((σ_BH + σ_add)² + 3 τ_H²) (pin fillet; journal: σ_BG, τ_G),
+  σ_V = σ_BO/3 · [1 + 2 √(1 + 9/4 (σ_TO/σ_BO)²)] (oil bore).
+* **§6** σ_DW (:func:`fetorsion.design.fatigue.m53_fatigue_strength`), radii not below 2 mm.
+* **§7** Q = σ_DW / σ_V ≥ 1.15.
+
+SI at the API (m, N, Pa); the rule's own units (mm, N/mm²) only where its formulas need them
+(the SCF ratios are dimensionless).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from dataclasses import replace as dataclasses_replace
+
+import numpy as np
+
+from ..errors import FetorsionError
+from .fatigue import M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
+
+#: [KR-M53] §4: σ_add of a trunk-piston engine (every engine fetorsion describes), Pa.
+SIGMA_ADD_TRUNK_PISTON = 10.0 * MPA
+#: [KR-M53] §4: σ_add of a crosshead engine (±20 axial vibration, ±10 misalignment), Pa.
+SIGMA_ADD_CROSSHEAD = 30.0 * MPA
+#: [KR-M53] §6: fillet radii (and half the oil-bore diameter) are taken as not less than 2 mm.
+M53_MIN_RADIUS = 2e-3
+#: [KR-M53] §3.(1)(G): the ranges of the related dimensions inside which the SCF formulas hold
+#: (s has no lower bound: §3.(1)(H) extends it with s = −0.5 in f(s, w) and f(r, s) below −0.5).
+VALIDITY = {"r": (0.03, 0.13), "s": (-math.inf, 0.5), "w": (0.2, 0.8), "b": (1.1, 2.2), "d_O": (0.0, 0.2),
+            "d_G": (0.0, 0.8), "d_H": (0.0, 0.8)}
+#: The related dimensions each factor's formula reads (r of α: R_H/D; of β_B, β_Q: R_G/D; of β_T: R_G/D_G).
+FACTOR_RATIOS = {"alpha_B": ("r_H", "s", "w", "b", "d_G", "d_H"), "alpha_T": ("r_H", "s", "w", "b"),
+                 "beta_B": ("r_G", "s", "w", "b", "d_G", "d_H"), "beta_Q": ("r_G", "s", "w", "b", "d_H"),
+                 "beta_T": ("r_GG", "s", "w", "b"), "gamma_B": ("d_O",), "gamma_T": ("d_O",)}
+FACTORS = tuple(FACTOR_RATIOS)
+
+
+@dataclass(frozen=True)
+class M53Geometry:
+    """One throw's dimensions as [KR-M53] §3 names them, m.
+
+    D, D_G: pin and journal diameters; E: pin eccentricity (crank radius); W: web thickness;
+    B: web width; R_H, R_G: pin and journal fillet radii; D_BH, D_BG: axial bores; D_O: the pin's
+    oil bore (0: none); T_H, T_G: fillet recesses.
+    """
+
+    D: float
+    D_G: float
+    E: float
+    W: float
+    B: float
+    R_H: float
+    R_G: float
+    D_BH: float = 0.0
+    D_BG: float = 0.0
+    D_O: float = 0.0
+    T_H: float = 0.0
+    T_G: float = 0.0
+
+    @property
+    def S(self) -> float:
+        """Pin overlap S = (D + D_G)/2 − E, m."""
+        return 0.5 * (self.D + self.D_G) - self.E
+
+    def ratios(self) -> dict:
+        """The related dimensions of [KR-M53] §3.(1)(G), each over the pin diameter D (r_GG: the
+        journal fillet over the journal diameter, β_T's r when pin and journal differ)."""
+        D = self.D
+        return {"r_H": self.R_H / D, "r_G": self.R_G / D, "r_GG": self.R_G / self.D_G, "s": self.S / D,
+                "w": self.W / D, "b": self.B / D, "d_O": self.D_O / D, "d_G": self.D_BG / D,
+                "d_H": self.D_BH / D, "t_H": self.T_H / D, "t_G": self.T_G / D}
+
+
+def web_width(web, crank_radius: float, radius: float) -> float:
+    """Width of a web outline (the convex hull of a circle of diameter ``width_journal`` about
+    the axis and one of ``width_pin`` about the pin centre, at distance ``crank_radius``) across
+    the throw's plane at distance ``radius`` from the axis along the pin direction, m."""
+    r1, r2, e = 0.5 * web.width_journal, 0.5 * web.width_pin, crank_radius
+    sin_phi = (r1 - r2) / e  # the hull's straight sides: tangent to both circles
+    if abs(sin_phi) >= 1.0:
+        return 2.0 * max(r1, r2)
+    cos_phi = math.sqrt(1.0 - sin_phi**2)
+    half = (r1 + (r2 - r1) * radius / e) / cos_phi
+    return 2.0 * half
+
+
+def m53_geometry(crank, throw: int = 0) -> M53Geometry:
+    """The dimensions of throw ``throw`` (0-based) of a crank description.
+
+    B, which the rule reads as "the web width" of the reference section (its Fig 3), is taken
+    here as the web outline's width at mid-overlap: halfway between the journal's surface
+    (D_G/2 from the axis) and the pin's inner surface (E − D/2), the section through which the
+    web carries the throw's bending from one fillet to the other (with no overlap: the middle
+    of the gap). Of the throw's two webs, the narrower there is taken (the larger nominal stress).
+    """
+    j, pin = crank.journals[throw], crank.pins[throw]
+    webs = crank.webs[2 * throw], crank.webs[2 * throw + 1]
+    E = crank.engine.crank_radius
+    mid = 0.5 * (0.5 * j.diameter + E - 0.5 * pin.diameter)
+    B = min(web_width(w, E, mid) for w in webs)
+    W = min(w.thickness for w in webs)
+    holes = crank.oil_holes
+    d_o = holes.diameter if holes is not None and holes.in_pins else 0.0
+    return M53Geometry(pin.diameter, j.diameter, E, W, B, crank.fillets.pin, crank.fillets.journal, pin.bore,
+                       j.bore, d_o)
+
+
+def out_of_range(g: M53Geometry) -> dict:
+    """{factor: ["name = value outside [lo, hi]", ...]} for every SCF formula whose related
+    dimensions leave :data:`VALIDITY` (an empty dict: every formula holds)."""
+    q = g.ratios()
+    limits = {"r_H": VALIDITY["r"], "r_G": VALIDITY["r"], "r_GG": VALIDITY["r"], **VALIDITY}
+    out = {}
+    for factor, names in FACTOR_RATIOS.items():
+        if factor.startswith("gamma") and not g.D_O > 0:
+            continue
+        bad = [f"{n} = {q[n]:.4g} outside [{limits[n][0]:g}, {limits[n][1]:g}]" for n in names
+               if not limits[n][0] <= q[n] <= limits[n][1]]
+        if bad:
+            out[factor] = bad
+    return out
+
+
+def _recess(q: dict) -> float:
+    """f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s), not below 1 ([KR-M53] §3.(1)(H))."""
+    return max(1.0, 1.0 + (q["t_H"] + q["t_G"]) * (1.8 + 3.2 * q["s"]))
+
+
+def _s_low(s: float) -> float:
+    """s for f(s, w) and f(r, s): −0.5 where s < −0.5 ([KR-M53] §3.(1)(H))."""
+    return max(s, -0.5)
+
+
+def alpha_B(g: M53Geometry) -> float:
+    """Bending SCF of the pin fillet, [KR-M53] §3.(2)(A)."""
+    q = g.ratios()
+    s, w, b, r, dg, dh = _s_low(q["s"]), q["w"], q["b"], q["r_H"], q["d_G"], q["d_H"]
+    f_sw = (-4.1883 + 29.2004 * w - 77.5925 * w**2 + 91.9454 * w**3 - 40.0416 * w**4
+            + (1 - s) * (9.5440 - 58.3480 * w + 159.3415 * w**2 - 192.5846 * w**3 + 85.2916 * w**4)
+            + (1 - s) ** 2 * (-3.8399 + 25.0444 * w - 70.5571 * w**2 + 87.0328 * w**3 - 39.1832 * w**4))
+    f_w = 2.1790 * w**0.7171
+    f_b = 0.6840 - 0.0077 * b + 0.1473 * b**2
+    f_r = 0.2081 * r**-0.5231
+    f_dg = 0.9993 + 0.27 * dg - 1.0211 * dg**2 + 0.5306 * dg**3
+    f_dh = 0.9978 + 0.3145 * dh - 1.5241 * dh**2 + 2.4147 * dh**3
+    return 2.6914 * f_sw * f_w * f_b * f_r * f_dg * f_dh * _recess(q)
+
+
+def _alpha_T_form(r: float, s: float, b: float, w: float) -> float:
+    """0.8 f(r, s) f(b) f(w) of [KR-M53] §3.(2)(B), as that text prints f(r, s) = r^(−0.322 +
+    0.1015 (1 − s)) and the cubic term of f(b) as −0.85 b³."""
+    s = _s_low(s)
+    return 0.8 * r ** (-0.322 + 0.1015 * (1 - s)) * (7.8955 - 10.654 * b + 5.3482 * b**2 - 0.85 * b**3) * w**-0.145
+
+
+def alpha_T(g: M53Geometry) -> float:
+    """Torsion SCF of the pin fillet, [KR-M53] §3.(2)(B)."""
+    q = g.ratios()
+    return _alpha_T_form(q["r_H"], q["s"], q["b"], q["w"])
+
+
+def beta_B(g: M53Geometry) -> float:
+    """Bending SCF of the journal fillet, [KR-M53] §3.(3)(A) (r = R_G/D)."""
+    q = g.ratios()
+    s, w, b, r, dg, dh = _s_low(q["s"]), q["w"], q["b"], q["r_G"], q["d_G"], q["d_H"]
+    f_sw = (-1.7625 + 2.9821 * w - 1.527 * w**2 + (1 - s) * (5.1169 - 5.8089 * w + 3.1391 * w**2)
+            + (1 - s) ** 2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2))
+    f_w = 2.2422 * w**0.7548
+    f_b = 0.5616 + 0.1197 * b + 0.1176 * b**2
+    f_r = 0.1908 * r**-0.5568
+    f_dg = 1.0012 - 0.6441 * dg + 1.2265 * dg**2
+    f_dh = 1.0022 - 0.1903 * dh + 0.0073 * dh**2
+    return 2.7146 * f_sw * f_w * f_b * f_r * f_dg * f_dh * _recess(q)
+
+
+def beta_Q(g: M53Geometry) -> float:
+    """Compression (radial force) SCF of the journal fillet, [KR-M53] §3.(3)(B) (r = R_G/D)."""
+    q = g.ratios()
+    s, w, b, r, dh = q["s"], q["w"], q["b"], q["r_G"], q["d_H"]
+    f_s = 0.4368 + 2.1630 * (1 - s) - 1.5212 * (1 - s) ** 2
+    f_w = w / (0.0637 + 0.9369 * w)
+    f_b = -0.5 + b
+    f_r = 0.5331 * r**-0.2038
+    f_dh = 0.9937 - 1.1949 * dh + 1.7373 * dh**2
+    return 3.0128 * f_s * f_w * f_b * f_r * f_dh * _recess(q)
+
+
+def beta_T(g: M53Geometry) -> float:
+    """Torsion SCF of the journal fillet, [KR-M53] §3.(3)(C): α_T when pin and journal have the
+    same diameter and fillet radius, else α_T's formula with r = R_G/D_G."""
+    q = g.ratios()
+    if math.isclose(g.D, g.D_G) and math.isclose(g.R_H, g.R_G):
+        return alpha_T(g)
+    return _alpha_T_form(q["r_GG"], q["s"], q["b"], q["w"])
+
+
+def gamma_B(g: M53Geometry) -> float:
+    """Bending SCF of the pin oil-bore outlet, [KR-M53] §3.(3)(D): 3 − 5.88 d_O + 34.6 d_O²."""
+    d = g.D_O / g.D
+    return 3.0 - 5.88 * d + 34.6 * d * d
+
+
+def gamma_T(g: M53Geometry) -> float:
+    """Torsion SCF of the pin oil-bore outlet, [KR-M53] §3.(3)(D): 4 − 6 d_O + 30 d_O²."""
+    d = g.D_O / g.D
+    return 4.0 - 6.0 * d + 30.0 * d * d
+
+
+FORMULAS = {"alpha_B": alpha_B, "alpha_T": alpha_T, "beta_B": beta_B, "beta_Q": beta_Q, "beta_T": beta_T,
+            "gamma_B": gamma_B, "gamma_T": gamma_T}
+
+
+def empirical_scfs(g: M53Geometry) -> dict:
+    """Every SCF of [KR-M53] §3 for ``g`` (γ only with an oil bore), whether or not its formula
+    holds there (:func:`out_of_range` says which do not)."""
+    return {k: f(g) for k, f in FORMULAS.items() if not (k.startswith("gamma") and not g.D_O > 0)}
+
+
+def web_section_per_pin_section(g: M53Geometry, journal: bool = False) -> float:
+    """σ_N(web) / σ_nom(pin or journal section) for one bending moment: (32 D/(π (D⁴ − D_B⁴))) ·
+    (B W²/6), the factor that takes a bending SCF against the pin's (or journal's) own section to
+    M53's web-section convention."""
+    d, bore = (g.D_G, g.D_BG) if journal else (g.D, g.D_BH)
+    return 32.0 * d / (math.pi * (d**4 - bore**4)) * g.B * g.W**2 / 6.0
+
+
+def fe_scfs_m53(g: M53Geometry, scf: dict) -> dict:
+    """fetorsion's FE SCFs in M53's convention (its Appendix III): α_B, β_B the peak von Mises
+    stress in the fillet under a pure couple over the web-section stress M/(B W²/6); α_T, β_T the
+    peak largest shear over τ_N of the section; γ_B, γ_T the oil bore's peak principal stress over
+    the pin section's nominal stresses (Appendix II's definition, as computed). ``scf``: the run's
+    SCFs (:func:`fetorsion.design.scf.fillet_scfs`, each against its own section, and the oil
+    bores'). β_Q has no FE counterpart here (its 3-point-bending case is not computed)."""
+    out = {"alpha_T": scf["pin"], "beta_T": scf["journal"]}
+    if "pin_bending_vm" in scf:
+        out["alpha_B"] = scf["pin_bending_vm"] * web_section_per_pin_section(g)
+        out["beta_B"] = scf["journal_bending_vm"] * web_section_per_pin_section(g, journal=True)
+    if "pin_oil_bore_bending" in scf:
+        out["gamma_B"], out["gamma_T"] = scf["pin_oil_bore_bending"], scf["pin_oil_bore_torsion"]
+    return out
+
+
+def scf_comparison(g: M53Geometry, scf: dict) -> dict:
+    """{factor: {"fe", "empirical", "difference" (fe/empirical − 1), "in_range", "outside"}}: the
+    FE in M53's convention beside the rule's formula ("scf_m53" of results.json)."""
+    emp, fe, bad = empirical_scfs(g), fe_scfs_m53(g, scf), out_of_range(g)
+    out = {}
+    for k in FACTORS:
+        if k not in emp and k not in fe:
+            continue
+        e, f = emp.get(k), fe.get(k)
+        out[k] = {"fe": f, "empirical": e, "difference": (f / e - 1.0) if (e and f) else None,
+                  "in_range": k not in bad, "outside": bad.get(k, [])}
+    return out
+
+
+# ---------------------------------------------------------------------------
+# §2: the statically determinate throw
+
+@dataclass(frozen=True)
+class ThrowSpans:
+    """Axial distances of one throw, m ([KR-M53] Fig 1): ``L1`` from each main journal's midpoint
+    to its web's centre (front, rear), ``L2`` from the front journal's midpoint to the pin's
+    centre, ``L3`` between the two journals' midpoints."""
+
+    L1: tuple
+    L2: float
+    L3: float
+
+
+def throw_spans(crank, throw: int = 0) -> ThrowSpans:
+    """:class:`ThrowSpans` of throw ``throw`` from the description's lengths."""
+    j1, j2 = crank.journals[throw], crank.journals[throw + 1]
+    w1, w2 = crank.webs[2 * throw], crank.webs[2 * throw + 1]
+    pin = crank.pins[throw]
+    x = np.cumsum([0.5 * j1.length, w1.thickness, pin.length, w2.thickness, 0.5 * j2.length])
+    L3 = float(x[-1])
+    return ThrowSpans((float(x[0] + 0.5 * w1.thickness), float(L3 - (x[2] + 0.5 * w2.thickness))),
+                      float(x[1] + 0.5 * pin.length), L3)
+
+
+def throw_loads(spans: ThrowSpans, radial, tangential) -> dict:
+    """The simply supported throw's loads over a cycle from the pin force's radial and tangential
+    components (arrays, N): ``M_BRF`` (2, angles), the bending moment of the radial component at
+    each web's centre, N·m; ``Q_RF`` (2, angles), the radial force in each web, N; ``M_BRO``,
+    ``M_BTO`` (angles,), the moments of the two components at the pin's centre (its oil bore), N·m.
+    Triangular moment diagrams: the front support takes F (L3 − L2)/L3, the rear F L2/L3."""
+    fr, ft = np.asarray(radial, float), np.asarray(tangential, float)
+    a, b = (spans.L3 - spans.L2) / spans.L3, spans.L2 / spans.L3  # support shares
+    return {"M_BRF": np.stack([a * fr * spans.L1[0], b * fr * spans.L1[1]]),
+            "Q_RF": np.stack([a * fr, b * fr]),
+            "M_BRO": a * fr * spans.L2, "M_BTO": a * ft * spans.L2}
+
+
+def alternating(x, axis: int = -1):
+    """X_N = ½ (X_max − X_min) over a working cycle ([KR-M53] §2.(1)(B)(a)(v))."""
+    return 0.5 * np.ptp(np.asarray(x, float), axis=axis)
+
+
+def nominal_bending_stresses(g: M53Geometry, loads: dict, strokes: int = 4, psi: float = 0.0) -> dict:
+    """σ_BFN (per web), σ_QFN (per web), σ_BON of [KR-M53] §2.(1)(B), Pa: the alternating web
+    moment over W_eqw = B W²/6 and radial force over F = B W, each times K_e (1.0 four-stroke,
+    0.8 two-stroke); the oil bore's M_BO = M_BTO cos ψ + M_BRO sin ψ over W_e = π (D⁴ − D_BH⁴)/(32 D).
+    ``psi``: the oil bore's angular position, rad (0: along the throw's tangent, where the
+    tangential force's bending peaks; fetorsion's drillings run so)."""
+    ke = 1.0 if strokes == 4 else 0.8
+    w_eqw, area = g.B * g.W**2 / 6.0, g.B * g.W
+    w_e = math.pi * (g.D**4 - g.D_BH**4) / (32.0 * g.D)
+    m_bo = loads["M_BTO"] * math.cos(psi) + loads["M_BRO"] * math.sin(psi)
+    return {"sigma_BFN": alternating(loads["M_BRF"]) / w_eqw * ke, "sigma_QFN": alternating(loads["Q_RF"]) / area * ke,
+            "sigma_BON": float(alternating(m_bo)) / w_e}
+
+
+def polar_modulus(diameter: float, bore: float) -> float:
+    """W_P = π (D⁴ − D_B⁴)/(16 D), m³ ([KR-M53] §2.(2)(A)(e))."""
+    return math.pi * (diameter**4 - bore**4) / (16.0 * diameter)
+
+
+# ---------------------------------------------------------------------------
+# §4–§7: the assessment
+
+@dataclass(frozen=True)
+class M53Location:
+    """One of M53's three places of a throw variant: its stresses (Pa), SCFs, σ_V, σ_DW and Q."""
+
+    name: str
+    kind: str  # "pin-fillet", "journal-fillet", "oil-bore"
+    bending: float  # σ_BH, σ_BG or σ_BO
+    torsion: float  # τ_H, τ_G or σ_TO
+    additional: float  # σ_add (0 at the oil bore)
+    equivalent: float  # σ_V
+    strength: float  # σ_DW
+    scfs: dict
+    torque_section: str = ""
+    torque_rpm: float = math.nan
+    required: float = M53_REQUIRED_Q
+
+    @property
+    def safety(self) -> float:
+        return self.strength / self.equivalent if self.equivalent > 0 else math.inf
+
+    @property
+    def passes(self) -> bool:
+        return self.safety >= self.required
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "bending_pa": self.bending, "torsion_pa": self.torsion,
+                "additional_bending_pa": self.additional, "equivalent_pa": self.equivalent,
+                "strength_pa": self.strength, "safety": self.safety, "required": self.required,
+                "passes": self.passes, "scfs": dict(self.scfs), "torque_section": self.torque_section,
+                "torque_rpm": self.torque_rpm}
+
+
+@dataclass(frozen=True)
+class M53Result:
+    """M53 on one crank in one configuration: every throw variant's three places.
+
+    ``nominal`` holds the nominal stresses (Pa) and where τ_N came from; ``scf_source`` per
+    factor says whether the rule's formula or the FE (Appendix III) gave it."""
+
+    locations: tuple
+    nominal: dict
+    scf_source: dict
+    rated_rpm: float
+    notes: tuple = ()
+
+    @property
+    def governing(self) -> M53Location:
+        return min(self.locations, key=lambda a: a.safety / a.required)
+
+    @property
+    def passes(self) -> bool:
+        return all(a.passes for a in self.locations)
+
+    def to_dict(self) -> dict:
+        g = self.governing
+        return {"method": "iacs-m53", "passes": self.passes, "rated_rpm": self.rated_rpm,
+                "governing": {"location": g.name, "safety": g.safety, "required": g.required,
+                              "section": g.torque_section, "rpm": g.torque_rpm},
+                "nominal": _jsonable(self.nominal), "scf_source": dict(self.scf_source), "notes": list(self.notes),
+                "locations": [a.to_dict() for a in self.locations]}
+
+
+def _jsonable(d):
+    if isinstance(d, dict):
+        return {k: _jsonable(v) for k, v in d.items()}
+    if isinstance(d, np.ndarray):
+        return d.tolist()
+    return d
+
+
+def choose_scfs(g: M53Geometry, fe: dict | None) -> tuple[dict, dict]:
+    """(factors, source per factor): the rule's formula where the geometry lies in its range,
+    else fetorsion's FE in M53's convention ([KR-M53] §3.(1)(F) and Appendix III). A factor with
+    neither (β_Q outside its range: no 3-point-bending FE) raises."""
+    emp, bad = empirical_scfs(g), out_of_range(g)
+    fe = fe_scfs_m53(g, fe) if fe else {}
+    out, source = {}, {}
+    for k, v in emp.items():
+        if k not in bad:
+            out[k], source[k] = v, "M53 §3 formula"
+        elif k in fe:
+            out[k], source[k] = fe[k], f"FE per Appendix III ({'; '.join(bad[k])})"
+        elif k == "beta_Q":
+            out[k], source[k] = v, f"M53 §3 formula OUTSIDE its range ({'; '.join(bad[k])}); no FE 3-point case"
+        else:
+            raise FetorsionError(f"M53 {k}: the geometry is outside the formula's range ({'; '.join(bad[k])}) "
+                                 "and no FE factor was given")
+    return out, source
+
+
+def run_m53(g: M53Geometry, spans: ThrowSpans, pin_force: dict, torque_pin: float, torque_journal: float,
+            tensile_strength: float, process: str, strokes: int = 4, additional_bending: float = SIGMA_ADD_TRUNK_PISTON,
+            scfs: dict | None = None, scf_source: dict | None = None, name: str = "throw", where: dict | None = None,
+            fatigue_strength: float | None = None) -> tuple[tuple[M53Location, ...], dict]:
+    """M53's three places of one throw: the pin fillet, the journal fillet, the pin's oil bore
+    (when it has one), and the nominal stresses (Pa) they come from.
+
+    Parameters
+    ----------
+    g, spans : M53Geometry, ThrowSpans
+        The throw.
+    pin_force : dict
+        ``radial`` and ``tangential`` rod force on the pin over one working cycle, N (at the rated
+        speed).
+    torque_pin, torque_journal : float
+        M_TN, the largest alternating torque (half peak-to-peak) of the vibration calculation
+        through the pin and through the journal sections, N·m.
+    tensile_strength : float
+        σ_B, Pa. ``process``: the manufacturing route (:data:`~fetorsion.design.fatigue.M53_PROCESS_FACTOR`).
+    additional_bending : float
+        σ_add, Pa (§4; :data:`SIGMA_ADD_TRUNK_PISTON` unless the user states another).
+    scfs : dict, optional
+        The factors (default the §3 formulas, whatever their range).
+    where : dict, optional
+        ``pin`` and ``journal``: (section label, rpm) of each M_TN, for the report.
+    fatigue_strength : float, optional
+        The user's σ_DW against local stresses (``[limits] fatigue_strength_bending_pa``).
+    """
+    scfs = empirical_scfs(g) if scfs is None else scfs
+    scf_source = scf_source or {k: "M53 §3 formula" for k in scfs}
+    where = where or {}
+    loads = throw_loads(spans, pin_force["radial"], pin_force["tangential"])
+    nom = nominal_bending_stresses(g, loads, strokes)
+    s_bfn, s_qfn = float(np.max(nom["sigma_BFN"])), float(np.max(nom["sigma_QFN"]))
+    tau_pin = torque_pin / polar_modulus(g.D, g.D_BH)
+    tau_journal = torque_journal / polar_modulus(g.D_G, g.D_BG)
+    rh, rg = max(g.R_H, M53_MIN_RADIUS), max(g.R_G, M53_MIN_RADIUS)
+
+    def strength(d, r, kind):
+        return fatigue_strength or m53_fatigue_strength(tensile_strength, d, r, process, kind)
+
+    out = []
+    s_bh, t_h = scfs["alpha_B"] * s_bfn, scfs["alpha_T"] * tau_pin
+    out.append(M53Location(f"{name}: pin fillet", "pin-fillet", s_bh, t_h, additional_bending,
+                           float(m53_equivalent_fillet(s_bh, t_h, additional_bending)),
+                           strength(g.D, rh, "pin-fillet"), {k: scfs[k] for k in ("alpha_B", "alpha_T")},
+                           *where.get("pin", ("", math.nan))))
+    s_bg, t_g = scfs["beta_B"] * s_bfn + scfs["beta_Q"] * s_qfn, scfs["beta_T"] * tau_journal
+    out.append(M53Location(f"{name}: journal fillet", "journal-fillet", s_bg, t_g, additional_bending,
+                           float(m53_equivalent_fillet(s_bg, t_g, additional_bending)),
+                           strength(g.D_G, rg, "journal-fillet"), {k: scfs[k] for k in ("beta_B", "beta_Q", "beta_T")},
+                           *where.get("journal", ("", math.nan))))
+    if g.D_O > 0:
+        s_bo, s_to = scfs["gamma_B"] * nom["sigma_BON"], scfs["gamma_T"] * tau_pin
+        out.append(M53Location(f"{name}: pin oil bore", "oil-bore", s_bo, s_to, 0.0,
+                               float(m53_equivalent_oil_bore(s_bo, s_to)),
+                               strength(g.D, max(0.5 * g.D_O, M53_MIN_RADIUS), "oil-bore"),
+                               {k: scfs[k] for k in ("gamma_B", "gamma_T")}, *where.get("pin", ("", math.nan))))
+    return tuple(out), {"sigma_BFN_pa": s_bfn, "sigma_QFN_pa": s_qfn, "sigma_BON_pa": nom["sigma_BON"],
+                        "tau_N_pin_pa": tau_pin, "tau_N_journal_pa": tau_journal,
+                        "M_TN_pin_nm": torque_pin, "M_TN_journal_nm": torque_journal}
+
+
+def largest_torques(fillets, torque_amplitude, rpm) -> dict:
+    """{"pin" | "journal": (M_TN in N·m, section label, rpm)}: the largest alternating torque
+    through any pin (journal) fillet section over the speeds, [KR-M53] §2.(2)(A)(f)'s "highest
+    value at the most torsionally loaded mass point". ``torque_amplitude``: (speeds, fillets),
+    half peak-to-peak, N·m."""
+    t = np.asarray(torque_amplitude, float)
+    out = {}
+    for kind in ("pin", "journal"):
+        cols = [j for j, f in enumerate(fillets) if f.kind == kind]
+        sub = t[:, cols]
+        s, j = np.unravel_index(int(np.argmax(sub)), sub.shape)
+        out[kind] = (float(sub[s, j]), fillets[cols[j]].label, float(np.asarray(rpm)[s]))
+    return out
+
+
+def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: dict | None = None, rated_rpm: float | None = None,
+                  material=None, limits=None) -> M53Result:
+    """UR M53 on a crank description in one configuration.
+
+    Parameters
+    ----------
+    crank : Crank
+        With ``[excitation]`` (the rod forces) and fillet radii.
+    fillets : list of Fillet
+        :func:`fetorsion.design.stress.fillets_of` the crank, the columns of ``torque_amplitude``.
+    torque_amplitude : ndarray (speeds, fillets)
+        The vibration calculation's alternating torque (half peak-to-peak, every order summed with
+        its phase) through each fillet's section, N·m; the configuration (dampers, misfire,
+        damping) is whatever produced it.
+    rpm : array_like (speeds,)
+    fe_scf : dict, optional
+        fetorsion's FE SCFs (:func:`fetorsion.design.scf.fillet_scfs` and the oil bores'), used
+        for a factor whose formula is out of its range (Appendix III).
+    rated_rpm : float, optional
+        The speed of the rod forces for the bending (default: the top of the description's
+        running range, ``[excitation] speed_range``).
+    material : FatigueMaterial, optional
+        Default :func:`fetorsion.design.fatigue.fatigue_material` of the description.
+    limits : Limits, optional
+        ``additional_bending`` (σ_add, Pa) replaces §4's trunk-piston value when > 0;
+        ``fatigue_strength_bending`` replaces σ_DW; ``fatigue_required_safety`` the 1.15.
+    """
+    from ..excitation.torque import cylinder_pin_forces
+    from .fatigue import fatigue_material
+
+    mat = material or fatigue_material(crank.material)[0]
+    limits = crank.limits if limits is None else limits
+    rated = float(crank.excitation.speed_range[1] if rated_rpm is None else rated_rpm)
+    sigma_add = getattr(limits, "additional_bending", 0.0) or SIGMA_ADD_TRUNK_PISTON
+    required = getattr(limits, "fatigue_required_safety", 0.0) or M53_REQUIRED_Q
+    user_strength = getattr(limits, "fatigue_strength_bending", 0.0) or mat.fatigue_strength or None
+    force = cylinder_pin_forces(crank, rated)
+    torques = largest_torques(fillets, torque_amplitude, rpm)
+    groups: dict = {}
+    for i in range(crank.cylinders):  # throws of one geometry are one variant ([KR-M53] §2.(1)(B)(a)(iv))
+        groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i)), []).append(i + 1)
+    locations, nominal, sources = [], {}, {}
+    for (g, spans), throws in groups.items():
+        name = f"throw{'s' if len(throws) > 1 else ''} {', '.join(map(str, throws))}"
+        scfs, source = choose_scfs(g, fe_scf)
+        locs, nom = run_m53(g, spans, force, torques["pin"][0], torques["journal"][0], mat.tensile_strength,
+                            mat.process, crank.engine.strokes_per_cycle, sigma_add, scfs, source, name,
+                            {k: v[1:] for k, v in torques.items()}, user_strength)
+        locations += [dataclasses_replace(a, required=required) for a in locs]
+        nominal[name] = {**nom, "B_m": g.B, "W_m": g.W, "ratios": g.ratios()}
+        sources[name] = source
+    notes = [f"bending from the rod forces at the rated {rated:.0f} rpm (top of the running range) on the "
+             "statically determinate throw; torsion from the vibration calculation over the whole checked range",
+             f"σ_add {sigma_add / MPA:g} N/mm² "
+             + ("([limits] additional_bending_pa)" if getattr(limits, "additional_bending", 0.0) else
+                "(M53 §4, trunk-piston engine)")]
+    holes = crank.oil_holes
+    if holes is not None and holes.in_journals:
+        bigger = all(j.diameter >= p.diameter for j, p in zip(crank.journals, crank.pins))
+        notes.append("journal oil bores: " + ("M53 §1 covers them by the pin's (journals not smaller than the pins)"
+                                             if bigger else "NOT covered by M53 (journals smaller than the pins): "
+                                             "separate documentation required"))
+    return M53Result(tuple(locations), nominal, sources, rated, tuple(notes))
