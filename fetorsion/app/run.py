@@ -306,6 +306,8 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     from ..design.verdict import run_verdict
 
     crank = ctx.crank
+    if isinstance(crank, Crank):  # a crank's verdict is its fatigue (step_fatigue), not a shear limit
+        return None
     if crank.excitation is None or crank.limits is None:
         return Skipped("the description has no [excitation] and [limits] tables" if crank.excitation is None
                        else "the description has no [limits] table")
@@ -348,56 +350,41 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
                           yardstick)
 
 
-#: The fatigue method of ``fetorsion run`` (the classification rule; ``textbook`` the alternative).
-DEFAULT_FATIGUE_METHOD = "iacs-m53"
-
-
 def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
-    """Bending and torsion, mean and alternating, at every fillet and speed on the condensed crank
-    in its bearings with the description's dampers; the safety factors at the nominal damping
-    ratio and across the stated band, the verdict at its low end."""
-    from ..design.assessment import run_assessment
-    from ..response.coupled import with_damping_ratio
-    from ..response.cycle import mean_cut_loads, run_load_cycle
+    """A crank's verdict: its fatigue by both methods in every configuration (without a damper,
+    with the description's, with the recommended damper designed for this verdict, misfire), on
+    the condensed crank in its bearings at the description's damping; the method of
+    ``options["fatigue_method"]`` (else the description's ``[limits] fatigue_method``, else
+    ``iacs-m53``) decides (:func:`fetorsion.design.crank_verdict.run_crank_verdict`)."""
+    from ..design.crank_verdict import DEFAULT_FATIGUE_METHOD, run_crank_verdict
+    from ..design.stress import fillet_stress
 
     crank = ctx.crank
     if "condensed" not in ctx.built:
-        return Skipped("the fatigue assessment runs on the condensed crank (the FE steps did not run)")
+        return Skipped("the fatigue verdict runs on the condensed crank (the FE steps did not run)")
     if crank.excitation is None:
         return Skipped("the description has no [excitation] table")
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         return Skipped("fillet fatigue needs fillet radii (a sharp corner has no finite SCF)")
     scf = ctx.scf()
-    cc, fillets = ctx.built["condensed"], ctx.fillets()
-    missing = [k for k in ("pin_bending", "journal_bending") if k not in scf]  # oil bores: noted when missing
+    missing = [k for k in ("pin_bending", "journal_bending", "pin_bending_vm", "journal_bending_vm") if k not in scf]
     if missing:
         return Skipped(f"no {', '.join(missing)} SCF in {scf.get('source', 'the SCFs')}")
-    method = ctx.options.get("fatigue_method", DEFAULT_FATIGUE_METHOD)
-    ex = crank.excitation
-    runs = {}
-    mean = mean_cut_loads(cc, ctx.engine_setup().rpm)  # the same at every damping ratio
-    for zeta in sorted({ex.damping_band[0], ex.modal_damping_ratio, ex.damping_band[1]}):
-        setup = ctx.engine_setup() if zeta == ex.modal_damping_ratio else with_damping_ratio(
-            ctx.engine_setup(), cc, "bearings", zeta)  # the nominal ζ's: the run's own
-        cycle = run_load_cycle(cc, setup, crank.dampers, mean=mean)
-        runs[zeta] = (run_assessment(crank, cycle, fillets, scf, method), cycle)
-    nominal, cycle = runs[ex.modal_damping_ratio]
-    worst = runs[ex.damping_band[0]][0]
-    band = []
-    for zeta, (a, _) in runs.items():
-        g = a.governing
-        band.append((zeta, float(a.safety[:, g].min()), a.labels[g], float(a.worst_rpm[g]),
-                     float(a.worst.locations[g].required)))
-    g = nominal.governing
-    s = int(np.flatnonzero(cycle.rpm == nominal.worst_rpm[g])[0])
-    images = (ctx.save(nominal.plot().figure, "fatigue_safety.png"),
-              ctx.save(nominal.haigh().figure, "fatigue_haigh.png"),
-              ctx.save(cycle.plot(s, nominal.cuts[g]).figure, "fatigue_load_cycle.png"))
-    ctx.results["fatigue"] = {**nominal.to_dict(), "band": [dict(zip(("damping_ratio", "safety", "fillet", "rpm", "required"), b))
-                                                             for b in band],
-                              "damping_source": ex.damping_source, "worst_case": worst.to_dict()["governing"],
-                              "load_cycle": cycle.to_dict()}
-    return FatigueOutcome(nominal, worst, tuple(band), ex.damping_source, scf, images, setup.model)
+    method = (ctx.options.get("fatigue_method") or getattr(crank.limits, "fatigue_method", "")
+              or DEFAULT_FATIGUE_METHOD)
+    cc, fillets, setup = ctx.built["condensed"], ctx.fillets(), ctx.engine_setup()
+    verdict = run_crank_verdict(crank, cc, setup, fillets, scf, method,
+                                mu=ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO), progress=_progress)
+    described = verdict.configs[1 if crank.dampers else 0]
+    a = described.fe
+    stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets) \
+        if isinstance(ctx.outcome.campbell, CampbellOutcome) else None
+    images = (ctx.save(a.plot().figure, "fatigue_safety.png"), ctx.save(a.haigh().figure, "fatigue_haigh.png"),
+              ctx.save(verdict.damper.plot().figure, "damper_design.png"))
+    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict()}
+    if stress is not None:
+        ctx.results["stress"] = stress.to_dict()
+    return FatigueOutcome(verdict, a, stress, scf, images, setup.model)
 
 
 def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, parts=None):
@@ -573,8 +560,8 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
     ("condensed crank in its bearings", "bearings", step_bearings),
     ("lumped models", "lumped", step_lumped),
     ("Campbell diagram and forced response", "campbell", step_campbell),
-    ("fillet stress, dampers and verdict", "verdict", step_verdict),
-    ("fatigue of the fillets and oil bores", "fatigue", step_fatigue),
+    ("section torques, dampers and verdict (chain and network files)", "verdict", step_verdict),
+    ("the verdict: fatigue by both methods, the recommended damper, misfire", "fatigue", step_fatigue),
     ("the model against measurement", "measured", step_measured),
     ("run-up in the time domain", "transient", step_transient),
     # last: the studies, started in the background when the run began, finish in the cores the

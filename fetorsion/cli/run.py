@@ -57,6 +57,8 @@ def cmd_run(args) -> int:
             check_mesh_size(crank, args.mesh_size, "modal")
     options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,
                "source": args.source, "runup_rate": args.run_up_rate}
+    if args.fatigue_method:
+        options["fatigue_method"] = args.fatigue_method
     if args.measured:  # read and checked now, before any work
         from .measured import check_measured, check_station, read_measured
 
@@ -91,6 +93,10 @@ def add_parser(sub) -> None:
                          "always with --no-fe); the report states the other's gap")
     up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
+    up.add_argument("--fatigue-method", choices=("iacs-m53", "fe"),
+                    help="the method that decides a crank's fatigue verdict: IACS UR M53 as written (default, or "
+                         "the description's [limits] fatigue_method) or fetorsion's own FE path; the report shows "
+                         "both")
     up.add_argument("--measured", nargs="+", metavar="FILE",
                     help="measured files to set the model against in the report (as 'fetorsion compare': UFF 58 "
                          "FRFs and order functions, CSV order cuts, tooth-edge CSV with --teeth)")

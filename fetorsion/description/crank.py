@@ -856,64 +856,58 @@ def _dynamic_table(t: Table) -> tuple[tuple, dict]:
 FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety", "additional_bending_pa")
 
 
+#: ``[limits]`` keys of earlier versions' shear-stress verdict, refused in a crank description.
+SHEAR_LIMIT_KEYS = ("continuous_shear_pa", "fatigue_strength_shear_pa", "safety_factor", "transient_shear_pa")
+FATIGUE_METHOD_NAMES = ("iacs-m53", "fe")
+
+
 def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
-    """The ``[limits]`` table: permissible vibratory shear stress (Pa) for continuous running
-    (``continuous_shear_pa``, or ``fatigue_strength_shear_pa`` / ``safety_factor``) and for passing
-    through (``transient_shear_pa``), or the same as torques (``continuous_torque_nm``,
-    ``transient_torque_nm``; the only kind for a chain file, which has no sections). ``source``
-    (required) says where the numbers come from. Optional for a crank: ``fatigue_strength_bending_pa``
-    (the crank's alternating bending fatigue strength as built, against local stresses, replacing
-    the fatigue assessment's own), ``fatigue_required_safety`` and ``additional_bending_pa`` (M53's σ_add
-    at the fillets)."""
+    """The ``[limits]`` table. A chain or network file (``torque_only``): the permissible
+    vibratory section torque for continuous running (``continuous_torque_nm``) and passing through
+    (``transient_torque_nm``). A crank description: the fatigue verdict's overrides only
+    (:data:`FATIGUE_LIMIT_KEYS`, ``fatigue_method``); the shear limits of earlier versions are
+    refused with the fields that replace them. ``source`` (required) says where the numbers come from."""
     if "limits" not in root.data:
         return None
     t = root.table("limits")
-    stress_keys = ("continuous_shear_pa", "fatigue_strength_shear_pa")
-    given = [k for k in (*stress_keys, "continuous_torque_nm") if k in t.data]
     source = t.text("source")
     if not source.strip():
         t.problems.append(Problem(f"{t.path}.source", t.data.get("source"), "must say where the limits come from"))
-    if torque_only and any(k in t.data for k in (*stress_keys, "transient_shear_pa")):
-        t.problems.append(Problem(t.path, sorted(t.data), "a chain file has no shaft sections: give "
-                                                         "continuous_torque_nm (and transient_torque_nm)"))
-        t.used.update((*stress_keys, "transient_shear_pa", "safety_factor", *FATIGUE_LIMIT_KEYS))
+    if torque_only:
+        bad = [k for k in (*SHEAR_LIMIT_KEYS, *FATIGUE_LIMIT_KEYS, "fatigue_method") if k in t.data]
+        if bad or "continuous_torque_nm" not in t.data:
+            t.problems.append(Problem(t.path, sorted(t.data), "a chain file has no shaft sections: give "
+                                                             "continuous_torque_nm (and transient_torque_nm)"))
+            t.used.update((*SHEAR_LIMIT_KEYS, *FATIGUE_LIMIT_KEYS, "fatigue_method", "continuous_torque_nm",
+                           "transient_torque_nm"))
+            t.finish()
+            return None
+        lim = Limits(continuous_torque=t.number("continuous_torque_nm", positive=True),
+                     transient_torque=t.number("transient_torque_nm", 0.0, nonnegative=True), source=source)
         t.finish()
-        return None
-    if len(given) != 1:
-        t.problems.append(Problem(t.path, given or None,
-                                  "give exactly one of continuous_shear_pa, fatigue_strength_shear_pa (with "
-                                  "safety_factor), continuous_torque_nm"))
-        t.used.update((*stress_keys, "continuous_torque_nm", "transient_shear_pa", "transient_torque_nm",
-                       "safety_factor", *FATIGUE_LIMIT_KEYS))
-        t.finish()
-        return None
-    lim = Limits(source=source)
-    if given[0] == "continuous_torque_nm":
-        c = t.number("continuous_torque_nm", positive=True)
-        tr = t.number("transient_torque_nm", 0.0, nonnegative=True)
-        lim = Limits(continuous_torque=c, transient_torque=tr, source=source)
-    else:
-        strength = t.number("fatigue_strength_shear_pa", positive=True) if given[0] != "continuous_shear_pa" else 0.0
-        factor = t.number("safety_factor", above=1.0) if strength else 0.0
-        c = t.number("continuous_shear_pa", positive=True) if not strength else strength / factor
-        tr = t.number("transient_shear_pa", 0.0, nonnegative=True)
-        lim = Limits(continuous_shear=c, transient_shear=tr, fatigue_strength=strength, safety_factor=factor,
-                     source=source)
-    # The fatigue assessment's strength and margin, when the user has them (a bench test of the
-    # crank's throws, a supplier's figure): opt-in keys of their own, so that the shear limits'
-    # polished-specimen strength never silently replaces the assessment's.
-    lim = replace(lim, fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
-                  fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True),
-                  additional_bending=t.number("additional_bending_pa", 0.0, nonnegative=True))
+        if lim.transient and lim.transient < lim.continuous:
+            t.problems.append(Problem(f"{t.path}.transient_torque_nm", lim.transient,
+                                      f"must be >= the continuous limit ({lim.continuous:g}): passing through a "
+                                      "resonance is allowed more, not less"))
+        return lim
+    old = [k for k in (*SHEAR_LIMIT_KEYS, "continuous_torque_nm", "transient_torque_nm") if k in t.data]
+    if old:
+        t.problems.append(Problem(t.path, old, "a crank's verdict is its fatigue assessment, not a second shear or "
+                                               "torque limit: state the strength as [material] tensile_strength_pa "
+                                               "(and yield_strength_pa), or the crank's own as [limits] "
+                                               "fatigue_strength_bending_pa, the margin as fatigue_required_safety"))
+        t.used.update(old)
+    method = t.text("fatigue_method", "")
+    if method and method not in FATIGUE_METHOD_NAMES:
+        t.problems.append(Problem(f"{t.path}.fatigue_method", method, f"must be one of {', '.join(FATIGUE_METHOD_NAMES)}"))
+    lim = Limits(source=source, fatigue_method=method,
+                 fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
+                 fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True),
+                 additional_bending=t.number("additional_bending_pa", 0.0, nonnegative=True))
     if 0 < lim.fatigue_required_safety < 1.0:
         t.problems.append(Problem(f"{t.path}.fatigue_required_safety", lim.fatigue_required_safety,
                                   "must be >= 1 (a safety factor)"))
     t.finish()
-    if lim.transient and lim.continuous and lim.transient < lim.continuous:
-        key = "transient_torque_nm" if lim.kind == "torque" else "transient_shear_pa"
-        t.problems.append(Problem(f"{t.path}.{key}", lim.transient,
-                                  f"must be >= the continuous limit ({lim.continuous:g}): passing through a "
-                                  "resonance is allowed more, not less"))
     return lim
 
 
@@ -947,7 +941,8 @@ def _excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: 
                                   "is required with modal_damping_band: say where the band comes from"))
     common = dict(reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
                   damping_band=(float(band[0]), float(band[1])),
-                  damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE)
+                  damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE,
+                  modal_damping_ratio_source=t.text("modal_damping_ratio_source", "").strip())
     given = [k for k in EXCITATION_SOURCES if k in t.data]
     if len(given) != 1:
         t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))

@@ -215,10 +215,12 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
     Field("wiebe_m", "synthetic cycle: Wiebe form factor m; default 2", ">= 0"),
     Field("modal_damping_ratio", "ζ for the Campbell severities and the forced response; default "
           f"{DEFAULT_DAMPING_RATIO}", "0 < ζ < 1 (a chain that states its own damping may give 0)"),
-    Field("modal_damping_band", "`[low, high]` of ζ: the fatigue assessment is given across it and its verdict at "
-          "the low end (the worst case); default [1/120, 1/60] (dynamic magnifier Q = 30–60, stated as engine "
+    Field("modal_damping_band", "`[low, high]` of ζ: the verdict's sensitivity to damping (it is decided at "
+          "`modal_damping_ratio`); default [1/120, 1/60] (dynamic magnifier Q = 30–60, stated as engine "
           "practice, no published table read)", "0 < low <= high < 1"),
     Field("modal_damping_source", "where the damping band comes from", "required with `modal_damping_band`"),
+    Field("modal_damping_ratio_source", "where `modal_damping_ratio` comes from (a measurement, a published "
+          "table); without it the verdict says its damping is assumed", "text"),
 ))
 
 DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain files. A damper's ring is one more "
@@ -258,31 +260,28 @@ DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain
     Field("source", "where the data come from", "a string"),
 ), array=True)
 
-LIMITS = Section("limits", "What `fetorsion run`'s verdict checks: the worst vibratory stress at any pin or journal "
-                 "fillet (the synthesised torque amplitude, half peak-to-peak, of the section × the FE stress "
-                 "concentration factor) against speed, the barred speed ranges, the misfire case and the damper's "
-                 "heat. Give exactly one of `continuous_shear_pa`, `fatigue_strength_shear_pa` (with "
-                 "`safety_factor`) or `continuous_torque_nm`; a chain file, which has no sections, takes only the "
-                 "torques.", (
-    Field("continuous_shear_pa", "permissible vibratory shear stress amplitude at the fillets (SCF × nominal) "
-          "for continuous running, Pa", "> 0"),
-    Field("fatigue_strength_shear_pa", "shear fatigue strength, Pa: the continuous limit is strength / "
-          "`safety_factor`", "> 0"),
-    Field("safety_factor", "with `fatigue_strength_shear_pa`", "> 1"),
-    Field("transient_shear_pa", "permissible amplitude while passing through a barred range, Pa; optional",
-          ">= the continuous limit"),
-    Field("continuous_torque_nm", "the continuous limit as a section torque amplitude, N·m", "> 0"),
-    Field("transient_torque_nm", "the transient limit as a section torque amplitude, N·m; optional",
-          ">= the continuous limit"),
+LIMITS = Section("limits", "A crank description: the fatigue verdict's overrides (every field optional; the "
+                 "verdict is the fatigue assessment, its strength the material's). A chain or network file, which "
+                 "has no sections: the permissible vibratory section torque (`continuous_torque_nm`). The shear "
+                 "stress limits of earlier versions (`continuous_shear_pa`, `fatigue_strength_shear_pa`, "
+                 "`safety_factor`, `transient_shear_pa`) are refused in a crank description: they were a second "
+                 "verdict with a strength of its own.", (
+    Field("continuous_torque_nm", "chain or network file: the continuous limit as a section torque amplitude, N·m",
+          "> 0"),
+    Field("transient_torque_nm", "chain or network file: the transient limit as a section torque amplitude, N·m; "
+          "optional", ">= the continuous limit"),
+    Field("fatigue_method", "the method that decides a crank's verdict: `iacs-m53` (IACS UR M53 as written) or "
+          "`fe` (fetorsion's own: the condensed crank's load cycle, FE SCFs, Marin factors and Goodman); "
+          "`fetorsion run --fatigue-method` overrides it", "iacs-m53 or fe; optional (default iacs-m53)"),
     Field("fatigue_strength_bending_pa", "the crank's alternating bending fatigue strength as built (a bench test "
-          "of its throws, a supplier's figure), against local stresses (SCF × nominal), Pa: replaces the fatigue "
-          "assessment's own (M53's σ_DW; the textbook's S_e, then with the full K_t)", ">= 0; optional "
+          "of its throws, a supplier's figure), against local stresses (SCF × nominal), Pa: replaces each "
+          "method's own (M53's σ_DW; the `fe` path's S_e, then with the full K_t)", ">= 0; optional "
           "(0: the method's own)"),
     Field("additional_bending_pa", "IACS UR M53's additional bending stress σ_add at the fillets (misalignment, "
-          "bedplate deformation, axial and bending vibration), Pa: added to the fillets' alternating bending "
-          "stress by the M53 assessment; default 0 (not applied: give your class society's value)", ">= 0; optional"),
+          "bedplate deformation, axial and bending vibration), Pa; default M53 §4's ±10 N/mm² of a trunk-piston "
+          "engine (±30 for a crosshead engine)", ">= 0; optional"),
     Field("fatigue_required_safety", "the fatigue assessment's required safety", ">= 1; optional (default the "
-          "method's: M53 1.15)"),
+          "method's: M53 1.15, fe 1.0)"),
     Field("source", "where every number of the table comes from", "required, not empty"),
 ))
 

@@ -201,6 +201,9 @@ class Excitation:
     #: (low, high) of the modal damping ratio the verdict is also given at, and where it comes from
     damping_band: tuple[float, float] = DEFAULT_DAMPING_BAND
     damping_source: str = DEFAULT_DAMPING_BAND_SOURCE
+    #: Where ``modal_damping_ratio`` comes from ("": not stated, the verdict then says its damping
+    #: is assumed).
+    modal_damping_ratio_source: str = ""
 
     @property
     def checked_range(self) -> tuple[float, float]:
@@ -310,8 +313,10 @@ class Limits:
     fatigue_required_safety: float = 0.0
     #: [IACSM53] §4's additional bending stress σ_add at the fillets (misalignment, bedplate
     #: deformation, axial and bending vibration), Pa, added to the fillets' alternating bending by
-    #: the M53 path; 0 unless stated (the value is the class society's, or the user's own analysis)
+    #: the M53 path; 0: M53 §4's value for a trunk-piston engine (±10 N/mm²)
     additional_bending: float = 0.0
+    #: The fatigue method that decides the verdict (``iacs-m53`` or ``fe``); "": the default.
+    fatigue_method: str = ""
 
     @property
     def kind(self) -> str:

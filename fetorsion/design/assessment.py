@@ -239,9 +239,14 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
                                                      and f"{b.kind}_oil_bore_torsion" in scf)})
     for b in [b for b in bores if b.kind not in missing]:
         sb, tb = oil_bore_stress_histories(cycle, b)
-        sigma = np.concatenate([sigma, sb[:, None]], axis=1)
-        tau = np.concatenate([tau, tb[:, None]], axis=1)
-        kts.append((float(scf[f"{b.kind}_oil_bore_bending"]), float(scf[f"{b.kind}_oil_bore_torsion"])))
+        # At the bore's edge both loads give a normal stress along the edge (a free surface with no
+        # shear): local σ = γ_B σ_b ± γ_T τ, the sign that makes the larger range, and no shear.
+        gb, gt = float(scf[f"{b.kind}_oil_bore_bending"]), float(scf[f"{b.kind}_oil_bore_torsion"])
+        plus, minus = gb * sb + gt * tb, gb * sb - gt * tb
+        local = np.where((np.ptp(plus, axis=1) >= np.ptp(minus, axis=1))[:, None], plus, minus)
+        sigma = np.concatenate([sigma, local[:, None]], axis=1)
+        tau = np.concatenate([tau, np.zeros_like(tb)[:, None]], axis=1)
+        kts.append((1.0, 1.0))
         labels.append(b.label)
         kinds.append("oil-bore")
         radii.append(0.5 * crank.oil_holes.diameter)

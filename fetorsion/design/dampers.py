@@ -37,7 +37,7 @@ from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
 from ..response.synthesis import half_peak_to_peak, largest_half_peak_to_peak
 
-OBJECTIVES = ("stress", "twist")
+OBJECTIVES = ("stress", "twist", "fatigue")
 
 
 def viscous_optimum(mu: float) -> tuple[float, float]:
@@ -170,7 +170,7 @@ class DamperResult:
 
     @property
     def unit(self) -> str:
-        return "MPa" if self.objective == "stress" else "deg"
+        return {"stress": "MPa", "twist": "deg", "fatigue": "-"}[self.objective]
 
     def _scaled(self, v):
         return v / 1e6 if self.objective == "stress" else v
@@ -180,7 +180,7 @@ class DamperResult:
             return None if d is None else {"type": d.kind, "at": d.at, "hub_inertia_kgm2": d.hub_inertia,
                                            "ring_inertia_kgm2": d.ring_inertia, "stiffness_nm_per_rad": d.stiffness,
                                            "damping_nms_per_rad": d.damping, "loss_factor": d.loss_factor}
-        unit = "pa" if self.objective == "stress" else "deg"
+        unit = {"stress": "pa", "twist": "deg", "fatigue": "utilisation"}[self.objective]
         return {"name": self.name, "type": self.kind, "inertia_ratio": self.mu, "objective": self.objective,
                 "mode_hz": self.mode_hz, "equivalent_inertia_kgm2": self.equivalent_inertia_kgm2,
                 "den_hartog": damper(self.den_hartog), "optimised": damper(self.optimised),
@@ -188,7 +188,8 @@ class DamperResult:
                 **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations}
 
     def table(self) -> str:
-        what = "largest fillet shear stress" if self.objective == "stress" else "largest pulley twist"
+        what = {"stress": "largest fillet shear stress", "twist": "largest pulley twist",
+                "fatigue": "largest fatigue utilisation sigma_V/sigma_DW (1/safety)"}[self.objective]
         lines = [f"{self.name}: {self.kind} damper, mu = {self.mu:g} of J_eq = {self.equivalent_inertia_kgm2:.4g} kg m^2 "
                  f"(mode at {self.mode_hz:.1f} Hz seen from the {self.den_hartog.at})",
                  f"  objective: {what} over the speed range [{self.unit}]"]
@@ -210,7 +211,8 @@ class DamperResult:
         for key, curve in self.curves.items():
             ax.plot(self.rpm, self._scaled(curve), label=labels[key])
         ax.set_xlabel("engine speed [rpm]")
-        ax.set_ylabel(("fillet shear stress" if self.objective == "stress" else "pulley twist") + f" [{self.unit}]")
+        ax.set_ylabel({"stress": "fillet shear stress", "twist": "pulley twist",
+                       "fatigue": "fatigue utilisation 1/safety"}[self.objective] + f" [{self.unit}]")
         ax.set_title(f"{self.name}: {self.kind} damper, μ = {self.mu:g}", fontsize=10)
         ax.legend(fontsize=8)
         return ax
@@ -219,7 +221,7 @@ class DamperResult:
 def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,
                objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
                scf: dict | None = None, rpm=None, partition: int = DEFAULT_PARTITION, setup=None, fillets=None,
-               **setup_options) -> DamperResult:
+               utilisation=None, **setup_options) -> DamperResult:
     """Den Hartog start and numeric optimum of a damper on the whole crank.
 
     Parameters
@@ -233,7 +235,9 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
     optimise : bool
         Run the numeric optimisation after the Den Hartog start.
     objective : str
-        ``stress`` (largest fillet shear stress, Pa; a crank only) or ``twist`` (pulley twist, deg).
+        ``stress`` (largest fillet shear stress, Pa; a crank only), ``twist`` (pulley twist, deg)
+        or ``fatigue`` (the fatigue verdict's utilisation σ_V/σ_DW = 1/safety, from
+        ``utilisation``; minimising its largest value maximises the governing safety).
     at : str
         ``front`` (pulley end) or ``rear``.
     hub_inertia : float
@@ -251,6 +255,9 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         (then ``rpm``, ``partition`` and ``setup_options`` are its own).
     fillets : list of Fillet, optional
         :func:`fetorsion.design.stress.fillets_of` the crank, when the caller has them.
+    utilisation : callable, optional
+        For ``fatigue``: (speeds, sections) alternating section torques (N·m, half peak-to-peak)
+        → (speeds,) utilisation (:func:`fetorsion.design.crank_verdict.m53_utilisation`).
     **setup_options
         To :func:`~fetorsion.response.forced.response_setup` when ``setup`` is not given.
 
@@ -264,13 +271,15 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         raise ParameterError("objective", f"{objective!r}: choose {' or '.join(OBJECTIVES)}")
     if at not in DAMPER_STATIONS:
         raise ParameterError("at", f"{at!r}: choose {' or '.join(DAMPER_STATIONS)}")
-    if objective == "stress" and isinstance(crank, Chain):
-        raise ParameterError("objective", "stress: a chain file has no shaft sections; use twist")
+    if objective in ("stress", "fatigue") and isinstance(crank, Chain):
+        raise ParameterError("objective", f"{objective}: a chain file has no shaft sections; use twist")
+    if objective == "fatigue" and utilisation is None:
+        raise ParameterError("objective", "fatigue: needs the verdict's utilisation (σ_V/σ_DW from the section torques)")
     setup = response_setup(crank, partition, rpm, **setup_options) if setup is None else setup
     station = setup.damper_station(Damper(kind, at, 0.0, 1.0))
     J_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, mode, setup.torsional_modes)
     start = den_hartog_damper(kind, mu, J_eq, omega_n, at, hub_inertia)
-    weights = None
+    weights = np.ones(len(setup.section_labels))
     if objective == "stress":
         from .scf import fillet_scfs
 
@@ -285,9 +294,13 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
     def curve(dampers):  # the objective at each speed
         z, scale = signals(dampers)
         hpp = half_peak_to_peak(z, setup.orders, setup.period) * scale
+        if objective == "fatigue":  # the verdict's utilisation 1/safety at each speed
+            return utilisation(hpp)
         return hpp if hpp.ndim == 1 else hpp.max(axis=1)
 
     def peak(dampers):  # its largest value, what the optimiser calls some 80 times
+        if objective == "fatigue":
+            return float(curve(dampers).max())
         z, scale = signals(dampers)
         return largest_half_peak_to_peak(z, setup.orders, setup.period, scale)
 

@@ -358,20 +358,27 @@ class M53Location:
     torque_section: str = ""
     torque_rpm: float = math.nan
     required: float = M53_REQUIRED_Q
+    #: R_e, Pa: an equivalent alternating stress above it yields, which the rule's linear-elastic
+    #: assessment cannot judge (a FAIL whatever Q says).
+    yield_strength: float = math.inf
 
     @property
     def safety(self) -> float:
         return self.strength / self.equivalent if self.equivalent > 0 else math.inf
 
     @property
+    def yielding(self) -> bool:
+        return self.equivalent > self.yield_strength
+
+    @property
     def passes(self) -> bool:
-        return self.safety >= self.required
+        return self.safety >= self.required and not self.yielding
 
     def to_dict(self) -> dict:
         return {"name": self.name, "kind": self.kind, "bending_pa": self.bending, "torsion_pa": self.torsion,
                 "additional_bending_pa": self.additional, "equivalent_pa": self.equivalent,
                 "strength_pa": self.strength, "safety": self.safety, "required": self.required,
-                "passes": self.passes, "scfs": dict(self.scfs), "torque_section": self.torque_section,
+                "passes": self.passes, "yielding": self.yielding, "scfs": dict(self.scfs), "torque_section": self.torque_section,
                 "torque_rpm": self.torque_rpm}
 
 
@@ -559,8 +566,9 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: dict | None = N
         locs, nom = run_m53(g, spans, force, torques["pin"][0], torques["journal"][0], mat.tensile_strength,
                             mat.process, crank.engine.strokes_per_cycle, sigma_add, scfs, source, name,
                             {k: v[1:] for k, v in torques.items()}, user_strength)
-        locations += [dataclasses_replace(a, required=required) for a in locs]
-        nominal[name] = {**nom, "B_m": g.B, "W_m": g.W, "ratios": g.ratios()}
+        locations += [dataclasses_replace(a, required=required, yield_strength=mat.yield_strength) for a in locs]
+        nominal[name] = {**nom, "B_m": g.B, "W_m": g.W, "D_m": g.D, "D_G_m": g.D_G, "D_BH_m": g.D_BH,
+                         "D_BG_m": g.D_BG, "ratios": g.ratios()}
         sources[name] = source
     notes = [f"bending from the rod forces at the rated {rated:.0f} rpm (top of the running range) on the "
              "statically determinate throw; torsion from the vibration calculation over the whole checked range",

@@ -259,39 +259,87 @@ def _oil_bore_scf_text(scf: dict) -> str:
                      for k in kinds)
     return f"; at the oil-bore exits the moment about the throw's radius and the torque, SCFs {each} (peak σ₁ on the drilling)"
 
+def _damper_spec(d) -> str:
+    return (f"ring {d.ring_inertia:.4g} kg m^2" + (f", stiffness {d.stiffness:.4g} N m/rad" if d.stiffness else "")
+            + (f", loss factor {d.loss_factor:.3g}" if d.loss_factor else "")
+            + (f", damping {d.damping:.4g} N m s/rad" if d.damping else ""))
+
+
 def fatigue_section(crank: Crank, outcome) -> list[str]:
-    """The fatigue assessment of every fillet: bending and torsion, mean and alternating, the
-    safety at each fillet's worst speed, and how the governing safety moves with damping."""
+    """A crank's verdict: every configuration by the deciding method with the other beside it, the
+    damping and where it comes from, the flip damping ratio and the band, the recommended damper,
+    M53's steps, the SCFs against the rule's formulas, the fe path's detail and the torsional
+    stress it started from."""
     if isinstance(outcome, Skipped):
-        return ["## Fatigue of the fillets and oil bores", "", f"Not run: {outcome.reason}.", ""]
-    a, w = outcome.assessment, outcome.worst_case
-    scf = outcome.scf
-    g, gw = a.governing, w.governing
+        return ["## Verdict: fatigue of the fillets and oil bores", "", f"Not run: {outcome.reason}.", ""]
+    v, a, scf = outcome.verdict, outcome.assessment, outcome.scf
     mat = a.worst.material
-    lines = ["## Fatigue of the fillets and oil bores (bending and torsion)", "",
-             f"Computed on the **{outcome.model}** with the description's dampers: at every speed, each fillet "
-             "section's in-plane bending moment and torque over the cycle (the mean of the gas and inertia "
-             "forces solved statically, the flywheel end reacting the load torque, plus every vibratory order), "
-             f"nominal stresses × SCFs (bending: pin **{scf['pin_bending']:.3f}**, journal **{scf['journal_bending']:.3f}**; "
-             f"torsion: pin **{scf['pin']:.3f}**, journal **{scf['journal']:.3f}**; {scf.get('source', '')})"
-             + _oil_bore_scf_text(scf) + ", "
-             f"assessed by **{a.method}** ({'IACS UR M53: Q = sigma_DW / sqrt(sigma_B^2 + 3 tau^2) of the alternating stresses' if a.method == 'iacs-m53' else 'Budynas-Nisbett: Marin factors, Neuber K_f, von Mises, Goodman'}); "
-             f"material {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa ({mat.source or 'the description'}).", "",
-             f"Damping: the description's modal damping ratio, and the band {outcome.damping_source}:", "",
-             "| damping ratio | governing location | at rpm | safety | required |", "|---|---|---|---|---|"]
-    for zeta, safety, where, rpm, required in outcome.band:
-        lines.append(f"| {zeta:.4f} | {where} | {rpm:.0f} | {safety:.2f} | {required:.2f} |")
-    verdict = "pass" if w.safety[:, gw].min() >= w.worst.locations[gw].required else "FAIL"
-    lines += ["", f"**Verdict at the band's low end (the worst case): {w.labels[gw]} at {w.worst_rpm[gw]:.0f} rpm, "
-              f"safety {w.safety[:, gw].min():.2f} against {w.worst.locations[gw].required:.2f}: {verdict}.**", "",
-              "Every fillet and oil bore at the description's damping ratio, each at its worst speed (local stresses, amplitude "
-              "and mean):", "", "```", a.table(), "```", ""]
-    crit = a.worst.locations[g].criteria
+    lines = ["## Verdict: fatigue of the fillets and oil bores", "",
+             f"Computed on the **{outcome.model}**. **{v.method}** decides (`--fatigue-method`); {v.other} is "
+             f"shown beside it. Damping: modal damping ratio **ζ = {v.damping_ratio:.4g}** ({v.damping_source}). "
+             f"Material: {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} MPa "
+             f"({mat.source or 'the description'}).", "",
+             f"| configuration | {v.method}: safety | required | governing | at rpm | verdict | {v.other}: safety "
+             f"| required | its governing |", "|---|---|---|---|---|---|---|---|---|"]
+    for c in v.configs:
+        x, y = c.answer(v.method), c.answer(v.other)
+        lines.append(f"| {c.name} | **{x['safety']:.2f}** | {x['required']:.2f} | {x['location']} ({x['where']}) | "
+                     f"{x['rpm']:.0f} | **{'pass' if x['passes'] else 'FAIL'}** | "
+                     + (f"{y['safety']:.2f} | {y['required']:.2f} | {y['location']} |" if y else "- | - | - |"))
+    lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip['kind']}; across the band "
+              + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
+              + f" ({crank.excitation.damping_source}).", ""]
+    if v.damper is not None and v.damper.optimised is not None:
+        d = v.damper.optimised
+        rec = [c for c in v.configs if d in c.dampers and c.misfire is None]
+        heat = f"; its heat at the worst speed {rec[0].damper_power_w:.1f} W (no rating given)" if rec else ""
+        lines += [f"**Recommended damper**, designed for this verdict (Den Hartog's start on mode 1, "
+                  f"{v.damper.mode_hz:.1f} Hz, then its stiffness and loss optimised on the whole crank to make M53's "
+                  f"governing safety as large as it can be, ring inertia held at μ = {v.damper.mu:g}): "
+                  f"{_damper_spec(d)}{heat}.", ""]
+    m = next(c for c in v.configs if c.dampers == tuple(crank.dampers)).m53
+    lines += ["### IACS UR M53, as written ([KR-M53])", "",
+              "| place | σ_B (bending) [MPa] | τ or σ_T (torsion) [MPa] | σ_add [MPa] | σ_V [MPa] | σ_DW [MPa] | Q | "
+              "required | SCFs |", "|---|---|---|---|---|---|---|---|---|"]
+    for loc in m.locations:
+        lines.append(f"| {loc.name} | {loc.bending / 1e6:.1f} | {loc.torsion / 1e6:.1f} | {loc.additional / 1e6:.0f} | "
+                     f"{loc.equivalent / 1e6:.1f} | {loc.strength / 1e6:.1f} | **{loc.safety:.2f}** | {loc.required:.2f} | "
+                     + ", ".join(f"{k} {val:.3f}" for k, val in loc.scfs.items()) + " |")
+    for name, nom in m.nominal.items():
+        lines += ["", f"{name}: σ_BFN {nom['sigma_BFN_pa'] / 1e6:.2f} MPa, σ_QFN {nom['sigma_QFN_pa'] / 1e6:.2f} MPa "
+                  f"(web section B {nom['B_m'] * 1e3:.1f} × W {nom['W_m'] * 1e3:.1f} mm), σ_BON {nom['sigma_BON_pa'] / 1e6:.2f} MPa; "
+                  f"τ_N {nom['tau_N_pin_pa'] / 1e6:.2f} MPa (pin, M_TN {nom['M_TN_pin_nm']:.1f} N m), "
+                  f"{nom['tau_N_journal_pa'] / 1e6:.2f} MPa (journal, M_TN {nom['M_TN_journal_nm']:.1f} N m); SCF sources: "
+                  + "; ".join(f"{k}: {src}" for k, src in m.scf_source[name].items()) + "."]
+    lines += [""] + [f"- {n}" for n in m.notes] + ["",
+              "Fetorsion's FE SCFs in M53's convention (Appendix III: von Mises over the web section's M/(B W²/6) "
+              "for bending, the largest shear over τ_N for torsion; oil bore: peak principal stress) against the "
+              "rule's formulas:", "", "| factor | FE | M53 formula | FE / formula − 1 | formula's range |",
+              "|---|---|---|---|---|"]
+    for k, row in v.scf_m53.items():
+        fe = "-" if row["fe"] is None else f"{row['fe']:.3f}"
+        diff = "-" if row["difference"] is None else f"{100 * row['difference']:+.1f} %"
+        lines.append(f"| {k} | {fe} | {row['empirical']:.3f} | {diff} | "
+                     f"{'inside' if row['in_range'] else 'OUTSIDE: ' + '; '.join(row['outside'])} |")
+    lines += ["", "### fetorsion's own path (`fe`)", "",
+              "The condensed crank's fillet sections over the cycle (mean of the gas and inertia forces solved "
+              "statically, every vibratory order, the resonant in-plane bending included), nominal stresses × FE "
+              f"SCFs taken over the whole fillet under either sign of the load (bending: pin **{scf['pin_bending']:.3f}**, "
+              f"journal **{scf['journal_bending']:.3f}** against their own sections; torsion: pin **{scf['pin']:.3f}**, "
+              f"journal **{scf['journal']:.3f}**; {scf.get('source', '')})" + _oil_bore_scf_text(scf)
+              + "; the strength with its Marin factors and Goodman's mean-stress line ([Budynas]). The crank as "
+              "described, each place at its worst speed:", "", "```", a.table(), "```", ""]
+    crit = a.worst.locations[a.governing].criteria
     if crit:
-        lines.append(f"Cross-checks on the governing location's whole history: Crossland safety "
+        lines.append(f"Cross-checks on the governing place's whole history at ζ = {v.damping_ratio:.4g}, on the "
+                     f"`fe` path's strength (f₋₁ = S_e, t₋₁ = S_e/√3): Crossland safety "
                      f"{crit['crossland'].get('safety', float('nan')):.2f}, Findley safety "
                      f"{crit['findley'].get('safety', float('nan')):.2f}.")
-    lines += [""] + [f"- {n}" for n in a.notes] + [""]
+    lines += [""] + [f"- {n}" for n in a.notes + v.notes] + [""]
+    if outcome.stress is not None:
+        lines += ["The vibratory torsional stress at the fillets that both methods start from (SCF × 16 T D / "
+                  "(π (D⁴ − d⁴)) of the synthesised section torque; an input, not a verdict):", "", "```",
+                  outcome.stress.table(), "```", ""]
     return lines + [f"![]({im})" for im in outcome.images] + [""]
 
 
@@ -389,13 +437,18 @@ def summary_lines(run: RunOutcome) -> list[str]:
                    f"{ver.model or 'lumped chain'}).")
     fat = run.fatigue
     if fat is not None and not isinstance(fat, Skipped):
-        w = fat.worst_case
-        g = w.governing
-        safety, required = float(w.safety[:, g].min()), float(w.worst.locations[g].required)
-        zeta = min(b[0] for b in fat.band)
-        out.append(f"- **Fatigue, bending and torsion ({w.method}): {w.labels[g]} at {w.worst_rpm[g]:.0f} rpm, safety "
-                   f"{safety:.2f} against {required:.2f} at the damping band's low end (ζ = {zeta:.4f}): "
-                   f"{'pass' if safety >= required else 'FAIL'}** ({fat.model}).")
+        v = fat.verdict
+        out += [f"- **Verdict, {line.split(': ', 1)[0]}:** {line.split(': ', 1)[1]} ({fat.model})." for line in v.lines()]
+        out.append(f"- **Damping:** the verdict rests on ζ = {v.damping_ratio:.4g}, "
+                   + ("**assumed** (no source stated)" if v.damping_assumed else f"from {v.damping_source}")
+                   + f"; it {v.flip['kind']}.")
+        if v.damper is not None and v.damper.optimised is not None:
+            out.append(f"- **Recommended damper:** {_damper_spec(v.damper.optimised)}, designed for the "
+                       f"{v.method} verdict (its line above).")
+        mat = fat.assessment.worst.material
+        if fat.assessment.worst.defaulted:
+            out.append(f"- **Material assumed:** the description gives no strength; {mat.name}, R_m "
+                       f"{mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} MPa ({mat.source}).")
     mea = run.measured
     if mea is not None and not isinstance(mea, Skipped):
         for f in mea.comparison.frequencies:

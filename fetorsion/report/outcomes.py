@@ -116,15 +116,15 @@ class VerdictOutcome:
 
 @dataclass(frozen=True)
 class FatigueOutcome:
-    """The fatigue assessment of the fillets on the condensed crank in its bearings, with the
-    description's dampers: ``assessment`` at the nominal damping ratio, ``band`` the governing
-    safety at each damping ratio of the stated band (ζ, safety, fillet, rpm), ``worst_case`` the
-    assessment at the band's low end (the verdict), the SCFs used and the pictures."""
+    """A crank's verdict: its fatigue (:class:`~fetorsion.design.crank_verdict.CrankVerdict`:
+    every configuration by both methods, one deciding, the damping and its source, the flip
+    damping ratio, the recommended damper); ``assessment`` the ``fe`` path's detail of the crank as
+    described (every fillet and oil bore, each at its worst speed); ``stress`` the vibratory
+    torsional stress at the fillets, an input (no verdict of its own); the SCFs and pictures."""
 
+    verdict: object
     assessment: object
-    worst_case: object
-    band: tuple
-    damping_source: str
+    stress: object
     scf: dict
     images: tuple[str, ...]
     model: str = ""

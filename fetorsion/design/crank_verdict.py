@@ -1,0 +1,285 @@
+"""The verdict on a crank: its fatigue, one criterion deciding, in every configuration.
+
+Configurations: without a damper; with the description's ``[[dampers]]`` (when it has any); with
+the recommended damper, designed here for this verdict (Den Hartog's start, then its stiffness
+and loss optimised on the whole crank to make the deciding method's governing safety as large as
+it can be, ring inertia held); and the misfire of the cylinder that makes it worst, without and
+with that damper. Each is assessed by both methods:
+
+* ``iacs-m53``: :mod:`fetorsion.design.m53`, the rule as written (the statically determinate
+  throw's bending, the vibration calculation's largest alternating torque, the rule's SCFs);
+* ``fe``: fetorsion's own path, :func:`fetorsion.design.assessment.run_assessment` on the
+  condensed crank's load cycle (its in-plane bending with the resonant part, FE SCFs under either
+  sign of the load, the material's strength with Marin factors and Goodman's mean-stress line).
+
+One of them decides (``method``); the other is printed beside it with its difference. The
+damping is the description's modal damping ratio; the verdict also says at which damping ratio
+it would flip, and what the description's (or the default) damping band gives.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.optimize
+
+from ..errors import FetorsionError
+from .m53 import M53Result, polar_modulus, run_m53_crank
+
+FATIGUE_METHODS = ("iacs-m53", "fe")
+DEFAULT_FATIGUE_METHOD = "iacs-m53"
+#: The damping ratios the flip search brackets.
+FLIP_BRACKET = (1e-4, 0.3)
+
+
+def fillet_torque_amplitude(setup, response, fillets) -> np.ndarray:
+    """(speeds, fillets): the alternating torque (half peak-to-peak, N·m) each fillet's section
+    carries in ``response`` (a :func:`~fetorsion.response.forced.solve_response` of ``setup``)."""
+    from .stress import fillet_sections
+
+    return np.asarray(response.section_torque_nm)[:, fillet_sections(fillets, setup)]
+
+
+def m53_utilisation(result: M53Result, fillets, setup):
+    """A function (speeds, sections) alternating section torques → (speeds,) M53 utilisation
+    σ_V/σ_DW of the worst place at each speed (1/Q): ``result``'s bending parts held (they do not
+    depend on the torsional vibration), its torsion taken from the torques given, pin places from
+    the largest pin-section torque at that speed, journal places from the journal's. The damper
+    optimiser's objective: minimising its largest value maximises M53's governing Q."""
+    from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
+    from .stress import fillet_sections
+
+    sections = fillet_sections(fillets, setup)
+    cols = {k: sections[[j for j, f in enumerate(fillets) if f.kind == k]] for k in ("pin", "journal")}
+    rows = []
+    for a in result.locations:
+        kind = "journal" if a.kind == "journal-fillet" else "pin"
+        nominal = result.nominal[a.name.split(":")[0]]
+        modulus = polar_modulus(nominal["D_G_m"], nominal["D_BG_m"]) if kind == "journal" else \
+            polar_modulus(nominal["D_m"], nominal["D_BH_m"])
+        t_scf = a.scfs.get("beta_T") or a.scfs.get("alpha_T") or a.scfs.get("gamma_T")
+        rows.append((a.kind, kind, a.bending, a.additional, a.strength, t_scf / modulus))
+
+    def utilisation(torque):
+        t = np.asarray(torque, float)
+        worst = np.zeros(t.shape[0])
+        for loc_kind, kind, bending, add, strength, per_nm in rows:
+            tau = per_nm * t[:, cols[kind]].max(axis=1)
+            sv = m53_equivalent_oil_bore(bending, tau) if loc_kind == "oil-bore" else m53_equivalent_fillet(bending, tau, add)
+            worst = np.maximum(worst, sv / strength)
+        return worst
+
+    return utilisation
+
+
+@dataclass
+class VerdictConfig:
+    """One configuration: its name, dampers, both methods' results, and the deciding one's answer."""
+
+    name: str
+    dampers: tuple
+    m53: M53Result
+    fe: object = None  # CrankAssessment, or None where the fe path did not run
+    misfire: int | None = None  # 0-based cylinder
+    damper_power_w: float = 0.0
+    allowed_power_w: float = 0.0
+
+    def answer(self, method: str) -> dict:
+        """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method``."""
+        if method == "iacs-m53":
+            g = self.m53.governing
+            return {"safety": g.safety, "required": g.required, "location": g.name,
+                    "where": g.torque_section, "rpm": g.torque_rpm, "passes": self.m53.passes,
+                    "yielding": [a.name for a in self.m53.locations if a.yielding]}
+        if self.fe is None:
+            return {}
+        a = self.fe
+        j = a.governing
+        loc = a.worst.locations[j]
+        yielding = [a.labels[k] for k, x in enumerate(a.worst.locations) if x.yield_safety is not None
+                    and x.yield_safety < 1.0]
+        return {"safety": float(a.safety[:, j].min()), "required": loc.required, "location": a.labels[j],
+                "where": a.labels[j], "rpm": float(a.worst_rpm[j]), "yielding": yielding,
+                "passes": bool(a.safety.min() >= loc.required and not yielding)}
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "dampers": [d.name for d in self.dampers],
+                "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
+                "iacs-m53": {**self.answer("iacs-m53"), "result": self.m53.to_dict()},
+                "fe": self.answer("fe"), "damper_power_w": self.damper_power_w,
+                "damper_allowed_power_w": self.allowed_power_w}
+
+
+@dataclass
+class CrankVerdict:
+    """The crank's verdict: every configuration, the deciding method, the damping and its source,
+    the flip damping ratio, the damping band (a sensitivity) and the recommended damper."""
+
+    name: str
+    method: str
+    configs: list
+    damping_ratio: float
+    damping_source: str
+    damping_assumed: bool
+    flip: dict
+    band: list
+    damper: object = None  # DamperResult of the recommended damper's design
+    scf_m53: dict = field(default_factory=dict)
+    notes: list = field(default_factory=list)
+
+    @property
+    def other(self) -> str:
+        return [m for m in FATIGUE_METHODS if m != self.method][0]
+
+    @property
+    def passes(self) -> bool:
+        return all(c.answer(self.method).get("passes", False) for c in self.configs)
+
+    def lines(self) -> list[str]:
+        """One verdict line per configuration: method, damping and its source, governing place and
+        speed, safety against the required, and how far the other method is."""
+        out = []
+        for c in self.configs:
+            a, b = c.answer(self.method), c.answer(self.other)
+            text = (f"{c.name}: {self.method}, ζ = {self.damping_ratio:.4g} ({self.damping_source}), "
+                    f"{a['location']} ({a['where']}, {a['rpm']:.0f} rpm): safety {a['safety']:.2f} against "
+                    f"{a['required']:.2f}: {'pass' if a['passes'] else 'FAIL'}"
+                    + (f" (YIELDING at {', '.join(a['yielding'])}: above R_e, beyond the linear assessment)"
+                       if a.get("yielding") else ""))
+            if b:
+                text += f"; {self.other} {b['safety']:.2f} against {b['required']:.2f} ({b['location']})"
+            out.append(text)
+        return out
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "method": self.method, "passes": self.passes,
+                "damping_ratio": self.damping_ratio, "damping_source": self.damping_source,
+                "damping_assumed": self.damping_assumed, "flip": dict(self.flip), "band": list(self.band),
+                "configurations": [c.to_dict() for c in self.configs], "lines": self.lines(),
+                "damper": None if self.damper is None else self.damper.to_dict(), "scf_m53": self.scf_m53,
+                "notes": list(self.notes)}
+
+
+def _flip(safety_at, required: float) -> dict:
+    """The damping ratio at which ``safety_at(ζ)`` meets ``required`` (safety grows with damping):
+    ``zeta`` (None when it does not flip inside :data:`FLIP_BRACKET`) and ``kind``."""
+    lo, hi = FLIP_BRACKET
+    f_lo, f_hi = safety_at(lo) - required, safety_at(hi) - required
+    if f_lo >= 0:
+        return {"zeta": None, "kind": f"passes down to ζ = {lo:g} (the search's end)"}
+    if f_hi < 0:
+        return {"zeta": None, "kind": f"fails up to ζ = {hi:g} (the search's end)"}
+    z = math.exp(scipy.optimize.brentq(lambda x: safety_at(math.exp(x)) - required, math.log(lo), math.log(hi),
+                                       xtol=1e-3))
+    return {"zeta": z, "kind": f"passes down to ζ = {z:.4g}"}
+
+
+def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAULT_FATIGUE_METHOD,
+                      mu: float = 0.25, kind: str = "rubber", misfire: bool = True, fe_path: bool = True,
+                      progress=None) -> CrankVerdict:
+    """The crank's fatigue verdict in every configuration (module docstring).
+
+    Parameters
+    ----------
+    crank : Crank
+        With ``[excitation]`` and fillet radii.
+    cc : CondensedCrank
+        The condensed crank in its bearings, with fillet cuts (the ``fe`` path's load cycle).
+    setup : ResponseSetup
+        Its response setup in its bearings (:func:`fetorsion.response.coupled.condensed_setup`) at
+        the description's damping ratio.
+    fillets : list of Fillet
+    scf : dict
+        FE SCFs (:func:`fetorsion.design.scf.fillet_scfs`, with the oil bores').
+    method : {"iacs-m53", "fe"}
+        The one that decides.
+    mu, kind : float, str
+        Ring inertia ratio and type of the recommended damper.
+    misfire : bool
+        Add the misfire configurations.
+    fe_path : bool
+        Assess the ``fe`` path too (its load cycles cost about a second a configuration).
+    """
+    from ..response.coupled import with_damping_ratio
+    from ..response.cycle import mean_cut_loads, run_load_cycle
+    from ..response.forced import misfire_harmonics, solve_response
+    from .assessment import run_assessment
+    from .dampers import run_damper
+    from .m53 import m53_geometry, scf_comparison
+
+    if method not in FATIGUE_METHODS:
+        raise FetorsionError(f"fatigue method must be one of {', '.join(FATIGUE_METHODS)}, got {method!r}")
+    say = progress or (lambda m: None)
+    ex = crank.excitation
+    mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
+
+    def m53_of(s, dampers):
+        return run_m53_crank(crank, fillets, fillet_torque_amplitude(s, solve_response(s, dampers), fillets), s.rpm,
+                             fe_scf=scf)
+
+    def fe_of(s, dampers):
+        if not fe_path:
+            return None
+        return run_assessment(crank, run_load_cycle(cc, s, dampers, mean=mean), fillets, scf, "textbook")
+
+    def config(name, s, dampers, cylinder=None):
+        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers), fe_of(s, dampers), cylinder)
+        if dampers:
+            p = solve_response(s, dampers).damper_power_w.sum(axis=(1, 2))
+            c.damper_power_w = float(p.max())
+            allowed = [d.allowed_power for d in dampers]
+            c.allowed_power_w = float(sum(allowed)) if allowed and all(a > 0 for a in allowed) else 0.0
+        return c
+
+    say("fatigue verdict: without a damper ...")
+    configs = [config("without a damper", setup, ())]
+    if crank.dampers:
+        configs.append(config("with the description's damper(s)", setup, crank.dampers))
+    # the recommended damper: designed for M53's governing safety (its bending does not move with
+    # the damper, so the torques decide), on at most 100 speeds, then checked on all
+    say("fatigue verdict: designing the recommended damper for it ...")
+    coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // 100)))
+    util = m53_utilisation(configs[0].m53, fillets, coarse)
+    design = run_damper(crank, kind, mu, True, "fatigue", setup=coarse, fillets=fillets, utilisation=util)
+    best = design.optimised
+    configs.append(config(f"with the recommended {kind} damper", setup, (best,)))
+    notes = []
+    if misfire and ex.pressure_curve is None:
+        say("fatigue verdict: misfire of each cylinder ...")
+        motored = misfire_harmonics(crank, setup)
+        for name, dampers in (("without a damper", ()), (f"with the recommended {kind} damper", (best,))):
+            worst, worst_c, worst_s = None, None, None
+            for c in range(crank.engine.cylinders):
+                ms = setup.with_misfire(c, motored)
+                r = m53_of(ms, dampers)
+                if worst is None or r.governing.safety < worst.governing.safety:
+                    worst, worst_c, worst_s = r, c, ms
+            cfg = VerdictConfig(f"misfire of cylinder {worst_c + 1}, {name}", tuple(dampers), worst,
+                                fe_of(worst_s, dampers), worst_c)
+            configs.append(cfg)
+        notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
+                      "M53's bending keeps the firing rod forces (the larger)")
+    elif misfire:
+        notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    # the damping: the description's ratio decides; the flip ratio and the band are sensitivities
+    described = crank.dampers
+    required = configs[0].answer(method)["required"]
+
+    def safety_at(zeta):
+        s = with_damping_ratio(setup, cc, "bearings", zeta)
+        if method == "iacs-m53":
+            return m53_of(s, described).governing.safety
+        a = fe_of(s, described)
+        return float(a.safety.min())
+
+    say("fatigue verdict: the damping ratio at which it flips ...")
+    flip = _flip(safety_at, required)
+    band = [{"damping_ratio": z, "safety": safety_at(z)} for z in sorted(set(ex.damping_band))]
+    given = ex.modal_damping_ratio_source if hasattr(ex, "modal_damping_ratio_source") else ""
+    assumed = not given
+    source = given or "assumed: the description states no source"
+    comparison = scf_comparison(m53_geometry(crank), scf)
+    return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
+                        comparison, notes)
