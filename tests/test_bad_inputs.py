@@ -122,13 +122,13 @@ damping_nms_per_rad = 5.0
 MEASURED = (RENAULT.split("[excitation]")[0] + '[excitation]\nreciprocating_mass_kg = 0.65\n'
             'speed_range_rpm = [750.0, 6500.0]\npressure_csv = "p.csv"\n\n[[attachments]]'
             + RENAULT.split("[[attachments]]", 1)[1])
-# The Renault crank with a [limits] table of round numbers (the reference file's own may change).
-LIMITED = RENAULT.split("[limits]")[0] + """[limits]
-fatigue_strength_shear_pa = 230.9e6
-safety_factor = 2.0
-transient_shear_pa = 230.9e6
+# The Renault crank with a [limits] table of the fatigue verdict's overrides (round numbers).
+LIMITED = RENAULT.replace("[[attachments]]", """[limits]
+fatigue_strength_bending_pa = 400e6
+fatigue_required_safety = 1.5
 source = "test"
-"""
+
+[[attachments]]""", 1)
 CURVE = "# unit = N m\n1000, 10\n2000, 30\n3000, 20\n"
 
 
@@ -447,24 +447,26 @@ CASES = [
      ["dampers.1.ambient_c", "temperature column"]),
     ("chain-damper", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + DAMPER.replace("2.6e4", "nan")}, 2,
      ["dampers.1.stiffness_nm_per_rad", "finite"]),
-    ("limits-nothing", "run {d}/x.toml --out {d}/new --no-fe", {"x.toml": edit("[limits]", "[limits]\nfatigue_was = 1\n",
-                                                                               LIMITED).replace("fatigue_strength_shear_pa", "strength")},
-     2, ["limits", "exactly one of"]),
+    ("limits-shear-refused", "run {d}/x.toml --out {d}/new --no-fe",
+     {"x.toml": edit('source = "test"', 'source = "test"\ncontinuous_shear_pa = 1e8', LIMITED)},
+     2, ["limits", "continuous_shear_pa", "fatigue assessment", "fatigue_strength_bending_pa"]),
     ("limits-no-source", "run {d}/x.toml --out {d}/new --no-fe", {"x.toml": edit('source = "test"', "", LIMITED)}, 2,
      ["limits.source"]),
-    ("limits-safety-below-1", "response {d}/x.toml", {"x.toml": edit("safety_factor = 2.0", "safety_factor = 0.5", LIMITED)},
-     2, ["limits.safety_factor", "> 1"]),
+    ("limits-method-unknown", "response {d}/x.toml",
+     {"x.toml": edit('source = "test"', 'source = "test"\nfatigue_method = "shigley"', LIMITED)},
+     2, ["limits.fatigue_method", "iacs-m53"]),
     ("limits-fatigue-safety-below-1", "response {d}/x.toml",
-     {"x.toml": edit("safety_factor = 2.0", "safety_factor = 2.0\nfatigue_required_safety = 0.5", LIMITED)},
+     {"x.toml": edit("fatigue_required_safety = 1.5", "fatigue_required_safety = 0.5", LIMITED)},
      2, ["limits.fatigue_required_safety", ">= 1"]),
     ("limits-fatigue-strength-negative", "response {d}/x.toml",
-     {"x.toml": edit("safety_factor = 2.0", "safety_factor = 2.0\nfatigue_strength_bending_pa = -1.0", LIMITED)},
+     {"x.toml": edit("fatigue_strength_bending_pa = 400e6", "fatigue_strength_bending_pa = -1.0", LIMITED)},
      2, ["limits.fatigue_strength_bending_pa", ">= 0"]),
     ("limits-sigma-add-negative", "lumped {d}/x.toml",
-     {"x.toml": edit("safety_factor = 2.0", "safety_factor = 2.0\nadditional_bending_pa = -1.0", LIMITED)},
+     {"x.toml": edit('source = "test"', 'source = "test"\nadditional_bending_pa = -1.0', LIMITED)},
      2, ["limits.additional_bending_pa", ">= 0"]),
-    ("limits-transient-low", "response {d}/x.toml", {"x.toml": edit("transient_shear_pa = 230.9e6", "transient_shear_pa = 1.0e6",
-                                                                   LIMITED)}, 2, ["limits.transient_shear_pa", "continuous"]),
+    ("limits-transient-refused", "response {d}/x.toml",
+     {"x.toml": edit('source = "test"', 'source = "test"\ntransient_shear_pa = 1e8', LIMITED)},
+     2, ["limits", "transient_shear_pa", "fatigue_required_safety"]),
     ("chain-limits-stress", "response {d}/c.toml", {"c.toml": ENGINE_CHAIN + '[limits]\ncontinuous_shear_pa = 1e8\nsource = "x"\n'},
      2, ["limits", "chain file", "continuous_torque_nm"]),
     ("misfire-9", "response {d}/crank.toml --misfire 9", {}, 2, ["--misfire 9", "1..4"]),

@@ -67,15 +67,14 @@ def _every_option(raw: dict) -> dict:
          "damping_nms_per_rad": 10.0},
         {"type": "tuned", "ring_inertia_kgm2": 6e-3, "stiffness_nm_per_rad": 3e4, "damping_nms_per_rad": 1.0},
     ]
-    raw["limits"] = {"fatigue_strength_shear_pa": 2.3e8, "safety_factor": 2.0, "transient_shear_pa": 2.3e8,
-                     "fatigue_strength_bending_pa": 4e8, "fatigue_required_safety": 1.2, "additional_bending_pa": 1e7,
+    raw["limits"] = {"fatigue_method": "fe", "fatigue_strength_bending_pa": 4e8, "fatigue_required_safety": 1.2, "additional_bending_pa": 1e7,
                      "source": "test"}
     ex = raw["excitation"]
     for key in ("pressure_csv", "imep_pa", "peak_pressure_pa"):
         ex.pop(key, None)
     ex.update(imep_pa=1.2e6, compression_ratio=9.0, intake_pressure_pa=1e5, polytropic_exponent=1.3,
               combustion_start_deg=-15.0, combustion_duration_deg=50.0, wiebe_a=5.0, wiebe_m=2.0,
-              overspeed_factor=1.1, modal_damping_ratio=0.02, modal_damping_band=[0.01, 0.02],
+              overspeed_factor=1.1, modal_damping_ratio=0.02, modal_damping_ratio_source="test", modal_damping_band=[0.01, 0.02],
               modal_damping_source="test")
     assert len(raw["journals"]) == n + 1
     return raw

@@ -270,9 +270,12 @@ LIMITS = Section("limits", "A crank description: the fatigue verdict's overrides
           "> 0"),
     Field("transient_torque_nm", "chain or network file: the transient limit as a section torque amplitude, N·m; "
           "optional", ">= the continuous limit"),
+    *(Field(k, "refused in a crank description (the shear-limit verdict of earlier versions); a chain or network "
+          "file does not take it either", "refused") for k in ("continuous_shear_pa", "fatigue_strength_shear_pa",
+                                                                "safety_factor", "transient_shear_pa")),
     Field("fatigue_method", "the method that decides a crank's verdict: `iacs-m53` (IACS UR M53 as written) or "
           "`fe` (fetorsion's own: the condensed crank's load cycle, FE SCFs, Marin factors and Goodman); "
-          "`fetorsion run --fatigue-method` overrides it", "iacs-m53 or fe; optional (default iacs-m53)"),
+          "the run's own choice of method overrides it", "iacs-m53 or fe; optional (default iacs-m53)"),
     Field("fatigue_strength_bending_pa", "the crank's alternating bending fatigue strength as built (a bench test "
           "of its throws, a supplier's figure), against local stresses (SCF × nominal), Pa: replaces each "
           "method's own (M53's σ_DW; the `fe` path's S_e, then with the full K_t)", ">= 0; optional "

@@ -42,10 +42,9 @@ import numpy as np
 from ..errors import FetorsionError
 from .fatigue import M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
 
-#: [KR-M53] §4: σ_add of a trunk-piston engine (every engine fetorsion describes), Pa.
+#: [KR-M53] §4: σ_add of a trunk-piston engine (every engine fetorsion describes; a crosshead
+#: engine's is ±30 N/mm²: ±20 axial vibration, ±10 misalignment), Pa.
 SIGMA_ADD_TRUNK_PISTON = 10.0 * MPA
-#: [KR-M53] §4: σ_add of a crosshead engine (±20 axial vibration, ±10 misalignment), Pa.
-SIGMA_ADD_CROSSHEAD = 30.0 * MPA
 #: [KR-M53] §6: fillet radii (and half the oil-bore diameter) are taken as not less than 2 mm.
 M53_MIN_RADIUS = 2e-3
 #: [KR-M53] §3.(1)(G): the ranges of the related dimensions inside which the SCF formulas hold
@@ -321,7 +320,7 @@ def alternating(x, axis: int = -1):
     return 0.5 * np.ptp(np.asarray(x, float), axis=axis)
 
 
-def nominal_bending_stresses(g: M53Geometry, loads: dict, strokes: int = 4, psi: float = 0.0) -> dict:
+def nominal_bending_stresses(g: M53Geometry, loads: dict, strokes: int, psi: float = 0.0) -> dict:
     """σ_BFN (per web), σ_QFN (per web), σ_BON of [KR-M53] §2.(1)(B), Pa: the alternating web
     moment over W_eqw = B W²/6 and radial force over F = B W, each times K_e (1.0 four-stroke,
     0.8 two-stroke); the oil bore's M_BO = M_BTO cos ψ + M_BRO sin ψ over W_e = π (D⁴ − D_BH⁴)/(32 D).

@@ -275,7 +275,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     v, a, scf = outcome.verdict, outcome.assessment, outcome.scf
     mat = a.worst.material
     lines = ["## Verdict: fatigue of the fillets and oil bores", "",
-             f"Computed on the **{outcome.model}**. **{v.method}** decides (`--fatigue-method`); {v.other} is "
+             f"Computed on the **{outcome.model}**. **{v.method}** decides; {v.other} is "
              f"shown beside it. Damping: modal damping ratio **ζ = {v.damping_ratio:.4g}** ({v.damping_source}). "
              f"Material: {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} MPa "
              f"({mat.source or 'the description'}).", "",
