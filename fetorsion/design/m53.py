@@ -407,16 +407,8 @@ class M53Result:
         return {"method": "iacs-m53", "passes": self.passes, "rated_rpm": self.rated_rpm,
                 "governing": {"location": g.name, "safety": g.safety, "required": g.required,
                               "section": g.torque_section, "rpm": g.torque_rpm},
-                "nominal": _jsonable(self.nominal), "scf_source": dict(self.scf_source), "notes": list(self.notes),
+                "nominal": {k: dict(v) for k, v in self.nominal.items()}, "scf_source": dict(self.scf_source), "notes": list(self.notes),
                 "locations": [a.to_dict() for a in self.locations]}
-
-
-def _jsonable(d):
-    if isinstance(d, dict):
-        return {k: _jsonable(v) for k, v in d.items()}
-    if isinstance(d, np.ndarray):
-        return d.tolist()
-    return d
 
 
 def choose_scfs(g: M53Geometry, fe: dict | None) -> tuple[dict, dict]:
