@@ -1,5 +1,5 @@
 """What a calibration predicts for the engine: the crank in its bearings (f1) and its fatigue
-(governing location, safety and equivalent stress at the damping band's low end), with a band.
+(UR M53's governing place, Q and equivalent stress at the description's damping), with a band.
 
     python scripts/calibrated_prediction.py [geometry/renault21.toml] [--measured-hz 530]
         [--inputs NAME ...] [--mesh-size MM] [--json PATH]
@@ -9,8 +9,8 @@
 2. The posterior samples whose lumped f1 sits nearest its 5, 50 and 95 % points, and the least-squares
    point, each made into a description variant.
 3. Each variant's condensed 3D FE crank in its bearings at ``--mesh-size`` (one mesh, one
-   factorisation, one condensation): its first torsional frequency, and the fatigue assessment of
-   every fillet and oil bore (IACS UR M53) at the low end of the damping band.
+   factorisation, one condensation): its first torsional frequency, and UR M53 as written (the
+   verdict's default method) on every throw at the description's damping ratio.
 
 The SCFs are the nominal crank's, held: the default inputs (counterweight radius, steel's E and
 density) leave the fillets' and drillings' local geometry as it is, and an elastic SCF does not
@@ -39,32 +39,33 @@ QUANTILES = (5.0, 50.0, 95.0)
 
 
 def engine_answers(crank, scf, mesh_size):
-    """(f1 in bearings Hz, governing location, its safety, its equivalent alternating stress Pa, rpm,
-    the governing fillet's safety) of ``crank`` at the damping band's low end."""
-    from fetorsion.design.assessment import run_assessment
+    """(f1 in bearings Hz, governing place, its Q, its equivalent alternating stress σ_V Pa, the
+    speed of its torsion, the worst fillet's Q) of ``crank``: UR M53 as written (the verdict's
+    default method, :func:`fetorsion.design.m53.run_m53_crank`) at the description's damping."""
+    from fetorsion.design.crank_verdict import fillet_torque_amplitude
+    from fetorsion.design.m53 import run_m53_crank
     from fetorsion.design.stress import fillet_cuts, fillets_of
     from fetorsion.fe.condensed import run_condensed
     from fetorsion.fe.cranksystem import build_system
     from fetorsion.lumped_model.parts import build_parts
     from fetorsion.response.coupled import condensed_setup
-    from fetorsion.response.cycle import run_load_cycle
+    from fetorsion.response.forced import solve_response
     from fetorsion.solid.mesh import mesh_crank
 
     fillets = fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
     system = build_system(crank, mesh_size, mesh_crank(crank, mesh_size))
     cc = run_condensed(crank, system=system, cuts=fillet_cuts(crank, fillets))
     f_bearings = cc.modes("bearings").first_torsional()
-    setup = condensed_setup(cc, "bearings", damping_ratio=crank.excitation.damping_band[0],
-                            section_labels=[f.label for f in fillets])
-    a = run_assessment(crank, run_load_cycle(cc, setup, crank.dampers), fillets, scf, "iacs-m53")
-    g = a.governing
-    fillet_cols = [j for j, k in enumerate(a.labels) if "fillet" in k]
-    worst_fillet = min(fillet_cols, key=lambda j: a.safety[:, j].min())
-    return {"f1_bearings_hz": float(f_bearings), "governing": a.labels[g], "safety": float(a.safety[:, g].min()),
-            "equivalent_stress_mpa": a.worst.locations[g].equivalent_alternating / 1e6, "rpm": float(a.worst_rpm[g]),
-            "worst_fillet": a.labels[worst_fillet], "worst_fillet_safety": float(a.safety[:, worst_fillet].min()),
-            "worst_fillet_stress_mpa": a.worst.locations[worst_fillet].equivalent_alternating / 1e6,
-            "required": float(a.worst.locations[g].required)}
+    setup = condensed_setup(cc, "bearings", section_labels=[f.label for f in fillets])
+    torque = fillet_torque_amplitude(setup, solve_response(setup, crank.dampers), fillets)
+    m = run_m53_crank(crank, fillets, torque, setup.rpm, fe_scf=scf)
+    g = m.governing
+    fillet = min((a for a in m.locations if "fillet" in a.kind), key=lambda a: a.safety / a.required)
+    return {"f1_bearings_hz": float(f_bearings), "governing": g.name, "safety": float(g.safety),
+            "equivalent_stress_mpa": g.equivalent / 1e6, "rpm": float(g.torque_rpm),
+            "worst_fillet": fillet.name, "worst_fillet_safety": float(fillet.safety),
+            "worst_fillet_stress_mpa": fillet.equivalent / 1e6, "required": float(g.required),
+            "damping_ratio": float(setup.zeta)}
 
 
 def main(argv=None):

@@ -159,7 +159,11 @@ def test_verdict_on_the_engine_model_is_the_section_torque_times_scf_over_modulu
     from fetorsion.response.coupled import condensed_setup, loads_on, master_loads, supported_damping
     from fetorsion.response.synthesis import half_peak_to_peak
 
+    import dataclasses
+
     crank, fillets, cc = condensed_renault
+    # crank descriptions no longer take shear limits (the fatigue verdict decides); the API still does
+    crank = dataclasses.replace(crank, limits=Limits(continuous_shear=100e6, transient_shear=150e6, source="test"))
     scf = {"pin": 1.9, "journal": 2.2, "source": "test"}
     setup = condensed_setup(cc, rpm=np.linspace(1000.0, 7150.0, 40), section_labels=[f.label for f in fillets])
     v = run_verdict(crank, scf=scf, setup=setup, fillets=fillets, optimise=False, misfire=False)

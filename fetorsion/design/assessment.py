@@ -8,8 +8,8 @@ At each fillet the section's in-plane bending moment M(θ) and torque T(θ) over
 
 which the fillet's bending and torsional SCFs (:func:`fetorsion.design.scf.fillet_scfs`) carry
 to the fillet surface; their mean and alternating parts (half the range) go to the chosen
-strength method (:func:`fetorsion.design.fatigue.run_fatigue`: IACS UR M53 or the textbook
-path). Oil-bore exits take the bending about the throw's radius and the torque of their
+strength method (:func:`fetorsion.design.fatigue.run_fatigue`: the textbook path, the ``fe``
+verdict's, or M53's criterion alone on these loads, a cross-check that is not the rule). Oil-bore exits take the bending about the throw's radius and the torque of their
 section (:func:`oil_bore_stress_histories`) and the drilled bar's SCFs
 (:func:`fetorsion.design.oilbore.oil_bore_scfs`). Every speed is assessed; each location's worst speed is then assessed again with its
 whole history for the multiaxial cross-checks (Crossland, Findley).
@@ -178,13 +178,13 @@ class CrankAssessment:
             line, = ax.plot([0, mat.tensile_strength / 1e6], [se / 1e6, 0], lw=0.8, ls="--",
                             label=f"Goodman, {self.labels[j]}")
             ax.plot([sm / 1e6], [sa / 1e6], "o", color=line.get_color(), label=f"{self.labels[j]}, {self.worst_rpm[j]:.0f} rpm")
-            if self.method == "iacs-m53":
+            if self.method == "m53-criterion":
                 ax.axhline(a.strength / 1e6, color=line.get_color(), lw=0.6, ls=":")
         ax.set_xlim(-0.05 * mat.tensile_strength / 1e6, mat.tensile_strength / 1e6)
         ax.set_ylim(bottom=0)
         ax.set_xlabel("mean equivalent stress [MPa]")
         ax.set_ylabel("alternating equivalent stress [MPa]")
-        ax.set_title(f"{self.name}: Haigh diagram" + (" (dotted: M53 sigma_DW)" if self.method == "iacs-m53" else ""),
+        ax.set_title(f"{self.name}: Haigh diagram" + (" (dotted: M53 sigma_DW)" if self.method == "m53-criterion" else ""),
                      fontsize=9)
         ax.legend(fontsize=6)
         return ax
@@ -205,7 +205,13 @@ class CrankAssessment:
         return ax
 
 
-def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", required: float | None = None
+#: run_assessment's strength criteria, each applied to fetorsion's own loads and FE SCFs:
+#: ``textbook`` (the ``fe`` path's) and ``m53-criterion`` (M53's σ_V, σ_DW and Q on those loads:
+#: a cross-check, NOT the rule, whose loads and SCFs are :func:`fetorsion.design.m53.run_m53_crank`'s).
+ASSESSMENT_METHODS = {"textbook": "textbook", "m53-criterion": "iacs-m53"}
+
+
+def run_assessment(crank, cycle, fillets, scf: dict, method: str = "textbook", required: float | None = None
                    ) -> CrankAssessment:
     """Assess every fillet of ``crank`` at every speed of ``cycle``.
 
@@ -221,13 +227,19 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
         ``pin``, ``journal`` (torsion) and ``pin_bending``, ``journal_bending`` SCFs; for the oil
         bores ``pin_oil_bore_bending``, ``pin_oil_bore_torsion`` and the journal's (a drilled kind
         without them is noted as not assessed).
-    method : {"iacs-m53", "textbook"}
-        The strength and criterion: IACS UR M53 (alternating stresses, σ_DW, Q ≥ 1.15) or the
-        textbook path (Marin factors, Neuber's K_f, Goodman).
+    method : {"textbook", "m53-criterion"}
+        The strength and criterion: the textbook path (Marin factors, Neuber's K_f, Goodman), or
+        M53's criterion (alternating stresses, σ_V, σ_DW, Q ≥ 1.15) on these loads — not UR M53
+        as written, whose statically determinate loads and empirical SCFs are
+        :func:`fetorsion.design.m53.run_m53_crank`'s.
     required : float, optional
         Required safety (default the description's ``[limits] fatigue_required_safety``, else the
         method's: :func:`fetorsion.design.fatigue.run_fatigue`).
     """
+    if method not in ASSESSMENT_METHODS:
+        raise FetorsionError(f"assessment method must be one of {', '.join(ASSESSMENT_METHODS)}, got {method!r}"
+                             + (" (UR M53 as written is fetorsion.design.m53.run_m53_crank)" if method == "iacs-m53" else ""))
+    label, method = method, ASSESSMENT_METHODS[method]
     sigma, tau = fillet_stress_histories(crank, cycle, fillets)
     radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
     kts = [_scf(scf, f.kind) for f in fillets]
@@ -293,6 +305,6 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "iacs-m53", r
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
-    return CrankAssessment(crank.name, method, np.asarray(cycle.rpm), labels, safety, worst,
+    return CrankAssessment(crank.name, label, np.asarray(cycle.rpm), labels, safety, worst,
                            np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes, np.array(diameters),
                            tuple(cuts_read))

@@ -246,6 +246,11 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
     best = design.optimised
     configs.append(config(f"with the recommended {kind} damper", setup, (best,)))
     notes = []
+    if method != "iacs-m53":
+        # the fe path's safety needs a load cycle per trial damper (about a second each): the
+        # optimiser's objective stays M53's, whose torsional part is what a damper moves
+        notes.append(f"the recommended damper is designed for M53's governing safety and the worst misfire "
+                     f"cylinder chosen by M53; the deciding {method} method checks both")
     if misfire and ex.pressure_curve is None:
         say("fatigue verdict: misfire of each cylinder ...")
         motored = misfire_harmonics(crank, setup)
