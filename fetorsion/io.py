@@ -12,7 +12,9 @@ anything else is refused unless the user forces it (:func:`check_report_folder`)
 
 from __future__ import annotations
 
+import hashlib
 import json
+import math
 import os
 import shutil
 import tempfile
@@ -263,3 +265,57 @@ def _swap_into_place(work: Path, out: Path) -> None:
     os.replace(work, out)
     if old is not None:
         shutil.rmtree(old, ignore_errors=True)
+
+
+# ---------------------------------------------------------------------------
+# The store: where computed results are kept between runs
+
+STORE_ENV = "FETORSION_STORE"
+
+
+def default_store() -> Path:
+    """The store's folder (the studies' samples, the condensed cranks): ``$FETORSION_STORE``, else
+    ``~/.cache/fetorsion/samples``."""
+    env = os.environ.get(STORE_ENV)
+    if env:
+        return Path(env)
+    cache = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
+    return Path(cache) / "fetorsion" / "samples"
+
+
+_CODE_HASH: str | None = None
+
+
+def code_hash() -> str:
+    """SHA-256 of fetorsion's Python source: part of every stored key, so that results stored
+    by other code (an older checkout, an edited model) are never taken for this code's."""
+    global _CODE_HASH
+    if _CODE_HASH is None:
+        root = Path(__file__).resolve().parent
+        h = hashlib.sha256()
+        for path in sorted(root.rglob("*.py")):
+            h.update(str(path.relative_to(root)).encode())
+            h.update(path.read_bytes())
+        _CODE_HASH = h.hexdigest()
+    return _CODE_HASH
+
+
+
+#: Default bound of the sample store, bytes (``$FETORSION_STORE_MAX_MB`` overrides): a full
+#: ``fetorsion run`` of one description adds about 11 000 lumped samples, ~4 MB.
+STORE_MAX_BYTES = 256 * 2**20
+STORE_MAX_ENV = "FETORSION_STORE_MAX_MB"
+
+
+def store_max_bytes() -> int:
+    """The store's bound: ``$FETORSION_STORE_MAX_MB`` MiB, else :data:`STORE_MAX_BYTES`."""
+    env = os.environ.get(STORE_MAX_ENV)
+    if not env:
+        return STORE_MAX_BYTES
+    try:
+        mb = float(env)
+    except ValueError:
+        mb = -1.0
+    if not (mb > 0 and math.isfinite(mb)):
+        raise FetorsionError(f"{STORE_MAX_ENV}={env!r}: must be a positive number of MiB")
+    return int(mb * 2**20)

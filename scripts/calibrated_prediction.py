@@ -69,8 +69,7 @@ def engine_answers(crank, scf, mesh_size):
 
 
 def main(argv=None):
-    from fetorsion.design.oilbore import oil_bore_scfs
-    from fetorsion.design.scf import fillet_scfs
+    from fetorsion.design.crank_verdict import verdict_scfs
     from fetorsion.lumped_model.lumped import lumped
     from fetorsion.studies.calibration import calibration_inputs, run_calibration, variant
 
@@ -95,11 +94,7 @@ def main(argv=None):
     points = {f"posterior f1 {q:g} %": cal.posterior.samples[int(np.argmin(np.abs(f1 - np.percentile(f1, q))))]
               for q in QUANTILES}
     points["least squares"] = cal.lsq.values
-    scf = dict(fillet_scfs(crank))
-    bores = oil_bore_scfs(crank)
-    for kind in ("pin", "journal"):
-        if kind in bores:
-            scf[f"{kind}_oil_bore_bending"], scf[f"{kind}_oil_bore_torsion"] = bores[kind]
+    scf = verdict_scfs(crank)
     size = args.mesh_size * 1e-3
     rows = {"nominal": {"inputs": {i.name: i.nominal for i in inputs},
                         "f1_free_lumped_hz": float(lumped(crank, 17).frequencies_hz[0]), **engine_answers(crank, scf, size)}}

@@ -226,8 +226,10 @@ def test_cli_condensed_end_to_end(tmp_path):
     assert modal["bearings"][0]["frequency_hz"] == pytest.approx(data["bearings"][0]["frequency_hz"], rel=1e-9)
     camp = run("campbell", str(path), "--source", "condensed", "--mesh-size", "20")
     assert "kind (torsion/bending share)" in camp and "torsional (0." in camp
-    resp = json.loads(run("response", str(path), "--source", "condensed", "--mesh-size", "20", "--steps", "12", "--json", "-"))
+    resp = json.loads(run("response", str(path), "--bearing-forces", "--mesh-size", "20", "--steps", "12", "--json", "-"))
     assert resp["support"] == "bearings" and len(resp["rpm"]) == 12 and resp["worst"]["bearing_force_n"]["value"] > 0
+    resp = json.loads(run("response", str(path), "--mesh-size", "20", "--steps", "12", "--json", "-"))
+    assert resp["model"].startswith("condensed crank") and len(resp["rpm"]) == 12
 
 
 @pytest.mark.fe

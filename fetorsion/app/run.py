@@ -135,18 +135,10 @@ class RunContext:
         """The fillet SCFs of the crank (shipped, or one static FE of a throw) and its oil bores'
         (shipped, or one static FE of a drilled bar per drilled kind of section), found once."""
         def build():
-            from ..design.oilbore import oil_bore_scfs
-            from ..design.scf import fillet_scfs
+            from ..design.crank_verdict import verdict_scfs
 
             _progress("  fillet and oil-bore SCFs (static 3D FE, or the stored studies) ...")
-            out = dict(self.throw_fe() or fillet_scfs(self.crank))
-            bores = oil_bore_scfs(self.crank)
-            for kind in ("pin", "journal"):
-                if kind in bores:
-                    out[f"{kind}_oil_bore_bending"], out[f"{kind}_oil_bore_torsion"] = bores[kind]
-            if bores:
-                out["oil_bore_source"] = bores["source"]
-            return out
+            return verdict_scfs(self.crank, self.throw_fe())
 
         return self.once("scf", build)
 
@@ -202,6 +194,7 @@ def step_fe(ctx: RunContext) -> FEOutcome:
     from ..design.stress import fillet_cuts
     from ..fe.condensed import run_condensed
     from ..fe.cranksystem import build_system
+    from ..fe.store import remember_condensed
     from ..fe.crankfe import run_modal
     from ..solid.mesh import mesh_crank
     from ..report.render import render_mode
@@ -215,6 +208,7 @@ def step_fe(ctx: RunContext) -> FEOutcome:
     system = build_system(ctx.crank, size, mesh)
     cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
     cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=system, cuts=cuts, start_modes=modes + 6 + 4)
+    remember_condensed(cc, size, cuts)  # the next campbell, response, damper ... take it from the store
     fe = run_modal(ctx.crank, size, modes=modes, system=system, ritz=cc.free_ritz)
     cc.free_ritz = None
     fe.system = None  # the factor (the run's largest object) goes once the modes have it

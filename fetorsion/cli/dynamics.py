@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from .options import MM, integer, millimetres, real
-from ..description.model import Chain
+from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..io import write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
@@ -24,24 +24,77 @@ from ..design.dampers import OBJECTIVES
 from .common import (SUPPORT_CHOICES, add_json_option, check_mesh_size, load_excited, partition_of, refuse_network,
                      report,
                      stiffness_for)
-from .fe import condensed
+from .fe import condensed, engine_fillets
+
+
+def source_of(args, model) -> str:
+    """``--source``, or its default: a crank description's engine model (the condensed crank in
+    its bearings, the run's), a chain's or network's own lumped model."""
+    if args.source is not None:
+        return args.source
+    return "lumped17" if isinstance(model, (Chain, Network)) else "condensed"
+
+
+def load_for(args):
+    """The command's description, with an [excitation] table; ``args.source`` set to its default
+    (:func:`source_of`) when not given."""
+    model = load_excited(args.file, args.source or "lumped17")
+    args.source = source_of(args, model)
+    return model
+
+
+def engine_model(crank, args):
+    """(the run's condensed crank, with its oil films, and the crank's fillets): from the
+    store, or built once and kept (:func:`fetorsion.cli.fe.condensed`)."""
+    check_mesh_size(crank, args.mesh_size, "modal")
+    return condensed(crank, args.mesh_size), engine_fillets(crank)
+
+
+def stored_engine_model(crank, args):
+    """(the condensed crank, fillets) when the store has this crank condensed already, else None:
+    a lumped answer then says how far it is from the engine model's, at no rebuild."""
+    from ..design.stress import fillet_cuts
+    from ..fe.store import stored_condensed
+    from ..response.coupled import with_film_bearings
+
+    if isinstance(crank, (Chain, Network)) or args.support != "bearings":
+        return None
+    fillets = engine_fillets(crank)
+    cc = stored_condensed(crank, getattr(args, "mesh_size", DEFAULT_MESH_SIZE), fillet_cuts(crank, fillets))
+    return None if cc is None else (with_film_bearings(cc), fillets)
+
+
+def engine_campbell(cc, fillets, support: str, orders=None, speed_range=None, damping_ratio=None):
+    """The condensed crank's Campbell diagram as the run draws it: severity the nominal stress at
+    the worst fillet, named."""
+    from ..response.coupled import run_coupled_campbell
+
+    res = run_coupled_campbell(cc, support, diameters=[(f.diameter, f.bore) for f in fillets], orders=orders,
+                               speed_range=speed_range, damping_ratio=damping_ratio)
+    if cc.cut_rows is not None and len(cc.cut_rows) == len(fillets):
+        for c in res.crossings:
+            c["worst_section"] = fillets[c.pop("worst_cut")].label
+    return res
+
+
+def _gap_line(what: str, lumped_value: float, engine_value: float, unit: str) -> str:
+    return (f"(lumped answer; the condensed crank in its bearings, stored, gives {what} {engine_value:.4g} {unit}: "
+            f"the lumped one is {100 * (lumped_value / engine_value - 1):+.1f} % from it)")
 
 
 def cmd_campbell(args) -> int:
     from ..excitation.campbell import lumped_modes, run_campbell
 
-    crank = load_excited(args.file, args.source)
-    if not args.source.startswith("lumped") and getattr(crank, "dampers", ()):
+    crank = load_for(args)
+    if not args.source.startswith("lumped") and args.source != "condensed" and getattr(crank, "dampers", ()):
         print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
               "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
     coupled = args.source == "condensed" or (args.source == "fe" and args.support == "bearings")
+    gap = None
     if coupled:
         # the coupled crank: every mode an order meets in range, full pin forces, severity as stress
-        from ..response.coupled import run_coupled_campbell
-
-        check_mesh_size(crank, args.mesh_size, "modal")
-        res = run_coupled_campbell(condensed(crank, args.mesh_size), args.support, orders=args.orders,
-                                   speed_range=args.speed_range, damping_ratio=args.damping)
+        cc, fillets = engine_model(crank, args)
+        res = engine_campbell(cc, fillets, args.support, args.orders, args.speed_range, args.damping)
     elif args.source == "fe":
         from ..fe.crankfe import run_modal
 
@@ -55,9 +108,13 @@ def cmd_campbell(args) -> int:
                            damping_ratio=args.damping,
                            partition=partition_of(args.source) if args.source.startswith("lumped") else DEFAULT_PARTITION,
                            web_method=stiffness_for(args))
+        engine = stored_engine_model(crank, args) if args.source.startswith("lumped") else None
+        if engine is not None and res.frequencies_hz.size:
+            f1 = engine[0].modes(args.support).first_torsional()
+            gap = _gap_line("f1", float(res.frequencies_hz[0]), f1, "Hz")
     head = (f"{res.name}: crossings inside {res.speed_range_rpm[0]:.0f}-{res.speed_range_rpm[1]:.0f} rpm, "
             f"most severe first ({res.source})")
-    report(res, head + "\n" + res.table(), args)
+    report(res, head + "\n" + res.table() + ("" if gap is None else "\n" + gap), args)
     if args.html:
         from ..report.html import campbell_figure, page
 
@@ -67,64 +124,120 @@ def cmd_campbell(args) -> int:
     return 0
 
 
-def cmd_response(args) -> int:
-    from ..response.forced import run_response
+def engine_setup(cc, fillets, support: str, rpm, orders=None, damping_ratio=None):
+    """The condensed crank as a response setup, its sections the fillets: the run's."""
+    from ..response.coupled import condensed_setup
 
+    return condensed_setup(cc, support, rpm=rpm, orders=orders, damping_ratio=damping_ratio,
+                           section_labels=[f.label for f in fillets])
+
+
+def _worst_torque(res) -> float:
+    return float(np.max(res.section_torque_nm))
+
+
+def cmd_response(args) -> int:
+    from ..response.forced import misfire_harmonics, run_response, solve_response
+
+    crank = load_for(args)
     if args.source == "fe":
         raise FetorsionError("--source fe: the forced response uses a lumped model or the condensed crank; "
                              "choose --source lumpedN or condensed")
-    crank = load_excited(args.file, args.source)
     rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
-    if args.source == "condensed":
-        from ..response.coupled import run_coupled_response
-
-        if args.compare is not None:
-            raise FetorsionError("--compare works with a lumped source (its section torques); "
-                                 "leave --source condensed out")
-        if args.misfire is not None:
-            raise FetorsionError("--misfire works with a lumped source; leave --source condensed out")
-        check_mesh_size(crank, args.mesh_size, "modal")
-        res = run_coupled_response(condensed(crank, args.mesh_size), args.support, rpm=rpm, orders=args.orders,
-                                   damping_ratio=args.damping)
-        return report(res, res.table(), args)
-    if args.compare_section is not None:  # checked on the model's springs before the response is computed
-        springs = len(lumped(crank, partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
-        if args.compare_section > springs:
-            raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
     if args.misfire is not None and args.misfire > crank.engine.cylinders:
         raise FetorsionError(f"--misfire {args.misfire}: the engine has cylinders 1..{crank.engine.cylinders}")
     if args.misfire is not None and crank.excitation.pressure_curve is not None:
         raise FetorsionError(f"--misfire: {args.file} gives a measured pressure_csv; the motored cycle of a misfiring "
                              "cylinder needs the synthetic cycle (compression_ratio)")
-    res = run_response(crank, partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
-                       web_method=stiffness_for(args), misfire=None if args.misfire is None else args.misfire - 1)
+    gap = None
+    if args.bearing_forces and args.source != "condensed":
+        raise FetorsionError("--bearing-forces: the bearings carry forces in the condensed crank only; "
+                             "leave --source out (or give --source condensed)")
+    if args.bearing_forces:
+        from ..response.coupled import run_coupled_response
+
+        for option in ("compare", "misfire"):
+            if getattr(args, option) is not None:
+                raise FetorsionError(f"--{option} is not taken with --bearing-forces")
+        cc, _ = engine_model(crank, args)
+        res = run_coupled_response(cc, args.support, rpm=rpm, orders=args.orders, damping_ratio=args.damping)
+        return report(res, res.table(), args)
+    if args.source == "condensed":
+        cc, fillets = engine_model(crank, args)
+        setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)
+        if args.compare_section is not None and args.compare_section > len(setup.section_labels):
+            raise FetorsionError(f"--compare-section {args.compare_section}: the model has "
+                                 f"{len(setup.section_labels)} sections (the fillets)")
+        if args.misfire is not None:
+            setup = setup.with_misfire(args.misfire - 1, misfire_harmonics(crank, setup))
+        res = solve_response(setup, crank.dampers)
+    else:
+        if args.compare_section is not None:  # checked on the model's springs before the response is computed
+            springs = len(lumped(crank, partition_of(args.source), args.stiffness).stiffnesses_nm_per_rad)
+            if args.compare_section > springs:
+                raise FetorsionError(f"--compare-section {args.compare_section}: the model has {springs} shaft sections")
+        res = run_response(crank, partition_of(args.source), rpm=rpm, orders=args.orders, damping_ratio=args.damping,
+                           web_method=stiffness_for(args), misfire=None if args.misfire is None else args.misfire - 1)
+        engine = stored_engine_model(crank, args)
+        if engine is not None:
+            setup = engine_setup(*engine, args.support, rpm, args.orders, args.damping)
+            if args.misfire is not None:
+                setup = setup.with_misfire(args.misfire - 1, misfire_harmonics(crank, setup))
+            gap = _gap_line("the largest section torque", _worst_torque(res),
+                            _worst_torque(solve_response(setup, crank.dampers)), "N m")
     if args.compare is not None:
         from ..response.forced import compare_curve
 
         rpm_c, value, name, unit = args.compare_curve
         compare_curve(res, rpm_c, value, name, unit,
                       None if args.compare_section is None else args.compare_section - 1)
-    return report(res, res.table(), args)
+    return report(res, res.table() + ("" if gap is None else "\n" + gap), args)
 
 
 def cmd_damper(args) -> int:
+    from ..design.crank_verdict import run_fatigue_damper, verdict_scfs
     from ..design.dampers import run_damper
 
-    if args.source in ("fe", "condensed"):
-        raise FetorsionError(f"--source {args.source}: the damper is tuned on a lumped model; choose --source lumpedN")
-    crank = load_excited(args.file, args.source)
+    crank = load_for(args)
+    if args.source == "fe":
+        raise FetorsionError("--source fe: the damper is designed on the condensed crank (default) or a lumped "
+                             "model; choose --source condensed or lumpedN")
     refuse_network(crank, args.file, "damper")
-    if args.objective == "stress" and isinstance(crank, Chain):
-        raise FetorsionError(f"--objective stress: {args.file} is a chain file, it has no shaft sections; "
+    objective = args.objective or ("twist" if isinstance(crank, Chain) else "fatigue")
+    if objective in ("stress", "fatigue") and isinstance(crank, Chain):
+        raise FetorsionError(f"--objective {objective}: {args.file} is a chain file, it has no shaft sections; "
                              "use --objective twist")
-    if args.objective == "stress" and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
-        raise FetorsionError(f"--objective stress: {args.file} has no fillet radii (a sharp corner has no finite "
+    if objective in ("stress", "fatigue") and not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
+        raise FetorsionError(f"--objective {objective}: {args.file} has no fillet radii (a sharp corner has no finite "
                              "SCF); give [fillets] or use --objective twist")
     rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
-    res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, args.objective, args.at, args.hub_inertia,
-                     rpm=rpm, partition=partition_of(args.source), orders=args.orders, damping_ratio=args.damping,
-                     web_method=stiffness_for(args))
-    return report(res, res.table(), args)
+    if args.source == "condensed":
+        cc, fillets = engine_model(crank, args)
+        setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)
+    else:
+        from ..response.forced import response_setup
+
+        fillets = None if isinstance(crank, Chain) else engine_fillets(crank)
+        setup = response_setup(crank, partition_of(args.source), rpm, args.orders, args.damping, stiffness_for(args))
+    if objective == "fatigue":
+        # the run's recommended damper: M53's governing safety over the speeds
+        res = run_fatigue_damper(crank, setup, fillets, verdict_scfs(crank), args.type, args.inertia_ratio,
+                                 args.optimise, args.at, args.hub_inertia)
+    else:
+        from ..design.crank_verdict import DAMPER_DESIGN_SPEEDS
+
+        coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
+        res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, objective, args.at, args.hub_inertia,
+                         setup=coarse, fillets=fillets)
+    # checked on every speed of the range (the optimiser read at most 100 of them)
+    from ..response.forced import solve_response
+
+    chosen = res.optimised or res.den_hartog
+    lines = [f"  checked at all {len(setup.rpm)} speeds ({setup.model}):"]
+    for name, dampers in (("without a damper", ()), (f"with the {'optimised' if res.optimised else 'Den Hartog'} "
+                                                     "damper", (chosen,))):
+        lines.append(f"    {name}: {solve_response(setup, dampers).worst_torque_text()}")
+    return report(res, res.table() + "\n" + "\n".join(lines), args)
 
 
 def cmd_transient(args) -> int:
@@ -164,9 +277,14 @@ def _orders(text: str) -> list[float]:
 
 def _add_excitation_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("file", help="crank description or chain file with an [excitation] table (.toml)")
-    p.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
-                   help="which model gives the modes (default %(default)s; fe: campbell only; condensed: the 3D FE "
-                        "crank condensed to its journal and pin centres, torsion and bending coupled)")
+    p.add_argument("--source", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
+                   help="which model answers (default: for a crank description condensed, the engine model 'fetorsion "
+                        "run' reports on: the 3D FE crank condensed to its journal and pin centres in its bearings, "
+                        "torsion and bending coupled, taken from the store after its first build; for a chain or "
+                        "network file its own lumped model). lumpedN: the fast N-DOF chain, with a line saying how "
+                        "far it is from the stored condensed crank; fe: campbell only, free-free FE torsional modes")
+    p.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                   help=f"FE mesh size of the condensed crank (and of --source fe) (default {DEFAULT_MESH_SIZE / MM:g})")
     p.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
                    help="the crank in its main bearings (default, as it runs) or free-free (as on a modal test "
                         "bench); lumped: the fe web method becomes fe-held")
@@ -186,8 +304,6 @@ def add_parsers(sub) -> None:
     cp.add_argument("--modes", type=integer(1, 50), default=3,
                     help="number of lowest torsional modes (default %(default)s); the condensed crank in its bearings "
                          "shows every mode an order meets in range, with the fillet stress it drives")
-    cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
-                    help=f"FE mesh size for --source fe (default {DEFAULT_MESH_SIZE / MM:g})")
     cp.add_argument("--html", metavar="PATH", help="write the interactive Campbell diagram as a web page (.html)")
     cp.set_defaults(func=cmd_campbell)
 
@@ -199,21 +315,26 @@ def add_parsers(sub) -> None:
                          "(default %(default)s)")
     dp.add_argument("--optimise", action="store_true", help="optimise stiffness and damping on the whole crank "
                     "over the speed range after the Den Hartog start (ring inertia held)")
-    dp.add_argument("--objective", choices=[o for o in OBJECTIVES if o != "fatigue"], default="stress",
-                    help="what the optimiser minimises: the largest fillet shear stress or the pulley twist")
+    dp.add_argument("--objective", choices=OBJECTIVES,
+                    help="what the optimiser minimises (default: fatigue for a crank, the run's recommended damper: "
+                         "the largest IACS UR M53 utilisation over the speeds; twist for a chain): fatigue, the "
+                         "largest fillet shear stress, or the pulley twist")
     dp.add_argument("--at", choices=DAMPER_STATIONS, default="front", help="pulley end (front) or flywheel side")
     dp.add_argument("--hub-inertia", type=real(0.0, 10.0, low_open=False, unit="kg m^2"), default=0.0,
                     metavar="KGM2", help="hub or housing inertia, kg m^2 (default 0)")
-    dp.add_argument("--steps", type=integer(2, 2000), default=100, help="speeds in the range (default %(default)s)")
+    dp.add_argument("--steps", type=integer(2, 2000), default=DEFAULT_SPEED_STEPS,
+                    help="speeds in the range (default %(default)s, the run's; the optimiser reads at most 100 of them)")
     dp.set_defaults(func=cmd_damper)
 
-    rp = sub.add_parser("response", help="forced torsional response of a lumped model versus speed")
+    rp = sub.add_parser("response", help="forced response versus speed: the condensed crank in its bearings (a crank), "
+                        "or the lumped model")
     _add_excitation_options(rp)
     rp.add_argument("--steps", type=integer(2, 100_000), default=DEFAULT_SPEED_STEPS, help="speeds in the range (default %(default)s)")
+    rp.add_argument("--bearing-forces", action="store_true",
+                    help="the condensed crank's main-bearing forces and fillet-cut loads, torsion and bending coupled "
+                         "(the run's 'crank in its bearings' response), instead of the section torques")
     rp.add_argument("--misfire", type=integer(1), metavar="CYL",
                     help="cylinder CYL (1-based) does not fire: compression and expansion only")
-    rp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
-                    help=f"FE mesh size for --source condensed (default {DEFAULT_MESH_SIZE / MM:g})")
     rp.add_argument("--compare", metavar="CSV", help="a published or measured curve, rows 'rpm, value' ('#' lines: "
                     "comments, '# name = ...' and '# unit = ...' read), drawn over the response; the table gives "
                     "the difference at its peak")

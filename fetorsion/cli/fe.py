@@ -11,7 +11,7 @@ from .options import MM, integer, millimetres
 from ..errors import FetorsionError
 from ..solid.isolate import call_isolated
 from ..io import write_text_atomic
-from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
+from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_WEB_METHOD
 from .common import (SUPPORT_CHOICES, add_json_option, add_mesh_size_option, check_mesh_size, emit_json, load_crank,
                      report, save_plot)
 
@@ -111,7 +111,16 @@ def cmd_condense(args) -> int:
         raise FetorsionError("--with-shapes is saved in the --npz file; give --npz PATH")
     crank = load_crank(args.file, "geometry")
     check_mesh_size(crank, args.mesh_size, "modal")
-    cc = with_film_bearings(run_condensed(crank, args.mesh_size, keep_basis=args.with_shapes))
+    if args.with_shapes:  # the mesh's shape basis is not kept in the store: built here, then kept
+        from ..design.stress import fillet_cuts
+        from ..fe.store import remember_condensed
+
+        cuts = fillet_cuts(crank, engine_fillets(crank))
+        cc = run_condensed(crank, args.mesh_size, keep_basis=True, cuts=cuts)
+        remember_condensed(cc, args.mesh_size, cuts)
+        cc = with_film_bearings(cc)
+    else:
+        cc = condensed(crank, args.mesh_size)
     report(cc, f"{crank.name}\n{cc.table()}", args)
     if args.npz:
         save_condensed(cc, args.npz)
@@ -127,13 +136,30 @@ def format_mass_table(name: str, total, parts: dict) -> str:
     return "\n".join(lines)
 
 
+def engine_fillets(crank):
+    """The crank's fillets, as the run finds them (their cuts are part of the condensed crank)."""
+    from ..design.stress import fillets_of
+    from ..lumped_model.parts import build_parts
+
+    return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
+
+
 def condensed(crank, mesh_size: float, mesh=None):
-    """The condensed crank (meshing in this process: the FE job needs the mesh's arrays), its
-    oil-film bearings at the journals' mean loads when the description states none."""
+    """The run's condensed crank — section cuts at every fillet — from the store
+    (:mod:`fetorsion.fe.store`), else built here (said on stderr) and kept; its oil-film
+    bearings at the journals' mean loads when the description states none. A mesh read from a
+    file is condensed as it is and not kept."""
+    from ..design.stress import fillet_cuts
     from ..fe.condensed import run_condensed
+    from ..fe.store import condensed_crank
     from ..response.coupled import with_film_bearings
 
-    return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh))
+    if mesh is not None:
+        return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh))
+    cuts = fillet_cuts(crank, engine_fillets(crank))
+    say = lambda m: print(f"[fetorsion] {m}", file=sys.stderr, flush=True)  # noqa: E731
+    cc, _ = condensed_crank(crank, mesh_size, cuts, progress=say)
+    return with_film_bearings(cc)
 
 
 def _add_purpose_options(p: argparse.ArgumentParser) -> None:
@@ -175,7 +201,8 @@ def add_parsers(sub) -> None:
     fp.add_argument("--html", metavar="PATH", help="write the mode shapes as an interactive 3D web page (.html)")
     fp.set_defaults(func=cmd_modal)
 
-    kp = sub.add_parser("condense", help="the 3D FE crank condensed (Craig-Bampton) to journal, pin and end masters")
+    kp = sub.add_parser("condense", help="the 3D FE crank condensed (Craig-Bampton) to journal, pin and end masters, "
+                        "kept in the store for the other commands")
     kp.add_argument("file", help="crank description (.toml)")
     add_mesh_size_option(kp)
     kp.add_argument("--npz", metavar="PATH", help="save the reduced model (.npz; layout in docs/condensed-crank.md)")

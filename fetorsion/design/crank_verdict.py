@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.optimize
 
+from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..errors import FetorsionError
 from .m53 import M53Result, polar_modulus, run_m53_crank
 
@@ -72,6 +73,46 @@ def m53_utilisation(result: M53Result, fillets, setup):
         return worst
 
     return utilisation
+
+
+#: The most speeds the damper optimiser evaluates its objective on (every ``k``-th of the setup's).
+DAMPER_DESIGN_SPEEDS = 100
+
+
+def verdict_scfs(crank, fillet: dict | None = None) -> dict:
+    """The SCFs the verdict reads: the fillets' (``fillet``, else
+    :func:`fetorsion.design.scf.fillet_scfs`: the shipped table or one throw FE) and the oil
+    bores' (:func:`fetorsion.design.oilbore.oil_bore_scfs`)."""
+    from .oilbore import oil_bore_scfs
+    from .scf import fillet_scfs
+
+    out = dict(fillet or fillet_scfs(crank))
+    bores = oil_bore_scfs(crank)
+    for kind in ("pin", "journal"):
+        if kind in bores:
+            out[f"{kind}_oil_bore_bending"], out[f"{kind}_oil_bore_torsion"] = bores[kind]
+    if bores:
+        out["oil_bore_source"] = bores["source"]
+    return out
+
+
+def run_fatigue_damper(crank, setup, fillets, scf: dict, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO,
+                       optimise: bool = True, at: str = "front", hub_inertia: float = 0.0, undamped: M53Result | None = None):
+    """The damper designed for the verdict: Den Hartog's start, then (``optimise``) its stiffness
+    and loss optimised to make M53's governing safety over the speeds as large as it can be
+    (:func:`fetorsion.design.dampers.run_damper` objective ``fatigue``), on at most
+    :data:`DAMPER_DESIGN_SPEEDS` of ``setup``'s speeds. ``undamped``: M53 on the crank without a
+    damper in ``setup``, when the caller has it. The run's recommended damper and ``fetorsion
+    damper``'s default are this one."""
+    from ..response.forced import solve_response
+    from .dampers import run_damper
+
+    if undamped is None:
+        undamped = run_m53_crank(crank, fillets, fillet_torque_amplitude(setup, solve_response(setup, ()), fillets),
+                                 setup.rpm, fe_scf=scf)
+    coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
+    return run_damper(crank, kind, mu, optimise, "fatigue", at, hub_inertia, setup=coarse, fillets=fillets,
+                      utilisation=m53_utilisation(undamped, fillets, coarse))
 
 
 @dataclass
@@ -177,7 +218,7 @@ def _flip(safety_at, required: float) -> dict:
 
 
 def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAULT_FATIGUE_METHOD,
-                      mu: float = 0.25, kind: str = "rubber", misfire: bool = True, fe_path: bool = True,
+                      mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", misfire: bool = True, fe_path: bool = True,
                       progress=None) -> CrankVerdict:
     """The crank's fatigue verdict in every configuration (module docstring).
 
@@ -206,7 +247,6 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
     from ..response.cycle import mean_cut_loads, run_load_cycle
     from ..response.forced import misfire_harmonics, solve_response
     from .assessment import run_assessment
-    from .dampers import run_damper
     from .m53 import m53_geometry, scf_comparison
 
     if method not in FATIGUE_METHODS:
@@ -240,9 +280,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
     # the recommended damper: designed for M53's governing safety (its bending does not move with
     # the damper, so the torques decide), on at most 100 speeds, then checked on all
     say("fatigue verdict: designing the recommended damper for it ...")
-    coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // 100)))
-    util = m53_utilisation(configs[0].m53, fillets, coarse)
-    design = run_damper(crank, kind, mu, True, "fatigue", setup=coarse, fillets=fillets, utilisation=util)
+    design = run_fatigue_damper(crank, setup, fillets, scf, kind, mu, undamped=configs[0].m53)
     best = design.optimised
     configs.append(config(f"with the recommended {kind} damper", setup, (best,)))
     notes = []

@@ -448,7 +448,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
 NPZ_FORMAT = "fetorsion-condensed-1"
 
 
-def save_condensed(cc: CondensedCrank, path) -> None:
+def save_condensed(cc: CondensedCrank, path, shapes: bool = True) -> None:
     """Write ``cc`` to an ``.npz`` file atomically (layout in docs/condensed-crank.md).
 
     Arrays: ``K``, ``M`` (r × r, bare crank, SI), ``n_master_dofs``, ``labels``, ``positions``
@@ -456,7 +456,9 @@ def save_condensed(cc: CondensedCrank, path) -> None:
     (N·s/m), ``held``, ``sections`` (masters × 6 × r), ``interior_hz``, ``full_dofs``,
     ``description_json`` (the description it came from) and ``format``. With the recovery
     basis kept: ``shape_nodes`` (mesh vertices, m), ``shape_tets`` (their tetrahedra) and
-    ``shape_basis`` (vertices × 3 × r, float32): u(vertex) = shape_basis @ z.
+    ``shape_basis`` (vertices × 3 × r, float32): u(vertex) = shape_basis @ z (``shapes``: write
+    them). Where the crank has them: ``cut_rows`` (cuts × 6 × r), ``cut_centres`` (m),
+    ``gyroscopic`` (r × r, per rad/s) and ``centrifugal`` (r, per (rad/s)²).
     """
     import json
 
@@ -468,7 +470,10 @@ def save_condensed(cc: CondensedCrank, path) -> None:
                   bearing_damping=cc.bearing_damping, held=cc.held, sections=cc.sections,
                   interior_hz=cc.reduced.fixed_interface_hz, full_dofs=cc.full_dofs,
                   description_json=json.dumps(cc.crank.raw))
-    if cc.reduced.basis is not None and cc.mesh is not None:
+    for name in ("cut_rows", "cut_centres", "gyroscopic", "centrifugal"):
+        if getattr(cc, name) is not None:
+            arrays[name] = getattr(cc, name)
+    if shapes and cc.reduced.basis is not None and cc.mesh is not None:
         _, dof_of_node = assembly.skfem_mesh(TetMesh(cc.mesh.nodes, cc.mesh.tets))
         corners = cc.mesh.tets[:, :4]
         vertices, local = np.unique(corners, return_inverse=True)
@@ -481,8 +486,9 @@ def save_condensed(cc: CondensedCrank, path) -> None:
             np.savez_compressed(fh, **arrays)
 
 
-def load_condensed(path) -> CondensedCrank:
-    """Read a file written by :func:`save_condensed`."""
+def load_condensed(path, crank: Crank | None = None) -> CondensedCrank:
+    """Read a file written by :func:`save_condensed`; ``crank``: the description it was built
+    from, parsed already (else parsed again from the file's copy)."""
     import json
 
     from ..description.crank import parse_crank
@@ -491,10 +497,12 @@ def load_condensed(path) -> CondensedCrank:
         data = np.load(path, allow_pickle=False)
         if str(data["format"]) != NPZ_FORMAT:
             raise FetorsionError(f"{path}: layout {str(data['format'])!r}, this fetorsion reads {NPZ_FORMAT!r}")
-        crank = parse_crank(json.loads(str(data["description_json"])), str(path), check_uncertainty=False)
+        if crank is None:
+            crank = parse_crank(json.loads(str(data["description_json"])), str(path), check_uncertainty=False)
         red = ReducedModel(data["K"], data["M"], int(data["n_master_dofs"]), data["interior_hz"])
+        optional = {k: data[k] for k in ("cut_rows", "cut_centres", "gyroscopic", "centrifugal") if k in data.files}
         return CondensedCrank(crank, [str(s) for s in data["labels"]], data["positions"], red, data["attachment_mass"],
                               data["bearing_stiffness"], data["bearing_damping"], data["held"], int(data["full_dofs"]),
-                              sections=data["sections"])
+                              sections=data["sections"], **optional)
     except (OSError, ValueError, KeyError) as exc:
         raise FetorsionError(f"{path}: not a condensed crank written by fetorsion ({exc})") from None

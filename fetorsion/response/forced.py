@@ -126,13 +126,18 @@ class ResponseResult:
     def table(self) -> str:
         """The largest pulley angle and twist and section torque, with where they occur."""
         i, a = self.pulley_twist_deg.argmax(), self.pulley_angle_deg.argmax()
-        s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
         return "\n".join([
             f"{self.name}: forced response {self.rpm[0]:.0f}-{self.rpm[-1]:.0f} rpm, {self.damping_text()}",
             f"  largest pulley twist   {self.pulley_twist_deg[i]:.4f} deg at {self.rpm[i]:.0f} rpm",
             f"  largest pulley angle   {self.pulley_angle_deg[a]:.4f} deg at {self.rpm[a]:.0f} rpm",
-            f"  largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
-            f"({self.section_labels[k]})"] + self._extra_lines() + compare_lines(self.compare))
+            f"  {self.worst_torque_text()}"] + self._extra_lines() + compare_lines(self.compare))
+
+    def worst_torque_text(self) -> str:
+        """"largest section torque … N m at … rpm (section)": the alternating torque (half
+        peak-to-peak) of the most loaded section, as every command prints it."""
+        s, k = np.unravel_index(self.section_torque_nm.argmax(), self.section_torque_nm.shape)
+        return (f"largest section torque {self.section_torque_nm[s, k]:.1f} N m at {self.rpm[s]:.0f} rpm "
+                f"({self.section_labels[k]})")
 
     def _extra_lines(self) -> list[str]:
         lines = []

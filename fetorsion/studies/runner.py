@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 import numbers
 import os
 import sys
@@ -35,6 +34,9 @@ from pathlib import Path
 from typing import Callable, Iterable
 
 from ..errors import FetorsionError, ParameterError
+# the store's folder, bound and code hash live in io (the condensed cranks' cache shares them)
+from ..io import (STORE_ENV, STORE_MAX_BYTES, STORE_MAX_ENV, code_hash, default_store,  # noqa: F401
+                  store_max_bytes)
 
 #: Environment of each local worker process: one BLAS/OpenMP thread, the worker's one core.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -44,35 +46,6 @@ TASK_RETRIES = 2
 SCHEDULER_ENV = "DASK_SCHEDULER_ADDRESS"
 #: How long a named scheduler may take to answer before it is refused, s.
 SCHEDULER_TIMEOUT_S = 20.0
-STORE_ENV = "FETORSION_STORE"
-
-
-def default_store() -> Path:
-    """The sample store: ``$FETORSION_STORE``, else ``~/.cache/fetorsion/samples``."""
-    env = os.environ.get(STORE_ENV)
-    if env:
-        return Path(env)
-    cache = os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache"
-    return Path(cache) / "fetorsion" / "samples"
-
-
-_CODE_HASH: str | None = None
-
-
-def code_hash() -> str:
-    """SHA-256 of fetorsion's Python source: part of every sample key, so that results stored
-    by other code (an older checkout, an edited model) are never taken for this code's."""
-    global _CODE_HASH
-    if _CODE_HASH is None:
-        root = Path(__file__).resolve().parents[1]
-        h = hashlib.sha256()
-        for path in sorted(root.rglob("*.py")):
-            h.update(str(path.relative_to(root)).encode())
-            h.update(path.read_bytes())
-        _CODE_HASH = h.hexdigest()
-    return _CODE_HASH
-
-
 def sample_key(model_key: str, values: dict) -> str:
     """Hash of one sample: the model's key, the values (exact floats) and the code."""
     text = json.dumps({"model": model_key, "values": {k: _exact(v) for k, v in values.items()},
@@ -84,27 +57,9 @@ def _exact(v):
     return float(v).hex() if isinstance(v, float) else v
 
 
-#: Default bound of the sample store, bytes (``$FETORSION_STORE_MAX_MB`` overrides): a full
-#: ``fetorsion run`` of one description adds about 11 000 lumped samples, ~4 MB.
-STORE_MAX_BYTES = 256 * 2**20
-STORE_MAX_ENV = "FETORSION_STORE_MAX_MB"
 STORE_FILE = "samples.sqlite"
 #: Keys per SQL statement (SQLite's default limit on host parameters is 32 766).
 _SQL_CHUNK = 900
-
-
-def store_max_bytes() -> int:
-    """The store's bound: ``$FETORSION_STORE_MAX_MB`` MiB, else :data:`STORE_MAX_BYTES`."""
-    env = os.environ.get(STORE_MAX_ENV)
-    if not env:
-        return STORE_MAX_BYTES
-    try:
-        mb = float(env)
-    except ValueError:
-        mb = -1.0
-    if not (mb > 0 and math.isfinite(mb)):
-        raise FetorsionError(f"{STORE_MAX_ENV}={env!r}: must be a positive number of MiB")
-    return int(mb * 2**20)
 
 
 class SampleStore:
