@@ -71,7 +71,8 @@ def engine_answers(crank, scf, mesh_size):
 def main(argv=None):
     from fetorsion.design.crank_verdict import verdict_scfs
     from fetorsion.lumped_model.lumped import lumped
-    from fetorsion.studies.calibration import calibration_inputs, run_calibration, variant
+    from fetorsion.studies.calibration import calibration_inputs, run_calibration
+    from fetorsion.studies.variants import with_values
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("file", nargs="?", default="geometry/renault21.toml")
@@ -102,7 +103,7 @@ def main(argv=None):
         changes = {}
         for i, v in zip(inputs, x):
             changes.update(i.values(float(v)))
-        v = variant(crank, changes)
+        v = with_values(crank, changes)
         rows[name] = {"inputs": {i.name: float(val) for i, val in zip(inputs, x)},
                       "f1_free_lumped_hz": float(lumped(v, 17).frequencies_hz[0]), **engine_answers(v, scf, size)}
     cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
