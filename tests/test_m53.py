@@ -148,3 +148,43 @@ def test_fe_scfs_in_m53s_convention_are_near_its_formulas(name):
     assert {"alpha_B", "beta_B", "alpha_T", "beta_T"} <= set(checked)
     for k in checked:
         assert abs(table[k]["difference"]) <= 0.20, (k, table[k])
+
+
+@pytest.mark.fe
+@pytest.mark.slow
+def test_the_reports_verdict_is_one_line_per_configuration(tmp_path):
+    """Issue 39 end to end on the Renault 21 (fillets, drillings, 30 mm mesh), fe deciding: one
+    summary line per configuration naming the method, the damping and its source, the governing
+    place and speed and the safety against the required, the other method beside it; the damping
+    flip; the recommended damper checked by both methods; every SCF in M53's convention."""
+    import json
+    import re
+
+    from fetorsion.app.run import DEFAULT_STEPS, run
+
+    steps = tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings", "campbell", "fatigue"))
+    out = run(ROOT / "geometry" / "renault21.toml", tmp_path / "r", steps=steps,
+              options={"mesh_size": 0.03, "fatigue_method": "fe"})
+    data = json.loads((out / "results.json").read_text())["fatigue"]
+    assert data["method"] == "fe"
+    names = [c["name"] for c in data["configurations"]]
+    assert names[0] == "without a damper" and names[1] == "with the recommended rubber damper"
+    assert len(names) == 4 and all(n.startswith("misfire of cylinder ") for n in names[2:])
+    summary = (out / "report.md").read_text().split("## Summary", 1)[1].split("\n## ", 1)[0]
+    lines = [x for x in summary.splitlines() if x.startswith("- **Verdict, ")]
+    assert len(lines) == len(names)
+    for line, c in zip(lines, data["configurations"]):
+        a, b = c["fe"], c["iacs-m53"]
+        assert line.startswith(f"- **Verdict, {c['name']}:** fe, ζ = 0.02 (assumed")
+        assert f"{a['rpm']:.0f} rpm): safety {a['safety']:.2f} against {a['required']:.2f}: " in line
+        assert f"; iacs-m53 {b['safety']:.2f} against {b['required']:.2f} " in line
+        assert ("FAIL" in line) == (not a["passes"])
+    # the recommended damper's line is its own check by both methods (not the undamped one's)
+    assert data["configurations"][1]["iacs-m53"]["safety"] > data["configurations"][0]["iacs-m53"]["safety"]
+    assert "designed for the iacs-m53 verdict's governing safety and checked by the deciding fe method" in summary
+    flip = data["flip"]["zeta"]
+    assert flip is None or re.search(r"\*\*Damping:\*\* the verdict rests on ζ = 0\.02, \*\*assumed\*\*", summary)
+    assert set(data["scf_m53"]) == {"alpha_B", "beta_B", "beta_Q", "alpha_T", "beta_T", "gamma_B", "gamma_T"}
+    for k, row in data["scf_m53"].items():
+        assert row["empirical"] > 0 and (row["fe"] is None or row["difference"] == pytest.approx(
+            row["fe"] / row["empirical"] - 1, rel=1e-12)), k

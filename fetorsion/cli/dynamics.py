@@ -262,7 +262,10 @@ def cmd_transient(args) -> int:
                         partition=partition_of(args.source), web_method=stiffness_for(args), teeth=args.teeth,
                         track_station=0 if args.station is None else args.station - 1,
                         variable_inertia=args.variable_inertia, method=args.integrator)
-    return report(res, res.table(), args)
+    model = "" if isinstance(crank, (Chain, Network)) else (
+        f"\n(the crank's lumped {partition_of(args.source)}-DOF chain, not the condensed crank the run and 'response' "
+        "answer for: the condensed crank's time domain is not built yet)")
+    return report(res, res.table() + model, args)
 
 
 def _orders(text: str) -> list[float]:

@@ -17,6 +17,11 @@ from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 
+#: A mode below the first mostly torsional one is named in the summary when at least this share
+#: of its kinetic energy is torsion.
+TORSION_SHARE_NOTED = 0.10
+
+
 def _with_error(f: float, measured) -> str:
     return f"{f:.1f}" + (f" ({100 * (f / measured - 1):+.1f} %)" if measured else "")
 
@@ -411,9 +416,17 @@ def summary_lines(run: RunOutcome) -> list[str]:
         b = bearings.condensed.crank.main_bearings
         support = ("rigid main bearings" if b.rigid else "oil-film main bearings" if b.oil_film is not None
                    else "the [bearings] stiffness")
+        held = bearings.bearings
+        # below the first mostly torsional mode, modes that carry a real share of torsion: the
+        # free-free torsional mode split among coupled ones (not a stiffer crank)
+        shared = [(f, t) for f, t in zip(held.frequencies_hz, held.fractions[:, 0])
+                  if f < bearings.f1_bearings_hz and t >= TORSION_SHARE_NOTED]
         out.append(f"- **f1 in the engine: {bearings.f1_bearings_hz:.1f} Hz** (condensed crank in {support}, "
                    f"{bearings.condensed.reduced.size} DOF; {100 * (bearings.f1_bearings_hz / bearings.f1_free_hz - 1):+.1f} % "
-                   "on free-free).")
+                   "on free-free; the first mode whose kinetic energy is mostly torsion)"
+                   + ("" if not shared else ". Below it the torsion is shared with bending, in coupled modes at "
+                      + ", ".join(f"{f:.1f} Hz ({100 * t:.0f} % torsion)" for f, t in shared)
+                      + ": the forced response and the verdict carry every one of them") + ".")
     if isinstance(ver, VerdictOutcome):
         unit, scale = ver.verdict.unit
         rows = ver.verdict.rows()
@@ -441,10 +454,13 @@ def summary_lines(run: RunOutcome) -> list[str]:
         out += [f"- **Verdict, {line.split(': ', 1)[0]}:** {line.split(': ', 1)[1]} ({fat.model})." for line in v.lines()]
         out.append(f"- **Damping:** the verdict rests on ζ = {v.damping_ratio:.4g}, "
                    + ("**assumed** (no source stated)" if v.damping_assumed else f"from {v.damping_source}")
-                   + f"; it {v.flip['kind']}.")
+                   + "; " + (f"it {v.flip['kind']}" if v.flip["zeta"] is None or v.flip["zeta"] <= v.damping_ratio
+                             else f"as described it would pass from ζ = {v.flip['zeta']:.4g} up") + ".")
         if v.damper is not None and v.damper.optimised is not None:
-            out.append(f"- **Recommended damper:** {_damper_spec(v.damper.optimised)}, designed for the "
-                       f"{v.method} verdict (its line above).")
+            out.append(f"- **Recommended damper:** {_damper_spec(v.damper.optimised)}, designed for the iacs-m53 "
+                       "verdict's governing safety" + ("" if v.method == "iacs-m53" else
+                                                       f" and checked by the deciding {v.method} method")
+                       + " (its line above).")
         mat = fat.assessment.worst.material
         if fat.assessment.worst.defaulted:
             out.append(f"- **Material assumed:** the description gives no strength; {mat.name}, R_m "
