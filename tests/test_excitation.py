@@ -143,7 +143,8 @@ def test_campbell_cli_writes_json_and_plot(tmp_path):
     from conftest import ROOT
     out, png = tmp_path / "c.json", tmp_path / "c.png"
     p = subprocess.run([sys.executable, "-m", "fetorsion.cli", "campbell", str(GEOMETRY / "renault21.toml"), "--json", str(out),
-                        "--plot", str(png), "--orders", "0.5,1,2,4,6"], capture_output=True, text=True, cwd=ROOT)
+                        "--plot", str(png), "--orders", "0.5,1,2,4,6", "--source", "lumped17"],
+                       capture_output=True, text=True, cwd=ROOT)  # the condensed default: test_condensed_store
     assert p.returncode == 0, p.stderr
     data = json.loads(out.read_text())
     assert {"mode", "order", "rpm", "severity"} <= set(data["crossings"][0])
