@@ -368,6 +368,13 @@ CASES = [
                                               "dynamic_table = [[100.0, 2.6e4, 0.2], [400.0, 3.0e4, 0.25]]\n")}, 2,
      ["rubber", "Maxwell", "nonlinear integrator"]),
     ("transient-no-excitation", "transient {d}/c.toml --rpm 2000", {"c.toml": CHAIN}, 2, ["[excitation]"]),
+    # the condensed crank's time domain is steady running: asked for more, it says what to choose
+    ("transient-condensed-run-up", "transient {d}/crank.toml --run-up 1000 2000 --rate 100 --source condensed", {}, 2,
+     ["--source condensed", "--run-up", "lumpedN"]),
+    ("transient-condensed-station", "transient {d}/crank.toml --rpm 2000 --source condensed --station 3", {}, 2,
+     ["--station", "pulley"]),
+    ("transient-chain-condensed", "transient {d}/c.toml --rpm 2000 --source condensed", {"c.toml": ENGINE_CHAIN}, 2,
+     ["--source condensed", "chain file"]),
     ("transient-plot-format", "transient {d}/n.toml --rpm 2000 --plot {d}/t.txt", {"n.toml": NETWORK}, 2,
      ["--plot"]),
     # --- [[chain.nonlinear]] (clutch dampers, DMF arc springs)

@@ -237,14 +237,21 @@ def cmd_damper(args) -> int:
     for name, dampers in (("without a damper", ()), (f"with the {'optimised' if res.optimised else 'Den Hartog'} "
                                                      "damper", (chosen,))):
         lines.append(f"    {name}: {solve_response(setup, dampers).worst_torque_text()}")
+    engine = stored_engine_model(crank, args) if args.source.startswith("lumped") else None
+    if engine is not None:
+        undamped = solve_response(setup, ())
+        stored = solve_response(engine_setup(*engine, args.support, rpm, args.orders, args.damping), ())
+        lines.append(_gap_line("the largest section torque without a damper", _worst_torque(undamped),
+                               _worst_torque(stored), "N m"))
     return report(res, res.table() + "\n" + "\n".join(lines), args)
 
 
 def cmd_transient(args) -> int:
     from ..response.transient import run_transient
 
-    if args.source in ("fe", "condensed"):
-        raise FetorsionError(f"--source {args.source}: the time domain uses a lumped model; choose --source lumpedN")
+    if args.source == "fe":
+        raise FetorsionError("--source fe: the time domain uses the condensed crank (a crank's default for --rpm) "
+                             "or a lumped model; choose --source condensed or lumpedN")
     if args.run_up is not None and args.rate is None:
         raise FetorsionError("--run-up A B needs --rate RPM_PER_S (how fast the speed changes)")
     if args.rate is not None and args.run_up is None:
@@ -252,7 +259,26 @@ def cmd_transient(args) -> int:
     if args.run_up is not None and args.run_up[0] == args.run_up[1]:
         raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
                              "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
-    crank = load_excited(args.file, args.source)
+    crank = load_excited(args.file, args.source or "lumped17")
+    engine_can = args.run_up is None and not args.variable_inertia and not getattr(crank, "dampers", ())
+    if args.source is None:
+        # a crank's steady running: the engine model; what it cannot do yet, the lumped chain (said)
+        args.source = "lumped17" if isinstance(crank, (Chain, Network)) or not engine_can else "condensed"
+    if args.source == "condensed":
+        if not engine_can:
+            what = ("--run-up" if args.run_up is not None else "--variable-inertia" if args.variable_inertia
+                    else "[[dampers]]")
+            raise FetorsionError(f"--source condensed: the condensed crank's time domain is steady running (--rpm) "
+                                 f"without {what} yet; choose --source lumpedN")
+        if args.station is not None:
+            raise FetorsionError("--station: the condensed crank's steady run tracks the pulley's angle; leave "
+                                 "--station out or choose --source lumpedN")
+        from ..response.engine_transient import run_engine_steady
+
+        cc, fillets = engine_model(crank, args)
+        setup = engine_setup(cc, fillets, args.support, [args.rpm], damping_ratio=args.damping)
+        res = run_engine_steady(setup, args.cycles, args.teeth)
+        return report(res, res.table(), args)
     if args.station is not None:
         dof = lumped(crank, partition_of(args.source), args.stiffness).dof
         if args.station > dof:
@@ -264,7 +290,7 @@ def cmd_transient(args) -> int:
                         variable_inertia=args.variable_inertia, method=args.integrator)
     model = "" if isinstance(crank, (Chain, Network)) else (
         f"\n(the crank's lumped {partition_of(args.source)}-DOF chain, not the condensed crank the run and 'response' "
-        "answer for: the condensed crank's time domain is not built yet)")
+        "answer for: the condensed crank's time domain is steady running, --rpm, without dampers)")
     return report(res, res.table() + model, args)
 
 
@@ -364,8 +390,12 @@ def add_parsers(sub) -> None:
                     help="teeth of the simulated wheel the order tracking reads (default %(default)s)")
     tp.add_argument("--station", type=integer(1), metavar="N",
                     help="1-based coordinate of the model whose angle is order-tracked (default 1, the pulley)")
-    tp.add_argument("--source", default="lumped17", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
-                    help="a crank's lumped model (default %(default)s; chains and networks are their own model)")
+    tp.add_argument("--source", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],
+                    help="default: a crank's steady running (--rpm) on the condensed crank in its bearings (the run's "
+                         "engine model, from the store), a run-up, variable inertia or [[dampers]] on its lumped "
+                         "17-DOF chain (said in the output); chains and networks are their own model")
+    tp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size of the condensed crank (default {DEFAULT_MESH_SIZE / MM:g})")
     tp.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings", help=argparse.SUPPRESS)
     tp.add_argument("--stiffness", choices=sorted(WEB_METHODS), default=DEFAULT_WEB_METHOD)
     tp.add_argument("--damping", type=real(0.0, 1.0), help="modal damping ratio, 0 < ζ < 1 (default from the file)")
