@@ -1,8 +1,8 @@
 """The condensed cranks already built, kept between commands: a content-addressed cache.
 
 A condensed crank (:func:`fetorsion.fe.condensed.run_condensed`: mesh, assembly, factorisation,
-Craig–Bampton) costs about 25 s on the Renault 21 and a second to use, so every command that
-answers for the crank in its bearings (``run``, ``campbell``, ``response``, ``damper``, ...) takes
+Craig–Bampton) costs 25–45 s on the Renault 21 (2 cores) and a second or two to use, so every
+command that answers for the crank in its bearings (``run``, ``campbell``, ``response``, ``damper``, ...) takes
 it from here after the first has built it. The key is a SHA-256 of what the condensation reads:
 
 * the description's parsed tables less those no FE stage reads (:data:`NOT_READ_BY_FE`: the
