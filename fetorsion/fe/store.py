@@ -2,8 +2,9 @@
 
 A condensed crank (:func:`fetorsion.fe.condensed.run_condensed`: mesh, assembly, factorisation,
 Craig–Bampton) costs 25–45 s on the Renault 21 (2 cores) and a second or two to use, so every
-command that answers for the crank in its bearings (``run``, ``campbell``, ``response``, ``damper``, ...) takes
-it from here after the first has built it. The key is a SHA-256 of what the condensation reads:
+command that answers for the crank in its bearings (``run``, ``campbell``, ``response``,
+``damper``, ``transient``) takes it from here after the first has built it. The key is a SHA-256
+of what the condensation reads:
 
 * the description's parsed tables less those no FE stage reads (:data:`NOT_READ_BY_FE`: the
   excitation, dampers, limits, uncertainty ranges and notes; a test holds ``fe`` and ``solid`` to
