@@ -224,11 +224,10 @@ def cmd_damper(args) -> int:
         res = run_fatigue_damper(crank, setup, fillets, verdict_scfs(crank), args.type, args.inertia_ratio,
                                  args.optimise, args.at, args.hub_inertia)
     else:
-        from ..design.crank_verdict import DAMPER_DESIGN_SPEEDS
+        from ..design.crank_verdict import design_speeds
 
-        coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
         res = run_damper(crank, args.type, args.inertia_ratio, args.optimise, objective, args.at, args.hub_inertia,
-                         setup=coarse, fillets=fillets)
+                         setup=design_speeds(setup), fillets=fillets)
     # checked on every speed of the range (the optimiser read at most 100 of them)
     from ..response.forced import solve_response
 

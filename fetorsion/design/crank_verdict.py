@@ -96,6 +96,12 @@ def verdict_scfs(crank, fillet: dict | None = None) -> dict:
     return out
 
 
+def design_speeds(setup):
+    """``setup`` at every k-th speed, at most :data:`DAMPER_DESIGN_SPEEDS` of them: the speeds a
+    damper optimiser reads (each of its ~80 trials solves them all)."""
+    return setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
+
+
 def run_fatigue_damper(crank, setup, fillets, scf: dict, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO,
                        optimise: bool = True, at: str = "front", hub_inertia: float = 0.0, undamped: M53Result | None = None):
     """The damper designed for the verdict: Den Hartog's start, then (``optimise``) its stiffness
@@ -110,7 +116,7 @@ def run_fatigue_damper(crank, setup, fillets, scf: dict, kind: str = "rubber", m
     if undamped is None:
         undamped = run_m53_crank(crank, fillets, fillet_torque_amplitude(setup, solve_response(setup, ()), fillets),
                                  setup.rpm, fe_scf=scf)
-    coarse = setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
+    coarse = design_speeds(setup)
     return run_damper(crank, kind, mu, optimise, "fatigue", at, hub_inertia, setup=coarse, fillets=fillets,
                       utilisation=m53_utilisation(undamped, fillets, coarse))
 
@@ -248,6 +254,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
     from ..response.forced import misfire_harmonics, solve_response
     from .assessment import run_assessment
     from .m53 import m53_geometry, scf_comparison
+    from .verdict import allowed_power
 
     if method not in FATIGUE_METHODS:
         raise FetorsionError(f"fatigue method must be one of {', '.join(FATIGUE_METHODS)}, got {method!r}")
@@ -255,9 +262,9 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
     ex = crank.excitation
     mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
 
-    def m53_of(s, dampers):
-        return run_m53_crank(crank, fillets, fillet_torque_amplitude(s, solve_response(s, dampers), fillets), s.rpm,
-                             fe_scf=scf)
+    def m53_of(s, dampers, response=None):
+        response = solve_response(s, dampers) if response is None else response
+        return run_m53_crank(crank, fillets, fillet_torque_amplitude(s, response, fillets), s.rpm, fe_scf=scf)
 
     def fe_of(s, dampers):
         if not fe_path:
@@ -265,12 +272,11 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
         return run_assessment(crank, run_load_cycle(cc, s, dampers, mean=mean), fillets, scf, "textbook")
 
     def config(name, s, dampers, cylinder=None):
-        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers), fe_of(s, dampers), cylinder)
+        response = solve_response(s, dampers)  # one solve: M53's torques and the dampers' heat
+        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers, response), fe_of(s, dampers), cylinder)
         if dampers:
-            p = solve_response(s, dampers).damper_power_w.sum(axis=(1, 2))
-            c.damper_power_w = float(p.max())
-            allowed = [d.allowed_power for d in dampers]
-            c.allowed_power_w = float(sum(allowed)) if allowed and all(a > 0 for a in allowed) else 0.0
+            p = response.damper_power_w.sum(axis=(1, 2))
+            c.damper_power_w, c.allowed_power_w = float(p.max()), allowed_power(dampers)
         return c
 
     say("fatigue verdict: without a damper ...")

@@ -158,12 +158,17 @@ def worst_case(name: str, crank, response, scf, limits: Limits, fillets) -> Verd
                        damper_temperatures_c=tuple(response.damper_temperatures_c))
 
 
+def allowed_power(dampers) -> float:
+    """The dampers' allowed dissipation together, W, when every one is rated; else 0 (unrated)."""
+    allowed = [d.allowed_power for d in dampers]
+    return float(sum(allowed)) if allowed and all(a > 0 for a in allowed) else 0.0
+
+
 def rated(case: VerdictCase, dampers) -> VerdictCase:
-    """``case`` with its dampers' allowed dissipation (when every one is rated; else unrated)."""
+    """``case`` with its dampers' allowed dissipation (:func:`allowed_power`)."""
     from dataclasses import replace
 
-    allowed = [d.allowed_power for d in dampers]
-    return replace(case, allowed_power_w=float(sum(allowed)) if allowed and all(a > 0 for a in allowed) else 0.0)
+    return replace(case, allowed_power_w=allowed_power(dampers))
 
 
 def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
