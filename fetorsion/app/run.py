@@ -482,9 +482,15 @@ def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
     measured = ctx.options.get("measured")
     if not measured:
         return None
+    from ..response.forced import solve_response
     from ..studies.comparison import run_comparison
 
-    res = run_comparison(ctx.crank, measured, "lumped17", ctx.options.get("station"))
+    # the model the verdict judged: the condensed crank in its bearings where the run built it
+    setup = ctx.setup()
+    engine = setup is ctx.engine_setup()
+    response = solve_response(setup, getattr(ctx.crank, "dampers", ())) if measured.get("cuts") else None
+    res = run_comparison(ctx.crank, measured, "condensed" if engine else "lumped17", ctx.options.get("station"),
+                         condensed=ctx.built.get("condensed"), response=response)
     ctx.results["measured"] = res.to_dict()
     return MeasuredOutcome(res, ctx.save(res.plot(), "measured.png"))
 

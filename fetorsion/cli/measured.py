@@ -7,7 +7,8 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .common import add_json_option, emit_json, load_crank, load_description, refuse_network, save_plot
+from .common import (add_json_option, check_mesh_size, emit_json, load_crank, load_description, refuse_network,
+                     save_plot)
 from .options import integer, real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -65,7 +66,7 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
     return {"frfs": frfs, "cuts": cuts, "tracks": tracks, "band": None if band is None else tuple(band)}
 
 
-def check_measured(crank, measured: dict, station: str | None) -> None:
+def check_measured(crank, measured: dict, station: str | None, source: str = "lumped17") -> None:
     """What the model needs of the measured data, checked before it is solved: order cuts need an
     ``[excitation]`` and must be angles; the station must exist."""
     if measured["cuts"] and getattr(crank, "excitation", None) is None:
@@ -74,20 +75,36 @@ def check_measured(crank, measured: dict, station: str | None) -> None:
         if c.unit != "rad":
             raise FetorsionError(f"compare: {c.label or 'an order cut'} is in {c.unit}; the model's order cuts are "
                                  "angles (deg, mrad or rad)")
-    check_station(crank, station)
+    check_station(crank, station, source)
 
 
-def check_station(crank, station: str | None) -> None:
-    """A station that is not the pulley or flywheel end must be a label of the lumped chain."""
+def check_station(crank, station: str | None, source: str = "lumped17") -> None:
+    """A station that is not the pulley or flywheel end must be one of the model's
+    (:func:`fetorsion.studies.comparison.model_stations`), checked before any model is built."""
     if station is not None and station.lower() not in ("pulley", "flywheel"):
-        from ..lumped_model.lumped import lumped
-        from ..studies.comparison import station_index
+        from ..studies.comparison import model_stations
 
-        station_index(lumped(crank, 17), station)
+        names = model_stations(crank, source)
+        if not (station.isdigit() and 1 <= int(station) <= len(names)) and station.lower() not in map(str.lower, names):
+            raise FetorsionError(f"compare: station {station!r} is not in the model; give pulley, flywheel or one of "
+                                 f"{', '.join(names)}")
+
+
+def compare_source(args, crank) -> str:
+    """``--source``, or its default: the condensed crank for a crank description, the chain's own
+    lumped model for a chain file."""
+    from ..description.model import Chain
+
+    if args.source is not None:
+        if args.source != "lumped17" and isinstance(crank, Chain):
+            raise FetorsionError(f"--source {args.source}: {args.file} is a chain (no geometry); its model is "
+                                 "lumped17")
+        return args.source
+    return "lumped17" if isinstance(crank, Chain) else "condensed"
 
 
 def cmd_compare(args) -> int:
-    from ..studies.comparison import run_comparison
+    from ..studies.comparison import gap_lines, model_response, run_comparison
 
     for m in args.measured:
         _measured_kind(m, args.teeth)
@@ -95,11 +112,26 @@ def cmd_compare(args) -> int:
         raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     crank = load_description(args.file)
     refuse_network(crank, args.file, "compare")
-    check_station(crank, args.station)
+    source = compare_source(args, crank)
+    if source != "lumped17":
+        check_mesh_size(crank, args.mesh_size, "modal")
+    check_station(crank, args.station, source)
     measured = read_measured(args.measured, args.band, args.unit, args.order, args.teeth, args.revolutions,
                              args.track_orders)
-    check_measured(crank, measured, args.station)
-    out = run_comparison(crank, measured, args.source, args.station)
+    check_measured(crank, measured, args.station, source)
+    cc = None
+    if source != "lumped17" and (measured["cuts"] or measured["tracks"] or source == "condensed"):
+        from .fe import condensed
+
+        cc = condensed(crank, args.mesh_size)
+    out = run_comparison(crank, measured, source, args.station, condensed=cc)
+    if source == "lumped17" and out.order_cuts:
+        from .dynamics import stored_engine_model
+
+        args.support = "bearings"
+        engine = stored_engine_model(crank, args)
+        if engine is not None:
+            out.gaps += gap_lines(out, model_response(crank, "condensed", engine[0]), args.station)
     print(out.table())
     emit_json(out.to_dict(), args.json)
     if args.plot:
@@ -109,13 +141,15 @@ def cmd_compare(args) -> int:
         from ..measured.uff import write_uff58
         from ..studies.comparison import model_predictions
 
-        write_uff58(args.uff, model_predictions(crank, out))
+        write_uff58(args.uff, model_predictions(crank, out, source=source, condensed=cc, band=measured["band"]))
         print(f"the model's predictions (UFF 58): {args.uff}", file=sys.stderr)
     return 0
 
 
 def add_parsers(sub) -> None:
-    from ..studies.comparison import FREQUENCY_SOURCES
+    from ..description.defaults import DEFAULT_MESH_SIZE
+    from ..studies.comparison import SOURCES
+    from .options import MM, millimetres
 
     cp = sub.add_parser("compare", help="the model against measurement: modal-test FRFs (UFF 58), order cuts "
                         "(UFF 58 or CSV), torsiograph tooth-edge recordings (CSV)")
@@ -123,12 +157,19 @@ def add_parsers(sub) -> None:
     cp.add_argument("measured", nargs="+", help="measured files: .uff/.unv (dataset 58: FRFs, order functions), "
                     ".csv order cuts (rpm, amplitude[, phase]; '# unit', '# order' lines), or .csv tooth-edge "
                     "times (with --teeth)")
-    cp.add_argument("--source", choices=FREQUENCY_SOURCES, default="lumped17",
-                    help="model of the natural frequencies: the lumped chain or the free-free 3D FE (default %(default)s)")
+    cp.add_argument("--source", choices=SOURCES,
+                    help="the model: condensed (default for a crank description: the crank the run's verdict judged, "
+                         "free-free against a modal test, in its bearings against running measurements), lumped17 "
+                         "(the fast chain; a chain file's model), fe (frequencies from the full free-free 3D FE, "
+                         "running measurements on the condensed crank)")
+    cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
+                    help=f"FE mesh size of the condensed crank (default {DEFAULT_MESH_SIZE / MM:g}; the run's, so its "
+                         "stored condensed crank is used)")
     cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
                     help="frequency band (Hz) in which to fit the measured FRFs' modes")
     cp.add_argument("--station", help="where the order cuts were measured: pulley (default), flywheel, or a "
-                    "station label of the lumped chain (J1 ... J5, P1 ...)")
+                    "station of the model by name or number (the condensed crank's front, J1, P1, ..., rear; the "
+                    "chain's labels)")
     cp.add_argument("--unit", help="amplitude unit of CSV order cuts without a '# unit' line (deg, mrad, rad)")
     cp.add_argument("--order", type=real(0.0), help="engine order of CSV order cuts without a '# order' line")
     cp.add_argument("--teeth", type=integer(1), help="teeth per revolution of every wheel of a tooth-edge CSV")

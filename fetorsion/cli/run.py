@@ -62,9 +62,10 @@ def cmd_run(args) -> int:
     if args.measured:  # read and checked now, before any work
         from .measured import check_measured, check_station, read_measured
 
-        check_station(crank, args.station)
+        engine = not args.no_fe and args.source == "condensed" and not isinstance(crank, (Chain, Network))
+        check_station(crank, args.station, "condensed" if engine else "lumped17")
         measured = read_measured(args.measured, args.band, teeth=args.teeth)
-        check_measured(crank, measured, args.station)
+        check_measured(crank, measured, args.station, "condensed" if engine else "lumped17")
         options.update(measured=measured, station=args.station)
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,

@@ -66,6 +66,14 @@ def _part_mid(cm: CrankMesh, part: str) -> float:
     return 0.5 * (x.min() + x.max())
 
 
+def master_labels(crank: Crank) -> list[str]:
+    """The labels of a crank's masters (:func:`crank_masters`), known before any mesh: ``front``,
+    ``J1``, ``P1``, ``J2``, …, ``rear``."""
+    inner = [lb for j in range(len(crank.journals))
+             for lb in ((f"J{j + 1}", f"P{j + 1}") if j < crank.cylinders else (f"J{j + 1}",))]
+    return ["front", *inner, "rear"]
+
+
 def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
     """The masters of a crank mesh, in axial order: ``front``, ``J1``, ``P1``, ``J2``, …, ``rear``."""
     bearings = crank.main_bearings

@@ -355,8 +355,9 @@ def measured_section(crank: Crank, outcome) -> list[str]:
     c = outcome.comparison
     return ["## Model against measurement", "",
             "Natural frequencies: the modes fitted to the measured FRFs, each against the nearest free-free mode "
-            "of the model named; order cuts: the measured amplitude against the lumped chain's own order at the "
-            "sensor's station (docs/measured-data.md).", "", "```", c.table(), "```", "",
+            "of the model named; order cuts: the measured amplitude against the model's own order at the sensor's "
+            f"station, the model the {c.model or 'lumped chain'} (docs/measured-data.md).", "", "```", c.table(),
+            "```", "",
             f"![]({outcome.image})", ""]
 
 
@@ -474,7 +475,8 @@ def summary_lines(run: RunOutcome) -> list[str]:
         for c in mea.comparison.order_cuts:
             p = c.peaks()
             out.append(f"- **Order {c.order:g} at {c.station} ({c.name}): model peak {p['peak_difference_percent']:+.1f} %, "
-                       f"{p['peak_rpm_difference']:+.0f} rpm** against the measurement (lumped chain).")
+                       f"{p['peak_rpm_difference']:+.0f} rpm** against the measurement "
+                       f"({mea.comparison.model or 'lumped chain'}).")
     return ["## Summary", "", *out, ""] if out else []
 
 

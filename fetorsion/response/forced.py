@@ -59,6 +59,9 @@ class ResponseResult:
         Mean power each damper dissipates, per order (orders add: they are orthogonal), W.
     misfire : int or None
         0-based cylinder that does not fire, if any.
+    pulley, flywheel : int
+        The DOF of the pulley-end and the flywheel-end station (a chain's first and last
+        station; the condensed crank's front and rear master θx).
     """
 
     name: str
@@ -88,6 +91,7 @@ class ResponseResult:
     section_x: np.ndarray | None = None
     model: str = "lumped chain"
     pulley: int = 0
+    flywheel: int = -1
 
     def to_dict(self) -> dict:
         out = {"name": self.name, "model": self.model, "labels": self.labels, "sections": self.section_labels,
@@ -498,7 +502,7 @@ def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
         damper_temperatures_c=[float(d.temperature_c) for d in system.dampers],
         damper_power_w=np.moveaxis(system.dissipated_power(theta, omegas), 2, 1), misfire=setup.misfire,
         positions_m=setup.positions_m, section_labels=list(setup.section_labels), section_rows=setup.section_rows,
-        section_x=setup.section_x, model=setup.model, pulley=p,
+        section_x=setup.section_x, model=setup.model, pulley=p, flywheel=f,
     )
 
 

@@ -1,23 +1,26 @@
 """The model against measurement: natural frequencies from a modal test and order cuts from a
 torsiograph or an analyser, one table and one figure per quantity.
 
+The model is one of :data:`SOURCES`. ``condensed`` (the default of ``fetorsion compare`` for a
+crank description) is the condensed crank the run's verdict judged: free-free for a modal test
+(a modal test hangs the crank free), in its bearings for what was measured on the running engine
+(order cuts, torsiograph order maps). ``lumped17`` is the 17-DOF chain throughout (the fast,
+approximate model; a chain file's own). ``fe`` takes the frequencies from the full free-free 3D
+FE and the running measurements from the condensed crank in its bearings.
+
 Frequencies: the modes fitted to measured FRFs (:func:`fetorsion.measured.modal.run_modal_fit`)
 are paired, each with the nearest model frequency; the difference is (model − measured) /
-measured. The model's are the free-free torsional modes of the lumped chain (``lumped17``, the
-fast model) or every labelled mode of the free-free 3D FE (``fe``): a modal test hangs the crank
-free.
+measured.
 
 Order cuts: a measured cut of engine order k against speed (a UFF 58 order function, a CSV cut,
 or a torsiograph's tracked order) is set beside the model's own order-k amplitude of the same
 angle at the station the sensor sat on (default the pulley end, where a torsiograph usually
-sits), on the forced response of the lumped chain. Compared are the peaks (amplitude in %,
-speed in rpm) and, over the speeds both cover, the model's amplitude interpolated to each
-measured speed.
+sits). Compared are the peaks (amplitude in %, speed in rpm) and, over the speeds both cover, the
+model's amplitude interpolated to each measured speed.
 
 Waterfall: a torsiograph's every tracked order against mean speed (the measurement's own Campbell
-diagram, as an order map), with the model's crossings on it: mode n meets order k at
-60 f_n / k rpm, f_n the lumped chain's natural frequencies (the model of the order cuts). A
-resonance the model places right lights up where its crossing is marked.
+diagram, as an order map), with the model's crossings on it: torsional mode n meets order k at
+60 f_n / k rpm. A resonance the model places right lights up where its crossing is marked.
 """
 
 from __future__ import annotations
@@ -28,8 +31,10 @@ import numpy as np
 
 from ..errors import FetorsionError
 
-#: Model sources for the natural frequencies.
-FREQUENCY_SOURCES = ("lumped17", "fe")
+#: The models a measurement is set beside (see the module docstring).
+SOURCES = ("condensed", "lumped17", "fe")
+#: Free-free modes of the condensed crank paired with a modal test's: the lowest this many.
+CONDENSED_MODES = 20
 #: Crossings a waterfall's summary line quotes (those the measurement responds to most).
 WATERFALL_LINES = 4
 
@@ -155,6 +160,8 @@ class OrderCutComparison:
     measured_deg: np.ndarray
     model_rpm: np.ndarray
     model_deg: np.ndarray
+    #: The station's 1-based number among the model's stations (:func:`response_stations`)
+    node: int = 0
 
     def _overlap(self):
         both = (self.rpm >= self.model_rpm.min()) & (self.rpm <= self.model_rpm.max())
@@ -178,7 +185,8 @@ class OrderCutComparison:
                 "rms_difference_deg": float(np.sqrt(np.mean((model_at - self.measured_deg[both]) ** 2)))}
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "order": self.order, "station": self.station, "rpm": self.rpm.tolist(),
+        return {"name": self.name, "order": self.order, "station": self.station, "node": self.node,
+                "rpm": self.rpm.tolist(),
                 "measured_deg": self.measured_deg.tolist(), "model_rpm": self.model_rpm.tolist(),
                 "model_deg": self.model_deg.tolist(), **self.peaks()}
 
@@ -258,36 +266,66 @@ def model_crossings(model_hz, orders, rpm) -> list:
     return out
 
 
-def waterfall(name: str, track, crank) -> Waterfall:
+def waterfall(name: str, track, crank, source: str = "lumped17", condensed=None) -> Waterfall:
     """A torsiograph track (:class:`~fetorsion.measured.torsiograph.OrderTrack`) with the crossings
-    of ``crank``'s lumped chain (the model of the order cuts)."""
-    f, _ = model_frequencies(crank, "lumped17")
+    of the torsional modes of the running model (:func:`running_frequencies`)."""
+    f = running_frequencies(crank, source, condensed)
     return Waterfall(name, track, f, model_crossings(f, track.orders, track.rpm))
+
+
+def running_frequencies(crank, source: str = "lumped17", condensed=None) -> np.ndarray:
+    """The torsional natural frequencies (Hz) of the model of the running engine: the lumped
+    chain's, or the condensed crank's in its bearings (its modes whose journals' kinetic energy
+    is mostly torsion)."""
+    if source == "lumped17":
+        from ..lumped_model.lumped import lumped
+
+        return np.asarray(lumped(crank, 17).frequencies_hz, float)
+    md = _need(condensed, source).modes("bearings", CONDENSED_MODES)
+    return np.array([f for f, k in zip(md.frequencies_hz, md.kinds) if k == "torsional"])
+
+
+def _need(condensed, source: str):
+    if condensed is None:
+        raise FetorsionError(f"compare: source {source!r} needs the condensed crank")
+    return condensed
 
 
 @dataclass
 class ComparisonResult:
-    """The model against every measured quantity given."""
+    """The model against every measured quantity given.
+
+    Attributes
+    ----------
+    model : str
+        The model of the running measurements (order cuts, waterfalls).
+    gaps : list of str
+        Lines saying how far a lumped answer is from the condensed crank's, where both were at hand.
+    """
 
     name: str
     frequencies: list = field(default_factory=list)
     order_cuts: list = field(default_factory=list)
     waterfalls: list = field(default_factory=list)
+    model: str = ""
+    gaps: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "frequencies": [f.to_dict() for f in self.frequencies],
+        return {"name": self.name, "model": self.model, "frequencies": [f.to_dict() for f in self.frequencies],
                 "order_cuts": [c.to_dict() for c in self.order_cuts],
-                "waterfalls": [w.to_dict() for w in self.waterfalls]}
+                "waterfalls": [w.to_dict() for w in self.waterfalls], "gaps": list(self.gaps)}
 
     def table(self) -> str:
         lines = [f"{self.name}: model against measurement"]
         for f in self.frequencies:
             lines += f.lines()
+        if self.order_cuts or self.waterfalls:
+            lines.append(f"running measurements against the {self.model}")
         for c in self.order_cuts:
             lines += c.lines()
         for w in self.waterfalls:
             lines += w.lines()
-        return "\n".join(lines)
+        return "\n".join(lines + list(self.gaps))
 
     def plot(self):
         """One panel per quantity: the frequencies (model against measured, the diagonal) and each
@@ -325,25 +363,29 @@ class ComparisonResult:
         return fig
 
 
-def model_frequencies(crank, source: str = "lumped17") -> tuple[np.ndarray, list]:
-    """Free-free elastic frequencies (Hz) and their kinds of the ``source`` model of ``crank``."""
-    if source not in FREQUENCY_SOURCES:
-        raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(FREQUENCY_SOURCES)}")
+def model_frequencies(crank, source: str = "lumped17", condensed=None) -> tuple[np.ndarray, list]:
+    """Free-free elastic frequencies (Hz) and their kinds of the ``source`` model of ``crank``
+    (``condensed``: the :class:`~fetorsion.fe.condensed.CondensedCrank`, for that source)."""
+    if source not in SOURCES:
+        raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
     if source == "lumped17":
         from ..lumped_model.lumped import lumped
 
         f = np.asarray(lumped(crank, 17).frequencies_hz, float)
         return f, ["torsional"] * f.size
+    if source == "condensed":
+        md = _need(condensed, source).modes("free", CONDENSED_MODES)
+        return np.asarray(md.frequencies_hz, float), list(md.kinds)
     from ..fe.crankfe import run_modal
 
     res = run_modal(crank)
     return np.asarray(res.frequencies_hz, float), list(res.kinds)
 
 
-def compare_frequencies(estimate, crank, source: str = "lumped17") -> FrequencyComparison:
+def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=None) -> FrequencyComparison:
     """Pair the fitted modes of ``estimate`` (:class:`~fetorsion.measured.modal.ModalEstimate`)
     with the model's."""
-    f, kinds = model_frequencies(crank, source)
+    f, kinds = model_frequencies(crank, source, condensed)
     model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
     values, note = None, "mode shapes are set beside the lumped chain's only (source lumped17)"
     if source == "lumped17":
@@ -355,22 +397,50 @@ def compare_frequencies(estimate, crank, source: str = "lumped17") -> FrequencyC
                                np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
 
-def station_index(response, station: str | None) -> tuple[int, str]:
-    """The response's station for a sensor: ``None`` the pulley end (the first station), else the
-    label (case-insensitive) or its 1-based number."""
+def response_stations(response) -> list[tuple[str, int]]:
+    """(name, DOF) of every station of a response a sensor can sit on, in the model's order:
+    a chain's stations; the condensed crank's masters (front, journals, pins, rear), their θx.
+    A station's 1-based place in this list is its number (``--station``, a UFF node)."""
     labels = list(response.labels)
-    if station is None or station.lower() == "pulley":  # the chain's first station carries the pulley
-        return 0, f"{labels[0]} (pulley end)"
+    twists = [(lb[:-3], j) for j, lb in enumerate(labels) if lb.endswith(" rx")]
+    if twists:
+        return twists
+    rings = set(getattr(response, "damper_names", ()))
+    return [(lb, j) for j, lb in enumerate(labels) if lb not in rings]
+
+
+def model_stations(crank, source: str = "lumped17") -> list[str]:
+    """The names of the stations a sensor can sit on in the ``source`` model of ``crank``, before
+    it is built, in :func:`response_stations`'s order."""
+    if source == "lumped17" or not hasattr(crank, "journals"):
+        from ..lumped_model.lumped import lumped
+
+        return list(lumped(crank, 17).labels)
+    from ..fe.cranksystem import master_labels
+
+    return master_labels(crank)
+
+
+def station_index(response, station: str | None) -> tuple[int, str]:
+    """The response's DOF for a sensor: ``None`` or ``pulley`` the pulley end, ``flywheel`` the
+    flywheel end, else a station's name (case-insensitive) or its 1-based number
+    (:func:`response_stations`)."""
+    stations = response_stations(response)
+    names = {j: name for name, j in stations}
+    p, f = response.pulley, response.flywheel % len(response.labels)
+    if station is None or station.lower() == "pulley":
+        return p, f"{names.get(p, response.labels[p])} (pulley end)"
     if station.lower() == "flywheel":
-        return len(labels) - 1, f"{labels[-1]} (flywheel end)"
-    if station.isdigit() and 1 <= int(station) <= len(labels):
-        return int(station) - 1, labels[int(station) - 1]
-    low = [lb.lower() for lb in labels]
+        return f, f"{names.get(f, response.labels[f])} (flywheel end)"
+    if station.isdigit() and 1 <= int(station) <= len(stations):
+        name, j = stations[int(station) - 1]
+        return j, name
+    low = [name.lower() for name, _ in stations]
     if station.lower() in low:
-        j = low.index(station.lower())
-        return j, labels[j]
+        name, j = stations[low.index(station.lower())]
+        return j, name
     raise FetorsionError(f"compare: station {station!r} is not in the model; give pulley, flywheel or one of "
-                         f"{', '.join(labels)}")
+                         f"{', '.join(name for name, _ in stations)}")
 
 
 def model_order_cut(response, order: float, station: int) -> np.ndarray:
@@ -393,9 +463,10 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
         raise FetorsionError(f"compare: {function.label or 'an order cut'} is in {function.unit}; the model's "
                              "order cuts are angles (deg, mrad or rad)")
     j, name = station_index(response, station)
+    node = 1 + [d for _, d in response_stations(response)].index(j)
     return OrderCutComparison(function.label or f"order {function.order:g}", float(function.order), name,
                               np.asarray(function.abscissa, float), np.degrees(np.abs(function.ordinate)),
-                              np.asarray(response.rpm, float), model_order_cut(response, function.order, j))
+                              np.asarray(response.rpm, float), model_order_cut(response, function.order, j), node)
 
 
 def track_order_cut(track, order: float, name: str):
@@ -410,7 +481,20 @@ def track_order_cut(track, order: float, name: str):
                             label=f"{name}, torsiograph", order=float(order))
 
 
-def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None) -> ComparisonResult:
+def model_response(crank, source: str = "lumped17", condensed=None):
+    """The forced response of the running model: the lumped chain's, or the condensed crank's in
+    its bearings with the description's dampers (:class:`~fetorsion.response.forced.ResponseResult`)."""
+    from ..response.forced import run_response, solve_response
+
+    if source == "lumped17":
+        return run_response(crank)
+    from ..response.coupled import condensed_setup
+
+    return solve_response(condensed_setup(_need(condensed, source), "bearings"), getattr(crank, "dampers", ()))
+
+
+def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None,
+                   condensed=None, response=None) -> ComparisonResult:
     """The model of a crank against measured data.
 
     Parameters
@@ -419,12 +503,17 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
         With an ``[excitation]`` where order cuts are compared.
     measured : dict
         ``frfs`` (FRFs, :class:`~fetorsion.measured.uff.MeasuredFunction`), ``cuts`` (order cuts
-        against speed, angles in rad) and ``band`` ((low, high) Hz to fit the FRFs' modes in), as
-        ``fetorsion.cli.measured.read_measured`` reads them.
-    source : {"lumped17", "fe"}
-        The model of the natural frequencies.
+        against speed, angles in rad), ``tracks`` (torsiograph order maps) and ``band`` ((low,
+        high) Hz to fit the FRFs' modes in), as ``fetorsion.cli.measured.read_measured`` reads them.
+    source : {"condensed", "lumped17", "fe"}
+        The model (see the module docstring).
     station : str, optional
-        Where the order cuts were measured: ``pulley`` (default), ``flywheel`` or a chain label.
+        Where the order cuts were measured: ``pulley`` (default), ``flywheel``, or a station's
+        name or number (:func:`response_stations`).
+    condensed : CondensedCrank, optional
+        The condensed crank, with its bearings; needed unless ``source`` is ``lumped17``.
+    response : ResponseResult, optional
+        The running model's forced response, if already solved (:func:`model_response`).
 
     Returns
     -------
@@ -432,43 +521,81 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
     """
     from ..measured.modal import run_modal_fit
 
-    out = ComparisonResult(crank.name)
+    if source not in SOURCES:
+        raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
+    running = "the lumped 17-DOF chain" if source == "lumped17" else "condensed crank in its bearings"
+    out = ComparisonResult(crank.name, model=running if source == "lumped17" else
+                           getattr(response, "model", "") or running)
     if measured.get("frfs"):
         out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
-                                                   source))
+                                                   source, condensed))
     if measured.get("cuts"):
         if getattr(crank, "excitation", None) is None:
             raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
-        from ..response.forced import run_response
-
-        response = run_response(crank)
+        response = response if response is not None else model_response(crank, source, condensed)
+        out.model = response.model
         out.order_cuts += [compare_order_cut(c, response, station) for c in measured["cuts"]]
-    out.waterfalls += [waterfall(name, track, crank) for name, track in measured.get("tracks", ())]
+    out.waterfalls += [waterfall(name, track, crank, source, condensed) for name, track in measured.get("tracks", ())]
     return out
 
 
-def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None) -> np.ndarray:
-    """The lumped chain's receptances (rad/N·m) at ``stations`` (0-based; default the pulley and the
-    flywheel end) to a torque at the pulley end, free-free, with the description's modal damping
-    ratio on every elastic mode: (stations, frequencies) complex."""
-    from ..description.defaults import DEFAULT_DAMPING_RATIO
-    from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix
+def gap_lines(comparison: ComparisonResult, engine, station: str | None = None) -> list[str]:
+    """How far a lumped comparison's order-cut peaks are from the condensed crank's: one line per
+    cut, ``engine`` the condensed crank's forced response (:func:`model_response`), ``station``
+    as the cuts were compared (a chain station's name the condensed crank lacks gives no line)."""
+    out = []
+    for c in comparison.order_cuts:
+        try:
+            j, _ = station_index(engine, station)
+        except FetorsionError:
+            continue
+        p = c.peaks()
+        amp = model_order_cut(engine, c.order, j)
+        inside = (engine.rpm >= c.rpm.min()) & (engine.rpm <= c.rpm.max())
+        k = int(np.flatnonzero(inside)[np.argmax(amp[inside])]) if inside.any() else int(np.argmax(amp))
+        out.append(f"(lumped answer; the condensed crank in its bearings, stored, gives order {c.order:g} at "
+                   f"{c.station} a peak of {amp[k]:.4g} deg at {engine.rpm[k]:.0f} rpm: the lumped one is "
+                   f"{100 * (p['model_peak_deg'] / amp[k] - 1):+.1f} % from it)")
+    return out
 
-    res = lumped(crank, 17)
-    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+
+def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
+                      condensed=None) -> np.ndarray:
+    """The free-free model's receptances (rad/N·m) at the pulley and flywheel ends to a torque at
+    the pulley end, with the description's modal damping ratio on every elastic mode:
+    (2, frequencies) complex. The lumped chain's (``stations``: 0-based chain stations), or,
+    given ``condensed``, the condensed crank's (its front and rear masters' θx)."""
+    from ..description.defaults import DEFAULT_DAMPING_RATIO
+
     zeta = damping_ratio if damping_ratio is not None else getattr(getattr(crank, "excitation", None),
                                                                    "modal_damping_ratio", DEFAULT_DAMPING_RATIO)
-    C = modal_damping_matrix(M, K, zeta)
+    if condensed is not None:
+        from ..response.coupled import supported_damping
+
+        K, M, C, keep = supported_damping(condensed, "free", zeta)
+        where = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in ("front", "rear")]
+        drive, read = where[0], where
+    else:
+        from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix
+
+        res = lumped(crank, 17)
+        M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+        C = modal_damping_matrix(M, K, zeta)
+        drive, read = 0, list(stations)
     w = 2 * np.pi * np.asarray(frequency_hz, float)
-    w = np.where(w > 0, w, np.nan)  # the free chain has no static receptance
-    Z = K[None] - w[:, None, None] ** 2 * M[None] + 1j * w[:, None, None] * C[None]
+    w = np.where(w > 0, w, np.nan)  # a free body has no static receptance
     f = np.zeros(len(M))
-    f[0] = 1.0
-    H = np.linalg.solve(np.nan_to_num(Z), np.broadcast_to(f, (len(w), len(M)))[..., None])[..., 0]
-    return H[:, list(stations)].T
+    f[drive] = 1.0
+    H = np.empty((len(w), len(M)), complex)
+    for a in range(0, len(w), 100):  # blocks: (100, n, n) complex stays small for a few hundred DOF
+        b = slice(a, a + 100)
+        Z = K[None] - w[b, None, None] ** 2 * M[None] + 1j * w[b, None, None] * C[None]
+        H[b] = np.linalg.solve(np.nan_to_num(Z), np.broadcast_to(f, (Z.shape[0], len(M)))[..., None])[..., 0]
+    return H[:, read].T
 
 
-def model_predictions(crank, comparison: ComparisonResult, response=None) -> list:
+def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = "lumped17",
+                      condensed=None, band=None) -> list:
     """The model's side of a comparison as measured functions, for a universal file (UFF 58).
 
     Parameters
@@ -478,37 +605,45 @@ def model_predictions(crank, comparison: ComparisonResult, response=None) -> lis
     comparison : ComparisonResult
         What was compared (:func:`run_comparison`).
     response : ResponseResult, optional
-        The lumped chain's forced response, if already solved.
+        The running model's forced response, if already solved.
+    source, condensed
+        The model, as for :func:`run_comparison`.
+    band : (float, float), optional
+        The measured band the modes were fitted in, Hz (default: the fitted modes' span).
 
     Returns
     -------
     list of MeasuredFunction
-        Its
-    order cut (complex, rad, against rpm) at the station of each compared cut, and, where modes
-    were compared, its receptances at the pulley and flywheel ends to a torque at the pulley end
-    over the measured band (rad/N·m). Nodes: the chain's 1-based station numbers, direction 4
-    (rotation about x)."""
+        Its order cut (complex, rad, against rpm) at the station of each compared cut, and, where
+        modes were compared, its free-free receptances at the pulley and flywheel ends to a
+        torque at the pulley end over the measured band ±20 % (rad/N·m). Nodes: the stations'
+        1-based numbers (:func:`response_stations`: a chain's stations, the condensed crank's
+        masters), direction 4 (rotation about x); read back, each is the station it came from.
+    """
     from ..measured.uff import MeasuredFunction
 
     out = []
     if comparison.order_cuts:
-        if response is None:
-            from ..response.forced import run_response
-
-            response = run_response(crank)
-        labels = list(response.labels)
+        response = response if response is not None else model_response(crank, source, condensed)
+        stations = response_stations(response)
         for c in comparison.order_cuts:
-            j = labels.index(c.station.split(" (")[0])
+            j = stations[c.node - 1][1]
             k = int(np.flatnonzero(np.isclose(response.orders, c.order, rtol=0, atol=1e-9))[0])
             out.append(MeasuredFunction("order function", np.asarray(response.rpm, float), "speed",
-                                        np.asarray(response.theta[:, k, j]), "rad", (j + 1, 4),
+                                        np.asarray(response.theta[:, k, j]), "rad", (c.node, 4),
                                         label=f"model order {c.order:g} at {c.station}", order=float(c.order)))
     for f in comparison.frequencies:
-        lo, hi = 0.8 * f.measured_hz.min(), 1.2 * f.measured_hz.max()
-        hz = np.linspace(lo, hi, 2000)
-        H = model_receptances(crank, hz)
-        n = len(list(getattr(response, "labels", []))) or 17
-        for row, node in zip(H, (1, n)):
+        lo, hi = band if band is not None else (f.measured_hz.min(), f.measured_hz.max())
+        hz = np.linspace(0.8 * lo, 1.2 * hi, 2000)
+        if source == "lumped17":
+            from ..lumped_model.lumped import lumped
+
+            last = len(lumped(crank, 17).inertias_kgm2)
+            H = model_receptances(crank, hz)
+        else:
+            last = len(_need(condensed, source).labels)
+            H = model_receptances(crank, hz, condensed=condensed)
+        for row, node in zip(H, (1, last)):
             out.append(MeasuredFunction("frf", hz, "frequency", row, "rad", (node, 4), reference=(1, 4),
                                         reference_unit="N m", label=f"model receptance {node}:4 / 1:4"))
     return out
