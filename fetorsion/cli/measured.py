@@ -31,44 +31,143 @@ def _measured_kind(path: str, teeth) -> str:
                          "(an order cut, or tooth-edge times with --teeth)")
 
 
+def teeth_of(values) -> dict | str | None:
+    """``--teeth``: one wheel for every channel (``60``, ``60-2``), or ``CHANNEL=WHEEL`` each;
+    every wheel checked now (:func:`fetorsion.measured.torsiograph.wheel_of`)."""
+    from ..measured.torsiograph import wheel_of
+
+    if not values:
+        return None
+    per, every = {}, None
+    for v in values:
+        name, eq, spec = str(v).rpartition("=")
+        if eq:
+            per[name.strip()] = wheel_of(spec, f"--teeth {v}")
+        elif every is None and len(values) == 1:
+            every = wheel_of(spec, f"--teeth {v}")
+        else:
+            raise FetorsionError(f"--teeth {' '.join(map(str, values))}: give one wheel for every channel (60, "
+                                 "60-2) or CHANNEL=WHEEL for each")
+    return every if every is not None else per
+
+
+def frf_units(text: str | None) -> dict:
+    """``--frf-unit``: the unit of FRF records without a label, ``rad/N m`` (response and
+    excitation) or ``rad`` (the response only), as read_uff58's ``units``."""
+    from ..measured.uff import split_ratio
+    from ..measured.units import unit
+
+    if text is None:
+        return {}
+    ratio = split_ratio(text)
+    if ratio is not None:
+        unit(ratio[0], "--frf-unit (response)")
+        return {"ordinate": ratio[0], "reference": ratio[1]}
+    unit(text, "--frf-unit")
+    return {"ordinate": text}
+
+
 def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutions: int = 2,
-                  track_orders=(2.0,)) -> dict:
+                  track_orders=(2.0,), calibration=(), twist_of=None, stations=None, time_unit=None,
+                  frf_unit=None, definition: str = "angle") -> dict:
     """Every measured file read and checked, before any model is solved: ``frfs`` (UFF FRFs),
-    ``cuts`` (order cuts against speed, in SI) and the options the comparison takes. One message
-    naming the file or option otherwise."""
+    ``cuts`` (order cuts against speed, in SI), ``tracks`` (torsiograph order maps),
+    ``stations`` (cut label -> the station it was measured at, or a pair for a twist; cuts not
+    named take the comparison's station), ``notes`` (warnings: edges repaired) and the options
+    the comparison takes. One message naming the file or option otherwise.
+
+    Tooth-edge files take ``teeth`` (one wheel, or channel -> wheel; ``60-2`` a reference-gap
+    wheel), ``calibration`` (tooth-edge files of a calibration run, channels by name: each
+    channel's tooth spacing errors), ``twist_of`` (two channels: their twist is tracked too),
+    ``time_unit`` (for files without a ``# unit`` line) and ``definition`` (orders against
+    shaft angle or time). A channel named as a model station (pulley, flywheel, front, J1 ...)
+    is compared there unless ``stations`` (channel -> station) says otherwise."""
     from ..measured.ordercut import read_order_cut_csv
-    from ..measured.torsiograph import read_edges_csv, run_torsiograph
-    from ..measured.uff import read_uff58
+    from ..measured.torsiograph import TWIST, read_edges_csv, run_torsiograph
+    from ..measured.uff import UnstatedUnit, read_uff58
     from ..studies.comparison import track_order_cut
 
     kinds = [_measured_kind(m, teeth) for m in paths]
+    for c in calibration or ():
+        if _measured_kind(c, teeth) != "edges":
+            raise FetorsionError(f"--calibration {c}: a calibration run is a tooth-edge CSV (with --teeth)")
+    if (calibration or twist_of or stations) and "edges" not in kinds:
+        raise FetorsionError("--calibration, --twist and --channel-station go with a tooth-edge CSV (and --teeth)")
     if band is not None and not 0 <= band[0] < band[1]:
         raise FetorsionError(f"--band {band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
-    frfs, cuts, tracks = [], [], []
+    units = frf_units(frf_unit)
+    frfs, cuts, tracks, where, notes = [], [], [], {}, []
+    calibrated = {}
+    for c in calibration or ():
+        calibrated.update(read_edges_csv(c, time_unit))
     for path, kind in zip(paths, kinds):
         if kind == "uff":
-            functions = read_uff58(path)
+            try:
+                functions = read_uff58(path, units)
+            except UnstatedUnit as exc:
+                raise FetorsionError(exc.stating("--frf-unit, e.g. 'rad/N m'")) from None
             frfs += [f for f in functions if f.kind == "frf"]
             cuts += [f for f in functions if f.kind == "order function" and f.abscissa_quantity == "speed"]
         elif kind == "order-cut":
             cuts.append(read_order_cut_csv(path, unit, order))
         else:
-            edges = read_edges_csv(path)
-            res = run_torsiograph(edges, {c: teeth for c in edges}, revolutions)
+            edges = read_edges_csv(path, time_unit)
+            wheels = teeth if isinstance(teeth, dict) else {c: teeth for c in set(edges) | set(calibrated)}
+            lacking = [c for c in edges if c not in wheels]
+            if lacking:
+                raise FetorsionError(f"--teeth: {Path(path).name} has channel {lacking[0]!r}, whose wheel is not given "
+                                     f"(give {lacking[0]}=TEETH)")
+            pair = None
+            if twist_of is not None:
+                absent = [c for c in twist_of if c not in edges]
+                if absent:
+                    raise FetorsionError(f"--twist {' '.join(twist_of)}: {Path(path).name} has no channel "
+                                         f"{absent[0]!r} (it has {', '.join(edges)})")
+                pair = tuple(twist_of)
+            for c in stations or {}:
+                if c not in edges and c != TWIST:
+                    raise FetorsionError(f"--channel-station {c}=...: {Path(path).name} has no channel {c!r} "
+                                         f"(it has {', '.join(edges)})")
+            res = run_torsiograph(edges, wheels, revolutions, {c: t for c, t in calibrated.items() if c in edges},
+                                  pair, definition)
+            notes += [f"{Path(path).name}: {line}" for line in res.warnings()]
             for channel, track in res.tracks.items():
+                name = f"{Path(path).name}: {channel}"
+                if channel == TWIST:
+                    station = (channel_station(pair[0], stations), channel_station(pair[1], stations))
+                    station = (tuple(x[0] for x in station), any(x[1] for x in station))
+                else:
+                    station = channel_station(channel, stations)
                 for k in track_orders:
-                    cuts.append(track_order_cut(track, k, f"{Path(path).name}: {channel}"))
-                tracks.append((f"{Path(path).name}: {channel}", track))
+                    cut = track_order_cut(track, k, name)
+                    cuts.append(cut)
+                    where[cut.label] = station
+                tracks.append((name, track))
     if frfs and band is None:
         raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
     if not (frfs or cuts):
         raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
-    return {"frfs": frfs, "cuts": cuts, "tracks": tracks, "band": None if band is None else tuple(band)}
+    return {"frfs": frfs, "cuts": cuts, "tracks": tracks, "band": None if band is None else tuple(band),
+            "stations": where, "notes": notes}
+
+
+def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
+    """(the station a channel was measured at, whether the user said so): as ``stations`` says,
+    else the channel's own name, which :func:`check_measured` keeps where it is one of the
+    model's stations (a channel called ``pulley``, ``flywheel``, ``J3`` ...)."""
+    if stations and channel in stations:
+        return stations[channel], True
+    return channel, False
 
 
 def check_measured(crank, measured: dict, station: str | None, source: str = "lumped17") -> None:
     """What the model needs of the measured data, checked before it is solved: order cuts need an
-    ``[excitation]`` and must be angles; the station must exist."""
+    ``[excitation]`` and must be angles; the stations must exist. Each torsiograph channel's
+    station is settled here (``measured["stations"]``: cut label -> station, or a pair for a
+    twist): the one the user gave, else the channel's name where the model has such a station,
+    else ``station``."""
+    from ..studies.comparison import model_stations
+
     if measured["cuts"] and getattr(crank, "excitation", None) is None:
         raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
     for c in measured["cuts"]:
@@ -76,6 +175,20 @@ def check_measured(crank, measured: dict, station: str | None, source: str = "lu
             raise FetorsionError(f"compare: {c.label or 'an order cut'} is in {c.unit}; the model's order cuts are "
                                  "angles (deg, mrad or rad)")
     check_station(crank, station, source)
+    names = {n.lower() for n in model_stations(crank, source)} | {"pulley", "flywheel"}
+    settled = {}
+    for label, (where, said) in measured["stations"].items():
+        places = where if isinstance(where, tuple) else (where,)
+        if said:
+            for p in places:
+                check_station(crank, p, source)
+        elif not all(p.lower() in names for p in places):
+            if isinstance(where, tuple):
+                raise FetorsionError(f"--twist: the channels {' and '.join(where)} are not stations of the model; "
+                                     "say where each was measured (--channel-station CHANNEL=STATION)")
+            continue
+        settled[label] = where
+    measured["stations"] = settled
 
 
 def check_station(crank, station: str | None, source: str = "lumped17") -> None:
@@ -108,6 +221,7 @@ def cmd_compare(args) -> int:
 
     for m in args.measured:
         _measured_kind(m, args.teeth)
+    teeth_of(args.teeth)
     if args.band is not None and not 0 <= args.band[0] < args.band[1]:
         raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     crank = load_description(args.file)
@@ -116,8 +230,9 @@ def cmd_compare(args) -> int:
     if source != "lumped17":
         check_mesh_size(crank, args.mesh_size, "modal")
     check_station(crank, args.station, source)
-    measured = read_measured(args.measured, args.band, args.unit, args.order, args.teeth, args.revolutions,
-                             args.track_orders)
+    measured = measured_of(args, args.measured, args.unit, args.order)
+    for line in measured["notes"]:
+        print(f"fetorsion: warning: {line}", file=sys.stderr)
     check_measured(crank, measured, args.station, source)
     cc = None
     if source != "lumped17" and (measured["cuts"] or measured["tracks"] or source == "condensed"):
@@ -146,6 +261,45 @@ def cmd_compare(args) -> int:
     return 0
 
 
+def add_measured_options(p) -> None:
+    """The options of measured files, shared by ``compare`` and ``run --measured``."""
+    p.add_argument("--teeth", nargs="+", metavar="WHEEL",
+                   help="the wheels of a tooth-edge CSV: one for every channel (60; 60-2, a wheel of 60 places with "
+                        "2 teeth left out as the reference mark) or CHANNEL=WHEEL for each")
+    p.add_argument("--calibration", nargs="+", metavar="CSV", default=[],
+                   help="tooth-edge CSV of a calibration run (motored or coasting, whole orders weak): each channel's "
+                        "tooth spacing errors, by channel name")
+    p.add_argument("--twist", nargs=2, metavar=("A", "B"),
+                   help="track the twist A - B of two channels too, compared with the model's twist between their "
+                        "stations")
+    p.add_argument("--channel-station", nargs="+", metavar="CHANNEL=STATION", default=[],
+                   help="where each channel's wheel sits (default: a channel named as a station, pulley, flywheel, "
+                        "J3 ..., is there; any other at --station)")
+    p.add_argument("--time-unit", help="unit of tooth-edge times without a '# unit' line (s, ms, us, ns)")
+    p.add_argument("--frf-unit", help="unit of UFF FRF records without a unit label (rad/N m; the records' data types "
+                   "give SI where they say the quantity)")
+    p.add_argument("--order-definition", choices=("angle", "time"), default="angle",
+                   help="a torsiograph's orders against the shaft's own angle (default: computed order tracking) or "
+                        "against time (resampled at equal times, as a time-domain analyser reads them)")
+    p.add_argument("--revolutions", type=integer(1), default=2,
+                   help="revolutions per block of a torsiograph's order tracking (default %(default)s: half orders "
+                        "fall on its bins)")
+    p.add_argument("--track-orders", type=real(0.0), nargs="+", default=[2.0], metavar="K",
+                   help="orders of a torsiograph's recording to compare (default 2)")
+
+
+def measured_of(args, paths, unit=None, order=None) -> dict:
+    """:func:`read_measured` with the options of :func:`add_measured_options`."""
+    stations = {}
+    for item in args.channel_station:
+        channel, eq, station = item.partition("=")
+        if not (eq and channel.strip() and station.strip()):
+            raise FetorsionError(f"--channel-station {item}: give CHANNEL=STATION")
+        stations[channel.strip()] = station.strip()
+    return read_measured(paths, args.band, unit, order, teeth_of(args.teeth), args.revolutions, args.track_orders,
+                         args.calibration, args.twist, stations, args.time_unit, args.frf_unit, args.order_definition)
+
+
 def add_parsers(sub) -> None:
     from ..description.defaults import DEFAULT_MESH_SIZE
     from ..studies.comparison import SOURCES
@@ -172,12 +326,7 @@ def add_parsers(sub) -> None:
                     "chain's labels)")
     cp.add_argument("--unit", help="amplitude unit of CSV order cuts without a '# unit' line (deg, mrad, rad)")
     cp.add_argument("--order", type=real(0.0), help="engine order of CSV order cuts without a '# order' line")
-    cp.add_argument("--teeth", type=integer(1), help="teeth per revolution of every wheel of a tooth-edge CSV")
-    cp.add_argument("--revolutions", type=integer(1), default=2,
-                    help="revolutions per block of a torsiograph's order tracking (default %(default)s: half orders "
-                         "fall on its bins)")
-    cp.add_argument("--track-orders", type=real(0.0), nargs="+", default=[2.0], metavar="K",
-                    help="orders of a torsiograph's recording to compare (default 2)")
+    add_measured_options(cp)
     cp.add_argument("--plot", metavar="PATH", help="figure of every comparison (.png, .pdf, .svg)")
     cp.add_argument("--uff", metavar="PATH", help="write the model's predictions as UFF 58 (its order cuts at the "
                     "sensor's station; its receptances at the pulley and flywheel ends over the measured band), to "

@@ -3,6 +3,7 @@ report folder."""
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 
 from .options import MM, integer, millimetres, real
@@ -11,6 +12,7 @@ from ..errors import FetorsionError
 from ..io import check_report_folder
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_RUNUP_RATE
 from .common import SUPPORT_CHOICES, check_mesh_size, load_description
+from .measured import add_measured_options
 
 
 # The Peugeot GLX twice: alone (its measured 905.9 Hz) and in its engine (its fatigue assessment)
@@ -48,8 +50,10 @@ def cmd_run(args) -> int:
     jobs = run_jobs(args)
     if args.measured and args.all:
         raise FetorsionError("--measured belongs to one crank; give FILE instead of --all")
-    if not args.measured and (args.band or args.station or args.teeth):
-        raise FetorsionError("--band, --station and --teeth go with --measured FILE ...")
+    if not args.measured and (args.band or args.station or args.teeth or args.calibration or args.twist
+                              or args.channel_station or args.time_unit or args.frf_unit):
+        raise FetorsionError("--band, --station, --teeth, --calibration, --twist, --channel-station, --time-unit and "
+                             "--frf-unit go with --measured FILE ...")
     for file, out in jobs:  # every destination and description is checked before any work
         check_report_folder(out, "--out", force=args.force, inputs=[file], force_option="--force")
         crank = load_description(str(file))
@@ -60,11 +64,13 @@ def cmd_run(args) -> int:
     if args.fatigue_method:
         options["fatigue_method"] = args.fatigue_method
     if args.measured:  # read and checked now, before any work
-        from .measured import check_measured, check_station, read_measured
+        from .measured import check_measured, check_station, measured_of
 
         engine = not args.no_fe and args.source == "condensed" and not isinstance(crank, (Chain, Network))
         check_station(crank, args.station, "condensed" if engine else "lumped17")
-        measured = read_measured(args.measured, args.band, teeth=args.teeth)
+        measured = measured_of(args, args.measured)
+        for line in measured["notes"]:
+            print(f"fetorsion: warning: {line}", file=sys.stderr)
         check_measured(crank, measured, args.station, "condensed" if engine else "lumped17")
         options.update(measured=measured, station=args.station)
     for file, out in jobs:
@@ -104,8 +110,8 @@ def add_parser(sub) -> None:
     up.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
                     help="frequency band (Hz) to fit the measured FRFs' modes in")
     up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
-                    "station label of the lumped chain")
-    up.add_argument("--teeth", type=integer(1), help="teeth per revolution of a tooth-edge CSV's wheels")
+                    "station of the model by name or number (as 'fetorsion compare')")
+    add_measured_options(up)
     up.add_argument("--run-up-rate", type=real(0.0, 1.0e5, unit="rpm/s"), default=DEFAULT_RUNUP_RATE,
                     metavar="RPM_PER_S", help="a chain's or network's time-domain run-up over its checked range: "
                     "|dn/dt| in rpm/s (default %(default)g; the cost grows as the rate falls)")

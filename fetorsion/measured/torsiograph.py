@@ -156,6 +156,165 @@ def _is_number(text: str) -> bool:
 
 
 # ---------------------------------------------------------------------------
+# Wheels with a reference gap, and records with a lost or a spurious edge
+
+#: An interval this many local pitches long or more is a gap (edges lost, or a reference mark)
+GAP_PITCHES = 1.5
+#: An interval this short (in local pitches) or shorter holds a spurious edge
+SHORT_PITCHES = 0.6
+#: Intervals each side whose median is the local pitch
+PITCH_WINDOW = 4
+
+
+@dataclass(frozen=True)
+class Wheel:
+    """A toothed wheel: ``positions`` equal tooth places a revolution, of which the last
+    ``gap`` are left out as a once-per-revolution reference mark (``60-2``: 58 teeth, a gap of
+    three pitches; ``gap`` 0, a plain wheel)."""
+
+    positions: int
+    gap: int = 0
+
+    def __str__(self) -> str:
+        return f"{self.positions}-{self.gap}" if self.gap else f"{self.positions}"
+
+
+def wheel_of(spec, where: str = "teeth") -> Wheel:
+    """A :class:`Wheel` from teeth per revolution (``60``) or a reference-gap wheel (``"60-2"``),
+    or one message naming ``where``."""
+    if isinstance(spec, Wheel):
+        return spec
+    if isinstance(spec, (int, np.integer)) and not isinstance(spec, bool):
+        if spec < 1:
+            raise FetorsionError(f"{where} = {spec}: give the teeth per revolution, a whole number >= 1")
+        return Wheel(int(spec))
+    text = str(spec).strip()
+    positions, dash, gap = text.partition("-")
+    try:
+        z, g = int(positions), int(gap) if dash else 0
+    except ValueError:
+        raise FetorsionError(f"{where} = {text!r}: give the teeth per revolution (60) or a wheel with a reference "
+                             "gap (60-2: 60 places, 2 teeth left out)") from None
+    if z < 1 or g < 0 or (g and (g >= z // 2 or z < 8)):
+        raise FetorsionError(f"{where} = {text!r}: a wheel of {z} places cannot leave out {g} teeth as a reference "
+                             "mark (fewer than half of them, on a wheel of 8 or more)")
+    return Wheel(z, g)
+
+
+@dataclass(frozen=True)
+class EdgeRepair:
+    """What :func:`repaired_edges` did to one record: every edge it put in (interpolated where
+    a tooth was lost, or the reference gap's places) or took out (spurious), with its time."""
+
+    #: (original edge index, its time s, edges lost after it) of each gap where teeth were lost
+    inserted: tuple = ()
+    #: (original edge index, time s) of each spurious edge taken out
+    removed: tuple = ()
+    reference_edges: int = 0  # places of the reference gaps filled in
+    start: int = 0  # original edges before the first revolution start (a reference wheel), left out
+
+    def lines(self, where: str) -> list[str]:
+        out = [f"{where}: {n} edge(s) missing after edge {i + 1} ({t:.6f} s; a gap of {n + 1} pitches): "
+               "interpolated" for i, t, n in self.inserted]
+        out += [f"{where}: edge {i + 1} at {t:.6f} s is spurious (less than {SHORT_PITCHES:g} of a pitch from "
+                "its neighbour); left out" for i, t in self.removed]
+        return out
+
+
+def _local_pitch(dt: np.ndarray) -> np.ndarray:
+    """Each interval's expected length: the median of its neighbours' (itself left out)."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    w = PITCH_WINDOW
+    padded = np.pad(dt, w, mode="reflect")
+    windows = sliding_window_view(padded, 2 * w + 1)
+    return np.median(np.delete(windows, w, axis=1), axis=1)
+
+
+def repaired_edges(times, wheel, where: str = "edges") -> tuple[np.ndarray, EdgeRepair]:
+    """A record with every tooth place present once: lost edges interpolated, spurious edges
+    taken out, a reference wheel's gap filled and its first revolution start made edge 0.
+
+    An interval of n ≥ :data:`GAP_PITCHES` local pitches (the median of its neighbours) is
+    n − 1 lost edges (a reference wheel's own gap, once a revolution, is expected); an edge
+    less than :data:`SHORT_PITCHES` of a pitch from its neighbours is spurious. The times of the
+    edges put in are a cubic spline of time against tooth place through the edges around
+    (angle is smooth in time, and so time in angle), so a vibration is not cut at a lost tooth.
+
+    Parameters
+    ----------
+    times : array_like
+        Edge timestamps [s].
+    wheel : Wheel, int or str
+        The wheel (:func:`wheel_of`).
+    where : str
+        The file and channel, for messages.
+
+    Returns
+    -------
+    times : ndarray
+        One edge per tooth place, ``wheel.positions`` a revolution; a reference wheel's starting
+        at the first tooth after its first gap.
+    repair : EdgeRepair
+    """
+    from scipy.interpolate import CubicSpline
+
+    wheel = wheel_of(wheel)
+    t = np.asarray(times, float)
+    if t.size < 4 * PITCH_WINDOW:
+        return t, EdgeRepair()
+    removed, original = [], np.arange(t.size)
+    while True:  # spurious edges first, one at a time: each changes its neighbours' pitch
+        dt = np.diff(t)
+        pitch = _local_pitch(dt)
+        short = np.flatnonzero(dt < SHORT_PITCHES * pitch)
+        if not short.size:
+            break
+        if len(removed) > max(10, t.size // 100):
+            raise FetorsionError(f"{where}: more than {len(removed)} spurious edges (intervals shorter than "
+                                 f"{SHORT_PITCHES:g} of a pitch): check the pickup's signal and trigger level")
+        i = int(short[0])  # between edges i and i + 1: the one whose removal leaves the truer pitch goes
+        after = abs((dt[i] + dt[i + 1]) / pitch[i] - 1) if i + 1 < dt.size else np.inf
+        before = abs((dt[i - 1] + dt[i]) / pitch[i] - 1) if i >= 1 else np.inf
+        drop = i + 1 if after <= before else i
+        removed.append((int(original[drop]), float(t[drop])))
+        t, original = np.delete(t, drop), np.delete(original, drop)
+    dt = np.diff(t)
+    pitch = _local_pitch(dt)
+    places = np.where(dt < GAP_PITCHES * pitch, 1, np.rint(dt / pitch)).astype(int)
+    reference = np.zeros(places.size, bool)
+    if wheel.gap:
+        reference = places == wheel.gap + 1
+        ref = np.flatnonzero(reference)
+        if ref.size == 0:
+            raise FetorsionError(f"{where}: no reference gap of {wheel.gap + 1} pitches found; the wheel was given as "
+                                 f"{wheel} ({wheel.positions - wheel.gap} teeth and a gap)")
+        for a, b in zip(ref[:-1], ref[1:]):
+            if places[a:b].sum() != wheel.positions:
+                raise FetorsionError(f"{where}: the reference gaps at {t[a]:.6f} s and {t[b]:.6f} s are "
+                                     f"{places[a:b].sum()} tooth places apart, not {wheel.positions}")
+    filled = np.flatnonzero(places > 1)
+    if filled.size and places.size - filled[-1] <= PITCH_WINDOW:
+        # a gap among the record's last few edges is filled from one side only (a spline's end
+        # is its least accurate part): the record ends at the last edge before it
+        places, reference, t = places[: filled[-1]], reference[: filled[-1]], t[: filled[-1] + 1]
+    index = np.concatenate([[0], np.cumsum(places)])  # every edge's tooth place from the first
+    out = CubicSpline(index, t)(np.arange(index[-1] + 1))
+    out[index] = t
+    lost = np.flatnonzero((places > 1) & ~reference)
+    inserted = [(int(original[k]), float(t[k]), int(places[k] - 1)) for k in lost]
+    reference_edges = int((places[reference] - 1).sum())
+    start = 0
+    if wheel.gap:
+        first = int(np.flatnonzero(reference)[0])
+        start = int(index[first + 1])  # the first tooth after the gap: tooth 0
+        out = out[start:]
+        inserted = [x for x, k in zip(inserted, lost) if k > first]
+        start = int(original[first + 1])
+    return out, EdgeRepair(tuple(inserted), tuple(removed), int(reference_edges), start)
+
+
+# ---------------------------------------------------------------------------
 # Angle, speed, tooth errors
 
 
@@ -262,6 +421,7 @@ class OrderTrack:
     rpm: np.ndarray
     orders: np.ndarray
     amplitudes: np.ndarray
+    definition: str = "angle"  # what the orders are against (:data:`ORDER_DEFINITIONS`)
 
     def at(self, order: float) -> np.ndarray:
         """The complex amplitudes of one order, per block [rad] (an order cut)."""
@@ -272,7 +432,8 @@ class OrderTrack:
         return self.amplitudes[:, int(k[0])]
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "rpm": self.rpm.tolist(), "orders": self.orders.tolist(),
+        return {"name": self.name, "order_definition": self.definition, "rpm": self.rpm.tolist(),
+                "orders": self.orders.tolist(),
                 "amplitude_deg": np.degrees(np.abs(self.amplitudes)).tolist(),
                 "phase_deg": np.degrees(np.angle(self.amplitudes)).tolist()}
 
@@ -288,8 +449,17 @@ def _blocks(t_grid: np.ndarray, psi: np.ndarray, per_block: int, revolutions: in
     return rpm, orders, c
 
 
-def _grid(times, teeth: int, revolutions: int, errors, name: str):
-    """Times of equal angles (the tooth pitch) in whole blocks: (times, angles), shape (blocks, N z + 1)."""
+#: What an order is taken against: the text the results carry
+ORDER_DEFINITIONS = {
+    "angle": "orders against the shaft's own angle (computed order tracking: equal-angle samples)",
+    "time": "orders against time (equal-time samples over each block, the frequency k times the block's mean speed)",
+}
+
+
+def _grid(times, teeth: int, revolutions: int, errors, name: str, definition: str = "angle"):
+    """The samples of each whole block, shape (blocks, N z + 1): (times, angles). ``angle``: the
+    times of equal angles (the tooth pitch); ``time``: equal times from the block's first to its
+    last equal angle, and the wheel's angle at each."""
     from scipy.interpolate import CubicSpline
 
     t = check_edges(times, teeth, name, revolutions=revolutions)
@@ -301,11 +471,14 @@ def _grid(times, teeth: int, revolutions: int, errors, name: str):
     # Without tooth errors the edges are the equal angles; with them, time is interpolated at
     # the nominal angles (angle is a smooth function of time, and so time of angle)
     t_grid = t[index] if errors is None else CubicSpline(theta, t)(nominal)
+    if definition == "time":
+        t_grid = t_grid[:, :1] + (t_grid[:, -1:] - t_grid[:, :1]) * np.linspace(0.0, 1.0, per_block + 1)
+        return t_grid, CubicSpline(t, theta)(t_grid)
     return t_grid, nominal
 
 
 def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel",
-                accelerating: bool = False) -> OrderTrack:
+                accelerating: bool = False, definition: str = "angle") -> OrderTrack:
     """The angle's vibration by order per block of ``revolutions`` whole revolutions.
 
     In each block the angle is sampled at equal angles (the tooth pitch), the block's mean
@@ -333,9 +506,15 @@ def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "w
         The channel, for messages and the result.
     accelerating : bool
         Take off each block's bow of constant acceleration too (a run-up or run-down).
+    definition : {"angle", "time"}
+        ``angle`` (default): the angle sampled at equal angles of the wheel itself, so an order
+        is a harmonic of the shaft's own angle; ``time``: sampled at equal times, an order the
+        frequency k Ω̄ (Ω̄ the block's mean speed), as an analyser that resamples in time reads
+        it. The two differ at second order in the vibration (a large amplitude at a high
+        order: a few per cent).
     """
     revolutions = _whole(revolutions, "revolutions")
-    t_grid, theta = _grid(times, teeth, revolutions, errors, name)
+    t_grid, theta = _grid(times, teeth, revolutions, errors, name, definition)
     speed = (theta[:, -1:] - theta[:, :1]) / (t_grid[:, -1:] - t_grid[:, :1])
     tau = t_grid - t_grid[:, :1]
     psi = (theta - theta[:, :1]) - speed * tau
@@ -343,11 +522,11 @@ def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "w
         alpha = np.gradient(speed[:, 0], 0.5 * (t_grid[:, 0] + t_grid[:, -1]))[:, None]
         psi -= 0.5 * alpha * tau * (tau - tau[:, -1:])
     rpm, orders, c = _blocks(t_grid, psi, revolutions * teeth, revolutions, theta[:, 0])
-    return OrderTrack(name, rpm, orders, c)
+    return OrderTrack(name, rpm, orders, c, definition)
 
 
 def twist(times_a, times_b, teeth_a: int, teeth_b: int, revolutions: int, errors_a=None, errors_b=None,
-          names=("a", "b")) -> OrderTrack:
+          names=("a", "b"), definition: str = "angle") -> OrderTrack:
     """The twist θ_a − θ_b between two wheels on one shaft, by order, in wheel a's blocks.
 
     Wheel b's angle is interpolated (a cubic spline against time) at the times of wheel a's
@@ -365,11 +544,13 @@ def twist(times_a, times_b, teeth_a: int, teeth_b: int, revolutions: int, errors
         Their tooth spacing errors [rad].
     names : tuple of str
         The two channels, for messages.
+    definition : {"angle", "time"}
+        As for :func:`order_track`.
     """
     from scipy.interpolate import CubicSpline
 
     revolutions = _whole(revolutions, "revolutions")
-    t_grid, theta = _grid(times_a, teeth_a, revolutions, errors_a, names[0])
+    t_grid, theta = _grid(times_a, teeth_a, revolutions, errors_a, names[0], definition)
     tb = check_edges(times_b, teeth_b, names[1], revolutions=1)
     inside = (t_grid[:, 0] >= tb[0]) & (t_grid[:, -1] <= tb[-1])
     if not inside.any():
@@ -380,7 +561,7 @@ def twist(times_a, times_b, teeth_a: int, teeth_b: int, revolutions: int, errors
     psi = theta - theta_b
     rpm, orders, c = _blocks(t_grid, psi - psi.mean(axis=1, keepdims=True), revolutions * teeth_a,
                              revolutions, theta[:, 0])
-    return OrderTrack(TWIST, rpm, orders, c)
+    return OrderTrack(TWIST, rpm, orders, c, definition)
 
 
 def _whole(value, name: str) -> int:
@@ -401,13 +582,22 @@ class TorsiographResult:
     teeth: dict[str, int]
     revolutions: int
     errors: dict[str, np.ndarray] = field(default_factory=dict)
+    #: Record (channel, or "calibration " + channel) -> what :func:`repaired_edges` did to it
+    repairs: dict = field(default_factory=dict)
+    definition: str = "angle"
+
+    def warnings(self) -> list[str]:
+        """One line per lost or spurious edge found (a reference wheel's own gaps are not warned of)."""
+        return [line for name, r in self.repairs.items() for line in r.lines(name)]
 
     def to_dict(self) -> dict:
         return {"teeth": dict(self.teeth), "revolutions_per_block": self.revolutions,
                 "tooth_errors_deg": {k: np.degrees(v).tolist() for k, v in self.errors.items()},
                 "tracks": {k: v.to_dict() for k, v in self.tracks.items()},
+                "repairs": self.warnings(), "order_definition": self.definition,
                 "definition": "vibration angle psi(theta) = Re sum_k c_k exp(i k theta), theta from tooth 0; "
-                              "amplitude |c_k|, phase arg c_k; twist = first wheel - second wheel"}
+                              "amplitude |c_k|, phase arg c_k; twist = first wheel - second wheel; "
+                              + ORDER_DEFINITIONS[self.definition]}
 
     def table(self, count: int = 4) -> str:
         """Each track's ``count`` strongest orders per block: amplitude [deg] and phase [deg]."""
@@ -440,15 +630,19 @@ class TorsiographResult:
 
 
 def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dict | None = None,
-                    twist_of: tuple[str, str] | None = None) -> TorsiographResult:
+                    twist_of: tuple[str, str] | None = None, definition: str = "angle") -> TorsiographResult:
     """Order tracks of every wheel, tooth errors corrected, and the twist between two of them.
+
+    Every record is repaired first (:func:`repaired_edges`): lost edges interpolated, spurious
+    ones left out, a reference wheel's gap filled and its first revolution start made tooth 0;
+    what was done is in the result's ``repairs``.
 
     Parameters
     ----------
     edges : dict
         Channel -> edge timestamps [s] (:func:`read_edges_csv`).
     teeth : dict
-        Channel -> teeth per revolution.
+        Channel -> teeth per revolution, or a reference-gap wheel (``"60-2"``; :func:`wheel_of`).
     revolutions : int
         Revolutions per block.
     calibration : dict, optional
@@ -456,6 +650,8 @@ def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dic
         channel without one is analysed with uniform teeth.
     twist_of : tuple of str, optional
         The two channels whose twist (first less second) is tracked.
+    definition : {"angle", "time"}
+        What an order is taken against (:func:`order_track`).
     """
     calibration = calibration or {}
     missing = [c for c in list(edges) + list(calibration) + list(twist_of or ()) if c not in teeth]
@@ -464,12 +660,28 @@ def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dic
     unknown = [c for c in list(calibration) + list(twist_of or ()) if c not in edges]
     if unknown:
         raise FetorsionError(f"channel {unknown[0]!r}: not among the recorded channels {sorted(edges)}")
+    if definition not in ORDER_DEFINITIONS:
+        raise FetorsionError(f"order definition {definition!r}: choose {' or '.join(ORDER_DEFINITIONS)}")
+    wheels = {name: wheel_of(teeth[name], f"teeth of {name!r}") for name in set(edges) | set(calibration)}
+    revolutions = _whole(revolutions, "revolutions")
+    repairs = {}
     for name, t in edges.items():  # every channel is checked before any is processed
-        check_edges(t, teeth[name], name, revolutions=_whole(revolutions, "revolutions"))
-    errors = {name: tooth_errors(t, teeth[name]) for name, t in calibration.items()}
-    tracks = {name: order_track(t, teeth[name], revolutions, errors.get(name), name) for name, t in edges.items()}
+        check_edges(t, wheels[name].positions - wheels[name].gap, name, revolutions=1)
+    fixed = {}
+    for label, records in (("", edges), ("calibration ", calibration)):
+        for name, t in records.items():
+            fixed[label + name], repairs[label + name] = repaired_edges(check_edges(t, 1, label + name), wheels[name],
+                                                                        label + name)
+    z = {name: w.positions for name, w in wheels.items()}
+    for name in edges:
+        check_edges(fixed[name], z[name], name, revolutions=revolutions)
+    errors = {name: tooth_errors(fixed["calibration " + name], z[name]) for name in calibration}
+    tracks = {name: order_track(fixed[name], z[name], revolutions, errors.get(name), name, definition=definition)
+              for name in edges}
     if twist_of is not None:
         a, b = twist_of
-        tracks[TWIST] = twist(edges[a], edges[b], teeth[a], teeth[b], revolutions, errors.get(a), errors.get(b),
-                              (a, b))
-    return TorsiographResult(tracks, {k: int(teeth[k]) for k in edges}, int(revolutions), errors)
+        tracks[TWIST] = twist(fixed[a], fixed[b], z[a], z[b], revolutions, errors.get(a), errors.get(b), (a, b),
+                              definition=definition)
+    return TorsiographResult(tracks, {k: int(z[k]) for k in edges}, int(revolutions), errors,
+                             {k: v for k, v in repairs.items() if v.inserted or v.removed or v.reference_edges},
+                             definition)

@@ -3,10 +3,18 @@ as test systems export them, read and written with pyuff [Pyuff] against the dat
 specification [Uff58].
 
 What the file says is checked before it is used: the function type (record 6), the abscissa's
-specific data type (record 8: frequency, rpm or order) and the unit labels of records 8 to 10,
-which must name a known unit of the quantity the record's data type says. A record without a
-unit label takes the unit the caller states; with neither, the file is refused. Values are
-converted to SI on reading (abscissae: Hz, rpm or order).
+specific data type (record 8: frequency, rpm or order) and the units of records 8 to 10. A
+record's specific data type (with the response or reference direction: 1-3 translation, 4-6
+rotation) is the truth about what its values are — displacement at a rotational direction is
+an angle, in the file's units, SI [Uff58] — and its free-text unit label only repeats it, in
+whatever spelling the test system uses (``rad/Nm``, ``rad/N-m``, ``rad/(N*m)``, ``deg/Nm``,
+``NONE``; an FRF's ordinate label often names the whole ratio). So a record whose label is
+empty or ``NONE`` is read in the SI unit of its data type; a label that names a unit is used
+for its scale (``deg``, ``mrad``) and must be a unit of the data type's quantity, else the
+file is refused naming both; a label fetorsion cannot read is refused, naming the unit the
+data type would give, so the user confirms it (``units=``). A record without
+a usable data type (0, general) needs a label or a stated unit. Values are converted to SI on
+reading (abscissae: Hz, rpm or order).
 
 pyuff 2.5.8 writes function types 0, 1, 2, 3, 4, 6 and 9 only; a spectrum (type 12) and an
 order function (type 27) are written as type 0 and their record 6 set afterwards, so that
@@ -26,7 +34,8 @@ from pathlib import Path
 import numpy as np
 
 from ..errors import FetorsionError
-from .units import unit
+from .units import SI_UNITS as UNITS_SI
+from .units import normalise, unit
 
 #: record 6 field 1: the function types read, and what each is called here
 FUNCTION_TYPES = {4: "frf", 12: "spectrum", 27: "order function"}
@@ -104,16 +113,93 @@ def _label(text) -> str | None:
     return None if not text or text.upper() == NONE else text
 
 
-def _units_of(dset, where: str, units: dict, record: str, key: str, quantities):
-    """The Unit of one record: its label, else the caller's; both -> they must agree."""
-    labelled = _label(dset.get(f"{key}_axis_units_lab", ""))
+#: The UFF record that carries each of a function's units, for messages
+RECORDS = {"abscissa": 8, "ordinate": 9, "reference": 10}
+#: record 9/10 data types, by name, for messages
+TYPE_NAMES = {8: "displacement", 11: "velocity", 12: "acceleration", 9: "force", 13: "force",
+              15: "pressure", 18: "frequency", 19: "rpm", 20: "order"}
+#: data type -> (the quantity at a translational direction, at a rotational one)
+TYPED_QUANTITIES = {8: ("length", "angle"), 11: ("velocity", "angular velocity"),
+                    12: ("acceleration", "angular acceleration"), 9: ("force", "torque"), 13: ("force", "torque"),
+                    15: ("pressure", "pressure"), 18: ("frequency",) * 2, 19: ("speed",) * 2, 20: ("order",) * 2}
+#: the quantities an FRF's excitation may be (the denominator of a ratio label)
+EXCITATIONS = ("torque", "force")
+
+
+def typed_quantity(code: int, direction: int | None) -> str | None:
+    """The quantity a record's specific data type says, at a response or reference direction
+    (4-6 rotation, else translation); None for a type that does not say (0 general, 1 unknown)."""
+    pair = TYPED_QUANTITIES.get(code)
+    if pair is None:
+        return None
+    return pair[1] if direction in (4, 5, 6) else pair[0]
+
+
+def split_ratio(text: str) -> tuple[str, str] | None:
+    """An FRF label naming the whole ratio, ``rad/Nm``, ``rad/(N*m)``, ``deg/N-m``, as (response
+    unit, excitation unit) when its right side is a torque or force unit; else None."""
+    from .units import UNITS, normalise
+
+    if "/" not in text:
+        return None
+    top, _, bottom = text.rpartition("/")
+    found = UNITS.get(normalise(bottom.strip().strip("()")))
+    if found is None or found.quantity not in EXCITATIONS or not top.strip():
+        return None
+    return top.strip(), bottom.strip().strip("()")
+
+
+class UnstatedUnit(FetorsionError):
+    """A record whose unit the file does not say in a way fetorsion can read: the caller must
+    state it (``units=``; the command line's ``--frf-unit`` or ``--unit``)."""
+
+    def __init__(self, text: str, record: str):
+        self.text, self.record = text, record
+        super().__init__(self.stating(f"units={{'{record}': ...}}"))
+
+    def stating(self, how: str) -> str:
+        """The message, naming ``how`` the unit is stated."""
+        return self.text.replace("{how}", how)
+
+
+def _same(a: str, b: str) -> bool | None:
+    """Whether two unit texts name one unit (None: one of them is not known)."""
+    from .units import UNITS
+
+    x, y = UNITS.get(normalise(a)), UNITS.get(normalise(b))
+    return None if x is None or y is None else (x.quantity, x.factor) == (y.quantity, y.factor)
+
+
+def _units_of(dset, where: str, units: dict, record: str, key: str, allowed, code: int,
+              direction: int | None, label: str | None = None):
+    """The Unit of one record (see the module docstring): its label where it names a unit, else
+    the caller's, else the SI unit of its data type; the label, the caller's unit and the data
+    type must agree."""
+    from .units import UNITS
+
+    number = RECORDS[record]
+    labelled = label if label is not None else _label(dset.get(f"{key}_axis_units_lab", ""))
     stated = units.get(record)
-    if labelled is None and stated is None:
-        raise FetorsionError(f"{where}: the {record} has no unit label; state its unit (units={{'{record}': ...}})")
-    found = unit(labelled, f"{where}: {record} unit label", quantities) if labelled is not None else None
-    given = unit(stated, f"{where}: stated {record} unit", quantities) if stated is not None else None
+    typed = typed_quantity(code, direction)
+    kind = f"data type {code} ({TYPE_NAMES[code]})" if code in TYPE_NAMES else f"data type {code}"
+    found = None
+    if labelled is not None:
+        found = UNITS.get(normalise(labelled))
+        if found is None and stated is None:
+            implied = f"; its {kind} reads it in {UNITS_SI[typed]}" if typed else ""
+            raise UnstatedUnit(f"{where}: the {record}'s unit label (record {number}) {labelled!r} is not a unit "
+                               f"fetorsion knows{implied}: state the unit ({{how}}) to read it", record)
+        if found is not None and allowed is not None and found.quantity not in allowed:
+            raise FetorsionError(f"{where}: record {number} says {kind}, but its unit label {labelled!r} is a unit "
+                                 f"of {found.quantity}, not of {' or '.join(allowed)}")
+    given = unit(stated, f"{where}: stated {record} unit", allowed) if stated is not None else None
     if found is not None and given is not None and (found.quantity, found.factor) != (given.quantity, given.factor):
         raise FetorsionError(f"{where}: the file's {record} unit is {labelled!r}, but {stated!r} was stated")
+    if found is None and given is None:
+        if typed is None:
+            raise UnstatedUnit(f"{where}: the {record} has no unit label and record {number} says no quantity "
+                               f"({kind}); state its unit ({{how}})", record)
+        return unit(UNITS_SI[typed], where)
     return found or given
 
 
@@ -140,16 +226,25 @@ def _function(dset, where: str, units: dict) -> MeasuredFunction:
         raise FetorsionError(f"{where}: needs >= 2 finite values")
     if np.any(np.diff(x) <= 0):
         raise FetorsionError(f"{where}: the abscissa is not ascending")
-    xu = _units_of(dset, where, units, "abscissa", "abscissa", (quantity,))
+    xu = _units_of(dset, where, units, "abscissa", "abscissa", (quantity,), abscissa_code, None)
     ordinate_code = int(dset["ordinate_spec_data_type"])
-    yu = _units_of(dset, where, units, "ordinate", "ordinate", ORDINATE_TYPES.get(ordinate_code))
+    response_dir, reference_dir = int(dset["rsp_dir"]), int(dset["ref_dir"])
+    ordinate_label = _label(dset.get("ordinate_axis_units_lab", ""))
+    ratio = split_ratio(ordinate_label) if kind == "frf" and ordinate_label is not None else None
+    yu = _units_of(dset, where, units, "ordinate", "ordinate", ORDINATE_TYPES.get(ordinate_code), ordinate_code,
+                   response_dir, None if ratio is None else ratio[0])
     reference = ru = None
     scale = yu.factor
     if kind == "frf":
         denominator_code = int(dset["orddenom_spec_data_type"])
-        ru = _units_of(dset, where, units, "reference", "orddenom", ORDINATE_TYPES.get(denominator_code))
+        own = _label(dset.get("orddenom_axis_units_lab", ""))
+        if ratio is not None and own is not None and _same(own, ratio[1]) is False:
+            raise FetorsionError(f"{where}: the ordinate's label {ordinate_label!r} names the excitation in "
+                                 f"{ratio[1]!r}, but record 10's label says {own!r}")
+        ru = _units_of(dset, where, units, "reference", "orddenom", ORDINATE_TYPES.get(denominator_code),
+                       denominator_code, reference_dir, own if own is not None else (ratio and ratio[1]))
         scale /= ru.factor
-        reference = (int(dset["ref_node"]), int(dset["ref_dir"]))
+        reference = (int(dset["ref_node"]), reference_dir)
     z_code, z = int(dset.get("z_axis_spec_data_type", 0)), float(dset.get("z_axis_value", 0.0))
     return MeasuredFunction(
         kind=kind, abscissa=x * xu.factor, abscissa_quantity=quantity, ordinate=y * scale, unit=yu.si,

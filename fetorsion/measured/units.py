@@ -51,13 +51,20 @@ def _table() -> dict[str, Unit]:
 
 
 UNITS = _table()
+#: each quantity's SI unit (in the table's spelling)
+SI_UNITS = {u.quantity: u.si for u in UNITS.values()}
 #: what a measured amplitude may be (the rest are the abscissae's quantities)
 RESPONSE_QUANTITIES = tuple(sorted({u.quantity for u in UNITS.values()} - {"frequency", "speed", "order", "time"}))
 
 
 def normalise(text: str) -> str:
-    """A unit's text in the table's spelling: ``N·m``/``N*m`` -> ``N m``, ``s²`` -> ``s^2``."""
-    text = " ".join(str(text).replace("·", " ").replace("*", " ").replace("²", "^2").split())
+    """A unit's text in the table's spelling: ``N·m``/``N*m``/``N-m``/``(N m)`` -> ``N m``,
+    ``s²`` -> ``s^2``, ``Nm`` kept (it is in the table)."""
+    text = str(text).strip()
+    if text.startswith("(") and text.endswith(")"):
+        text = text[1:-1]
+    text = " ".join(text.replace("·", " ").replace("*", " ").replace("²", "^2").split())
+    text = text.replace("N-m", "N m").replace("N.m", "N m")
     return text.replace("s2", "s^2") if text.endswith("/s2") else text
 
 

@@ -160,8 +160,11 @@ class OrderCutComparison:
     measured_deg: np.ndarray
     model_rpm: np.ndarray
     model_deg: np.ndarray
-    #: The station's 1-based number among the model's stations (:func:`response_stations`)
+    #: The station's 1-based number among the model's stations (:func:`response_stations`; 0 a twist)
     node: int = 0
+    #: The measured phase at each speed, degrees (its own convention: a torsiograph's from its
+    #: tooth 0), where the cut has one
+    measured_phase_deg: np.ndarray | None = None
 
     def _overlap(self):
         both = (self.rpm >= self.model_rpm.min()) & (self.rpm <= self.model_rpm.max())
@@ -186,13 +189,40 @@ class OrderCutComparison:
 
     def to_dict(self) -> dict:
         return {"name": self.name, "order": self.order, "station": self.station, "node": self.node,
-                "rpm": self.rpm.tolist(),
+                "rpm": self.rpm.tolist(), "steady": self.steady(),
+                "measured_phase_deg": None if self.measured_phase_deg is None else self.measured_phase_deg.tolist(),
                 "measured_deg": self.measured_deg.tolist(), "model_rpm": self.model_rpm.tolist(),
                 "model_deg": self.model_deg.tolist(), **self.peaks()}
 
+    def steady(self) -> dict | None:
+        """A cut measured at one speed (its speeds within 2 %: a steady record's blocks): the
+        mean amplitude and its spread over the blocks, the mean phase, and the model's
+        amplitude at that speed; None for a cut over a speed range."""
+        rpm = np.asarray(self.rpm, float)
+        if rpm.size < 2 or rpm.max() > 1.02 * rpm.min():
+            return None
+        at = float(rpm.mean())
+        out = {"rpm": at, "blocks": int(rpm.size), "measured_deg": float(self.measured_deg.mean()),
+               "spread_percent": float(100 * np.ptp(self.measured_deg) / max(self.measured_deg.mean(), 1e-300)),
+               "model_deg": float(np.interp(at, self.model_rpm, self.model_deg))}
+        if self.measured_phase_deg is not None:
+            out["phase_deg"] = float(np.degrees(np.angle(np.mean(np.exp(1j * np.radians(self.measured_phase_deg))))))
+        return out
+
     def lines(self) -> list[str]:
+        head = f"order {self.order:g} at {self.station} ({self.name}): "
+        st = self.steady()
+        if st is not None:
+            phase = f", phase {st['phase_deg']:+.1f} deg" if "phase_deg" in st else ""
+            return [head + f"steady at {st['rpm']:.0f} rpm over {st['blocks']} blocks: measured {st['measured_deg']:.4g} deg "
+                    f"(spread {st['spread_percent']:.2g} %){phase}; model {st['model_deg']:.4g} deg: "
+                    f"{100 * (st['model_deg'] / st['measured_deg'] - 1):+.1f} %"]
         p = self.peaks()
-        return [f"order {self.order:g} at {self.station} ({self.name}): measured peak {p['measured_peak_deg']:.4g} deg at "
+        phase = ""
+        if self.measured_phase_deg is not None:
+            c = int(np.argmin(np.abs(self.rpm - p["measured_peak_rpm"])))
+            phase = f" (phase {self.measured_phase_deg[c]:+.1f} deg)"
+        return [head + f"measured peak {p['measured_peak_deg']:.4g} deg{phase} at "
                 f"{p['measured_peak_rpm']:.0f} rpm, model {p['model_peak_deg']:.4g} deg at {p['model_peak_rpm']:.0f} rpm: "
                 f"{p['peak_difference_percent']:+.1f} %, {p['peak_rpm_difference']:+.0f} rpm; rms difference over the "
                 f"common speeds {p['rms_difference_deg']:.3g} deg"]
@@ -309,11 +339,14 @@ class ComparisonResult:
     waterfalls: list = field(default_factory=list)
     model: str = ""
     gaps: list = field(default_factory=list)
+    #: What reading the measurement found and mended (lost or spurious tooth edges)
+    notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return {"name": self.name, "model": self.model, "frequencies": [f.to_dict() for f in self.frequencies],
                 "order_cuts": [c.to_dict() for c in self.order_cuts],
-                "waterfalls": [w.to_dict() for w in self.waterfalls], "gaps": list(self.gaps)}
+                "waterfalls": [w.to_dict() for w in self.waterfalls], "gaps": list(self.gaps),
+                "notes": list(self.notes)}
 
     def table(self) -> str:
         lines = [f"{self.name}: model against measurement"]
@@ -325,7 +358,7 @@ class ComparisonResult:
             lines += c.lines()
         for w in self.waterfalls:
             lines += w.lines()
-        return "\n".join(lines + list(self.gaps))
+        return "\n".join(lines + list(self.gaps) + [f"note: {n}" for n in self.notes])
 
     def plot(self):
         """One panel per quantity: the frequencies (model against measured, the diagonal) and each
@@ -387,12 +420,17 @@ def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=Non
     with the model's."""
     f, kinds = model_frequencies(crank, source, condensed)
     model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
-    values, note = None, "mode shapes are set beside the lumped chain's only (source lumped17)"
+    values, note = None, "the full FE's shapes are not set beside measured ones (the condensed crank's are)"
+    paired = nearest_modes(estimate.frequencies_hz, f)
     if source == "lumped17":
         from ..lumped_model.lumped import lumped
 
-        values, note = paired_mac(estimate, np.asarray(lumped(crank, 17).mode_shapes),
-                                  nearest_modes(estimate.frequencies_hz, f))
+        values, note = paired_mac(estimate, np.asarray(lumped(crank, 17).mode_shapes), paired)
+    elif source == "condensed":
+        # the masters' θx, node n the n-th master (front, J1, P1, ..., rear), as the UFF is written
+        md = condensed.modes("free", CONDENSED_MODES)
+        rx = [condensed.dof(lb, "rx") for lb in condensed.labels]
+        values, note = paired_mac(estimate, md.vectors[rx].T, paired)
     return FrequencyComparison(source, np.asarray(estimate.frequencies_hz, float),
                                np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
@@ -446,11 +484,15 @@ def station_index(response, station: str | None) -> tuple[int, str]:
 def model_order_cut(response, order: float, station: int) -> np.ndarray:
     """The model's order-``order`` angle amplitude (zero to peak, degrees) at ``station`` against
     the response's speeds."""
+    return np.degrees(np.abs(response.theta[:, _order_index(response, order), station]))
+
+
+def _order_index(response, order: float) -> int:
     k = np.flatnonzero(np.isclose(response.orders, order, rtol=0, atol=1e-9))
     if not k.size:
         raise FetorsionError(f"compare: order {order:g} is not among the model's orders "
                              f"({response.orders.min():g}-{response.orders.max():g})")
-    return np.degrees(np.abs(response.theta[:, int(k[0]), station]))
+    return int(k[0])
 
 
 def compare_order_cut(function, response, station: str | None = None) -> OrderCutComparison:
@@ -462,11 +504,21 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
     if function.unit != "rad":
         raise FetorsionError(f"compare: {function.label or 'an order cut'} is in {function.unit}; the model's "
                              "order cuts are angles (deg, mrad or rad)")
+    measured = np.asarray(function.ordinate)
+    phase = np.degrees(np.angle(measured)) if np.iscomplexobj(measured) else None
+    if isinstance(station, tuple):  # a twist: the first station's angle less the second's
+        (ja, na), (jb, nb) = (station_index(response, x) for x in station)
+        k = _order_index(response, function.order)
+        model = np.degrees(np.abs(response.theta[:, k, ja] - response.theta[:, k, jb]))
+        return OrderCutComparison(function.label or f"order {function.order:g}", float(function.order),
+                                  f"{na} - {nb} twist", np.asarray(function.abscissa, float),
+                                  np.degrees(np.abs(measured)), np.asarray(response.rpm, float), model, 0, phase)
     j, name = station_index(response, station)
     node = 1 + [d for _, d in response_stations(response)].index(j)
     return OrderCutComparison(function.label or f"order {function.order:g}", float(function.order), name,
-                              np.asarray(function.abscissa, float), np.degrees(np.abs(function.ordinate)),
-                              np.asarray(response.rpm, float), model_order_cut(response, function.order, j), node)
+                              np.asarray(function.abscissa, float), np.degrees(np.abs(measured)),
+                              np.asarray(response.rpm, float), model_order_cut(response, function.order, j), node,
+                              phase)
 
 
 def track_order_cut(track, order: float, name: str):
@@ -534,7 +586,9 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
             raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
         response = response if response is not None else model_response(crank, source, condensed)
         out.model = response.model
-        out.order_cuts += [compare_order_cut(c, response, station) for c in measured["cuts"]]
+        where = measured.get("stations", {})
+        out.order_cuts += [compare_order_cut(c, response, where.get(c.label, station)) for c in measured["cuts"]]
+    out.notes += list(measured.get("notes", ()))
     out.waterfalls += [waterfall(name, track, crank, source, condensed) for name, track in measured.get("tracks", ())]
     return out
 
@@ -562,7 +616,8 @@ def gap_lines(comparison: ComparisonResult, engine, station: str | None = None) 
 def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
                       condensed=None) -> np.ndarray:
     """The free-free model's receptances (rad/N·m) at the pulley and flywheel ends to a torque at
-    the pulley end, with the description's modal damping ratio on every elastic mode:
+    the pulley end, with the description's modal damping ratio on every elastic mode (and a chain
+    file's stated dampers and loss factors):
     (2, frequencies) complex. The lumped chain's (``stations``: 0-based chain stations), or,
     given ``condensed``, the condensed crank's (its front and rear masters' θx)."""
     from ..description.defaults import DEFAULT_DAMPING_RATIO
@@ -576,11 +631,15 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
         where = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in ("front", "rear")]
         drive, read = where[0], where
     else:
-        from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix
+        from ..description.model import Chain
+        from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix, stated_damping
 
         res = lumped(crank, 17)
         M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
         C = modal_damping_matrix(M, K, zeta)
+        if isinstance(crank, Chain):  # a chain file's own dampers and loss factors, as its forced response has them
+            C_stated, H_loss = stated_damping(crank, res)
+            C, K = C + C_stated, K + 1j * H_loss
         drive, read = 0, list(stations)
     w = 2 * np.pi * np.asarray(frequency_hz, float)
     w = np.where(w > 0, w, np.nan)  # a free body has no static receptance

@@ -1,0 +1,193 @@
+"""Issue 42: tooth-edge records as a test engineer brings them to the command line — with their
+calibration run, two channels and their twist, a lost or a spurious edge, a 60-2 reference wheel
+— each checked against the vibration the record was made from."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from conftest import GEOMETRY
+from fetorsion.cli import main
+from test_measured import JITTER_S, edge_times, expected, sines
+
+SPEED = 2 * np.pi * 3000 / 60  # rad/s
+#: three orders on the pulley (a half order, the firing order, a high one), one on the flywheel
+PULLEY = [(np.radians(0.04), 1.5, -2.0), (np.radians(0.12), 2.0, 0.7), (np.radians(0.03), 4.0, 1.1)]
+FLYWHEEL = [(np.radians(0.03), 2.0, 2.2), (np.radians(0.01), 4.0, -0.4)]
+TEETH = {"pulley": 60, "flywheel": 132}
+
+
+def tooth_errors(z, rng):
+    """Fixed spacing errors of a real wheel: eccentric (order 1), oval (order 2), random pitch."""
+    at = 2 * np.pi * np.arange(z) / z
+    e = np.radians(0.04 * np.cos(at) + 0.05 * np.sin(2 * at + 0.3) + rng.normal(0, 0.02, z))
+    return e - e.mean()
+
+
+def record(theta, dtheta, z, revolutions, errors, speed, rng, places=None):
+    """Edge times of a wheel of ``z`` places turning by theta(t), its teeth at 2πi/z + e, with
+    timing jitter; ``places`` keeps only those tooth places (a reference-gap wheel)."""
+    i = np.arange(revolutions * z + 1)
+    if places is not None:
+        i = i[np.isin(i % z, places)]
+    t = edge_times(theta, dtheta, 2 * np.pi * i / z + errors[i % z], speed)
+    return t + rng.normal(0.0, JITTER_S, t.size)
+
+
+@pytest.fixture(scope="module")
+def engine():
+    rng = np.random.default_rng(42)
+    errors = {name: tooth_errors(z, rng) for name, z in TEETH.items()}
+    coast, slowing = 2 * np.pi * 800 / 60, -5.0
+    edges = {name: record(*sines(SPEED, terms), TEETH[name], 40, errors[name], SPEED, rng)
+             for name, terms in (("pulley", PULLEY), ("flywheel", FLYWHEEL))}
+    calibration = {name: record(lambda t: coast * t + 0.5 * slowing * t**2, lambda t: coast + slowing * t, z, 30,
+                                errors[name], coast, rng) for name, z in TEETH.items()}
+    return dict(edges=edges, calibration=calibration, errors=errors, rng=rng)
+
+
+def write_edges(path, channels: dict) -> str:
+    """A tooth-edge CSV (seconds, no unit line: the unit comes from --time-unit)."""
+    names = list(channels)
+    n = max(len(t) for t in channels.values())
+    rows = [", ".join(f"{channels[c][r]:.12e}" if r < len(channels[c]) else "" for c in names) for r in range(n)]
+    path.write_text(", ".join(names) + "\n" + "\n".join(rows) + "\n")
+    return str(path)
+
+
+def track(out, channel, order):
+    """(complex amplitudes per block) of one tracked order from the command's JSON."""
+    w = next(x for x in out["waterfalls"] if x["name"].endswith(f": {channel}"))["track"]
+    k = w["orders"].index(order)
+    amp, phase = np.radians(np.array(w["amplitude_deg"])[:, k]), np.radians(np.array(w["phase_deg"])[:, k])
+    return amp * np.exp(1j * phase)
+
+
+def assert_orders(c, truth, what):
+    """Every block within 1 % and 1 degree of the truth (the issue's bound; the timing jitter
+    leaves ~0.2 % and ~0.1 degree on the weakest order)."""
+    assert np.max(np.abs(np.abs(c) / abs(truth) - 1)) < 0.01, what
+    assert np.max(np.abs(np.degrees(np.angle(c / truth)))) < 1.0, what
+
+
+def compare(tmp_path, capsys, *args):
+    """`compare` of tooth-edge records against the chain, orders against time: the records are
+    made as vibrations in time, and against the shaft's own angle an order differs at second order
+    (0.5 k a², up to 0.9 % on order 4 here: ``test_orders_against_time_or_against_the_shafts_angle``)."""
+    capsys.readouterr()
+    path = tmp_path / "c.json"
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), *args, "--source", "lumped17", "--order-definition",
+                 "time", "--track-orders", "1.5", "2", "4", "--json", str(path)]) == 0
+    return json.loads(path.read_text()), capsys.readouterr()
+
+
+def test_two_channels_their_calibration_run_and_twist_through_the_command_line(tmp_path, capsys, engine):
+    """Issue 42: `compare REC.csv --teeth pulley=60 flywheel=132 --calibration CAL.csv --twist
+    pulley flywheel --time-unit s`: every order of both wheels and of their twist within 1 % and
+    1° of the truth; each channel compared at the station it is named after (the flywheel channel
+    at the flywheel end, not the pulley's), and the steady record's line gives the amplitude and
+    phase of each order."""
+    rec = write_edges(tmp_path / "rec.csv", engine["edges"])
+    cal = write_edges(tmp_path / "cal.csv", engine["calibration"])
+    out, said = compare(tmp_path, capsys, rec, "--teeth", "pulley=60", "flywheel=132", "--calibration", cal,
+                        "--twist", "pulley", "flywheel", "--time-unit", "s")
+    for a, k, phi in PULLEY:
+        assert_orders(track(out, "pulley", k), expected(a, phi), f"pulley order {k}")
+    fly = {k: expected(a, phi) for a, k, phi in FLYWHEEL}
+    for a, k, phi in FLYWHEEL:
+        assert_orders(track(out, "flywheel", k), expected(a, phi), f"flywheel order {k}")
+    for a, k, phi in PULLEY:
+        assert_orders(track(out, "twist", k), expected(a, phi) - fly.get(k, 0), f"twist order {k}")
+    stations = {c["name"].split(": ")[1].split(",")[0]: c["station"] for c in out["order_cuts"]}
+    assert stations["pulley"].endswith("(pulley end)") and stations["flywheel"].endswith("(flywheel end)")
+    assert stations["twist"] == "J1 (pulley end) - J5 (flywheel end) twist"
+    line = next(x for x in said.out.splitlines() if x.startswith("order 2 at J1") and ": pulley" in x)
+    assert "steady at 3000 rpm over 20 blocks" in line
+    measured_phase = float(line.split("phase ")[1].split(" deg")[0])
+    assert measured_phase == pytest.approx(np.degrees(np.angle(expected(*PULLEY[1][::2]))), abs=1.0)
+    # uncalibrated, the oval wheel's 0.05 deg is read as order 2 (the reason the run is needed)
+    raw, _ = compare(tmp_path, capsys, rec, "--teeth", "pulley=60", "flywheel=132", "--time-unit", "s")
+    assert np.max(np.abs(np.abs(track(raw, "pulley", 2.0)) / PULLEY[1][0] - 1)) > 0.2
+
+
+def test_a_lost_and_a_spurious_edge_are_repaired_and_named(tmp_path, capsys, engine):
+    """The pulley record with edge 1001 removed, and one with a spurious edge 40 % into a pitch:
+    the same orders within 1 % (and 1°) as the intact record, each with a warning naming the
+    edge and its time."""
+    t = engine["edges"]["pulley"]
+    lost = np.delete(t, 1000)
+    spurious = np.insert(t, 2001, t[2000] + 0.4 * (t[2001] - t[2000]))
+    cal = write_edges(tmp_path / "cal.csv", {"pulley": engine["calibration"]["pulley"]})
+    for name, edges, warning in (("lost", lost, f"1 edge(s) missing after edge 1000 ({t[999]:.6f} s"),
+                                 ("spurious", spurious, f"edge 2002 at {spurious[2001]:.6f} s is spurious")):
+        rec = write_edges(tmp_path / f"{name}.csv", {"pulley": edges})
+        out, said = compare(tmp_path, capsys, rec, "--teeth", "60", "--calibration", cal, "--time-unit", "s")
+        assert warning in said.err and warning in out["notes"][0], name
+        for a, k, phi in PULLEY:
+            assert_orders(track(out, "pulley", k), expected(a, phi), f"{name}: order {k}")
+
+
+def test_a_60_minus_2_wheel_starts_its_revolutions_at_the_gap(tmp_path, capsys, engine):
+    """A 60-2 wheel (58 teeth, a gap of three pitches once a revolution), recorded from the
+    middle of a revolution, with its calibration run: orders within 1 % and 1°, with tooth 0 the
+    first tooth after the gap (the record here first passes the gap in its third revolution, so
+    the truth's phase holds for the half order too); the gaps are not warned of."""
+    rng = np.random.default_rng(7)
+    errors = tooth_errors(60, rng)
+    teeth = np.arange(58)
+    coast, slowing = 2 * np.pi * 800 / 60, -5.0
+    rec = record(*sines(SPEED, PULLEY), 60, 40, errors, SPEED, rng, teeth)[17 + 58:]
+    cal = record(lambda t: coast * t + 0.5 * slowing * t**2, lambda t: coast + slowing * t, 60, 30, errors, coast,
+                 rng, teeth)[5:]
+    out, said = compare(tmp_path, capsys, write_edges(tmp_path / "rec.csv", {"pulley": rec}), "--teeth", "60-2",
+                        "--calibration", write_edges(tmp_path / "cal.csv", {"pulley": cal}), "--time-unit", "s")
+    assert "warning" not in said.err and out["notes"] == []
+    for a, k, phi in PULLEY:
+        assert_orders(track(out, "pulley", k), expected(a, phi), f"60-2: order {k}")
+
+
+def test_orders_against_time_or_against_the_shafts_angle(tmp_path, capsys):
+    """A strong order 6 (a = 0.5°) made as a vibration in time, θ = Ωt + a sin(6Ωt + φ). Against
+    time (`--order-definition time`) it is that one order: amplitude within 0.3 % (jitter and
+    interpolation), order 12 below 1 % of the next figure. Against the shaft's own angle (the
+    default) ψ = a sin(kθ − kψ + φ) ≈ a sin(kθ + φ) − (k a²/2) sin(2(kθ + φ)): the same order 6
+    (to (ka)² = 0.3 %) and an order 12 of k a²/2 = 2.28e-4 rad, found within 2 % (the
+    expansion's next term, (ka)² relative). The JSON says which definition was used."""
+    rng = np.random.default_rng(3)
+    a, k = np.radians(0.5), 6.0
+    rec = write_edges(tmp_path / "rec.csv", {"pulley": record(*sines(SPEED, [(a, k, 0.4)]), 60, 20, np.zeros(60),
+                                                               SPEED, rng)})
+    amp = {}
+    for definition in ("time", "angle"):
+        capsys.readouterr()
+        assert main(["compare", str(GEOMETRY / "renault21.toml"), rec, "--teeth", "60", "--time-unit", "s",
+                     "--source", "lumped17", "--track-orders", "6", "--order-definition", definition,
+                     "--json", str(tmp_path / f"{definition}.json")]) == 0
+        out = json.loads((tmp_path / f"{definition}.json").read_text())
+        assert out["waterfalls"][0]["track"]["order_definition"] == definition
+        amp[definition] = {q: np.abs(track(out, "pulley", q)) for q in (k, 2 * k)}
+    second = k * a**2 / 2
+    for definition in ("time", "angle"):
+        assert np.max(np.abs(amp[definition][k] / a - 1)) < 0.003, definition
+    assert np.max(amp["time"][2 * k]) < 0.01 * second
+    assert np.max(np.abs(amp["angle"][2 * k] / second - 1)) < 0.02
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--teeth", "60-40"], "cannot leave out 40 teeth"),
+    (["--teeth", "pulley=60", "--twist", "pulley", "crank"], "has no channel 'crank'"),
+    (["--teeth", "60", "--channel-station", "pulley=J9"], "station 'J9' is not in the model"),
+    (["--teeth", "60", "--channel-station", "pulley"], "give CHANNEL=STATION"),
+    (["--teeth", "flywheel=132"], "channel 'pulley', whose wheel is not given"),
+    (["--teeth", "60", "--frf-unit", "furlong"], "unit 'furlong' is not known"),
+])
+def test_bad_torsiograph_options_give_one_message(tmp_path, capsys, args, message):
+    t = np.arange(200) * 1e-4
+    rec = write_edges(tmp_path / "rec.csv", {"pulley": t})
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), rec, "--time-unit", "s", "--source", "lumped17",
+                 *args]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err
