@@ -82,3 +82,19 @@ def test_the_command_line_names_its_own_option_for_an_unreadable_label(tmp_path,
     assert main(["compare", str(GEOMETRY / "renault21.toml"), str(path), "--band", "400", "600",
                  "--source", "lumped17", "--frf-unit", "rad/N m", "--json", str(tmp_path / "c.json")]) == 0
     assert "frequencies" in (tmp_path / "c.json").read_text()  # read, in the unit stated
+
+
+def test_a_written_universal_file_has_the_users_umask(tmp_path):
+    """Issue 42: files written by fetorsion get the mode a plain open() gives (0644 under umask
+    022), not a temporary file's private 0600."""
+    import os
+
+    from fetorsion.measured import MeasuredFunction, write_uff58
+
+    old = os.umask(0o022)
+    try:
+        path = write_uff58(tmp_path / "m.uff", [MeasuredFunction("frf", HZ, "frequency", H, "rad", (1, 4), (1, 4),
+                                                                 "N m")])
+    finally:
+        os.umask(old)
+    assert path.stat().st_mode & 0o777 == 0o644

@@ -25,7 +25,6 @@ with record 11's data type 20 or 19), which pyuff reads and writes with 6 signif
 
 from __future__ import annotations
 
-import os
 import re
 import tempfile
 from dataclasses import dataclass
@@ -401,12 +400,8 @@ def write_uff58(path, functions, binary: bool = True) -> Path:
             block = piece.read_bytes()
             code = KIND_TYPES[f.kind]
             blocks.append(block if code == KIND_TYPES["frf"] else _set_function_type(block, code))
-    fd, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(b"".join(blocks))
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
+    from ..io import atomic_output
+
+    with atomic_output(path) as temporary:  # with the user's umask, as a plain open() would
+        temporary.write_bytes(b"".join(blocks))
     return path
