@@ -63,7 +63,8 @@ def test_posterior_covers_the_truth_and_says_what_is_identified(synthetic):
         assert rows[name]["q5"] <= true <= rows[name]["q95"], (name, rows[name], true)
         assert rows[name]["identified"]
     fillet = rows[UNIDENTIFIABLE]
-    assert not fillet["identified"] and fillet["width_ratio"] > IDENTIFIED_RATIO
+    assert not fillet["identified"] and fillet["sd_ratio"] == 1.0  # no information at all: the prior's
+    assert fillet["width_ratio"] > IDENTIFIED_RATIO  # and the sampled posterior agrees
     for j, p in enumerate(res.prediction_rows()):
         assert p["q5_hz"] <= measured[j] <= p["q95_hz"]
     assert res.posterior.acceptance > 0.1
@@ -111,7 +112,8 @@ def test_calibrated_file_is_new_commented_and_reads_back(tmp_path, capsys):
     before = hashlib.sha256(src.read_bytes()).hexdigest()
     out = tmp_path / "r21-calibrated.toml"
     argv = ["calibrate", str(src), "--measured-hz", "530", "--method", "lsq", "--inputs",
-            "webs.*.counterweight_radius", "material", "front.*.length", "--out", str(out), "--json", str(tmp_path / "c.json")]
+            "webs.*.counterweight_radius", "material", "front.*.length", "--write-all", "--out", str(out),
+            "--json", str(tmp_path / "c.json")]
     assert main(argv) == 0
     assert hashlib.sha256(src.read_bytes()).hexdigest() == before  # the original untouched
     res = json.loads((tmp_path / "c.json").read_text())
@@ -172,3 +174,32 @@ def test_renault_calibrated_on_its_measured_530_hz(tmp_path):
     cw = {r["input"]: r for r in res["inputs"]}["webs.*.counterweight_radius"]
     assert cw["median"] < cw["nominal"] and cw["lsq"] < cw["nominal"]
     assert (tmp_path / "c.png").stat().st_size > 10_000
+
+
+def test_identification_is_deterministic_and_names_the_determined_combination(capsys):
+    """Issue 42: the Renault's inputs on one measured frequency. The identification is the same
+    for every seed and method (a rule on the information at the least-squares estimate, not on
+    sampled widths); with one frequency the data determine one combination, and its
+    coefficients and every input's sd ratio are the closed form of a rank-one information
+    (Sherman-Morrison: sd ratioᵢ = √(1 − gᵢ²/(1 + |g|²)), combination g/|g|, its sd
+    1/√(1 + |g|²), g the sensitivity in prior sds over sigma), to round-off."""
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    args = dict(method="both", walkers=32, steps=60, burn=20)
+    a = run_calibration(crank, [530.0], seed=0, **args)
+    b = run_calibration(crank, [530.0], seed=1, **args)
+    ids = [[r["input"] for r in res.input_rows() if r["identified"]] for res in (a, b)]
+    assert ids[0] == ids[1]
+    assert not np.array_equal(a.posterior.samples, b.posterior.samples)  # the seeds did differ
+    g = a.lsq.sensitivity_hz[0] / a.sigma_hz[0]
+    np.testing.assert_allclose(a.identification.sd_ratio, np.sqrt(1 - g**2 / (1 + g @ g)), rtol=1e-10)
+    (v,) = a.identification.combinations
+    np.testing.assert_allclose(np.abs(v), np.abs(g) / np.linalg.norm(g), rtol=1e-8, atol=1e-12)
+    assert a.identification.combination_sd[0] == pytest.approx(1 / np.sqrt(1 + g @ g), rel=1e-10)
+    text = a.table()
+    assert "the data determine 1 quantity of the 15 inputs:" in text
+    top = a.inputs[int(np.argmax(np.abs(g)))].name
+    assert f"u({top})" in text.split("the data determine 1 quantity")[1]
+    # only the identified inputs are written (by default)
+    assert set(a.calibrated_values()) <= set(ids[0])
+    for r in a.input_rows():  # the sampled width, reported beside the rule, with its Monte Carlo error
+        assert r["width_ratio_mc_error"] > 0

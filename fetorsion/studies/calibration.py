@@ -21,11 +21,19 @@ Two paths over the same inputs, prior and model:
   [TerBraak], starting from the Laplace approximation around the least-squares estimate truncated
   to the ranges; a burn-in is discarded; the seed is fixed, so a run is reproducible.
 
-  An input is **identified** when its posterior 5–95 % interval is narrower than half its prior
-  5–95 % interval (:data:`IDENTIFIED_RATIO`): the data have at least halved the range it may take.
-  An input with no effect on the measured frequencies keeps its prior (ratio ≈ 1, less the
-  sampling noise of a few per cent); one the frequencies only pin together with others (a
-  combination identified, not each) keeps most of its own width.
+**Identified** is decided by a deterministic rule, the same for every seed and method: the
+local (Fisher) information of the data at the least-squares estimate, in prior standard
+deviations, F = JᵀJ (J the Jacobian of the σ-weighted residuals with respect to u), gives the
+Laplace posterior's covariance (F + I)⁻¹; an input is identified when its posterior standard
+deviation √((F + I)⁻¹)ᵢᵢ is below :data:`IDENTIFIED_RATIO` of its prior's (the data have at
+least halved it). The data determine as many quantities as F has eigenvalues above
+1/r² − 1 (r = :data:`IDENTIFIED_RATIO`): each eigenvector is a combination Σ vᵢ uᵢ of the
+inputs the data pin to below half its prior width, and with fewer measured frequencies than
+inputs it is such a combination, not each input, that is determined — the result says which.
+The MCMC posterior's own 5–95 % width against the prior's is reported beside the rule, with its
+Monte Carlo standard error (batch means over the chain), as a check of the linearisation; a
+sampled ratio is never the decision, because it moves with the seed by more than its margin.
+Only identified inputs are written to a calibrated description unless all are asked for.
 
 Measured modes are matched to the model's by order: the k frequencies given are the k lowest
 elastic torsional modes of the free-free lumped chain, in ascending order. A modal test whose
@@ -68,8 +76,13 @@ CALIBRATION_MODELS = tuple(f"lumped{d}" for d in PARTITIONS)
 #: 17-DOF chain's f1 differs from the 3D FE's by 0.6 % (Renault 21) and 2.1 % (Peugeot GLX)
 #: (docs/validation.md), a modal test's frequency error is ~0.1 %: the model's form dominates.
 DEFAULT_SIGMA_PERCENT = 2.0
-#: An input is identified when its posterior 90 % interval is below this fraction of its prior's.
+#: An input is identified when the data bring its (Laplace) posterior standard deviation below
+#: this fraction of its prior's; a combination of inputs is determined likewise.
 IDENTIFIED_RATIO = 0.5
+#: Batches of the chain's steps for the Monte Carlo error of a sampled width ratio.
+MC_BATCHES = 10
+#: A determined combination lists the inputs whose coefficient is at least this share of its largest.
+COMBINATION_SHARE = 0.1
 #: Natural frequencies predicted (with their bands) beside the measured ones.
 PREDICTED_MODES = 4
 #: Posterior and prior interval reported: 5-95 %.
@@ -262,6 +275,78 @@ class LeastSquaresFit:
 
 
 @dataclass
+class Identification:
+    """What the measured frequencies determine, by the local information at the least-squares
+    estimate (see the module docstring): deterministic, the same for every seed and method.
+
+    Attributes
+    ----------
+    sd_ratio : ndarray (inputs,)
+        Each input's Laplace posterior standard deviation over its prior's, √((F + I)⁻¹)ᵢᵢ.
+    identified : ndarray of bool
+        ``sd_ratio`` < :data:`IDENTIFIED_RATIO`.
+    combinations : ndarray (determined, inputs)
+        Unit vectors v (in prior standard deviations u) of the combinations Σ vᵢ uᵢ the data
+        determine, most determined first.
+    combination_sd : ndarray (determined,)
+        The posterior standard deviation of each, in prior standard deviations.
+    """
+
+    sd_ratio: np.ndarray
+    identified: np.ndarray
+    combinations: np.ndarray
+    combination_sd: np.ndarray
+
+    def lines(self, names) -> list[str]:
+        """Plain text: how many quantities the data determine, and which."""
+        n, k = len(names), len(self.combination_sd)
+        out = [f"identified (deterministic rule): Laplace posterior sd below {IDENTIFIED_RATIO:g} of the prior's, "
+               f"from the data's information at the least-squares estimate"]
+        if k == 0:
+            return out + [f"the data determine none of the {n} inputs, nor any combination of them"]
+        out.append(f"the data determine {k} quantit{'y' if k == 1 else 'ies'} of the {n} inputs:")
+        for v, sd in zip(self.combinations, self.combination_sd):
+            keep = np.flatnonzero(np.abs(v) >= COMBINATION_SHARE * np.abs(v).max())
+            keep = keep[np.argsort(-np.abs(v[keep]))]
+            terms = " ".join(f"{'+' if v[i] >= 0 else '-'} {abs(v[i]):.2f} u({names[i]})" for i in keep)
+            out.append(f"  {terms.lstrip('+ ')}   (posterior sd {sd:.2f} of its prior's)")
+        if k < n:
+            out.append("  u(x) = (x - nominal) / prior sd; an input whose posterior sd stays above "
+                       f"{IDENTIFIED_RATIO:g} of its prior's is determined only in such a combination, not on its own")
+        return out
+
+    def to_dict(self, names) -> dict:
+        return {"rule": f"Laplace posterior sd < {IDENTIFIED_RATIO:g} x prior sd (information at the lsq estimate)",
+                "sd_ratio": dict(zip(names, self.sd_ratio.tolist())),
+                "identified": [n for n, i in zip(names, self.identified) if i],
+                "combinations": [{"coefficients": dict(zip(names, v.tolist())), "posterior_sd": float(sd)}
+                                 for v, sd in zip(self.combinations, self.combination_sd)]}
+
+
+def identification(fit: LeastSquaresFit, sigma_hz) -> Identification:
+    """The deterministic identification of a least-squares fit (see :class:`Identification`)."""
+    J = fit.sensitivity_hz / np.asarray(sigma_hz, float)[:, None]  # d(residual)/du at the estimate
+    F = J.T @ J
+    sd_ratio = np.sqrt(np.diag(np.linalg.inv(F + np.eye(F.shape[0]))))
+    lam, V = np.linalg.eigh(F)
+    order = np.argsort(lam)[::-1]
+    lam, V = lam[order], V[:, order]
+    keep = lam > 1.0 / IDENTIFIED_RATIO**2 - 1.0
+    V = V[:, keep] * np.sign(V[np.argmax(np.abs(V[:, keep]), axis=0), np.arange(keep.sum())])
+    return Identification(sd_ratio, sd_ratio < IDENTIFIED_RATIO, V.T, 1.0 / np.sqrt(1.0 + lam[keep]))
+
+
+def width_ratio_error(samples: np.ndarray, walkers: int, p5: float, p95: float) -> float:
+    """Monte Carlo standard error of a sampled 5-95 % width over the prior's (p95 − p5): batch
+    means over :data:`MC_BATCHES` consecutive stretches of the chain's steps (``samples`` flat,
+    step-major as emcee gives them)."""
+    steps = samples.size // walkers
+    batches = np.array_split(samples[: steps * walkers].reshape(steps, walkers), MC_BATCHES)
+    ratios = [np.subtract(*np.percentile(b.ravel(), CREDIBLE_PERCENT[::-1])) / (p95 - p5) for b in batches]
+    return float(np.std(ratios, ddof=1) / np.sqrt(len(ratios)))
+
+
+@dataclass
 class Posterior:
     """The sampled posterior.
 
@@ -326,6 +411,9 @@ class CalibrationResult:
     nominal_hz: np.ndarray
     lsq: LeastSquaresFit | None = None
     posterior: Posterior | None = None
+    identification: Identification | None = None
+    #: Write every input the least squares moved, not only the identified ones
+    write_all: bool = False
     evaluations_per_s: float = math.nan
     seconds: float = math.nan
     date: str = field(default_factory=lambda: datetime.date.today().isoformat())
@@ -345,12 +433,15 @@ class CalibrationResult:
                 row.update(lsq=float(self.lsq.values[i]), lsq_sd=float(self.lsq.sd[i]),
                            lsq_change_percent=float(100 * (self.lsq.values[i] - inp.nominal) / inp.nominal),
                            lsq_at_bound=bool(self.lsq.at_bound[i]))
+            if self.identification is not None:
+                row.update(sd_ratio=float(self.identification.sd_ratio[i]),
+                           identified=bool(self.identification.identified[i]))
             if self.posterior is not None:
                 s = self.posterior.samples[:, i]
                 q5, q50, q95 = np.percentile(s, [lo_q, 50.0, hi_q])
-                ratio = float((q95 - q5) / (p95 - p5))
                 row.update(mean=float(s.mean()), median=float(q50), q5=float(q5), q95=float(q95),
-                           width_ratio=ratio, identified=ratio < IDENTIFIED_RATIO)
+                           width_ratio=float((q95 - q5) / (p95 - p5)),
+                           width_ratio_mc_error=width_ratio_error(s, self.posterior.walkers, p5, p95))
             rows.append(row)
         return rows
 
@@ -372,17 +463,15 @@ class CalibrationResult:
         return rows
 
     def calibrated_values(self) -> dict[str, float]:
-        """The inputs a calibrated description changes, with their values (file units): the
-        least-squares estimate of every input it moved, else (``bayes`` alone) the posterior median
-        of every identified input, each rounded to :data:`WRITTEN_DIGITS` significant digits."""
+        """The inputs a calibrated description changes, with their values (file units): of every
+        identified input (every input, with ``write_all``), the least-squares estimate, else
+        (``bayes`` alone) the posterior median, each rounded to :data:`WRITTEN_DIGITS`
+        significant digits."""
         out = {}
         for i, (inp, row) in enumerate(zip(self.inputs, self.input_rows())):
-            if self.lsq is not None:
-                x = float(self.lsq.values[i])
-            elif row.get("identified"):
-                x = row["median"]
-            else:
+            if not (self.write_all or row.get("identified")):
                 continue
+            x = float(self.lsq.values[i]) if self.lsq is not None else row["median"]
             x = float(f"{x:.{WRITTEN_DIGITS}g}")
             if x != float(f"{inp.nominal:.{WRITTEN_DIGITS}g}"):
                 out[inp.name] = x
@@ -402,10 +491,14 @@ class CalibrationResult:
         out = {"name": self.name, "source": self.source, "model": self.model, "method": self.method,
                "measured_hz": self.measured_hz.tolist(), "sigma_hz": self.sigma_hz.tolist(),
                "matching": "by order: the measured frequencies are the lowest elastic modes, ascending",
-               "identified_rule": f"posterior 5-95 % width < {IDENTIFIED_RATIO:g} x prior 5-95 % width",
+               "identified_rule": f"Laplace posterior sd < {IDENTIFIED_RATIO:g} x prior sd, from the information at "
+                                  "the least-squares estimate (deterministic)",
+               "written": "every input the least squares moved" if self.write_all else "identified inputs only",
                "inputs": self.input_rows(), "predictions": self.prediction_rows(),
                "calibrated_values": self.calibrated_values(), "evaluations_per_s": self.evaluations_per_s,
                "seconds": self.seconds, "date": self.date}
+        if self.identification is not None:
+            out["identification"] = self.identification.to_dict([i.name for i in self.inputs])
         if self.lsq is not None:
             out["lsq"] = {"chi2": self.lsq.chi2, "evaluations": self.lsq.evaluations,
                           "sensitivity_hz_per_prior_sd": self.lsq.sensitivity_hz.tolist()}
@@ -425,7 +518,8 @@ class CalibrationResult:
         if self.lsq is not None:
             head += f" {'lsq':>10} {'± sd':>9}"
         if self.posterior is not None:
-            head += f" {'median':>10} {'5-95 %':>21} {'width':>6} identified"
+            head += f" {'median':>10} {'5-95 %':>21} {'width (MC)':>13}"
+        head += f" {'sd ratio':>8} identified"
         lines += [head, "-" * len(head)]
         for r in self.input_rows():
             line = f"{r['input']:<30} {r['nominal']:10.5g} {r['low']:>9.4g}..{r['high']:<8.4g}"
@@ -433,7 +527,10 @@ class CalibrationResult:
                 line += f" {r['lsq']:10.5g} {r['lsq_sd']:9.3g}" + (" (at bound)" if r["lsq_at_bound"] else "")
             if self.posterior is not None:
                 band = f"{r['q5']:.4g}..{r['q95']:.4g}"
-                line += f" {r['median']:10.5g} {band:>21} {r['width_ratio']:6.2f} {'yes' if r['identified'] else 'no'}"
+                width = f"{r['width_ratio']:.2f}±{r['width_ratio_mc_error']:.2f}"
+                line += f" {r['median']:10.5g} {band:>21} {width:>13}"
+            if "sd_ratio" in r:
+                line += f" {r['sd_ratio']:8.2f} {'yes' if r['identified'] else 'no'}"
             lines.append(line)
         lines.append("")
         head = f"{'mode':>4} {'measured':>9} {'sigma':>6} {'nominal':>9}"
@@ -456,7 +553,13 @@ class CalibrationResult:
             lines.append(f"posterior: {p.walkers} walkers x {p.steps} steps (+{p.burn} burn-in), seed {p.seed}; "
                          f"acceptance {p.acceptance:.2f}; autocorrelation time {p.autocorr_steps:.0f} steps "
                          f"({p.steps / p.autocorr_steps:.0f} per chain)")
-            lines.append(f"identified: posterior 5-95 % width below {IDENTIFIED_RATIO:g} of the prior's")
+            lines.append("width (MC): the sampled posterior's 5-95 % width over the prior's, ± its Monte Carlo "
+                         "standard error (a check of the linearisation; not the rule)")
+        if self.identification is not None:
+            lines += self.identification.lines([i.name for i in self.inputs])
+        written = self.calibrated_values()
+        lines.append(f"a calibrated description would change {len(written)} input(s)"
+                     + (" (every one moved: write_all)" if self.write_all else " (the identified ones)"))
         lines.append(f"{self.evaluations_per_s:.0f} model evaluations/s; {self.seconds:.1f} s")
         return "\n".join(lines)
 
@@ -675,7 +778,7 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
 def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: float = DEFAULT_SIGMA_PERCENT,
                     inputs=None, model: str = "lumped17", method: str = "lsq", stiffness: str = DEFAULT_WEB_METHOD,
                     walkers: int | None = None, steps: int = DEFAULT_STEPS, burn: int = DEFAULT_BURN,
-                    seed: int = 0) -> CalibrationResult:
+                    seed: int = 0, write_all: bool = False) -> CalibrationResult:
     """Fit a description's ``[uncertainty]`` inputs to measured natural frequencies.
 
     Parameters
@@ -704,7 +807,11 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
     steps, burn : int
         Steps of each walker kept, and discarded first as burn-in.
     seed : int
-        Seed of the walkers' start and moves: the same seed gives the same posterior.
+        Seed of the walkers' start and moves: the same seed gives the same posterior (the
+        identification does not depend on it).
+    write_all : bool
+        A calibrated description changes every input the least squares moved, not only the
+        identified ones.
 
     Returns
     -------
@@ -737,6 +844,8 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
     out = CalibrationResult(crank.name, str(crank.source), f"{model}, {stiffness}", method, f_meas, sig, chosen,
                             nominal)
     out.lsq = least_squares_fit(fm, chosen, f_meas, sig)
+    out.identification = identification(out.lsq, sig)
+    out.write_all = write_all
     if method != "lsq":
         out.posterior = sample_posterior(fm, chosen, f_meas, sig, out.lsq, walkers, steps, burn, seed)
     if method == "bayes":
@@ -816,6 +925,10 @@ def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str
         changed line edited and commented; and every concrete field's new value.
     """
     values = result.calibrated_values()
+    if not values and not result.write_all:
+        raise ParameterError("write_all", "writes every input the least squares moved: the data identify none of "
+                             "the inputs on its own (only a combination of them: see the table), so a calibrated "
+                             "description of the identified inputs would change nothing")
     if not values:
         raise FetorsionError("calibrate: the calibration changes no input; no calibrated description to write")
     note = result.source_note()
