@@ -328,4 +328,5 @@ def test_the_models_universal_file_compares_back_with_mac_one(tmp_path):
                  "--json", str(tmp_path / "back.json")]) == 0
     back = json.loads((tmp_path / "back.json").read_text())["frequencies"][0]
     assert len(back["mac"]) == 1 and back["mac"][0] > 0.9995
+    assert back["source"] == "chain"  # its own model, not a "lumped17" partition of a crank
     assert np.max(np.abs(back["difference_percent"])) < 0.1

@@ -7,7 +7,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from .common import (add_json_option, check_mesh_size, emit_json, load_crank, load_description, refuse_network,
+from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
                      save_plot)
 from .options import integer, real
 from ..errors import FetorsionError
@@ -387,7 +387,7 @@ def cmd_calibrate(args) -> int:
         check_calibrate_out(args.out, args.file, args.force)
     elif args.force:
         raise FetorsionError("--force replaces an existing --out file; give --out")
-    crank = load_crank(args.file, "an [uncertainty] table")
+    crank = load_description(args.file)  # a crank description, a chain or a network: each may carry [uncertainty]
     inputs = calibration_inputs(crank, args.inputs)
     if args.method != "lsq":
         check_ensemble(len(inputs), args.walkers, args.steps, args.burn)
@@ -422,7 +422,7 @@ def add_calibrate_parser(sub) -> None:
     cp = sub.add_parser("calibrate", help="fit the description's [uncertainty] inputs to measured natural frequencies: "
                         "regularised least squares and a Bayesian posterior (MCMC); the calibrated description "
                         "as a new file")
-    cp.add_argument("file", help="crank description with an [uncertainty] table (.toml)")
+    cp.add_argument("file", help="crank description, chain or network file with an [uncertainty] table (.toml)")
     what = cp.add_mutually_exclusive_group(required=True)
     what.add_argument("--measured-hz", type=real(0.0, unit="Hz"), nargs="+", metavar="HZ",
                       help="measured natural frequencies (Hz): the lowest elastic torsional modes of the free-free "

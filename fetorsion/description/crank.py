@@ -64,11 +64,28 @@ def load(path) -> Crank | Chain | Network:
         raise DescriptionError(str(path), [Problem("file", str(path), (
             "is a mechanics file (for 'fetorsion kinematics | balance | flywheel'), not a crank description "
             "or chain file"))])
+    return parse_description(data, str(path))
+
+
+def parse_description(data: dict, source: str = "<description>") -> Crank | Chain | Network:
+    """A parsed TOML mapping as the description it is: a network (``[chain]`` with stations or
+    cranks), a chain (``[chain]``) or a crank description."""
     if "chain" in data:
         if isinstance(data["chain"], dict) and ("stations" in data["chain"] or "cranks" in data["chain"]):
-            return parse_network(data, source=str(path))
-        return parse_chain(data, source=str(path))
-    return parse_crank(data, source=str(path))
+            return parse_network(data, source=source)
+        return parse_chain(data, source=source)
+    return parse_crank(data, source=source)
+
+
+def field_keys(parent, key: str) -> list:
+    """The keys of ``parent`` a path's last part names: a table's key (set even where the table
+    lacks it), or a list's 1-based index (``*``: every index), as
+    :func:`~fetorsion.description.reader.resolve_field` reads them."""
+    if isinstance(parent, list):
+        if key == "*":
+            return list(range(len(parent)))
+        return [int(key) - 1] if key.isdigit() and 1 <= int(key) <= len(parent) else []
+    return [key]
 
 
 #: How many descriptions deep ``extends`` may go (a variant of a variant of ...): far beyond any real
@@ -122,7 +139,7 @@ def extended(path: Path, data: dict, seen: tuple[Path, ...] = ()) -> dict:
     return merged
 
 
-def parse_chain(data: dict, source: str = "<chain>") -> Chain:
+def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = True) -> Chain:
     """Build a :class:`Chain` from a parsed TOML mapping with a ``[chain]`` table.
 
     A chain may carry ``[engine]`` and ``[excitation]`` (read exactly as for a crank
@@ -200,15 +217,23 @@ def parse_chain(data: dict, source: str = "<chain>") -> Chain:
             problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
                                     "must be > 0 when the chain states no absolute, relative or hysteretic damping "
                                     "(an undamped resonance has no finite response)"))
+    uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
+    distributions = _distributions(root.table("distributions", required=False), uncertainty, data, problems)
     root.finish()
     if problems:
         raise DescriptionError(source, _unique(problems))
     labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
-    return Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
-                 tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits)
+    chain = Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
+                  tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits,
+                  uncertainty, distributions)
+    if check_uncertainty:
+        bounds = _uncertainty_bound_problems(chain, parse_chain)
+        if bounds:
+            raise DescriptionError(source, bounds)
+    return chain
 
 
-def parse_network(data: dict, source: str = "<network>") -> Network:
+def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool = True) -> Network:
     """Build a :class:`Network` from a parsed TOML mapping whose ``[chain]`` table has
     ``[[chain.stations]]`` (names and inertias), ``[[chain.shafts]]`` (springs between two named
     stations, or a station and ``"ground"``) and optional ``[[chain.gears]]`` (rigid meshes with
@@ -334,12 +359,19 @@ def parse_network(data: dict, source: str = "<network>") -> Network:
             problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
                                     "must be > 0 when the network states no absolute, relative or hysteretic "
                                     "damping (an undamped resonance has no finite response)"))
+    uncertainty = _uncertainty(root.table("uncertainty", required=False), data, problems)
+    distributions = _distributions(root.table("distributions", required=False), uncertainty, data, problems)
     root.finish()
     if problems:
         raise DescriptionError(source, _unique(problems))
-    return Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
-                   tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
-                   cranks=tuple(cranks))
+    network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
+                      tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
+                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions)
+    if check_uncertainty:
+        bounds = _uncertainty_bound_problems(network, parse_network)
+        if bounds:
+            raise DescriptionError(source, bounds)
+    return network
 
 
 def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[NetworkCrank]:
@@ -1161,10 +1193,12 @@ def _unique(problems: list[Problem]) -> list[Problem]:
     return out
 
 
-def _uncertainty_bound_problems(crank: Crank) -> list[Problem]:
+def _uncertainty_bound_problems(crank, parse=None) -> list[Problem]:
     """Each ``[uncertainty]`` bound must give a valid description: the inputs of one entry
     are set to their low (then high) bounds together, all else nominal, and the result is
-    checked with every rule of a description."""
+    checked with every rule of a description (``parse``: the reader of its kind, default a
+    crank description's)."""
+    parse = parse or parse_crank
     import copy
 
     out = []
@@ -1176,9 +1210,10 @@ def _uncertainty_bound_problems(crank: Crank) -> list[Problem]:
             for member in members:
                 parent_path, _, key = member[0].rpartition(".")
                 for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):
-                    parent[key] = _as_file_value(parent[key], member[pick])
+                    for k in field_keys(parent, key):
+                        parent[k] = _as_file_value(parent[k], member[pick])
             try:
-                parse_crank(raw, crank.source, check_uncertainty=False)
+                parse(raw, crank.source, check_uncertainty=False)
             except DescriptionError as exc:
                 # One line per bound: a range applied to every web can break one rule eight times.
                 more = len(exc.problems) - 1

@@ -471,6 +471,10 @@ class Chain:
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     dampers: tuple[Damper, ...] = ()
     limits: Limits | None = None
+    #: ``[uncertainty]`` and ``[distributions]``, as a crank description's (paths such as
+    #: ``chain.inertias_kgm2.3`` or ``chain.stiffnesses_nm_per_rad.*``)
+    uncertainty: tuple = ()
+    distributions: tuple = ()
 
     @property
     def has_dampers(self) -> bool:
@@ -647,6 +651,9 @@ class Network:
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     limits: Limits | None = None
     dampers: tuple[Damper, ...] = ()  # not yet read for a network: always empty
+    #: ``[uncertainty]`` and ``[distributions]``, as a crank description's (``chain.stations.2.inertia_kgm2``)
+    uncertainty: tuple = ()
+    distributions: tuple = ()
     nonlinear: tuple[NonlinearSpring, ...] = ()
     #: The crank descriptions that are parts of the network; until they are resolved
     #: (:func:`fetorsion.lumped_model.network.resolved`) their stations' inertias are NaN and the

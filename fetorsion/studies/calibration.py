@@ -58,7 +58,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..description.defaults import DEFAULT_WEB_METHOD
-from ..description.model import Crank
+from ..description.model import Chain, Crank, Network
 from ..description.reader import resolve_field
 from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
@@ -163,7 +163,7 @@ class CalibrationInput:
         return float(self.prior().std())
 
 
-def calibration_inputs(crank: Crank, names=None) -> list[CalibrationInput]:
+def calibration_inputs(crank: Crank | Chain | Network, names=None) -> list[CalibrationInput]:
     """The ``[uncertainty]`` entries of ``crank`` as calibration inputs: all, or those in ``names``.
 
     Parameters
@@ -879,10 +879,18 @@ def edit_toml_values(text: str, changes: dict[str, float], note: str) -> str:
 
     Only plain ``key = value`` lines under ``[table]`` / ``[[array]]`` headers are edited; a field
     the file does not spell that way is refused (one message naming it)."""
+    import tomllib
+
     lines = text.splitlines(keepends=True)
     counts: dict = {}
     table = ""
     found = set()
+    # a list's entries (``chain.inertias_kgm2.3``): the list's line is edited, entry by entry
+    entries: dict[str, dict[int, float]] = {}
+    for p, v in changes.items():
+        head, _, last = p.rpartition(".")
+        if last.isdigit():
+            entries.setdefault(head, {})[int(last) - 1] = v
     for k, line in enumerate(lines):
         stripped = line.strip()
         if stripped.startswith("["):
@@ -893,14 +901,25 @@ def edit_toml_values(text: str, changes: dict[str, float], note: str) -> str:
         key, _, rest = stripped.partition("=")
         key = key.strip().strip('"')
         path = f"{table}.{key}" if table else key
-        if path not in changes:
+        if path not in changes and path not in entries:
             continue
         old, _, comment = rest.partition("#")
         eol = "\n" if line.endswith("\n") else ""
         indent = line[: len(line) - len(line.lstrip())]
         was = f"; before: {comment.strip()}" if comment.strip() else ""
-        lines[k] = (f"{indent}{key} = {_toml_float(changes[path])}  # was {old.strip()}: {note}{was}{eol}")
-        found.add(path)
+        if path in entries:
+            try:
+                values = tomllib.loads(f"v = {old.strip()}")["v"]
+            except tomllib.TOMLDecodeError:
+                continue  # a list over several lines: refused below by name
+            for i, v in entries[path].items():
+                values[i] = v
+                found.add(f"{path}.{i + 1}")
+            new = "[" + ", ".join(_toml_float(v) if i in entries[path] else repr(v) for i, v in enumerate(values)) + "]"
+        else:
+            new = _toml_float(changes[path])
+            found.add(path)
+        lines[k] = f"{indent}{key} = {new}  # was {old.strip()}: {note}{was}{eol}"
     missing = [p for p in changes if p not in found]
     if missing:
         raise FetorsionError(f"calibrate: {missing[0]} is not a plain 'key = value' line of the description; "
@@ -967,7 +986,7 @@ def write_calibrated(result: CalibrationResult, out, force: bool = False):
     import tomllib
     from pathlib import Path
 
-    from ..description.crank import parse_crank
+    from ..description.crank import parse_description
     from ..io import write_text_atomic
 
     src, out = Path(result.source), Path(out)
@@ -975,7 +994,7 @@ def write_calibrated(result: CalibrationResult, out, force: bool = False):
     text, fields = calibrated_text(result, src.read_text(encoding="utf-8"))
     # Read back before writing: the new description must parse, by every rule, to the values written.
     raw = tomllib.loads(text)
-    parse_crank(raw, source=str(out))
+    parse_description(raw, source=str(out))
     back = {p: float(v) for p in fields for _, v in resolve_field(raw, p)}
     if back != fields:
         raise FetorsionError(f"calibrate: the calibrated description would read back other values: {back}")

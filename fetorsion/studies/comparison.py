@@ -420,6 +420,7 @@ def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=Non
     with the model's."""
     f, kinds = model_frequencies(crank, source, condensed)
     model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
+    named = "chain" if not hasattr(crank, "journals") else source  # a chain file is its own model, not a partition
     values, note = None, "the full FE's shapes are not set beside measured ones (the condensed crank's are)"
     paired = nearest_modes(estimate.frequencies_hz, f)
     if source == "lumped17":
@@ -431,7 +432,7 @@ def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=Non
         md = condensed.modes("free", CONDENSED_MODES)
         rx = [condensed.dof(lb, "rx") for lb in condensed.labels]
         values, note = paired_mac(estimate, md.vectors[rx].T, paired)
-    return FrequencyComparison(source, np.asarray(estimate.frequencies_hz, float),
+    return FrequencyComparison(named, np.asarray(estimate.frequencies_hz, float),
                                np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
 
@@ -575,7 +576,8 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
 
     if source not in SOURCES:
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
-    running = "the lumped 17-DOF chain" if source == "lumped17" else "condensed crank in its bearings"
+    running = ("the chain file's own model" if not hasattr(crank, "journals") else
+               "the lumped 17-DOF chain" if source == "lumped17" else "condensed crank in its bearings")
     out = ComparisonResult(crank.name, model=running if source == "lumped17" else
                            getattr(response, "model", "") or running)
     if measured.get("frfs"):

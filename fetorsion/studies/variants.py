@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from ..description.crank import parse_crank
+from ..description.crank import field_keys, parse_description
 from ..description.model import Crank
 
 
@@ -38,8 +38,9 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     for path, value in changes.items():
         parent_path, _, key = path.rpartition(".")
         for parent in _copied_along(raw, parent_path):
-            parent[key] = value
-    return parse_crank(raw, source=crank.source)
+            for k in field_keys(parent, key):
+                parent[k] = value
+    return parse_description(raw, source=crank.source)
 
 
 def _copied_along(tree: dict, path: str) -> list[dict]:
