@@ -330,3 +330,32 @@ def test_the_models_universal_file_compares_back_with_mac_one(tmp_path):
     assert len(back["mac"]) == 1 and back["mac"][0] > 0.9995
     assert back["source"] == "chain"  # its own model, not a "lumped17" partition of a crank
     assert np.max(np.abs(back["difference_percent"])) < 0.1
+
+
+@pytest.mark.fe
+def test_measured_shapes_against_the_full_fe(tmp_path):
+    """Issue 42: `--source fe` sets the fitted shapes beside the full 3D FE's own modes at the
+    measured stations (node n the n-th master: front, J1, P1, ..., rear; each station's twist the
+    rigid fit of its part's nodes). 'Measured' FRFs of the condensed crank at the front and rear
+    (a second model of the same crank: its masters couple to the same surfaces) pair with the
+    full FE's first torsional mode, frequency within 0.1 % and MAC above 0.999 (the two models'
+    station definitions differ slightly: a face's rigid fit against a coupling's mean)."""
+    from test_condensed_store import _plain_renault
+
+    from fetorsion.cli.fe import condensed
+    from fetorsion.studies.comparison import model_receptances
+
+    src = _plain_renault(tmp_path)
+    crank = fetorsion.load(src)
+    cc = condensed(crank, 0.03)
+    f1 = cc.modes("free").first_torsional()
+    hz = np.linspace(0.8 * f1, 1.2 * f1, 1500)
+    H = model_receptances(crank, hz, damping_ratio=0.01, condensed=cc)
+    frfs = [MeasuredFunction("frf", hz, "frequency", h, "rad", response=(n, 4), reference=(1, 4),
+                             reference_unit="N m") for h, n in zip(H, (1, len(cc.labels)))]
+    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    assert main(["compare", str(src), str(path), "--band", f"{0.85 * f1:.1f}", f"{1.15 * f1:.1f}", "--source", "fe",
+                 "--mesh-size", "30", "--json", str(tmp_path / "c.json")]) == 0
+    freq = json.loads((tmp_path / "c.json").read_text())["frequencies"][0]
+    assert freq["model_kinds"] == ["torsional"] and abs(freq["difference_percent"][0]) < 0.1
+    assert freq["mac"] is not None and freq["mac"][0] > 0.999
