@@ -92,3 +92,14 @@ def test_no_empty_heading_and_no_paragraph_cut_off(page):
             end = text.rstrip()[-1]
             assert end in ".:;!?)`*_]>}\"'|$" or text.rstrip().endswith("```"), \
                 f"{page}.md: a paragraph stops mid-sentence: ...{text.rstrip()[-70:]!r}"
+
+
+def test_the_readme_opens_with_its_two_commands():
+    """Issue 41: the README under 120 lines, its two copy-paste commands (set up and run the main
+    job; set up and run the tests) before line 15, and no other set-up command."""
+    lines = (DOCS.parent / "README.md").read_text().splitlines()
+    assert len(lines) < 120
+    setup = [k for k, line in enumerate(lines, start=1) if line.startswith("bash scripts/setup.sh")]
+    assert [lines[k - 1] for k in setup] == ["bash scripts/setup.sh && .venv/bin/fetorsion run",
+                                             "bash scripts/setup.sh && .venv/bin/python -m pytest -q"]
+    assert max(setup) < 15
