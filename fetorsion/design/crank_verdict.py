@@ -201,6 +201,7 @@ class CrankVerdict:
         return out
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "method": self.method, "passes": self.passes,
                 "damping_ratio": self.damping_ratio, "damping_source": self.damping_source,
                 "damping_assumed": self.damping_assumed, "flip": dict(self.flip), "band": list(self.band),

@@ -176,6 +176,7 @@ class DamperResult:
         return v / 1e6 if self.objective == "stress" else v
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         def damper(d):
             return None if d is None else {"type": d.kind, "at": d.at, "hub_inertia_kgm2": d.hub_inertia,
                                            "ring_inertia_kgm2": d.ring_inertia, "stiffness_nm_per_rad": d.stiffness,
@@ -188,6 +189,7 @@ class DamperResult:
                 **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         what = {"stress": "largest fillet shear stress", "twist": "largest pulley twist",
                 "fatigue": "largest fatigue utilisation sigma_V/sigma_DW (1/safety)"}[self.objective]
         lines = [f"{self.name}: {self.kind} damper, mu = {self.mu:g} of J_eq = {self.equivalent_inertia_kgm2:.4g} kg m^2 "

@@ -405,6 +405,7 @@ class FatigueResult:
         return all(a.passes for a in self.locations)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         m = self.material
         return {"method": self.method, "governing": self.governing.name, "passes": self.passes,
                 "material": {"name": m.name, "tensile_strength_pa": m.tensile_strength,

@@ -403,6 +403,7 @@ class M53Result:
         return all(a.passes for a in self.locations)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         g = self.governing
         return {"method": "iacs-m53", "passes": self.passes, "rated_rpm": self.rated_rpm,
                 "governing": {"location": g.name, "safety": g.safety, "required": g.required,

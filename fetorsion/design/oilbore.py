@@ -198,6 +198,7 @@ class OilBoreSCFResult:
         return abs(b - a) / abs(b)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"diameter_m": self.diameter, "bore_m": self.bore, "hole_m": self.hole, "rows": self.rows,
                 "torsion": self.torsion, "bending": self.bending,
                 "peterson_torsion": peterson_transverse_hole_torsion(self.diameter, self.hole, self.bore),
@@ -205,6 +206,7 @@ class OilBoreSCFResult:
                 "definition": "peak sigma1 on the drilling's wall / (16 T D or 32 M D) / (pi (D^4 - d_i^4))"}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         lines = [f"oil bore {self.hole * 1e3:g} mm in D {self.diameter * 1e3:g} mm (bore {self.bore * 1e3:g} mm): "
                  f"Peterson torsion {peterson_transverse_hole_torsion(self.diameter, self.hole, self.bore):.3f}, "
                  f"bending {peterson_transverse_hole_bending(self.diameter, self.hole, self.bore):.3f}",

@@ -372,6 +372,7 @@ class FilletSCFResult:
         return self.rows[-1]["journal_scf"]
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "throw": self.throw + 1, "rows": self.rows,
                 "pin_scf": self.pin_scf, "journal_scf": self.journal_scf,
                 "definition": "torsion: peak (sigma1 - sigma3)/2 on the fillet / (16 T D / (pi (D^4 - d_i^4))); "
@@ -379,6 +380,7 @@ class FilletSCFResult:
                               "and peak von Mises (bending_vm), each / (32 M D / (pi (D^4 - d_i^4)))"}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         head = (f"{'size [mm]':>9} {'fillet [mm]':>11} {'elements':>9} {'DOF':>9} {'time [s]':>8} "
                 f"{'pin SCF':>8} {'journal SCF':>11} {'pin bending':>11} {'journal bending':>15} "
                 f"{'pin von Mises':>13} {'journal von Mises':>17}")

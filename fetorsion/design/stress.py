@@ -119,6 +119,7 @@ class StressResult:
         return int(s), int(f)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         s, f = self.worst()
         return {"name": self.name, "rpm": self.rpm.tolist(), "fillets": [x.label for x in self.fillets],
                 "springs": self.springs.tolist(), "scf": self.scf.tolist(), "scf_source": self.scf_source,
@@ -127,6 +128,7 @@ class StressResult:
                           "shear_pa": float(self.stress_pa[s, f])}}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         lines = [f"{self.name}: vibratory shear stress at the fillets (amplitude, SCF from {self.scf_source})",
                  f"{'fillet':<28} {'SCF':>6} {'max nominal [MPa]':>18} {'max at fillet [MPa]':>20} {'at rpm':>7}"]
         for j, f in enumerate(self.fillets):

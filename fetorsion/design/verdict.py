@@ -95,6 +95,7 @@ class VerdictResult:
         return out
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         unit = "pa" if self.limits.kind == "stress" else "nm"
         return {"name": self.name, "limit_kind": self.limits.kind, "unit": unit,
                 "continuous_limit": self.limits.continuous, "transient_limit": self.limits.transient,
@@ -102,6 +103,7 @@ class VerdictResult:
                 "curves": {c.name: {"rpm": c.rpm.tolist(), "value": c.value.tolist()} for c in self.cases}}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         u, s = self.unit
         what = "fillet shear stress" if self.limits.kind == "stress" else "section torque"
         lines = [f"{self.name}: verdict on the vibratory {what} (amplitude) against the continuous limit "

@@ -67,7 +67,7 @@ class CampbellResult:
     ----------
     crossings : list of dict
         Each ``mode`` (1-based), ``frequency_hz``, ``order``, ``rpm``, ``in_range``,
-        ``torque_harmonic_nm`` (one cylinder's |T_q| at that speed), ``phase_sum`` (0..1),
+        ``torque_harmonic_nm`` (one cylinder's torque harmonic ``|T_q|`` at that speed), ``phase_sum`` (0..1),
         ``severity`` (resonant vibratory angle at the pulley, degrees, for the modal damping).
     """
 
@@ -82,6 +82,7 @@ class CampbellResult:
     severity_unit: str = "deg: resonant vibratory angle at the pulley"
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "source": self.source, "frequencies_hz": self.frequencies_hz.tolist(),
                 "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
                 "modal_damping_ratio": (list(self.damping_ratio) if isinstance(self.damping_ratio, tuple)
@@ -90,6 +91,7 @@ class CampbellResult:
                 "torque_harmonics": self.harmonics_table}
 
     def table(self, only_in_range: bool = True) -> str:
+        """The result as plain text: the table the command line prints."""
         rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
         rows.sort(key=lambda c: -c["severity"])
         kinds = any("mode_kind" in c for c in self.crossings)

@@ -325,6 +325,7 @@ class CondensedCrank:
         return np.sqrt(np.abs(w2[free:])) / (2 * np.pi)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         out = {"masters": [{"label": lb, "position_m": [float(v) for v in p]} for lb, p in zip(self.labels, self.positions)],
                "reduced_dofs": int(self.reduced.size), "master_dofs": self.n_master_dofs,
                "interior_vectors": len(self.reduced.fixed_interface_hz),
@@ -338,6 +339,7 @@ class CondensedCrank:
         return out
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         lines = [f"condensed crank: {len(self.labels)} masters ({', '.join(self.labels)}), {self.reduced.size} DOF "
                  f"({len(self.reduced.fixed_interface_hz)} interior vectors up to "
                  f"{self.reduced.fixed_interface_hz.max(initial=0.0):.0f} Hz) from {self.full_dofs} FE DOF",

@@ -591,6 +591,7 @@ class TorsiographResult:
         return [line for name, r in self.repairs.items() for line in r.lines(name)]
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"teeth": dict(self.teeth), "revolutions_per_block": self.revolutions,
                 "tooth_errors_deg": {k: np.degrees(v).tolist() for k, v in self.errors.items()},
                 "tracks": {k: v.to_dict() for k, v in self.tracks.items()},

@@ -167,7 +167,7 @@ class CoupledResponse:
     """Forced response of the condensed crank over speed (see the module docstring).
 
     Amplitudes are half the peak-to-peak of the signal synthesised over the orders; force and
-    moment magnitudes are the largest |vector| over the cycle.
+    moment magnitudes are the largest ``|vector|`` over the cycle.
     """
 
     name: str
@@ -187,6 +187,7 @@ class CoupledResponse:
     damper_heat_w: np.ndarray | None = None  # (speeds, dampers), W
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         def worst(a):
             k = np.unravel_index(np.argmax(a), a.shape)
             return {"value": float(a[k]), "rpm": float(self.rpm[k[0]]), "index": int(k[1]) + 1 if a.ndim > 1 else None}
@@ -202,6 +203,7 @@ class CoupledResponse:
                           "pulley_twist_deg": worst(self.pulley_twist_deg)}}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         w = self.to_dict()["worst"]
         lines = [f"coupled forced response of the condensed crank ({self.support}, ζ = {self.damping_ratio:g}"
                  + (f", {self.dampers}" if self.dampers else "") + ", "

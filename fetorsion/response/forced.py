@@ -50,7 +50,7 @@ class ResponseResult:
     order_pulley_deg : ndarray, shape (speeds, orders)
         Each order's own pulley amplitude, degrees.
     section_torque_peak_nm : ndarray, shape (speeds, springs)
-        Largest |vibratory torque| over the cycle (the orders summed with their phases), N·m.
+        Largest ``|vibratory torque|`` over the cycle (the orders summed with their phases), N·m.
     pulley_angle_peak_deg : ndarray
         The same for the pulley angle, degrees.
     theta : ndarray, shape (speeds, orders, DOF), complex
@@ -94,6 +94,7 @@ class ResponseResult:
     flywheel: int = -1
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         out = {"name": self.name, "model": self.model, "labels": self.labels, "sections": self.section_labels,
                "orders": self.orders.tolist(),
                "rpm": self.rpm.tolist(), "modal_damping_ratio": self.damping_ratio,

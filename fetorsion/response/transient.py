@@ -306,7 +306,7 @@ class TransientResult:
     angle_rad : ndarray (coordinates, N)
         The vibration angle of every coordinate of the model, rad.
     block_rpm, block_peak_nm : ndarray
-        Mean speed of each working cycle and the largest |torque| of each section in it (cycles ×
+        Mean speed of each working cycle and the largest ``|torque|`` of each section in it (cycles ×
         sections): the run-up's envelope (a steady run: its settled cycles only).
     track : OrderTrack
         The order track of station ``track_station`` from its simulated tooth edges
@@ -332,7 +332,7 @@ class TransientResult:
     track_station: str = ""
 
     def steady_peak_nm(self) -> np.ndarray:
-        """Largest |torque| of each section after the settling time (a steady run), N·m."""
+        """Largest ``|torque|`` of each section after the settling time (a steady run), N·m."""
         keep = self.time_s >= self.settle_s
         return np.abs(self.section_torque_nm[:, keep]).max(axis=1)
 
@@ -350,6 +350,7 @@ class TransientResult:
                             "section_torque_nm": self.section_torque_nm[:, ::every].tolist()}}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         k = int(np.argmax(self.block_peak_nm.max(axis=0)))
         b = int(np.argmax(self.block_peak_nm[:, k]))
         lines = [f"{self.name}: {self.mode}, {self.time_s[-1]:.2f} s in steps of {self.step_s * 1e6:.1f} us "

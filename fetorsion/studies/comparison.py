@@ -343,12 +343,14 @@ class ComparisonResult:
     notes: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "model": self.model, "frequencies": [f.to_dict() for f in self.frequencies],
                 "order_cuts": [c.to_dict() for c in self.order_cuts],
                 "waterfalls": [w.to_dict() for w in self.waterfalls], "gaps": list(self.gaps),
                 "notes": list(self.notes)}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         lines = [f"{self.name}: model against measurement"]
         for f in self.frequencies:
             lines += f.lines()

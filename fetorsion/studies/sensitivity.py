@@ -45,11 +45,13 @@ class SensitivityResult:
         return self.band_hz[0] <= self.measured_hz <= self.band_hz[1]
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "model": self.model, "f1_hz": self.f1_hz, "rows": self.rows,
                 "band_hz": list(self.band_hz), "measured_hz": self.measured_hz,
                 "measured_inside_band": self.measured_inside}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         head = f"{'input':<32} {'range':>22} {'f1 at low':>10} {'f1 at high':>10} {'elasticity':>10}"
         lines = [f"{self.name}: f1 = {self.f1_hz:.1f} Hz ({self.model}); one input at a time", head, "-" * len(head)]
         for r in sorted(self.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"])):

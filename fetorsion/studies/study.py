@@ -70,6 +70,7 @@ class StudyResult:
         return float(100.0 * np.mean(y < self.measured_hz))
 
     def to_dict(self) -> dict:
+        """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "method": self.method, "model": self.model, "samples": self.samples,
                 "seed": self.seed, "runs": len(self.X), "failed": len(self.errors),
                 "inputs": [{"name": i.name, "members": [list(m) for m in i.members], "distribution": i.distribution,
@@ -81,6 +82,7 @@ class StudyResult:
                 "wall_s": self.summary.wall_s, "frequency_unit": "Hz", "severity_unit": "deg"}
 
     def table(self) -> str:
+        """The result as plain text: the table the command line prints."""
         lines = [f"{self.name}: {self.method} study, {len(self.X)} runs of {self.model} "
                  f"({self.summary.computed} computed, {self.summary.stored_before} stored before, "
                  f"{len(self.errors)} failed, {self.summary.wall_s:.1f} s)"]
