@@ -56,3 +56,15 @@ def test_run_on_broken_description_exits_2_and_writes_nothing(tmp_path):
     p = run("run", str(bad), "--out", str(tmp_path / "report"))
     assert p.returncode == 2 and "engine.stroke" in p.stderr and "Traceback" not in p.stderr
     assert sorted(x.name for x in tmp_path.iterdir()) == ["bad.toml"]
+
+
+def test_version_is_printed(capsys):
+    """Issue 41: `fetorsion --version` prints the package's version (not refused)."""
+    import pytest
+
+    import fetorsion
+    from fetorsion.cli import main
+
+    with pytest.raises(SystemExit) as exit_:
+        main(["--version"])
+    assert exit_.value.code == 0 and capsys.readouterr().out.strip() == f"fetorsion {fetorsion.__version__}"

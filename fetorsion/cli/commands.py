@@ -25,7 +25,10 @@ from .common import PLOT_FORMATS
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from .. import __version__
+
     p = argparse.ArgumentParser(prog="fetorsion", description="Torsional vibration analysis of engine crankshafts.")
+    p.add_argument("--version", action="version", version=f"fetorsion {__version__}")
     sub = p.add_subparsers(dest="command", required=True)
     cli_lumped.add_parsers(sub)
     cli_dynamics.add_parsers(sub)

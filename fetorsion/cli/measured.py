@@ -239,7 +239,7 @@ def cmd_compare(args) -> int:
         from .fe import condensed
 
         cc = condensed(crank, args.mesh_size)
-    out = run_comparison(crank, measured, source, args.station, condensed=cc)
+    out = run_comparison(crank, measured, source, args.station, condensed=cc, mesh_size=args.mesh_size)
     if source == "lumped17" and out.order_cuts:
         from .dynamics import stored_engine_model
 

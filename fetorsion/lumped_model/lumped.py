@@ -211,8 +211,9 @@ def lumped(model: Crank | Chain | Network, dof: int = DEFAULT_PARTITION, stiffne
         Partition name for a crank, one of 5, 6, 17, 19, 21 (see module docs);
         ignored for a chain.
     stiffness : str
-        Web stiffness method, a key of :data:`fetorsion.webs.sections.WEB_METHODS`: ``"carter"``,
-        ``"ker-wilson"``, ``"beam"``, ``"fe"`` (static FE of each throw, cached) or ``"chart"``.
+        Web stiffness method, a key of :data:`fetorsion.webs.methods.WEB_METHODS`: ``"carter"``,
+        ``"ker-wilson"``, ``"beam"``, ``"fe"`` (static FE of each throw, cached), ``"fe-held"``
+        (each throw's stiffness inside the whole crank in rigid bearings) or ``"chart"``.
     parts : PartChain, optional
         ``build_parts(model, stiffness)`` when the caller has it already (every partition of
         one crank and method comes from the same parts).

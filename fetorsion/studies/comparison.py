@@ -398,42 +398,67 @@ class ComparisonResult:
         return fig
 
 
-def model_frequencies(crank, source: str = "lumped17", condensed=None) -> tuple[np.ndarray, list]:
+def model_frequencies(crank, source: str = "lumped17", condensed=None,
+                      mesh_size: float | None = None) -> tuple[np.ndarray, list]:
     """Free-free elastic frequencies (Hz) and their kinds of the ``source`` model of ``crank``
-    (``condensed``: the :class:`~fetorsion.fe.condensed.CondensedCrank`, for that source)."""
+    (``condensed``: the :class:`~fetorsion.fe.condensed.CondensedCrank`, for that source;
+    ``mesh_size``: the full FE's, m)."""
+    f, kinds, _ = model_modes(crank, source, condensed, mesh_size)
+    return f, kinds
+
+
+def model_modes(crank, source: str = "lumped17", condensed=None, mesh_size: float | None = None):
+    """(frequencies Hz, kinds, shapes at the model's stations (modes, stations)) of the free-free
+    ``source`` model: the chain's stations; the condensed crank's masters' θx; the full FE's
+    twist of each master's part (:func:`fe_station_twists`)."""
     if source not in SOURCES:
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
     if source == "lumped17":
         from ..lumped_model.lumped import lumped
 
-        f = np.asarray(lumped(crank, 17).frequencies_hz, float)
-        return f, ["torsional"] * f.size
+        res = lumped(crank, 17)
+        f = np.asarray(res.frequencies_hz, float)
+        return f, ["torsional"] * f.size, np.asarray(res.mode_shapes)
     if source == "condensed":
-        md = _need(condensed, source).modes("free", CONDENSED_MODES)
-        return np.asarray(md.frequencies_hz, float), list(md.kinds)
+        cc = _need(condensed, source)
+        md = cc.modes("free", CONDENSED_MODES)
+        rx = [cc.dof(lb, "rx") for lb in cc.labels]  # node n the n-th master, as the UFF is written
+        return np.asarray(md.frequencies_hz, float), list(md.kinds), md.vectors[rx].T
+    from ..description.defaults import DEFAULT_MESH_SIZE
     from ..fe.crankfe import run_modal
 
-    res = run_modal(crank)
-    return np.asarray(res.frequencies_hz, float), list(res.kinds)
+    res = run_modal(crank, DEFAULT_MESH_SIZE if mesh_size is None else mesh_size)
+    return np.asarray(res.frequencies_hz, float), list(res.kinds), fe_station_twists(res)
 
 
-def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=None) -> FrequencyComparison:
+def fe_station_twists(res) -> np.ndarray:
+    """(modes, stations) the full FE modes' twist at the condensed crank's stations (front, J1,
+    P1, …, rear): the mass-uniform rigid fit's θx of the front face's nodes, each journal's and
+    pin's part, the rear face's (``res``: a :class:`~fetorsion.fe.crankfe.CrankModal`)."""
+    from ..fe.cranksystem import master_labels
+    from ..fe.crankfe import part_nodes
+    from ..fe.modeshape import slab_fit
+
+    mesh = res.mesh
+    out = []
+    for label in master_labels(res.crank):
+        if label in ("front", "rear"):
+            nodes = np.asarray(mesh.node_sets[f"{label}_face"])
+        else:
+            nodes = part_nodes(mesh, f"{'journal' if label[0] == 'J' else 'pin'}_{label[1:]}")
+        out.append(slab_fit(res.shapes[:, nodes], mesh.nodes[nodes], np.ones(len(nodes)))[0][:, 3])
+    return np.stack(out, axis=1)
+
+
+def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=None,
+                        mesh_size: float | None = None) -> FrequencyComparison:
     """Pair the fitted modes of ``estimate`` (:class:`~fetorsion.measured.modal.ModalEstimate`)
-    with the model's."""
-    f, kinds = model_frequencies(crank, source, condensed)
+    with the model's, and their shapes by the MAC at the measured stations (node n the model's
+    n-th station: :func:`model_modes`)."""
+    f, kinds, shapes = model_modes(crank, source, condensed, mesh_size)
     model_hz, model_kinds = pair_frequencies(estimate.frequencies_hz, f, kinds)
     named = "chain" if not hasattr(crank, "journals") else source  # a chain file is its own model, not a partition
-    values, note = None, "the full FE's shapes are not set beside measured ones (the condensed crank's are)"
-    paired = nearest_modes(estimate.frequencies_hz, f)
-    if source == "lumped17":
-        from ..lumped_model.lumped import lumped
-
-        values, note = paired_mac(estimate, np.asarray(lumped(crank, 17).mode_shapes), paired)
-    elif source == "condensed":
-        # the masters' θx, node n the n-th master (front, J1, P1, ..., rear), as the UFF is written
-        md = condensed.modes("free", CONDENSED_MODES)
-        rx = [condensed.dof(lb, "rx") for lb in condensed.labels]
-        values, note = paired_mac(estimate, md.vectors[rx].T, paired)
+    values, note = paired_mac(estimate, shapes, nearest_modes(estimate.frequencies_hz, f))
     return FrequencyComparison(named, np.asarray(estimate.frequencies_hz, float),
                                np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
@@ -549,7 +574,7 @@ def model_response(crank, source: str = "lumped17", condensed=None):
 
 
 def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None,
-                   condensed=None, response=None) -> ComparisonResult:
+                   condensed=None, response=None, mesh_size: float | None = None) -> ComparisonResult:
     """The model of a crank against measured data.
 
     Parameters
@@ -569,6 +594,8 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
         The condensed crank, with its bearings; needed unless ``source`` is ``lumped17``.
     response : ResponseResult, optional
         The running model's forced response, if already solved (:func:`model_response`).
+    mesh_size : float, optional
+        The full FE's mesh size (``source`` ``fe``), m; default the modal default.
 
     Returns
     -------
@@ -584,7 +611,7 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
                            getattr(response, "model", "") or running)
     if measured.get("frfs"):
         out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
-                                                   source, condensed))
+                                                   source, condensed, mesh_size))
     if measured.get("cuts"):
         if getattr(crank, "excitation", None) is None:
             raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
