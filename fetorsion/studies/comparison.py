@@ -398,15 +398,6 @@ class ComparisonResult:
         return fig
 
 
-def model_frequencies(crank, source: str = "lumped17", condensed=None,
-                      mesh_size: float | None = None) -> tuple[np.ndarray, list]:
-    """Free-free elastic frequencies (Hz) and their kinds of the ``source`` model of ``crank``
-    (``condensed``: the :class:`~fetorsion.fe.condensed.CondensedCrank`, for that source;
-    ``mesh_size``: the full FE's, m)."""
-    f, kinds, _ = model_modes(crank, source, condensed, mesh_size)
-    return f, kinds
-
-
 def model_modes(crank, source: str = "lumped17", condensed=None, mesh_size: float | None = None):
     """(frequencies Hz, kinds, shapes at the model's stations (modes, stations)) of the free-free
     ``source`` model: the chain's stations; the condensed crank's masters' θx; the full FE's
