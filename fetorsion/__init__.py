@@ -7,7 +7,7 @@
 True
 """
 
-from .description.crank import load
+from .description.files import load
 from .description.model import Chain, Crank, Network
 from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError

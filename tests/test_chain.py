@@ -9,7 +9,7 @@ import pytest
 
 import fetorsion
 from conftest import GEOMETRY, ROOT
-from fetorsion.description.crank import parse_chain
+from fetorsion.description.chain import parse_chain
 from fetorsion.errors import DescriptionError
 from fetorsion.excitation.campbell import run_campbell
 from fetorsion.excitation.torque import cylinder_torque, harmonics

@@ -5,7 +5,8 @@ import copy
 import pytest
 
 import fetorsion
-from fetorsion.description.crank import parse_chain, parse_crank
+from fetorsion.description.chain import parse_chain
+from fetorsion.description.crank import parse_crank
 from fetorsion.errors import DescriptionError
 
 from conftest import GEOMETRY, simple_crank_raw

@@ -13,7 +13,8 @@ import pytest
 from conftest import ROOT, read_raw
 
 from fetorsion.description import fields
-from fetorsion.description.crank import parse_chain, parse_crank
+from fetorsion.description.chain import parse_chain
+from fetorsion.description.crank import parse_crank
 from fetorsion.description.reader import Table
 
 SECTION_SETS = {"crank": fields.CRANK_SECTIONS, "chain": fields.CHAIN_SECTIONS}

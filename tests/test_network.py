@@ -11,7 +11,8 @@ import pytest
 
 import fetorsion
 from conftest import ROOT
-from fetorsion.description.crank import parse_chain, parse_network
+from fetorsion.description.chain import parse_chain
+from fetorsion.description.network import parse_network
 from fetorsion.description.model import Chain, GearPair, Network, Shaft
 from fetorsion.errors import DescriptionError
 from fetorsion.lumped_model.network import gear_constraint, network_matrices, referred, speed_factors

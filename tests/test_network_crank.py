@@ -10,7 +10,9 @@ import pytest
 
 import fetorsion
 from conftest import GEOMETRY, ROOT
-from fetorsion.description.crank import load, parse_chain, parse_network
+from fetorsion.description.files import load
+from fetorsion.description.chain import parse_chain
+from fetorsion.description.network import parse_network
 from fetorsion.description.model import WEB_METHOD_NAMES, partition_labels
 from fetorsion.description.reader import read_toml
 from fetorsion.lumped_model.network import resolved

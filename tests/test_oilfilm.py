@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from fetorsion.fe import oilfilm
+from fetorsion.description import oilfilm
 
 PI = math.pi
 RPM = PI / 30  # rad/s per rpm

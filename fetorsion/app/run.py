@@ -23,7 +23,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..description.crank import load
+from ..description.files import load
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic

@@ -7,7 +7,7 @@ import json
 import sys
 
 from .options import MM
-from ..description.crank import load
+from ..description.files import load
 from ..description.model import Chain, Network
 from ..description.plausibility import plausibility_warnings
 from ..errors import FetorsionError

@@ -1,7 +1,7 @@
 """Every table and field a crank description or a chain file may hold, as data.
 
-The reader (:mod:`fetorsion.description.crank`) asks for each field by name; this module
-declares those names with their meaning and rule, and :meth:`Table.finish
+The readers (:mod:`fetorsion.description.crank`, ``.chain``, ``.network``, ``.tables``) ask for
+each field by name; this module declares those names with their meaning and rule, and :meth:`Table.finish
 <fetorsion.description.reader.Table.finish>` refuses to run when the reader has read a field
 that is not declared here. The documentation's description-format page is generated from these
 declarations (:func:`markdown`), so a field the reader accepts cannot be missing from the page.

@@ -340,7 +340,7 @@ class OilFilm:
 
     Radial clearance m and static load N per journal, dynamic viscosity Pa·s, journal speed rad/s;
     the static eccentricity ratio ε and attitude angle (rad) per journal that the short-bearing
-    theory gives there (:mod:`fetorsion.fe.oilfilm`). The film's stiffness and damping depend on
+    theory gives there (:mod:`fetorsion.description.oilfilm`). The film's stiffness and damping depend on
     load and speed: they are taken at this one point. ``load`` None: each journal's mean load
     from the crank's own forces, not found yet (``eccentricity`` and ``attitude`` then empty).
     """
@@ -362,7 +362,7 @@ class Bearings:
     per journal (centred on the journal; by default the journal's length).
 
     With ``oil_film`` the radial stiffness and damping are the film's isotropic equivalents
-    (:func:`fetorsion.fe.oilfilm.isotropic_equivalent`) at the operating point it records.
+    (:func:`fetorsion.description.oilfilm.isotropic_equivalent`) at the operating point it records.
 
     Without a ``[bearings]`` table the bearings are rigid radially and there is no thrust
     bearing (:func:`default_bearings`): no source gives the oil-film stiffness of the

@@ -233,3 +233,14 @@ def resolve_field(data: dict, path: str) -> list[tuple[str, object]]:
                 nxt.append((f"{where}.{key}", node[key]))
         found = nxt
     return [(where.lstrip("."), v) for where, v in found]
+
+
+def field_keys(parent, key: str) -> list:
+    """The keys of ``parent`` a path's last part names: a table's key (set even where the table
+    lacks it), or a list's 1-based index (``*``: every index), as
+    :func:`~fetorsion.description.reader.resolve_field` reads them."""
+    if isinstance(parent, list):
+        if key == "*":
+            return list(range(len(parent)))
+        return [int(key) - 1] if key.isdigit() and 1 <= int(key) <= len(parent) else []
+    return [key]

@@ -71,11 +71,11 @@ class RigidBody:
 
 def from_attachment(att, nodes: np.ndarray, node_xyz: np.ndarray, outward: float = 0.0,
                     about_crank_axis: bool = False) -> RigidBody:
-    """A :class:`RigidBody` from a :class:`fetorsion.description.crank.Attachment` tied to ``nodes``.
+    """A :class:`RigidBody` from a :class:`fetorsion.description.model.Attachment` tied to ``nodes``.
 
     Parameters
     ----------
-    att : fetorsion.description.crank.Attachment
+    att : fetorsion.description.model.Attachment
         Mass (kg), polar and diametral inertia (kg·m²), axial offset of the centre of mass
         from the face (m, positive outwards).
     nodes : array of int

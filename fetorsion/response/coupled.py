@@ -514,13 +514,13 @@ def with_film_bearings(cc: CondensedCrank) -> CondensedCrank:
 
     For a ``[bearings]`` oil film given without ``load_n``: the mean load magnitudes of
     :func:`journal_mean_loads` at the film's speed give the short-bearing coefficients
-    (:mod:`fetorsion.fe.oilfilm`, isotropic equivalents), which replace the rigid placeholders;
+    (:mod:`fetorsion.description.oilfilm`, isotropic equivalents), which replace the rigid placeholders;
     the crank it carries records the loads and eccentricities. Any other crank comes back as is.
     """
     import dataclasses
 
     from ..fe.condensed import bearing_matrices
-    from ..fe.oilfilm import film_coefficients, isotropic_equivalent
+    from ..description.oilfilm import film_coefficients, isotropic_equivalent
 
     b = cc.crank.main_bearings
     film = b.oil_film

@@ -17,7 +17,7 @@ holds plain numpy arrays, SI units:
 ``part_names`` tuple of str.
 ``node_sets``  dict str -> (K,) int64 sorted node indices: ``front_face`` (x = 0) and
                ``rear_face`` (x = length), vertices and midside nodes.
-``material``   the :class:`fetorsion.description.crank.Material` (E, ν, ρ), or None.
+``material``   the :class:`fetorsion.description.model.Material` (E, ν, ρ), or None.
 ``quality``    :class:`MeshQuality` (minimum SICN of the curved elements, counts, sizes).
 
 ``write_mesh(mesh, path)`` writes ``.msh`` (Gmsh 2.2 ASCII, part names as physical groups) or

@@ -1,6 +1,6 @@
 """The analytic crank-web outline and its exact mass properties.
 
-The web outline (see :class:`fetorsion.description.crank.Web`) is star-shaped about the crank axis,
+The web outline (see :class:`fetorsion.description.model.Web`) is star-shaped about the crank axis,
 so it is described by its radial function ρ(φ): the distance from the axis to the
 boundary in direction φ, with φ = 0 pointing at the pin centre. Area integrals then
 reduce to one-dimensional quadratures, e.g. the polar second moment

@@ -986,7 +986,7 @@ def write_calibrated(result: CalibrationResult, out, force: bool = False):
     import tomllib
     from pathlib import Path
 
-    from ..description.crank import parse_description
+    from ..description.files import parse_description
     from ..io import write_text_atomic
 
     src, out = Path(result.source), Path(out)

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from ..description.crank import field_keys, parse_description
+from ..description.reader import field_keys
+from ..description.files import parse_description
 from ..description.model import Crank
 
 

@@ -1,0 +1,257 @@
+"""A network chain file: stations, shafts, gear pairs, nonlinear elements and at most one crank
+description as a part (``[[chain.stations]]``, ``[[chain.shafts]]``, ``[[chain.gears]]``,
+``[[chain.nonlinear]]``, ``[[chain.cranks]]``)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+from ..errors import DescriptionError, Problem
+from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from .fields import CHAIN_SCHEMA
+from .model import (CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, GearPair, Network, NetworkCrank,
+                    NonlinearSpring, Shaft)
+from .reader import Table, read_length_unit, read_toml
+from .crank import crank_file
+from .tables import (read_engine, read_limits, read_excitation, read_uncertainty, read_distributions, unique_problems,
+                     uncertainty_bound_problems)
+
+
+def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool = True) -> Network:
+    """Build a :class:`Network` from a parsed TOML mapping whose ``[chain]`` table has
+    ``[[chain.stations]]`` (names and inertias), ``[[chain.shafts]]`` (springs between two named
+    stations, or a station and ``"ground"``) and optional ``[[chain.gears]]`` (rigid meshes with
+    a speed ratio). ``[engine]``, ``[excitation]`` and ``[limits]`` are read as for a chain;
+    ``chain.cylinder_stations`` names a station per cylinder (names or 1-based numbers).
+    """
+    problems: list[Problem] = []
+    root = Table(data, "", problems, schema=CHAIN_SCHEMA)
+    unit = read_length_unit(root, source) if ("engine" in data or "units" in data) else "m"
+    t = root.table("chain")
+    root.used.add("meta")
+    name = t.text("name", default=Path(source).stem)
+    for key in ("inertias_kgm2", "stiffnesses_nm_per_rad", "labels", "absolute_damping_nms_per_rad",
+                "relative_damping_nms_per_rad", "loss_factors"):
+        if key in t.data:
+            t.used.add(key)
+            problems.append(Problem(f"chain.{key}", t.data[key], "a network ([[chain.stations]]) states this per "
+                                    "station or shaft, not as a list"))
+    cranks = _network_cranks(t, Path(source).parent, problems)
+    labels, inertias, absolute = [], [], []
+    index = {}
+    for k, c in enumerate(cranks):  # the crank's stations first: its pulley is station 1, the reference speed
+        first = len(labels)
+        cranks[k] = replace(c, first=first)
+        labels += c.labels
+        inertias += [math.nan] * len(c.labels)  # the lumped model's, when resolved
+        absolute += [0.0] * len(c.labels)
+        index.update({f"{c.name}.{CRANK_END_ALIASES[0]}": first, f"{c.name}.{CRANK_END_ALIASES[1]}": len(labels) - 1})
+    for st in t.tables("stations", required=not cranks):
+        label = st.text("name")
+        if label in labels or label == GROUND:
+            problems.append(Problem(f"{st.path}.name", label, "must be unique and not 'ground'"))
+        labels.append(label)
+        inertias.append(st.number("inertia_kgm2", positive=True))
+        absolute.append(st.number("damping_nms_per_rad", 0.0, nonnegative=True))
+        st.finish()
+    index.update({s: i for i, s in enumerate(labels)})
+
+    def ends(tt: Table, ground: bool):
+        raw = tt.raw("between")
+        ok = (isinstance(raw, list) and len(raw) == 2 and all(isinstance(s, str) for s in raw)
+              and all(s in index or (ground and s == GROUND) for s in raw) and raw[0] != raw[1])
+        unknown = [s for s in (raw if isinstance(raw, list) else []) if isinstance(s, str) and s not in index
+                   and any(s.startswith(f"{c.name}.") for c in cranks)]
+        if unknown:
+            c = next(c for c in cranks if unknown[0].startswith(f"{c.name}."))
+            problems.append(Problem(f"{tt.path}.between", raw, f"'{unknown[0]}' is not a station of the crank "
+                                    f"'{c.name}': its stations are {c.name}.pulley, {c.name}.flywheel and "
+                                    + ", ".join(c.labels)))
+        elif raw is not None and not ok:
+            problems.append(Problem(f"{tt.path}.between", raw, "must name two different stations"
+                                    + (" (or a station and 'ground')" if ground else "")))
+        if not ok:
+            return None
+        a, b = raw if raw[0] != GROUND else raw[::-1]
+        return index[a], index.get(b, -1)
+
+    shafts = []
+    for sh in t.tables("shafts", required=not cranks):
+        pair = ends(sh, ground=True)
+        k = sh.number("stiffness_nm_per_rad", positive=True)
+        c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
+        eta = sh.number("loss_factor", 0.0, nonnegative=True)
+        sh.finish()
+        if pair:
+            shafts.append(Shaft(pair[0], pair[1], k, c, eta))
+    gears = []
+    for g in t.tables("gears", required=False):
+        pair = ends(g, ground=False)
+        ratio = g.number("ratio", positive=True)
+        g.finish()
+        if pair:
+            gears.append(GearPair(pair[0], pair[1], ratio))
+    nonlinear = [e for e in (_nonlinear_spring(nl, ends(nl, ground=True), problems)
+                             for nl in t.tables("nonlinear", required=False)) if e is not None]
+    stations = t.get("cylinder_stations", [])
+    t.finish()
+    if not problems:
+        inside = [Shaft(c.first + s, c.first + s + 1, 1.0) for c in cranks for s in range(len(c.labels) - 1)]
+        problems += _network_topology(labels, inside + shafts + [Shaft(e.i, e.j, 1.0) for e in nonlinear], gears)
+    engine = read_engine(root) if "engine" in data else None
+    driver = cranks[0] if cranks and engine is None else None  # the crank's own engine drives its pins
+    if driver is not None:
+        engine = driver.crank.engine
+        if stations:
+            problems.append(Problem("chain.cylinder_stations", stations, "the crank's pins carry its cylinders "
+                                    "when the chain file gives no [engine]; give [engine] to place them yourself"))
+            stations = []
+    cranks = [replace(c, drives=c is driver) for c in cranks]
+    picked = []
+    if not isinstance(stations, list) or not all(
+            (isinstance(c, str) and c in index) or (isinstance(c, int) and not isinstance(c, bool)
+                                                    and 1 <= c <= len(labels)) for c in stations):
+        problems.append(Problem("chain.cylinder_stations", stations, "must name a station (its name or 1-based "
+                                "number) per cylinder"))
+    else:
+        picked = [index[c] if isinstance(c, str) else c - 1 for c in stations]
+        if driver is None and engine is not None and engine.cylinders and len(picked) != engine.cylinders:
+            problems.append(Problem("chain.cylinder_stations", stations,
+                                    f"must name one station per cylinder ({engine.cylinders})"))
+        elif "engine" not in data and picked:
+            problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    if "dampers" in data:
+        root.used.add("dampers")
+        problems.append(Problem("dampers", "[[dampers]]", "is not read for a network yet: join the damper's ring "
+                                "as a station with a shaft (tuned) or an absolute/relative damper"))
+    limits = read_limits(root, torque_only=True)
+    excitation = None
+    has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
+    ex_table = None
+    if "excitation" in data:
+        if engine is None:
+            problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
+        ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
+        excitation = read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
+    elif cranks and cranks[0].crank.excitation is not None and engine is cranks[0].crank.engine:
+        # the crank's own [excitation] (its pressure file already read relative to the crank's folder)
+        excitation, ex_table = cranks[0].crank.excitation, cranks[0].crank.raw.get("excitation", {})
+    if excitation is not None:
+        if "modal_damping_ratio" not in ex_table and has_dampers:
+            excitation = replace(excitation, modal_damping_ratio=0.0)  # stated damping, not counted twice
+        elif not excitation.modal_damping_ratio > 0 and not has_dampers:
+            problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
+                                    "must be > 0 when the network states no absolute, relative or hysteretic "
+                                    "damping (an undamped resonance has no finite response)"))
+    uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
+    distributions = read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
+    root.finish()
+    if problems:
+        raise DescriptionError(source, unique_problems(problems))
+    network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
+                      tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
+                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions)
+    if check_uncertainty:
+        bounds = uncertainty_bound_problems(network, parse_network)
+        if bounds:
+            raise DescriptionError(source, bounds)
+    return network
+
+
+def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[NetworkCrank]:
+    """The ``[[chain.cranks]]`` of a network: each crank description read (every rule of its own
+    checked) and placed at the front of the station list; its lumped model is built later
+    (:func:`fetorsion.lumped_model.network.resolved`), which the description stage cannot import."""
+    out = []
+    tables = t.tables("cranks", required=False)
+    if len(tables) > 1:
+        problems.append(Problem("chain.cranks", f"{len(tables)} cranks", "at most one crank per network (two "
+                                "engines on one gearbox need an excitation each: not yet)"))
+    for ct in tables[:1]:
+        name = ct.text("name", "crank")
+        file = ct.text("file")
+        dof = ct.choice("dof", PARTITIONS, DEFAULT_PARTITION)
+        method = ct.text("stiffness", DEFAULT_WEB_METHOD, choices=WEB_METHOD_NAMES)
+        ct.finish()
+        if not name or name == GROUND or "." in name:
+            problems.append(Problem(f"{ct.path}.name", name, "must be a name without '.', not 'ground'"))
+        if not file:
+            continue
+        path = folder / file
+        if not path.is_file():
+            problems.append(Problem(f"{ct.path}.file", file, f"no such file ({path}); give the crank description's "
+                                    "path relative to this chain file's folder"))
+            continue
+        try:
+            data = read_toml(path)
+            if "chain" in data:
+                problems.append(Problem(f"{ct.path}.file", file, "must name a crank description (journals, pins, "
+                                        "webs and [engine]), not a chain file"))
+                continue
+            crank = crank_file(path, data)
+        except DescriptionError as exc:
+            problems.append(Problem(f"{ct.path}.file", file, f"is not a valid crank description: {exc}"))
+            continue
+        if crank.dampers:
+            problems.append(Problem(f"{ct.path}.file", file, "its [[dampers]] are not read in a network yet: join "
+                                    "the damper's ring as a station with a shaft, and leave [[dampers]] out"))
+            continue
+        out.append(NetworkCrank(name, crank, dof, method))
+    return out
+
+
+def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSpring | None:
+    """One ``[[chain.nonlinear]]`` element (a clutch damper's or a DMF's springs with friction):
+    every field checked here, by name, before any analysis."""
+    name = t.text("name")
+    k = t.numbers("stiffnesses_nm_per_rad")
+    angles = t.numbers("stage_angles_deg", required=False)
+    friction = t.number("friction_torque_nm", 0.0, nonnegative=True)
+    stick = t.number("stick_stiffness_nm_per_rad", 0.0, nonnegative=True)
+    preload = t.number("preload_nm", 0.0)
+    source = t.text("source")
+    t.finish()
+    before = len(problems)
+    if not k or not all(v > 0 for v in k):
+        problems.append(Problem(f"{t.path}.stiffnesses_nm_per_rad", list(k), "must be a list of stiffnesses, each > 0"))
+    if len(angles) != max(len(k) - 1, 0) or not all(a > 0 for a in angles) or list(angles) != sorted(set(angles)):
+        problems.append(Problem(f"{t.path}.stage_angles_deg", list(angles), "must give where each stage after the "
+                                "first begins: one fewer than the stiffnesses, each > 0, ascending"))
+    if stick and stick <= max(k, default=0.0):
+        problems.append(Problem(f"{t.path}.stick_stiffness_nm_per_rad", stick, "must exceed the stiffest stage "
+                                "(the friction sticks through it)"))
+    if len(problems) > before or pair is None:
+        return None
+    return NonlinearSpring(pair[0], pair[1], k, tuple(math.radians(a) for a in angles), friction,
+                           stick, preload, name, source)
+
+
+def _network_topology(labels, shafts, gears) -> list[Problem]:
+    """A network must hang together (one piece through shafts and gears), and its gears must not
+    close a loop (a loop of rigid meshes over-constrains the angles)."""
+    n = len(labels)
+    if n < 2:
+        return [Problem("chain.stations", list(labels), "needs at least 2 stations")]
+    parent = list(range(n))
+
+    def root(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    out = []
+    for g in gears:
+        a, b = root(g.i), root(g.j)
+        if a == b:
+            out.append(Problem("chain.gears", [labels[g.i], labels[g.j]], "closes a loop of gears"))
+        parent[a] = b
+    for s in shafts:
+        if s.j >= 0:
+            parent[root(s.i)] = root(s.j)
+    apart = sorted({labels[i] for i in range(n) if root(i) != root(0)})
+    if apart:
+        out.append(Problem("chain.stations", apart, f"are not joined to '{labels[0]}' by any shaft or gear"))
+    return out

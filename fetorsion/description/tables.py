@@ -1,0 +1,472 @@
+"""The tables every description kind shares, read the same way in a crank description, a chain
+and a network: ``[engine]``, ``[excitation]``, ``[[dampers]]``, ``[limits]``, ``[uncertainty]``
+and ``[distributions]``; and the problems list's helpers."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from pathlib import Path
+
+from ..errors import DescriptionError, Problem
+from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .model import table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Damper, Engine, Excitation, Limits
+from .reader import field_keys, MAX_DESCRIPTION_BYTES, Table, finite_number, resolve_field
+
+
+def per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:
+    """One value per spring: a list, or one number for every spring."""
+    raw = t.get(key, None)
+    if raw is None:
+        return ()
+    if finite_number(raw):
+        return (float(raw),) * springs
+    values = t.numbers(key)
+    if values and len(values) != springs:
+        t.problems.append(Problem(f"{t.path}.{key}", list(values), f"must be one number or one per spring ({springs})"))
+        return ()
+    return values
+
+
+def read_engine(root: Table) -> Engine:
+    """The ``[engine]`` table (cylinders, cycle, stroke, rod, bore, crank angles, firing order), lengths
+    in the file's unit converted to m; shared by crank descriptions and chain files."""
+    problems = root.problems
+    et = root.table("engine")
+    n = et.integer("cylinders")
+    strokes = et.choice("cycle_strokes", (2, 4), 4)
+    stroke = et.number("stroke", length=True, positive=True)
+    rod = et.number("rod_length", length=True, positive=True)
+    bore = et.number("bore", 0.0, length=True, nonnegative=True)
+    angles = et.numbers("crank_angles_deg")
+    firing = et.raw("firing_order")
+    et.finish()
+    if firing is None:
+        firing = []
+    elif not (isinstance(firing, list) and all(isinstance(c, int) and not isinstance(c, bool) for c in firing)
+              and (not n or sorted(firing) == list(range(1, n + 1)))):
+        problems.append(Problem("engine.firing_order", firing,
+                                f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
+        firing = []
+    if n and angles and len(angles) != n:
+        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
+    if rod <= 0.5 * stroke:
+        problems.append(Problem("engine.rod_length", rod / root.scale,
+                                f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
+    engine = Engine(n, strokes, stroke, rod,
+                    tuple(math.radians(a) for a in angles), tuple(firing), bore)
+    if n and firing and angles and len(angles) == n:
+        try:
+            engine.firing_angles()
+        except ValueError as exc:
+            problems.append(Problem("engine.firing_order", list(firing),
+                                    f"cannot be fired by crank_angles_deg {list(angles)}: {exc}"))
+    return engine
+
+
+# The inertia key of each damper type: a viscous damper's housing, a rubber or tuned damper's hub.
+_HUB_KEY = {"viscous": "housing_inertia_kgm2", "rubber": "hub_inertia_kgm2", "tuned": "hub_inertia_kgm2"}
+
+
+def read_dampers(root: Table) -> tuple[Damper, ...]:
+    """The ``[[dampers]]`` tables (crank descriptions and chain files): one problem per bad field.
+
+    Every type needs ``ring_inertia_kgm2`` > 0; ``viscous`` needs ``damping_nms_per_rad`` > 0 and
+    takes ``housing_inertia_kgm2``; ``rubber`` needs ``stiffness_nm_per_rad`` and ``loss_factor``
+    (or a ``dynamic_table`` of [frequency Hz, stiffness N m/rad, loss factor] rows, frequency
+    ascending) and takes ``hub_inertia_kgm2``; ``tuned`` needs ``stiffness_nm_per_rad`` and takes
+    ``hub_inertia_kgm2`` and ``damping_nms_per_rad``. ``at``: ``front`` (pulley end, default) or
+    ``rear`` (flywheel side). ``allowed_power_w`` (optional, > 0): the heat it may dissipate
+    continuously, its maker's rating, which the verdict checks.
+    """
+    out = []
+    for t in root.tables("dampers", required=False):
+        kind = t.text("type", choices=DAMPER_TYPES)
+        at = t.text("at", "front", choices=DAMPER_STATIONS)
+        ring = t.number("ring_inertia_kgm2", positive=True)
+        hub_key = _HUB_KEY.get(kind)
+        hub = t.number(hub_key, 0.0, nonnegative=True) if hub_key else 0.0
+        k = eta = c = 0.0
+        table: tuple = ()
+        heat: dict = {}
+        if kind == "viscous":
+            c = t.number("damping_nms_per_rad", positive=True)
+        elif kind == "rubber":
+            if "dynamic_table" in t.data:
+                table, heat = _dynamic_table(t)
+                k, eta = (table[0][1], table[0][2]) if table else (math.nan, math.nan)
+            else:
+                k = t.number("stiffness_nm_per_rad", positive=True)
+                eta = t.number("loss_factor", positive=True)
+        elif kind == "tuned":
+            k = t.number("stiffness_nm_per_rad", positive=True)
+            c = t.number("damping_nms_per_rad", 0.0, nonnegative=True)
+        name = t.text("name", default=kind)
+        allowed = t.number("allowed_power_w", 0.0, positive=True) if "allowed_power_w" in t.data else 0.0
+        t.used.add("source")
+        t.finish()
+        if kind in DAMPER_TYPES and at in DAMPER_STATIONS:
+            out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", "")), allowed,
+                              **heat))
+    return tuple(out)
+
+
+def _dynamic_table(t: Table) -> tuple[tuple, dict]:
+    """``dynamic_table`` rows [frequency Hz, stiffness N m/rad, loss factor], or [temperature °C,
+    frequency Hz, stiffness, loss factor] read either at the stated operating ``temperature_c``
+    or, with ``ambient_c`` and ``thermal_conductance_w_per_k`` (W/K, the rubber's heat path to the
+    air), at the temperature its own dissipation holds (found by the response). Returns the
+    frequency table (at ``temperature_c``, or at ``ambient_c`` to start from) and the
+    :class:`Damper`'s temperature fields."""
+    raw = t.get("dynamic_table")
+    temperature = t.get("temperature_c", None)
+    heat_keys = [k for k in ("ambient_c", "thermal_conductance_w_per_k") if k in t.data]
+    width = len(raw[0]) if isinstance(raw, list) and raw and isinstance(raw[0], list) else 0
+    rule = ("must be >= 2 rows [frequency_hz > 0, stiffness_nm_per_rad > 0, loss_factor >= 0] with frequency "
+            "ascending, or rows [temperature_c, frequency_hz, stiffness_nm_per_rad, loss_factor] with frequency "
+            "ascending within each temperature (>= 2 per temperature) and temperature_c (or ambient_c and "
+            "thermal_conductance_w_per_k) given")
+    rows = raw if isinstance(raw, list) else []
+    ok = (width in (3, 4) and len(rows) >= 2
+          and all(isinstance(r, list) and len(r) == width and all(finite_number(v) for v in r) for r in rows))
+    if ok:
+        body = [r[-3:] for r in rows]
+        ok = all(f > 0 and k > 0 and e >= 0 for f, k, e in body)
+    groups: dict = {}
+    if ok:
+        for r in rows:
+            groups.setdefault(r[0] if width == 4 else None, []).append(r[-3:])
+        ok = all(len(g) >= 2 and all(a[0] < b[0] for a, b in zip(g, g[1:])) for g in groups.values())
+    if not ok:
+        t.used.update(heat_keys)
+        t.problems.append(Problem(f"{t.path}.dynamic_table", raw, rule))
+        return (), {}
+    if width == 3:
+        for key, value in [("temperature_c", temperature)] * (temperature is not None) + [(k, t.data[k]) for k in heat_keys]:
+            t.used.add(key)
+            t.problems.append(Problem(f"{t.path}.{key}", value,
+                                      "needs dynamic_table rows with a temperature column [temperature_c, frequency_hz, "
+                                      "stiffness_nm_per_rad, loss_factor]"))
+        return tuple((float(f), float(k), float(e)) for f, k, e in rows), {}
+    rows4 = tuple((float(T), float(f), float(k), float(e)) for T, f, k, e in rows)
+    if heat_keys:
+        ambient = t.number("ambient_c")
+        conductance = t.number("thermal_conductance_w_per_k", positive=True)
+        if temperature is not None:
+            t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                      "give either temperature_c (a stated operating temperature) or ambient_c and "
+                                      "thermal_conductance_w_per_k (the damper's own heat sets it), not both"))
+        if not (finite_number(ambient) and conductance > 0):
+            return (), {}
+        return table_at_temperature(groups, ambient), {"temperature_table": rows4, "temperature_c": ambient,
+                                                       "ambient_c": ambient, "thermal_conductance": conductance}
+    if not finite_number(temperature):
+        t.problems.append(Problem(f"{t.path}.temperature_c", temperature,
+                                  "a dynamic_table with a temperature column needs the operating temperature_c "
+                                  "(a finite number, °C), or ambient_c and thermal_conductance_w_per_k"))
+        return (), {}
+    return table_at_temperature(groups, float(temperature)), {"temperature_table": rows4,
+                                                              "temperature_c": float(temperature)}
+
+
+#: ``[limits]`` keys of the fatigue assessment's own strength and margin (opt-in overrides).
+FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety", "additional_bending_pa")
+
+
+#: ``[limits]`` keys of earlier versions' shear-stress verdict, refused in a crank description.
+SHEAR_LIMIT_KEYS = ("continuous_shear_pa", "fatigue_strength_shear_pa", "safety_factor", "transient_shear_pa")
+
+
+FATIGUE_METHOD_NAMES = ("iacs-m53", "fe")
+
+
+def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
+    """The ``[limits]`` table. A chain or network file (``torque_only``): the permissible
+    vibratory section torque for continuous running (``continuous_torque_nm``) and passing through
+    (``transient_torque_nm``). A crank description: the fatigue verdict's overrides only
+    (:data:`FATIGUE_LIMIT_KEYS`, ``fatigue_method``); the shear limits of earlier versions are
+    refused with the fields that replace them. ``source`` (required) says where the numbers come from."""
+    if "limits" not in root.data:
+        return None
+    t = root.table("limits")
+    source = t.text("source")
+    if not source.strip():
+        t.problems.append(Problem(f"{t.path}.source", t.data.get("source"), "must say where the limits come from"))
+    if torque_only:
+        bad = [k for k in (*SHEAR_LIMIT_KEYS, *FATIGUE_LIMIT_KEYS, "fatigue_method") if k in t.data]
+        if bad or "continuous_torque_nm" not in t.data:
+            t.problems.append(Problem(t.path, sorted(t.data), "a chain file has no shaft sections: give "
+                                                             "continuous_torque_nm (and transient_torque_nm)"))
+            t.used.update((*SHEAR_LIMIT_KEYS, *FATIGUE_LIMIT_KEYS, "fatigue_method", "continuous_torque_nm",
+                           "transient_torque_nm"))
+            t.finish()
+            return None
+        lim = Limits(continuous_torque=t.number("continuous_torque_nm", positive=True),
+                     transient_torque=t.number("transient_torque_nm", 0.0, nonnegative=True), source=source)
+        t.finish()
+        if lim.transient and lim.transient < lim.continuous:
+            t.problems.append(Problem(f"{t.path}.transient_torque_nm", lim.transient,
+                                      f"must be >= the continuous limit ({lim.continuous:g}): passing through a "
+                                      "resonance is allowed more, not less"))
+        return lim
+    old = [k for k in (*SHEAR_LIMIT_KEYS, "continuous_torque_nm", "transient_torque_nm") if k in t.data]
+    if old:
+        t.problems.append(Problem(t.path, old, "a crank's verdict is its fatigue assessment, not a second shear or "
+                                               "torque limit: state the strength as [material] tensile_strength_pa "
+                                               "(and yield_strength_pa), or the crank's own as [limits] "
+                                               "fatigue_strength_bending_pa, the margin as fatigue_required_safety"))
+        t.used.update(old)
+    method = t.text("fatigue_method", "")
+    if method and method not in FATIGUE_METHOD_NAMES:
+        t.problems.append(Problem(f"{t.path}.fatigue_method", method, f"must be one of {', '.join(FATIGUE_METHOD_NAMES)}"))
+    lim = Limits(source=source, fatigue_method=method,
+                 fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
+                 fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True),
+                 additional_bending=t.number("additional_bending_pa", 0.0, nonnegative=True))
+    if 0 < lim.fatigue_required_safety < 1.0:
+        t.problems.append(Problem(f"{t.path}.fatigue_required_safety", lim.fatigue_required_safety,
+                                  "must be >= 1 (a safety factor)"))
+    t.finish()
+    return lim
+
+
+EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
+
+
+def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: bool = False) -> Excitation:
+    """The ``[excitation]`` table; a pressure CSV path is relative to the description file. A chain
+    that states its own dampers may set ``modal_damping_ratio = 0`` (``zero_damping_ok``).
+    The synthetic cycle is checked against the ``engine`` it drives (a bore, four strokes, a
+    peak pressure above the motored one)."""
+    strokes = engine.strokes_per_cycle if engine else 4
+    mass = t.number("reciprocating_mass_kg", nonnegative=True)
+    rotating = t.number("rotating_mass_kg", 0.0, nonnegative=True)
+    speeds = t.numbers("speed_range_rpm")
+    if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
+        t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
+        speeds = (1.0, 2.0)
+    zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=not zero_damping_ok,
+                    nonnegative=zero_damping_ok, below=1.0)
+    overspeed = t.number("overspeed_factor", DEFAULT_OVERSPEED, above=0.0)
+    if overspeed < 1.0:
+        t.problems.append(Problem(f"{t.path}.overspeed_factor", overspeed, "must be >= 1 (a multiple of the top speed)"))
+    band = tuple(t.numbers("modal_damping_band", required=False) or DEFAULT_DAMPING_BAND)
+    if not (len(band) == 2 and 0 < band[0] <= band[1] < 1):
+        t.problems.append(Problem(f"{t.path}.modal_damping_band", list(band), "must be [low, high] with 0 < low <= high < 1"))
+        band = DEFAULT_DAMPING_BAND
+    source = t.text("modal_damping_source", "")
+    if "modal_damping_band" in t.data and not source.strip():
+        t.problems.append(Problem(f"{t.path}.modal_damping_source", source,
+                                  "is required with modal_damping_band: say where the band comes from"))
+    common = dict(reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
+                  damping_band=(float(band[0]), float(band[1])),
+                  damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE,
+                  modal_damping_ratio_source=t.text("modal_damping_ratio_source", "").strip())
+    given = [k for k in EXCITATION_SOURCES if k in t.data]
+    if len(given) != 1:
+        t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))
+        t.used.update(EXCITATION_SOURCES)
+        t.used.update(_SYNTHETIC_CYCLE_KEYS)
+        t.finish()
+        return Excitation(**common)
+    if given[0] == "pressure_csv":
+        csv = t.text("pressure_csv")
+        t.finish()
+        curve = _pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems, 180.0 * strokes) if csv else None
+        return Excitation(pressure_curve=curve, **common)
+    raw = t.get(given[0])
+    pairs = [(1.0, raw)] if finite_number(raw) else raw
+    if not (isinstance(pairs, list) and pairs and all(
+            isinstance(p, (list, tuple)) and len(p) == 2 and all(finite_number(v) for v in p) and p[1] > 0
+            for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
+        t.problems.append(Problem(f"{t.path}.{given[0]}", raw,
+                                  "must be a finite pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
+        pairs = [(1.0, 1.0)]
+    ex = Excitation(
+        compression_ratio=t.number("compression_ratio", above=1.0),
+        load_kind="imep" if given[0] == "imep_pa" else "peak",
+        load=tuple((float(a), float(b)) for a, b in pairs),
+        intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
+        polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),
+        combustion_start=math.radians(t.number("combustion_start_deg", -15.0, above=-90.0, below=90.0)),
+        combustion_duration=math.radians(t.number("combustion_duration_deg", 50.0, positive=True, below=180.0)),
+        wiebe_a=t.number("wiebe_a", 5.0, positive=True),
+        wiebe_m=t.number("wiebe_m", 2.0, nonnegative=True),
+        **common,
+    )
+    t.finish()
+    if engine is not None and engine.strokes_per_cycle != 4:
+        t.problems.append(Problem(f"{t.path}.{given[0]}", raw, "the synthetic cycle is a 4-stroke cycle; give "
+                                  "pressure_csv for a 2-stroke engine"))
+    if engine is not None and not engine.bore > 0:
+        t.problems.append(Problem("engine.bore", engine.bore, f"must be > 0 for the gas force of {t.path}.{given[0]}"))
+    motored_peak = ex.intake_pressure * ex.compression_ratio ** ex.polytropic_exponent
+    if ex.load_kind == "peak" and ex.compression_ratio > 1 and min(p for _, p in ex.load) <= motored_peak:
+        # Polytropic compression from BDC at the intake pressure: the motored pressure at TDC.
+        t.problems.append(Problem(f"{t.path}.peak_pressure_pa", raw, f"must be above the motored peak "
+                                  f"p_intake·CR^n = {motored_peak:.4g} Pa at every speed"))
+    return ex
+
+
+_SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",
+                         "combustion_duration_deg", "wiebe_a", "wiebe_m")
+
+
+def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_deg: float):
+    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)
+    that covers one whole cycle (``cycle_deg``: 720 for a 4-stroke, 360 for a 2-stroke)."""
+    import numpy as np
+
+    rows = "rows of 'angle_deg, pressure_pa'"
+    if not path.is_file():
+        problems.append(Problem(field_name, str(path), "is not a file"))
+        return None
+    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
+        problems.append(Problem(field_name, str(path), f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB"))
+        return None
+    try:
+        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2, encoding="utf-8")
+    except (OSError, ValueError) as exc:
+        problems.append(Problem(field_name, str(path), f"could not be read as {rows} ({exc})"))
+        return None
+    if table.ndim != 2 or table.shape[1] != 2 or len(table) < 8:
+        problems.append(Problem(field_name, str(path), f"needs >= 8 {rows}"))
+        return None
+    angle, pressure = table[:, 0], table[:, 1]
+    if not np.all(np.isfinite(table)):
+        bad = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
+        problems.append(Problem(field_name, str(path), f"row {bad + 1} holds a non-finite number"))
+    elif np.any(np.diff(angle) <= 0) or np.any(pressure <= 0):
+        problems.append(Problem(field_name, str(path), f"needs {rows} with angles ascending and pressures > 0"))
+    else:
+        span, step = angle[-1] - angle[0], np.diff(angle).max()
+        if not cycle_deg - step - 1e-9 <= span <= cycle_deg + 1e-9:
+            problems.append(Problem(field_name, str(path),
+                                    f"covers {angle[0]:g}..{angle[-1]:g} deg; it must cover one whole cycle "
+                                    f"({cycle_deg:g} deg, one step short at most)"))
+        else:
+            return tuple(np.radians(angle)), tuple(pressure)
+    return None
+
+
+def read_uncertainty(t: Table, data: dict, problems: list[Problem]):
+    """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
+    ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
+    e.g. a material's E and density. Each range must contain its nominal value."""
+    out = []
+    for name, spec in t.data.items():
+        t.used.add(name)
+        members = spec.items() if isinstance(spec, dict) else [(name, spec)]
+        group = []
+        for path, rng in members:
+            where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
+            if not (isinstance(rng, list) and len(rng) == 2 and all(finite_number(v) for v in rng)
+                    and rng[0] < rng[1]):
+                problems.append(Problem(where_name, rng, "must be [low, high], finite numbers with low < high"))
+                continue
+            targets = resolve_field(data, path)
+            if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
+                problems.append(Problem(where_name, rng, f"'{path}' does not name a numeric field of this description"))
+                continue
+            refused = {p.field for p in problems}  # a nominal value already refused is reported once
+            for where, v in targets:
+                if where not in refused and not rng[0] <= v <= rng[1]:
+                    problems.append(Problem(where_name, rng, f"must contain the nominal value {where} = {v}"))
+            group.append((path, float(rng[0]), float(rng[1])))
+        out.append((name, tuple(group)))
+    return tuple(out)
+
+
+#: Distributions an ``[uncertainty]`` input may have (``fetorsion study`` samples them; the
+#: one-at-a-time sensitivity and the grid use the range alone).
+DISTRIBUTIONS = ("uniform", "triangular", "normal")
+
+
+def read_distributions(t: Table, uncertainty, data: dict, problems: list[Problem]):
+    """``[distributions]``: ``name = "uniform" | "triangular"`` or ``name = { kind = "normal",
+    sd = S }`` for an ``[uncertainty]`` entry (a group: its first member). Triangular peaks
+    at the nominal value, which must lie below the high bound; normal is centred on the
+    nominal value with standard deviation S (the member's file units), truncated to the range."""
+    entries = dict(uncertainty)
+    out = []
+    for name, spec in t.data.items():
+        t.used.add(name)
+        where = f"distributions.{name}"
+        if name not in entries:
+            problems.append(Problem(where, spec, "names no [uncertainty] entry"
+                                    + (f" (entries: {', '.join(entries)})" if entries else "")))
+            continue
+        kind, sd = (spec, None) if isinstance(spec, str) else (
+            (spec.get("kind"), spec.get("sd")) if isinstance(spec, dict) else (None, None))
+        extra = sorted(set(spec) - {"kind", "sd"}) if isinstance(spec, dict) else []
+        if kind not in DISTRIBUTIONS or extra:
+            problems.append(Problem(where, spec, f"must be one of {', '.join(DISTRIBUTIONS)}, or "
+                                                 "{ kind = \"normal\", sd = S }" + (f"; unknown key {extra[0]}" if extra else "")))
+            continue
+        if not entries[name]:  # the range itself was refused
+            continue
+        path, low, high = entries[name][0]
+        values = [v for _, v in resolve_field(data, path)]
+        nominal = sum(values) / len(values)
+        if kind == "normal" and not (finite_number(sd) and sd > 0):
+            problems.append(Problem(f"{where}.sd", sd, "a normal distribution needs sd > 0 (file units of "
+                                                         f"{path})"))
+            continue
+        if kind != "normal" and sd is not None:
+            problems.append(Problem(f"{where}.sd", sd, f"only a normal distribution takes sd, not {kind}"))
+            continue
+        if kind == "triangular" and not low <= nominal < high:
+            problems.append(Problem(where, spec, f"a triangular distribution peaks at the nominal {path} = "
+                                                 f"{nominal:g}, which must lie below the high bound {high:g}"))
+            continue
+        out.append((name, kind, float(sd) if kind == "normal" else None))
+    return tuple(out)
+
+
+def unique_problems(problems: list[Problem]) -> list[Problem]:
+    """Each problem once, in the order first found."""
+    seen, out = set(), []
+    for p in problems:
+        key = (p.field, repr(p.value), p.rule)
+        if key not in seen:
+            seen.add(key)
+            out.append(p)
+    return out
+
+
+def uncertainty_bound_problems(crank, parse) -> list[Problem]:
+    """Each ``[uncertainty]`` bound must give a valid description: the inputs of one entry
+    are set to their low (then high) bounds together, all else nominal, and the result is
+    checked with every rule of a description (``parse``: the reader of its kind, called with
+    ``check_uncertainty=False``)."""
+    import copy
+
+    out = []
+    for name, members in crank.uncertainty:
+        for which, pick in (("low", 1), ("high", 2)):
+            raw = copy.deepcopy(crank.raw)
+            raw.pop("uncertainty", None)
+            raw.pop("distributions", None)
+            for member in members:
+                parent_path, _, key = member[0].rpartition(".")
+                for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):
+                    for k in field_keys(parent, key):
+                        parent[k] = _as_file_value(parent[k], member[pick])
+            try:
+                parse(raw, crank.source, check_uncertainty=False)
+            except DescriptionError as exc:
+                # One line per bound: a range applied to every web can break one rule eight times.
+                more = len(exc.problems) - 1
+                out.append(Problem(f"uncertainty.{name}", [list(m[1:]) for m in members] if len(members) > 1
+                                   else list(members[0][1:]),
+                                   f"its {which} bound breaks a rule: {exc.problems[0]}"
+                                   + (f" (and {more} more)" if more else "")))
+    return out
+
+
+def _as_file_value(nominal, bound: float):
+    """The bound as the file would hold it: an int field stays an int when the bound is whole,
+    so that a non-whole bound of an integer (a cylinder count of 3.5) is caught by its rule."""
+    if isinstance(nominal, int) and not isinstance(nominal, bool) and float(bound).is_integer():
+        return int(bound)
+    return bound
