@@ -1,4 +1,6 @@
-"""The hand-off between the model stages and the analyses: a set of torsional modes.
+"""The hand-off between the model stages and the analyses: a set of torsional modes, and the
+one builder of a modal damping matrix every model uses (the lumped chain, a network, the
+condensed crank).
 
 Both the lumped chain (:meth:`fetorsion.lumped_model.lumped.LumpedResult.torsional_modes`)
 and the 3D FE crank (:meth:`fetorsion.fe.crankfe.CrankModal.torsional_modes`) produce a
@@ -29,3 +31,23 @@ class TorsionalModes:
     pulley_amplitude: np.ndarray
     modal_inertia: np.ndarray
     labels: tuple[str, ...] = ()
+
+
+def modal_damping(M: np.ndarray, shapes: np.ndarray, omegas: np.ndarray, ratio: float) -> np.ndarray:
+    """C = M Φ diag(2 ζ ω) Φᵀ M: the damping ratio ``ratio`` on each mode of ``shapes`` (the
+    M-orthonormal columns Φ) at its ``omegas`` (rad/s; 0 leaves a mode undamped), and none
+    outside their span."""
+    MV = M @ shapes
+    return (MV * (2.0 * ratio * np.asarray(omegas, float))) @ MV.T
+
+
+def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
+    """C with the damping ratio ``ratio`` on every elastic mode of (K, M); a rigid-body mode
+    (ω² within 1e-8 of the largest, as round-off leaves it: a free chain's first mode) stays
+    undamped, and a grounded network's first mode, elastic, is damped."""
+    import scipy.linalg
+
+    lam, Phi = scipy.linalg.eigh(K, M)  # Φᵀ M Φ = I, eigenvalues ascending
+    omega = np.sqrt(np.clip(lam, 0.0, None))
+    omega[np.abs(lam) <= 1e-8 * np.abs(lam).max()] = 0.0
+    return modal_damping(M, Phi, omega, ratio)

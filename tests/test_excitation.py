@@ -14,7 +14,7 @@ from fetorsion.excitation.torque import (cylinder_pressure, cylinder_torque, cyl
 from fetorsion.excitation.kinematics import piston_velocity
 from fetorsion.lumped_model.lumped import chain_matrices
 from fetorsion.lumped_model.damped import DampedSystem
-from fetorsion.response.forced import modal_damping_matrix
+from fetorsion.modes import modal_damping_matrix
 
 from conftest import GEOMETRY, assert_picture, read_raw
 

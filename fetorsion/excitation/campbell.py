@@ -26,9 +26,9 @@ from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.damped import DampedSystem, damped_modes
-from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_matrix,
-                                   modal_damping_ratios, stated_damping)
-from ..modes import TorsionalModes
+from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_ratios,
+                                   stated_damping)
+from ..modes import TorsionalModes, modal_damping_matrix
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
 
 

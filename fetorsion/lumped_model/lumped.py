@@ -278,14 +278,6 @@ def stated_damping(model, res: LumpedResult):
     return np.zeros((res.dof, res.dof)), np.zeros((res.dof, res.dof))
 
 
-def modal_damping_matrix(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
-    """C with damping ratio ``ratio`` on every elastic mode and none on the rigid-body mode."""
-    lam, Phi = scipy.linalg.eigh(K, M)  # Φᵀ M Φ = I, eigenvalues ascending
-    omega = np.sqrt(np.clip(lam, 0.0, None))
-    omega[0] = 0.0  # the free-free rigid-body mode stays undamped
-    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M
-
-
 def chain_damping(n: int, stiffnesses, absolute=(), relative=(), loss_factors=()):
     """Damping matrices of a chain of ``n`` inertias as engineers state it.
 

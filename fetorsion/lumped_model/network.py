@@ -248,13 +248,3 @@ def network_modes(mats: NetworkMatrices):
     scale = np.where(np.abs(ref) > 1e-6 * np.abs(shapes).max(axis=1), ref,
                      shapes[np.arange(len(shapes)), np.abs(shapes).argmax(axis=1)])
     return rigid, np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi), shapes / scale[:, None]
-
-
-def modal_damping(M: np.ndarray, K: np.ndarray, ratio: float) -> np.ndarray:
-    """C with damping ratio ``ratio`` on every elastic mode; a rigid-body mode (ω ≈ 0 against
-    the largest ω, as round-off leaves it) stays undamped. Unlike the chain's version, a
-    grounded network's first mode is elastic and is damped."""
-    lam, Phi = scipy.linalg.eigh(K, M)
-    omega = np.sqrt(np.clip(lam, 0.0, None))
-    omega[np.abs(lam) <= 1e-8 * np.abs(lam).max()] = 0.0
-    return M @ Phi @ np.diag(2 * ratio * omega) @ Phi.T @ M

@@ -34,6 +34,7 @@ from ..excitation.torque import cycle_angle, firing_angles, pin_force_harmonics
 from ..fe.condensed import CondensedCrank
 from ..fe.couplings import DOF_NAMES
 from ..fe.substructure import reduced_modes, supported_matrices
+from ..modes import modal_damping
 from .synthesis import half_peak_to_peak, waveform
 
 
@@ -88,9 +89,7 @@ def supported_damping(cc: CondensedCrank, support: str, damping_ratio: float):
     keep = np.setdiff1d(np.arange(cc.reduced.size), held)
     Kk, Mk = K[np.ix_(keep, keep)], M[np.ix_(keep, keep)]
     w2, V, _ = reduced_modes(cc.reduced, Dk, Dm, held)
-    w = np.sqrt(np.clip(w2, 0.0, None))
-    MV = Mk @ V
-    Ck = MV @ np.diag(2 * damping_ratio * w) @ MV.T
+    Ck = modal_damping(Mk, V, np.sqrt(np.clip(w2, 0.0, None)), damping_ratio)
     if support == "bearings":
         Cb = np.zeros_like(K)
         Cb[:m, :m] = cc.bearing_damping

@@ -26,8 +26,9 @@ from ..excitation.campbell import default_orders
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
-from ..lumped_model.lumped import lumped, modal_damping_matrix, stated_damping
-from ..lumped_model.network import modal_damping as network_modal_damping, speed_factors
+from ..lumped_model.lumped import lumped, stated_damping
+from ..modes import modal_damping_matrix
+from ..lumped_model.network import speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
@@ -365,7 +366,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
     M, K = res.matrices()
     # The modal damping ratio stands for the crank's own losses: it is set on the chain's modes
     # without the dampers, which bring their own damping.
-    C = modal_damping_matrix(M, K, zeta) if res.network is None else network_modal_damping(M, K, zeta)
+    C = modal_damping_matrix(M, K, zeta)
     stated = ""
     if isinstance(crank, (Chain, Network)):
         C_stated, H = stated_damping(crank, res)

@@ -654,7 +654,8 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
         drive, read = where[0], where
     else:
         from ..description.model import Chain
-        from ..lumped_model.lumped import chain_matrices, lumped, modal_damping_matrix, stated_damping
+        from ..lumped_model.lumped import chain_matrices, lumped, stated_damping
+        from ..modes import modal_damping_matrix
 
         res = lumped(crank, 17)
         M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
