@@ -30,7 +30,7 @@ from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_t
 from ..studies.runner import machine_workers
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_PARTITION,
-                                    DEFAULT_RUNUP_RATE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD)
+                                    DEFAULT_RUNUP_RATE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD, LUMPED17)
 from ..webs.methods import WEB_METHODS
 from ..report.markdown import report_markdown
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome,
@@ -395,7 +395,7 @@ def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, part
 
     sens = run_sensitivity(crank, parts=parts)
     inputs, _ = study_inputs(crank)
-    model = make_model(crank, "lumped17")
+    model = make_model(crank, LUMPED17)
     store = open_store()
     print(f"[fetorsion] {store.describe()}", file=sys.stderr, flush=True)
     # One worker: here, without a cluster. The background process isolates the studies already, and
@@ -489,7 +489,7 @@ def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
     setup = ctx.setup()
     engine = setup is ctx.engine_setup()
     response = solve_response(setup, getattr(ctx.crank, "dampers", ())) if measured.get("cuts") else None
-    res = run_comparison(ctx.crank, measured, "condensed" if engine else "lumped17", ctx.options.get("station"),
+    res = run_comparison(ctx.crank, measured, "condensed" if engine else LUMPED17, ctx.options.get("station"),
                          condensed=ctx.built.get("condensed"), response=response)
     ctx.results["measured"] = res.to_dict()
     return MeasuredOutcome(res, ctx.save(res.plot(), "measured.png"))

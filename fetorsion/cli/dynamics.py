@@ -17,7 +17,7 @@ from ..lumped_model.lumped import PARTITIONS, lumped
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import (NONLINEAR_METHODS, DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
                                     DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_TEETH,
-                                    DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD)
+                                    DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD, LUMPED17)
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
 from ..design.dampers import OBJECTIVES
@@ -32,13 +32,13 @@ def source_of(args, model) -> str:
     its bearings, the run's), a chain's or network's own lumped model."""
     if args.source is not None:
         return args.source
-    return "lumped17" if isinstance(model, (Chain, Network)) else "condensed"
+    return LUMPED17 if isinstance(model, (Chain, Network)) else "condensed"
 
 
 def load_for(args):
     """The command's description, with an [excitation] table; ``args.source`` set to its default
     (:func:`source_of`) when not given."""
-    model = load_excited(args.file, args.source or "lumped17")
+    model = load_excited(args.file, args.source or LUMPED17)
     args.source = source_of(args, model)
     return model
 
@@ -258,11 +258,11 @@ def cmd_transient(args) -> int:
     if args.run_up is not None and args.run_up[0] == args.run_up[1]:
         raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
                              "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
-    crank = load_excited(args.file, args.source or "lumped17")
+    crank = load_excited(args.file, args.source or LUMPED17)
     engine_can = args.run_up is None and not args.variable_inertia and not getattr(crank, "dampers", ())
     if args.source is None:
         # a crank's steady running: the engine model; what it cannot do yet, the lumped chain (said)
-        args.source = "lumped17" if isinstance(crank, (Chain, Network)) or not engine_can else "condensed"
+        args.source = LUMPED17 if isinstance(crank, (Chain, Network)) or not engine_can else "condensed"
     if args.source == "condensed":
         if not engine_can:
             what = ("--run-up" if args.run_up is not None else "--variable-inertia" if args.variable_inertia

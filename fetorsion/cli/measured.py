@@ -7,6 +7,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ..description.defaults import LUMPED17
 from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
                      save_plot)
 from .options import integer, real
@@ -160,7 +161,7 @@ def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
     return channel, False
 
 
-def check_measured(crank, measured: dict, station: str | None, source: str = "lumped17") -> None:
+def check_measured(crank, measured: dict, station: str | None, source: str = LUMPED17) -> None:
     """What the model needs of the measured data, checked before it is solved: order cuts need an
     ``[excitation]`` and must be angles; the stations must exist. Each torsiograph channel's
     station is settled here (``measured["stations"]``: cut label -> station, or a pair for a
@@ -191,7 +192,7 @@ def check_measured(crank, measured: dict, station: str | None, source: str = "lu
     measured["stations"] = settled
 
 
-def check_station(crank, station: str | None, source: str = "lumped17") -> None:
+def check_station(crank, station: str | None, source: str = LUMPED17) -> None:
     """A station that is not the pulley or flywheel end must be one of the model's
     (:func:`fetorsion.studies.comparison.model_stations`), checked before any model is built."""
     if station is not None and station.lower() not in ("pulley", "flywheel"):
@@ -209,11 +210,11 @@ def compare_source(args, crank) -> str:
     from ..description.model import Chain
 
     if args.source is not None:
-        if args.source != "lumped17" and isinstance(crank, Chain):
+        if args.source != LUMPED17 and isinstance(crank, Chain):
             raise FetorsionError(f"--source {args.source}: {args.file} is a chain (no geometry); its model is "
-                                 "lumped17")
+                                 f"{LUMPED17}")
         return args.source
-    return "lumped17" if isinstance(crank, Chain) else "condensed"
+    return LUMPED17 if isinstance(crank, Chain) else "condensed"
 
 
 def cmd_compare(args) -> int:
@@ -227,7 +228,7 @@ def cmd_compare(args) -> int:
     crank = load_description(args.file)
     refuse_network(crank, args.file, "compare")
     source = compare_source(args, crank)
-    if source != "lumped17":
+    if source != LUMPED17:
         check_mesh_size(crank, args.mesh_size, "modal")
     check_station(crank, args.station, source)
     measured = measured_of(args, args.measured, args.unit, args.order)
@@ -235,12 +236,12 @@ def cmd_compare(args) -> int:
         print(f"fetorsion: warning: {line}", file=sys.stderr)
     check_measured(crank, measured, args.station, source)
     cc = None
-    if source != "lumped17" and (measured["cuts"] or measured["tracks"] or source == "condensed"):
+    if source != LUMPED17 and (measured["cuts"] or measured["tracks"] or source == "condensed"):
         from .fe import condensed
 
         cc = condensed(crank, args.mesh_size)
     out = run_comparison(crank, measured, source, args.station, condensed=cc, mesh_size=args.mesh_size)
-    if source == "lumped17" and out.order_cuts:
+    if source == LUMPED17 and out.order_cuts:
         from .dynamics import stored_engine_model
 
         args.support = "bearings"
@@ -443,7 +444,7 @@ def add_calibrate_parser(sub) -> None:
                     help="[uncertainty] entries to calibrate (default all; the others stay as in the file)")
     cp.add_argument("--method", choices=METHODS, default="both",
                     help="lsq: regularised least squares; bayes: the MCMC posterior (emcee); both (default)")
-    cp.add_argument("--model", choices=CALIBRATION_MODELS, default="lumped17", help="lumped chain (default %(default)s)")
+    cp.add_argument("--model", choices=CALIBRATION_MODELS, default=LUMPED17, help="lumped chain (default %(default)s)")
     cp.add_argument("--stiffness", choices=CALIBRATION_STIFFNESS, default=DEFAULT_WEB_METHOD,
                     help="web stiffness method of the lumped model (default %(default)s; not an FE method, which "
                          "would mesh every variant)")

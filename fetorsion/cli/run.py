@@ -10,14 +10,14 @@ from .options import MM, integer, millimetres, real
 from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..io import check_report_folder
-from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_RUNUP_RATE
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_RUNUP_RATE, LUMPED17
 from .common import SUPPORT_CHOICES, check_mesh_size, load_description
 from .measured import add_measured_options
 
 
 # The Peugeot GLX twice: alone (its measured 905.9 Hz) and in its engine (its fatigue assessment)
 REFERENCE_CRANKS = ("renault21", "peugeot_glx", "peugeot_glx_engine")
-RUN_SOURCES = ("condensed", "lumped17")
+RUN_SOURCES = ("condensed", LUMPED17)
 
 
 def _geometry_folder():
@@ -67,11 +67,11 @@ def cmd_run(args) -> int:
         from .measured import check_measured, check_station, measured_of
 
         engine = not args.no_fe and args.source == "condensed" and not isinstance(crank, (Chain, Network))
-        check_station(crank, args.station, "condensed" if engine else "lumped17")
+        check_station(crank, args.station, "condensed" if engine else LUMPED17)
         measured = measured_of(args, args.measured)
         for line in measured["notes"]:
             print(f"fetorsion: warning: {line}", file=sys.stderr)
-        check_measured(crank, measured, args.station, "condensed" if engine else "lumped17")
+        check_measured(crank, measured, args.station, "condensed" if engine else LUMPED17)
         options.update(measured=measured, station=args.station)
     for file, out in jobs:
         folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,

@@ -12,7 +12,7 @@ import os
 import sys
 from pathlib import Path
 
-from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD
+from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_STUDY_SAMPLES, DEFAULT_WEB_METHOD, LUMPED17
 from ..errors import FetorsionError
 from ..studies.runner import (SCHEDULER_ENV, STORE_ENV, STORE_MAX_ENV, check_scheduler, check_store, default_store,
                               open_store, scheduler_address, store_max_bytes)
@@ -45,7 +45,7 @@ def add_parser(sub) -> None:
                     help="montecarlo: runs; sobol: base samples, a power of 2 (N·(inputs+2) runs); morris: "
                          "trajectories (N·(inputs+1) runs); grid: levels per input. Default: "
                          + ", ".join(f"{m} {n}" for m, n in DEFAULT_STUDY_SAMPLES.items()))
-    sp.add_argument("--model", choices=MODEL_CHOICES, default="lumped17",
+    sp.add_argument("--model", choices=MODEL_CHOICES, default=LUMPED17,
                     help="lumpedN: the N-DOF lumped chain; fe: 3D FE without fillets and drillings at "
                          "--mesh-size (default %(default)s)")
     sp.add_argument("--outputs", type=_names("--outputs"), default=["f1"],

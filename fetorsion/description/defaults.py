@@ -7,6 +7,9 @@ DEFAULT_MESH_SIZE = 0.010  # m
 CHECK_MESH_SIZE = 0.025  # m
 DEFAULT_MODES = 20  # elastic FE modes
 DEFAULT_PARTITION = 17  # lumped DOF for Campbell and forced response
+#: The fast model's name wherever a model is chosen (``--source``, ``--model``): the 17-DOF
+#: lumped chain of the default partition.
+LUMPED17 = f"lumped{DEFAULT_PARTITION}"
 # Modal damping ratio when the description's [excitation] gives none: a design-rule value for
 # an undamped steel crank.
 DEFAULT_DAMPING_RATIO = 0.02

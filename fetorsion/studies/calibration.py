@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..description.defaults import DEFAULT_WEB_METHOD
+from ..description.defaults import DEFAULT_WEB_METHOD, LUMPED17
 from ..description.model import Chain, Crank, Network
 from ..description.reader import resolve_field
 from ..errors import FetorsionError, ParameterError
@@ -776,7 +776,7 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
 
 
 def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: float = DEFAULT_SIGMA_PERCENT,
-                    inputs=None, model: str = "lumped17", method: str = "lsq", stiffness: str = DEFAULT_WEB_METHOD,
+                    inputs=None, model: str = LUMPED17, method: str = "lsq", stiffness: str = DEFAULT_WEB_METHOD,
                     walkers: int | None = None, steps: int = DEFAULT_STEPS, burn: int = DEFAULT_BURN,
                     seed: int = 0, write_all: bool = False) -> CalibrationResult:
     """Fit a description's ``[uncertainty]`` inputs to measured natural frequencies.

@@ -29,10 +29,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..description.defaults import LUMPED17
 from ..errors import FetorsionError
 
 #: The models a measurement is set beside (see the module docstring).
-SOURCES = ("condensed", "lumped17", "fe")
+SOURCES = ("condensed", LUMPED17, "fe")
 #: Free-free modes of the condensed crank paired with a modal test's: the lowest this many.
 CONDENSED_MODES = 20
 #: Crossings a waterfall's summary line quotes (those the measurement responds to most).
@@ -296,18 +297,18 @@ def model_crossings(model_hz, orders, rpm) -> list:
     return out
 
 
-def waterfall(name: str, track, crank, source: str = "lumped17", condensed=None) -> Waterfall:
+def waterfall(name: str, track, crank, source: str = LUMPED17, condensed=None) -> Waterfall:
     """A torsiograph track (:class:`~fetorsion.measured.torsiograph.OrderTrack`) with the crossings
     of the torsional modes of the running model (:func:`running_frequencies`)."""
     f = running_frequencies(crank, source, condensed)
     return Waterfall(name, track, f, model_crossings(f, track.orders, track.rpm))
 
 
-def running_frequencies(crank, source: str = "lumped17", condensed=None) -> np.ndarray:
+def running_frequencies(crank, source: str = LUMPED17, condensed=None) -> np.ndarray:
     """The torsional natural frequencies (Hz) of the model of the running engine: the lumped
     chain's, or the condensed crank's in its bearings (its modes whose journals' kinetic energy
     is mostly torsion)."""
-    if source == "lumped17":
+    if source == LUMPED17:
         from ..lumped_model.lumped import lumped
 
         return np.asarray(lumped(crank, 17).frequencies_hz, float)
@@ -398,13 +399,13 @@ class ComparisonResult:
         return fig
 
 
-def model_modes(crank, source: str = "lumped17", condensed=None, mesh_size: float | None = None):
+def model_modes(crank, source: str = LUMPED17, condensed=None, mesh_size: float | None = None):
     """(frequencies Hz, kinds, shapes at the model's stations (modes, stations)) of the free-free
     ``source`` model: the chain's stations; the condensed crank's masters' θx; the full FE's
     twist of each master's part (:func:`fe_station_twists`)."""
     if source not in SOURCES:
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
-    if source == "lumped17":
+    if source == LUMPED17:
         from ..lumped_model.lumped import lumped
 
         res = lumped(crank, 17)
@@ -441,7 +442,7 @@ def fe_station_twists(res) -> np.ndarray:
     return np.stack(out, axis=1)
 
 
-def compare_frequencies(estimate, crank, source: str = "lumped17", condensed=None,
+def compare_frequencies(estimate, crank, source: str = LUMPED17, condensed=None,
                         mesh_size: float | None = None) -> FrequencyComparison:
     """Pair the fitted modes of ``estimate`` (:class:`~fetorsion.measured.modal.ModalEstimate`)
     with the model's, and their shapes by the MAC at the measured stations (node n the model's
@@ -466,10 +467,10 @@ def response_stations(response) -> list[tuple[str, int]]:
     return [(lb, j) for j, lb in enumerate(labels) if lb not in rings]
 
 
-def model_stations(crank, source: str = "lumped17") -> list[str]:
+def model_stations(crank, source: str = LUMPED17) -> list[str]:
     """The names of the stations a sensor can sit on in the ``source`` model of ``crank``, before
     it is built, in :func:`response_stations`'s order."""
-    if source == "lumped17" or not hasattr(crank, "journals"):
+    if source == LUMPED17 or not hasattr(crank, "journals"):
         from ..lumped_model.lumped import lumped
 
         return list(lumped(crank, 17).labels)
@@ -552,19 +553,19 @@ def track_order_cut(track, order: float, name: str):
                             label=f"{name}, torsiograph", order=float(order))
 
 
-def model_response(crank, source: str = "lumped17", condensed=None):
+def model_response(crank, source: str = LUMPED17, condensed=None):
     """The forced response of the running model: the lumped chain's, or the condensed crank's in
     its bearings with the description's dampers (:class:`~fetorsion.response.forced.ResponseResult`)."""
     from ..response.forced import run_response, solve_response
 
-    if source == "lumped17":
+    if source == LUMPED17:
         return run_response(crank)
     from ..response.coupled import condensed_setup
 
     return solve_response(condensed_setup(_need(condensed, source), "bearings"), getattr(crank, "dampers", ()))
 
 
-def run_comparison(crank, measured: dict, source: str = "lumped17", station: str | None = None,
+def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str | None = None,
                    condensed=None, response=None, mesh_size: float | None = None) -> ComparisonResult:
     """The model of a crank against measured data.
 
@@ -576,7 +577,7 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
         ``frfs`` (FRFs, :class:`~fetorsion.measured.uff.MeasuredFunction`), ``cuts`` (order cuts
         against speed, angles in rad), ``tracks`` (torsiograph order maps) and ``band`` ((low,
         high) Hz to fit the FRFs' modes in), as ``fetorsion.cli.measured.read_measured`` reads them.
-    source : {"condensed", "lumped17", "fe"}
+    source : {"condensed", LUMPED17, "fe"}
         The model (see the module docstring).
     station : str, optional
         Where the order cuts were measured: ``pulley`` (default), ``flywheel``, or a station's
@@ -597,8 +598,8 @@ def run_comparison(crank, measured: dict, source: str = "lumped17", station: str
     if source not in SOURCES:
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
     running = ("the chain file's own model" if not hasattr(crank, "journals") else
-               "the lumped 17-DOF chain" if source == "lumped17" else "condensed crank in its bearings")
-    out = ComparisonResult(crank.name, model=running if source == "lumped17" else
+               "the lumped 17-DOF chain" if source == LUMPED17 else "condensed crank in its bearings")
+    out = ComparisonResult(crank.name, model=running if source == LUMPED17 else
                            getattr(response, "model", "") or running)
     if measured.get("frfs"):
         out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
@@ -676,7 +677,7 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
     return H[:, read].T
 
 
-def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = "lumped17",
+def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = LUMPED17,
                       condensed=None, band=None) -> list:
     """The model's side of a comparison as measured functions, for a universal file (UFF 58).
 
@@ -717,7 +718,7 @@ def model_predictions(crank, comparison: ComparisonResult, response=None, source
     for f in comparison.frequencies:
         lo, hi = band if band is not None else (f.measured_hz.min(), f.measured_hz.max())
         hz = np.linspace(0.8 * lo, 1.2 * hi, 2000)
-        if source == "lumped17":
+        if source == LUMPED17:
             from ..lumped_model.lumped import lumped
 
             last = len(lumped(crank, 17).inertias_kgm2)

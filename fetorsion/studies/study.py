@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..description.defaults import DEFAULT_STUDY_SAMPLES
+from ..description.defaults import DEFAULT_STUDY_SAMPLES, LUMPED17
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from .runner import RunSummary, SampleStore, open_store, run_samples
@@ -266,7 +266,7 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
                        list(held), X, Y, errors, percentile_bands(Y), indices, measured_hz, summary, values)
 
 
-def run_crank_study(crank, method: str = "montecarlo", samples: int | None = None, model: str = "lumped17",
+def run_crank_study(crank, method: str = "montecarlo", samples: int | None = None, model: str = LUMPED17,
                     outputs=("f1",), inputs=None, *, seed: int = 0, stiffness: str | None = None,
                     mesh_size: float | None = None, scheduler: str | None = None, workers: int | None = None,
                     client=None, store: SampleStore | None = None, **kwargs) -> StudyResult:
