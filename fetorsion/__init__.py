@@ -22,6 +22,10 @@ _LAZY = {
     "run_sensitivity": "studies.sensitivity", "with_values": "studies.sensitivity",
     "run_crank_study": "studies.study",
     "run_stress": "design.stress", "run_damper": "design.dampers", "run_verdict": "design.verdict",
+    "run_condensed": "fe.condensed", "run_coupled_response": "response.coupled",
+    "run_crank_verdict": "design.crank_verdict", "run_fatigue": "design.fatigue",
+    "run_comparison": "studies.comparison", "run_calibration": "studies.calibration",
+    "run_torsiograph": "measured.torsiograph", "run_modal_fit": "measured.modal", "run": "app.run",
 }
 
 
@@ -61,6 +65,8 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
 
 
 __all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "Network", "PARTITIONS", "load",
-           "lumped", "run_campbell", "run_crank_study", "run_damper", "run_modal", "run_response", "run_sensitivity",
-           "run_stress", "run_transient", "run_verdict", "with_values"]
+           "lumped", "run", "run_calibration", "run_campbell", "run_comparison", "run_condensed", "run_coupled_response",
+           "run_crank_study", "run_crank_verdict", "run_damper", "run_fatigue", "run_modal", "run_modal_fit",
+           "run_response", "run_sensitivity", "run_stress", "run_torsiograph", "run_transient", "run_verdict",
+           "with_values"]
 __version__ = "0.1.0"

@@ -239,6 +239,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
         Its response setup in its bearings (:func:`fetorsion.response.coupled.condensed_setup`) at
         the description's damping ratio.
     fillets : list of Fillet
+        The crank's fillets and oil bores, in the order of ``cc``'s cuts
+        (:func:`fetorsion.design.stress.fillets_of`).
     scf : dict
         FE SCFs (:func:`fetorsion.design.scf.fillet_scfs`, with the oil bores').
     method : {"iacs-m53", "fe"}
@@ -249,6 +251,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAUL
         Add the misfire configurations.
     fe_path : bool
         Assess the ``fe`` path too (its load cycles cost about a second a configuration).
+    progress : callable, optional
+        Called with a line of text as each configuration starts (the run's progress lines).
     """
     from ..response.coupled import with_damping_ratio
     from ..response.cycle import mean_cut_loads, run_load_cycle

@@ -376,6 +376,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     Parameters
     ----------
     crank : Crank
+        The description (its attachments, bearings and, for the pin loads, its engine).
     mesh_size : float
         Global element size, m (ignored when ``mesh`` or ``system`` is given).
     ritz_blocks : int
@@ -384,6 +385,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
     fixed_interface_modes : int
         With ``ritz_blocks=0``: fixed-interface eigenmodes kept instead (classical Craig–Bampton).
     mesh : CrankMesh, optional
+        A mesh of the crank to condense instead of meshing it here.
     keep_full : bool
         Keep the full model's factor (for :meth:`CondensedCrank.full_modes`).
     keep_basis : bool
