@@ -251,3 +251,18 @@ def test_sources_are_cited_by_bibliography_key():
     assert defined >= {"Seyedalian", "Kazemi", "Ismailov", "Asgari", "Wang"}
     assert cited <= defined, cited - defined
     assert not internal, internal
+
+
+def test_the_runs_hand_offs_name_their_types():
+    """Issue 41 (in part): no outcome field of a run is typed ``object``, the steps read their
+    options from a RunOptions, not a dict, and run() returns its RunOutcome."""
+    outcomes = ast.parse((ROOT / "fetorsion/report/outcomes.py").read_text())
+    untyped = [f"{c.name}.{a.target.id}" for c in outcomes.body if isinstance(c, ast.ClassDef)
+               for a in c.body if isinstance(a, ast.AnnAssign) and ast.unparse(a.annotation) == "object"]
+    assert not untyped, untyped
+    run = ast.parse((ROOT / "fetorsion/app/run.py").read_text())
+    context = next(c for c in run.body if isinstance(c, ast.ClassDef) and c.name == "RunContext")
+    fields = {a.target.id: ast.unparse(a.annotation) for a in context.body if isinstance(a, ast.AnnAssign)}
+    assert fields["options"] == "RunOptions"
+    entry = next(f for f in run.body if isinstance(f, ast.FunctionDef) and f.name == "run")
+    assert ast.unparse(entry.returns) == "RunOutcome"

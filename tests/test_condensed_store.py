@@ -1,5 +1,6 @@
 """Issue 40: the condensed crank built once and kept; every command answers for it."""
 
+from pathlib import Path
 import ast
 import json
 import os
@@ -134,7 +135,7 @@ def test_every_command_answers_for_the_runs_condensed_crank(tmp_path, capsys):
     from fetorsion.cli.commands import main
 
     src = _plain_renault(tmp_path)
-    out = run(src, tmp_path / "r", steps=DEFAULT_STEPS[:4], options={"mesh_size": 0.03})
+    out = Path(run(src, tmp_path / "r", steps=DEFAULT_STEPS[:4], options={"mesh_size": 0.03}).folder)
     data = json.loads((out / "results.json").read_text())
     capsys.readouterr()
 

@@ -5,6 +5,7 @@ slow run-up at the first crossing against the steady state."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,7 +22,7 @@ NETWORKS = ROOT / "examples" / "networks"
 
 
 def test_network_report_has_the_time_domain_section(tmp_path):
-    out = run(NETWORKS / "geared_engine.toml", tmp_path / "r", steps=FAST_STEPS)
+    out = Path(run(NETWORKS / "geared_engine.toml", tmp_path / "r", steps=FAST_STEPS).folder)
     text = (out / "report.md").read_text()
     for heading in ("## Torsional network", "## Campbell diagram and forced response", "## Time domain: run-up"):
         assert heading in text
@@ -38,7 +39,7 @@ def test_network_with_limits_gets_the_verdict(tmp_path):
     src = (NETWORKS / "geared_engine.toml").read_text() + (
         '\n[limits]\ncontinuous_torque_nm = 2000.0\ntransient_torque_nm = 4000.0\nsource = "test"\n')
     (tmp_path / "n.toml").write_text(src)
-    out = run(tmp_path / "n.toml", tmp_path / "r", steps=[s for s in FAST_STEPS if s[1] != "transient"])
+    out = Path(run(tmp_path / "n.toml", tmp_path / "r", steps=[s for s in FAST_STEPS if s[1] != "transient"]).folder)
     text = (out / "report.md").read_text()
     assert "Worst section without a damper" in text and "verdict.png" in text
 

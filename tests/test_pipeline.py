@@ -1,5 +1,6 @@
 """`fetorsion run`: a complete report folder, or nothing at all."""
 
+from pathlib import Path
 import json
 
 import pytest
@@ -17,7 +18,7 @@ LUMPED = tuple(step for step in DEFAULT_STEPS if step[1] == "lumped")
 
 @pytest.mark.slow
 def test_run_writes_report_consistent_with_the_api(tmp_path):
-    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE)
+    out = Path(run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE).folder)
     report = (out / "report.md").read_text()
     assert "## Lumped models" in report and "905.9" in report
     data = json.loads((out / "results.json").read_text())
@@ -68,7 +69,7 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     monkeypatch.setattr(condensed_module, "run_condensed", counted)
     for module in (crankfe, condensed_module, cranksystem):
         monkeypatch.setattr(module, "build_system", built)
-    out = run(src, tmp_path / "r21", options={"mesh_size": 0.03})
+    out = Path(run(src, tmp_path / "r21", options={"mesh_size": 0.03}).folder)
     # one mesh, one assembly and one factorisation serve the free-free modes, the condensed crank
     # (free and in bearings) and the lumped fe-held column (its throws' in-bearing stiffness)
     assert systems == [(0.03,)] and len(condensations) == 1 and condensations[0] is not None
@@ -109,7 +110,7 @@ def test_broken_description_fails_cleanly_and_writes_nothing(tmp_path):
 
 
 def test_failing_step_keeps_the_previous_report(tmp_path):
-    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED)
+    out = Path(run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED).folder)
     before = (out / "report.md").read_text()
 
     def broken(ctx):
@@ -126,7 +127,7 @@ def test_failing_step_keeps_the_previous_report(tmp_path):
 def test_report_files_are_readable_by_others(tmp_path):
     import os
     import stat
-    out = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE[:1])
+    out = Path(run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE[:1]).folder)
     mask = os.umask(0)
     os.umask(mask)
     for p in [out, *out.iterdir()]:
@@ -179,7 +180,7 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
     import dataclasses
     import math
 
-    from fetorsion.app.run import RunContext, needs_throw_fe
+    from fetorsion.app.run import RunContext, RunOptions, needs_throw_fe
     from fetorsion.report.outcomes import RunOutcome
     from fetorsion.studies.variants import with_values
     from fetorsion.webs import throwfe
@@ -199,10 +200,36 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
 
     monkeypatch.setattr(throwfe, "torsional_stiffness_fe", no_fe)
     monkeypatch.setattr(throwfe, "_CACHE", {})
-    ctx = RunContext(crank, tmp_path, {}, RunOutcome(crank, "x", timings_s={}), built={"throw_fe": done})
+    ctx = RunContext(crank, tmp_path, RunOptions(), RunOutcome(crank, "x", timings_s={}), built={"throw_fe": done})
     ctx.parts("fe")  # built from the background's stiffness: no FE here
     assert ctx.scf()["pin_bending"] == 3.0 and ctx.scf()["source"] == "background"
     d_e = crank.journals[0].diameter
     l_throw = throw.material.shear_modulus * math.pi * d_e**4 / (32 * k)
     assert throwfe.web_equivalent_length_fe(crank, 0, d_e) == pytest.approx(throwfe.web_term(throw, l_throw, d_e),
                                                                             rel=1e-12)
+
+
+def test_run_takes_typed_options_and_returns_its_outcome(tmp_path, monkeypatch):
+    """Issue 41: every option a step reads is a field of RunOptions, each set by an option of
+    `fetorsion run` (an unknown key is refused by name); run() returns the typed outcome of
+    every section, with the report folder."""
+    import dataclasses
+
+    from fetorsion.app.run import RunOptions
+    from fetorsion.cli.commands import build_parser
+    from fetorsion.errors import FetorsionError
+    from fetorsion.report.outcomes import LumpedOutcome, RunOutcome
+
+    with pytest.raises(FetorsionError, match="unknown option.*mesh"):
+        RunOptions.of({"mesh": 0.01})
+    args = build_parser().parse_args(["run", "x.toml", "--modes", "12", "--workers", "3", "--fatigue-method", "fe"])
+    assert (args.modes, args.workers, args.fatigue_method) == (12, 3, "fe")
+    cli_dests = {a.dest for a in build_parser()._subparsers._group_actions[0].choices["run"]._actions}
+    named = {"mesh_size": "mesh_size", "modes": "modes", "support": "support", "source": "source",
+             "inertia_ratio": "inertia_ratio", "fatigue_method": "fatigue_method", "runup_rate": "run_up_rate",
+             "workers": "workers", "html": "no_html", "measured": "measured", "station": "station", "no_fe": "no_fe"}
+    assert set(named) == {f.name for f in dataclasses.fields(RunOptions)}
+    assert set(named.values()) <= cli_dests
+    outcome = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED, options=RunOptions(html=False))
+    assert isinstance(outcome, RunOutcome) and isinstance(outcome.lumped, LumpedOutcome)
+    assert (Path(outcome.folder) / "report.md").is_file() and not (Path(outcome.folder) / "report.html").exists()

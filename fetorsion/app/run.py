@@ -42,6 +42,67 @@ from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, F
 FIGURES_HELD = 16
 
 
+@dataclass(frozen=True)
+class RunOptions:
+    """Every option a run's steps read, each set by an option of ``fetorsion run``.
+
+    Attributes
+    ----------
+    mesh_size : float
+        FE mesh size, m (``--mesh-size``).
+    modes : int
+        Free-free FE modes computed (``--modes``).
+    support : {"bearings", "free"}
+        The crank's support for the in-bearing sections (``--support``).
+    source : {"condensed", "lumped17"}
+        The model the response, stress, dampers and verdict run on (``--source``).
+    inertia_ratio : float
+        The recommended damper's ring inertia ratio (``--inertia-ratio``).
+    fatigue_method : {"iacs-m53", "fe"} or None
+        The method that decides the verdict (``--fatigue-method``; None: the description's).
+    runup_rate : float
+        A chain's or network's run-up rate, rpm/s (``--run-up-rate``).
+    workers : int or None
+        Workers of the background studies' local cluster (``--workers``; None: the machine's
+        cores less one).
+    html : bool
+        Write report.html too (``--no-html`` clears it).
+    measured : dict or None
+        Measured files read and checked (``--measured``; ``fetorsion.cli.measured.read_measured``).
+    station : str or None
+        Where the measured order cuts were taken (``--station``).
+    no_fe : bool
+        The run leaves out the FE steps (``--no-fe``, or a chain file).
+    """
+
+    mesh_size: float = DEFAULT_MESH_SIZE
+    modes: int = DEFAULT_MODES
+    support: str = "bearings"
+    source: str = "condensed"
+    inertia_ratio: float = DEFAULT_INERTIA_RATIO
+    fatigue_method: str | None = None
+    runup_rate: float = DEFAULT_RUNUP_RATE
+    workers: int | None = None
+    html: bool = True
+    measured: dict | None = None
+    station: str | None = None
+    no_fe: bool = False
+
+    @classmethod
+    def of(cls, options) -> "RunOptions":
+        """``options`` as RunOptions: already one, a dict of its fields (an unknown key refused
+        by name), or None (the defaults)."""
+        import dataclasses
+
+        if isinstance(options, cls):
+            return options
+        options = dict(options or {})
+        unknown = set(options) - {f.name for f in dataclasses.fields(cls)}
+        if unknown:
+            raise FetorsionError(f"run: unknown option(s) {', '.join(sorted(unknown))}")
+        return cls(**{k: v for k, v in options.items() if v is not None})  # None: the field's default
+
+
 @dataclass
 class RunContext:
     """What the steps share: the crank, options, the working folder, and the run's outcome so
@@ -51,7 +112,7 @@ class RunContext:
 
     crank: Crank
     folder: Path
-    options: dict
+    options: RunOptions
     outcome: RunOutcome
     results: dict = field(default_factory=dict)
     #: What several steps derive from the crank, built once by the first that needs it: the
@@ -99,7 +160,7 @@ class RunContext:
                 self.throw_fe()
             web_length = None
             if method == "fe-held" and "condensed" in self.built:
-                size = self.options.get("mesh_size", DEFAULT_MESH_SIZE)
+                size = self.options.mesh_size
                 k = held_throw_stiffnesses(self.crank, size, condensed=self.built["condensed"])
                 web_length = functools.partial(web_equivalent_length_held, stiffnesses=k)
             return build_parts(self.crank, method, web_length=web_length)
@@ -111,7 +172,7 @@ class RunContext:
         at every speed and order. The engine model — the condensed crank in its bearings — when
         the run has built it and ``source`` is ``condensed`` (the default), else the lumped
         17-DOF chain; the response, fillet stress, dampers, misfire and verdict derive from it."""
-        if self.options.get("source", "condensed") == "condensed" and "condensed" in self.built:
+        if self.options.source == "condensed" and "condensed" in self.built:
             return self.engine_setup()
         return self.lumped_setup()
 
@@ -199,8 +260,8 @@ def step_fe(ctx: RunContext) -> FEOutcome:
     from ..solid.mesh import mesh_crank
     from ..report.render import render_mode
 
-    size = ctx.options.get("mesh_size", DEFAULT_MESH_SIZE)
-    modes = ctx.options.get("modes", DEFAULT_MODES)
+    size = ctx.options.mesh_size
+    modes = ctx.options.modes
     _progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
     mesh = mesh_crank(ctx.crank, size)
     _progress(f"  {len(mesh.tets)} tetrahedra, {len(np.unique(mesh.tets))} nodes in {mesh.quality.seconds:.1f} s; "
@@ -272,7 +333,7 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
     # In its bearings when the condensed crank exists (the engine as it runs: every mode, the
     # full pin forces, severity as fillet stress), else the free-free FE's torsional modes.
     bearings, fe = ctx.outcome.bearings, ctx.outcome.fe
-    if bearings is not None and ctx.options.get("support", "bearings") == "bearings":
+    if bearings is not None and ctx.options.support == "bearings":
         from ..response.coupled import run_coupled_campbell
 
         sections = [(f.diameter, f.bore) for f in ctx.fillets()]
@@ -311,11 +372,11 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
             return Skipped("stress limits need fillet radii (a sharp corner has no finite SCF)")
         from ..design.scf import stored_fillet_scfs
 
-        if stored_fillet_scfs(crank) is None and ctx.options.get("no_fe"):
+        if stored_fillet_scfs(crank) is None and ctx.options.no_fe:
             scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: no FE step in this run and no stored FE SCF)"}
         else:
             scf = ctx.scf()
-    mu = ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO)
+    mu = ctx.options.inertia_ratio
     fillets = ctx.fillets() if scf is not None else None
     verdict = run_verdict(crank, mu=mu, scf=scf, setup=ctx.setup(), fillets=fillets)
     ctx.results["verdict"] = verdict.to_dict()
@@ -364,11 +425,11 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     missing = [k for k in ("pin_bending", "journal_bending", "pin_bending_vm", "journal_bending_vm") if k not in scf]
     if missing:
         return Skipped(f"no {', '.join(missing)} SCF in {scf.get('source', 'the SCFs')}")
-    method = (ctx.options.get("fatigue_method") or getattr(crank.limits, "fatigue_method", "")
+    method = (ctx.options.fatigue_method or getattr(crank.limits, "fatigue_method", "")
               or DEFAULT_FATIGUE_METHOD)
     cc, fillets, setup = ctx.built["condensed"], ctx.fillets(), ctx.engine_setup()
     verdict = run_crank_verdict(crank, cc, setup, fillets, scf, method,
-                                mu=ctx.options.get("inertia_ratio", DEFAULT_INERTIA_RATIO), progress=_progress)
+                                mu=ctx.options.inertia_ratio, progress=_progress)
     described = verdict.configs[1 if crank.dampers else 0]
     a = described.fe
     stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets) \
@@ -479,7 +540,7 @@ def background_executor():
 
 def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
     """The model against the measured files the run was given (none: no section)."""
-    measured = ctx.options.get("measured")
+    measured = ctx.options.measured
     if not measured:
         return None
     from ..response.forced import solve_response
@@ -489,7 +550,7 @@ def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
     setup = ctx.setup()
     engine = setup is ctx.engine_setup()
     response = solve_response(setup, getattr(ctx.crank, "dampers", ())) if measured.get("cuts") else None
-    res = run_comparison(ctx.crank, measured, "condensed" if engine else LUMPED17, ctx.options.get("station"),
+    res = run_comparison(ctx.crank, measured, "condensed" if engine else LUMPED17, ctx.options.station,
                          condensed=ctx.built.get("condensed"), response=response)
     ctx.results["measured"] = res.to_dict()
     return MeasuredOutcome(res, ctx.save(res.plot(), "measured.png"))
@@ -504,7 +565,7 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
     pending = ctx.built.pop("studies", None)
     ctx.run_deferred()  # while the studies finish
     sens, studies, checks = (pending.result() if pending is not None else
-                             sensitivity_studies(ctx.crank, ctx.options.get("workers"), ctx.outcome.fe is not None,
+                             sensitivity_studies(ctx.crank, ctx.options.workers, ctx.outcome.fe is not None,
                                                  ctx.parts()))
     ctx.results["sensitivity"] = sens.to_dict()
     if checks:
@@ -530,7 +591,7 @@ def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
     camp = ctx.outcome.campbell
     if not isinstance(camp, CampbellOutcome):
         return Skipped(camp.reason if isinstance(camp, Skipped) else "no Campbell diagram and forced response")
-    rate = ctx.options.get("runup_rate") or DEFAULT_RUNUP_RATE
+    rate = ctx.options.runup_rate
     lo, hi = ctx.crank.excitation.checked_range
     t0 = time.perf_counter()
     res = run_transient(ctx.crank, run=(lo, hi), rate_rpm_per_s=rate, settled_start=True)
@@ -572,7 +633,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
 FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[2] not in (step_fe, step_bearings))
 
 
-def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool = False) -> Path:
+def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | dict | None = None, force: bool = False) -> RunOutcome:
     """Run every step on the crank in ``path`` and write the report folder ``out``.
 
     Parameters
@@ -585,25 +646,29 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
     steps : sequence of (name, field, function)
         The analyses, in order: ``function(ctx)`` returns the outcome of the
         :class:`~fetorsion.report.outcomes.RunOutcome` field ``field``.
-    options : dict, optional
-        Passed to the steps (mesh size and such).
+    options : RunOptions or dict, optional
+        What the steps read (:class:`RunOptions`; a dict of its fields).
     force : bool
         Replace ``out`` even when it is not an earlier report.
 
     Returns
     -------
-    Path
-        The report folder.
+    RunOutcome
+        Every section's typed outcome, each step's time, and the report folder (``folder``).
     """
+    import dataclasses
+
+    options = RunOptions.of(options)
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
     if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
     with atomic_folder(out) as work, background_executor() as background:
-        outcome = RunOutcome(crank, str(path), timings_s={})
-        ctx = RunContext(crank, work, {"no_fe": not any(s[2] is step_fe for s in steps), **(options or {})}, outcome)
-        scfs = not ctx.options["no_fe"]  # without the FE steps the verdict takes no FE SCF
+        outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out))
+        no_fe = options.no_fe or not any(s[2] is step_fe for s in steps)
+        ctx = RunContext(crank, work, dataclasses.replace(options, no_fe=no_fe), outcome)
+        scfs = not ctx.options.no_fe  # without the FE steps the verdict takes no FE SCF
         if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank, scfs):
             # first in the queue: the bearings step (the lumped `fe` column) and the verdict read it
             ctx.built["throw_fe"] = background.submit(throw_fe_results, crank, scfs)
@@ -611,7 +676,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
             # the studies run beside the FE steps on one core fewer than the machine has: the FE's
             # assembly and Lanczos iterations keep one core busy, not two (Renault 21 on 2 cores:
             # 97 s with the studies in their step, 93 s beside the FE on 2 workers, 88 s on 1)
-            workers = ctx.options.get("workers") or max(1, machine_workers() - 1)
+            workers = ctx.options.workers or max(1, machine_workers() - 1)
             ctx.built["studies"] = background.submit(sensitivity_studies, crank, workers,
                                                      any(s[2] is step_fe for s in steps), ctx.parts())
         for name, key, fn in steps:
@@ -623,12 +688,12 @@ def run(path, out, steps=DEFAULT_STEPS, options: dict | None = None, force: bool
         ctx.run_deferred()
         ctx.results["timings_s"] = outcome.timings_s
         write_text_atomic(work / "report.md", report_markdown(outcome))
-        if ctx.options.get("html", True):
+        if ctx.options.html:
             from ..report.html import report_html
 
             write_text_atomic(work / "report.html", report_html(outcome, work))
         write_text_atomic(work / "results.json", json.dumps(_jsonable(ctx.results), indent=1) + "\n")
-    return out
+    return outcome
 
 
 def _jsonable(x):

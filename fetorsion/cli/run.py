@@ -10,7 +10,7 @@ from .options import MM, integer, millimetres, real
 from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..io import check_report_folder
-from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_RUNUP_RATE, LUMPED17
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE, LUMPED17
 from .common import SUPPORT_CHOICES, check_mesh_size, load_description
 from .measured import add_measured_options
 
@@ -45,7 +45,7 @@ def run_jobs(args) -> list[tuple[Path, Path]]:
 
 
 def cmd_run(args) -> int:
-    from ..app.run import FAST_STEPS, run
+    from ..app.run import FAST_STEPS, RunOptions, run
 
     jobs = run_jobs(args)
     if args.measured and args.all:
@@ -59,10 +59,10 @@ def cmd_run(args) -> int:
         crank = load_description(str(file))
         if not args.no_fe and not isinstance(crank, (Chain, Network)):  # a chain has no geometry: no FE step
             check_mesh_size(crank, args.mesh_size, "modal")
-    options = {"mesh_size": args.mesh_size, "support": args.support, "inertia_ratio": args.inertia_ratio,
-               "source": args.source, "runup_rate": args.run_up_rate}
-    if args.fatigue_method:
-        options["fatigue_method"] = args.fatigue_method
+    options = {"mesh_size": args.mesh_size, "modes": args.modes, "support": args.support,
+               "inertia_ratio": args.inertia_ratio, "source": args.source, "runup_rate": args.run_up_rate,
+               "fatigue_method": args.fatigue_method, "workers": args.workers, "html": not args.no_html,
+               "no_fe": args.no_fe}
     if args.measured:  # read and checked now, before any work
         from .measured import check_measured, check_station, measured_of
 
@@ -74,9 +74,9 @@ def cmd_run(args) -> int:
         check_measured(crank, measured, args.station, "condensed" if engine else LUMPED17)
         options.update(measured=measured, station=args.station)
     for file, out in jobs:
-        folder = run(file, out, options={**options, "html": not args.no_html}, force=args.force,
-                     **({"steps": FAST_STEPS} if args.no_fe else {}))
-        print(f"report: {folder / 'report.md'}")
+        outcome = run(file, out, options=RunOptions.of(options), force=args.force,
+                      **({"steps": FAST_STEPS} if args.no_fe else {}))
+        print(f"report: {Path(outcome.folder) / 'report.md'}")
     return 0
 
 
@@ -98,6 +98,11 @@ def add_parser(sub) -> None:
                     help="the model the forced response, fillet stress, dampers and verdict run on: the condensed "
                          "crank in its bearings (default: the engine model) or the lumped 17-DOF chain (fast; "
                          "always with --no-fe); the report states the other's gap")
+    up.add_argument("--modes", type=integer(1, 200), default=DEFAULT_MODES, metavar="N",
+                    help="free-free FE modes computed for the report (default %(default)s)")
+    up.add_argument("--workers", type=integer(1), metavar="N",
+                    help="workers of the background studies' local Dask cluster (default: the machine's cores "
+                         "less one, at least 1)")
     up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
     up.add_argument("--fatigue-method", choices=("iacs-m53", "fe"),

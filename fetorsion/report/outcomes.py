@@ -10,6 +10,23 @@ nothing to work on is :class:`Skipped`, with the reason the report prints.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the results each outcome holds, named for the reader and the checks, not imported at run time
+    from ..description.model import Chain, Crank, Network
+    from ..design.assessment import CrankAssessment
+    from ..design.crank_verdict import CrankVerdict
+    from ..design.stress import StressResult
+    from ..design.verdict import VerdictResult
+    from ..excitation.campbell import CampbellResult
+    from ..fe.condensed import CondensedCrank, CondensedModes
+    from ..fe.crankfe import CrankModal
+    from ..lumped_model.lumped import LumpedResult
+    from ..response.coupled import CoupledResponse
+    from ..response.forced import ResponseResult
+    from ..response.transient import TransientResult
+    from ..studies.comparison import ComparisonResult
+    from ..studies.sensitivity import SensitivityResult
 
 
 @dataclass(frozen=True)
@@ -23,7 +40,7 @@ class Skipped:
 class ChainOutcome:
     """A chain file's modes: its :class:`~fetorsion.lumped_model.lumped.LumpedResult` and their plot."""
 
-    chain: object
+    chain: LumpedResult
     image: str
 
 
@@ -51,7 +68,7 @@ class FEOutcome:
     """The 3D FE modal analysis (a :class:`~fetorsion.fe.crankfe.CrankModal`), its global
     element size (m) and the pictures of its torsional and first bending modes."""
 
-    modal: object
+    modal: CrankModal
     mesh_size_m: float
     images: tuple[ModeImage, ...]
 
@@ -62,22 +79,22 @@ class BearingsOutcome:
     the 17-DOF chain against both (``chain[web method]``: ``f1_hz``, ``vs_free``,
     ``vs_bearings``), the coupled forced response when the crank is excited, the pictures."""
 
-    condensed: object
-    free: object
-    bearings: object
+    condensed: CondensedCrank
+    free: CondensedModes
+    bearings: CondensedModes
     chain: dict
     f1_free_hz: float
     f1_bearings_hz: float
     images: tuple[str, ...]
-    coupled: object = None
+    coupled: CoupledResponse | None = None
 
 
 @dataclass(frozen=True)
 class CampbellOutcome:
     """The Campbell diagram and the forced response, with their pictures."""
 
-    campbell: object
-    response: object
+    campbell: CampbellResult
+    response: ResponseResult
     campbell_image: str
     response_image: str
 
@@ -87,7 +104,7 @@ class SensitivityOutcome:
     """f1 against each uncertain input, the FE check of the largest, the Monte Carlo and Sobol'
     studies (``studies[method]``) and their pictures (``study_images[method]``)."""
 
-    sensitivity: object
+    sensitivity: SensitivityResult
     fe_check: list
     image: str
     studies: dict
@@ -100,11 +117,11 @@ class VerdictOutcome:
     fillet SCFs it used (``scf``: ``pin``, ``journal``, ``source``; None for torque limits),
     the fillet stress without a damper, and the picture."""
 
-    verdict: object
+    verdict: VerdictResult
     mu: float
     scf: dict | None
     image: str
-    stress: object = None
+    stress: StressResult | None = None
     #: The model the verdict was computed on (the setup's ``model``).
     model: str = ""
     #: The other model's answer to the same question (no damper, worst fillet stress or section
@@ -122,9 +139,9 @@ class FatigueOutcome:
     described (every fillet and oil bore, each at its worst speed); ``stress`` the vibratory
     torsional stress at the fillets, an input (no verdict of its own); the SCFs and pictures."""
 
-    verdict: object
-    assessment: object
-    stress: object
+    verdict: CrankVerdict
+    assessment: CrankAssessment | None
+    stress: StressResult
     scf: dict
     images: tuple[str, ...]
     model: str = ""
@@ -135,7 +152,7 @@ class MeasuredOutcome:
     """The model against the measured files given to the run (:func:`fetorsion.studies.comparison.run_comparison`)
     and its figure."""
 
-    comparison: object
+    comparison: ComparisonResult
     image: str
 
 
@@ -147,7 +164,7 @@ class TransientOutcome:
     (:class:`~fetorsion.response.transient.OrderCut`), the wall time of the run (s) and the
     pictures (the waterfall, the order cuts against the steady state)."""
 
-    transient: object
+    transient: TransientResult
     rate_rpm_per_s: float
     cuts: tuple
     seconds: float
@@ -159,7 +176,7 @@ class TransientOutcome:
 class RunOutcome:
     """Every section of one run, in pipeline order, and each step's wall time (s)."""
 
-    crank: object
+    crank: Crank | Chain | Network
     path: str
     lumped: LumpedOutcome | ChainOutcome | None = None
     fe: FEOutcome | None = None
@@ -171,3 +188,5 @@ class RunOutcome:
     measured: MeasuredOutcome | Skipped | None = None
     transient: TransientOutcome | Skipped | None = None
     timings_s: dict | None = None
+    #: The report folder the run wrote
+    folder: str = ""
