@@ -272,27 +272,33 @@ def test_compare_answers_for_the_condensed_crank_by_default(tmp_path, capsys):
     assert float(gap.split("a peak of ")[1].split(" deg")[0]) == pytest.approx(model.max(), rel=1e-3)
 
 
+def condensed_hammer_test(tmp_path):
+    """(the plain Renault's file, a universal file of its condensed crank's own free-free
+    receptances at the front and rear masters (nodes 1 and 11; ζ 1 %, 0.8–1.2 f1), f1): a
+    "modal test" whose answer is that model's first torsional mode."""
+    from test_condensed_store import _plain_renault
+
+    from fetorsion.cli.fe import condensed
+    from fetorsion.studies.comparison import model_receptances
+
+    src = _plain_renault(tmp_path)
+    crank = fetorsion.load(src)
+    cc = condensed(crank, 0.03)  # built once, kept in the test session's store
+    f1 = cc.modes("free").first_torsional()
+    hz = np.linspace(0.8 * f1, 1.2 * f1, 1500)
+    H = model_receptances(crank, hz, damping_ratio=0.01, condensed=cc)
+    frfs = [MeasuredFunction("frf", hz, "frequency", h, "rad", response=(n, 4), reference=(1, 4),
+                             reference_unit="N m", label=f"node {n}") for h, n in zip(H, (1, len(cc.labels)))]
+    return src, write_uff58(tmp_path / "hammer.uff", frfs), f1
+
+
 @pytest.mark.fe
 def test_a_modal_test_is_set_beside_the_free_condensed_crank(tmp_path):
     """The condensed crank's own free-free receptances (pulley and flywheel ends, ζ 1 %), fitted
     like a hammer test: `compare` pairs the fitted mode with the free condensed crank's first
     torsional mode within the fit's 0.1 % (its tested bound on a three-disc system), named
     torsional, and writes receptances that carry the pulley and flywheel as nodes 1 and 11."""
-    from test_condensed_store import _plain_renault
-
-    from fetorsion.cli.fe import condensed
-    from fetorsion.measured import read_uff58
-    from fetorsion.studies.comparison import model_receptances
-
-    src = _plain_renault(tmp_path)
-    crank = fetorsion.load(src)
-    cc = condensed(crank, 0.03)
-    f1 = cc.modes("free").first_torsional()
-    hz = np.linspace(0.8 * f1, 1.2 * f1, 1500)
-    H = model_receptances(crank, hz, damping_ratio=0.01, condensed=cc)
-    frfs = [MeasuredFunction("frf", hz, "frequency", h, "rad", response=(n, 4), reference=(1, 4),
-                             reference_unit="N m", label=f"node {n}") for h, n in zip(H, (1, 11))]
-    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    src, path, f1 = condensed_hammer_test(tmp_path)
     assert main(["compare", str(src), str(path), "--band", f"{0.85 * f1:.1f}", f"{1.15 * f1:.1f}", "--mesh-size", "30",
                  "--json", str(tmp_path / "c.json"), "--uff", str(tmp_path / "model.uff")]) == 0
     freq = json.loads((tmp_path / "c.json").read_text())["frequencies"][0]
@@ -340,20 +346,7 @@ def test_measured_shapes_against_the_full_fe(tmp_path):
     (a second model of the same crank: its masters couple to the same surfaces) pair with the
     full FE's first torsional mode, frequency within 0.1 % and MAC above 0.999 (the two models'
     station definitions differ slightly: a face's rigid fit against a coupling's mean)."""
-    from test_condensed_store import _plain_renault
-
-    from fetorsion.cli.fe import condensed
-    from fetorsion.studies.comparison import model_receptances
-
-    src = _plain_renault(tmp_path)
-    crank = fetorsion.load(src)
-    cc = condensed(crank, 0.03)
-    f1 = cc.modes("free").first_torsional()
-    hz = np.linspace(0.8 * f1, 1.2 * f1, 1500)
-    H = model_receptances(crank, hz, damping_ratio=0.01, condensed=cc)
-    frfs = [MeasuredFunction("frf", hz, "frequency", h, "rad", response=(n, 4), reference=(1, 4),
-                             reference_unit="N m") for h, n in zip(H, (1, len(cc.labels)))]
-    path = write_uff58(tmp_path / "hammer.uff", frfs)
+    src, path, f1 = condensed_hammer_test(tmp_path)
     assert main(["compare", str(src), str(path), "--band", f"{0.85 * f1:.1f}", f"{1.15 * f1:.1f}", "--source", "fe",
                  "--mesh-size", "30", "--json", str(tmp_path / "c.json")]) == 0
     freq = json.loads((tmp_path / "c.json").read_text())["frequencies"][0]

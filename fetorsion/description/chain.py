@@ -3,15 +3,14 @@ description shares (:mod:`.tables`)."""
 
 from __future__ import annotations
 
-from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .fields import CHAIN_SCHEMA
 from .model import Chain
 from .reader import Table, read_length_unit
-from .tables import (per_spring, read_engine, read_dampers, read_limits, read_excitation, read_uncertainty,
-                     read_distributions, unique_problems, uncertainty_bound_problems)
+from .tables import (per_spring, read_engine, read_dampers, read_limits, read_chain_excitation, read_variations,
+                     stated_damping_excitation, unique_problems, uncertainty_bound_problems)
 
 
 def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = True) -> Chain:
@@ -78,22 +77,11 @@ def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = T
         problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
     dampers = read_dampers(root)
     limits = read_limits(root, torque_only=True)
-    excitation = None
-    if "excitation" in data:
-        if engine is None:
-            problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
-        ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
-        excitation = read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
+    excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
+    if excitation is not None:
         has_dampers = any(v > 0 for v in (*absolute, *relative, *loss))
-        if "modal_damping_ratio" not in ex_table and has_dampers:
-            # The chain states its damping; a default modal ratio on top would count it twice.
-            excitation = replace(excitation, modal_damping_ratio=0.0)
-        elif not excitation.modal_damping_ratio > 0 and not has_dampers:
-            problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
-                                    "must be > 0 when the chain states no absolute, relative or hysteretic damping "
-                                    "(an undamped resonance has no finite response)"))
-    uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
-    distributions = read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
+        excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "chain", problems)
+    uncertainty, distributions = read_variations(root, data, problems)
     root.finish()
     if problems:
         raise DescriptionError(source, unique_problems(problems))

@@ -15,8 +15,8 @@ from .model import (CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, Gea
                     NonlinearSpring, Shaft)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
-from .tables import (read_engine, read_limits, read_excitation, read_uncertainty, read_distributions, unique_problems,
-                     uncertainty_bound_problems)
+from .tables import (read_engine, read_limits, read_chain_excitation, read_variations, stated_damping_excitation,
+                     unique_problems, uncertainty_bound_problems)
 
 
 def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool = True) -> Network:
@@ -127,26 +127,14 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         problems.append(Problem("dampers", "[[dampers]]", "is not read for a network yet: join the damper's ring "
                                 "as a station with a shaft (tuned) or an absolute/relative damper"))
     limits = read_limits(root, torque_only=True)
-    excitation = None
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
-    ex_table = None
-    if "excitation" in data:
-        if engine is None:
-            problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
-        ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
-        excitation = read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True)
-    elif cranks and cranks[0].crank.excitation is not None and engine is cranks[0].crank.engine:
+    excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
+    if excitation is None and cranks and cranks[0].crank.excitation is not None and engine is cranks[0].crank.engine:
         # the crank's own [excitation] (its pressure file already read relative to the crank's folder)
         excitation, ex_table = cranks[0].crank.excitation, cranks[0].crank.raw.get("excitation", {})
     if excitation is not None:
-        if "modal_damping_ratio" not in ex_table and has_dampers:
-            excitation = replace(excitation, modal_damping_ratio=0.0)  # stated damping, not counted twice
-        elif not excitation.modal_damping_ratio > 0 and not has_dampers:
-            problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
-                                    "must be > 0 when the network states no absolute, relative or hysteretic "
-                                    "damping (an undamped resonance has no finite response)"))
-    uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
-    distributions = read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
+        excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "network", problems)
+    uncertainty, distributions = read_variations(root, data, problems)
     root.finish()
     if problems:
         raise DescriptionError(source, unique_problems(problems))

@@ -470,3 +470,36 @@ def _as_file_value(nominal, bound: float):
     if isinstance(nominal, int) and not isinstance(nominal, bool) and float(bound).is_integer():
         return int(bound)
     return bound
+
+
+def stated_damping_excitation(excitation: Excitation, ex_table: dict, has_dampers: bool, kind: str,
+                              problems: list[Problem]) -> Excitation:
+    """A chain's or network's ``[excitation]`` beside the damping it states: where it states
+    absolute, relative or hysteretic damping and no ``modal_damping_ratio``, no modal damping is
+    added (a default ratio on top would count it twice); where it states none, the modal ratio
+    must be > 0 (an undamped resonance has no finite response)."""
+    if "modal_damping_ratio" not in ex_table and has_dampers:
+        return replace(excitation, modal_damping_ratio=0.0)
+    if not excitation.modal_damping_ratio > 0 and not has_dampers:
+        problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
+                                f"must be > 0 when the {kind} states no absolute, relative or hysteretic damping "
+                                "(an undamped resonance has no finite response)"))
+    return excitation
+
+
+def read_variations(root: Table, data: dict, problems: list[Problem]) -> tuple[tuple, tuple]:
+    """(``[uncertainty]``, ``[distributions]``) of any description kind."""
+    uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
+    return uncertainty, read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
+
+
+def read_chain_excitation(root: Table, data: dict, source: str, engine: Engine | None,
+                          problems: list[Problem]) -> tuple[Excitation | None, dict]:
+    """A chain's or network's own ``[excitation]`` (it needs an ``[engine]``; a zero modal ratio
+    allowed, the file may state its damping) and its raw table; (None, {}) without one."""
+    if "excitation" not in data:
+        return None, {}
+    if engine is None:
+        problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
+    ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
+    return read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True), ex_table
