@@ -386,23 +386,9 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
 
         stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets)
         ctx.results["stress"] = stress.to_dict()
-    setup = ctx.setup()
-    yardstick = None
-    other = ctx.lumped_setup() if setup is not ctx.lumped_setup() else ctx.engine_setup()
-    if other is not None:  # the other model's answer to the same question, and how far it is
-        from ..design.verdict import worst_case
-        from ..response.forced import solve_response
-
-        mine = verdict.cases[0]
-        theirs = worst_case("without damper", crank, solve_response(other, ()), scf, crank.limits, fillets)
-        i, j = mine.worst(), theirs.worst()
-        yardstick = {"model": other.model, "value": float(theirs.value[j]), "rpm": float(theirs.rpm[j]),
-                     "where": theirs.where[j], "deciding_value": float(mine.value[i]), "deciding_rpm": float(mine.rpm[i]),
-                     "difference": float(theirs.value[j] / mine.value[i] - 1.0)}
-        ctx.results["verdict"]["yardstick"] = yardstick
+    setup = ctx.setup()  # a chain's or network's own model: the only one it has
     ctx.results["verdict"]["model"] = setup.model
-    return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model,
-                          yardstick)
+    return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model)
 
 
 def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:

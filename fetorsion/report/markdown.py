@@ -208,13 +208,7 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
     lim = v.limits
     lines = [f"## {'Fillet stress' if lim.kind == 'stress' else 'Section torque'}, dampers and verdict", ""]
     if outcome.model:
-        lines += [f"Computed on the **{outcome.model}**: it decides."]
-        y = outcome.yardstick
-        if y:
-            lines[-1] += (f" The {y['model']} gives, without a damper, {y['value'] / scale:.4g} {unit} at "
-                          f"{y['rpm']:.0f} rpm in {y['where']}, against {y['deciding_value'] / scale:.4g} {unit} at "
-                          f"{y['deciding_rpm']:.0f} rpm here: **{100 * y['difference']:+.1f} %**.")
-        lines += [""]
+        lines += [f"Computed on the **{outcome.model}**: it decides.", ""]
     if outcome.stress is not None:
         scf = outcome.scf
         lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "

@@ -122,13 +122,8 @@ class VerdictOutcome:
     scf: dict | None
     image: str
     stress: StressResult | None = None
-    #: The model the verdict was computed on (the setup's ``model``).
+    #: The model the verdict was computed on (a chain's or network's own: the setup's ``model``).
     model: str = ""
-    #: The other model's answer to the same question (no damper, worst fillet stress or section
-    #: torque): ``model``, ``value``, ``rpm``, ``where``, the deciding model's ``deciding_value`` and
-    #: ``deciding_rpm``, and ``difference`` (the other's value over the deciding one's, − 1); None
-    #: when only one model ran.
-    yardstick: dict | None = None
 
 
 @dataclass(frozen=True)
