@@ -62,6 +62,7 @@ def test_mass_is_scalar_mass_times_identity(shaft):
             assert abs(blk - (mx if i == j else 0 * mx)).max() <= 1e-15 * abs(mx).max()
 
 
+@pytest.mark.slow  # 22 s on 2 cores: the default run stays under 10 minutes on the slower CI machines
 def test_reduced_matrices_are_skew_and_semidefinite(shaft):
     _, _, red, Gr, Nr = shaft
     scale = np.abs(red.M).max()

@@ -133,6 +133,7 @@ def test_oil_bore_table_interpolates_the_direct_fe_of_the_reference_cranks():
 
 
 @pytest.mark.fe
+@pytest.mark.slow  # 17-28 s: one throw FE at the stress mesh; the default run stays under 10 minutes
 def test_a_throws_web_stiffness_and_its_fillet_scfs_are_one_fe(monkeypatch):
     """The lumped ``fe`` column's throw stiffness and the fillet SCFs of the same throw: one mesh,
     one factorisation. The stiffness is T / twist of the SCF run's own torsion field, and equals a
