@@ -266,3 +266,27 @@ def test_the_runs_hand_offs_name_their_types():
     assert fields["options"] == "RunOptions"
     entry = next(f for f in run.body if isinstance(f, ast.FunctionDef) and f.name == "run")
     assert ast.unparse(entry.returns) == "RunOutcome"
+
+
+def stage_order() -> list[str]:
+    """The stage order, as docs/architecture.md writes it (its ``Stages:`` line)."""
+    line = next(x for x in (ROOT / "docs/architecture.md").read_text().splitlines() if x.startswith("Stages:"))
+    return [s.strip() for s in line.split(":", 1)[1].split(",")]
+
+
+def test_no_stage_imports_a_later_one():
+    """Issue 41: every subpackage is in the written stage order, and no module imports a module
+    of a later stage (lazy imports included: a lazy import back up is still one)."""
+    order = stage_order()
+    packages = sorted(p.name for p in PACKAGE.iterdir() if (p / "__init__.py").exists())
+    assert sorted(order) == packages, set(order) ^ set(packages)
+    rank = {s: k for k, s in enumerate(order)}
+    known = modules()
+    back = []
+    for name, path in known.items():
+        here = name.split(".")[1] if name.count(".") >= 1 else None
+        for target, _ in imports(name, path, known):
+            there = target.split(".")[1] if target.count(".") >= 1 else None
+            if here in rank and there in rank and rank[there] > rank[here]:
+                back.append(f"{name} imports {target}")
+    assert not back, back
