@@ -395,7 +395,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     """A crank's verdict: its fatigue by both methods in every configuration (without a damper,
     with the description's, with the recommended damper designed for this verdict, misfire), on
     the condensed crank in its bearings at the description's damping; the method of
-    ``options["fatigue_method"]`` (else the description's ``[limits] fatigue_method``, else
+    ``options.fatigue_method`` (else the description's ``[limits] fatigue_method``, else
     ``iacs-m53``) decides (:func:`fetorsion.design.crank_verdict.run_crank_verdict`)."""
     from ..design.crank_verdict import DEFAULT_FATIGUE_METHOD, run_crank_verdict
     from ..design.stress import fillet_stress
@@ -564,7 +564,7 @@ def step_sensitivity(ctx: RunContext) -> SensitivityOutcome | Skipped:
 
 
 def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
-    """A chain's or network's run-up over its checked speed range at ``options["runup_rate"]``
+    """A chain's or network's run-up over its checked speed range at ``options.runup_rate``
     (default :data:`~fetorsion.description.defaults.DEFAULT_RUNUP_RATE`) in the time domain: the
     exact linear propagator, or the nonlinear integrator when the network has nonlinear elements;
     its waterfall, and its order cuts against the steady-state response at the Campbell crossings.
