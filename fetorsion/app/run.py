@@ -336,10 +336,9 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
     if bearings is not None and ctx.options.support == "bearings":
         from ..response.coupled import run_coupled_campbell
 
-        sections = [(f.diameter, f.bore) for f in ctx.fillets()]
-        camp = run_coupled_campbell(bearings.condensed, "bearings", diameters=sections)
-        for c in camp.crossings:
-            c["worst_section"] = ctx.fillets()[c.pop("worst_cut")].label
+        fillets = ctx.fillets()
+        camp = run_coupled_campbell(bearings.condensed, "bearings", diameters=[(f.diameter, f.bore) for f in fillets],
+                                    section_names=[f.label for f in fillets])
     else:
         camp = run_campbell(ctx.crank, fe.modal.torsional_modes() if fe is not None else None,
                             parts=None if isinstance(ctx.crank, (Chain, Network)) else ctx.parts())

@@ -69,12 +69,10 @@ def engine_campbell(cc, fillets, support: str, orders=None, speed_range=None, da
     the worst fillet, named."""
     from ..response.coupled import run_coupled_campbell
 
-    res = run_coupled_campbell(cc, support, diameters=[(f.diameter, f.bore) for f in fillets], orders=orders,
-                               speed_range=speed_range, damping_ratio=damping_ratio)
-    if cc.cut_rows is not None and len(cc.cut_rows) == len(fillets):
-        for c in res.crossings:
-            c["worst_section"] = fillets[c.pop("worst_cut")].label
-    return res
+    named = cc.cut_rows is not None and len(cc.cut_rows) == len(fillets)
+    return run_coupled_campbell(cc, support, diameters=[(f.diameter, f.bore) for f in fillets], orders=orders,
+                                speed_range=speed_range, damping_ratio=damping_ratio,
+                                section_names=[f.label for f in fillets] if named else None)
 
 
 def _gap_line(what: str, lumped_value: float, engine_value: float, unit: str) -> str:

@@ -378,7 +378,8 @@ def peak_of_phasor(v: np.ndarray) -> np.ndarray:
 
 
 def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameters=None, orders=None,
-                         speed_range=None, damping_ratio: float | None = None, max_modes: int = 20, forces=None):
+                         speed_range=None, damping_ratio: float | None = None, max_modes: int = 20, forces=None,
+                         section_names=None):
     """Campbell diagram of the condensed crank: every mode (torsional, bending, axial, coupled)
     that an order can meet in the speed range, each crossing's severity the peak nominal
     equivalent stress √(σ_b² + 3τ²) it drives at the worst fillet cut, MPa.
@@ -408,6 +409,9 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
         that speed, a torque harmonic N·m to show beside it); default every cylinder's pin forces
         (:func:`pin_force_harmonics`) and one cylinder's torque harmonic. Then ``orders``,
         ``speed_range`` and ``damping_ratio`` are required.
+    section_names : list of str, optional
+        The name of each cut (a fillet's label): each crossing then names its worst section
+        (``worst_section``), else gives its index (``worst_cut``).
     """
     from ..excitation.campbell import CampbellResult
 
@@ -453,7 +457,8 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
                 "in_range": bool(lo <= n <= hi), "mode_kind": f"{md.kinds[j]} ({md.fractions[j, 0]:.2f}/{md.fractions[j, 1]:.2f})",
                 "torque_harmonic_nm": float(torque),
                 "phase_sum": float(abs(P) / max(np.abs(terms).sum(), 1e-300)),
-                "severity": float(eq[worst] / 1e6), "worst_cut": worst,
+                "severity": float(eq[worst] / 1e6),
+                **({"worst_section": section_names[worst]} if section_names is not None else {"worst_cut": worst}),
                 "shear_mpa": float(tau[worst] / 1e6), "bending_mpa": float(sigma[worst] / 1e6)})
     return CampbellResult(getattr(crank, "name", ""), f"condensed FE crank, {support} ({cc.reduced.size} DOF), "
                           "full pin forces", f, orders, (lo, hi), zeta, crossings,
