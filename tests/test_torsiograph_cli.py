@@ -191,3 +191,17 @@ def test_bad_torsiograph_options_give_one_message(tmp_path, capsys, args, messag
                  *args]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+def test_a_reference_wheel_record_that_never_passes_its_gap_is_refused():
+    """A 60-2 record of less than a revolution from the gap on: no tooth 0 to start from, one
+    message naming the record (not a wrong phase)."""
+    from fetorsion.errors import FetorsionError
+    from fetorsion.measured.torsiograph import repaired_edges
+
+    rng = np.random.default_rng(5)
+    t = record(*sines(SPEED, PULLEY), 60, 3, np.zeros(60), SPEED, rng, np.arange(58))
+    with pytest.raises(FetorsionError, match="no reference gap|last 4 edges"):
+        repaired_edges(t[5:50], "60-2", "rec.csv: pulley")
+    with pytest.raises(FetorsionError, match="only reference gap is among its last"):
+        repaired_edges(t[20:60], "60-2", "rec.csv: pulley")

@@ -298,6 +298,9 @@ def repaired_edges(times, wheel, where: str = "edges") -> tuple[np.ndarray, Edge
         # a gap among the record's last few edges is filled from one side only (a spline's end
         # is its least accurate part): the record ends at the last edge before it
         places, reference, t = places[: filled[-1]], reference[: filled[-1]], t[: filled[-1] + 1]
+        if wheel.gap and not reference.any():
+            raise FetorsionError(f"{where}: its only reference gap is among its last {PITCH_WINDOW} edges; record "
+                                 "at least one more revolution")
     index = np.concatenate([[0], np.cumsum(places)])  # every edge's tooth place from the first
     out = CubicSpline(index, t)(np.arange(index[-1] + 1))
     out[index] = t
