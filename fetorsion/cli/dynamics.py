@@ -57,7 +57,7 @@ def stored_engine_model(crank, args):
     from ..fe.store import stored_condensed
     from ..response.coupled import with_film_bearings
 
-    if isinstance(crank, (Chain, Network)) or args.support != "bearings":
+    if isinstance(crank, (Chain, Network)) or getattr(args, "support", "bearings") != "bearings":
         return None
     fillets = engine_fillets(crank)
     cc = stored_condensed(crank, getattr(args, "mesh_size", DEFAULT_MESH_SIZE), fillet_cuts(crank, fillets))

@@ -490,15 +490,20 @@ def station_index(response, station: str | None) -> tuple[int, str]:
         return p, f"{names.get(p, response.labels[p])} (pulley end)"
     if station.lower() == "flywheel":
         return f, f"{names.get(f, response.labels[f])} (flywheel end)"
-    if station.isdigit() and 1 <= int(station) <= len(stations):
-        name, j = stations[int(station) - 1]
-        return j, name
-    low = [name.lower() for name, _ in stations]
+    name, j = stations[station_place([name for name, _ in stations], station)]
+    return j, name
+
+
+def station_place(names, station: str) -> int:
+    """The 0-based place among the model's station ``names`` of a station given by its name
+    (case-insensitive) or its 1-based number; one message naming it otherwise."""
+    if station.isdigit() and 1 <= int(station) <= len(names):
+        return int(station) - 1
+    low = [name.lower() for name in names]
     if station.lower() in low:
-        name, j = stations[low.index(station.lower())]
-        return j, name
+        return low.index(station.lower())
     raise FetorsionError(f"compare: station {station!r} is not in the model; give pulley, flywheel or one of "
-                         f"{', '.join(name for name, _ in stations)}")
+                         f"{', '.join(names)}")
 
 
 def model_order_cut(response, order: float, station: int) -> np.ndarray:
@@ -566,7 +571,8 @@ def model_response(crank, source: str = LUMPED17, condensed=None):
 
 
 def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str | None = None,
-                   condensed=None, response=None, mesh_size: float | None = None) -> ComparisonResult:
+                   condensed=None, response=None, mesh_size: float | None = None,
+                   reference=None) -> ComparisonResult:
     """The model of a crank against measured data.
 
     Parameters
@@ -588,6 +594,10 @@ def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str |
         The running model's forced response, if already solved (:func:`model_response`).
     mesh_size : float, optional
         The full FE's mesh size (``source`` ``fe``), m; default the modal default.
+    reference : ResponseResult, optional
+        The condensed crank's forced response, beside a lumped comparison: each order cut then
+        gets a line saying how far the lumped peak is from it (:func:`gap_line`; none where the
+        condensed crank has no such station).
 
     Returns
     -------
@@ -610,30 +620,26 @@ def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str |
         response = response if response is not None else model_response(crank, source, condensed)
         out.model = response.model
         where = measured.get("stations", {})
-        out.order_cuts += [compare_order_cut(c, response, where.get(c.label, station)) for c in measured["cuts"]]
+        for c in measured["cuts"]:
+            cut = compare_order_cut(c, response, where.get(c.label, station))
+            out.order_cuts.append(cut)
+            if reference is not None:
+                try:
+                    out.gaps.append(gap_line(cut, compare_order_cut(c, reference, where.get(c.label, station))))
+                except FetorsionError:  # a chain station the condensed crank does not have
+                    pass
     out.notes += list(measured.get("notes", ()))
     out.waterfalls += [waterfall(name, track, crank, source, condensed) for name, track in measured.get("tracks", ())]
     return out
 
 
-def gap_lines(comparison: ComparisonResult, engine, station: str | None = None) -> list[str]:
-    """How far a lumped comparison's order-cut peaks are from the condensed crank's: one line per
-    cut, ``engine`` the condensed crank's forced response (:func:`model_response`), ``station``
-    as the cuts were compared (a chain station's name the condensed crank lacks gives no line)."""
-    out = []
-    for c in comparison.order_cuts:
-        try:
-            j, _ = station_index(engine, station)
-        except FetorsionError:
-            continue
-        p = c.peaks()
-        amp = model_order_cut(engine, c.order, j)
-        inside = (engine.rpm >= c.rpm.min()) & (engine.rpm <= c.rpm.max())
-        k = int(np.flatnonzero(inside)[np.argmax(amp[inside])]) if inside.any() else int(np.argmax(amp))
-        out.append(f"(lumped answer; the condensed crank in its bearings, stored, gives order {c.order:g} at "
-                   f"{c.station} a peak of {amp[k]:.4g} deg at {engine.rpm[k]:.0f} rpm: the lumped one is "
-                   f"{100 * (p['model_peak_deg'] / amp[k] - 1):+.1f} % from it)")
-    return out
+def gap_line(lumped_cut: OrderCutComparison, engine_cut: OrderCutComparison) -> str:
+    """How far a lumped model's order-cut peak is from the condensed crank's (both set beside
+    the same measured cut, so both peaks lie in the speeds it covers)."""
+    mine, theirs = lumped_cut.peaks(), engine_cut.peaks()
+    return (f"(lumped answer; the condensed crank in its bearings, stored, gives order {engine_cut.order:g} at "
+            f"{engine_cut.station} a peak of {theirs['model_peak_deg']:.4g} deg at {theirs['model_peak_rpm']:.0f} rpm: "
+            f"the lumped one is {100 * (mine['model_peak_deg'] / theirs['model_peak_deg'] - 1):+.1f} % from it)")
 
 
 def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
