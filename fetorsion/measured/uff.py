@@ -34,7 +34,7 @@ import numpy as np
 
 from ..errors import FetorsionError
 from .units import SI_UNITS as UNITS_SI
-from .units import normalise, unit
+from .units import UNITS, normalise, unit
 
 #: record 6 field 1: the function types read, and what each is called here
 FUNCTION_TYPES = {4: "frf", 12: "spectrum", 27: "order function"}
@@ -44,10 +44,7 @@ GENERAL = 0  # record 6's 'general or unknown': an order function when its absci
 ABSCISSA_TYPES = {18: "frequency", 19: "speed", 20: "order"}
 ABSCISSA_CODES = {q: code for code, q in ABSCISSA_TYPES.items()}
 ABSCISSA_UNITS = {"frequency": "Hz", "speed": "rpm", "order": "-"}
-#: records 9 and 10 field 1 -> the quantities its unit may be of (the other types are not checked)
-ORDINATE_TYPES = {8: ("angle", "length"), 11: ("angular velocity", "velocity"),
-                  12: ("angular acceleration", "acceleration"), 9: ("torque", "force"),
-                  13: ("torque", "force"), 15: ("pressure",)}
+#: a quantity -> the data type records 9 and 10 are written with
 ORDINATE_CODES = {"angle": 8, "length": 8, "angular velocity": 11, "velocity": 11, "angular acceleration": 12,
                   "acceleration": 12, "torque": 13, "force": 13, "pressure": 15}
 NONE = "NONE"  # the UFF's word for an unused text field
@@ -121,6 +118,10 @@ TYPE_NAMES = {8: "displacement", 11: "velocity", 12: "acceleration", 9: "force",
 TYPED_QUANTITIES = {8: ("length", "angle"), 11: ("velocity", "angular velocity"),
                     12: ("acceleration", "angular acceleration"), 9: ("force", "torque"), 13: ("force", "torque"),
                     15: ("pressure", "pressure"), 18: ("frequency",) * 2, 19: ("speed",) * 2, 20: ("order",) * 2}
+#: records 9 and 10's data types -> the quantities its unit may be of, rotational first (the other
+#: types are not checked)
+ORDINATE_TYPES = {code: tuple(dict.fromkeys(pair[::-1])) for code, pair in TYPED_QUANTITIES.items()
+                  if code not in ABSCISSA_TYPES}
 #: the quantities an FRF's excitation may be (the denominator of a ratio label)
 EXCITATIONS = ("torque", "force")
 
@@ -137,8 +138,6 @@ def typed_quantity(code: int, direction: int | None) -> str | None:
 def split_ratio(text: str) -> tuple[str, str] | None:
     """An FRF label naming the whole ratio, ``rad/Nm``, ``rad/(N*m)``, ``deg/N-m``, as (response
     unit, excitation unit) when its right side is a torque or force unit; else None."""
-    from .units import UNITS, normalise
-
     if "/" not in text:
         return None
     top, _, bottom = text.rpartition("/")
@@ -163,8 +162,6 @@ class UnstatedUnit(FetorsionError):
 
 def _same(a: str, b: str) -> bool | None:
     """Whether two unit texts name one unit (None: one of them is not known)."""
-    from .units import UNITS
-
     x, y = UNITS.get(normalise(a)), UNITS.get(normalise(b))
     return None if x is None or y is None else (x.quantity, x.factor) == (y.quantity, y.factor)
 
@@ -174,8 +171,6 @@ def _units_of(dset, where: str, units: dict, record: str, key: str, allowed, cod
     """The Unit of one record (see the module docstring): its label where it names a unit, else
     the caller's, else the SI unit of its data type; the label, the caller's unit and the data
     type must agree."""
-    from .units import UNITS
-
     number = RECORDS[record]
     labelled = label if label is not None else _label(dset.get(f"{key}_axis_units_lab", ""))
     stated = units.get(record)
