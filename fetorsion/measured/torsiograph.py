@@ -668,17 +668,14 @@ def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dic
         raise FetorsionError(f"order definition {definition!r}: choose {' or '.join(ORDER_DEFINITIONS)}")
     wheels = {name: wheel_of(teeth[name], f"teeth of {name!r}") for name in set(edges) | set(calibration)}
     revolutions = _whole(revolutions, "revolutions")
-    repairs = {}
-    for name, t in edges.items():  # every channel is checked before any is processed
-        check_edges(t, wheels[name].positions - wheels[name].gap, name, revolutions=1)
-    fixed = {}
-    for label, records in (("", edges), ("calibration ", calibration)):
-        for name, t in records.items():
-            fixed[label + name], repairs[label + name] = repaired_edges(check_edges(t, 1, label + name), wheels[name],
-                                                                        label + name)
+    records = {**edges, **{f"calibration {name}": t for name, t in calibration.items()}}
+    wheel = {**{name: wheels[name] for name in edges}, **{f"calibration {name}": wheels[name] for name in calibration}}
+    for key, t in records.items():  # every record is checked before any is processed
+        check_edges(t, wheel[key].positions - wheel[key].gap, key, revolutions=1)
+    fixed, repairs = {}, {}
+    for key, t in records.items():
+        fixed[key], repairs[key] = repaired_edges(t, wheel[key], key)
     z = {name: w.positions for name, w in wheels.items()}
-    for name in edges:
-        check_edges(fixed[name], z[name], name, revolutions=revolutions)
     errors = {name: tooth_errors(fixed["calibration " + name], z[name]) for name in calibration}
     tracks = {name: order_track(fixed[name], z[name], revolutions, errors.get(name), name, definition=definition)
               for name in edges}
