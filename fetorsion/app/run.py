@@ -528,13 +528,13 @@ def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:
     measured = ctx.options.measured
     if not measured:
         return None
-    from ..response.forced import solve_response
     from ..studies.comparison import run_comparison
 
-    # the model the verdict judged: the condensed crank in its bearings where the run built it
-    setup = ctx.setup()
-    engine = setup is ctx.engine_setup()
-    response = solve_response(setup, getattr(ctx.crank, "dampers", ())) if measured.get("cuts") else None
+    # the model the verdict judged: the condensed crank in its bearings where the run built it;
+    # its forced response with the description's dampers is the Campbell step's, solved once
+    engine = ctx.setup() is ctx.engine_setup()
+    camp = ctx.outcome.campbell
+    response = camp.response if isinstance(camp, CampbellOutcome) else None
     res = run_comparison(ctx.crank, measured, "condensed" if engine else LUMPED17, ctx.options.station,
                          condensed=ctx.built.get("condensed"), response=response)
     ctx.results["measured"] = res.to_dict()

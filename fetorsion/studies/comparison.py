@@ -609,8 +609,7 @@ def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str |
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
     running = ("the chain file's own model" if not hasattr(crank, "journals") else
                "the lumped 17-DOF chain" if source == LUMPED17 else "condensed crank in its bearings")
-    out = ComparisonResult(crank.name, model=running if source == LUMPED17 else
-                           getattr(response, "model", "") or running)
+    out = ComparisonResult(crank.name, model=running)  # the response's own name once it is solved
     if measured.get("frfs"):
         out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
                                                    source, condensed, mesh_size))
