@@ -323,12 +323,13 @@ class Identification:
                                  for v, sd in zip(self.combinations, self.combination_sd)]}
 
 
-def identification(fit: LeastSquaresFit, sigma_hz) -> Identification:
-    """The deterministic identification of a least-squares fit (see :class:`Identification`)."""
+def identification(fit: LeastSquaresFit, inputs, sigma_hz) -> Identification:
+    """The deterministic identification of a least-squares fit of ``inputs`` (see
+    :class:`Identification`): each input's Laplace sd over its prior's is the fit's own ``sd``
+    over the prior sd; the combinations are the information's eigenvectors."""
     J = fit.sensitivity_hz / np.asarray(sigma_hz, float)[:, None]  # d(residual)/du at the estimate
-    F = J.T @ J
-    sd_ratio = np.sqrt(np.diag(np.linalg.inv(F + np.eye(F.shape[0]))))
-    lam, V = np.linalg.eigh(F)
+    sd_ratio = fit.sd / np.array([i.prior_sd for i in inputs])
+    lam, V = np.linalg.eigh(J.T @ J)
     order = np.argsort(lam)[::-1]
     lam, V = lam[order], V[:, order]
     keep = lam > 1.0 / IDENTIFIED_RATIO**2 - 1.0
@@ -844,7 +845,7 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
     out = CalibrationResult(crank.name, str(crank.source), f"{model}, {stiffness}", method, f_meas, sig, chosen,
                             nominal)
     out.lsq = least_squares_fit(fm, chosen, f_meas, sig)
-    out.identification = identification(out.lsq, sig)
+    out.identification = identification(out.lsq, chosen, sig)
     out.write_all = write_all
     if method != "lsq":
         out.posterior = sample_posterior(fm, chosen, f_meas, sig, out.lsq, walkers, steps, burn, seed)
