@@ -109,7 +109,7 @@ def main(argv=None):
     cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")),
                platform.processor())
     out = {"description": args.file, "measured_hz": measured, "inputs": args.inputs, "mesh_size_mm": args.mesh_size,
-           "scf_source": scf.get("source"), "identified": {r["input"]: r["identified"] for r in cal.input_rows()},
+           "scf_source": scf.source, "identified": {r["input"]: r["identified"] for r in cal.input_rows()},
            "posterior": {r["input"]: {k: r[k] for k in ("median", "q5", "q95", "width_ratio")} for r in cal.input_rows()},
            "rows": rows, "seconds": time.perf_counter() - t0, "cpu": cpu}
     print(f"{crank.name}: calibrated on {measured} Hz ({', '.join(args.inputs)}), engine model at {args.mesh_size:g} mm")

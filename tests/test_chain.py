@@ -40,9 +40,9 @@ def test_chain_equals_its_crank_campbell(renault):
     # Same matrices, stations and excitation tables: identical arithmetic, so round-off only (1e-12).
     a, b = run_campbell(renault), run_campbell(chain_of(renault))
     for x, y in zip(a.crossings, b.crossings):
-        assert (x["mode"], x["order"], x["in_range"]) == (y["mode"], y["order"], y["in_range"])
-        assert y["rpm"] == pytest.approx(x["rpm"], rel=1e-12)
-        assert y["severity"] == pytest.approx(x["severity"], rel=1e-9)
+        assert (x.mode, x.order, x.in_range) == (y.mode, y.order, y.in_range)
+        assert y.rpm == pytest.approx(x.rpm, rel=1e-12)
+        assert y.severity == pytest.approx(x.severity, rel=1e-9)
 
 
 @pytest.mark.parametrize("dof", [6, 17])

@@ -9,6 +9,7 @@ from conftest import GEOMETRY, assert_picture, plain
 import fetorsion
 from fetorsion.design.assessment import run_assessment, section_modulus_factor
 from fetorsion.design.fatigue import m53_equivalent_fillet, m53_fatigue_strength
+from fetorsion.design.scfset import SCFSet
 from fetorsion.design.stress import Fillet, fillet_cuts, fillets_of
 from fetorsion.response.cycle import LoadCycle
 
@@ -95,7 +96,7 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
     scf = {"pin": 1.6, "journal": 1.4, "pin_bending": 2.6, "journal_bending": 2.1, "pin_oil_bore_bending": 1.9,
            "pin_oil_bore_torsion": 3.6, "journal_oil_bore_bending": 2.2, "journal_oil_bore_torsion": 3.3,
            "source": "made up"}
-    res = run_assessment(crank, _cycle(bending, torque, fillets, my), fillets, scf, "m53-criterion")
+    res = run_assessment(crank, _cycle(bending, torque, fillets, my), fillets, SCFSet.from_dict(scf), "m53-criterion")
     # the Renault 21 drills pins and journals: one oil bore per drilled section here (P1, J2), its
     # nominal stresses those of its section (one fillet cut each here)
     assert res.labels == [f.label for f in fillets] + ["P1 oil bore", "J2 oil bore"]
@@ -134,7 +135,7 @@ def test_assessment_equals_a_hand_evaluation_of_the_m53_formulas(tmp_path):
     from fetorsion.description.model import Limits
 
     added = replace(crank, limits=Limits(source="test", additional_bending=10e6))
-    res2 = run_assessment(added, _cycle(bending, torque, fillets, my), fillets, scf, "m53-criterion")
+    res2 = run_assessment(added, _cycle(bending, torque, fillets, my), fillets, SCFSet.from_dict(scf), "m53-criterion")
     for j, f in enumerate(fillets):
         w = f.diameter / (math.pi * (f.diameter**4 - f.bore**4))
         sa = scf[f"{f.kind}_bending"] * 0.5 * np.ptp(32 * w * bending[1, j])

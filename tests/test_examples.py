@@ -54,9 +54,9 @@ def check_web_thickness(out: str):
 def check_campbell(out: str):
     res = fetorsion.run_campbell(fetorsion.load(ROOT / "geometry/renault21.toml"))
     order, rpm, severity = numbers(lines_with(out, "worst:")[0])
-    worst = max((c for c in res.crossings if c["in_range"]), key=lambda c: c["severity"])
-    assert (order, rpm) == (pytest.approx(worst["order"]), pytest.approx(worst["rpm"], abs=0.5))
-    assert severity == pytest.approx(worst["severity"], abs=5e-4)
+    worst = max((c for c in res.crossings if c.in_range), key=lambda c: c.severity)
+    assert (order, rpm) == (pytest.approx(worst.order), pytest.approx(worst.rpm, abs=0.5))
+    assert severity == pytest.approx(worst.severity, abs=5e-4)
 
 
 def check_mendes(out: str):

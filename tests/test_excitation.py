@@ -87,15 +87,15 @@ def test_inline4_firing_angles_and_rigid_body_phase_sums(renault):
     rigid = TorsionalModes("rigid", np.array([500.0]), np.ones((1, 4)), np.ones(1), np.ones(1))
     res = run_campbell(renault, rigid, orders=np.arange(0.5, 8.5, 0.5), n_modes=1)
     for c in res.crossings:
-        major = c["order"] % 2 == 0
-        assert c["phase_sum"] == pytest.approx(1.0 if major else 0.0, abs=1e-12), c["order"]
+        major = c.order % 2 == 0
+        assert c.phase_sum == pytest.approx(1.0 if major else 0.0, abs=1e-12), c.order
 
 
 def test_crossings_sit_on_their_order_lines(renault):
     res = run_campbell(renault)
     for c in res.crossings:
-        assert c["order"] * c["rpm"] / 60 == pytest.approx(c["frequency_hz"], rel=1e-12)
-        assert c["in_range"] == (750 <= c["rpm"] <= 1.1 * 6500)  # checked to overspeed: 1.1 × rated by default
+        assert c.order * c.rpm / 60 == pytest.approx(c.frequency_hz, rel=1e-12)
+        assert c.in_range == (750 <= c.rpm <= 1.1 * 6500)  # checked to overspeed: 1.1 × rated by default
 
 
 def test_two_inertia_resonance_with_damping_matches_closed_form():
@@ -122,7 +122,7 @@ def test_severity_is_independent_of_mode_normalisation(renault):
                             s**2 * modes.modal_inertia)
     a = run_campbell(renault, modes)
     b = run_campbell(renault, scaled)
-    np.testing.assert_allclose([c["severity"] for c in a.crossings], [c["severity"] for c in b.crossings],
+    np.testing.assert_allclose([c.severity for c in a.crossings], [c.severity for c in b.crossings],
                                rtol=1e-12)
 
 

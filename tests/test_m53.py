@@ -109,7 +109,9 @@ def test_validity_ranges_and_the_fallback_to_fe():
     g = m53.M53Geometry(0.06, 0.07, 0.05, 0.025, 0.095, 0.0012, 0.0035, 0.0, 0.0, 0.006)
     bad = m53.out_of_range(g)
     assert set(bad) == {"alpha_B", "alpha_T"} and "r_H = 0.02" in bad["alpha_B"][0]
-    fe = {"pin": 2.5, "journal": 2.2, "pin_bending_vm": 6.0, "journal_bending_vm": 7.0}
+    from fetorsion.design.scfset import SCFSet
+
+    fe = SCFSet.of(2.5, 2.2, pin_bending_vm=6.0, journal_bending_vm=7.0)
     scfs, source = m53.choose_scfs(g, fe)
     assert scfs["alpha_T"] == 2.5 and source["alpha_T"].startswith("FE per Appendix III")
     assert scfs["alpha_B"] == pytest.approx(6.0 * 32 * 0.06 / (math.pi * 0.06**4) * 0.095 * 0.025**2 / 6)
@@ -135,12 +137,12 @@ def test_fe_scfs_in_m53s_convention_are_near_its_formulas(name):
     (strain-gauge measurements of FVV's cranks), which the issue states as the bound. The oil bore's
     γ_B, γ_T are those of fetorsion's drilled-bar FE."""
     crank, scf = _shipped(name)
-    assert scf is not None and "pin_bending_vm" in scf, f"{name}: no shipped FE SCFs in the M53 convention"
+    assert scf is not None and "pin" in scf.bending_vm, f"{name}: no shipped FE SCFs in the M53 convention"
     from fetorsion.design.oilbore import oil_bore_scfs
 
     bores = oil_bore_scfs(crank)
     if "pin" in bores:
-        scf = {**scf, "pin_oil_bore_bending": bores["pin"][0], "pin_oil_bore_torsion": bores["pin"][1]}
+        scf = scf.with_oil_bores({"pin": bores["pin"]}, bores["source"])
     g = m53.m53_geometry(crank)
     table = m53.scf_comparison(g, scf)
     checked = [k for k in ("alpha_B", "beta_B", "alpha_T", "beta_T", "gamma_B", "gamma_T")

@@ -122,7 +122,7 @@ def test_network_campbell_and_response_run():
     from fetorsion.excitation.campbell import run_campbell
 
     res = run_campbell(net)
-    assert res.crossings and all(c["rpm"] > 0 for c in res.crossings)
+    assert res.crossings and all(c.rpm > 0 for c in res.crossings)
     r = run_response(net, rpm=[1000.0, 2000.0])
     assert r.section_torque_nm.shape == (2, len(net.shafts))
     assert r.to_dict()["sections"][-1] == "pump gear-pump"

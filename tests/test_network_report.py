@@ -53,12 +53,12 @@ def test_slow_run_up_order_cut_approaches_the_steady_state_at_the_first_crossing
     # block's speed change, < 0.5 % of the crossing's.
     net = fetorsion.load(NETWORKS / "renault21_driveline.toml")
     camp = run_campbell(net)
-    first = max((c for c in camp.crossings if c["in_range"]), key=lambda c: c["severity"])
-    assert (first["mode"], first["order"]) == (3, 6.0)
+    first = max((c for c in camp.crossings if c.in_range), key=lambda c: c.severity)
+    assert (first.mode, first.order) == (3, 6.0)
     zeta = camp.damping_ratio[2] if np.ndim(camp.damping_ratio) else camp.damping_ratio
-    omega = 2 * np.pi * first["frequency_hz"]
-    rate = 0.02 * (zeta * omega) ** 2 / (first["order"] * np.pi / 30)  # rpm/s for α/Γ² = 0.02
-    n = first["rpm"]
+    omega = 2 * np.pi * first.frequency_hz
+    rate = 0.02 * (zeta * omega) ** 2 / (first.order * np.pi / 30)  # rpm/s for α/Γ² = 0.02
+    n = first.rpm
     lo, hi = n * (1 - CROSSING_WINDOW), n * (1 + CROSSING_WINDOW)
     tr = run_transient(net, run=(lo, hi), rate_rpm_per_s=rate, settled_start=True)
     steady = run_response(net, rpm=np.arange(lo, hi, 1.0))

@@ -6,6 +6,7 @@ import json
 import pytest
 
 import fetorsion
+from fetorsion.design.scfset import SCFSet
 from fetorsion.errors import DescriptionError
 from fetorsion.app.run import DEFAULT_STEPS, run
 
@@ -191,7 +192,7 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
     k = 7.5e5  # N·m/rad, any: what is checked is that this one is read
     entry = dataclasses.asdict(throwfe.TorsionResult(k, 0.1, 1, 1, 3, 0.01, 0.001, 1.0))
     keys = {throwfe.throw_key(throwfe.throw_of(crank, i), None) for i in range(len(crank.pins))}
-    scf = {"pin": 2.0, "journal": 2.1, "pin_bending": 3.0, "journal_bending": 1.5, "source": "background"}
+    scf = SCFSet.of(2.0, 2.1, "background", pin_bending=3.0, journal_bending=1.5)
     done = concurrent.futures.Future()
     done.set_result(({key: entry for key in keys}, scf))
 
@@ -202,7 +203,7 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
     monkeypatch.setattr(throwfe, "_CACHE", {})
     ctx = RunContext(crank, tmp_path, RunOptions(), RunOutcome(crank, "x", timings_s={}), built={"throw_fe": done})
     ctx.parts("fe")  # built from the background's stiffness: no FE here
-    assert ctx.scf()["pin_bending"] == 3.0 and ctx.scf()["source"] == "background"
+    assert ctx.scf().bending["pin"] == 3.0 and ctx.scf().source == "background"
     d_e = crank.journals[0].diameter
     l_throw = throw.material.shear_modulus * math.pi * d_e**4 / (32 * k)
     assert throwfe.web_equivalent_length_fe(crank, 0, d_e) == pytest.approx(throwfe.web_term(throw, l_throw, d_e),

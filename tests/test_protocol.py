@@ -26,9 +26,10 @@ from fetorsion.studies.sampling import study_inputs  # noqa: E402
 from fetorsion.studies.study import run_study  # noqa: E402
 from fetorsion.design.stress import run_stress  # noqa: E402
 from fetorsion.design.dampers import run_damper  # noqa: E402
+from fetorsion.design.scfset import SCFSet  # noqa: E402
 
 RENAULT = fetorsion.load(GEOMETRY / "renault21.toml")
-SCF = {"pin": 2.0, "journal": 2.2, "source": "given"}
+SCF = SCFSet.of(2.0, 2.2, "given")
 MWM6 = GEOMETRY.parent / "examples" / "mendes2008" / "mwm6_chain.toml"
 
 

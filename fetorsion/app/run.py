@@ -24,6 +24,7 @@ from typing import Callable
 import numpy as np
 
 from ..description.files import load
+from ..design.scfset import SCFSet
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
@@ -192,7 +193,7 @@ class RunContext:
         return self.once("lumped_setup", lambda: response_setup(
             self.crank, parts=None if isinstance(self.crank, (Chain, Network)) else self.parts()))
 
-    def scf(self) -> dict:
+    def scf(self) -> SCFSet:
         """The fillet SCFs of the crank (shipped, or one static FE of a throw) and its oil bores'
         (shipped, or one static FE of a drilled bar per drilled kind of section), found once."""
         def build():
@@ -372,7 +373,7 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
         from ..design.scf import stored_fillet_scfs
 
         if stored_fillet_scfs(crank) is None and ctx.options.no_fe:
-            scf = {"pin": 1.0, "journal": 1.0, "source": "none (nominal stress: no FE step in this run and no stored FE SCF)"}
+            scf = SCFSet.of(1.0, 1.0, "none (nominal stress: no FE step in this run and no stored FE SCF)")
         else:
             scf = ctx.scf()
     mu = ctx.options.inertia_ratio
@@ -407,9 +408,9 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         return Skipped("fillet fatigue needs fillet radii (a sharp corner has no finite SCF)")
     scf = ctx.scf()
-    missing = [k for k in ("pin_bending", "journal_bending", "pin_bending_vm", "journal_bending_vm") if k not in scf]
+    missing = scf.missing_bending()
     if missing:
-        return Skipped(f"no {', '.join(missing)} SCF in {scf.get('source', 'the SCFs')}")
+        return Skipped(f"no {', '.join(missing)} SCF in {scf.source or 'the SCFs'}")
     method = (ctx.options.fatigue_method or getattr(crank.limits, "fatigue_method", "")
               or DEFAULT_FATIGUE_METHOD)
     cc, fillets, setup = ctx.built["condensed"], ctx.fillets(), ctx.engine_setup()
@@ -421,7 +422,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
         if isinstance(ctx.outcome.campbell, CampbellOutcome) else None
     images = (ctx.save(a.plot().figure, "fatigue_safety.png"), ctx.save(a.haigh().figure, "fatigue_haigh.png"),
               ctx.save(verdict.damper.plot().figure, "damper_design.png"))
-    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict()}
+    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict(), "scf": scf.to_dict()}
     if stress is not None:
         ctx.results["stress"] = stress.to_dict()
     return FatigueOutcome(verdict, a, stress, scf, images, setup.model)
@@ -456,7 +457,7 @@ def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, part
     return sens, studies, checks
 
 
-def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, dict | None]:
+def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | None]:
     """({throw key: the throw's torsion entry}, the fillet SCFs or None) of every distinct throw
     of ``crank``: its one throw FE each (:func:`fetorsion.webs.throwfe.end_loaded_fe`), found
     stored or computed. Run in the background process, first, when the crank has no stored throw
@@ -569,6 +570,7 @@ def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
     its waterfall, and its order cuts against the steady-state response at the Campbell crossings.
     A crank description's run leaves the section out (its response runs on the condensed crank;
     ``fetorsion transient`` takes its lumped model)."""
+    from ..excitation.campbell import most_severe
     from ..response.transient import order_cuts, plot_order_cuts, run_transient
 
     if not isinstance(ctx.crank, (Chain, Network)):
@@ -581,9 +583,8 @@ def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
     t0 = time.perf_counter()
     res = run_transient(ctx.crank, run=(lo, hi), rate_rpm_per_s=rate, settled_start=True)
     seconds = time.perf_counter() - t0
-    crossings = [c for c in camp.campbell.crossings if c["in_range"]]
-    crossings.sort(key=lambda c: -c["severity"])
-    cuts = order_cuts(res, camp.response, crossings[:REPORT_CROSSINGS], camp.campbell.damping_ratio, rate)
+    cuts = order_cuts(res, camp.response, most_severe(camp.campbell.crossings, REPORT_CROSSINGS),
+                      camp.campbell.damping_ratio, rate)
     top = float(np.max(camp.response.orders))
     ctx.results["transient"] = {**res.to_dict(every=max(1, res.time_s.size // REPORT_SIGNAL_SAMPLES)),
                                 "rate_rpm_per_s": rate, "seconds": seconds, "order_cuts": [c.to_dict() for c in cuts]}

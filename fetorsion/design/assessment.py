@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import FetorsionError
+from .scfset import SCFSet
 from .fatigue import FatigueResult, LocationStress, run_fatigue
 
 
@@ -87,14 +88,6 @@ def oil_bore_stress_histories(cycle, bore: OilBoreSection) -> tuple[np.ndarray, 
     w = section_modulus_factor(bore.diameter, bore.bore)
     moment = (c * h[:, :, 4] + s * h[:, :, 5]).mean(axis=1)
     return 32 * w * moment, 16 * w * h[:, :, 3].mean(axis=1)
-
-
-def _scf(scf: dict, kind: str) -> tuple[float, float]:
-    """(bending, torsion) SCF of a ``pin`` or ``journal`` fillet."""
-    bending = scf.get(f"{kind}_bending")
-    if bending is None:
-        raise FetorsionError(f"no bending SCF for the {kind} fillets in {scf.get('source', 'the SCFs given')}")
-    return float(bending), float(scf[kind])
 
 
 #: Locations (the least safe) drawn in the Haigh diagram.
@@ -211,7 +204,7 @@ class CrankAssessment:
 ASSESSMENT_METHODS = {"textbook": "textbook", "m53-criterion": "iacs-m53"}
 
 
-def run_assessment(crank, cycle, fillets, scf: dict, method: str = "textbook", required: float | None = None
+def run_assessment(crank, cycle, fillets, scf: SCFSet, method: str = "textbook", required: float | None = None
                    ) -> CrankAssessment:
     """Assess every fillet of ``crank`` at every speed of ``cycle``.
 
@@ -242,18 +235,17 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "textbook", r
     label, method = method, ASSESSMENT_METHODS[method]
     sigma, tau = fillet_stress_histories(crank, cycle, fillets)
     radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
-    kts = [_scf(scf, f.kind) for f in fillets]
+    kts = [scf.fillet(f.kind) for f in fillets]
     labels, kinds, radii, diameters = [f.label for f in fillets], [f"{f.kind}-fillet" for f in fillets], \
         [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
     cuts_read = list(range(len(fillets)))
     bores = oil_bore_sections(crank, fillets)
-    missing = sorted({b.kind for b in bores if not (f"{b.kind}_oil_bore_bending" in scf
-                                                     and f"{b.kind}_oil_bore_torsion" in scf)})
+    missing = sorted({b.kind for b in bores if b.kind not in scf.oil_bore})
     for b in [b for b in bores if b.kind not in missing]:
         sb, tb = oil_bore_stress_histories(cycle, b)
         # At the bore's edge both loads give a normal stress along the edge (a free surface with no
         # shear): local σ = γ_B σ_b ± γ_T τ, the sign that makes the larger range, and no shear.
-        gb, gt = float(scf[f"{b.kind}_oil_bore_bending"]), float(scf[f"{b.kind}_oil_bore_torsion"])
+        gb, gt = scf.oil_bore[b.kind]
         plus, minus = gb * sb + gt * tb, gb * sb - gt * tb
         local = np.where((np.ptp(plus, axis=1) >= np.ptp(minus, axis=1))[:, None], plus, minus)
         sigma = np.concatenate([sigma, local[:, None]], axis=1)
@@ -295,10 +287,10 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "textbook", r
                      "value as [limits] additional_bending_pa")
     if missing:
         notes.append(f"oil-bore exits NOT assessed ({', '.join(b.label for b in bores if b.kind in missing)}): "
-                     f"no {' or '.join(missing)} oil-bore SCF in {scf.get('source', 'the SCFs given')}")
+                     f"no {' or '.join(missing)} oil-bore SCF in {scf.source or 'the SCFs given'}")
     elif bores:
         notes.append(f"oil-bore exits: the bending about the throw's radius (the drillings run along its tangent), "
-                     f"SCFs {scf.get('oil_bore_source', '')}")
+                     f"SCFs {scf.oil_bore_source}")
     if worst.material.fatigue_strength:
         notes.append(f"fatigue strength {worst.material.fatigue_strength / 1e6:.0f} MPa against local stresses: "
                      f"{worst.material.fatigue_strength_source}, in place of the method's own")
@@ -306,5 +298,5 @@ def run_assessment(crank, cycle, fillets, scf: dict, method: str = "textbook", r
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
     return CrankAssessment(crank.name, label, np.asarray(cycle.rpm), labels, safety, worst,
-                           np.asarray(cycle.rpm)[worst_speed], scf.get("source", ""), notes, np.array(diameters),
+                           np.asarray(cycle.rpm)[worst_speed], scf.source, notes, np.array(diameters),
                            tuple(cuts_read))

@@ -27,6 +27,7 @@ import scipy.optimize
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..errors import FetorsionError
+from .scfset import SCFSet
 from .m53 import M53Result, polar_modulus, run_m53_crank
 
 FATIGUE_METHODS = ("iacs-m53", "fe")
@@ -79,21 +80,18 @@ def m53_utilisation(result: M53Result, fillets, setup):
 DAMPER_DESIGN_SPEEDS = 100
 
 
-def verdict_scfs(crank, fillet: dict | None = None) -> dict:
+def verdict_scfs(crank, fillet: SCFSet | None = None) -> SCFSet:
     """The SCFs the verdict reads: the fillets' (``fillet``, else
     :func:`fetorsion.design.scf.fillet_scfs`: the shipped table or one throw FE) and the oil
     bores' (:func:`fetorsion.design.oilbore.oil_bore_scfs`)."""
     from .oilbore import oil_bore_scfs
     from .scf import fillet_scfs
 
-    out = dict(fillet or fillet_scfs(crank))
+    out = fillet or fillet_scfs(crank)
     bores = oil_bore_scfs(crank)
-    for kind in ("pin", "journal"):
-        if kind in bores:
-            out[f"{kind}_oil_bore_bending"], out[f"{kind}_oil_bore_torsion"] = bores[kind]
-    if bores:
-        out["oil_bore_source"] = bores["source"]
-    return out
+    if not bores:
+        return out
+    return out.with_oil_bores({k: v for k, v in bores.items() if k != "source"}, bores["source"])
 
 
 def design_speeds(setup):
@@ -102,7 +100,7 @@ def design_speeds(setup):
     return setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
 
 
-def run_fatigue_damper(crank, setup, fillets, scf: dict, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO,
+def run_fatigue_damper(crank, setup, fillets, scf: SCFSet, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO,
                        optimise: bool = True, at: str = "front", hub_inertia: float = 0.0, undamped: M53Result | None = None):
     """The damper designed for the verdict: Den Hartog's start, then (``optimise``) its stiffness
     and loss optimised to make M53's governing safety over the speeds as large as it can be
@@ -224,7 +222,7 @@ def _flip(safety_at, required: float) -> dict:
     return {"zeta": z, "kind": f"passes down to ζ = {z:.4g}"}
 
 
-def run_crank_verdict(crank, cc, setup, fillets, scf: dict, method: str = DEFAULT_FATIGUE_METHOD,
+def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFAULT_FATIGUE_METHOD,
                       mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", misfire: bool = True, fe_path: bool = True,
                       progress=None) -> CrankVerdict:
     """The crank's fatigue verdict in every configuration (module docstring).

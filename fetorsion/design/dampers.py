@@ -36,6 +36,7 @@ from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
 from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
 from ..response.synthesis import half_peak_to_peak, largest_half_peak_to_peak
+from .scfset import SCFSet
 
 OBJECTIVES = ("stress", "twist", "fatigue")
 
@@ -124,7 +125,7 @@ def den_hartog_damper(kind: str, mu: float, J_eq: float, omega_n: float, at: str
     raise ParameterError("kind", f"{kind!r}: choose viscous, rubber or tuned")
 
 
-def stress_weights(crank: Crank, setup, scf: dict, fillets=None) -> np.ndarray:
+def stress_weights(crank: Crank, setup, scf: SCFSet, fillets=None) -> np.ndarray:
     """Pa of fillet shear per N·m of each section's torque in ``setup`` (a chain's spring or a
     cut section): SCF · 16 D / (π (D⁴ − d_i⁴)) of the most stressed fillet the section carries
     (0 for one that carries none); ``fillets`` as :func:`fetorsion.design.stress.fillets_of`
@@ -136,7 +137,7 @@ def stress_weights(crank: Crank, setup, scf: dict, fillets=None) -> np.ndarray:
     sections = fillet_sections(fillets, setup)
     w = np.zeros(len(setup.section_labels))
     for f, s in zip(fillets, sections):
-        w[s] = max(w[s], scf[f.kind] * float(nominal_shear(1.0, f.diameter, f.bore)))
+        w[s] = max(w[s], scf.torsion[f.kind] * float(nominal_shear(1.0, f.diameter, f.bore)))
     return w
 
 
@@ -222,7 +223,7 @@ class DamperResult:
 
 def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,
                objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
-               scf: dict | None = None, rpm=None, partition: int = DEFAULT_PARTITION, setup=None, fillets=None,
+               scf: SCFSet | None = None, rpm=None, partition: int = DEFAULT_PARTITION, setup=None, fillets=None,
                utilisation=None, **setup_options) -> DamperResult:
     """Den Hartog start and numeric optimum of a damper on the whole crank.
 
@@ -246,7 +247,7 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         Hub or housing inertia, kg·m².
     mode : int
         0-based elastic mode the Den Hartog start tunes to.
-    scf : dict, optional
+    scf : SCFSet, optional
         Fillet SCFs for ``stress`` (default :func:`fetorsion.design.scf.fillet_scfs`).
     rpm : array_like, optional
         Speeds, rpm (default the response's).

@@ -40,6 +40,7 @@ from dataclasses import replace as dataclasses_replace
 import numpy as np
 
 from ..errors import FetorsionError
+from .scfset import SCFSet
 from .fatigue import M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
 
 #: [KR-M53] §4: σ_add of a trunk-piston engine (every engine fetorsion describes; a crosshead
@@ -247,23 +248,24 @@ def web_section_per_pin_section(g: M53Geometry, journal: bool = False) -> float:
     return 32.0 * d / (math.pi * (d**4 - bore**4)) * g.B * g.W**2 / 6.0
 
 
-def fe_scfs_m53(g: M53Geometry, scf: dict) -> dict:
+def fe_scfs_m53(g: M53Geometry, scf: SCFSet) -> dict:
     """fetorsion's FE SCFs in M53's convention (its Appendix III): α_B, β_B the peak von Mises
     stress in the fillet under a pure couple over the web-section stress M/(B W²/6); α_T, β_T the
     peak largest shear over τ_N of the section; γ_B, γ_T the oil bore's peak principal stress over
     the pin section's nominal stresses (Appendix II's definition, as computed). ``scf``: the run's
     SCFs (:func:`fetorsion.design.scf.fillet_scfs`, each against its own section, and the oil
     bores'). β_Q has no FE counterpart here (its 3-point-bending case is not computed)."""
-    out = {"alpha_T": scf["pin"], "beta_T": scf["journal"]}
-    if "pin_bending_vm" in scf:
-        out["alpha_B"] = scf["pin_bending_vm"] * web_section_per_pin_section(g)
-        out["beta_B"] = scf["journal_bending_vm"] * web_section_per_pin_section(g, journal=True)
-    if "pin_oil_bore_bending" in scf:
-        out["gamma_B"], out["gamma_T"] = scf["pin_oil_bore_bending"], scf["pin_oil_bore_torsion"]
+    out = {"alpha_T": scf.torsion["pin"], "beta_T": scf.torsion["journal"]}
+    if "pin" in scf.bending_vm:
+        out["alpha_B"] = scf.bending_vm["pin"] * web_section_per_pin_section(g)
+    if "journal" in scf.bending_vm:
+        out["beta_B"] = scf.bending_vm["journal"] * web_section_per_pin_section(g, journal=True)
+    if "pin" in scf.oil_bore:
+        out["gamma_B"], out["gamma_T"] = scf.oil_bore["pin"]
     return out
 
 
-def scf_comparison(g: M53Geometry, scf: dict) -> dict:
+def scf_comparison(g: M53Geometry, scf: SCFSet) -> dict:
     """{factor: {"fe", "empirical", "difference" (fe/empirical − 1), "in_range", "outside"}}: the
     FE in M53's convention beside the rule's formula ("scf_m53" of results.json)."""
     emp, fe, bad = empirical_scfs(g), fe_scfs_m53(g, scf), out_of_range(g)
@@ -412,7 +414,7 @@ class M53Result:
                 "locations": [a.to_dict() for a in self.locations]}
 
 
-def choose_scfs(g: M53Geometry, fe: dict | None) -> tuple[dict, dict]:
+def choose_scfs(g: M53Geometry, fe: SCFSet | None) -> tuple[dict, dict]:
     """(factors, source per factor): the rule's formula where the geometry lies in its range,
     else fetorsion's FE in M53's convention ([KR-M53] §3.(1)(F) and Appendix III). A factor with
     neither (β_Q outside its range: no 3-point-bending FE) raises."""
@@ -510,7 +512,7 @@ def largest_torques(fillets, torque_amplitude, rpm) -> dict:
     return out
 
 
-def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: dict | None = None, rated_rpm: float | None = None,
+def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None = None, rated_rpm: float | None = None,
                   material=None, limits=None) -> M53Result:
     """UR M53 on a crank description in one configuration.
 

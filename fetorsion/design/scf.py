@@ -42,6 +42,7 @@ from ..description.model import Crank
 from ..errors import FetorsionError
 from ..fe.assembly import lame
 from ..webs.throwfe import BENDING_LOAD, TORQUE, TORSION_LOAD, default_mesh_size, stepped_shaft_mesh, throw_of
+from .scfset import SCFSet
 
 #: Nodes within this share of the fillet radius outside the fillet's nominal zone still count
 #: as the fillet (the curved mesh's nodes sit on the true surface up to round-off).
@@ -464,20 +465,20 @@ def scf_key(crank: Crank, throw: int = 0) -> str:
     return throw_key(throw_of(crank, throw), "fillet-scf")
 
 
-def stored_fillet_scfs(crank: Crank, throw: int = 0) -> dict | None:
+def stored_fillet_scfs(crank: Crank, throw: int = 0) -> SCFSet | None:
     """:func:`fillet_scfs` of ``crank`` when they are shipped (no FE needed), else None."""
     shipped = json.loads(SHIPPED_SCF.read_text()) if SHIPPED_SCF.exists() else {}
-    return shipped.get(scf_key(crank, throw))
+    entry = shipped.get(scf_key(crank, throw))
+    return None if entry is None else SCFSet.from_dict(entry)
 
 
-def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
+def fillet_scfs(crank: Crank, throw: int = 0) -> SCFSet:
     """Pin and journal fillet SCFs of ``crank`` (its throw ``throw`` stands for all): shipped
     values of the reference cranks' convergence study when the throw matches, else one static FE
-    at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns ``pin``, ``journal``
-    (torsion: peak largest shear over τ_nom), ``pin_bending``, ``journal_bending`` (bending in the
-    throw's plane: peak largest principal stress under either sign of the load over the pin or
-    journal section's σ_nom), ``pin_bending_vm``, ``journal_bending_vm`` (the same with the von
-    Mises stress, [IACSM53] Appendix III's measure) and ``source`` (how they were obtained).
+    at fillet elements of :data:`DEFAULT_FILLET_SHARE` · r. Returns the torsion factors (peak
+    largest shear over τ_nom), the bending ones in the throw's plane (peak largest principal
+    stress under either sign of the load over the pin or journal section's σ_nom), the same with
+    the von Mises stress ([IACSM53] Appendix III's measure) and how they were obtained.
     Every factor is against the fillet's own section (32 M D/(π(D⁴ − d⁴))); :mod:`.m53`
     converts them to the rule's web-section convention."""
     entry = stored_fillet_scfs(crank, throw)
@@ -489,7 +490,7 @@ def fillet_scfs(crank: Crank, throw: int = 0) -> dict:
     fine = DEFAULT_FILLET_SHARE * default_fillet_size(t, default_mesh_size(t), "stress")
     cases, info = throw_scfs(crank, throw, fillet_size=fine)
     each = _larger_of_each(cases)
-    return {"pin": each["pin_scf"], "journal": each["journal_scf"], "pin_bending": each["pin_bending_scf"],
-            "journal_bending": each["journal_bending_scf"], "pin_bending_vm": each["pin_bending_vm_scf"],
-            "journal_bending_vm": each["journal_bending_vm_scf"],
-            "source": f"static 3D FE of throw {throw + 1}, fillet elements {fine * 1e3:.2f} mm, {info['dofs']} DOF"}
+    return SCFSet.of(each["pin_scf"], each["journal_scf"],
+                     f"static 3D FE of throw {throw + 1}, fillet elements {fine * 1e3:.2f} mm, {info['dofs']} DOF",
+                     each["pin_bending_scf"], each["journal_bending_scf"], each["pin_bending_vm_scf"],
+                     each["journal_bending_vm_scf"])

@@ -19,6 +19,7 @@ import numpy as np
 
 from ..description.model import Crank
 from ..errors import FetorsionError
+from .scfset import SCFSet
 from .scf import nominal_shear
 
 
@@ -154,7 +155,7 @@ class StressResult:
         return ax
 
 
-def fillet_stress(crank: Crank, response, scf: dict, fillets: list[Fillet] | None = None) -> StressResult:
+def fillet_stress(crank: Crank, response, scf: SCFSet, fillets: list[Fillet] | None = None) -> StressResult:
     """Fillet stresses of ``response`` (a :class:`~fetorsion.response.forced.ResponseResult` of a
     lumped crank model or of the condensed crank) with the SCFs ``scf`` (``pin``, ``journal``, ``source``); ``fillets``:
     :func:`fillets_of` the crank, when the caller has them."""
@@ -164,12 +165,12 @@ def fillet_stress(crank: Crank, response, scf: dict, fillets: list[Fillet] | Non
     D = np.array([f.diameter for f in fillets])
     bore = np.array([f.bore for f in fillets])
     nominal = nominal_shear(torque, D, bore)
-    factors = np.array([scf[f.kind] for f in fillets])
+    factors = np.array([scf.torsion[f.kind] for f in fillets])
     return StressResult(response.name, response.rpm, fillets, springs, factors, nominal, nominal * factors,
-                        scf.get("source", ""))
+                        scf.source)
 
 
-def run_stress(crank: Crank, response=None, scf: dict | None = None, **response_options) -> StressResult:
+def run_stress(crank: Crank, response=None, scf: SCFSet | None = None, **response_options) -> StressResult:
     """Vibratory shear stress at the fillets of a crank over its speed range.
 
     Parameters

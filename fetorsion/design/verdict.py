@@ -17,6 +17,7 @@ import numpy as np
 from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..description.model import Chain, Crank, Limits
 from ..errors import FetorsionError
+from .scfset import SCFSet
 
 
 def barred_ranges(rpm, value, limit: float) -> list[dict]:
@@ -174,7 +175,7 @@ def rated(case: VerdictCase, dampers) -> VerdictCase:
 
 
 def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
-                misfire: bool = True, scf: dict | None = None, rpm=None, setup=None, fillets=None) -> VerdictResult:
+                misfire: bool = True, scf: SCFSet | None = None, rpm=None, setup=None, fillets=None) -> VerdictResult:
     """The verdict table of a crank (or chain file) with ``[limits]``.
 
     Cases: without damper; with the description's ``[[dampers]]`` if it has any; with Den
@@ -199,7 +200,7 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
         Add the case of that damper optimised on the whole crank.
     misfire : bool
         Add the misfire case.
-    scf : dict, optional
+    scf : SCFSet, optional
         Fillet SCFs (``pin``, ``journal``, ``source``); default
         :func:`fetorsion.design.scf.fillet_scfs`.
     rpm : array_like, optional

@@ -18,7 +18,7 @@ says how well the cylinders add (1 = all in phase, 0 = cancelled).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -59,16 +59,71 @@ def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
     return lumped(crank, partition, web_method, parts=parts).torsional_modes()
 
 
+@dataclass(frozen=True)
+class Crossing:
+    """Mode ``mode`` meeting order ``order`` at ``rpm``, and how severely it is excited.
+
+    Attributes
+    ----------
+    mode : int
+        1-based mode number.
+    frequency_hz : float
+        The mode's natural frequency, Hz.
+    order : float
+        Engine order.
+    rpm : float
+        Crossing speed, 60 f / q.
+    in_range : bool
+        Inside the operating speed range.
+    torque_harmonic_nm : float
+        One cylinder's torque harmonic ``|T_q|`` at that speed, N·m.
+    phase_sum : float
+        The phase-vector sum's share of its terms' magnitudes, 0..1.
+    severity : float
+        The resonant response in the result's ``severity_unit``.
+    mode_kind : str
+        Torsional or bending and the strain-energy split (a condensed crank's modes), else empty.
+    worst_section : str
+        The section of the largest stress (a condensed crank's crossings with named sections).
+    worst_cut : int or None
+        Its index, where the sections are not named.
+    shear_mpa, bending_mpa : float or None
+        Nominal shear and bending stress there, MPa (a condensed crank's crossings).
+    """
+
+    mode: int
+    frequency_hz: float
+    order: float
+    rpm: float
+    in_range: bool
+    torque_harmonic_nm: float
+    phase_sum: float
+    severity: float
+    mode_kind: str = ""
+    worst_section: str = ""
+    worst_cut: int | None = None
+    shear_mpa: float | None = None
+    bending_mpa: float | None = None
+
+    def to_dict(self) -> dict:
+        """The crossing's figures as JSON; the fields its model does not give left out."""
+        return {k: v for k, v in asdict(self).items() if v is not None and v != ""}
+
+
+def most_severe(crossings, count: int | None = None) -> list[Crossing]:
+    """The crossings inside the speed range, most severe first (the first ``count`` of them)."""
+    return sorted((c for c in crossings if c.in_range), key=lambda c: -c.severity)[:count]
+
+
 @dataclass
 class CampbellResult:
     """Crossings of modes and orders, with their measured severity.
 
     Attributes
     ----------
-    crossings : list of dict
-        Each ``mode`` (1-based), ``frequency_hz``, ``order``, ``rpm``, ``in_range``,
-        ``torque_harmonic_nm`` (one cylinder's torque harmonic ``|T_q|`` at that speed), ``phase_sum`` (0..1),
-        ``severity`` (resonant vibratory angle at the pulley, degrees, for the modal damping).
+    crossings : list of Crossing
+        Every mode against every order (severity: resonant vibratory angle at the pulley,
+        degrees, for the modal damping, unless ``severity_unit`` says otherwise).
     """
 
     name: str
@@ -77,8 +132,8 @@ class CampbellResult:
     orders: np.ndarray
     speed_range_rpm: tuple[float, float]
     damping_ratio: float | tuple[float, ...]
-    crossings: list[dict]
-    harmonics_table: dict = field(default_factory=dict)
+    crossings: list[Crossing]
+    harmonics_table: dict[str, dict] = field(default_factory=dict)
     severity_unit: str = "deg: resonant vibratory angle at the pulley"
 
     def to_dict(self) -> dict:
@@ -87,22 +142,21 @@ class CampbellResult:
                 "orders": self.orders.tolist(), "speed_range_rpm": list(self.speed_range_rpm),
                 "modal_damping_ratio": (list(self.damping_ratio) if isinstance(self.damping_ratio, tuple)
                                         else self.damping_ratio),
-                "severity_unit": self.severity_unit, "crossings": self.crossings,
+                "severity_unit": self.severity_unit, "crossings": [c.to_dict() for c in self.crossings],
                 "torque_harmonics": self.harmonics_table}
 
     def table(self, only_in_range: bool = True) -> str:
         """The result as plain text: the table the command line prints."""
-        rows = [c for c in self.crossings if c["in_range"] or not only_in_range]
-        rows.sort(key=lambda c: -c["severity"])
-        kinds = any("mode_kind" in c for c in self.crossings)
+        rows = sorted((c for c in self.crossings if c.in_range or not only_in_range), key=lambda c: -c.severity)
+        kinds = any(c.mode_kind for c in self.crossings)
         unit = self.severity_unit.split(":")[0]
         head = (f"{'mode':>4} {'f [Hz]':>8} {'order':>6} {'rpm':>7} {'|T_q| [N m]':>12} {'phase sum':>9} "
                 f"{'severity [' + unit + ']':>15}")
         head += f"  {'kind (torsion/bending share)'}" if kinds else ""
         lines = [head, "-" * len(head)]
-        lines += [f"{c['mode']:>4} {c['frequency_hz']:8.1f} {c['order']:6.1f} {c['rpm']:7.0f} "
-                  f"{c['torque_harmonic_nm']:12.2f} {c['phase_sum']:9.3f} {c['severity']:15.4g}"
-                  + (f"  {c.get('mode_kind', '')}" if kinds else "") for c in rows]
+        lines += [f"{c.mode:>4} {c.frequency_hz:8.1f} {c.order:6.1f} {c.rpm:7.0f} "
+                  f"{c.torque_harmonic_nm:12.2f} {c.phase_sum:9.3f} {c.severity:15.4g}"
+                  + (f"  {c.mode_kind}" if kinds else "") for c in rows]
         return "\n".join(lines)
 
     def plot(self, ax=None, max_rpm: float | None = None):
@@ -122,11 +176,11 @@ class CampbellResult:
             ax.text(end, q * end / 60, f" {q:g}", fontsize=7, color="0.35", va="bottom")
         for j, f in enumerate(self.frequencies_hz):
             ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz")
-        inside = [c for c in self.crossings if c["in_range"]]
+        inside = [c for c in self.crossings if c.in_range]
         if inside:
-            sev = np.array([c["severity"] for c in inside])
+            sev = np.array([c.severity for c in inside])
             size = 20 + 400 * sev / sev.max()
-            ax.scatter([c["rpm"] for c in inside], [c["frequency_hz"] for c in inside], s=size,
+            ax.scatter([c.rpm for c in inside], [c.frequency_hz for c in inside], s=size,
                        facecolors="none", edgecolors="crimson", lw=1.3, zorder=3,
                        label="crossing (size ∝ severity)")
         ax.set_xlim(0, top)
@@ -181,7 +235,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     >>> import fetorsion
     >>> from fetorsion.excitation.campbell import run_campbell
     >>> res = run_campbell(fetorsion.load("geometry/renault21.toml"))
-    >>> all(c["rpm"] > 0 for c in res.crossings)
+    >>> all(c.rpm > 0 for c in res.crossings)
     True
     """
     if crank.excitation is None:
@@ -229,10 +283,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
         # replaces it; without a damper the two agree (the crossing is the resonance peak).
         theta = np.abs(damped_crossing_angles(crank, res, zeta_base, omega, Tq, phasors))
     crossings = [
-        {"mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(rpm[j, i]),
-         "in_range": bool(lo <= rpm[j, i] <= hi), "torque_harmonic_nm": float(abs(Tq[j, i])),
-         "phase_sum": float(phase_sum[j, i]), "severity": float(np.degrees(theta[j, i])),
-         **({"mode_kind": modes.labels[j]} if modes.labels else {})}
+        Crossing(j + 1, float(f[j]), float(q), float(rpm[j, i]), bool(lo <= rpm[j, i] <= hi), float(abs(Tq[j, i])),
+                 float(phase_sum[j, i]), float(np.degrees(theta[j, i])), modes.labels[j] if modes.labels else "")
         for j in range(k) for i, q in enumerate(orders)
     ]
     table = {}

@@ -135,14 +135,14 @@ def campbell_figure(camp, div: str) -> str:
                                  name=f"order {q:g}", hovertemplate=f"order {q:g}<extra></extra>", showlegend=False))
     for j, f in enumerate(camp.frequencies_hz):
         fig.add_trace(go.Scatter(x=rpm, y=[f, f], mode="lines", name=f"mode {j + 1}: {f:.1f} Hz"))
-    rows = [r for r in camp.crossings if r["in_range"]]
+    rows = [r for r in camp.crossings if r.in_range]
     if rows:
-        sev = np.array([r["severity"] for r in rows])
+        sev = np.array([r.severity for r in rows])
         size = 6 + 30 * np.sqrt(sev / sev.max()) if sev.max() > 0 else np.full(len(rows), 8.0)
         fig.add_trace(go.Scatter(
-            x=[r["rpm"] for r in rows], y=[camp.frequencies_hz[r["mode"] - 1] for r in rows], mode="markers",
+            x=[r.rpm for r in rows], y=[camp.frequencies_hz[r.mode - 1] for r in rows], mode="markers",
             marker={"size": size, "color": sev, "colorscale": "Reds", "line": {"width": 1, "color": "black"}},
-            name="crossings", customdata=[[r["mode"], r["order"], r["rpm"], r["severity"]] for r in rows],
+            name="crossings", customdata=[[r.mode, r.order, r.rpm, r.severity] for r in rows],
             hovertemplate="mode %{customdata[0]}<br>order %{customdata[1]}<br>%{customdata[2]:.0f} rpm"
                           "<br>severity %{customdata[3]:.4g} " + camp.severity_unit.split(":")[0] + "<extra></extra>"))
     fig.add_vrect(x0=lo, x1=hi, fillcolor="#2a9d8f", opacity=0.08, line_width=0)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from ..description.model import Crank
+from ..design.scfset import SCFSet
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
@@ -211,8 +212,8 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
         lines += [f"Computed on the **{outcome.model}**: it decides.", ""]
     if outcome.stress is not None:
         scf = outcome.scf
-        lines += [f"Torsional stress concentration factors: pin fillet **{scf['pin']:.3f}**, journal fillet "
-                  f"**{scf['journal']:.3f}** ({scf['source']}). Vibratory shear stress = SCF x 16 T D / (pi (D^4 - d^4)) "
+        lines += [f"Torsional stress concentration factors: pin fillet **{scf.torsion['pin']:.3f}**, journal fillet "
+                  f"**{scf.torsion['journal']:.3f}** ({scf.source}). Vibratory shear stress = SCF x 16 T D / (pi (D^4 - d^4)) "
                   "of the synthesised section torque (all orders summed with their phases; amplitude = half "
                   "peak-to-peak), without a damper:", "", "```", outcome.stress.table(), "```", ""]
     limit_text = (f"continuous running **{lim.continuous / scale:.4g} {unit}**"
@@ -249,13 +250,11 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
 
 
 
-def _oil_bore_scf_text(scf: dict) -> str:
+def _oil_bore_scf_text(scf: SCFSet) -> str:
     """The oil-bore SCFs as a clause of the fatigue paragraph; empty without drilled sections."""
-    kinds = [k for k in ("pin", "journal") if f"{k}_oil_bore_torsion" in scf]
-    if not kinds:
+    if not scf.oil_bore:
         return ""
-    each = ", ".join(f"{k} bending **{scf[f'{k}_oil_bore_bending']:.3f}**, torsion **{scf[f'{k}_oil_bore_torsion']:.3f}**"
-                     for k in kinds)
+    each = ", ".join(f"{k} bending **{b:.3f}**, torsion **{t:.3f}**" for k, (b, t) in scf.oil_bore.items())
     return f"; at the oil-bore exits the moment about the throw's radius and the torque, SCFs {each} (peak σ₁ on the drilling)"
 
 def _damper_spec(d) -> str:
@@ -323,9 +322,9 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     lines += ["", "### fetorsion's own path (`fe`)", "",
               "The condensed crank's fillet sections over the cycle (mean of the gas and inertia forces solved "
               "statically, every vibratory order, the resonant in-plane bending included), nominal stresses × FE "
-              f"SCFs taken over the whole fillet under either sign of the load (bending: pin **{scf['pin_bending']:.3f}**, "
-              f"journal **{scf['journal_bending']:.3f}** against their own sections; torsion: pin **{scf['pin']:.3f}**, "
-              f"journal **{scf['journal']:.3f}**; {scf.get('source', '')})" + _oil_bore_scf_text(scf)
+              f"SCFs taken over the whole fillet under either sign of the load (bending: pin **{scf.bending['pin']:.3f}**, "
+              f"journal **{scf.bending['journal']:.3f}** against their own sections; torsion: pin **{scf.torsion['pin']:.3f}**, "
+              f"journal **{scf.torsion['journal']:.3f}**; {scf.source})" + _oil_bore_scf_text(scf)
               + "; the strength with its Marin factors and Goodman's mean-stress line ([Budynas]). The crank as "
               "described, each place at its worst speed:", "", "```", a.table(), "```", ""]
     crit = a.worst.locations[a.governing].criteria

@@ -16,6 +16,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..description.model import Chain, Crank, Network
     from ..design.assessment import CrankAssessment
     from ..design.crank_verdict import CrankVerdict
+    from ..design.scfset import SCFSet
     from ..design.stress import StressResult
     from ..design.verdict import VerdictResult
     from ..excitation.campbell import CampbellResult
@@ -114,12 +115,12 @@ class SensitivityOutcome:
 @dataclass(frozen=True)
 class VerdictOutcome:
     """The verdict against the description's limits with the damper inertia ratio ``mu`` and the
-    fillet SCFs it used (``scf``: ``pin``, ``journal``, ``source``; None for torque limits),
+    fillet SCFs it used (None for torque limits),
     the fillet stress without a damper, and the picture."""
 
     verdict: VerdictResult
     mu: float
-    scf: dict | None
+    scf: SCFSet | None
     image: str
     stress: StressResult | None = None
     #: The model the verdict was computed on (a chain's or network's own: the setup's ``model``).
@@ -137,7 +138,7 @@ class FatigueOutcome:
     verdict: CrankVerdict
     assessment: CrankAssessment | None
     stress: StressResult
-    scf: dict
+    scf: SCFSet
     images: tuple[str, ...]
     model: str = ""
 

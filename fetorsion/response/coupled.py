@@ -29,7 +29,7 @@ import numpy as np
 
 from ..description.defaults import DEFAULT_SPEED_STEPS
 from ..errors import FetorsionError
-from ..excitation.campbell import default_orders
+from ..excitation.campbell import Crossing, default_orders
 from ..excitation.torque import cycle_angle, firing_angles, pin_force_harmonics
 from ..fe.condensed import CondensedCrank
 from ..fe.couplings import DOF_NAMES
@@ -452,14 +452,13 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
             sigma = peak_of_phasor(R[:, 4:6] * a) / (modulus / 2)
             eq = np.sqrt(sigma**2 + 3 * tau**2)
             worst = int(np.argmax(eq))
-            crossings.append({
-                "mode": j + 1, "frequency_hz": float(f[j]), "order": float(q), "rpm": float(n),
-                "in_range": bool(lo <= n <= hi), "mode_kind": f"{md.kinds[j]} ({md.fractions[j, 0]:.2f}/{md.fractions[j, 1]:.2f})",
-                "torque_harmonic_nm": float(torque),
-                "phase_sum": float(abs(P) / max(np.abs(terms).sum(), 1e-300)),
-                "severity": float(eq[worst] / 1e6),
-                **({"worst_section": section_names[worst]} if section_names is not None else {"worst_cut": worst}),
-                "shear_mpa": float(tau[worst] / 1e6), "bending_mpa": float(sigma[worst] / 1e6)})
+            crossings.append(Crossing(
+                j + 1, float(f[j]), float(q), float(n), bool(lo <= n <= hi), float(torque),
+                float(abs(P) / max(np.abs(terms).sum(), 1e-300)), float(eq[worst] / 1e6),
+                f"{md.kinds[j]} ({md.fractions[j, 0]:.2f}/{md.fractions[j, 1]:.2f})",
+                worst_section="" if section_names is None else section_names[worst],
+                worst_cut=worst if section_names is None else None,
+                shear_mpa=float(tau[worst] / 1e6), bending_mpa=float(sigma[worst] / 1e6)))
     return CampbellResult(getattr(crank, "name", ""), f"condensed FE crank, {support} ({cc.reduced.size} DOF), "
                           "full pin forces", f, orders, (lo, hi), zeta, crossings,
                           severity_unit="MPa: peak nominal equivalent stress sqrt(sigma_b^2 + 3 tau^2) at the worst "

@@ -464,8 +464,8 @@ def order_cuts(result: TransientResult, response, crossings, damping_ratio, rate
     response : ResponseResult
         The steady-state forced response of the same model: its ``order_pulley_deg`` (each
         order's own amplitude, deg) is what the order track measures.
-    crossings : sequence of dict
-        Campbell crossings (``mode`` 1-based, ``frequency_hz``, ``order``, ``rpm``), each inside
+    crossings : sequence of Crossing
+        Campbell crossings (:class:`fetorsion.excitation.campbell.Crossing`), each inside
         both the run's and the response's speeds and on both their orders (others are left out).
     damping_ratio : float or sequence of float
         ζ of every mode, or of each mode (the Campbell diagram's), for the passage parameter.
@@ -481,18 +481,18 @@ def order_cuts(result: TransientResult, response, crossings, damping_ratio, rate
     out = []
     lo, hi = max(result.track.rpm.min(), response.rpm.min()), min(result.track.rpm.max(), response.rpm.max())
     for c in crossings:
-        q, n = float(c["order"]), float(c["rpm"])
+        q, n = c.order, c.rpm
         k = np.flatnonzero(np.isclose(response.orders, q))
         if not (lo <= n <= hi and k.size and np.any(np.isclose(result.track.orders, q))):
             continue
-        zeta = damping_ratio[c["mode"] - 1] if np.ndim(damping_ratio) else damping_ratio
-        omega = 2 * np.pi * c["frequency_hz"]
+        zeta = damping_ratio[c.mode - 1] if np.ndim(damping_ratio) else damping_ratio
+        omega = 2 * np.pi * c.frequency_hz
         a, b = n * (1 - window), n * (1 + window)
         s = (response.rpm >= a) & (response.rpm <= b)
         r = (result.track.rpm >= a) & (result.track.rpm <= b)
         steady, cut = response.order_pulley_deg[s, int(k[0])], np.degrees(np.abs(result.track.at(q)[r]))
         i, j = int(np.argmax(steady)), int(np.argmax(cut))
-        out.append(OrderCut(q, int(c["mode"]), float(c["frequency_hz"]), n,
+        out.append(OrderCut(q, c.mode, c.frequency_hz, n,
                             float(q * rate_rpm_per_s * np.pi / 30 / (zeta * omega) ** 2) if zeta > 0 else math.inf,
                             float(steady[i]), float(response.rpm[s][i]), float(cut[j]), float(result.track.rpm[r][j])))
     return tuple(out)

@@ -85,7 +85,7 @@ class LumpedModel:
             from ..excitation.campbell import run_campbell
 
             camp = run_campbell(variant, res.torsional_modes())
-            out["severity"] = max((c["severity"] for c in camp.crossings if c["in_range"]), default=0.0)
+            out["severity"] = max((c.severity for c in camp.crossings if c.in_range), default=0.0)
         return {k: out[k] for k in self.outputs}
 
 
