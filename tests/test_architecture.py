@@ -290,3 +290,57 @@ def test_no_stage_imports_a_later_one():
             if here in rank and there in rank and rank[there] > rank[here]:
                 back.append(f"{name} imports {target}")
     assert not back, back
+
+
+#: The parsed TOML document, as the user wrote it: the description stage's own input (the
+#: ``data`` the readers take, the ``raw`` and free ``[notes]`` tables the model keeps for
+#: variants and the report), not a record one stage hands another.
+TOML_DOCUMENT = {("fetorsion.description.crank", "parse_crank", "data"),
+                 ("fetorsion.description.files", "parse_description", "data"),
+                 ("fetorsion.description.reader", "resolve_field", "data"),
+                 ("fetorsion.mechanics.input", "is_crank_description", "data"),
+                 ("fetorsion.mechanics.input", "parse_mechanics", "data"),
+                 ("fetorsion.description.model", "Crank", "raw"), ("fetorsion.description.model", "Chain", "raw"),
+                 ("fetorsion.description.model", "Network", "raw"), ("fetorsion.description.model", "Crank", "notes")}
+
+
+def untyped_names(annotation: str) -> list[str]:
+    """``dict``, ``object`` or ``Any`` written bare anywhere in an annotation (``dict[str, float]``
+    names its keys and values; ``list[dict]`` and ``dict | None`` do not)."""
+    tree = ast.parse(annotation, mode="eval")
+    subscripted = {id(n.value) for n in ast.walk(tree) if isinstance(n, ast.Subscript)}
+    return [n.id for n in ast.walk(tree) if isinstance(n, ast.Name) and n.id in ("dict", "object", "Any")
+            and id(n) not in subscripted]
+
+
+def test_untyped_annotation_finder():
+    assert untyped_names("dict") == ["dict"] and untyped_names("list[dict]") == ["dict"]
+    assert untyped_names("SCFSet | dict | None") == ["dict"] and untyped_names("object") == ["object"]
+    assert untyped_names("dict[str, float]") == [] and untyped_names("dict[str, tuple[float, float]] | None") == []
+
+
+def test_no_untyped_hand_off_crosses_a_stage():
+    """Issue 41: every function parameter and public class field that a module of another stage
+    imports is typed: no bare ``dict``, ``object`` or ``Any`` (a record is a dataclass; a mapping
+    says its keys and values), the TOML document as read aside (:data:`TOML_DOCUMENT`)."""
+    order, known = stage_order(), modules()
+
+    def stage(name):
+        return name.split(".")[1] if name.count(".") >= 1 else None
+
+    crossing = {(target, n) for name, path in known.items() for target, names in imports(name, path, known)
+                if stage(target) != stage(name) and stage(target) in order and stage(name) in order
+                for n in names or ()}
+    assert len(crossing) > 200  # the walk sees the run's hand-offs (about 400)
+    bad = []
+    for target, n in sorted(crossing):
+        node = next((x for x in ast.parse(known[target].read_text()).body if getattr(x, "name", None) == n), None)
+        typed = []
+        if isinstance(node, ast.FunctionDef):
+            typed = [(a.arg, a.annotation) for a in node.args.args + node.args.kwonlyargs if a.annotation is not None]
+        elif isinstance(node, ast.ClassDef):
+            typed = [(a.target.id, a.annotation) for a in node.body
+                     if isinstance(a, ast.AnnAssign) and not a.target.id.startswith("_")]
+        bad += [f"{target}.{n}: {arg}: {ast.unparse(ann)}" for arg, ann in typed
+                if untyped_names(ast.unparse(ann)) and (target, n, arg) not in TOML_DOCUMENT]
+    assert not bad, bad

@@ -131,11 +131,11 @@ def test_every_command_answers_for_the_runs_condensed_crank(tmp_path, capsys):
     """Issue 40: after a run, campbell, response and damper take the run's condensed crank from the
     store (no build) and give its numbers: the same f1 in bearings, crossings and section torques
     (one computation on one model: equal to round-off); the lumped answer says how far it is."""
-    from fetorsion.app.run import DEFAULT_STEPS, run
+    from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
     from fetorsion.cli.commands import main
 
     src = _plain_renault(tmp_path)
-    out = Path(run(src, tmp_path / "r", steps=DEFAULT_STEPS[:4], options={"mesh_size": 0.03}).folder)
+    out = Path(run(src, tmp_path / "r", steps=DEFAULT_STEPS[:4], options=RunOptions(mesh_size=0.03)).folder)
     data = json.loads((out / "results.json").read_text())
     capsys.readouterr()
 

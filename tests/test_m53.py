@@ -162,11 +162,11 @@ def test_the_reports_verdict_is_one_line_per_configuration(tmp_path):
     import json
     import re
 
-    from fetorsion.app.run import DEFAULT_STEPS, run
+    from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
 
     steps = tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings", "campbell", "fatigue"))
     out = Path(run(ROOT / "geometry" / "renault21.toml", tmp_path / "r", steps=steps,
-              options={"mesh_size": 0.03, "fatigue_method": "fe"}).folder)
+              options=RunOptions(mesh_size=0.03, fatigue_method="fe")).folder)
     data = json.loads((out / "results.json").read_text())["fatigue"]
     assert data["method"] == "fe"
     names = [c["name"] for c in data["configurations"]]

@@ -8,7 +8,7 @@ import pytest
 import fetorsion
 from fetorsion.design.scfset import SCFSet
 from fetorsion.errors import DescriptionError
-from fetorsion.app.run import DEFAULT_STEPS, run
+from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
 
 from conftest import GEOMETRY, assert_picture
 
@@ -70,7 +70,7 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     monkeypatch.setattr(condensed_module, "run_condensed", counted)
     for module in (crankfe, condensed_module, cranksystem):
         monkeypatch.setattr(module, "build_system", built)
-    out = Path(run(src, tmp_path / "r21", options={"mesh_size": 0.03}).folder)
+    out = Path(run(src, tmp_path / "r21", options=RunOptions(mesh_size=0.03)).folder)
     # one mesh, one assembly and one factorisation serve the free-free modes, the condensed crank
     # (free and in bearings) and the lumped fe-held column (its throws' in-bearing stiffness)
     assert systems == [(0.03,)] and len(condensations) == 1 and condensations[0] is not None
@@ -181,7 +181,7 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
     import dataclasses
     import math
 
-    from fetorsion.app.run import RunContext, RunOptions, needs_throw_fe
+    from fetorsion.app.run import RunContext, needs_throw_fe
     from fetorsion.report.outcomes import RunOutcome
     from fetorsion.studies.variants import with_values
     from fetorsion.webs import throwfe
@@ -216,7 +216,6 @@ def test_run_takes_typed_options_and_returns_its_outcome(tmp_path, monkeypatch):
     every section, with the report folder."""
     import dataclasses
 
-    from fetorsion.app.run import RunOptions
     from fetorsion.cli.commands import build_parser
     from fetorsion.errors import FetorsionError
     from fetorsion.report.outcomes import LumpedOutcome, RunOutcome

@@ -34,25 +34,25 @@ def test_f1_scales_with_sqrt_of_youngs_modulus():
     # Every stiffness is G·J/L_e with G ∝ E and no inertia depends on E: f ∝ √E exactly.
     crank = only(read_raw("renault21.toml"), {"material.youngs_modulus_pa": [150e9, 230e9]})
     row = run_sensitivity(crank).rows[0]
-    assert row["f1_high_hz"] / row["f1_low_hz"] == pytest.approx(math.sqrt(230 / 150), rel=1e-12)
+    assert row.f1_high_hz / row.f1_low_hz == pytest.approx(math.sqrt(230 / 150), rel=1e-12)
 
 
 def test_f1_scales_with_inverse_sqrt_of_density_without_attachments():
     # Crank alone: every inertia ∝ ρ, so f ∝ 1/√ρ exactly.
     crank = only(read_raw("peugeot_glx.toml"), {"material.density_kgm3": [7000.0, 8000.0]})
     row = run_sensitivity(crank).rows[0]
-    assert row["f1_low_hz"] / row["f1_high_hz"] == pytest.approx(math.sqrt(8000 / 7000), rel=1e-12)
+    assert row.f1_low_hz / row.f1_high_hz == pytest.approx(math.sqrt(8000 / 7000), rel=1e-12)
 
 
 def test_group_moves_members_together_and_band_brackets_each_input():
     crank = fetorsion.load(str(GEOMETRY / "renault21.toml"))
     s = run_sensitivity(crank)
-    material = next(r for r in s.rows if r["field"] == "material")
+    material = next(r for r in s.rows if r.field == "material")
     # Cast iron: E/ρ falls from 210/7850 to 165/7100, so f1 falls by about √ of that ratio.
     ratio = math.sqrt((165 / 7100) / (210 / 7850))
-    assert material["f1_low_hz"] / s.f1_hz == pytest.approx(ratio, rel=0.02)  # attachments do not scale with ρ
+    assert material.f1_low_hz / s.f1_hz == pytest.approx(ratio, rel=0.02)  # attachments do not scale with ρ
     lo, hi = s.band_hz
-    assert all(lo <= min(r["f1_low_hz"], r["f1_high_hz"]) and max(r["f1_low_hz"], r["f1_high_hz"]) <= hi
+    assert all(lo <= min(r.f1_low_hz, r.f1_high_hz) and max(r.f1_low_hz, r.f1_high_hz) <= hi
                for r in s.rows)
 
 

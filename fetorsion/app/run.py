@@ -25,6 +25,7 @@ import numpy as np
 
 from ..description.files import load
 from ..design.scfset import SCFSet
+from ..measured.dataset import MeasuredData
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
@@ -85,7 +86,7 @@ class RunOptions:
     runup_rate: float = DEFAULT_RUNUP_RATE
     workers: int | None = None
     html: bool = True
-    measured: dict | None = None
+    measured: MeasuredData | None = None
     station: str | None = None
     no_fe: bool = False
 
@@ -619,7 +620,7 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
 FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[2] not in (step_fe, step_bearings))
 
 
-def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | dict | None = None, force: bool = False) -> RunOutcome:
+def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force: bool = False) -> RunOutcome:
     """Run every step on the crank in ``path`` and write the report folder ``out``.
 
     Parameters
@@ -632,8 +633,8 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | dict | None = None
     steps : sequence of (name, field, function)
         The analyses, in order: ``function(ctx)`` returns the outcome of the
         :class:`~fetorsion.report.outcomes.RunOutcome` field ``field``.
-    options : RunOptions or dict, optional
-        What the steps read (:class:`RunOptions`; a dict of its fields).
+    options : RunOptions, optional
+        What the steps read (default: every option's default).
     force : bool
         Replace ``out`` even when it is not an earlier report.
 
@@ -644,7 +645,7 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | dict | None = None
     """
     import dataclasses
 
-    options = RunOptions.of(options)
+    options = options or RunOptions()
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file

@@ -5,9 +5,11 @@ description's ``[uncertainty]`` inputs fitted to measured natural frequencies.""
 from __future__ import annotations
 
 import sys
+from dataclasses import replace
 from pathlib import Path
 
 from ..description.defaults import LUMPED17
+from ..measured.dataset import MeasuredData
 from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
                      save_plot)
 from .options import integer, real
@@ -70,12 +72,10 @@ def frf_units(text: str | None) -> dict:
 
 def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutions: int = 2,
                   track_orders=(2.0,), calibration=(), twist_of=None, stations=None, time_unit=None,
-                  frf_unit=None, definition: str = "angle") -> dict:
-    """Every measured file read and checked, before any model is solved: ``frfs`` (UFF FRFs),
-    ``cuts`` (order cuts against speed, in SI), ``tracks`` (torsiograph order maps),
-    ``stations`` (cut label -> the station it was measured at, or a pair for a twist; cuts not
-    named take the comparison's station), ``notes`` (warnings: edges repaired) and the options
-    the comparison takes. One message naming the file or option otherwise.
+                  frf_unit=None, definition: str = "angle") -> MeasuredData:
+    """Every measured file read and checked, before any model is solved
+    (:class:`~fetorsion.measured.dataset.MeasuredData`). One message naming the file or option
+    otherwise.
 
     Tooth-edge files take ``teeth`` (one wheel, or channel -> wheel; ``60-2`` a reference-gap
     wheel), ``calibration`` (tooth-edge files of a calibration run, channels by name: each
@@ -148,8 +148,8 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
         raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
     if not (frfs or cuts):
         raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
-    return {"frfs": frfs, "cuts": cuts, "tracks": tracks, "band": None if band is None else tuple(band),
-            "stations": where, "notes": notes}
+    return MeasuredData(tuple(frfs), tuple(cuts), tuple(tracks), None if band is None else tuple(band), where,
+                        tuple(notes))
 
 
 def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
@@ -161,24 +161,23 @@ def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
     return channel, False
 
 
-def check_measured(crank, measured: dict, station: str | None, source: str = LUMPED17) -> None:
+def check_measured(crank, measured: MeasuredData, station: str | None, source: str = LUMPED17) -> MeasuredData:
     """What the model needs of the measured data, checked before it is solved: order cuts need an
-    ``[excitation]`` and must be angles; the stations must exist. Each torsiograph channel's
-    station is settled here (``measured["stations"]``: cut label -> station, or a pair for a
-    twist): the one the user gave, else the channel's name where the model has such a station,
-    else ``station``."""
+    ``[excitation]`` and must be angles; the stations must exist. Returns the data with each
+    torsiograph channel's station settled: the one the user gave, else the channel's name where
+    the model has such a station, else (left out) ``station``."""
     from ..studies.comparison import model_stations
 
-    if measured["cuts"] and getattr(crank, "excitation", None) is None:
+    if measured.cuts and getattr(crank, "excitation", None) is None:
         raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
-    for c in measured["cuts"]:
+    for c in measured.cuts:
         if c.unit != "rad":
             raise FetorsionError(f"compare: {c.label or 'an order cut'} is in {c.unit}; the model's order cuts are "
                                  "angles (deg, mrad or rad)")
     check_station(crank, station, source)
     names = {n.lower() for n in model_stations(crank, source)} | {"pulley", "flywheel"}
     settled = {}
-    for label, (where, said) in measured["stations"].items():
+    for label, (where, said) in measured.stations.items():
         places = where if isinstance(where, tuple) else (where,)
         if said:
             for p in places:
@@ -188,8 +187,8 @@ def check_measured(crank, measured: dict, station: str | None, source: str = LUM
                 raise FetorsionError(f"--twist: the channels {' and '.join(where)} are not stations of the model; "
                                      "say where each was measured (--channel-station CHANNEL=STATION)")
             continue
-        settled[label] = where
-    measured["stations"] = settled
+        settled[label] = (where, said)
+    return replace(measured, stations=settled)
 
 
 def check_station(crank, station: str | None, source: str = LUMPED17) -> None:
@@ -229,16 +228,16 @@ def cmd_compare(args) -> int:
         check_mesh_size(crank, args.mesh_size, "modal")
     check_station(crank, args.station, source)
     measured = measured_of(args, args.measured, args.unit, args.order)
-    for line in measured["notes"]:
+    for line in measured.notes:
         print(f"fetorsion: warning: {line}", file=sys.stderr)
-    check_measured(crank, measured, args.station, source)
+    measured = check_measured(crank, measured, args.station, source)
     cc = None
-    if source != LUMPED17 and (measured["cuts"] or measured["tracks"] or source == "condensed"):
+    if source != LUMPED17 and (measured.cuts or measured.tracks or source == "condensed"):
         from .fe import condensed
 
         cc = condensed(crank, args.mesh_size)
     reference = None
-    if source == LUMPED17 and measured["cuts"]:
+    if source == LUMPED17 and measured.cuts:
         from .dynamics import stored_engine_model
 
         engine = stored_engine_model(crank, args)  # compare's running measurements: the crank in its bearings
@@ -255,7 +254,7 @@ def cmd_compare(args) -> int:
         from ..measured.uff import write_uff58
         from ..studies.comparison import model_predictions
 
-        write_uff58(args.uff, model_predictions(crank, out, source=source, condensed=cc, band=measured["band"]))
+        write_uff58(args.uff, model_predictions(crank, out, source=source, condensed=cc, band=measured.band))
         print(f"the model's predictions (UFF 58): {args.uff}", file=sys.stderr)
     return 0
 
@@ -287,7 +286,7 @@ def add_measured_options(p) -> None:
                    help="orders of a torsiograph's recording to compare (default 2)")
 
 
-def measured_of(args, paths, unit=None, order=None) -> dict:
+def measured_of(args, paths, unit=None, order=None) -> MeasuredData:
     """:func:`read_measured` with the options of :func:`add_measured_options`."""
     stations = {}
     for item in args.channel_station:
@@ -396,9 +395,9 @@ def cmd_calibrate(args) -> int:
         from ..measured.modal import run_modal_fit
 
         measured = read_measured(args.measured, args.band)
-        if not measured["frfs"]:
+        if not measured.frfs:
             raise FetorsionError(f"--measured: {', '.join(args.measured)} hold no FRF to fit modes to")
-        measured_hz = sorted(run_modal_fit(measured["frfs"], tuple(args.band)).frequencies_hz)
+        measured_hz = sorted(run_modal_fit(measured.frfs, tuple(args.band)).frequencies_hz)
         print(f"measured (fitted in {args.band[0]:g}-{args.band[1]:g} Hz): "
               f"{', '.join(f'{f:.2f}' for f in measured_hz)} Hz", file=sys.stderr)
     res = run_calibration(crank, measured_hz, args.sigma_hz, args.sigma_percent, args.inputs, args.model,

@@ -69,9 +69,9 @@ def cmd_run(args) -> int:
         engine = not args.no_fe and args.source == "condensed" and not isinstance(crank, (Chain, Network))
         check_station(crank, args.station, "condensed" if engine else LUMPED17)
         measured = measured_of(args, args.measured)
-        for line in measured["notes"]:
+        for line in measured.notes:
             print(f"fetorsion: warning: {line}", file=sys.stderr)
-        check_measured(crank, measured, args.station, "condensed" if engine else LUMPED17)
+        measured = check_measured(crank, measured, args.station, "condensed" if engine else LUMPED17)
         options.update(measured=measured, station=args.station)
     for file, out in jobs:
         outcome = run(file, out, options=RunOptions.of(options), force=args.force,

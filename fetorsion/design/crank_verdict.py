@@ -20,7 +20,7 @@ it would flip, and what the description's (or the default) damping band gives.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 import scipy.optimize
@@ -28,6 +28,7 @@ import scipy.optimize
 from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..errors import FetorsionError
 from .scfset import SCFSet
+from .dampers import DamperResult
 from .m53 import M53Result, polar_modulus, run_m53_crank
 
 FATIGUE_METHODS = ("iacs-m53", "fe")
@@ -168,10 +169,10 @@ class CrankVerdict:
     damping_ratio: float
     damping_source: str
     damping_assumed: bool
-    flip: dict
+    flip: DampingFlip
     band: list
-    damper: object = None  # DamperResult of the recommended damper's design
-    scf_m53: dict = field(default_factory=dict)
+    damper: DamperResult | None = None  # the recommended damper's design
+    scf_m53: dict[str, dict[str, float | bool | str | list | None]] = field(default_factory=dict)
     notes: list = field(default_factory=list)
 
     @property
@@ -202,24 +203,32 @@ class CrankVerdict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
         return {"name": self.name, "method": self.method, "passes": self.passes,
                 "damping_ratio": self.damping_ratio, "damping_source": self.damping_source,
-                "damping_assumed": self.damping_assumed, "flip": dict(self.flip), "band": list(self.band),
+                "damping_assumed": self.damping_assumed, "flip": asdict(self.flip), "band": list(self.band),
                 "configurations": [c.to_dict() for c in self.configs], "lines": self.lines(),
                 "damper": None if self.damper is None else self.damper.to_dict(), "scf_m53": self.scf_m53,
                 "notes": list(self.notes)}
 
 
-def _flip(safety_at, required: float) -> dict:
-    """The damping ratio at which ``safety_at(ζ)`` meets ``required`` (safety grows with damping):
-    ``zeta`` (None when it does not flip inside :data:`FLIP_BRACKET`) and ``kind``."""
+@dataclass(frozen=True)
+class DampingFlip:
+    """The damping ratio ``zeta`` at which the verdict flips (None when it does not inside
+    :data:`FLIP_BRACKET`) and what that means (``kind``, a phrase)."""
+
+    zeta: float | None
+    kind: str
+
+
+def _flip(safety_at, required: float) -> DampingFlip:
+    """The damping ratio at which ``safety_at(ζ)`` meets ``required`` (safety grows with damping)."""
     lo, hi = FLIP_BRACKET
     f_lo, f_hi = safety_at(lo) - required, safety_at(hi) - required
     if f_lo >= 0:
-        return {"zeta": None, "kind": f"passes down to ζ = {lo:g} (the search's end)"}
+        return DampingFlip(None, f"passes down to ζ = {lo:g} (the search's end)")
     if f_hi < 0:
-        return {"zeta": None, "kind": f"fails up to ζ = {hi:g} (the search's end)"}
+        return DampingFlip(None, f"fails up to ζ = {hi:g} (the search's end)")
     z = math.exp(scipy.optimize.brentq(lambda x: safety_at(math.exp(x)) - required, math.log(lo), math.log(hi),
                                        xtol=1e-3))
-    return {"zeta": z, "kind": f"passes down to ζ = {z:.4g}"}
+    return DampingFlip(z, f"passes down to ζ = {z:.4g}")
 
 
 def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFAULT_FATIGUE_METHOD,

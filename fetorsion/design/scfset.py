@@ -35,11 +35,11 @@ class SCFSet:
         How the oil-bore factors were obtained.
     """
 
-    torsion: dict
-    bending: dict = field(default_factory=dict)
-    bending_vm: dict = field(default_factory=dict)
+    torsion: dict[str, float]
+    bending: dict[str, float] = field(default_factory=dict)
+    bending_vm: dict[str, float] = field(default_factory=dict)
     source: str = ""
-    oil_bore: dict = field(default_factory=dict)
+    oil_bore: dict[str, tuple[float, float]] = field(default_factory=dict)
     oil_bore_source: str = ""
 
     def __post_init__(self):

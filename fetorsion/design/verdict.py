@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO
-from ..description.model import Chain, Crank, Limits
+from ..description.model import Chain, Crank, Damper, Limits
 from ..errors import FetorsionError
 from .scfset import SCFSet
 
@@ -66,7 +66,7 @@ class VerdictResult:
     cases: list
     notes: list = field(default_factory=list)
     #: The damper designed for each case that has one (case name → Damper).
-    designs: dict = field(default_factory=dict)
+    designs: dict[str, Damper] = field(default_factory=dict)
 
     @property
     def unit(self) -> tuple[str, float]:

@@ -133,7 +133,7 @@ class CampbellResult:
     speed_range_rpm: tuple[float, float]
     damping_ratio: float | tuple[float, ...]
     crossings: list[Crossing]
-    harmonics_table: dict[str, dict] = field(default_factory=dict)
+    harmonics_table: dict[str, dict[str, list[float] | float]] = field(default_factory=dict)
     severity_unit: str = "deg: resonant vibratory angle at the pulley"
 
     def to_dict(self) -> dict:

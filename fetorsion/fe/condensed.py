@@ -221,7 +221,7 @@ class CondensedCrank:
     bearing_damping: np.ndarray
     held: np.ndarray
     full_dofs: int
-    timings_s: dict = field(default_factory=dict)
+    timings_s: dict[str, float] = field(default_factory=dict)
     sections: np.ndarray | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
     interface: Interface | None = field(default=None, repr=False)

@@ -174,7 +174,7 @@ class CrankSystem:
     node_mass: np.ndarray
     attachment_mass: np.ndarray
     end_ties: str = "rigid"
-    timings_s: dict = field(default_factory=dict)
+    timings_s: dict[str, float] = field(default_factory=dict)
     #: Mesh DOF (interleaved x, y, z per DOF node) of the solved DOF that are not tied to an end
     #: body, in solved order; the end bodies' six DOF each follow them.
     free_dofs: np.ndarray | None = None

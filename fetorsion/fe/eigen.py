@@ -228,7 +228,7 @@ class EigenResult:
 
     omega2: np.ndarray
     vectors: np.ndarray
-    timings_s: dict
+    timings_s: dict[str, float]
     backend: str
     method: str
 

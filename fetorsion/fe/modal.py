@@ -81,7 +81,7 @@ class ModalResult:
     elements: int
     dofs: int
     material: Material
-    timings_s: dict
+    timings_s: dict[str, float]
     shapes: np.ndarray | None = field(default=None, repr=False)
     body_motion: dict = field(default_factory=dict, repr=False)
     backend: str = ""

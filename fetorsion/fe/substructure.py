@@ -88,7 +88,7 @@ class Interface:
     sigma: float
     Y: np.ndarray
     C: np.ndarray
-    timings_s: dict = field(default_factory=dict)
+    timings_s: dict[str, float] = field(default_factory=dict)
 
     @property
     def n_master_dofs(self) -> int:
@@ -239,7 +239,7 @@ class ReducedModel:
     n_master_dofs: int
     fixed_interface_hz: np.ndarray
     basis: np.ndarray | None = None
-    timings_s: dict = field(default_factory=dict)
+    timings_s: dict[str, float] = field(default_factory=dict)
     psi_iterations: int = 0
     #: K [Ψ Φ] (n × r), the nodal forces of each basis vector (N per unit coordinate), kept with
     #: the basis: the section resultants are sums of its rows.

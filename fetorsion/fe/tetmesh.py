@@ -39,7 +39,7 @@ class TetMesh:
 
     nodes: np.ndarray
     tets: np.ndarray
-    node_sets: dict = field(default_factory=dict)
+    node_sets: dict[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self):
         self.nodes = np.ascontiguousarray(self.nodes, dtype=float)

@@ -92,7 +92,7 @@ class LumpedResult:
     frequencies_hz: np.ndarray
     mode_shapes: np.ndarray
     rigid_body_hz: float
-    inputs: dict = field(default_factory=dict)
+    inputs: dict[str, str] = field(default_factory=dict)
     pin_weights: np.ndarray | None = None
     #: A network's matrices (its labels, inertias and shapes are then in its reduced
     #: coordinates, one per gear group; its stiffnesses are its shafts'); None for a chain or crank.

@@ -75,7 +75,7 @@ def check_edges(times, teeth: int, where: str = "edges", revolutions: int = 1) -
     return t
 
 
-def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> dict[str, np.ndarray]:
+def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None = None) -> dict[str, np.ndarray]:
     """Tooth-edge timestamps per channel from a CSV file, in seconds.
 
     Parameters
@@ -86,7 +86,7 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict | None = None) -> 
         channel with fewer edges leaves its cells empty at the end.
     unit : str, optional
         The timestamps' unit, if the file has no ``# unit = ...`` line.
-    teeth : dict, optional
+    teeth : dict[str, int], optional
         Channel -> teeth per revolution: each such channel must hold one revolution at least.
 
     Returns
@@ -633,7 +633,8 @@ class TorsiographResult:
         return ax
 
 
-def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dict | None = None,
+def run_torsiograph(edges: dict[str, np.ndarray], teeth: dict[str, int | str | Wheel], revolutions: int,
+                    calibration: dict[str, np.ndarray] | None = None,
                     twist_of: tuple[str, str] | None = None, definition: str = "angle") -> TorsiographResult:
     """Order tracks of every wheel, tooth errors corrected, and the twist between two of them.
 
@@ -643,13 +644,13 @@ def run_torsiograph(edges: dict, teeth: dict, revolutions: int, calibration: dic
 
     Parameters
     ----------
-    edges : dict
+    edges : dict[str, ndarray]
         Channel -> edge timestamps [s] (:func:`read_edges_csv`).
-    teeth : dict
+    teeth : dict[str, int or str or Wheel]
         Channel -> teeth per revolution, or a reference-gap wheel (``"60-2"``; :func:`wheel_of`).
     revolutions : int
         Revolutions per block.
-    calibration : dict, optional
+    calibration : dict[str, ndarray], optional
         Channel -> edge timestamps [s] of a calibration record (:func:`tooth_errors`); a
         channel without one is analysed with uniform teeth.
     twist_of : tuple of str, optional

@@ -248,7 +248,7 @@ def _function(dset, where: str, units: dict) -> MeasuredFunction:
         rpm=z if quantity == "order" and z_code == ABSCISSA_CODES["speed"] else None)
 
 
-def read_uff58(path, units: dict | None = None) -> list[MeasuredFunction]:
+def read_uff58(path, units: dict[str, str] | None = None) -> list[MeasuredFunction]:
     """The dataset-58 functions of a universal file, in SI, or one message naming the file.
 
     Parameters
@@ -256,7 +256,7 @@ def read_uff58(path, units: dict | None = None) -> list[MeasuredFunction]:
     path : str or Path
         A ``.uff``/``.unv`` file (ASCII 58 or binary 58b). Other datasets in it (151 header,
         164 units, 55 modes) are passed over; a file with no dataset 58 is refused.
-    units : dict, optional
+    units : dict[str, str], optional
         Units for records without a unit label: keys ``'abscissa'``, ``'ordinate'`` and
         ``'reference'`` (an FRF's excitation), values such as ``'Hz'``, ``'rad'``, ``'N m'``.
         A record with a label keeps it; a stated unit that disagrees with it is refused.

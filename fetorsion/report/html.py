@@ -213,12 +213,12 @@ def sensitivity_figure(sens, div: str) -> str:
     """Tornado chart: f1 at each input's bounds, largest swing on top."""
     import plotly.graph_objects as go
 
-    rows = sorted(sens.rows, key=lambda r: abs(r["f1_high_hz"] - r["f1_low_hz"]))
-    names = [r["field"] for r in rows]
+    rows = sorted(sens.rows, key=lambda r: r.swing_hz)
+    names = [r.field for r in rows]
     fig = go.Figure()
     for key, label in (("f1_low_hz", "input at its low bound"), ("f1_high_hz", "input at its high bound")):
-        fig.add_trace(go.Bar(y=names, x=[r[key] - sens.f1_hz for r in rows], base=sens.f1_hz, orientation="h",
-                             name=label, customdata=[[r["low"], r["high"], r[key]] for r in rows],
+        fig.add_trace(go.Bar(y=names, x=[getattr(r, key) - sens.f1_hz for r in rows], base=sens.f1_hz,
+                             orientation="h", name=label, customdata=[[r.low, r.high, getattr(r, key)] for r in rows],
                              hovertemplate="%{y}<br>range %{customdata[0]:g} .. %{customdata[1]:g}"
                                            "<br>f1 %{customdata[2]:.1f} Hz<extra></extra>"))
     if sens.measured_hz is not None:

@@ -284,7 +284,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
         lines.append(f"| {c.name} | **{x['safety']:.2f}** | {x['required']:.2f} | {x['location']} ({x['where']}) | "
                      f"{x['rpm']:.0f} | **{'pass' if x['passes'] else 'FAIL'}** | "
                      + (f"{y['safety']:.2f} | {y['required']:.2f} | {y['location']} |" if y else "- | - | - |"))
-    lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip['kind']}; across the band "
+    lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
               + f" ({crank.excitation.damping_source}).", ""]
     if v.damper is not None and v.damper.optimised is not None:
@@ -448,8 +448,8 @@ def summary_lines(run: RunOutcome) -> list[str]:
         out += [f"- **Verdict, {line.split(': ', 1)[0]}:** {line.split(': ', 1)[1]} ({fat.model})." for line in v.lines()]
         out.append(f"- **Damping:** the verdict rests on ζ = {v.damping_ratio:.4g}, "
                    + ("**assumed** (no source stated)" if v.damping_assumed else f"from {v.damping_source}")
-                   + "; " + (f"it {v.flip['kind']}" if v.flip["zeta"] is None or v.flip["zeta"] <= v.damping_ratio
-                             else f"as described it would pass from ζ = {v.flip['zeta']:.4g} up") + ".")
+                   + "; " + (f"it {v.flip.kind}" if v.flip.zeta is None or v.flip.zeta <= v.damping_ratio
+                             else f"as described it would pass from ζ = {v.flip.zeta:.4g} up") + ".")
         if v.damper is not None and v.damper.optimised is not None:
             out.append(f"- **Recommended damper:** {_damper_spec(v.damper.optimised)}, designed for the iacs-m53 "
                        "verdict's governing safety" + ("" if v.method == "iacs-m53" else

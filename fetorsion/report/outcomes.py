@@ -28,6 +28,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..response.transient import TransientResult
     from ..studies.comparison import ComparisonResult
     from ..studies.sensitivity import SensitivityResult
+    from ..studies.study import StudyResult
 
 
 @dataclass(frozen=True)
@@ -51,8 +52,8 @@ class LumpedOutcome:
     order of :data:`~fetorsion.lumped_model.lumped.PARTITIONS`; ``skipped[method]`` says why a
     method could not be used; ``image`` the default model's mode shapes."""
 
-    table: dict
-    skipped: dict
+    table: dict[str, list[LumpedResult]]
+    skipped: dict[str, str]
     image: str
 
 
@@ -83,7 +84,7 @@ class BearingsOutcome:
     condensed: CondensedCrank
     free: CondensedModes
     bearings: CondensedModes
-    chain: dict
+    chain: dict[str, dict[str, float]]
     f1_free_hz: float
     f1_bearings_hz: float
     images: tuple[str, ...]
@@ -108,8 +109,8 @@ class SensitivityOutcome:
     sensitivity: SensitivityResult
     fe_check: list
     image: str
-    studies: dict
-    study_images: dict
+    studies: dict[str, StudyResult]
+    study_images: dict[str, str]
 
 
 @dataclass(frozen=True)
@@ -183,6 +184,6 @@ class RunOutcome:
     fatigue: FatigueOutcome | Skipped | None = None
     measured: MeasuredOutcome | Skipped | None = None
     transient: TransientOutcome | Skipped | None = None
-    timings_s: dict | None = None
+    timings_s: dict[str, float] | None = None
     #: The report folder the run wrote
     folder: str = ""

@@ -181,7 +181,7 @@ class CoupledResponse:
     pin_bending_nm: np.ndarray  # (speeds, pins)
     journal_bending_nm: np.ndarray  # (speeds, journals)
     bearing_force_n: np.ndarray  # (speeds, journals)
-    timings_s: dict = field(default_factory=dict)
+    timings_s: dict[str, float] = field(default_factory=dict)
     dampers: str = ""
     damper_heat_w: np.ndarray | None = None  # (speeds, dampers), W
 

@@ -75,7 +75,7 @@ class ResponseResult:
     order_pulley_deg: np.ndarray
     damping_ratio: float
     damping: str = ""
-    compare: dict | None = None
+    compare: dict[str, float | str | list[float]] | None = None
     section_torque_peak_nm: np.ndarray | None = None
     pulley_angle_peak_deg: np.ndarray | None = None
     theta: np.ndarray | None = None

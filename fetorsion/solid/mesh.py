@@ -75,7 +75,7 @@ class CrankMesh:
     tets: np.ndarray
     part: np.ndarray
     part_names: tuple[str, ...]
-    node_sets: dict = field(default_factory=dict)
+    node_sets: dict[str, np.ndarray] = field(default_factory=dict)
     material: Material | None = None
     quality: MeshQuality | None = None
 

@@ -31,6 +31,7 @@ import numpy as np
 
 from ..description.defaults import LUMPED17
 from ..errors import FetorsionError
+from ..measured.dataset import MeasuredData
 
 #: The models a measurement is set beside (see the module docstring).
 SOURCES = ("condensed", LUMPED17, "fe")
@@ -570,7 +571,7 @@ def model_response(crank, source: str = LUMPED17, condensed=None):
     return solve_response(condensed_setup(_need(condensed, source), "bearings"), getattr(crank, "dampers", ()))
 
 
-def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str | None = None,
+def run_comparison(crank, measured: MeasuredData, source: str = LUMPED17, station: str | None = None,
                    condensed=None, response=None, mesh_size: float | None = None,
                    reference=None) -> ComparisonResult:
     """The model of a crank against measured data.
@@ -579,10 +580,9 @@ def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str |
     ----------
     crank : Crank
         With an ``[excitation]`` where order cuts are compared.
-    measured : dict
-        ``frfs`` (FRFs, :class:`~fetorsion.measured.uff.MeasuredFunction`), ``cuts`` (order cuts
-        against speed, angles in rad), ``tracks`` (torsiograph order maps) and ``band`` ((low,
-        high) Hz to fit the FRFs' modes in), as ``fetorsion.cli.measured.read_measured`` reads them.
+    measured : MeasuredData
+        FRFs, order cuts, torsiograph order maps, the band to fit the FRFs' modes in and where each
+        cut was measured, as ``fetorsion.cli.measured.read_measured`` reads them.
     source : {"condensed", LUMPED17, "fe"}
         The model (see the module docstring).
     station : str, optional
@@ -610,25 +610,24 @@ def run_comparison(crank, measured: dict, source: str = LUMPED17, station: str |
     running = ("the chain file's own model" if not hasattr(crank, "journals") else
                "the lumped 17-DOF chain" if source == LUMPED17 else "condensed crank in its bearings")
     out = ComparisonResult(crank.name, model=running)  # the response's own name once it is solved
-    if measured.get("frfs"):
-        out.frequencies.append(compare_frequencies(run_modal_fit(measured["frfs"], tuple(measured["band"])), crank,
+    if measured.frfs:
+        out.frequencies.append(compare_frequencies(run_modal_fit(measured.frfs, measured.band), crank,
                                                    source, condensed, mesh_size))
-    if measured.get("cuts"):
+    if measured.cuts:
         if getattr(crank, "excitation", None) is None:
             raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
         response = response if response is not None else model_response(crank, source, condensed)
         out.model = response.model
-        where = measured.get("stations", {})
-        for c in measured["cuts"]:
-            cut = compare_order_cut(c, response, where.get(c.label, station))
+        for c in measured.cuts:
+            cut = compare_order_cut(c, response, measured.station_of(c.label, station))
             out.order_cuts.append(cut)
             if reference is not None:
                 try:
-                    out.gaps.append(gap_line(cut, compare_order_cut(c, reference, where.get(c.label, station))))
+                    out.gaps.append(gap_line(cut, compare_order_cut(c, reference, measured.station_of(c.label, station))))
                 except FetorsionError:  # a chain station the condensed crank does not have
                     pass
-    out.notes += list(measured.get("notes", ()))
-    out.waterfalls += [waterfall(name, track, crank, source, condensed) for name, track in measured.get("tracks", ())]
+    out.notes += list(measured.notes)
+    out.waterfalls += [waterfall(name, track, crank, source, condensed) for name, track in measured.tracks]
     return out
 
 

@@ -11,7 +11,7 @@ once more, so the band's ends are real model results, interactions included.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 from ..description.model import Crank
 
@@ -22,19 +22,37 @@ from .variants import with_values
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
 
+@dataclass(frozen=True)
+class SensitivityRow:
+    """One ``[uncertainty]`` input: its name (``field``), nominal, low and high values (file
+    units), f1 at each bound (Hz) and the elasticity (Δf/f)/(Δx/x) across the range."""
+
+    field: str
+    nominal: float
+    low: float
+    high: float
+    f1_low_hz: float
+    f1_high_hz: float
+    elasticity: float
+
+    @property
+    def swing_hz(self) -> float:
+        """|f1 at high − f1 at low|, Hz."""
+        return abs(self.f1_high_hz - self.f1_low_hz)
+
+
 @dataclass
 class SensitivityResult:
     """One-at-a-time sensitivities of f1 and the corner band.
 
-    ``rows``: each ``field``, ``low``, ``high`` (file units), ``f1_low_hz``, ``f1_high_hz``,
-    ``elasticity`` ((Δf/f)/(Δx/x) across the range). ``band_hz``: f1 with every input at the
+    ``rows``: one :class:`SensitivityRow` per input. ``band_hz``: f1 with every input at the
     bound that lowers it, and at the one that raises it.
     """
 
     name: str
     model: str
     f1_hz: float
-    rows: list[dict]
+    rows: list[SensitivityRow]
     band_hz: tuple[float, float]
     measured_hz: float | None
 
@@ -46,7 +64,7 @@ class SensitivityResult:
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
-        return {"name": self.name, "model": self.model, "f1_hz": self.f1_hz, "rows": self.rows,
+        return {"name": self.name, "model": self.model, "f1_hz": self.f1_hz, "rows": [asdict(r) for r in self.rows],
                 "band_hz": list(self.band_hz), "measured_hz": self.measured_hz,
                 "measured_inside_band": self.measured_inside}
 
@@ -54,10 +72,9 @@ class SensitivityResult:
         """The result as plain text: the table the command line prints."""
         head = f"{'input':<32} {'range':>22} {'f1 at low':>10} {'f1 at high':>10} {'elasticity':>10}"
         lines = [f"{self.name}: f1 = {self.f1_hz:.1f} Hz ({self.model}); one input at a time", head, "-" * len(head)]
-        for r in sorted(self.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"])):
-            rng = f"{r['low']:g} .. {r['high']:g}"
-            lines.append(f"{r['field']:<32} {rng:>22} {r['f1_low_hz']:10.1f} {r['f1_high_hz']:10.1f} "
-                         f"{r['elasticity']:10.3f}")
+        for r in sorted(self.rows, key=lambda r: -r.swing_hz):
+            rng = f"{r.low:g} .. {r.high:g}"
+            lines.append(f"{r.field:<32} {rng:>22} {r.f1_low_hz:10.1f} {r.f1_high_hz:10.1f} {r.elasticity:10.3f}")
         lo, hi = self.band_hz
         lines.append(f"band of f1 (all inputs at their worst bounds): {lo:.1f} .. {hi:.1f} Hz")
         if self.measured_hz is not None:
@@ -69,13 +86,13 @@ class SensitivityResult:
         """Tornado chart of f1 against each input's range."""
         import matplotlib.pyplot as plt
 
-        rows = sorted(self.rows, key=lambda r: abs(r["f1_high_hz"] - r["f1_low_hz"]))
+        rows = sorted(self.rows, key=lambda r: r.swing_hz)
         if ax is None:
             _, ax = plt.subplots(figsize=(8, 0.35 * len(rows) + 1.5))
         for i, r in enumerate(rows):
-            a, b = sorted((r["f1_low_hz"], r["f1_high_hz"]))
+            a, b = sorted((r.f1_low_hz, r.f1_high_hz))
             ax.barh(i, b - a, left=a, color="C0")
-        ax.set_yticks(range(len(rows)), [r["field"] for r in rows], fontsize=7)
+        ax.set_yticks(range(len(rows)), [r.field for r in rows], fontsize=7)
         ax.axvline(self.f1_hz, color="k", lw=1, label=f"nominal {self.f1_hz:.0f} Hz")
         ax.axvspan(*self.band_hz, color="C0", alpha=0.12, label="band")
         if self.measured_hz is not None:
@@ -101,10 +118,10 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     from .models import FEModel
 
     groups = dict(crank.uncertainty)
-    rows = sorted(result.rows, key=lambda r: -abs(r["f1_high_hz"] - r["f1_low_hz"]))[:count]
+    rows = sorted(result.rows, key=lambda r: -r.swing_hz)[:count]
     samples = [{}]
     for row in rows:
-        members = groups[row["field"]]
+        members = groups[row.field]
         samples += [{p: low for p, low, _ in members}, {p: high for p, _, high in members}]
     records, _ = run_samples(FEModel(crank, mesh_size), samples, store or open_store(), client,
                              label=f"{crank.name}: FE checks", progress=client is not None)
@@ -116,9 +133,9 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
     out = []
     for k, row in enumerate(rows):
         lo, hi = f1[1 + 2 * k], f1[2 + 2 * k]
-        out.append({"field": row["field"], "fe_f1_nominal_hz": nominal, "fe_f1_low_hz": lo, "fe_f1_high_hz": hi,
+        out.append({"field": row.field, "fe_f1_nominal_hz": nominal, "fe_f1_low_hz": lo, "fe_f1_high_hz": hi,
                     "fe_change_percent": 100 * (hi - lo) / nominal,
-                    "lumped_change_percent": 100 * (row["f1_high_hz"] - row["f1_low_hz"]) / result.f1_hz})
+                    "lumped_change_percent": 100 * (row.f1_high_hz - row.f1_low_hz) / result.f1_hz})
     return out
 
 
@@ -165,8 +182,7 @@ def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str =
         path, low, high = members[0]  # the group's first member scales the elasticity
         values = [v for _, v in resolve_field(crank.raw, path)]
         x0 = sum(values) / len(values)
-        rows.append({"field": name, "nominal": x0, "low": low, "high": high, "f1_low_hz": f_lo, "f1_high_hz": f_hi,
-                     "elasticity": (f_hi - f_lo) / nominal / ((high - low) / x0)})
+        rows.append(SensitivityRow(name, x0, low, high, f_lo, f_hi, (f_hi - f_lo) / nominal / ((high - low) / x0)))
         (lower if f_lo <= f_hi else upper).update(lows)
         (upper if f_lo <= f_hi else lower).update(highs)
     band = (f1(with_values(crank, lower)), f1(with_values(crank, upper)))

@@ -50,12 +50,12 @@ class StudyResult:
     held: list[str]
     X: np.ndarray
     Y: dict[str, np.ndarray]
-    errors: list[dict]
-    bands: dict
-    indices: dict
+    errors: list[dict[str, int | str | dict[str, float]]]
+    bands: dict[str, dict[str, float]]
+    indices: dict[str, dict[str, list[float] | str]]
     measured_hz: float | None
     summary: RunSummary
-    values: list[dict] = field(default_factory=list, repr=False)
+    values: list[dict[str, float]] = field(default_factory=list, repr=False)
 
     @property
     def input_names(self) -> list[str]:

@@ -79,12 +79,12 @@ class ValidationResult:
 
 def band_corners(crank: Crank) -> tuple[dict, dict]:
     """The changes that put every ``[uncertainty]`` input at the bound lowering (then raising) f1."""
-    rows = {r["field"]: r for r in run_sensitivity(crank).rows}
+    rows = {r.field: r for r in run_sensitivity(crank).rows}
     lower, upper = {}, {}
     for name, members in crank.uncertainty:
         lows = {path: low for path, low, _ in members}
         highs = {path: high for path, _, high in members}
-        down = rows[name]["f1_low_hz"] <= rows[name]["f1_high_hz"]
+        down = rows[name].f1_low_hz <= rows[name].f1_high_hz
         (lower if down else upper).update(lows)
         (upper if down else lower).update(highs)
     return lower, upper

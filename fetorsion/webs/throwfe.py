@@ -355,7 +355,7 @@ def stored_throw_torsion(throw: Crank, mesh_size: float | None = None) -> dict |
     return _CACHE.get(key) or _load_disk(SHIPPED_CACHE).get(key) or _load_disk().get(key)
 
 
-def remember_throw_torsion(entries: dict) -> None:
+def remember_throw_torsion(entries: dict[str, dict[str, float]]) -> None:
     """Keep ``{throw key: entry}`` (:func:`throw_torsion`'s, computed in another process) in memory."""
     _CACHE.update(entries)
 
