@@ -38,9 +38,8 @@ modes = fetorsion.lumped(chain)
 print(modes.table())
 
 camp = run_campbell(chain)
-major = max((c for c in camp.crossings if c["in_range"] and c["mode"] == 1), key=lambda c: c["severity"])
-print(f"major-order resonance: order {major['order']:g} x mode 1 ({major['frequency_hz']:.1f} Hz) "
-      f"at {major['rpm']:.0f} rpm")
+major = max((c for c in camp.crossings if c.in_range and c.mode == 1), key=lambda c: c.severity)
+print(f"major-order resonance: order {major.order:g} x mode 1 ({major.frequency_hz:.1f} Hz) at {major.rpm:.0f} rpm")
 
 rpm = np.arange(1000.0, 2550.0 + 1e-9, 5.0)  # finer than the 25 rpm steps of openTorsion's example
 res = run_response(chain, rpm=rpm)

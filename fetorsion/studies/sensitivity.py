@@ -37,7 +37,7 @@ class SensitivityRow:
 
     @property
     def swing_hz(self) -> float:
-        """|f1 at high − f1 at low|, Hz."""
+        """The absolute change of f1 from the low bound to the high one, Hz."""
         return abs(self.f1_high_hz - self.f1_low_hz)
 
 
