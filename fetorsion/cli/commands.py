@@ -14,6 +14,7 @@ from pathlib import Path
 from .options import option_of, read_compare_csv
 from ..errors import FetorsionError, ParameterError
 from ..io import check_output_file
+from . import design as cli_design
 from . import dynamics as cli_dynamics
 from . import fe as cli_fe
 from . import lumped as cli_lumped
@@ -37,6 +38,7 @@ def build_parser() -> argparse.ArgumentParser:
     cli_run.add_parser(sub)
     cli_fe.add_parsers(sub)
     cli_measured.add_parsers(sub)
+    cli_design.add_parser(sub)
     return p
 
 

@@ -21,7 +21,7 @@ from .fields import CRANK_SCHEMA
 from .model import (ATTACH_POINTS, Attachment, AttachPoint, Bearings, Crank, Cylinder, Fillets, Material, OilFilm,
                     OilHoles, PROCESSES, SURFACES, Web)
 from .reader import Table, finite_number, read_length_unit, read_toml
-from .tables import (read_engine, read_dampers, read_limits, read_excitation, read_uncertainty, read_distributions,
+from .tables import (read_engine, read_dampers, read_design, read_limits, read_excitation, read_uncertainty, read_distributions,
                      unique_problems, uncertainty_bound_problems)
 
 
@@ -298,6 +298,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
                 if "bearings" in data else None)
     uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
     distributions = read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
+    design = read_design(root, data, problems)
     dampers = read_dampers(root)
     limits = read_limits(root)
     excitation = None
@@ -307,7 +308,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
                   tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings=bearings,
-                  distributions=distributions, dampers=dampers, limits=limits)
+                  distributions=distributions, dampers=dampers, limits=limits, design=design)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(uncertainty_bound_problems(crank, parse_crank))

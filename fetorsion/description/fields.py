@@ -177,6 +177,23 @@ UNCERTAINTY = Section("uncertainty", "The range of each reconstructed input, for
     Field("<group name>", "`{ \"path\" = [low, high], ... }`: inputs that move together", "as above, per member"),
 ), free=True)
 
+DESIGN = Section("design", "Optional: what `fetorsion design` may change to make the crank pass its fatigue "
+                 "verdict, and what it minimises. Each input is a field path with `[low, high]` (file units), as "
+                 "in `[uncertainty]`; a damper may be added.", (
+    Field("objective", "`\"mass\"` (the crank's, and an added damper ring's; default), `\"inertia\"` (the "
+          "rotating inertia) or `\"change\"` (the sum of the moved inputs' relative changes)", "one of these"),
+    Field("damper", "a damper type the search may add at the pulley end: `\"rubber\"`, `\"viscous\"` or "
+          "`\"tuned\"`; tuned by Den Hartog's rule to the first mode seen from the pulley", "one of these"),
+    Field("damper_inertia_ratio", "`[low, high]`: the added ring's inertia over the first mode's equivalent "
+          "inertia at the pulley", "0 < low < high <= 1; required with `damper`"),
+    Field("damper_ring_radius", "radius of gyration of the added ring (file length unit): its mass is "
+          "inertia / radius²", "> 0; required with `damper` and objective mass"),
+    Field("required_safety", "the fatigue safety the design must reach; default the method's own (M53: 1.15)",
+          ">= 1"),
+    Field("<field path>", "`[low, high]`: an input the search may move (file units)", "names a numeric field; "
+          "low < high; contains the nominal value"),
+), free=True)
+
 DISTRIBUTIONS = Section("distributions", "Optional: how `fetorsion study` draws an `[uncertainty]` entry in "
                         "Monte Carlo and Sobol' studies (a group: its first member, the others at the same fraction "
                         "of their ranges). An entry not named is uniform; Morris levels and grids span the ranges.", (
@@ -370,7 +387,7 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 
 #: The tables of a crank description, in the order the documentation shows them.
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
-                  BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
+                  BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS, DESIGN)
 #: The tables of a chain file.
 CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS,
                   UNCERTAINTY, DISTRIBUTIONS)

@@ -388,6 +388,30 @@ def default_bearings(journals) -> Bearings:
     return Bearings((math.inf,) * n, (0.0,) * n, tuple(j.length for j in journals), given=False)
 
 
+#: What a design search may minimise: the crank's mass (and an added damper ring's), its rotating
+#: inertia, or the change from the given design (the sum of the moved inputs' relative changes).
+DESIGN_OBJECTIVES = ("mass", "inertia", "change")
+
+
+@dataclass(frozen=True)
+class DesignSpace:
+    """``[design]``: the inputs a design search may move and their bounds (field paths, file
+    units), what it minimises, and the damper it may add.
+
+    ``damper`` (``rubber``, ``viscous`` or ``tuned``; None: none added) with its ring inertia as a
+    share of the first mode's equivalent inertia seen from the pulley (``damper_inertia_ratio``,
+    the bounds) and the ring's radius of gyration (``damper_ring_radius``, m), which turns its
+    inertia into mass. ``required_safety``: None for the fatigue method's own.
+    """
+
+    inputs: tuple[tuple[str, float, float], ...]
+    objective: str = "mass"
+    damper: str | None = None
+    damper_inertia_ratio: tuple[float, float] | None = None
+    damper_ring_radius: float | None = None
+    required_safety: float | None = None
+
+
 @dataclass(frozen=True)
 class Crank:
     """A complete crankshaft description in SI units.
@@ -420,6 +444,8 @@ class Crank:
     #: ``[distributions]``: (uncertainty entry, kind, standard deviation or None); an entry not
     #: named is uniform over its range.
     distributions: tuple[tuple[str, str, float | None], ...] = ()
+    #: ``[design]``: what ``fetorsion design`` may change, and what it minimises.
+    design: DesignSpace | None = None
 
     @property
     def cylinders(self) -> int:

@@ -10,7 +10,8 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
-from .model import table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, Damper, Engine, Excitation, Limits
+from .model import (table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, Damper, DesignSpace, Engine,
+                    Excitation, Limits)
 from .reader import field_keys, MAX_DESCRIPTION_BYTES, Table, finite_number, resolve_field
 
 
@@ -349,17 +350,20 @@ def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_de
     return None
 
 
-def read_uncertainty(t: Table, data: dict, problems: list[Problem]):
+def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str = "uncertainty", keys=None):
     """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
     ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
-    e.g. a material's E and density. Each range must contain its nominal value."""
+    e.g. a material's E and density. Each range must contain its nominal value. ``keys``: the
+    entries read (default all of ``t``); ``table`` names them in messages."""
     out = []
     for name, spec in t.data.items():
+        if keys is not None and name not in keys:
+            continue
         t.used.add(name)
         members = spec.items() if isinstance(spec, dict) else [(name, spec)]
         group = []
         for path, rng in members:
-            where_name = f"uncertainty.{name}" + (f".{path}" if isinstance(spec, dict) else "")
+            where_name = f"{table}.{name}" + (f".{path}" if isinstance(spec, dict) else "")
             if not (isinstance(rng, list) and len(rng) == 2 and all(finite_number(v) for v in rng)
                     and rng[0] < rng[1]):
                 problems.append(Problem(where_name, rng, "must be [low, high], finite numbers with low < high"))
@@ -447,6 +451,7 @@ def uncertainty_bound_problems(crank, parse) -> list[Problem]:
             raw = copy.deepcopy(crank.raw)
             raw.pop("uncertainty", None)
             raw.pop("distributions", None)
+            raw.pop("design", None)  # a design space of the nominal crank, not of its uncertain variants
             for member in members:
                 parent_path, _, key = member[0].rpartition(".")
                 for _, parent in (resolve_field(raw, parent_path) if parent_path else [("", raw)]):
@@ -503,3 +508,42 @@ def read_chain_excitation(root: Table, data: dict, source: str, engine: Engine |
         problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
     ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
     return read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True), ex_table
+
+
+def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace | None:
+    """``[design]`` (:class:`~fetorsion.description.model.DesignSpace`): the named fields, and every
+    other key an input's range as in ``[uncertainty]`` (groups move together: their first member
+    is the design variable)."""
+    if "design" not in data:
+        return None
+    t = root.table("design")
+    objective = t.choice("objective", DESIGN_OBJECTIVES, "mass")
+    damper = t.choice("damper", ("rubber", "viscous", "tuned"), "rubber") if "damper" in t.data else None
+    ratio = ring = None
+    if "damper_inertia_ratio" in t.data:
+        r = t.numbers("damper_inertia_ratio")
+        if not (r and len(r) == 2 and 0 < r[0] < r[1] <= 1):
+            problems.append(Problem("design.damper_inertia_ratio", t.data["damper_inertia_ratio"],
+                                    "must be [low, high] with 0 < low < high <= 1"))
+        else:
+            ratio = (float(r[0]), float(r[1]))
+    if "damper_ring_radius" in t.data:
+        ring = t.number("damper_ring_radius", length=True, positive=True)
+    required = t.number("required_safety", None) if "required_safety" in t.data else None
+    if required is not None and not required >= 1:
+        problems.append(Problem("design.required_safety", required, "must be >= 1"))
+    if damper is not None and ratio is None:
+        problems.append(Problem("design.damper_inertia_ratio", None, f"is required with damper = {damper!r}"))
+    if damper is not None and objective == "mass" and ring is None:
+        problems.append(Problem("design.damper_ring_radius", None, "is required with a damper and objective mass "
+                                "(the ring's mass is its inertia over the radius squared)"))
+    for key in ("damper_inertia_ratio", "damper_ring_radius") if damper is None else ():
+        if key in t.data:
+            problems.append(Problem(f"design.{key}", t.data[key], "goes with damper = \"rubber\", \"viscous\" or \"tuned\""))
+    named = {"objective", "damper", "damper_inertia_ratio", "damper_ring_radius", "required_safety"}
+    ranges = read_uncertainty(t, data, problems, "design", keys=[k for k in t.data if k not in named])
+    inputs = tuple(group[0] for _, group in ranges if group)
+    if not inputs and damper is None:
+        problems.append(Problem("design", None, "names no input to move and no damper to add"))
+    t.finish()
+    return DesignSpace(inputs, objective, damper, ratio, ring, required)

@@ -131,6 +131,8 @@ class VerdictConfig:
     misfire: int | None = None  # 0-based cylinder
     damper_power_w: float = 0.0
     allowed_power_w: float = 0.0
+    #: The crank as described (its own dampers, or none): the configurations the verdict is on.
+    as_described: bool = False
 
     def answer(self, method: str) -> dict:
         """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method``."""
@@ -151,7 +153,7 @@ class VerdictConfig:
                 "passes": bool(a.safety.min() >= loc.required and not yielding)}
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "dampers": [d.name for d in self.dampers],
+        return {"name": self.name, "dampers": [d.name for d in self.dampers], "as_described": self.as_described,
                 "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
                 "iacs-m53": {**self.answer("iacs-m53"), "result": self.m53.to_dict()},
                 "fe": self.answer("fe"), "damper_power_w": self.damper_power_w,
@@ -181,7 +183,9 @@ class CrankVerdict:
 
     @property
     def passes(self) -> bool:
-        return all(c.answer(self.method).get("passes", False) for c in self.configs)
+        """The crank as described passes, firing and in misfire: its own dampers (or none) decide;
+        the other rows (no damper where it has one, the recommended damper) inform."""
+        return all(c.answer(self.method).get("passes", False) for c in self.configs if c.as_described)
 
     def lines(self) -> list[str]:
         """One verdict line per configuration: method, damping and its source, governing place and
@@ -285,7 +289,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
 
     def config(name, s, dampers, cylinder=None):
         response = solve_response(s, dampers)  # one solve: M53's torques and the dampers' heat
-        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers, response), fe_of(s, dampers), cylinder)
+        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers, response), fe_of(s, dampers), cylinder,
+                          as_described=tuple(dampers) == tuple(crank.dampers))
         if dampers:
             p = response.damper_power_w.sum(axis=(1, 2))
             c.damper_power_w, c.allowed_power_w = float(p.max()), allowed_power(dampers)
@@ -310,7 +315,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     if misfire and ex.pressure_curve is None:
         say("fatigue verdict: misfire of each cylinder ...")
         motored = misfire_harmonics(crank, setup)
-        for name, dampers in (("without a damper", ()), (f"with the recommended {kind} damper", (best,))):
+        rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
+        for name, dampers in rows + [(f"with the recommended {kind} damper", (best,))]:
             worst, worst_c, worst_s = None, None, None
             for c in range(crank.engine.cylinders):
                 ms = setup.with_misfire(c, motored)
@@ -318,7 +324,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
                 if worst is None or r.governing.safety < worst.governing.safety:
                     worst, worst_c, worst_s = r, c, ms
             cfg = VerdictConfig(f"misfire of cylinder {worst_c + 1}, {name}", tuple(dampers), worst,
-                                fe_of(worst_s, dampers), worst_c)
+                                fe_of(worst_s, dampers), worst_c, as_described=tuple(dampers) == tuple(crank.dampers))
             configs.append(cfg)
         notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
                       "M53's bending keeps the firing rod forces (the larger)")

@@ -11,7 +11,7 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
 
     The variant is a new design, so the original's ``[uncertainty]`` ranges (and their
-    ``[distributions]``) are dropped.
+    ``[distributions]``) and its ``[design]`` space are dropped.
     ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
     checks, where those details would dominate the element count.
 
@@ -31,8 +31,8 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
         The variant, checked by every rule of the description.
     """
     raw = dict(crank.raw)
-    raw.pop("uncertainty", None)
-    raw.pop("distributions", None)
+    for key in ("uncertainty", "distributions", "design"):
+        raw.pop(key, None)
     if not details:
         for key in ("fillets", "oil_holes"):
             raw.pop(key, None)

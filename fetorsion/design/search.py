@@ -1,0 +1,334 @@
+"""From a failing crank to a passing one: a design search over the description's ``[design]`` space.
+
+The explorer is the lumped chain (:func:`fetorsion.response.forced.response_setup`, the
+description's partition) with IACS UR M53 on its fillet torques
+(:func:`fetorsion.design.m53.run_m53_crank`, the rule's SCFs where the geometry is in their range,
+else the given crank's FE factors), at every k-th speed of the verdict's range
+(:func:`fetorsion.design.crank_verdict.design_speeds`). Each candidate moves the ``[design]``
+inputs inside their bounds and, when the space allows one, adds a damper at the pulley tuned by
+Den Hartog's rule to the first mode seen from there ([DenHartog]) with an inertia ratio inside its
+bounds. The search minimises the objective (mass, rotating inertia or change) subject to M53's
+governing safety reaching the required one, with SciPy's differential evolution ([Storn]) on the
+unit cube of the bounds, the constraint as a penalty; every candidate it evaluates is kept, and
+the Pareto front (objective against safety) is read from them.
+
+The explorer decides nothing: the chosen design is written as a new description and confirmed by
+``fetorsion run`` on it, whose verdict is the condensed FE crank's (``fetorsion design`` does both).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.optimize
+
+from ..description.model import Crank, Damper
+from ..errors import FetorsionError
+from ..solid.outline import mass_properties
+from ..studies.variants import with_values
+from .scfset import SCFSet
+
+#: The objective's unit, per objective.
+OBJECTIVE_UNITS = {"mass": "kg", "inertia": "kg m^2", "change": "-"}
+#: The penalty per unit shortfall of safety (relative): large against the objective's own
+#: relative changes (order 0.1), so any feasible candidate beats an infeasible one.
+PENALTY = 10.0
+
+
+def crank_mass(crank: Crank) -> float:
+    """The crank's steel mass, kg: its cylinders (journals, pins, front and rear sections, bores
+    taken out) and its webs (their outlines with counterweights, uniform thickness); fillets and
+    drillings left out (a fraction of a percent)."""
+    rho = crank.material.density
+    cylinders = (*crank.journals, *crank.pins, *crank.front, *crank.rear)
+    shafts = sum(rho * math.pi / 4 * (c.diameter**2 - c.bore**2) * c.length for c in cylinders)
+    radius = crank.engine.stroke / 2
+    return float(shafts + sum(mass_properties(w, radius, rho)["mass"] for w in crank.webs))
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """One design the explorer evaluated: the inputs' values (file units), the added damper
+    (None: none) and its inertia ratio, the objective, mass (kg, crank and ring), the explorer's
+    governing M53 safety and where it governs."""
+
+    values: dict[str, float]
+    inertia_ratio: float | None
+    damper: Damper | None
+    objective: float
+    mass_kg: float
+    safety: float
+    governing: str
+    governing_rpm: float
+
+    def to_dict(self) -> dict:
+        return {"values": dict(self.values), "inertia_ratio": self.inertia_ratio,
+                "damper": None if self.damper is None else {
+                    "kind": self.damper.kind, "ring_inertia_kgm2": self.damper.ring_inertia,
+                    "stiffness_nm_per_rad": self.damper.stiffness, "damping_nms_per_rad": self.damper.damping,
+                    "loss_factor": self.damper.loss_factor},
+                "objective": self.objective, "mass_kg": self.mass_kg, "safety": self.safety,
+                "governing": self.governing, "governing_rpm": self.governing_rpm}
+
+
+def pareto_front(candidates) -> list[Candidate]:
+    """The candidates no other beats on both counts (lower objective, higher safety), by objective."""
+    ordered = sorted(candidates, key=lambda c: (c.objective, -c.safety))
+    front, best = [], -math.inf
+    for c in ordered:
+        if c.safety > best:
+            front.append(c)
+            best = c.safety
+    return front
+
+
+@dataclass
+class DesignResult:
+    """A design search: its space, the required safety, every evaluated candidate, the best
+    feasible one (None: none reached the required safety) and the cost."""
+
+    name: str
+    objective: str
+    required: float
+    given: Candidate
+    candidates: list[Candidate]
+    best: Candidate | None
+    seconds: float
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def pareto(self) -> list[Candidate]:
+        return pareto_front(self.candidates)
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "objective": self.objective, "objective_unit": OBJECTIVE_UNITS[self.objective],
+                "required_safety": self.required, "given": self.given.to_dict(),
+                "best": None if self.best is None else self.best.to_dict(), "evaluations": len(self.candidates),
+                "seconds": self.seconds, "pareto": [c.to_dict() for c in self.pareto], "notes": list(self.notes)}
+
+    def table(self) -> str:
+        unit = OBJECTIVE_UNITS[self.objective]
+        lines = [f"{self.name}: design search, minimise {self.objective} [{unit}] with M53 safety >= "
+                 f"{self.required:.2f} (explorer: lumped chain; {len(self.candidates)} candidates, {self.seconds:.0f} s)",
+                 f"given: {self.objective} {self.given.objective:.4g}, safety {self.given.safety:.3f} "
+                 f"({self.given.governing}, {self.given.governing_rpm:.0f} rpm)"]
+        if self.best is None:
+            lines.append("no candidate reached the required safety: widen the [design] bounds or allow a damper")
+        else:
+            b = self.best
+            lines.append(f"best: {self.objective} {b.objective:.4g}, safety {b.safety:.3f} ({b.governing}, "
+                         f"{b.governing_rpm:.0f} rpm)")
+            lines += [f"  {p} = {v:.4g}" for p, v in b.values.items()]
+            if b.damper is not None:
+                lines.append(f"  added {b.damper.kind} damper: ring {b.damper.ring_inertia:.4g} kg m^2 "
+                             f"(inertia ratio {b.inertia_ratio:.3f}), stiffness {b.damper.stiffness:.4g} N m/rad"
+                             + (f", loss factor {b.damper.loss_factor:.3g}" if b.damper.kind == "rubber" else "")
+                             + (f", damping {b.damper.damping:.4g} N m s/rad" if b.damper.damping else ""))
+        head = f"{self.objective + ' [' + unit + ']':>16} {'safety':>8}  governing"
+        lines += ["Pareto front (objective against the explorer's safety):", head, "-" * len(head)]
+        lines += [f"{c.objective:16.4g} {c.safety:8.3f}  {c.governing} at {c.governing_rpm:.0f} rpm" for c in self.pareto]
+        return "\n".join(lines + [f"- {n}" for n in self.notes])
+
+    def plot(self, ax=None):
+        """Every candidate, the Pareto front, the given design and the required safety."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(8, 5))
+        ax.scatter([c.objective for c in self.candidates], [c.safety for c in self.candidates], s=8, color="0.7",
+                   label="candidates")
+        front = self.pareto
+        ax.plot([c.objective for c in front], [c.safety for c in front], "o-", color="C0", ms=4, label="Pareto front")
+        ax.plot([self.given.objective], [self.given.safety], "ks", label="given design")
+        if self.best is not None:
+            ax.plot([self.best.objective], [self.best.safety], "*", color="crimson", ms=14, label="chosen")
+        ax.axhline(self.required, color="crimson", lw=1, ls="--", label=f"required {self.required:.2f}")
+        ax.set_xlabel(f"{self.objective} [{OBJECTIVE_UNITS[self.objective]}]")
+        ax.set_ylabel("M53 governing safety (explorer: lumped chain)")
+        ax.set_title(f"{self.name}: design search", fontsize=10)
+        ax.legend(fontsize=7)
+        ax.figure.tight_layout()
+        return ax
+
+
+def _explorer(crank: Crank, scf: SCFSet):
+    """``evaluate(values, mu) -> Candidate`` on the lumped chain (module docstring)."""
+    from ..lumped_model.lumped import lumped
+    from ..response.forced import response_setup, solve_response
+    from .crank_verdict import design_speeds, fillet_torque_amplitude
+    from .dampers import den_hartog_damper, equivalent_sdof
+    from .m53 import run_m53_crank
+    from .stress import fillets_of
+
+    space = crank.design
+    x0 = {p: _nominal(crank, p) for p, _, _ in space.inputs}
+
+    def objective(v: Crank, ring: float) -> tuple[float, float]:
+        ring_mass = ring / space.damper_ring_radius**2 if ring and space.damper_ring_radius else 0.0
+        mass = crank_mass(v) + ring_mass
+        if space.objective == "mass":
+            return mass, mass
+        if space.objective == "inertia":
+            return float(np.sum(lumped(v).inertias_kgm2)) + ring, mass
+        return float(sum(abs(_nominal(v, p) - x0[p]) / abs(x0[p]) for p in x0)), mass
+
+    def evaluate(values: dict[str, float], mu: float | None) -> Candidate:
+        v = with_values(crank, values) if values else crank
+        setup = design_speeds(response_setup(v))
+        damper = None
+        if mu is not None:
+            station = setup.damper_station(Damper(space.damper, "front", 0.0, 1.0))
+            j_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, 0, setup.torsional_modes)
+            damper = den_hartog_damper(space.damper, mu, j_eq, omega_n, "front", 0.0)
+        fillets = fillets_of(v)
+        response = solve_response(setup, () if damper is None else (damper,))
+        m53 = run_m53_crank(v, fillets, fillet_torque_amplitude(setup, response, fillets), setup.rpm, fe_scf=scf)
+        value, mass = objective(v, 0.0 if damper is None else damper.ring_inertia)
+        g = m53.governing
+        return Candidate(dict(values), mu, damper, value, mass, float(g.safety), g.name, float(g.torque_rpm))
+
+    return evaluate
+
+
+def _nominal(crank: Crank, path: str) -> float:
+    """The value at ``path`` (its first entry where ``*`` names several), file units."""
+    from ..description.reader import resolve_field
+
+    return float(resolve_field(crank.raw, path)[0][1])
+
+
+def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6, maxiter: int = 12,
+                      progress=None) -> DesignResult:
+    """Search the description's ``[design]`` space for the least objective that passes M53 on the
+    lumped explorer (module docstring).
+
+    Parameters
+    ----------
+    crank : Crank
+        With ``[design]``, ``[excitation]`` and fillet radii.
+    scf : SCFSet, optional
+        The given crank's SCFs, M53's fallback outside its formulas' ranges (default
+        :func:`fetorsion.design.crank_verdict.verdict_scfs`).
+    seed : int
+        Differential evolution's seed: the same seed gives the same search.
+    popsize, maxiter : int
+        Differential evolution's population (per variable) and generations.
+    progress : callable, optional
+        Called with a line per generation.
+
+    Returns
+    -------
+    DesignResult
+    """
+    from .crank_verdict import verdict_scfs
+
+    space = crank.design
+    if space is None:
+        raise FetorsionError(f"design: {crank.source or crank.name} has no [design] table (what may change)")
+    if crank.excitation is None:
+        raise FetorsionError(f"design: {crank.source or crank.name} has no [excitation] table: nothing drives it")
+    if crank.dampers and space.damper:
+        raise FetorsionError("design: the description has [[dampers]] already; [design] damper adds one: "
+                             "remove one of them")
+    start = time.perf_counter()
+    evaluate = _explorer(crank, verdict_scfs(crank) if scf is None else scf)
+    given = evaluate({}, None)
+    required = space.required_safety or _required(crank)
+    bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
+    seen: list[Candidate] = []
+
+    def decode(u):
+        x = [lo + ui * (hi - lo) for ui, (lo, hi) in zip(u, bounds)]
+        values = {p: float(xi) for (p, _, _), xi in zip(space.inputs, x)}
+        return values, (float(x[-1]) if space.damper else None)
+
+    def cost(u):
+        try:
+            c = evaluate(*decode(u))
+        except FetorsionError:  # a geometry that breaks a description rule (an overlap, a web too thin)
+            return 1e3
+        seen.append(c)
+        return c.objective / given.objective + PENALTY * max(0.0, required / c.safety - 1.0)
+
+    def generation(intermediate_result):
+        if progress is not None:
+            progress(f"design: {len(seen)} candidates, best cost {intermediate_result.fun:.4f}")
+
+    x0 = [min(max((_nominal(crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]
+    x0 += [0.5] if space.damper else []
+    res = scipy.optimize.differential_evolution(cost, [(0.0, 1.0)] * len(bounds), seed=seed, popsize=popsize,
+                                                maxiter=maxiter, polish=False, init="sobol", x0=x0,
+                                                callback=generation, tol=1e-3)
+    feasible = [c for c in seen if c.safety >= required]
+    best = min(feasible, key=lambda c: c.objective) if feasible else None
+    notes = [f"explorer: the lumped chain (default partition) with M53 at every k-th speed "
+             f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations",
+             "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
+             "confirms the chosen design"]
+    return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes)
+
+
+def _required(crank: Crank) -> float:
+    from .fatigue import M53_REQUIRED_Q
+
+    given = getattr(crank.limits, "fatigue_required_safety", 0.0)
+    return float(given) if given > 0 else M53_REQUIRED_Q
+
+
+def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> str:
+    """``text`` with each ``[uncertainty]`` entry whose range no longer holds a designed value
+    (and its ``[distributions]`` line) commented out, saying why: the ranges were the given
+    design's, and the description's rule that a range holds its nominal value would refuse the
+    file. The other entries stay."""
+    from ..description.reader import resolve_field
+
+    stale = set()
+    for name, members in crank.uncertainty:
+        for path, low, high in members:
+            if any(where in changes and not low <= changes[where] <= high for where, _ in resolve_field(crank.raw, path)):
+                stale.add(name)
+    if not stale:
+        return text
+    lines, table = text.splitlines(keepends=True), ""
+    for k, line in enumerate(lines):
+        stripped = line.strip()
+        if stripped.startswith("["):
+            table = stripped
+            continue
+        key = stripped.partition("=")[0].strip().strip('"')
+        if table in ("[uncertainty]", "[distributions]") and "=" in stripped and not stripped.startswith("#") \
+                and key in stale:
+            lines[k] = f"# {line.rstrip()}  # fetorsion design: the given design's range, not the designed value's\n"
+    return "".join(lines)
+
+
+def designed_text(text: str, crank: Crank, best: Candidate) -> str:
+    """The description ``text`` with the chosen design: each moved input set (every entry a ``*``
+    path names) and commented, and the added damper as a ``[[dampers]]`` table."""
+    from ..description.reader import resolve_field
+    from ..studies.calibration import edit_toml_values
+
+    changes = {}
+    for path, value in best.values.items():
+        for where, _ in resolve_field(crank.raw, path):
+            changes[where] = round(value, 3)
+    out = edit_toml_values(text, changes, "fetorsion design") if changes else text
+    out = _ranges_left_behind(out, crank, changes)
+    d = best.damper
+    if d is not None:
+        lines = ["", f"# Added by fetorsion design: a {d.kind} damper at the pulley tuned by Den Hartog's rule to the "
+                 f"first mode, inertia ratio {best.inertia_ratio:.4f}.", "[[dampers]]", f'type = "{d.kind}"',
+                 'at = "front"', f"ring_inertia_kgm2 = {d.ring_inertia:.6g}"]
+        if d.kind in ("rubber", "tuned"):
+            lines.append(f"stiffness_nm_per_rad = {d.stiffness:.6g}")
+        if d.kind == "rubber":
+            lines.append(f"loss_factor = {d.loss_factor:.6g}")
+        if d.kind in ("viscous", "tuned") and d.damping:
+            lines.append(f"damping_nms_per_rad = {d.damping:.6g}")
+        lines.append('source = "fetorsion design: Den Hartog tuning on the lumped chain"')
+        out = out.rstrip("\n") + "\n" + "\n".join(lines) + "\n"
+    return out
+
