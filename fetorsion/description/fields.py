@@ -190,8 +190,8 @@ DESIGN = Section("design", "Optional: what `fetorsion design` may change to make
           "inertia / radius²", "> 0; required with `damper` and objective mass"),
     Field("required_safety", "the fatigue safety the design must reach; default the method's own (M53: 1.15)",
           ">= 1"),
-    Field("<field path>", "`[low, high]`: an input the search may move (file units)", "names a numeric field; "
-          "low < high; contains the nominal value"),
+    Field("<field path>", "`[low, high]`: an input the search may move (file units; the given value may lie "
+          "outside: a rule the design must meet)", "names a numeric field; low < high"),
 ), free=True)
 
 DISTRIBUTIONS = Section("distributions", "Optional: how `fetorsion study` draws an `[uncertainty]` entry in "

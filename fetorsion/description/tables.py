@@ -350,10 +350,12 @@ def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_de
     return None
 
 
-def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str = "uncertainty", keys=None):
+def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str = "uncertainty", keys=None,
+                     nominal_inside: bool = True):
     """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
     ``name = {"path" = [low, high], ...}`` whose members move together (low with low),
-    e.g. a material's E and density. Each range must contain its nominal value. ``keys``: the
+    e.g. a material's E and density. Each range must contain its nominal value (unless
+    ``nominal_inside`` is False: a design space may leave the given design out). ``keys``: the
     entries read (default all of ``t``); ``table`` names them in messages."""
     out = []
     for name, spec in t.data.items():
@@ -374,7 +376,7 @@ def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str =
                 continue
             refused = {p.field for p in problems}  # a nominal value already refused is reported once
             for where, v in targets:
-                if where not in refused and not rng[0] <= v <= rng[1]:
+                if nominal_inside and where not in refused and not rng[0] <= v <= rng[1]:
                     problems.append(Problem(where_name, rng, f"must contain the nominal value {where} = {v}"))
             group.append((path, float(rng[0]), float(rng[1])))
         out.append((name, tuple(group)))
@@ -541,7 +543,8 @@ def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace
         if key in t.data:
             problems.append(Problem(f"design.{key}", t.data[key], "goes with damper = \"rubber\", \"viscous\" or \"tuned\""))
     named = {"objective", "damper", "damper_inertia_ratio", "damper_ring_radius", "required_safety"}
-    ranges = read_uncertainty(t, data, problems, "design", keys=[k for k in t.data if k not in named])
+    ranges = read_uncertainty(t, data, problems, "design", keys=[k for k in t.data if k not in named],
+                              nominal_inside=False)
     inputs = tuple(group[0] for _, group in ranges if group)
     if not inputs and damper is None:
         problems.append(Problem("design", None, "names no input to move and no damper to add"))

@@ -9,8 +9,9 @@ inputs inside their bounds and, when the space allows one, adds a damper at the 
 Den Hartog's rule to the first mode seen from there ([DenHartog]) with an inertia ratio inside its
 bounds. The search minimises the objective (mass, rotating inertia or change) subject to M53's
 governing safety reaching the required one, with SciPy's differential evolution ([Storn]) on the
-unit cube of the bounds, the constraint as a penalty; every candidate it evaluates is kept, and
-the Pareto front (objective against safety) is read from them.
+unit cube of the bounds, the constraint as a penalty, then COBYQA ([Ragonneau]) from its best
+feasible candidate with the constraint as such (the optimum lies on it); every candidate either
+evaluates is kept, and the Pareto front (objective against safety) is read from them.
 
 The explorer decides nothing: the chosen design is written as a new description and confirmed by
 ``fetorsion run`` on it, whose verdict is the condensed FE crank's (``fetorsion design`` does both).
@@ -245,27 +246,60 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
         values = {p: float(xi) for (p, _, _), xi in zip(space.inputs, x)}
         return values, (float(x[-1]) if space.damper else None)
 
+    cache: dict[tuple, Candidate | None] = {}
+
+    def candidate(u) -> Candidate | None:
+        key = tuple(np.round(np.clip(u, 0.0, 1.0), 12))
+        if key not in cache:
+            try:
+                cache[key] = evaluate(*decode(key))
+                seen.append(cache[key])
+            except FetorsionError:  # a geometry that breaks a description rule (an overlap, a web too thin)
+                cache[key] = None
+        return cache[key]
+
     def cost(u):
-        try:
-            c = evaluate(*decode(u))
-        except FetorsionError:  # a geometry that breaks a description rule (an overlap, a web too thin)
+        c = candidate(u)
+        if c is None:
             return 1e3
-        seen.append(c)
         return c.objective / given.objective + PENALTY * max(0.0, required / c.safety - 1.0)
 
     def generation(intermediate_result):
         if progress is not None:
             progress(f"design: {len(seen)} candidates, best cost {intermediate_result.fun:.4f}")
 
+    unit = [(0.0, 1.0)] * len(bounds)
     x0 = [min(max((_nominal(crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]
     x0 += [0.5] if space.damper else []
-    res = scipy.optimize.differential_evolution(cost, [(0.0, 1.0)] * len(bounds), seed=seed, popsize=popsize,
-                                                maxiter=maxiter, polish=False, init="sobol", x0=x0,
-                                                callback=generation, tol=1e-3)
+    res = scipy.optimize.differential_evolution(cost, unit, seed=seed, popsize=popsize, maxiter=maxiter, polish=False,
+                                                init="sobol", x0=x0, callback=generation, tol=1e-3)
+    # The global search ends near the optimum, which lies on the safety constraint; COBYQA (a
+    # derivative-free trust-region method with the constraint as such, [Ragonneau]) walks onto it.
+    feasible = [c for c in seen if c.safety >= required]
+    if feasible:
+        start_at = min(feasible, key=lambda c: c.objective)
+        u0 = [(start_at.values[p] - lo) / (hi - lo) for p, lo, hi in space.inputs]
+        u0 += [(start_at.inertia_ratio - bounds[-1][0]) / (bounds[-1][1] - bounds[-1][0])] if space.damper else []
+
+        def objective(u):
+            c = candidate(u)
+            return 1e3 if c is None else c.objective / given.objective
+
+        def margin(u):
+            c = candidate(u)
+            return -1.0 if c is None else c.safety / required - 1.0
+
+        if progress is not None:
+            progress(f"design: {len(seen)} candidates; walking onto the safety constraint (COBYQA)")
+        scipy.optimize.minimize(objective, u0, method="COBYQA", bounds=unit,
+                                constraints=[scipy.optimize.NonlinearConstraint(margin, 0.0, np.inf)],
+                                options={"maxfev": 40 * len(bounds), "initial_tr_radius": 0.05,
+                                         "final_tr_radius": 1e-3})
     feasible = [c for c in seen if c.safety >= required]
     best = min(feasible, key=lambda c: c.objective) if feasible else None
     notes = [f"explorer: the lumped chain (default partition) with M53 at every k-th speed "
-             f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations",
+             f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations, "
+             "then COBYQA onto the safety constraint",
              "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
              "confirms the chosen design"]
     return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes)
