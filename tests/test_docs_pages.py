@@ -13,7 +13,7 @@ DOCS = Path(__file__).resolve().parents[1] / "docs"
 #: The analysis pages: each carries the four headings (issue 41).
 ANALYSIS_PAGES = ("lumped", "fe-modal", "campbell", "forced-response", "dampers", "calibration", "measured-data",
                   "condensed-crank", "networks-and-transients", "fillet-stress", "fatigue",
-                  "studies")
+                  "studies", "design-search")
 HEADINGS = ("Assumptions", "Equations", "Sources", "Validation")
 
 

@@ -202,7 +202,7 @@ def _nominal(crank: Crank, path: str) -> float:
 
 
 def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6, maxiter: int = 12,
-                      progress=None) -> DesignResult:
+                      target: float | None = None, progress=None) -> DesignResult:
     """Search the description's ``[design]`` space for the least objective that passes M53 on the
     lumped explorer (module docstring).
 
@@ -217,6 +217,9 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
         Differential evolution's seed: the same seed gives the same search.
     popsize, maxiter : int
         Differential evolution's population (per variable) and generations.
+    target : float, optional
+        The safety the explorer must reach, where it differs from the required one: the required
+        safety corrected by how far the confirming FE verdict fell short of the explorer's.
     progress : callable, optional
         Called with a line per generation.
 
@@ -237,7 +240,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     start = time.perf_counter()
     evaluate = _explorer(crank, verdict_scfs(crank) if scf is None else scf)
     given = evaluate({}, None)
-    required = space.required_safety or _required(crank)
+    required = target or space.required_safety or _required(crank)
     bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
     seen: list[Candidate] = []
 
