@@ -32,6 +32,8 @@ from ..solid.outline import mass_properties
 from ..studies.variants import with_values
 from .scfset import SCFSet
 
+#: Differential evolution's generations by default.
+DESIGN_GENERATIONS = 12
 #: The objective's unit, per objective.
 OBJECTIVE_UNITS = {"mass": "kg", "inertia": "kg m^2", "change": "-"}
 #: The penalty per unit shortfall of safety (relative): large against the objective's own
@@ -201,7 +203,8 @@ def _nominal(crank: Crank, path: str) -> float:
     return float(resolve_field(crank.raw, path)[0][1])
 
 
-def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6, maxiter: int = 12,
+def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6,
+                      maxiter: int = DESIGN_GENERATIONS,
                       target: float | None = None, progress=None) -> DesignResult:
     """Search the description's ``[design]`` space for the least objective that passes M53 on the
     lumped explorer (module docstring).
