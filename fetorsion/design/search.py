@@ -22,6 +22,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 import scipy.optimize
@@ -157,43 +158,83 @@ class DesignResult:
         return ax
 
 
-def _explorer(crank: Crank, scf: SCFSet):
-    """``evaluate(values, mu) -> Candidate`` on the lumped chain (module docstring)."""
-    from ..lumped_model.lumped import lumped
-    from ..response.forced import response_setup, solve_response
-    from .crank_verdict import design_speeds, fillet_torque_amplitude
-    from .dampers import den_hartog_damper, equivalent_sdof
-    from .m53 import run_m53_crank
-    from .stress import fillets_of
+#: The sample key of an added damper's inertia ratio (beside the field paths).
+INERTIA_RATIO = "damper_inertia_ratio"
 
-    space = crank.design
-    x0 = {p: _nominal(crank, p) for p, _, _ in space.inputs}
 
-    def objective(v: Crank, ring: float) -> tuple[float, float]:
-        ring_mass = ring / space.damper_ring_radius**2 if ring and space.damper_ring_radius else 0.0
-        mass = crank_mass(v) + ring_mass
-        if space.objective == "mass":
-            return mass, mass
-        if space.objective == "inertia":
-            return float(np.sum(lumped(v).inertias_kgm2)) + ring, mass
-        return float(sum(abs(_nominal(v, p) - x0[p]) / abs(x0[p]) for p in x0)), mass
+@dataclass(frozen=True)
+class ExplorerModel:
+    """The explorer as a study model (:func:`fetorsion.studies.runner.run_samples`): ``model(values)``
+    with ``values`` the ``[design]`` inputs by field path (file units) and, with a damper allowed,
+    :data:`INERTIA_RATIO`; returns the objective, mass, M53's governing safety, place and speed,
+    and the added damper's constants. Its results go to the sample store (a search run again
+    finds them there) and it runs on a Dask cluster as a study's samples do."""
 
-    def evaluate(values: dict[str, float], mu: float | None) -> Candidate:
-        v = with_values(crank, values) if values else crank
+    crank: Crank
+    scf: SCFSet
+    expensive = False
+
+    @cached_property  # every stored sample names its model: one hash of the description and SCFs
+    def key(self) -> str:
+        from ..studies.models import description_hash
+
+        return f"design-explorer/{description_hash(self.crank)}/{hash_text(repr(self.scf))}"
+
+    def __call__(self, values: dict) -> dict:
+        from ..response.forced import response_setup, solve_response
+        from .crank_verdict import design_speeds, fillet_torque_amplitude
+        from .dampers import den_hartog_damper, equivalent_sdof
+        from .m53 import run_m53_crank
+        from .stress import fillets_of
+
+        space = self.crank.design
+        moved = {p: float(v) for p, v in values.items() if p != INERTIA_RATIO}
+        mu = values.get(INERTIA_RATIO)
+        v = with_values(self.crank, moved) if moved else self.crank
         setup = design_speeds(response_setup(v))
         damper = None
         if mu is not None:
             station = setup.damper_station(Damper(space.damper, "front", 0.0, 1.0))
             j_eq, omega_n = equivalent_sdof(setup.M, setup.K, station, 0, setup.torsional_modes)
-            damper = den_hartog_damper(space.damper, mu, j_eq, omega_n, "front", 0.0)
+            damper = den_hartog_damper(space.damper, float(mu), j_eq, omega_n, "front", 0.0)
         fillets = fillets_of(v)
         response = solve_response(setup, () if damper is None else (damper,))
-        m53 = run_m53_crank(v, fillets, fillet_torque_amplitude(setup, response, fillets), setup.rpm, fe_scf=scf)
-        value, mass = objective(v, 0.0 if damper is None else damper.ring_inertia)
-        g = m53.governing
-        return Candidate(dict(values), mu, damper, value, mass, float(g.safety), g.name, float(g.torque_rpm))
+        m53 = run_m53_crank(v, fillets, fillet_torque_amplitude(setup, response, fillets), setup.rpm, fe_scf=self.scf)
+        ring = 0.0 if damper is None else damper.ring_inertia
+        mass = crank_mass(v) + (ring / space.damper_ring_radius**2 if ring and space.damper_ring_radius else 0.0)
+        if space.objective == "mass":
+            value = mass
+        elif space.objective == "inertia":
+            from ..lumped_model.lumped import lumped
 
-    return evaluate
+            value = float(np.sum(lumped(v).inertias_kgm2)) + ring
+        else:
+            value = float(sum(abs(_nominal(v, p) - _nominal(self.crank, p)) / abs(_nominal(self.crank, p))
+                              for p, _, _ in space.inputs))
+        g = m53.governing
+        out = {"objective": value, "mass_kg": mass, "safety": float(g.safety), "governing": g.name,
+               "governing_rpm": float(g.torque_rpm)}
+        if damper is not None:
+            out.update(ring_inertia_kgm2=damper.ring_inertia, stiffness_nm_per_rad=damper.stiffness,
+                       damping_nms_per_rad=damper.damping, loss_factor=damper.loss_factor)
+        return out
+
+
+def hash_text(text: str) -> str:
+    import hashlib
+
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
+    """The :class:`Candidate` of one explorer sample (its values and outputs)."""
+    mu = values.get(INERTIA_RATIO)
+    damper = None if mu is None else Damper(crank.design.damper, "front", 0.0, outputs["ring_inertia_kgm2"],
+                                            outputs["stiffness_nm_per_rad"], outputs["damping_nms_per_rad"],
+                                            outputs["loss_factor"])
+    return Candidate({p: float(v) for p, v in values.items() if p != INERTIA_RATIO}, None if mu is None else float(mu),
+                     damper, outputs["objective"], outputs["mass_kg"], outputs["safety"], outputs["governing"],
+                     outputs["governing_rpm"])
 
 
 def _nominal(crank: Crank, path: str) -> float:
@@ -204,8 +245,8 @@ def _nominal(crank: Crank, path: str) -> float:
 
 
 def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6,
-                      maxiter: int = DESIGN_GENERATIONS,
-                      target: float | None = None, progress=None) -> DesignResult:
+                      maxiter: int = DESIGN_GENERATIONS, target: float | None = None, client=None, store=None,
+                      progress=None) -> DesignResult:
     """Search the description's ``[design]`` space for the least objective that passes M53 on the
     lumped explorer (module docstring).
 
@@ -223,6 +264,11 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     target : float, optional
         The safety the explorer must reach, where it differs from the required one: the required
         safety corrected by how far the confirming FE verdict fell short of the explorer's.
+    client : distributed.Client or ClusterOnDemand, optional
+        Runs each generation's candidates on a Dask cluster (None: here, one after the other; the
+        same search either way).
+    store : SampleStore, optional
+        Where the explorer's results are kept and found (default the sample store).
     progress : callable, optional
         Called with a line per generation.
 
@@ -240,35 +286,51 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     if crank.dampers and space.damper:
         raise FetorsionError("design: the description has [[dampers]] already; [design] damper adds one: "
                              "remove one of them")
+    from ..studies.runner import open_store, run_samples
+
     start = time.perf_counter()
-    evaluate = _explorer(crank, verdict_scfs(crank) if scf is None else scf)
-    given = evaluate({}, None)
+    model = ExplorerModel(crank, verdict_scfs(crank) if scf is None else scf)
+    store = open_store() if store is None else store
+
+    def evaluate_all(samples: list[dict]) -> list[Candidate | None]:
+        records, _ = run_samples(model, samples, store, client, progress=False, label=f"{crank.name}: design")
+        return [candidate_of(crank, s, r["outputs"]) if "outputs" in r else None for s, r in zip(samples, records)]
+
+    given = evaluate_all([{}])[0]
+    if given is None:
+        raise FetorsionError(f"design: the explorer fails on the given design of {crank.name}")
     required = target or space.required_safety or _required(crank)
     bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
     seen: list[Candidate] = []
 
-    def decode(u):
+    def sample_of(u) -> dict:
         x = [lo + ui * (hi - lo) for ui, (lo, hi) in zip(u, bounds)]
         values = {p: float(xi) for (p, _, _), xi in zip(space.inputs, x)}
-        return values, (float(x[-1]) if space.damper else None)
+        if space.damper:
+            values[INERTIA_RATIO] = float(x[-1])
+        return values
 
     cache: dict[tuple, Candidate | None] = {}
 
-    def candidate(u) -> Candidate | None:
-        key = tuple(np.round(np.clip(u, 0.0, 1.0), 12))
-        if key not in cache:
-            try:
-                cache[key] = evaluate(*decode(key))
-                seen.append(cache[key])
-            except FetorsionError:  # a geometry that breaks a description rule (an overlap, a web too thin)
-                cache[key] = None
-        return cache[key]
+    def candidates(us) -> list[Candidate | None]:
+        keys = [tuple(np.round(np.clip(u, 0.0, 1.0), 12)) for u in us]
+        todo = list(dict.fromkeys(k for k in keys if k not in cache))
+        for k, c in zip(todo, evaluate_all([sample_of(k) for k in todo])):
+            cache[k] = c
+            if c is not None:  # None: a geometry that breaks a description rule (an overlap, a web too thin)
+                seen.append(c)
+        return [cache[k] for k in keys]
 
-    def cost(u):
-        c = candidate(u)
+    def cost_of(c: Candidate | None) -> float:
         if c is None:
             return 1e3
         return c.objective / given.objective + PENALTY * max(0.0, required / c.safety - 1.0)
+
+    def cost(u):
+        return cost_of(candidates([u])[0])
+
+    def population(func, us):  # a generation at once: its samples spread over the cluster's workers
+        return [cost_of(c) for c in candidates(list(us))]
 
     def generation(intermediate_result):
         if progress is not None:
@@ -278,7 +340,8 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     x0 = [min(max((_nominal(crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]
     x0 += [0.5] if space.damper else []
     res = scipy.optimize.differential_evolution(cost, unit, seed=seed, popsize=popsize, maxiter=maxiter, polish=False,
-                                                init="sobol", x0=x0, callback=generation, tol=1e-3)
+                                                init="sobol", x0=x0, callback=generation, tol=1e-3,
+                                                updating="deferred", workers=population)
     # The global search ends near the optimum, which lies on the safety constraint; COBYQA (a
     # derivative-free trust-region method with the constraint as such, [Ragonneau]) walks onto it.
     feasible = [c for c in seen if c.safety >= required]
@@ -288,11 +351,11 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
         u0 += [(start_at.inertia_ratio - bounds[-1][0]) / (bounds[-1][1] - bounds[-1][0])] if space.damper else []
 
         def objective(u):
-            c = candidate(u)
+            c = candidates([u])[0]
             return 1e3 if c is None else c.objective / given.objective
 
         def margin(u):
-            c = candidate(u)
+            c = candidates([u])[0]
             return -1.0 if c is None else c.safety / required - 1.0
 
         if progress is not None:
