@@ -11,6 +11,7 @@ back. The lightest design the FE verdict passed is the answer; its files and rep
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
 from dataclasses import dataclass, field
@@ -62,7 +63,8 @@ def _say(message: str) -> None:
 
 
 def run_design(path, out, seed: int = 0, generations: int = DESIGN_GENERATIONS, verify: bool = True,
-               options: RunOptions | None = None, steps=DEFAULT_STEPS, force: bool = False) -> DesignOutcome:
+               options: RunOptions | None = None, steps=DEFAULT_STEPS, force: bool = False,
+               workers: int | None = None, scheduler: str | None = None) -> DesignOutcome:
     """Search ``path``'s ``[design]`` space, write the design into ``out`` and confirm it.
 
     Parameters
@@ -82,6 +84,9 @@ def run_design(path, out, seed: int = 0, generations: int = DESIGN_GENERATIONS, 
         The confirming run's steps (default every step: the full report).
     force : bool
         Replace ``out`` even when it is not an earlier report.
+    workers, scheduler : optional
+        The explorer's candidates on a local Dask cluster of ``workers`` processes, or on the
+        cluster at ``scheduler`` (default: here, one after the other).
 
     Returns
     -------
@@ -96,10 +101,22 @@ def run_design(path, out, seed: int = 0, generations: int = DESIGN_GENERATIONS, 
                              "(docs/design-search.md)")
     check_report_folder(out, "out", force=force, inputs=[path])
     name = f"{path.stem}_designed.toml"
+    with contextlib.ExitStack() as stack:
+        client = None
+        if workers or scheduler:
+            from ..studies.runner import open_client
+
+            client = stack.enter_context(open_client(scheduler, workers))
+        return _loop(crank, path, out, name, seed, generations, verify, options, steps, client)
+
+
+def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, verify: bool, options, steps,
+          client) -> DesignOutcome:
+    """:func:`run_design`'s rounds."""
     outcome, target = None, None
     texts: dict[int, tuple[str, DesignResult]] = {}
     for k in range(ROUNDS if verify else 1):
-        result = run_design_search(crank, seed=seed, maxiter=generations, target=target, progress=_say)
+        result = run_design_search(crank, seed=seed, maxiter=generations, target=target, client=client, progress=_say)
         if result.best is None:
             if outcome is not None and outcome.chosen is not None:
                 break

@@ -27,6 +27,10 @@ def add_parser(sub) -> None:
                    help="write the design without the confirming fetorsion run (the explorer's answer only)")
     p.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                    help=f"FE mesh size of the confirming run (default {DEFAULT_MESH_SIZE / MM:g})")
+    p.add_argument("--workers", type=integer(1, 4096), metavar="N",
+                   help="run each generation's candidates on a local Dask cluster of N workers (default: here, one "
+                        "after the other; the same search either way)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run them on an existing Dask scheduler (tcp://host:8786)")
     p.add_argument("--force", action="store_true", help="replace --out even when it is not an earlier report")
     p.set_defaults(func=cmd_design)
 
@@ -36,9 +40,18 @@ def cmd_design(args) -> int:
     from ..app.run import RunOptions
     from ..io import check_report_folder
 
+    from ..errors import FetorsionError
+    from ..studies.runner import check_scheduler, scheduler_address
+
+    if args.scheduler and args.workers:
+        raise FetorsionError("--workers sizes the local cluster; an existing cluster (--scheduler) has its own workers")
+    if args.scheduler:
+        address, where = scheduler_address(args.scheduler)
+        check_scheduler(address, where)
     check_report_folder(args.out, "--out", force=args.force, inputs=[args.file], force_option="--force")
     outcome = run_design(args.file, args.out, seed=args.seed, generations=args.generations, verify=not args.no_verify,
-                         options=RunOptions(mesh_size=args.mesh_size, html=False), force=args.force)
+                         options=RunOptions(mesh_size=args.mesh_size, html=False), force=args.force,
+                         workers=args.workers, scheduler=args.scheduler)
     print(outcome.search.table())
     for i, c in enumerate(outcome.confirmations):
         print(f"confirmation {i + 1} (fetorsion run, the condensed FE crank as designed): {c.line()}")

@@ -446,9 +446,14 @@ SERIAL_FLUSH_S = 1.0
 SERIAL_BATCH = 32
 
 
-def run_samples(model, samples: list[dict], store: SampleStore, client=None, batch_size: int | None = None,
+#: One stored sample: its ``outputs`` (or ``error``), ``values``, ``model``, ``seconds``, ``worker``.
+SampleRecord = dict[str, float | str | dict[str, float | str]]
+
+
+def run_samples(model, samples: list[dict[str, float]], store: SampleStore, client=None, batch_size: int | None = None,
                 retry_failed: bool = False, label: str = "study",
-                on_record: Callable[[str, dict], None] | None = None, progress: bool = True) -> tuple[list[dict], RunSummary]:
+                on_record: Callable[[str, SampleRecord], None] | None = None,
+                progress: bool = True) -> tuple[list[SampleRecord], RunSummary]:
     """Every sample's record (``outputs`` or ``error``), computing only those not stored.
 
     Parameters
