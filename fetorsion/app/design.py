@@ -130,7 +130,7 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
             return outcome
         texts[k] = (text, result)
         _write(out, name, text, result, outcome, run_folder=f"run-{k + 1}")
-        fe, required, passes = _confirm(out / name, out / f"run-{k + 1}", options, steps)
+        fe, required, passes = _confirm(out / name, out / f"run-{k + 1}", options, steps, crank.design.required_safety)
         c = Confirmation(result.best, result.required, fe, required, passes)
         outcome.confirmations.append(c)
         _say(f"round {k + 1}: {c.line()}")
@@ -170,10 +170,11 @@ def _write(out: Path, name: str, text: str, result: DesignResult, outcome: Desig
                 shutil.copytree(folder, work / keep_as)
 
 
-def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps) -> tuple[float, float, bool]:
+def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
+             required: float | None = None) -> tuple[float, float, bool]:
     """``fetorsion run`` of the designed description: the least safety of the crank as designed
-    (its own dampers, firing and in misfire) by the deciding method, the required one, and
-    whether the verdict passes."""
+    (its own dampers, firing and in misfire) by the deciding method, the required one (the
+    larger of the verdict's and ``required``, the ``[design]`` table's), and whether it passes."""
     from ..report.outcomes import FatigueOutcome
 
     outcome = run(designed, folder, steps=steps, options=options or RunOptions(html=False), force=True)
@@ -183,5 +184,6 @@ def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps) ->
         raise FetorsionError(f"design: the confirming run gave no fatigue verdict ({getattr(fatigue, 'reason', '')})")
     v = fatigue.verdict
     answers = [c.answer(v.method) for c in v.configs if c.as_described]
-    worst = min(answers, key=lambda a: a["safety"] / a["required"])
-    return float(worst["safety"]), float(worst["required"]), bool(v.passes)
+    worst = min(answers, key=lambda a: a["safety"] / max(a["required"], required or 0.0))
+    need = max(float(worst["required"]), required or 0.0)
+    return float(worst["safety"]), need, bool(v.passes) and float(worst["safety"]) >= need
