@@ -117,29 +117,35 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
     texts: dict[int, tuple[str, DesignResult]] = {}
     for k in range(ROUNDS if verify else 1):
         result = run_design_search(crank, seed=seed, maxiter=generations, target=target, client=client, progress=_say)
-        if result.best is None:
-            if outcome is not None and outcome.chosen is not None:
-                break
-            raise FetorsionError(f"design: no candidate reached the safety {result.required:.3f} on the explorer; "
-                                 "widen the [design] bounds or allow a damper")
+        pick = result.best
+        if pick is None:
+            if not verify or not result.candidates:
+                raise FetorsionError(f"design: no candidate reached the safety {result.required:.3f} on the explorer; "
+                                     "widen the [design] bounds or allow a damper")
+            # the explorer is not the verdict: the FE verdict may pass its safest candidate
+            pick = max(result.candidates, key=lambda c: c.safety)
+            _say(f"round {k + 1}: no candidate reached {result.required:.3f} on the explorer; the FE verdict "
+                 f"checks the safest ({pick.safety:.3f})")
         outcome = outcome or DesignOutcome(result, folder=out)
         outcome.search = result
-        text = designed_text(path.read_text(), crank, result.best)
+        text = designed_text(path.read_text(), crank, pick)
         if not verify:
             _write(out, name, text, result, outcome)
             return outcome
         texts[k] = (text, result)
         _write(out, name, text, result, outcome, run_folder=f"run-{k + 1}")
         fe, required, passes = _confirm(out / name, out / f"run-{k + 1}", options, steps, crank.design.required_safety)
-        c = Confirmation(result.best, result.required, fe, required, passes)
+        c = Confirmation(pick, result.required, fe, required, passes)
         outcome.confirmations.append(c)
         _say(f"round {k + 1}: {c.line()}")
         if passes and (outcome.chosen is None or c.candidate.objective < outcome.chosen.candidate.objective):
             outcome.chosen = c
-        held_back = result.best.safety <= result.required * (1 + CLOSE_ENOUGH)  # the constraint is active
+        held_back = pick.safety <= result.required * (1 + CLOSE_ENOUGH)  # the constraint is active
         if passes and (fe <= required * (1 + CLOSE_ENOUGH) or not held_back):
             break
-        target = required * result.best.safety / fe
+        if not passes and result.best is None:
+            break  # the safest candidate fails the FE verdict: nothing in the space passes
+        target = required * pick.safety / fe
     if outcome.chosen is not None:  # the chosen round's files, and its run as run/
         k = outcome.confirmations.index(outcome.chosen)
         outcome.search = texts[k][1]
