@@ -137,3 +137,29 @@ def test_the_design_loop_lands_where_the_fe_verdict_binds(tmp_path):
     fe, required, passes = _confirm(tmp_path / "thinner.toml", tmp_path / "thinner", options, steps, 1.9)
     assert not passes and fe < required == 1.9
     assert "The crank as described: PASS" in (tmp_path / "d" / "run" / "report.md").read_text()
+
+
+@pytest.mark.parametrize("objective", ["inertia", "change"])
+def test_the_other_objectives_are_what_they_say(tmp_path, objective):
+    """``inertia``: the rotating inertia, the crank's (OpenCASCADE's polar inertia of the built solid
+    without fillets and drillings) plus every attachment's (pistons and rods once per pin) plus
+    the added ring's; ``change``: the moved inputs' relative changes summed, by hand."""
+    from fetorsion.design.crank_verdict import verdict_scfs
+    from fetorsion.design.search import INERTIA_RATIO, ExplorerModel
+
+    src = with_design(tmp_path, "renault21", f'objective = "{objective}"\ndamper = "rubber"\n'
+                      'damper_inertia_ratio = [0.05, 0.3]\n"webs.*.thickness" = [18.0, 26.0]\n'
+                      '"pins.*.diameter" = [46.0, 50.0]\n')
+    crank = fetorsion.load(src)
+    out = ExplorerModel(crank, verdict_scfs(crank))({"webs.*.thickness": 20.0, "pins.*.diameter": 49.0,
+                                                    INERTIA_RATIO: 0.1})
+    if objective == "inertia":
+        from fetorsion.solid.geometry import crank_mass_properties
+
+        variant = fetorsion.with_values(crank, {"webs.*.thickness": 20.0, "pins.*.diameter": 49.0}, details=False)
+        solid, _ = crank_mass_properties(variant)
+        attached = sum(a.polar_inertia * (len(variant.pins) if a.at == "pins" else 1) for a in variant.attachments)
+        want = solid.polar_inertia + attached + out["ring_inertia_kgm2"]
+        assert out["objective"] == pytest.approx(want, rel=1e-4)  # OCC's integration tolerance, as for the mass
+    else:
+        assert out["objective"] == pytest.approx(abs(20.0 - 22.0) / 22.0 + abs(49.0 - 48.0) / 48.0, rel=1e-12)
