@@ -280,6 +280,19 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     oil = OilHoles(ot.number("diameter", 0.0, length=True, nonnegative=True),
                    ot.flag("in_journals"), ot.flag("in_pins"))
     ot.finish()
+    step = None
+    if "solid" in data:
+        st = root.table("solid")
+        given = st.text("step")
+        st.text("source", default="")
+        st.finish()
+        path = Path(source).parent / given
+        if not given.lower().endswith((".step", ".stp")):
+            problems.append(Problem("solid.step", given, "must be a STEP file (.step or .stp)"))
+        elif not path.is_file():
+            problems.append(Problem("solid.step", given, f"no such file ({path})"))
+        else:
+            step = str(path.resolve())
 
     attachments = []
     for t in root.tables("attachments", required=False):
@@ -308,7 +321,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
                   tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings=bearings,
-                  distributions=distributions, dampers=dampers, limits=limits, design=design)
+                  distributions=distributions, dampers=dampers, limits=limits, design=design, solid_step=step)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(uncertainty_bound_problems(crank, parse_crank))

@@ -133,6 +133,16 @@ OIL_HOLES = Section("oil_holes", "Diametral oil drillings.", (
     Field("in_pins", "drill every pin", "true or false"),
 ))
 
+SOLID = Section("solid", "Optional: the crank's solid from CAD in place of the one built from the dimensions. The "
+                "solid's crank axis is the x axis, its front (pulley) end at x = 0, as fetorsion builds it; the "
+                "tables above still say where the journals and pins lie (the parts are cut there) and what the "
+                "fillets and drillings are.", (
+    Field("step", "a STEP file (`.step`, `.stp`; path relative to the description), one closed solid; its "
+          "header's unit is read (a solid whose size disagrees with the description by a factor of about 1000 "
+          "or 25.4 is refused)", "an existing file"),
+    Field("source", "where the solid comes from", "a string"),
+))
+
 ATTACHMENTS = Section("attachments", "Rigid bodies fixed to the shaft.", (
     Field("name", "label", "a string"),
     Field("at", "where: `front` (pulley face), `rear` (flywheel flange face), `pins` (one on every pin: piston "
@@ -386,7 +396,7 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 ), array=True)
 
 #: The tables of a crank description, in the order the documentation shows them.
-CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, ATTACHMENTS,
+CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, SOLID, ATTACHMENTS,
                   BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS, DESIGN)
 #: The tables of a chain file.
 CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS,

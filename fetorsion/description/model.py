@@ -446,6 +446,8 @@ class Crank:
     distributions: tuple[tuple[str, str, float | None], ...] = ()
     #: ``[design]``: what ``fetorsion design`` may change, and what it minimises.
     design: DesignSpace | None = None
+    #: ``[solid] step``: the CAD solid (absolute path) the FE analyses mesh in place of the built one.
+    solid_step: str | None = None
 
     @property
     def cylinders(self) -> int:

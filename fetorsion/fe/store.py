@@ -45,7 +45,9 @@ def condensed_key(crank, mesh_size: float, cuts=None) -> str:
     """The cache key of ``crank`` condensed at ``mesh_size`` (m) with section cuts at ``cuts``
     ((k, 3) m or None): module docstring."""
     exact = lambda a: [float(v).hex() for v in np.asarray(a, float).ravel()]  # noqa: E731
+    solid = getattr(crank, "solid_step", None)  # a CAD solid: its content, not its name, is the geometry
     text = json.dumps({"description": {k: v for k, v in crank.raw.items() if k not in NOT_READ_BY_FE},
+                       "solid": None if solid is None else hashlib.sha256(Path(solid).read_bytes()).hexdigest(),
                        "mesh_size": exact([mesh_size]), "cuts": None if cuts is None else exact(cuts),
                        "layout": NPZ_FORMAT, "code": code_hash()}, sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()

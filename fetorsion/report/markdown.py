@@ -9,6 +9,7 @@ outcomes.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 from ..description.model import Crank
 from ..design.scfset import SCFSet
@@ -71,8 +72,12 @@ def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     measured = crank.notes.get("measured_first_torsional_hz")
     paper_fe = crank.notes.get("paper_fe_first_torsional_hz")
     t = res.timings_s
+    step = getattr(crank, "solid_step", None)
+    solid = (f"Solid: the CAD solid `{Path(step).name}` ([solid] step; its header's unit, crank axis x, cut into "
+             "parts at the description's journal, web and pin planes; fillets and drillings found on it by their "
+             "faces). " if step else "")
     lines = ["## 3D FE modal analysis (Gmsh + scikit-fem, curved P2 tetrahedra)", "",
-             f"Mesh: {res.elements} ten-node tetrahedra, {res.nodes} nodes, {res.dofs} DOF, global size "
+             solid + f"Mesh: {res.elements} ten-node tetrahedra, {res.nodes} nodes, {res.dofs} DOF, global size "
              f"{size * 1e3:g} mm (finer at fillets and drillings), minimum SICN {sicn}. Solver "
              f"{res.backend}/{res.method}; assembly {t.get('assembly', 0):.1f} s, factorisation "
              f"{t.get('factorize', 0):.1f} s, eigen-solve {t.get('eigensolve', 0):.1f} s.", "",

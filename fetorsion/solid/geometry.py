@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 from contextlib import contextmanager
 from dataclasses import dataclass
+from pathlib import Path
 
 import gmsh
 import numpy as np
@@ -397,34 +398,11 @@ def _faces_at(x: float) -> tuple[int, ...]:
     return tuple(tag for _, tag in gmsh.model.getEntitiesInBoundingBox(x - t, -big, -big, x + t, big, big, 2))
 
 
-def build_solid(crank: Crank) -> CrankSolid:
-    """Build ``crank`` as one OCC solid split into its parts, in the current Gmsh model.
-
-    Call inside :func:`gmsh_session`. Leaves the model synchronised, with physical
-    volume groups named after the parts (``journal_1``, ``web_1``, ``pin_1``, ...,
-    ``front_1``, ``rear_1``) and physical surface groups ``front_face`` and ``rear_face``.
-
-    Parameters
-    ----------
-    crank : Crank
-        A validated description (SI units).
-
-    Returns
-    -------
-    CrankSolid
-        Entity tags and x ranges (m) of the parts, the end faces, the fillet and drilling
-        faces, and the crank axis (the x axis through the origin).
-
-    Raises
-    ------
-    GeometryError
-        Naming the part, when a web does not cover its pin or journal, a fillet has no room,
-        or the parts do not fuse into one solid.
-    """
+def _built_solid(crank: Crank, pieces) -> int:
+    """The crank built from its dimensions as one OCC volume (fused, filleted, drilled); its tag."""
     occ = gmsh.model.occ
     s = 1.0 / MODEL_UNIT
     R = crank.engine.crank_radius * s
-    pieces = layout(crank)
 
     volumes = []
     for i, p in enumerate(pieces):
@@ -461,6 +439,107 @@ def build_solid(crank: Crank) -> CrankSolid:
         if len(out) != 1:
             raise GeometryError(f"the oil drillings split the crank into {len(out)} pieces")
         solid = out[0][1]
+    return solid
+
+
+#: Factors a solid's size may be off by when its STEP header states the wrong unit.
+UNIT_SLIPS = {1000.0: "m read as mm", 0.001: "mm read as m", 25.4: "in read as mm", 1 / 25.4: "mm read as in",
+              10.0: "cm read as mm", 0.1: "mm read as cm"}
+
+
+def _imported_solid(crank: Crank, pieces) -> int:
+    """The crank's ``[solid]`` STEP file as one OCC volume; its tag. Refused, naming the file, when
+    it holds no closed volume, several bodies, or a solid whose length disagrees with the
+    description's layout (a wrong unit: :data:`UNIT_SLIPS`)."""
+    occ = gmsh.model.occ
+    name = Path(crank.solid_step).name
+    gmsh.option.setString("Geometry.OCCTargetUnit", "MM")  # OCC converts from the file header's unit
+    try:
+        with _quiet_stdout():
+            occ.importShapes(crank.solid_step)
+    except Exception as exc:
+        raise GeometryError(f"{name}: not a STEP file OpenCASCADE can read ({exc})") from None
+    occ.synchronize()
+    volumes = gmsh.model.getEntities(3)
+    if not volumes:
+        raise GeometryError(f"{name}: no closed volume in the file (open surfaces only?): give one solid crank")
+    if len(volumes) > 1:
+        out, _ = occ.fuse(volumes[:1], volumes[1:])
+        occ.synchronize()
+        if len(out) != 1:
+            raise GeometryError(f"{name}: {len(out)} separate bodies, not one solid crank")
+    (_, solid), = gmsh.model.getEntities(3)
+    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, solid)
+    length = pieces[-1].x1
+    ratio = (x1 - x0) / length
+    if abs(ratio - 1.0) > 0.02:
+        slip = min(UNIT_SLIPS, key=lambda f: abs(math.log(ratio / f)))
+        why = f"; its unit looks wrong ({UNIT_SLIPS[slip]})" if abs(math.log(ratio / slip)) < 0.05 else ""
+        raise GeometryError(f"{name}: the solid is {x1 - x0:.6g} mm long along x, the description's crank "
+                            f"{length:.6g} mm{why}")
+    if abs(x0) > 0.02 * length:
+        raise GeometryError(f"{name}: the solid starts at x = {x0:.6g} mm; its front (pulley) end must be at x = 0 "
+                            "with the crank axis along x")
+    return solid
+
+
+def write_step(crank: Crank, path) -> Path:
+    """Write ``crank`` built from its dimensions (one solid: fused, filleted, drilled) as a STEP
+    file, in mm; the crank axis is x, the front end at x = 0 (what ``[solid]`` reads back)."""
+    path = Path(path)
+    with gmsh_session("step"):
+        _built_solid(crank, layout(crank))
+        gmsh.model.occ.synchronize()
+        with _quiet_stdout():  # OpenCASCADE's STEP writer prints to the process's stdout
+            gmsh.write(str(path))
+    return path
+
+
+@contextmanager
+def _quiet_stdout():
+    """File descriptor 1 sent to /dev/null for the duration (C++ writers ignore sys.stdout)."""
+    import os
+    import sys
+
+    sys.stdout.flush()
+    saved = os.dup(1)
+    try:
+        with open(os.devnull, "w") as null:
+            os.dup2(null.fileno(), 1)
+            yield
+    finally:
+        os.dup2(saved, 1)
+        os.close(saved)
+
+
+def build_solid(crank: Crank) -> CrankSolid:
+    """Build ``crank`` as one OCC solid split into its parts, in the current Gmsh model.
+
+    Call inside :func:`gmsh_session`. Leaves the model synchronised, with physical
+    volume groups named after the parts (``journal_1``, ``web_1``, ``pin_1``, ...,
+    ``front_1``, ``rear_1``) and physical surface groups ``front_face`` and ``rear_face``.
+
+    Parameters
+    ----------
+    crank : Crank
+        A validated description (SI units).
+
+    Returns
+    -------
+    CrankSolid
+        Entity tags and x ranges (m) of the parts, the end faces, the fillet and drilling
+        faces, and the crank axis (the x axis through the origin).
+
+    Raises
+    ------
+    GeometryError
+        Naming the part, when a web does not cover its pin or journal, a fillet has no room,
+        or the parts do not fuse into one solid.
+    """
+    occ = gmsh.model.occ
+    s = 1.0 / MODEL_UNIT
+    pieces = layout(crank)
+    solid = _imported_solid(crank, pieces) if crank.solid_step else _built_solid(crank, pieces)
     occ.synchronize()
     n = len(gmsh.model.getEntities(3))
     if n != 1:
