@@ -285,6 +285,9 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
         raise FetorsionError(f"design: {crank.source or crank.name} has no [design] table (what may change)")
     if crank.excitation is None:
         raise FetorsionError(f"design: {crank.source or crank.name} has no [excitation] table: nothing drives it")
+    if crank.solid_step and space.inputs:
+        raise FetorsionError(f"design: {crank.source or crank.name} takes its solid from {crank.solid_step}: its "
+                             "dimensions cannot move ([design] may add a damper only)")
     if crank.dampers and space.damper:
         raise FetorsionError("design: the description has [[dampers]] already; [design] damper adds one: "
                              "remove one of them")

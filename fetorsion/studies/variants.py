@@ -11,7 +11,8 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     """A copy of ``crank`` with each field path (file units, ``*`` allowed) set to a value.
 
     The variant is a new design, so the original's ``[uncertainty]`` ranges (and their
-    ``[distributions]``) and its ``[design]`` space are dropped.
+    ``[distributions]``) and its ``[design]`` space are dropped; so is a ``[solid]`` CAD file when
+    anything changes (the variant's solid is built from its dimensions).
     ``details=False`` also drops fillets and oil holes: a cheap variant for coarse FE
     checks, where those details would dominate the element count.
 
@@ -33,6 +34,8 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     raw = dict(crank.raw)
     for key in ("uncertainty", "distributions", "design"):
         raw.pop(key, None)
+    if changes or not details:  # the CAD solid has the given dimensions: a variant is built from its own
+        raw.pop("solid", None)
     if not details:
         for key in ("fillets", "oil_holes"):
             raw.pop(key, None)
