@@ -29,16 +29,7 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-DESIGN = """
-[design]
-objective = "mass"
-damper = "rubber"
-damper_inertia_ratio = [0.02, 0.3]
-damper_ring_radius = 85.0
-"webs.*.thickness" = [26.0, 34.0]
-"pins.*.diameter" = [70.0, 80.0]
-"""
-
+DESIGN = ROOT / "examples" / "inline6_design_table.toml"
 
 def cpu() -> str:
     try:
@@ -61,7 +52,7 @@ def main() -> None:
         from fetorsion.studies.runner import open_client, open_store
 
         src = tmp / "inline6_design.toml"
-        src.write_text((ROOT / "geometry/inline6_diesel.toml").read_text() + DESIGN)
+        src.write_text((ROOT / "geometry/inline6_diesel.toml").read_text() + "\n" + DESIGN.read_text())
         crank = fetorsion.load(src)
         print(f"CPU: {cpu()}, {os.cpu_count()} cores; inline six, 3 variables, {args.generations} generations")
 

@@ -45,7 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
 # Output options: (attribute, option name, accepted suffixes); "-" means standard output.
 OUTPUT_OPTIONS = (("json", "--json", (".json",)), ("plot", "--plot", PLOT_FORMATS), ("html", "--html", (".html",)),
                   ("output", "-o", None), ("png", "--png", (".png",)), ("npz", "--npz", (".npz",)),
-                  ("uff", "--uff", (".uff", ".unv")), ("step", "--step", (".step", ".stp")))
+                  ("uff", "--uff", (".uff", ".unv")), ("step_file", "--step", (".step", ".stp")))
 
 
 def check_options(args) -> None:

@@ -18,16 +18,16 @@ from .common import (SUPPORT_CHOICES, add_json_option, add_mesh_size_option, che
 
 def cmd_mesh(args) -> int:
     outputs = args.output or []
-    if not outputs and args.png is None and args.step is None:
+    if not outputs and args.png is None and args.step_file is None:
         raise FetorsionError("mesh: give -o OUT (.msh, .vtu, .inp), --png OUT.png and/or --step OUT.step")
     crank = load_crank(args.file, "a geometry to mesh")
-    if args.step is not None:
+    if args.step_file is not None:
         from ..io import atomic_output
         from ..solid.geometry import write_step
 
-        with atomic_output(args.step) as tmp:
+        with atomic_output(args.step_file) as tmp:
             call_isolated(write_step, crank, tmp, what=f"{crank.name}: STEP")
-        print(f"STEP -> {args.step}")
+        print(f"STEP -> {args.step_file}")
     if outputs:
         check_mesh_size(crank, args.mesh_size, "mesh", args.purpose, args.fillet_size)
     print(call_isolated(_mesh_job, crank, args.mesh_size, outputs, args.fillet_size, args.purpose, args.modes,
@@ -189,8 +189,9 @@ def add_parsers(sub) -> None:
     mp.add_argument("--modes", type=integer(1, 1000), default=DEFAULT_MODES,
                     help=".inp: eigenfrequencies asked of *FREQUENCY, rigid-body ones included (default %(default)s)")
     mp.add_argument("--png", metavar="OUT.png", help="write an off-screen picture of the solid")
-    mp.add_argument("--step", metavar="OUT.step", help="write the solid built from the dimensions as a STEP file "
-                    "(mm; crank axis x, front end at x = 0: what a description's [solid] reads back)")
+    mp.add_argument("--step", dest="step_file", metavar="OUT.step",
+                    help="write the solid built from the dimensions as a STEP file (mm; crank axis x, front end at "
+                         "x = 0: what a description's [solid] reads back)")
     mp.set_defaults(func=cmd_mesh)
 
     fp = sub.add_parser("modal", help="free-free 3D FE modal analysis with attachments, modes labelled")
