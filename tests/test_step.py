@@ -102,3 +102,20 @@ def test_a_step_that_is_not_one_closed_solid_in_the_right_unit_is_refused(writte
     (tmp_path / "crank.iges").write_text("x")
     with pytest.raises(DescriptionError, match=r"must be a STEP file"):
         fetorsion.load(with_solid(tmp_path, "crank.iges"))
+
+
+def test_a_cad_cranks_lumped_chain_takes_its_inertias_from_the_solid(written, tmp_path):
+    """The lumped chain of a [solid] crank: every part's inertia OpenCASCADE's over its own solid,
+    so the chain's total is the solid's polar inertia (fillets and drillings in) plus the
+    attachments (pistons and rods once per pin) to round-off; on the round trip its f1 is the built
+    crank's within the issue's 0.3 % (only the fillets, which the formulas leave out, differ)."""
+    from fetorsion.lumped_model.lumped import lumped
+    from fetorsion.solid.geometry import crank_mass_properties
+
+    (tmp_path / written.name).write_bytes(written.read_bytes())
+    built, read = fetorsion.load(RENAULT), fetorsion.load(with_solid(tmp_path, written.name))
+    chain = lumped(read)
+    total, _ = crank_mass_properties(read)
+    attached = sum(a.polar_inertia * (len(read.pins) if a.at == "pins" else 1) for a in read.attachments)
+    assert chain.inertias_kgm2.sum() == pytest.approx(total.polar_inertia + attached, rel=1e-9)
+    assert chain.frequencies_hz[0] == pytest.approx(lumped(built).frequencies_hz[0], rel=3e-3)

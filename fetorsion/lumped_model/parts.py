@@ -101,16 +101,26 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
     j_e = math.pi * d_e**4 / 32
     oil = crank.oil_holes
     piston = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.PINS))
+    if crank.solid_step:  # a CAD crank: its parts' inertias integrated on its own solid
+        from ..solid.geometry import part_inertias
+
+        solid = part_inertias(crank)
+    else:
+        solid = {}
+
+    def own(kind: str, index: int, formula: float) -> float:
+        return solid.get(f"{kind}_{index + 1}", formula)
 
     pieces: list[tuple[str, int, float, float, float, float]] = []  # kind, index, length, L_e, I, attached
     for i, c in enumerate(crank.front):
-        pieces.append(("front", i, c.length, cylinder_equivalent_length(c, d_e), cylinder_inertia(c, rho), 0.0))
+        pieces.append(("front", i, c.length, cylinder_equivalent_length(c, d_e), own("front", i, cylinder_inertia(c, rho)),
+                       0.0))
     for t in range(crank.cylinders + 1):
         j = crank.journals[t]
         inertia = cylinder_inertia(j, rho)
         if oil.in_journals:
             inertia -= oil_hole_inertia(j, oil.diameter, rho)
-        pieces.append(("journal", t, j.length, cylinder_equivalent_length(j, d_e), inertia, 0.0))
+        pieces.append(("journal", t, j.length, cylinder_equivalent_length(j, d_e), own("journal", t, inertia), 0.0))
         if t == crank.cylinders:
             break
         for side in (0, 1):
@@ -121,12 +131,13 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
                 inertia = cylinder_inertia(p, rho, R)
                 if oil.in_pins:
                     inertia -= oil_hole_inertia(p, oil.diameter, rho, R)
-                pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), inertia, piston))
+                pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), own("pin", t, inertia), piston))
             length = web_equivalent_length(crank, w, d_e, web_method) if web_length is None else web_length(crank, w, d_e)
-            pieces.append(("web", w, web.thickness, length,
-                           mass_properties(web, R, rho)["polar_inertia"], 0.0))
+            pieces.append(("web", w, web.thickness, length, own("web", w, mass_properties(web, R, rho)["polar_inertia"]),
+                           0.0))
     for i, c in enumerate(crank.rear):
-        pieces.append(("rear", i, c.length, cylinder_equivalent_length(c, d_e), cylinder_inertia(c, rho), 0.0))
+        pieces.append(("rear", i, c.length, cylinder_equivalent_length(c, d_e), own("rear", i, cylinder_inertia(c, rho)),
+                       0.0))
 
     ends = np.concatenate([[0.0], np.cumsum([p[2] for p in pieces])])
     parts = tuple(

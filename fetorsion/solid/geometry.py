@@ -610,6 +610,27 @@ def solid_mass_properties(solid: CrankSolid, density: float) -> tuple[Body, dict
     return body(3, solid.volumes, density), parts
 
 
+def part_inertias(crank: Crank) -> dict[str, float]:
+    """Polar inertia (kg·m², about the crank axis) of every part of ``crank``'s solid by name
+    (``journal_1``, ``web_1``, ``pin_1``, ...): OpenCASCADE's integral over the solid cut at the
+    description's planes, fillets and drillings included. Kept per solid file and layout: a CAD
+    crank's lumped chain reads them instead of the formulas of its outline."""
+    import json
+    import os
+
+    stat = os.stat(crank.solid_step) if crank.solid_step else None
+    key = (crank.solid_step, None if stat is None else (stat.st_mtime_ns, stat.st_size),
+           json.dumps([(p.name, p.x0, p.x1) for p in layout(crank)]), crank.material.density)
+    if key not in _PART_INERTIAS:
+        _, parts = crank_mass_properties(crank)
+        _PART_INERTIAS[key] = {name: b.polar_inertia for name, b in parts.items()}
+    return dict(_PART_INERTIAS[key])
+
+
+#: part_inertias' results, by solid file, its state and the layout.
+_PART_INERTIAS: dict[tuple, dict[str, float]] = {}
+
+
 def crank_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
     """Build ``crank`` in a private Gmsh session and return :func:`solid_mass_properties`."""
     with gmsh_session():
