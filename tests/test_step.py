@@ -119,3 +119,22 @@ def test_a_cad_cranks_lumped_chain_takes_its_inertias_from_the_solid(written, tm
     attached = sum(a.polar_inertia * (len(read.pins) if a.at == "pins" else 1) for a in read.attachments)
     assert chain.inertias_kgm2.sum() == pytest.approx(total.polar_inertia + attached, rel=1e-9)
     assert chain.frequencies_hz[0] == pytest.approx(lumped(built).frequencies_hz[0], rel=3e-3)
+
+
+def test_the_picture_of_a_cad_crank_shows_what_was_found_on_it(written, tmp_path):
+    """The report's picture of a [solid] crank: the fillet faces drawn red and the drilling faces
+    green over the parts' colours (pixels of those colours in the picture), off-screen."""
+    import numpy as np
+    from PIL import Image
+
+    from fetorsion.report.render import render_solid
+
+    (tmp_path / written.name).write_bytes(written.read_bytes())
+    out = render_solid(fetorsion.load(with_solid(tmp_path, written.name)), tmp_path / "solid.png", window=(800, 450))
+    img = np.asarray(Image.open(out).convert("RGB")).astype(int)
+
+    def share(rgb):  # pixels near a colour, shading allowed (a quarter of the range)
+        return np.mean(np.all(np.abs(img - np.array(rgb)) < 64, axis=2))
+
+    assert share((0xd6, 0x27, 0x28)) > 1e-4 and share((0x2c, 0xa0, 0x2c)) > 1e-5
+    assert share((0x4c, 0x72, 0xb0)) > 1e-3  # the journals, for scale

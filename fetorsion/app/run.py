@@ -290,7 +290,13 @@ def step_fe(ctx: RunContext) -> FEOutcome:
         ctx.deferred.append(functools.partial(
             render_mode, cm.nodes, cm.tets, fe.shapes[im.mode], ctx.folder / im.file,
             title=f"mode {im.mode + 1}: {fe.frequencies_hz[im.mode]:.1f} Hz, {fe.kinds[im.mode]}"))
-    return FEOutcome(fe, size, images)
+    solid_image = ""
+    if ctx.crank.solid_step:  # a CAD solid: what was recognised on it, for the user to check
+        from ..report.render import render_solid
+
+        solid_image = "solid_recognised.png"
+        ctx.deferred.append(functools.partial(render_solid, ctx.crank, ctx.folder / solid_image))
+    return FEOutcome(fe, size, images, solid_image)
 
 
 def step_bearings(ctx: RunContext) -> BearingsOutcome | None:

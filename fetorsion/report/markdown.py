@@ -88,6 +88,9 @@ def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     lines += [f"| {j + 1} | {f:.1f} | {k} | {fr[0]:.2f} | {fr[1]:.2f} | {fr[2]:.2f} |"
               for j, (f, k, fr) in enumerate(zip(res.frequencies_hz, res.kinds, res.fractions))]
     lines += ["", "Rigid-body roots (Hz): " + ", ".join(f"{f:.1e}" for f in res.rigid_body_hz), ""]
+    if outcome.solid_image:
+        lines += ["What was found on the CAD solid (check it): journals blue, pins orange, fillets red, drillings "
+                  "green.", "", f"![]({outcome.solid_image})", ""]
     return lines + [f"![]({img.file})" for img in outcome.images] + [""]
 
 

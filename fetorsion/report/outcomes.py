@@ -73,6 +73,8 @@ class FEOutcome:
     modal: CrankModal
     mesh_size_m: float
     images: tuple[ModeImage, ...]
+    #: A CAD crank's picture of the journals, pins, fillets and drillings found on its solid.
+    solid_image: str = ""
 
 
 @dataclass(frozen=True)

@@ -143,7 +143,8 @@ def render_gif(nodes, tets, displacement, path, title: str = "", frames: int = 1
 
 
 # Journals, webs, pins, end sections: one colour per kind, picked to read in grey-scale too.
-_COLOURS = {"front": "#7f7f7f", "journal": "#4c72b0", "web": "#c8c8c8", "pin": "#dd8452", "rear": "#7f7f7f"}
+_COLOURS = {"front": "#7f7f7f", "journal": "#4c72b0", "web": "#c8c8c8", "pin": "#dd8452", "rear": "#7f7f7f",
+            "fillet": "#d62728", "drilling": "#2ca02c"}
 
 
 def render_solid(crank, path, size: float = DEFAULT_MESH_SIZE, window: tuple[int, int] = (1600, 900)) -> Path:
@@ -164,8 +165,11 @@ def render_solid(crank, path, size: float = DEFAULT_MESH_SIZE, window: tuple[int
     pv = _pyvista()
     with gmsh_session("picture"):
         solid = build_solid(crank)
-        points, tris, part = surface_triangles(solid, size)
-    kinds = np.array([p.kind for p in solid.parts])[part]
+        points, tris, part, surface = surface_triangles(solid, size)
+    kinds = np.array([p.kind for p in solid.parts], dtype=object)[part]
+    # what the geometry step found on the solid, over the parts' colours: fillets, drillings
+    kinds[np.isin(surface, solid.fillet_faces)] = "fillet"
+    kinds[np.isin(surface, solid.hole_faces)] = "drilling"
     faces = np.column_stack([np.full(len(tris), 3), tris]).ravel()
     surf = pv.PolyData(points * 1e3, faces)  # mm reads better on the axes
     plotter = pv.Plotter(off_screen=True, window_size=list(window))
@@ -174,7 +178,11 @@ def render_solid(crank, path, size: float = DEFAULT_MESH_SIZE, window: tuple[int
         sel = np.flatnonzero(kinds == kind)
         if sel.size:
             plotter.add_mesh(surf.extract_cells(sel), color=colour, smooth_shading=True, specular=0.3)
-    plotter.add_text(f"{crank.name}", font_size=12, color="black")
+    found = (f"{sum(p.kind == 'journal' for p in solid.parts)} journals (blue), "
+             f"{sum(p.kind == 'pin' for p in solid.parts)} pins (orange), webs (grey), "
+             f"{len(solid.fillet_faces)} fillet faces (red), {len(solid.hole_faces)} drilling faces (green)")
+    source = f"CAD solid {Path(crank.solid_step).name}" if getattr(crank, "solid_step", None) else "built from the dimensions"
+    plotter.add_text(f"{crank.name}\n{source}: {found}", font_size=10, color="black")
     plotter.show_axes()
     # Look across the axis (x, horizontal in the picture), a little from the front and
     # above, so the throws at their crank angles show.

@@ -638,7 +638,7 @@ def crank_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
         return solid_mass_properties(solid, crank.material.density)
 
 
-def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """A linear triangulation of the outer surface of a built solid, for pictures.
 
     Parameters
@@ -653,6 +653,7 @@ def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.nd
     points : (P, 3) float array, m
     triangles : (T, 3) int array of 0-based point indices
     part : (T,) int array, index into ``solid.parts`` of the part each triangle bounds
+    surface : (T,) int array, the Gmsh surface each triangle lies on (``solid.fillet_faces`` ...)
     """
     gmsh.option.setNumber("Mesh.MeshSizeMax", size / MODEL_UNIT)
     gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 16)
@@ -661,7 +662,7 @@ def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.nd
     lookup = np.zeros(int(tags.max()) + 1, dtype=np.int64)
     lookup[tags.astype(np.int64)] = np.arange(tags.size)
     part_of_volume = {v: k for k, p in enumerate(solid.parts) for v in p.volumes}
-    tris, part = [], []
+    tris, part, surface = [], [], []
     for _, s in gmsh.model.getEntities(2):
         up = gmsh.model.getAdjacencies(2, s)[0]
         if len(up) != 1:  # a cut between two parts is inside the metal
@@ -670,4 +671,5 @@ def surface_triangles(solid: CrankSolid, size: float) -> tuple[np.ndarray, np.nd
         for et, en in zip(etags, enodes):
             tris.append(lookup[en.astype(np.int64)].reshape(et.size, -1)[:, :3])
             part.append(np.full(et.size, part_of_volume[int(up[0])]))
-    return coords.reshape(-1, 3) * MODEL_UNIT, np.concatenate(tris), np.concatenate(part)
+            surface.append(np.full(et.size, s))
+    return coords.reshape(-1, 3) * MODEL_UNIT, np.concatenate(tris), np.concatenate(part), np.concatenate(surface)
