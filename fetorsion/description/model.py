@@ -448,6 +448,9 @@ class Crank:
     design: DesignSpace | None = None
     #: ``[solid] step``: the CAD solid (absolute path) the FE analyses mesh in place of the built one.
     solid_step: str | None = None
+    #: A throw cut from that solid (:func:`fetorsion.webs.throwfe.throw_of`): its slab of the whole
+    #: crank's (x from, x to, m) and the turn (rad, about x) that puts its pin at angle 0.
+    solid_window: tuple[float, float, float] | None = None
 
     @property
     def cylinders(self) -> int:

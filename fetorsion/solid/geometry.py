@@ -469,6 +469,17 @@ def _imported_solid(crank: Crank, pieces) -> int:
         if len(out) != 1:
             raise GeometryError(f"{name}: {len(out)} separate bodies, not one solid crank")
     (_, solid), = gmsh.model.getEntities(3)
+    if crank.solid_window is not None:  # a throw: its slab, moved to x = 0 and turned to put its pin at angle 0
+        lo, hi, turn = crank.solid_window
+        a, b = lo / MODEL_UNIT, hi / MODEL_UNIT
+        box = occ.addBox(a, -1e4, -1e4, b - a, 2e4, 2e4)
+        out, _ = occ.intersect([(3, solid)], [(3, box)])
+        if len(out) != 1:
+            raise GeometryError(f"{name}: the throw's slab x = {a:.6g}-{b:.6g} mm is {len(out)} pieces, not one")
+        occ.translate(out, -a, 0, 0)
+        occ.rotate(out, 0, 0, 0, 1, 0, 0, turn)
+        occ.synchronize()
+        solid = out[0][1]
     x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, solid)
     length = pieces[-1].x1
     ratio = (x1 - x0) / length

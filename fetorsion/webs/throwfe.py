@@ -117,10 +117,17 @@ def throw_of(crank: Crank, index: int) -> Crank:
     e = crank.engine
     engine = Engine(cylinders=1, strokes_per_cycle=e.strokes_per_cycle, stroke=e.stroke,
                     rod_length=e.rod_length, crank_angles=(0.0,), firing_order=(1,))
+    window = None
+    if crank.solid_step:  # a CAD crank: the throw is its solid's slab, journal centre to journal centre
+        from ..solid.geometry import MODEL_UNIT, layout
+
+        journals = [p for p in layout(crank) if p.kind == "journal"]
+        a, b = journals[index], journals[index + 1]
+        window = (0.5 * (a.x0 + a.x1) * MODEL_UNIT, 0.5 * (b.x0 + b.x1) * MODEL_UNIT, -e.crank_angles[index])
     return Crank(name="throw", material=crank.material, engine=engine,
                  journals=(half(crank.journals[index]), half(crank.journals[index + 1])),
                  pins=(crank.pins[index],), webs=(crank.webs[2 * index], crank.webs[2 * index + 1]),
-                 fillets=crank.fillets, oil_holes=crank.oil_holes)
+                 fillets=crank.fillets, oil_holes=crank.oil_holes, solid_step=crank.solid_step, solid_window=window)
 
 
 def default_mesh_size(crank: Crank) -> float:
@@ -315,6 +322,8 @@ def throw_key(throw: Crank, mesh_size: float | None) -> str:
               "webs": [dataclasses.asdict(w) for w in throw.webs],
               "fillets": dataclasses.asdict(throw.fillets), "oil_holes": dataclasses.asdict(throw.oil_holes),
               "mesh_size": mesh_size, "model": MODEL_VERSION}
+    if throw.solid_step:  # a CAD crank's throw: its solid's content and the slab, not the dimensions alone
+        fields["solid"] = (hashlib.sha256(Path(throw.solid_step).read_bytes()).hexdigest(), throw.solid_window)
     for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
         fields["material"].pop(key, None)
     text = json.dumps(fields, sort_keys=True, default=repr)
