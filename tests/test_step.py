@@ -219,3 +219,22 @@ def test_a_crank_whose_webs_are_not_the_built_outline_runs_end_to_end(tmp_path):
     fine = run_modal(lightened, 0.014, modes=8).first_torsional()
     assert fine == pytest.approx(coarse, rel=5e-3)
     assert abs(gaps["lightened"] - gaps["built"]) < 0.01
+
+
+def test_a_designed_cad_crank_still_finds_its_solid(written, tmp_path):
+    """The designed description of a [solid] crank is written elsewhere: its step path is made
+    absolute, so the written file loads with the same solid (a damper-only design)."""
+    from fetorsion.description.model import Damper
+    from fetorsion.design.search import Candidate, designed_text
+
+    (tmp_path / written.name).write_bytes(written.read_bytes())
+    src = tmp_path / "crank.toml"
+    src.write_text(RENAULT.read_text() + f'\n[solid]\nstep = "{written.name}"\n\n[design]\ndamper = "rubber"\n'
+                   'damper_inertia_ratio = [0.02, 0.3]\ndamper_ring_radius = 60.0\n')
+    crank = fetorsion.load(src)
+    best = Candidate({}, 0.1, Damper("rubber", "front", 0.0, 0.002, 5e4, 0.0, 0.2), 0.0, 0.0, 1.5, "", 0.0)
+    (tmp_path / "elsewhere").mkdir()
+    out = tmp_path / "elsewhere" / "designed.toml"
+    out.write_text(designed_text(src.read_text(), crank, best))
+    back = fetorsion.load(out)
+    assert back.solid_step == crank.solid_step and len(back.dampers) == 1

@@ -19,6 +19,7 @@ The explorer decides nothing: the chosen design is written as a new description 
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from dataclasses import dataclass, field
@@ -413,6 +414,19 @@ def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> s
     return "".join(lines)
 
 
+def _solid_path_absolute(text: str, step: str) -> str:
+    """``text`` with its ``[solid] step`` path made absolute: the designed file is written elsewhere."""
+    lines, table = text.splitlines(keepends=True), ""
+    for k, line in enumerate(lines):
+        stripped = line.strip()
+        if stripped.startswith("["):
+            table = stripped
+        elif table == "[solid]" and stripped.partition("=")[0].strip() == "step":
+            old = stripped.partition("=")[2].split("#")[0].strip()
+            lines[k] = f"step = {json.dumps(step)}  # was {old}: the designed file lives elsewhere\n"
+    return "".join(lines)
+
+
 def designed_text(text: str, crank: Crank, best: Candidate) -> str:
     """The description ``text`` with the chosen design: each moved input set (every entry a ``*``
     path names) and commented, and the added damper as a ``[[dampers]]`` table."""
@@ -425,6 +439,8 @@ def designed_text(text: str, crank: Crank, best: Candidate) -> str:
             changes[where] = round(value, 3)
     out = edit_toml_values(text, changes, "fetorsion design") if changes else text
     out = _ranges_left_behind(out, crank, changes)
+    if crank.solid_step:
+        out = _solid_path_absolute(out, crank.solid_step)
     d = best.damper
     if d is not None:
         lines = ["", f"# Added by fetorsion design: a {d.kind} damper at the pulley tuned by Den Hartog's rule to the "
