@@ -46,7 +46,12 @@ PENALTY = 10.0
 def crank_mass(crank: Crank) -> float:
     """The crank's steel mass, kg: its cylinders (journals, pins, front and rear sections, bores
     taken out) and its webs (their outlines with counterweights, uniform thickness); fillets and
-    drillings left out (a fraction of a percent)."""
+    drillings left out (a fraction of a percent). A CAD crank's (``[solid]``): its solid's, by
+    OpenCASCADE, fillets and drillings in."""
+    if crank.solid_step:
+        from ..solid.geometry import crank_mass_properties
+
+        return float(crank_mass_properties(crank)[0].mass)
     rho = crank.material.density
     cylinders = (*crank.journals, *crank.pins, *crank.front, *crank.rear)
     shafts = sum(rho * math.pi / 4 * (c.diameter**2 - c.bore**2) * c.length for c in cylinders)
