@@ -512,6 +512,11 @@ def largest_torques(fillets, torque_amplitude, rpm) -> dict:
     return out
 
 
+def m53_required(limits) -> float:
+    """The safety M53 requires: the description's ``[limits] fatigue_required_safety``, else the rule's 1.15."""
+    return getattr(limits, "fatigue_required_safety", 0.0) or M53_REQUIRED_Q
+
+
 def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None = None, rated_rpm: float | None = None,
                   material=None, limits=None) -> M53Result:
     """UR M53 on a crank description in one configuration.
@@ -546,7 +551,7 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
     limits = crank.limits if limits is None else limits
     rated = float(crank.excitation.speed_range[1] if rated_rpm is None else rated_rpm)
     sigma_add = getattr(limits, "additional_bending", 0.0) or SIGMA_ADD_TRUNK_PISTON
-    required = getattr(limits, "fatigue_required_safety", 0.0) or M53_REQUIRED_Q
+    required = m53_required(limits)
     user_strength = getattr(limits, "fatigue_strength_bending", 0.0) or mat.fatigue_strength or None
     force = cylinder_pin_forces(crank, rated)
     torques = largest_torques(fillets, torque_amplitude, rpm)

@@ -49,9 +49,9 @@ def crank_mass(crank: Crank) -> float:
     drillings left out (a fraction of a percent). A CAD crank's (``[solid]``): its solid's, by
     OpenCASCADE, fillets and drillings in."""
     if crank.solid_step:
-        from ..solid.geometry import crank_mass_properties
+        from ..solid.geometry import cad_mass_properties
 
-        return float(crank_mass_properties(crank)[0].mass)
+        return float(cad_mass_properties(crank)[0].mass)
     rho = crank.material.density
     cylinders = (*crank.journals, *crank.pins, *crank.front, *crank.rear)
     shafts = sum(rho * math.pi / 4 * (c.diameter**2 - c.bore**2) * c.length for c in cylinders)
@@ -184,7 +184,10 @@ class ExplorerModel:
     def key(self) -> str:
         from ..studies.models import description_hash
 
-        return f"design-explorer/{description_hash(self.crank)}/{hash_text(repr(self.scf))}"
+        import hashlib
+
+        scf = hashlib.sha256(repr(self.scf).encode()).hexdigest()[:16]
+        return f"design-explorer/{description_hash(self.crank)}/{scf}"
 
     def __call__(self, values: dict) -> dict:
         from ..response.forced import response_setup, solve_response
@@ -226,12 +229,6 @@ class ExplorerModel:
             out.update(ring_inertia_kgm2=damper.ring_inertia, stiffness_nm_per_rad=damper.stiffness,
                        damping_nms_per_rad=damper.damping, loss_factor=damper.loss_factor)
         return out
-
-
-def hash_text(text: str) -> str:
-    import hashlib
-
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
 
 
 def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
@@ -285,6 +282,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     DesignResult
     """
     from .crank_verdict import verdict_scfs
+    from .m53 import m53_required
 
     space = crank.design
     if space is None:
@@ -310,7 +308,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     given = evaluate_all([{}])[0]
     if given is None:
         raise FetorsionError(f"design: the explorer fails on the given design of {crank.name}")
-    required = target or space.required_safety or _required(crank)
+    required = target or space.required_safety or m53_required(crank.limits)
     bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
     seen: list[Candidate] = []
 
@@ -383,13 +381,6 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
              "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
              "confirms the chosen design"]
     return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes)
-
-
-def _required(crank: Crank) -> float:
-    from .fatigue import M53_REQUIRED_Q
-
-    given = getattr(crank.limits, "fatigue_required_safety", 0.0)
-    return float(given) if given > 0 else M53_REQUIRED_Q
 
 
 def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> str:

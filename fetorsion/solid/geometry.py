@@ -621,25 +621,31 @@ def solid_mass_properties(solid: CrankSolid, density: float) -> tuple[Body, dict
     return body(3, solid.volumes, density), parts
 
 
-def part_inertias(crank: Crank) -> dict[str, float]:
-    """Polar inertia (kg·m², about the crank axis) of every part of ``crank``'s solid by name
-    (``journal_1``, ``web_1``, ``pin_1``, ...): OpenCASCADE's integral over the solid cut at the
-    description's planes, fillets and drillings included. Kept per solid file and layout: a CAD
-    crank's lumped chain reads them instead of the formulas of its outline."""
+def cad_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
+    """:func:`crank_mass_properties` of a CAD crank (``[solid]``), kept per solid file, its
+    state, the layout and the density: the lumped chain and the design search read them for every
+    variant, and its solid does not change with them."""
     import json
     import os
 
-    stat = os.stat(crank.solid_step) if crank.solid_step else None
-    key = (crank.solid_step, None if stat is None else (stat.st_mtime_ns, stat.st_size),
+    stat = os.stat(crank.solid_step)
+    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size,
            json.dumps([(p.name, p.x0, p.x1) for p in layout(crank)]), crank.material.density)
-    if key not in _PART_INERTIAS:
-        _, parts = crank_mass_properties(crank)
-        _PART_INERTIAS[key] = {name: b.polar_inertia for name, b in parts.items()}
-    return dict(_PART_INERTIAS[key])
+    if key not in _CAD_MASS_PROPERTIES:
+        _CAD_MASS_PROPERTIES[key] = crank_mass_properties(crank)
+    return _CAD_MASS_PROPERTIES[key]
 
 
-#: part_inertias' results, by solid file, its state and the layout.
-_PART_INERTIAS: dict[tuple, dict[str, float]] = {}
+#: cad_mass_properties' results, by solid file, its state, the layout and the density.
+_CAD_MASS_PROPERTIES: dict[tuple, tuple[Body, dict[str, Body]]] = {}
+
+
+def part_inertias(crank: Crank) -> dict[str, float]:
+    """Polar inertia (kg·m², about the crank axis) of every part of a CAD crank's solid by name
+    (``journal_1``, ``web_1``, ``pin_1``, ...): OpenCASCADE's integral over the solid cut at the
+    description's planes, fillets and drillings included; a CAD crank's lumped chain reads them
+    instead of the formulas of its outline."""
+    return {name: b.polar_inertia for name, b in cad_mass_properties(crank)[1].items()}
 
 
 def crank_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
