@@ -238,3 +238,22 @@ def test_a_designed_cad_crank_still_finds_its_solid(written, tmp_path):
     out.write_text(designed_text(src.read_text(), crank, best))
     back = fetorsion.load(out)
     assert back.solid_step == crank.solid_step and len(back.dampers) == 1
+
+
+def test_a_cad_cranks_design_objectives_are_its_solids(written, tmp_path):
+    """A [solid] crank's mass and rotating inertia in the design search are its solid's
+    (OpenCASCADE, fillets and drillings in) plus the attachments', as its lumped chain's are."""
+    from fetorsion.design.crank_verdict import verdict_scfs
+    from fetorsion.design.search import INERTIA_RATIO, ExplorerModel
+    from fetorsion.solid.geometry import crank_mass_properties
+
+    (tmp_path / written.name).write_bytes(written.read_bytes())
+    src = tmp_path / "crank.toml"
+    src.write_text(RENAULT.read_text() + f'\n[solid]\nstep = "{written.name}"\n\n[design]\nobjective = "inertia"\n'
+                   'damper = "rubber"\ndamper_inertia_ratio = [0.02, 0.3]\ndamper_ring_radius = 60.0\n')
+    crank = fetorsion.load(src)
+    out = ExplorerModel(crank, verdict_scfs(crank))({INERTIA_RATIO: 0.1})
+    total, _ = crank_mass_properties(crank)
+    attached = sum(a.polar_inertia * (len(crank.pins) if a.at == "pins" else 1) for a in crank.attachments)
+    assert out["objective"] == pytest.approx(total.polar_inertia + attached + out["ring_inertia_kgm2"], rel=1e-9)
+    assert out["mass_kg"] == pytest.approx(total.mass + out["ring_inertia_kgm2"] / 0.06**2, rel=1e-12)

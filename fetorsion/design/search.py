@@ -217,8 +217,10 @@ class ExplorerModel:
             from ..lumped_model.lumped import lumped
 
             # as the mass: fillets and drillings left out (the lumped chain subtracts drillings by
-            # formula, which OpenCASCADE's solid with them differs from by 3e-4)
-            value = float(np.sum(lumped(with_values(self.crank, moved, details=False)).inertias_kgm2)) + ring
+            # formula, which OpenCASCADE's solid with them differs from by 3e-4); a CAD crank's is
+            # its solid's, fillets and drillings in (dropping its details would drop its solid)
+            bare = v if self.crank.solid_step else with_values(self.crank, moved, details=False)
+            value = float(np.sum(lumped(bare).inertias_kgm2)) + ring
         else:
             value = float(sum(abs(_nominal(v, p) - _nominal(self.crank, p)) / abs(_nominal(self.crank, p))
                               for p, _, _ in space.inputs))
