@@ -497,6 +497,18 @@ CASES = [
     ("damper-json-txt", "damper {d}/crank.toml --json {d}/notes.txt", {}, 2, ["--json"]),
     ("damper-fe", "damper {d}/crank.toml --source fe", {}, 2, ["--source fe"]),
     ("run-mu-negative", "run {d}/crank.toml --out {d}/new --inertia-ratio -1", {}, 2, ["--inertia-ratio"]),
+    # --- design (issue 45): every option and the [design] table refused before any work
+    ("design-no-table", "design {d}/crank.toml --out {d}/new", {}, 2, ["[design] table"]),
+    ("design-generations", "design {d}/d.toml --out {d}/new --generations 0",
+     {"d.toml": RENAULT + '\n[design]\n"webs.*.thickness" = [20.0, 24.0]\n'}, 2, ["--generations"]),
+    ("design-mesh", "design {d}/d.toml --out {d}/new --mesh-size 0.3",
+     {"d.toml": RENAULT + '\n[design]\n"webs.*.thickness" = [20.0, 24.0]\n'}, 2, ["--mesh-size 0.3"]),
+    ("design-ratio", "design {d}/d.toml --out {d}/new",
+     {"d.toml": RENAULT + '\n[design]\ndamper = "rubber"\ndamper_inertia_ratio = [0.3, 0.1]\n'}, 2,
+     ["design.damper_inertia_ratio", "0 < low < high"]),
+    ("design-solid-missing", "modal {d}/s.toml", {"s.toml": RENAULT + '\n[solid]\nstep = "none.step"\n'}, 2,
+     ["solid.step", "no such file"]),
+    ("mesh-step-suffix", "mesh {d}/crank.toml --step {d}/out.igs", {}, 2, ["--step", ".igs"]),
     # --- --compare (issue 18)
     ("compare-missing", "response {d}/c.toml --compare {d}/none.csv", {"c.toml": ENGINE_CHAIN}, 2,
      ["--compare", "none.csv", "not a file"]),

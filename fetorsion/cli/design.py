@@ -49,6 +49,10 @@ def cmd_design(args) -> int:
         address, where = scheduler_address(args.scheduler)
         check_scheduler(address, where)
     check_report_folder(args.out, "--out", force=args.force, inputs=[args.file], force_option="--force")
+    if not args.no_verify:  # the confirming run's mesh, refused now rather than after the search
+        from .common import check_mesh_size, load_description
+
+        check_mesh_size(load_description(args.file), args.mesh_size, "modal")
     outcome = run_design(args.file, args.out, seed=args.seed, generations=args.generations, verify=not args.no_verify,
                          options=RunOptions(mesh_size=args.mesh_size, html=False), force=args.force,
                          workers=args.workers, scheduler=args.scheduler)
