@@ -454,7 +454,8 @@ def summary_lines(run: RunOutcome) -> list[str]:
     if fat is not None and not isinstance(fat, Skipped):
         v = fat.verdict
         decide = [c.name for c in v.configs if c.as_described]
-        out.append(f"- **The crank as described: {'PASS' if v.passes else 'FAIL'}** by {v.method} (decided by: "
+        out.append(f"- **The crank as described: {'PASS' if v.passes else 'FAIL'}** by {v.method}, ζ = "
+                   f"{v.damping_ratio:.4g} ({v.damping_source}) (decided by: "
                    f"{'; '.join(decide)}; the other rows inform: no damper where it has one, the recommended damper).")
         out += [f"- **Verdict, {line.split(': ', 1)[0]}:** {line.split(': ', 1)[1]} ({fat.model})." for line in v.lines()]
         out.append(f"- **Damping:** the verdict rests on ζ = {v.damping_ratio:.4g}, "
