@@ -520,7 +520,7 @@ def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace
         return None
     t = root.table("design")
     objective = t.choice("objective", DESIGN_OBJECTIVES, "mass")
-    damper = t.choice("damper", ("rubber", "viscous", "tuned"), "rubber") if "damper" in t.data else None
+    damper = t.choice("damper", DAMPER_TYPES, DAMPER_TYPES[0]) if "damper" in t.data else None
     ratio = ring = None
     if "damper_inertia_ratio" in t.data:
         r = t.numbers("damper_inertia_ratio")
@@ -534,14 +534,15 @@ def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace
     required = t.number("required_safety", None) if "required_safety" in t.data else None
     if required is not None and not required >= 1:
         problems.append(Problem("design.required_safety", required, "must be >= 1"))
-    if damper is not None and ratio is None:
+    if damper is not None and "damper_inertia_ratio" not in t.data:  # a bad one is refused above
         problems.append(Problem("design.damper_inertia_ratio", None, f"is required with damper = {damper!r}"))
-    if damper is not None and objective == "mass" and ring is None:
+    if damper is not None and objective == "mass" and "damper_ring_radius" not in t.data:
         problems.append(Problem("design.damper_ring_radius", None, "is required with a damper and objective mass "
                                 "(the ring's mass is its inertia over the radius squared)"))
     for key in ("damper_inertia_ratio", "damper_ring_radius") if damper is None else ():
         if key in t.data:
-            problems.append(Problem(f"design.{key}", t.data[key], "goes with damper = \"rubber\", \"viscous\" or \"tuned\""))
+            problems.append(Problem(f"design.{key}", t.data[key],
+                                    "goes with damper = " + " or ".join(f'"{k}"' for k in DAMPER_TYPES)))
     named = {"objective", "damper", "damper_inertia_ratio", "damper_ring_radius", "required_safety"}
     ranges = read_uncertainty(t, data, problems, "design", keys=[k for k in t.data if k not in named],
                               nominal_inside=False)
