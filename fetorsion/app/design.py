@@ -4,20 +4,24 @@ The explorer (:func:`fetorsion.design.search.run_design_search`) and the FE verd
 lumped chain against the condensed crank in its bearings, firing against the worst misfire too),
 so the loop maps one onto the other: after each confirming run the explorer's target safety
 becomes the required one scaled by the explorer's safety over the FE verdict's at the design just
-confirmed, and the search runs again — while the FE verdict fails, or passes with more than
-:data:`CLOSE_ENOUGH` to spare where the explorer's constraint was the one holding the design
-back. The lightest design the FE verdict passed is the answer; its files and report are kept.
+confirmed, its f1 is scaled by the FE crank's in-bearing f1 over its own (the resonance margin),
+and its heat limit by its heat over the FE verdict's (the added damper's rating); the search runs
+again — while the FE verdict fails, or passes with more than :data:`CLOSE_ENOUGH` to spare on a
+constraint that held the explorer's design back. The lightest design the FE verdict passed is
+the answer; its files and report are kept.
 """
 
 from __future__ import annotations
 
 import contextlib
 import json
+import math
 import sys
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
-from ..design.search import DESIGN_GENERATIONS, Candidate, DesignResult, designed_text, run_design_search
+from ..design.search import (DESIGN_GENERATIONS, Candidate, DesignResult, DesignTargets, designed_text,
+                             resonance_clearance, run_design_search)
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_report_manifest, write_text_atomic
 from .run import DEFAULT_STEPS, RunOptions, run
@@ -30,21 +34,59 @@ CLOSE_ENOUGH = 0.02
 
 
 @dataclass(frozen=True)
+class FEAnswer:
+    """What ``fetorsion run`` of a designed description says: the FE verdict's least safety of the
+    crank as designed (firing and misfire) and the required one, the first mode in its bearings
+    (Hz), the added damper's heat firing (W; 0 without one), and whether the verdict passes (the
+    safety and the heat; the resonance margin is the loop's to judge)."""
+
+    safety: float
+    required: float
+    f1_hz: float
+    damper_power_w: float
+    verdict_passes: bool
+
+
+@dataclass(frozen=True)
 class Confirmation:
-    """One design confirmed by ``fetorsion run``: the explorer's candidate, the FE verdict's least
-    safety of the crank as designed (firing and misfire) against the required one, and whether it
-    passes."""
+    """One design confirmed by ``fetorsion run``: the explorer's candidate, the targets it was
+    searched for, the FE answer, the resonance clearance on the FE f1 (NaN: no such constraint)
+    and whether it passes every constraint."""
 
     candidate: Candidate
-    target: float
-    fe_safety: float
-    required: float
+    targets: DesignTargets
+    fe: FEAnswer
+    clearance: float
     passes: bool
 
+    @property
+    def target(self) -> float:
+        return self.targets.safety
+
+    @property
+    def fe_safety(self) -> float:
+        return self.fe.safety
+
+    @property
+    def required(self) -> float:
+        return self.fe.required
+
     def line(self) -> str:
-        return (f"explorer safety {self.candidate.safety:.3f} (target {self.target:.3f}), FE verdict "
-                f"{self.fe_safety:.3f} against {self.required:.2f}: {'pass' if self.passes else 'FAIL'}, "
-                f"objective {self.candidate.objective:.4g}")
+        t = self.targets
+        text = (f"explorer safety {self.candidate.safety:.3f} (target {t.safety:.3f}), FE verdict "
+                f"{self.fe.safety:.3f} against {self.fe.required:.2f}")
+        if t.orders:
+            text += (f"; f1 in the bearings {self.fe.f1_hz:.1f} Hz (explorer {self.candidate.f1_hz:.1f} Hz), "
+                     f"resonance clearance {100 * self.clearance:+.1f} % against {100 * t.margin:.0f} %")
+        if t.heat_limit_w and self.candidate.damper is not None:
+            text += f"; damper heat {self.fe.damper_power_w:.1f} W (explorer {self.candidate.damper_power_w:.1f} W)"
+        return text + f": {'pass' if self.passes else 'FAIL'}, objective {self.candidate.objective:.4g}"
+
+    def to_dict(self) -> dict:
+        return {**self.candidate.to_dict(), "targets": asdict(self.targets), "fe": asdict(self.fe),
+                "target": self.target, "fe_safety": self.fe.safety, "required": self.fe.required,
+                "fe_resonance_clearance": None if self.clearance != self.clearance else self.clearance,
+                "passes": self.passes}
 
 
 @dataclass
@@ -113,19 +155,21 @@ def run_design(path, out, seed: int = 0, generations: int = DESIGN_GENERATIONS, 
 def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, verify: bool, options, steps,
           client) -> DesignOutcome:
     """:func:`run_design`'s rounds."""
-    outcome, target = None, None
+    space = crank.design
+    outcome, aim = None, {}
     texts: dict[int, tuple[str, DesignResult]] = {}
     for k in range(ROUNDS if verify else 1):
-        result = run_design_search(crank, seed=seed, maxiter=generations, target=target, client=client, progress=_say)
+        result = run_design_search(crank, seed=seed, maxiter=generations, client=client, progress=_say, **aim)
+        t = result.targets
         pick = result.best
         if pick is None:
             if not verify or not result.candidates:
-                raise FetorsionError(f"design: no candidate reached the safety {result.required:.3f} on the explorer; "
-                                     "widen the [design] bounds or allow a damper")
-            # the explorer is not the verdict: the FE verdict may pass its safest candidate
-            pick = max(result.candidates, key=lambda c: c.safety)
-            _say(f"round {k + 1}: no candidate reached {result.required:.3f} on the explorer; the FE verdict "
-                 f"checks the safest ({pick.safety:.3f})")
+                raise FetorsionError(f"design: no candidate met the constraints on the explorer (safety "
+                                     f"{result.required:.3f}{_others(t)}); widen the [design] bounds or allow a damper")
+            # the explorer is not the verdict: the FE verdict may pass the candidate nearest to passing
+            pick = min(result.candidates, key=t.shortfall)
+            _say(f"round {k + 1}: no candidate met the constraints on the explorer; the FE verdict checks the "
+                 f"nearest (safety {pick.safety:.3f})")
         outcome = outcome or DesignOutcome(result, folder=out)
         outcome.search = result
         text = designed_text(path.read_text(), crank, pick)
@@ -134,23 +178,40 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
             return outcome
         texts[k] = (text, result)
         _write(out, name, text, result, outcome, run_folder=f"run-{k + 1}")
-        fe, required, passes = _confirm(out / name, out / f"run-{k + 1}", options, steps, crank.design.required_safety)
-        c = Confirmation(pick, result.required, fe, required, passes)
+        fe = _confirm(out / name, out / f"run-{k + 1}", options, steps, space.required_safety)
+        clearance = (resonance_clearance(fe.f1_hz, t.orders, t.speed_range_rpm) if t.orders else math.nan)
+        passes = fe.verdict_passes and fe.safety >= fe.required and not clearance < t.margin
+        c = Confirmation(pick, t, fe, clearance, passes)
         outcome.confirmations.append(c)
         _say(f"round {k + 1}: {c.line()}")
         if passes and (outcome.chosen is None or c.candidate.objective < outcome.chosen.candidate.objective):
             outcome.chosen = c
-        held_back = pick.safety <= result.required * (1 + CLOSE_ENOUGH)  # the constraint is active
-        if passes and (fe <= required * (1 + CLOSE_ENOUGH) or not held_back):
+        # each constraint: (held the explorer's design back, the FE answer's spare on it)
+        active = [(pick.safety <= t.safety * (1 + CLOSE_ENOUGH), fe.safety / fe.required - 1.0)]
+        if t.heat_limit_w and pick.damper is not None and fe.damper_power_w > 0:
+            active.append((pick.damper_power_w >= t.heat_limit_w / (1 + CLOSE_ENOUGH),
+                           1.0 - fe.damper_power_w / space.damper_heat_rating))
+        if t.orders:
+            active.append((t.clearance(pick) <= t.margin + CLOSE_ENOUGH, clearance - t.margin))
+        if passes and all(spare <= CLOSE_ENOUGH for held, spare in active if held):
             break
         if not passes and result.best is None:
-            break  # the safest candidate fails the FE verdict: nothing in the space passes
-        target = required * pick.safety / fe
+            break  # the nearest candidate fails the FE verdict: nothing in the space passes
+        aim = {"target": fe.required * pick.safety / fe.safety,
+               "frequency_factor": fe.f1_hz / pick.f1_hz if t.orders else 1.0}
+        if t.heat_limit_w and pick.damper is not None and fe.damper_power_w > 0:
+            aim["heat_limit"] = space.damper_heat_rating * pick.damper_power_w / fe.damper_power_w
     if outcome.chosen is not None:  # the chosen round's files, and its run as run/
         k = outcome.confirmations.index(outcome.chosen)
         outcome.search = texts[k][1]
         _write(out, name, texts[k][0], outcome.search, outcome, run_folder=f"run-{k + 1}", keep_as="run")
     return outcome
+
+
+def _others(t: DesignTargets) -> str:
+    """The constraints besides the safety, as words."""
+    return ((f", damper heat <= {t.heat_limit_w:.1f} W" if t.heat_limit_w else "")
+            + (f", resonance clearance >= {100 * t.margin:.0f} %" if t.orders else ""))
 
 
 def _write(out: Path, name: str, text: str, result: DesignResult, outcome: DesignOutcome,
@@ -162,9 +223,7 @@ def _write(out: Path, name: str, text: str, result: DesignResult, outcome: Desig
     earlier = {p.name: p for p in out.iterdir() if p.is_dir()} if out.is_dir() else {}
     with atomic_folder(out) as work:
         write_text_atomic(work / name, text)
-        data = {**result.to_dict(), "confirmations": [
-            {**c.candidate.to_dict(), "target": c.target, "fe_safety": c.fe_safety, "required": c.required,
-             "passes": c.passes} for c in outcome.confirmations]}
+        data = {**result.to_dict(), "confirmations": [c.to_dict() for c in outcome.confirmations]}
         write_text_atomic(work / "design.json", json.dumps(data, indent=1) + "\n")
         lines = [result.table()] + [f"confirmation {i + 1}: {c.line()}" for i, c in enumerate(outcome.confirmations)]
         write_text_atomic(work / "design.txt", "\n".join(lines) + "\n")
@@ -177,10 +236,11 @@ def _write(out: Path, name: str, text: str, result: DesignResult, outcome: Desig
 
 
 def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
-             required: float | None = None) -> tuple[float, float, bool]:
+             required: float | None = None) -> FEAnswer:
     """``fetorsion run`` of the designed description: the least safety of the crank as designed
     (its own dampers, firing and in misfire) by the deciding method, the required one (the
-    larger of the verdict's and ``required``, the ``[design]`` table's), and whether it passes."""
+    larger of the verdict's and ``required``, the ``[design]`` table's), the first mode in the
+    bearings, the designed dampers' heat firing, and whether the verdict passes."""
     from ..report.outcomes import FatigueOutcome
 
     outcome = run(designed, folder, steps=steps, options=options or RunOptions(html=False), force=True)
@@ -188,8 +248,12 @@ def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
     fatigue = outcome.fatigue
     if not isinstance(fatigue, FatigueOutcome):
         raise FetorsionError(f"design: the confirming run gave no fatigue verdict ({getattr(fatigue, 'reason', '')})")
+    if outcome.bearings is None:
+        raise FetorsionError("design: the confirming run built no condensed crank in its bearings")
     v = fatigue.verdict
-    answers = [c.answer(v.method) for c in v.configs if c.as_described]
+    described = [c for c in v.configs if c.as_described]
+    answers = [c.answer(v.method) for c in described]
     worst = min(answers, key=lambda a: a["safety"] / max(a["required"], required or 0.0))
     need = max(float(worst["required"]), required or 0.0)
-    return float(worst["safety"]), need, bool(v.passes) and float(worst["safety"]) >= need
+    heat = max((c.damper_power_w for c in described if c.misfire is None), default=0.0)
+    return FEAnswer(float(worst["safety"]), need, float(outcome.bearings.f1_bearings_hz), float(heat), bool(v.passes))

@@ -200,6 +200,14 @@ DESIGN = Section("design", "Optional: what `fetorsion design` may change to make
           "inertia / radius²", "> 0; required with `damper` and objective mass"),
     Field("required_safety", "the fatigue safety the design must reach; default the method's own (M53: 1.15)",
           ">= 1"),
+    Field("damper_heat_rating_w", "the added damper's continuous heat rating, W: its largest mean dissipation "
+          "over the speed range may not exceed it (written as its `allowed_power_w`)", "> 0; with `damper`"),
+    Field("resonance_orders", "the major orders whose resonance with the first mode in the bearings must stay "
+          "out of the running range (`speed_range_rpm`) by `resonance_margin`", "a list of orders > 0; with "
+          "`resonance_margin`"),
+    Field("resonance_margin", "how far each resonance speed 60 f1 / q must lie outside the running range, as a "
+          "share of the range's nearer end (0.1: below 0.9 × low or above 1.1 × high)", "0 < margin < 1; with "
+          "`resonance_orders`"),
     Field("<field path>", "`[low, high]`: an input the search may move (file units; the given value may lie "
           "outside: a rule the design must meet)", "names a numeric field; low < high"),
 ), free=True)

@@ -402,6 +402,10 @@ class DesignSpace:
     share of the first mode's equivalent inertia seen from the pulley (``damper_inertia_ratio``,
     the bounds) and the ring's radius of gyration (``damper_ring_radius``, m), which turns its
     inertia into mass. ``required_safety``: None for the fatigue method's own.
+    ``damper_heat_rating``: the added damper's continuous heat rating, W (None: not rated).
+    ``resonance_orders`` and ``resonance_margin``: each resonance speed 60 f1 / q of these orders
+    with the first mode in the bearings lies outside the running range by this share of its nearer
+    end (empty: no such constraint).
     """
 
     inputs: tuple[tuple[str, float, float], ...]
@@ -410,6 +414,9 @@ class DesignSpace:
     damper_inertia_ratio: tuple[float, float] | None = None
     damper_ring_radius: float | None = None
     required_safety: float | None = None
+    damper_heat_rating: float | None = None
+    resonance_orders: tuple[float, ...] = ()
+    resonance_margin: float = 0.0
 
 
 @dataclass(frozen=True)

@@ -534,20 +534,35 @@ def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace
     required = t.number("required_safety", None) if "required_safety" in t.data else None
     if required is not None and not required >= 1:
         problems.append(Problem("design.required_safety", required, "must be >= 1"))
+    heat = t.number("damper_heat_rating_w", positive=True) if "damper_heat_rating_w" in t.data else None
+    orders, margin = (), 0.0
+    if "resonance_orders" in t.data:
+        orders = t.numbers("resonance_orders")
+        if not all(q > 0 for q in orders) or t.data["resonance_orders"] == []:
+            problems.append(Problem("design.resonance_orders", t.data["resonance_orders"],
+                                    "must be a non-empty list of orders > 0"))
+            orders = ()
+    if "resonance_margin" in t.data:
+        margin = t.number("resonance_margin", above=0.0, below=1.0)
+    for key, other in (("resonance_orders", "resonance_margin"), ("resonance_margin", "resonance_orders")):
+        if key in t.data and other not in t.data:
+            problems.append(Problem(f"design.{other}", None, f"is required with {key}"))
     if damper is not None and "damper_inertia_ratio" not in t.data:  # a bad one is refused above
         problems.append(Problem("design.damper_inertia_ratio", None, f"is required with damper = {damper!r}"))
     if damper is not None and objective == "mass" and "damper_ring_radius" not in t.data:
         problems.append(Problem("design.damper_ring_radius", None, "is required with a damper and objective mass "
                                 "(the ring's mass is its inertia over the radius squared)"))
-    for key in ("damper_inertia_ratio", "damper_ring_radius") if damper is None else ():
+    for key in ("damper_inertia_ratio", "damper_ring_radius", "damper_heat_rating_w") if damper is None else ():
         if key in t.data:
             problems.append(Problem(f"design.{key}", t.data[key],
                                     "goes with damper = " + " or ".join(f'"{k}"' for k in DAMPER_TYPES)))
-    named = {"objective", "damper", "damper_inertia_ratio", "damper_ring_radius", "required_safety"}
+    named = {"objective", "damper", "damper_inertia_ratio", "damper_ring_radius", "required_safety",
+             "damper_heat_rating_w", "resonance_orders", "resonance_margin"}
     ranges = read_uncertainty(t, data, problems, "design", keys=[k for k in t.data if k not in named],
                               nominal_inside=False)
     inputs = tuple(group[0] for _, group in ranges if group)
     if not inputs and damper is None:
         problems.append(Problem("design", None, "names no input to move and no damper to add"))
     t.finish()
-    return DesignSpace(inputs, objective, damper, ratio, ring, required)
+    return DesignSpace(inputs, objective, damper, ratio, ring, required, heat, tuple(orders),
+                       float(margin) if margin == margin else 0.0)

@@ -134,6 +134,11 @@ class VerdictConfig:
     #: The crank as described (its own dampers, or none): the configurations the verdict is on.
     as_described: bool = False
 
+    @property
+    def heat_ok(self) -> bool:
+        """The dampers' heat within their ratings (True where they are not rated, or none)."""
+        return not self.allowed_power_w or self.damper_power_w <= self.allowed_power_w
+
     def answer(self, method: str) -> dict:
         """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method``."""
         if method == "iacs-m53":
@@ -183,9 +188,10 @@ class CrankVerdict:
 
     @property
     def passes(self) -> bool:
-        """The crank as described passes, firing and in misfire: its own dampers (or none) decide;
-        the other rows (no damper where it has one, the recommended damper) inform."""
-        return all(c.answer(self.method).get("passes", False) for c in self.configs if c.as_described)
+        """The crank as described passes, firing and in misfire: its own dampers (or none) decide,
+        their heat within their ratings where they are rated; the other rows (no damper where it
+        has one, the recommended damper) inform."""
+        return all(c.answer(self.method).get("passes", False) and c.heat_ok for c in self.configs if c.as_described)
 
     def lines(self) -> list[str]:
         """One verdict line per configuration: method, damping and its source, governing place and
@@ -196,6 +202,8 @@ class CrankVerdict:
             text = (f"{c.name}: {self.method}, ζ = {self.damping_ratio:.4g} ({self.damping_source}), "
                     f"{a['location']} ({a['where']}, {a['rpm']:.0f} rpm): safety {a['safety']:.2f} against "
                     f"{a['required']:.2f}: {'pass' if a['passes'] else 'FAIL'}"
+                    + ("" if c.heat_ok else f"; the damper heat {c.damper_power_w:.0f} W is over its rating "
+                       f"{c.allowed_power_w:.0f} W: FAIL")
                     + (f" (YIELDING at {', '.join(a['yielding'])}: above R_e, beyond the linear assessment)"
                        if a.get("yielding") else ""))
             if b:

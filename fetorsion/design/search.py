@@ -22,7 +22,7 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from functools import cached_property
 
 import numpy as np
@@ -63,7 +63,9 @@ def crank_mass(crank: Crank) -> float:
 class Candidate:
     """One design the explorer evaluated: the inputs' values (file units), the added damper
     (None: none) and its inertia ratio, the objective, mass (kg, crank and ring), the explorer's
-    governing M53 safety and where it governs."""
+    governing M53 safety and where it governs, the lumped chain's first elastic frequency (Hz,
+    the crank without the added damper) and the added damper's heat (W, its largest mean
+    dissipation over the speeds; 0 without one)."""
 
     values: dict[str, float]
     inertia_ratio: float | None
@@ -73,6 +75,8 @@ class Candidate:
     safety: float
     governing: str
     governing_rpm: float
+    f1_hz: float = math.nan
+    damper_power_w: float = 0.0
 
     def to_dict(self) -> dict:
         return {"values": dict(self.values), "inertia_ratio": self.inertia_ratio,
@@ -81,7 +85,8 @@ class Candidate:
                     "stiffness_nm_per_rad": self.damper.stiffness, "damping_nms_per_rad": self.damper.damping,
                     "loss_factor": self.damper.loss_factor},
                 "objective": self.objective, "mass_kg": self.mass_kg, "safety": self.safety,
-                "governing": self.governing, "governing_rpm": self.governing_rpm}
+                "governing": self.governing, "governing_rpm": self.governing_rpm, "f1_hz": self.f1_hz,
+                "damper_power_w": self.damper_power_w}
 
 
 def pareto_front(candidates) -> list[Candidate]:
@@ -93,6 +98,36 @@ def pareto_front(candidates) -> list[Candidate]:
             front.append(c)
             best = c.safety
     return front
+
+
+@dataclass(frozen=True)
+class DesignTargets:
+    """What the explorer's candidates must reach: the M53 safety (the required one, or re-aimed by
+    the confirming FE verdict), the added damper's heat limit (W; 0: none), and the resonance
+    constraint — ``orders`` kept out of ``speed_range_rpm`` by ``margin`` — on the lumped chain's
+    f1 times ``frequency_factor`` (the FE crank's in-bearing f1 over the lumped chain's, 1 until a
+    confirming run measures it)."""
+
+    safety: float
+    heat_limit_w: float = 0.0
+    orders: tuple[float, ...] = ()
+    margin: float = 0.0
+    speed_range_rpm: tuple[float, float] = (0.0, 0.0)
+    frequency_factor: float = 1.0
+
+    def clearance(self, c: Candidate) -> float:
+        """``c``'s resonance clearance (:func:`resonance_clearance`) with f1 corrected."""
+        return resonance_clearance(c.f1_hz * self.frequency_factor, self.orders, self.speed_range_rpm)
+
+    def shortfall(self, c: Candidate, safety: bool = True) -> float:
+        """The sum of ``c``'s relative shortfalls (0: it meets every constraint): safety, heat,
+        resonance clearance."""
+        out = max(0.0, self.safety / c.safety - 1.0) if safety else 0.0
+        if self.heat_limit_w and c.damper is not None:
+            out += max(0.0, c.damper_power_w / self.heat_limit_w - 1.0)
+        if self.orders:
+            out += max(0.0, self.margin - self.clearance(c))
+        return out
 
 
 @dataclass
@@ -108,14 +143,23 @@ class DesignResult:
     best: Candidate | None
     seconds: float
     notes: list[str] = field(default_factory=list)
+    targets: DesignTargets | None = None
+
+    def meets_others(self, c: Candidate) -> bool:
+        """``c`` meets the constraints other than the safety (the added damper's heat, the
+        resonance margin) at the search's targets."""
+        return self.targets is None or self.targets.shortfall(c, safety=False) == 0.0
 
     @property
     def pareto(self) -> list[Candidate]:
-        return pareto_front(self.candidates)
+        """The Pareto front (objective against safety) of the candidates that meet the other
+        constraints."""
+        return pareto_front([c for c in self.candidates if self.meets_others(c)])
 
     def to_dict(self) -> dict:
         return {"name": self.name, "objective": self.objective, "objective_unit": OBJECTIVE_UNITS[self.objective],
-                "required_safety": self.required, "given": self.given.to_dict(),
+                "required_safety": self.required, "targets": None if self.targets is None else asdict(self.targets),
+                "given": self.given.to_dict(),
                 "best": None if self.best is None else self.best.to_dict(), "evaluations": len(self.candidates),
                 "seconds": self.seconds, "pareto": [c.to_dict() for c in self.pareto], "notes": list(self.notes)}
 
@@ -132,6 +176,13 @@ class DesignResult:
             lines.append(f"best: {self.objective} {b.objective:.4g}, safety {b.safety:.3f} ({b.governing}, "
                          f"{b.governing_rpm:.0f} rpm)")
             lines += [f"  {p} = {v:.4g}" for p, v in b.values.items()]
+            t = self.targets
+            if t is not None and t.orders:
+                lines.append(f"  first mode {b.f1_hz:.1f} Hz on the lumped chain ({b.f1_hz * t.frequency_factor:.1f} Hz "
+                             f"as the bearings' f1), resonance clearance {100 * t.clearance(b):+.1f} % against "
+                             f"{100 * t.margin:.0f} %")
+            if t is not None and t.heat_limit_w and b.damper is not None:
+                lines.append(f"  added damper's heat {b.damper_power_w:.1f} W against {t.heat_limit_w:.1f} W")
             if b.damper is not None:
                 lines.append(f"  added {b.damper.kind} damper: ring {b.damper.ring_inertia:.4g} kg m^2 "
                              f"(inertia ratio {b.inertia_ratio:.3f}), stiffness {b.damper.stiffness:.4g} N m/rad"
@@ -187,7 +238,7 @@ class ExplorerModel:
         import hashlib
 
         scf = hashlib.sha256(repr(self.scf).encode()).hexdigest()[:16]
-        return f"design-explorer/{description_hash(self.crank)}/{scf}"
+        return f"design-explorer/2/{description_hash(self.crank)}/{scf}"  # 2: f1 and the damper's heat in
 
     def __call__(self, values: dict) -> dict:
         from ..response.forced import response_setup, solve_response
@@ -226,11 +277,31 @@ class ExplorerModel:
                               for p, _, _ in space.inputs))
         g = m53.governing
         out = {"objective": value, "mass_kg": mass, "safety": float(g.safety), "governing": g.name,
-               "governing_rpm": float(g.torque_rpm)}
+               "governing_rpm": float(g.torque_rpm), "f1_hz": first_elastic_hz(setup),
+               "damper_power_w": 0.0 if damper is None else float(response.damper_power_w.sum(axis=(1, 2)).max())}
         if damper is not None:
             out.update(ring_inertia_kgm2=damper.ring_inertia, stiffness_nm_per_rad=damper.stiffness,
                        damping_nms_per_rad=damper.damping, loss_factor=damper.loss_factor)
         return out
+
+
+def first_elastic_hz(setup) -> float:
+    """The first elastic (torsional) mode of ``setup``'s undamped model, Hz: of a free chain its
+    second eigenvalue (the first is the rigid rotation), else the first of its torsional modes."""
+    import scipy.linalg
+
+    w2 = np.sort(scipy.linalg.eigh(setup.K, setup.M, eigvals_only=True))
+    k = 1 if setup.torsional_modes is None else int(setup.torsional_modes[0])
+    return float(math.sqrt(max(w2[k], 0.0)) / (2 * math.pi))
+
+
+def resonance_clearance(f1_hz: float, orders, speed_range_rpm) -> float:
+    """How far the resonance speeds n_q = 60 f1 / q of ``orders`` lie outside the running range
+    [low, high] rpm, as a share of the range's nearer end: min over q of
+    max(1 − n_q / low, n_q / high − 1); negative when one lies inside (its depth in)."""
+    low, high = speed_range_rpm
+    n = 60.0 * f1_hz / np.asarray(orders, float)
+    return float(np.min(np.maximum(1.0 - n / low, n / high - 1.0)))
 
 
 def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
@@ -241,7 +312,7 @@ def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
                                             outputs["loss_factor"])
     return Candidate({p: float(v) for p, v in values.items() if p != INERTIA_RATIO}, None if mu is None else float(mu),
                      damper, outputs["objective"], outputs["mass_kg"], outputs["safety"], outputs["governing"],
-                     outputs["governing_rpm"])
+                     outputs["governing_rpm"], outputs["f1_hz"], outputs["damper_power_w"])
 
 
 def _nominal(crank: Crank, path: str) -> float:
@@ -252,8 +323,8 @@ def _nominal(crank: Crank, path: str) -> float:
 
 
 def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6,
-                      maxiter: int = DESIGN_GENERATIONS, target: float | None = None, client=None, store=None,
-                      progress=None) -> DesignResult:
+                      maxiter: int = DESIGN_GENERATIONS, target: float | None = None, frequency_factor: float = 1.0,
+                      heat_limit: float | None = None, client=None, store=None, progress=None) -> DesignResult:
     """Search the description's ``[design]`` space for the least objective that passes M53 on the
     lumped explorer (module docstring).
 
@@ -271,6 +342,12 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     target : float, optional
         The safety the explorer must reach, where it differs from the required one: the required
         safety corrected by how far the confirming FE verdict fell short of the explorer's.
+    frequency_factor : float
+        The FE crank's first in-bearing frequency over the lumped chain's (the resonance
+        constraint reads the lumped f1 times it); 1 until a confirming run measures it.
+    heat_limit : float, optional
+        The added damper's heat the explorer allows, W, where it differs from the rating (the
+        rating corrected by the confirming FE verdict's heat over the explorer's).
     client : distributed.Client or ClusterOnDemand, optional
         Runs each generation's candidates on a Dask cluster (None: here, one after the other; the
         same search either way).
@@ -311,6 +388,8 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     if given is None:
         raise FetorsionError(f"design: the explorer fails on the given design of {crank.name}")
     required = target or space.required_safety or m53_required(crank.limits)
+    targets = DesignTargets(required, heat_limit or space.damper_heat_rating or 0.0, space.resonance_orders,
+                            space.resonance_margin, tuple(crank.excitation.speed_range), frequency_factor)
     bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
     seen: list[Candidate] = []
 
@@ -335,7 +414,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     def cost_of(c: Candidate | None) -> float:
         if c is None:
             return 1e3
-        return c.objective / given.objective + PENALTY * max(0.0, required / c.safety - 1.0)
+        return c.objective / given.objective + PENALTY * targets.shortfall(c)
 
     def cost(u):
         return cost_of(candidates([u])[0])
@@ -355,7 +434,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
                                                 updating="deferred", workers=population)
     # The global search ends near the optimum, which lies on the safety constraint; COBYQA (a
     # derivative-free trust-region method with the constraint as such, [Ragonneau]) walks onto it.
-    feasible = [c for c in seen if c.safety >= required]
+    feasible = [c for c in seen if targets.shortfall(c) == 0.0]
     if feasible:
         start_at = min(feasible, key=lambda c: c.objective)
         u0 = [(start_at.values[p] - lo) / (hi - lo) for p, lo, hi in space.inputs]
@@ -365,24 +444,40 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
             c = candidates([u])[0]
             return 1e3 if c is None else c.objective / given.objective
 
-        def margin(u):
+        def margins(u):  # each constraint as a relative margin, >= 0 where it holds
             c = candidates([u])[0]
-            return -1.0 if c is None else c.safety / required - 1.0
+            if c is None:
+                return -np.ones(3)
+            heat = 1.0 - c.damper_power_w / targets.heat_limit_w if targets.heat_limit_w and c.damper else 0.0
+            return np.array([c.safety / required - 1.0, heat,
+                             targets.clearance(c) - targets.margin if targets.orders else 0.0])
 
         if progress is not None:
-            progress(f"design: {len(seen)} candidates; walking onto the safety constraint (COBYQA)")
+            progress(f"design: {len(seen)} candidates; walking onto the constraints (COBYQA)")
         scipy.optimize.minimize(objective, u0, method="COBYQA", bounds=unit,
-                                constraints=[scipy.optimize.NonlinearConstraint(margin, 0.0, np.inf)],
+                                constraints=[scipy.optimize.NonlinearConstraint(margins, 0.0, np.inf)],
                                 options={"maxfev": 40 * len(bounds), "initial_tr_radius": 0.05,
                                          "final_tr_radius": 1e-3})
-    feasible = [c for c in seen if c.safety >= required]
+    feasible = [c for c in seen if targets.shortfall(c) == 0.0]
     best = min(feasible, key=lambda c: c.objective) if feasible else None
     notes = [f"explorer: the lumped chain (default partition) with M53 at every k-th speed "
              f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations, "
              "then COBYQA onto the safety constraint",
              "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
              "confirms the chosen design"]
-    return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes)
+    if targets.orders:
+        notes.append(f"resonance: orders {', '.join(f'{q:g}' for q in targets.orders)} kept out of "
+                     f"{targets.speed_range_rpm[0]:.0f}-{targets.speed_range_rpm[1]:.0f} rpm by {100 * targets.margin:.0f} % "
+                     f"on the lumped chain's f1 times {targets.frequency_factor:.4f} (the FE crank's in-bearing f1 "
+                     "over the lumped chain's" + (", measured by the last confirming run)" if frequency_factor != 1.0
+                                                  else "; 1 until a confirming run measures it)"))
+    if targets.heat_limit_w:
+        notes.append(f"the added damper's heat (its largest mean dissipation over the speeds) at most "
+                     f"{targets.heat_limit_w:.1f} W on the explorer" + (
+                         f" (its rating {space.damper_heat_rating:.1f} W re-aimed by the FE verdict)"
+                         if targets.heat_limit_w != space.damper_heat_rating else ""))
+    return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes,
+                        targets)
 
 
 def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> str:
@@ -450,6 +545,8 @@ def designed_text(text: str, crank: Crank, best: Candidate) -> str:
             lines.append(f"loss_factor = {d.loss_factor:.6g}")
         if d.kind in ("viscous", "tuned") and d.damping:
             lines.append(f"damping_nms_per_rad = {d.damping:.6g}")
+        if crank.design.damper_heat_rating:
+            lines.append(f"allowed_power_w = {crank.design.damper_heat_rating:.6g}  # [design] damper_heat_rating_w")
         lines.append('source = "fetorsion design: Den Hartog tuning on the lumped chain"')
         out = out.rstrip("\n") + "\n" + "\n".join(lines) + "\n"
     return out

@@ -290,7 +290,9 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     for c in v.configs:
         x, y = c.answer(v.method), c.answer(v.other)
         lines.append(f"| {c.name} | **{x['safety']:.2f}** | {x['required']:.2f} | {x['location']} ({x['where']}) | "
-                     f"{x['rpm']:.0f} | **{'pass' if x['passes'] else 'FAIL'}** | "
+                     f"{x['rpm']:.0f} | **{'pass' if x['passes'] and c.heat_ok else 'FAIL'}**"
+                     + ("" if c.heat_ok else f" (damper heat {c.damper_power_w:.0f} W over {c.allowed_power_w:.0f} W)")
+                     + " | "
                      + (f"{y['safety']:.2f} | {y['required']:.2f} | {y['location']} |" if y else "- | - | - |"))
     lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
