@@ -37,7 +37,7 @@ CLOSE_ENOUGH = 0.02
 class FEAnswer:
     """What ``fetorsion run`` of a designed description says: the FE verdict's least safety of the
     crank as designed (firing and misfire) and the required one, the first mode in its bearings
-    (Hz), the added damper's heat firing (W; 0 without one), and whether the verdict passes (the
+    that carries torsion (Hz, :meth:`~fetorsion.fe.condensed.CondensedModes.first_carrying_torsion`), the added damper's heat firing (W; 0 without one), and whether the verdict passes (the
     safety and the heat; the resonance margin is the loop's to judge)."""
 
     safety: float
@@ -157,6 +157,8 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
     """:func:`run_design`'s rounds."""
     space = crank.design
     outcome, aim = None, {}
+    if verify and space.resonance_orders:  # the explorer's f1 mapped onto the FE crank's from the start
+        aim["frequency_factor"] = _frequency_factor(crank, options)
     texts: dict[int, tuple[str, DesignResult]] = {}
     for k in range(ROUNDS if verify else 1):
         result = run_design_search(crank, seed=seed, maxiter=generations, client=client, progress=_say, **aim)
@@ -208,6 +210,29 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
     return outcome
 
 
+def _frequency_factor(crank, options: RunOptions | None) -> float:
+    """The given crank's first mode in its bearings that carries torsion, by the condensed FE crank
+    (the run's: its mesh size, a cut at every fillet; from the store when built before), over the
+    lumped chain's first elastic mode: what the explorer's f1 is scaled by before any design is
+    confirmed."""
+    from ..design.search import first_elastic_hz
+    from ..design.stress import fillet_cuts, fillets_of
+    from ..fe.store import condensed_crank
+    from ..lumped_model.parts import build_parts
+    from ..response.coupled import with_film_bearings
+    from ..response.forced import response_setup
+    from ..description.defaults import DEFAULT_WEB_METHOD
+
+    size = (options or RunOptions()).mesh_size
+    cuts = fillet_cuts(crank, fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD)))
+    cc, _ = condensed_crank(crank, size, cuts, progress=_say)
+    f_fe = with_film_bearings(cc).modes("bearings").first_carrying_torsion()
+    f_lumped = first_elastic_hz(response_setup(crank))
+    _say(f"the first mode in its bearings: {f_fe:.1f} Hz by the condensed FE crank, {f_lumped:.1f} Hz on the lumped "
+         f"chain: the explorer's f1 is scaled by {f_fe / f_lumped:.4f} until a design is confirmed")
+    return f_fe / f_lumped
+
+
 def _others(t: DesignTargets) -> str:
     """The constraints besides the safety, as words."""
     return ((f", damper heat <= {t.heat_limit_w:.1f} W" if t.heat_limit_w else "")
@@ -256,4 +281,5 @@ def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
     worst = min(answers, key=lambda a: a["safety"] / max(a["required"], required or 0.0))
     need = max(float(worst["required"]), required or 0.0)
     heat = max((c.damper_power_w for c in described if c.misfire is None), default=0.0)
-    return FEAnswer(float(worst["safety"]), need, float(outcome.bearings.f1_bearings_hz), float(heat), bool(v.passes))
+    return FEAnswer(float(worst["safety"]), need, outcome.bearings.bearings.first_carrying_torsion(), float(heat),
+                    bool(v.passes))

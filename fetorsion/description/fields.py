@@ -202,9 +202,9 @@ DESIGN = Section("design", "Optional: what `fetorsion design` may change to make
           ">= 1"),
     Field("damper_heat_rating_w", "the added damper's continuous heat rating, W: its largest mean dissipation "
           "over the speed range may not exceed it (written as its `allowed_power_w`)", "> 0; with `damper`"),
-    Field("resonance_orders", "the major orders whose resonance with the first mode in the bearings must stay "
-          "out of the running range (`speed_range_rpm`) by `resonance_margin`", "a list of orders > 0; with "
-          "`resonance_margin`"),
+    Field("resonance_orders", "the major orders whose resonance with the first mode in the bearings (the lowest "
+          "with 10 % or more of its kinetic energy in torsion) must stay out of the running range "
+          "(`speed_range_rpm`) by `resonance_margin`", "a list of orders > 0; with `resonance_margin`"),
     Field("resonance_margin", "how far each resonance speed 60 f1 / q must lie outside the running range, as a "
           "share of the range's nearer end (0.1: below 0.9 × low or above 1.1 × high)", "0 < margin < 1; with "
           "`resonance_orders`"),

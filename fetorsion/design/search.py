@@ -169,6 +169,13 @@ class DesignResult:
                  f"{self.required:.2f} (explorer: lumped chain; {len(self.candidates)} candidates, {self.seconds:.0f} s)",
                  f"given: {self.objective} {self.given.objective:.4g}, safety {self.given.safety:.3f} "
                  f"({self.given.governing}, {self.given.governing_rpm:.0f} rpm)"]
+        t = self.targets
+        if t is not None and (t.orders or t.heat_limit_w):
+            lines.insert(1, "constraints besides the safety: " + "; ".join(
+                ([f"the added damper's heat <= {t.heat_limit_w:.1f} W"] if t.heat_limit_w else [])
+                + ([f"orders {', '.join(f'{q:g}' for q in t.orders)} resonant with the first mode in the bearings "
+                    f"outside {t.speed_range_rpm[0]:.0f}-{t.speed_range_rpm[1]:.0f} rpm by {100 * t.margin:.0f} %; "
+                    f"given: clearance {100 * t.clearance(self.given):+.1f} %"] if t.orders else [])))
         if self.best is None:
             lines.append("no candidate reached the required safety: widen the [design] bounds or allow a damper")
         else:
@@ -462,15 +469,15 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     best = min(feasible, key=lambda c: c.objective) if feasible else None
     notes = [f"explorer: the lumped chain (default partition) with M53 at every k-th speed "
              f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations, "
-             "then COBYQA onto the safety constraint",
+             "then COBYQA onto the constraints",
              "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
              "confirms the chosen design"]
     if targets.orders:
         notes.append(f"resonance: orders {', '.join(f'{q:g}' for q in targets.orders)} kept out of "
                      f"{targets.speed_range_rpm[0]:.0f}-{targets.speed_range_rpm[1]:.0f} rpm by {100 * targets.margin:.0f} % "
                      f"on the lumped chain's f1 times {targets.frequency_factor:.4f} (the FE crank's in-bearing f1 "
-                     "over the lumped chain's" + (", measured by the last confirming run)" if frequency_factor != 1.0
-                                                  else "; 1 until a confirming run measures it)"))
+                     "over the lumped chain's" + (", measured by the condensed FE crank)" if frequency_factor != 1.0
+                                                  else "; 1: not measured)"))
     if targets.heat_limit_w:
         notes.append(f"the added damper's heat (its largest mean dissipation over the speeds) at most "
                      f"{targets.heat_limit_w:.1f} W on the explorer" + (

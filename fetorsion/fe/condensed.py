@@ -150,6 +150,10 @@ def cut_recovery(sys_: CrankSystem, centres: np.ndarray):
     return recover
 
 
+#: A mode with at least this share of its kinetic energy in torsion carries torsion: the
+#: engine's torque drives it (the report names such modes below the first mostly torsional one).
+TORSION_SHARE_NOTED = 0.10
+
 @dataclass
 class CondensedModes:
     """Modes of the condensed crank in one support condition.
@@ -182,6 +186,16 @@ class CondensedModes:
         idx = [i for i, k in enumerate(self.kinds) if k == "torsional"]
         if not idx:
             raise FetorsionError(f"no torsional mode among the {len(self.kinds)} condensed-crank modes ({self.support})")
+        return float(self.frequencies_hz[idx[0]])
+
+    def first_carrying_torsion(self, share: float = TORSION_SHARE_NOTED) -> float:
+        """The lowest mode with at least ``share`` of its kinetic energy in torsion, Hz: the first
+        mode the engine's torque drives in resonance. Where a flywheel's rocking couples torsion
+        with bending, it lies below :meth:`first_torsional` (the first mostly torsional mode)."""
+        idx = np.flatnonzero(self.fractions[:, 0] >= share)
+        if not len(idx):
+            raise FetorsionError(f"no mode with {100 * share:.0f} % torsion among the {len(self.kinds)} "
+                                 f"condensed-crank modes ({self.support})")
         return float(self.frequencies_hz[idx[0]])
 
 

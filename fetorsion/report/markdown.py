@@ -14,14 +14,11 @@ from pathlib import Path
 from ..description.model import Crank
 from ..design.scfset import SCFSet
 from ..excitation.campbell import zeta_text
+from ..fe.condensed import TORSION_SHARE_NOTED
 from ..lumped_model.lumped import PARTITIONS
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
-
-#: A mode below the first mostly torsional one is named in the summary when at least this share
-#: of its kinetic energy is torsion.
-TORSION_SHARE_NOTED = 0.10
 
 
 def _with_error(f: float, measured) -> str:
