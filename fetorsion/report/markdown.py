@@ -103,7 +103,7 @@ def solid_features_lines(found) -> list[str]:
     from ..solid.recognise import DIAMETER_TOL, FILLET_TOL
 
     def cyl(c):
-        where = f" at {math.degrees(c.angle):.0f}°" if c.part.startswith("pin") else ""
+        where = f" at {round(math.degrees(c.angle)) % 360:d}°" if c.part.startswith("pin") else ""
         return f"{c.part} {c.diameter * 1e3:.2f} mm{where}"
 
     holes = sorted({f"{d.diameter * 1e3:.2f}" for d in found.drillings})
@@ -114,11 +114,11 @@ def solid_features_lines(found) -> list[str]:
              + ". Fillets (the concave toroidal faces at each journal and pin end, one fillet per end however "
              "many faces it has; its smallest minor radius):", "",
              "| end | x (mm) | smallest radius (mm) | faces | description (mm) |", "|---|---|---|---|---|"]
-    lines += [f"| {f.end} | {f.x * 1e3:.2f} | {f.radius * 1e3:.3g} | {f.faces} | {f.described * 1e3:.3g}"
+    lines += [f"| {f.end} | {f.x * 1e3:.2f} | {f.radius * 1e3:.2f} | {f.faces} | {f.described * 1e3:.2f}"
               + (" (differs)" if f.differs else "") + " |" for f in found.fillets]
     off = [f for f in found.fillets if f.differs]
     if off:
-        radii = ", ".join(sorted({f"{f.radius * 1e3:.3g} mm" for f in off}))
+        radii = ", ".join(sorted({f"{f.radius * 1e3:.2f} mm" for f in off}))
         lines += ["", f"**{len(off)} of the solid's {len(found.fillets)} fillets differ from the description's radius by "
                   f"more than {FILLET_TOL:.0%}** (smallest on the solid: {radii}). The M53 and textbook fillet SCFs "
                   "(the verdict's default method) take the description's radius (`[fillets]`); the FE meshes the "

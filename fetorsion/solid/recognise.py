@@ -296,12 +296,12 @@ def recognise(crank, pieces, volume: int, name: str) -> SolidFeatures:
         if p.kind == "journal":
             missing.append(f"{p.name}: no cylindrical face coaxial with the x axis at {where}")
         else:
-            a = math.degrees(math.atan2(p.centre[1], p.centre[0]))
+            a = _degrees(p.centre)
             near = [c for c in cyls if p.x0 <= 0.5 * (c.x0 + c.x1) <= p.x1 and math.hypot(*c.centre) > tol]
             seen = "; off-axis cylinders there: " + ", ".join(
                 f"diameter {2 * c.radius:.4g} mm on an axis {math.hypot(*c.centre):.4g} mm from the crank axis "
-                f"at {math.degrees(math.atan2(c.centre[1], c.centre[0])):.4g}°" for c in near[:2]) if near else ""
-            missing.append(f"{p.name}: no cylindrical face on its axis (crank radius {R:.6g} mm, angle {a:.4g}°) "
+                f"at {_degrees(c.centre)}°" for c in near[:2]) if near else ""
+            missing.append(f"{p.name}: no cylindrical face on its axis (crank radius {R:.6g} mm, angle {a}°) "
                            f"at {where}{seen}")
     if missing:
         raise GeometryError(f"{name}: the solid is not the described crank: " + "; ".join(missing))
@@ -326,6 +326,11 @@ def recognise(crank, pieces, volume: int, name: str) -> SolidFeatures:
             part = next((p.name for p in pieces if p.x0 <= point[0] <= p.x1), "outside")
             drillings.append(FoundDrilling(part, 2 * r * u, float(point[0]) * u))
     return SolidFeatures(name, tuple(journals), tuple(pins), fillets, tuple(drillings), other + convex_tori)
+
+
+def _degrees(centre) -> str:
+    """The angle of an axis through (y, z) = ``centre`` about the crank axis, 0-360°, to 0.1°."""
+    return f"{round(math.degrees(math.atan2(centre[1], centre[0])), 1) % 360.0 + 0.0:g}"
 
 
 def _corners(crank, pieces, u: float):
