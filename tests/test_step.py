@@ -403,6 +403,41 @@ def test_a_solid_that_is_not_the_described_crank_is_refused_before_any_work(writ
         assert not (tmp_path / f"out_{name}").exists()
 
 
+def test_a_cad_cranks_fe_scfs_are_read_where_its_fillets_are(written, oval, tmp_path):
+    """The FE SCF zones of a CAD crank's throw come from the fillets found on its solid: on the
+    round trip each is the description's quarter torus (the same points of a cloud filling the
+    throw, but for at most 2 on its bounds); on the undercut crank the journal
+    zone of throw 1 reaches into web 1 as far as the undercut does (c1 + r1 past the web face) and
+    out to its lip (the profile's height), against the description's 2.5 mm on the journal's side."""
+    import numpy as np
+
+    from fetorsion.design.scf import _found_zones, fillet_zone, found_zone
+    from fetorsion.webs.throwfe import throw_of
+
+    for f in (written, oval):
+        (tmp_path / f.name).write_bytes(f.read_bytes())
+    crank = fetorsion.load(with_solid(tmp_path, written.name))
+    throw = throw_of(crank, 0)
+    zones = _found_zones(crank, 0, throw)
+    j1, w1, pin = throw.journals[0], throw.webs[0], throw.pins[0]
+    x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, throw.webs[1].thickness])
+    R, r = throw.engine.crank_radius, crank.fillets.journal
+    described = [(x[1], -1, (0, 0), 0.5 * j1.diameter), (x[2], +1, (R, 0), 0.5 * pin.diameter),
+                 (x[3], -1, (R, 0), 0.5 * pin.diameter), (x[4], +1, (0, 0), 0.5 * throw.journals[1].diameter)]
+    rng = np.random.default_rng(0)
+    xyz = rng.uniform([0.0, -0.08, -0.08], [x[-1] + throw.journals[1].length, 0.12, 0.08], size=(2_000_000, 3))
+    for (centre, extent, radius), (xf, side, c, a) in zip(zones, described):
+        ours, theirs = found_zone(xyz, centre, extent, radius), fillet_zone(xyz, xf, side, c, a, r)
+        assert theirs.sum() > 300 and np.count_nonzero(ours != theirs) <= 2
+    undercut = fetorsion.load(with_solid(tmp_path, oval.name))
+    (centre, (x0, x1, r0, r1), radius), *_ = _found_zones(undercut, 0, throw_of(undercut, 0))
+    profile = undercut_profile(*UNDERCUT)
+    c1, h = profile[0][0], profile[6][1]  # where the undercut leaves the journal; its lip's height
+    assert radius == pytest.approx(UNDERCUT[0] * 1e-3, rel=1e-9)
+    assert (x0, x1) == pytest.approx((x[1], x[1] + (c1 + UNDERCUT[0]) * 1e-3), abs=1e-9)
+    assert (r0, r1) == pytest.approx((0.5 * j1.diameter, 0.5 * j1.diameter + h * 1e-3), abs=1e-9)
+
+
 @pytest.mark.slow
 @pytest.mark.fe
 def test_a_crank_whose_webs_are_not_the_built_outline_runs_end_to_end(tmp_path):

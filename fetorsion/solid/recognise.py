@@ -77,6 +77,8 @@ class FoundFillet:
     radius: float
     radii: tuple[float, ...]
     described: float
+    #: where its faces lie (m): x from, to, and the distance from the journal's or pin's axis from, to
+    extent: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
 
     @property
     def faces(self) -> int:
@@ -167,6 +169,18 @@ def _face_point(surface: int) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(gmsh.model.getValue(2, surface, list(uv))), np.asarray(gmsh.model.getNormal(surface, list(uv)))
 
 
+def _meridian_extent(surface: int, axis_point: np.ndarray) -> tuple[float, float, float, float]:
+    """(x from, to, distance from the axis from, to) of a torus face about an axis parallel to x
+    through ``axis_point``: its trimmed parameter range sampled (17 × 17, the arcs' extremes to
+    (1 − cos(π/32)) r, well inside the SCF zone's slack)."""
+    lo, hi = (np.asarray(b) for b in gmsh.model.getParametrizationBounds(2, surface))
+    t = np.linspace(0.0, 1.0, 17)
+    uv = (lo + (hi - lo) * np.stack(np.meshgrid(t, t), axis=-1).reshape(-1, 2))
+    xyz = np.asarray(gmsh.model.getValue(2, surface, uv.ravel())).reshape(-1, 3)
+    rho = np.hypot(xyz[:, 1] - axis_point[1], xyz[:, 2] - axis_point[2])
+    return float(xyz[:, 0].min()), float(xyz[:, 0].max()), float(rho.min()), float(rho.max())
+
+
 def _parallel_to_x(normal: np.ndarray) -> bool:
     return abs(abs(normal[0]) - 1.0) < 1e-6
 
@@ -229,7 +243,7 @@ def _read_faces(volume: int):
             if float(n @ (line - p)) <= 0:  # normal away from the tube's centre: a convex round
                 convex_tori += 1
                 continue
-            tori.append((s, (float(ring[0][1]), float(ring[0][2])), tube_centre, minor))
+            tori.append((s, (float(ring[0][1]), float(ring[0][2])), tube_centre, minor, _meridian_extent(s, ring[0])))
     return cyls, tori, convex_tori, drills
 
 
@@ -353,10 +367,10 @@ def _group_fillets(crank, pieces, tori, u: float) -> tuple[tuple[FoundFillet, ..
     (a plain fillet's centre is √2 r from its corner, an undercut's arcs lie within their radii of
     it; a groove mid-journal is farther). Returns the fillets, by x, and how many tori fit none."""
     corners = _corners(crank, pieces, u)
-    groups: dict[int, list[tuple[float, float]]] = {}
+    groups: dict[int, list[tuple[float, float, tuple]]] = {}
     other = 0
     R = crank.engine.crank_radius / u
-    for _, axis, tube, minor in tori:
+    for _, axis, tube, minor, extent in tori:
         best, dist = None, math.inf
         for k, (_, x, centre, radius, described) in enumerate(corners):
             if math.hypot(axis[0] - centre[0], axis[1] - centre[1]) > AXIS_TOL * R:
@@ -368,10 +382,13 @@ def _group_fillets(crank, pieces, tori, u: float) -> tuple[tuple[FoundFillet, ..
         if best is None:
             other += 1
         else:
-            groups.setdefault(best, []).append((minor, float(tube[0])))
+            groups.setdefault(best, []).append((minor, float(tube[0]), extent))
     fillets = []
     for k in sorted(groups, key=lambda k: corners[k][1]):
         label, _, _, _, described = corners[k]
-        faces = sorted(groups[k])
-        fillets.append(FoundFillet(label, faces[0][1] * u, faces[0][0] * u, tuple(r * u for r, _ in faces), described * u))
+        faces = sorted(groups[k], key=lambda f: f[0])
+        box = np.array([f[2] for f in faces])
+        extent = (box[:, 0].min() * u, box[:, 1].max() * u, box[:, 2].min() * u, box[:, 3].max() * u)
+        fillets.append(FoundFillet(label, faces[0][1] * u, faces[0][0] * u, tuple(f[0] * u for f in faces),
+                                   described * u, tuple(float(e) for e in extent)))
     return tuple(fillets), other
