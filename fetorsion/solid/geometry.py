@@ -41,18 +41,14 @@ import gmsh
 import numpy as np
 
 from ..description.model import Crank, Cylinder, Web
-from ..errors import FetorsionError
-from .recognise import SolidFeatures, recognise
+from ..errors import GeometryError
+from .recognise import UNIT_SLIPS, SolidFeatures, recognise
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
 # Tolerance for "same plane / same circle" searches, model units (mm): far above
 # OCC's 1e-7 and far below any real feature (≥ 0.1 mm).
 _FIND_TOL = 1e-3
-
-
-class GeometryError(FetorsionError):
-    """The description is valid field by field but does not make one sound solid."""
 
 
 @dataclass(frozen=True)
@@ -445,11 +441,6 @@ def _built_solid(crank: Crank, pieces) -> int:
     return solid
 
 
-#: Factors a solid's size may be off by when its STEP header states the wrong unit.
-UNIT_SLIPS = {1000.0: "m read as mm", 0.001: "mm read as m", 25.4: "in read as mm", 1 / 25.4: "mm read as in",
-              10.0: "cm read as mm", 0.1: "mm read as cm"}
-
-
 def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
     """The crank's ``[solid]`` STEP file as one OCC volume: its tag, and what was found on it
     (:func:`fetorsion.solid.recognise.recognise`; None for a throw's slab, whose whole crank was
@@ -477,7 +468,7 @@ def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
     features = None
     if crank.solid_window is None:
         _check_length(name, solid, pieces)
-        features = recognise(crank, pieces, solid, name)
+        features = recognise(crank, pieces, solid, name, MODEL_UNIT)
     else:  # a throw: its slab, moved to x = 0 and turned to put its pin at angle 0
         lo, hi, turn = crank.solid_window
         a, b = lo / MODEL_UNIT, hi / MODEL_UNIT

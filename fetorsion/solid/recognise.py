@@ -23,7 +23,7 @@ circles (the meridians and parallels of a torus; a cylinder's parallels), and th
 three points of one gives centre, radius and plane to round-off — no curvature sampling and no
 tolerance on the surface itself.
 
-Lengths inside are model units (mm, :data:`fetorsion.solid.geometry.MODEL_UNIT`); what leaves
+Lengths inside are model units (mm, :data:`fetorsion.solid.geometry.MODEL_UNIT`, passed in); what leaves
 (:class:`SolidFeatures`) is SI.
 """
 
@@ -34,6 +34,12 @@ from dataclasses import asdict, dataclass
 
 import gmsh
 import numpy as np
+
+from ..errors import GeometryError
+
+#: Factors a solid's size may be off by when its STEP header states the wrong unit.
+UNIT_SLIPS = {1000.0: "m read as mm", 0.001: "mm read as m", 25.4: "in read as mm", 1 / 25.4: "mm read as in",
+              10.0: "cm read as mm", 0.1: "mm read as cm"}
 
 #: Largest relative disagreement between a journal's or pin's diameter found on the solid and the
 #: description's before the solid is refused: a diameter is drawn to hundredths of a mm and
@@ -251,7 +257,7 @@ def _read_faces(volume: int):
 # The check against the description
 
 
-def recognise(crank, pieces, volume: int, name: str) -> SolidFeatures:
+def recognise(crank, pieces, volume: int, name: str, unit: float) -> SolidFeatures:
     """Read the journals, pins, fillets and drillings of the imported solid ``volume`` (current
     Gmsh model, model units) and check them against the description's layout ``pieces``.
 
@@ -265,6 +271,8 @@ def recognise(crank, pieces, volume: int, name: str) -> SolidFeatures:
         The solid, one OCC volume, crank axis x, front at x = 0.
     name : str
         The STEP file's name, for the messages.
+    unit : float
+        Metres per model length unit (:data:`fetorsion.solid.geometry.MODEL_UNIT`).
 
     Returns
     -------
@@ -274,13 +282,11 @@ def recognise(crank, pieces, volume: int, name: str) -> SolidFeatures:
     ------
     GeometryError
         One line naming the file: the journals' diameters off the description's by a unit
-        (:data:`~fetorsion.solid.geometry.UNIT_SLIPS`); a journal or pin of the layout with no
+        (:data:`UNIT_SLIPS`); a journal or pin of the layout with no
         cylinder on its axis there; diameters that disagree by more than :data:`DIAMETER_TOL`
         (every such part, with both diameters).
     """
-    from .geometry import MODEL_UNIT, UNIT_SLIPS, GeometryError
-
-    u = MODEL_UNIT
+    u = unit
     R = crank.engine.crank_radius / u
     tol = AXIS_TOL * R
     cyls, tori, convex_tori, drills = _read_faces(volume)
