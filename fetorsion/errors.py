@@ -21,6 +21,11 @@ class FetorsionError(Exception):
     """A mistake in what the user asked for (input file, option); never a bug."""
 
 
+class GeometryError(FetorsionError):
+    """The description is valid field by field but does not make one sound solid, or a CAD solid
+    (``[solid] step``) is not one closed solid of the described crank (:mod:`fetorsion.solid`)."""
+
+
 class ParameterError(FetorsionError):
     """A bad argument of a fetorsion function, named by its parameter (``kind 'x': choose ...``).
 

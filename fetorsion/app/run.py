@@ -290,13 +290,15 @@ def step_fe(ctx: RunContext) -> FEOutcome:
         ctx.deferred.append(functools.partial(
             render_mode, cm.nodes, cm.tets, fe.shapes[im.mode], ctx.folder / im.file,
             title=f"mode {im.mode + 1}: {fe.frequencies_hz[im.mode]:.1f} Hz, {fe.kinds[im.mode]}"))
-    solid_image = ""
+    solid_image, features = "", None
     if ctx.crank.solid_step:  # a CAD solid: what was recognised on it, for the user to check
         from ..report.render import render_solid
+        from ..solid.geometry import solid_features
 
         solid_image = "solid_recognised.png"
         ctx.deferred.append(functools.partial(render_solid, ctx.crank, ctx.folder / solid_image))
-    return FEOutcome(fe, size, images, solid_image)
+        features = solid_features(ctx.crank)  # read when the run began: kept
+    return FEOutcome(fe, size, images, solid_image, features)
 
 
 def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
@@ -655,12 +657,19 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
+    features = None
+    if getattr(crank, "solid_step", None):  # a CAD crank: its solid against its description, before any work
+        from ..solid.geometry import solid_features
+
+        features = solid_features(crank)
     if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out))
         no_fe = options.no_fe or not any(s[2] is step_fe for s in steps)
         ctx = RunContext(crank, work, dataclasses.replace(options, no_fe=no_fe), outcome)
+        if features is not None:
+            ctx.results["solid"] = features.to_dict()
         scfs = not ctx.options.no_fe  # without the FE steps the verdict takes no FE SCF
         if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank, scfs):
             # first in the queue: the bearings step (the lumped `fe` column) and the verdict read it

@@ -136,10 +136,14 @@ OIL_HOLES = Section("oil_holes", "Diametral oil drillings.", (
 SOLID = Section("solid", "Optional: the crank's solid from CAD in place of the one built from the dimensions. The "
                 "solid's crank axis is the x axis, its front (pulley) end at x = 0, as fetorsion builds it; the "
                 "tables above still say where the journals and pins lie (the parts are cut there) and what the "
-                "fillets and drillings are.", (
+                "fillets and drillings are. Before any work the journals (cylinders coaxial with x) and pins "
+                "(cylinders on the described pin axes) found on the solid are checked against the journal and pin "
+                "tables (a diameter more than 2 % off is refused, naming the part); the fillets found on it (the "
+                "concave tori at each journal and pin end, an undercut's several faces one fillet, its smallest "
+                "radius) are reported beside `[fillets]`, which the SCF formulas keep reading.", (
     Field("step", "a STEP file (`.step`, `.stp`; path relative to the description), one closed solid; its "
-          "header's unit is read (a solid whose size disagrees with the description by a factor of about 1000 "
-          "or 25.4 is refused)", "an existing file"),
+          "header's unit is read (a solid whose length or journal diameters disagree with the description's by a "
+          "factor of about 1000, 25.4 or 10 is refused, naming the unit slip)", "an existing file"),
     Field("source", "where the solid comes from", "a string"),
 ))
 

@@ -204,6 +204,42 @@ def fillet_zone(xyz: np.ndarray, x_face: float, side: int, centre, radius: float
     return (rho <= radius + fillet + slack) & (rho >= radius - slack) & (ax >= -slack) & (ax <= fillet + slack)
 
 
+def found_zone(xyz: np.ndarray, centre, extent, fillet: float) -> np.ndarray:
+    """Nodes of a fillet found on a CAD solid (:class:`fetorsion.solid.recognise.FoundFillet`):
+    within ``extent`` (x from, to; distance from the axis through ``centre`` (y, z) from, to; m,
+    the throw's frame) of its faces, with the slack of :func:`fillet_zone` on its smallest radius
+    ``fillet``. For a plain fillet it is :func:`fillet_zone`'s quarter torus; an undercut's zone
+    reaches into the web as far as its faces do."""
+    rho = np.hypot(xyz[:, 1] - centre[0], xyz[:, 2] - centre[1])
+    x0, x1, r0, r1 = extent
+    slack = ZONE_SLACK * fillet
+    return (xyz[:, 0] >= x0 - slack) & (xyz[:, 0] <= x1 + slack) & (rho >= r0 - slack) & (rho <= r1 + slack)
+
+
+def _found_zones(crank: Crank, index: int, throw: Crank) -> list[tuple] | None:
+    """For a CAD crank, the four fillets of throw ``index`` as found on its solid (journal, web 1;
+    pin, web 1; pin, web 2; journal, web 2), each as (axis centre, extent, smallest radius) in the
+    throw's frame (its slab moved to x = 0, its pin turned to +y: distances from an axis do not
+    turn); None for a crank built from its dimensions, or a fillet the solid lacks."""
+    if not getattr(crank, "solid_step", None) or crank.solid_window is not None:
+        return None
+    from ..solid.geometry import solid_features
+
+    by_end = {f.end: f for f in solid_features(crank).fillets}
+    i = index + 1
+    ends = (f"journal_{i}/web_{2 * i - 1}", f"pin_{i}/web_{2 * i - 1}", f"pin_{i}/web_{2 * i}", f"journal_{i + 1}/web_{2 * i}")
+    if not all(e in by_end for e in ends):
+        return None
+    lo = throw.solid_window[0]
+    R = throw.engine.crank_radius
+    out = []
+    for e in ends:
+        f = by_end[e]
+        x0, x1, r0, r1 = f.extent
+        out.append(((R, 0.0) if e.startswith("pin") else (0.0, 0.0), (x0 - lo, x1 - lo, r0, r1), f.radius))
+    return out
+
+
 @dataclass(frozen=True)
 class FilletStress:
     """Peak shear over nominal at one fillet.
@@ -327,6 +363,7 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
     R = throw.engine.crank_radius
     x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, w2.thickness])  # faces of the stack
     rj, rp = crank.fillets.journal, crank.fillets.pin
+    found = _found_zones(crank, index, throw)
     out = {}
     for load, sol in zip(loads, sols):
         xyz = sol.skfem_mesh.doflocs.T
@@ -335,16 +372,17 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
         # stress ("bending_vm", [IACSM53] Appendix III's measure), from one stress recovery
         measures = ({"torsion": _shear(sol, throw.material)} if load == "torsion" else
                     dict(zip(("bending", "bending_vm"), _bending_measures(sol, throw.material).values())))
+        zones = ([found_zone(xyz, *f) for f in found] if found else
+                 [fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
+                  fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
+                  fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
+                  fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj)])
         for case, stress in measures.items():
             out[case] = [
-                _peak("journal fillet, web 1", stress, xyz, fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
-                      float(nominal(TORQUE, j1.diameter, j1.bore))),
-                _peak("pin fillet, web 1", stress, xyz, fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
-                      float(nominal(TORQUE, pin.diameter, pin.bore))),
-                _peak("pin fillet, web 2", stress, xyz, fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
-                      float(nominal(TORQUE, pin.diameter, pin.bore))),
-                _peak("journal fillet, web 2", stress, xyz, fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj),
-                      float(nominal(TORQUE, j2.diameter, j2.bore))),
+                _peak("journal fillet, web 1", stress, xyz, zones[0], float(nominal(TORQUE, j1.diameter, j1.bore))),
+                _peak("pin fillet, web 1", stress, xyz, zones[1], float(nominal(TORQUE, pin.diameter, pin.bore))),
+                _peak("pin fillet, web 2", stress, xyz, zones[2], float(nominal(TORQUE, pin.diameter, pin.bore))),
+                _peak("journal fillet, web 2", stress, xyz, zones[3], float(nominal(TORQUE, j2.diameter, j2.bore))),
             ]
     return out, {"nodes": len(fe.mesh.nodes), "elements": len(fe.mesh.tets), "dofs": int(sols[0].dofs),
                  "mesh_size_m": size, "fillet_size_m": fine, "seconds": fe.seconds}

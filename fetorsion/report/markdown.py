@@ -88,7 +88,40 @@ def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     if outcome.solid_image:
         lines += ["What was found on the CAD solid (check it): journals blue, pins orange, fillets red, drillings "
                   "green.", "", f"![]({outcome.solid_image})", ""]
+    if outcome.solid_features is not None:
+        lines += solid_features_lines(outcome.solid_features)
     return lines + [f"![]({img.file})" for img in outcome.images] + [""]
+
+
+def solid_features_lines(found) -> list[str]:
+    """The journals, pins, fillets and drillings found on a CAD crank's solid
+    (:class:`~fetorsion.solid.recognise.SolidFeatures`), and where its fillets differ from the
+    description's radius, which radius decides what."""
+    from ..solid.recognise import DIAMETER_TOL, FILLET_TOL
+
+    def cyl(c):
+        where = f" at {round(math.degrees(c.angle)) % 360:d}°" if c.part.startswith("pin") else ""
+        return f"{c.part} {c.diameter * 1e3:.2f} mm{where}"
+
+    holes = sorted({f"{d.diameter * 1e3:.2f}" for d in found.drillings})
+    lines = [f"Found on `{found.step}` (each agrees with the description within {DIAMETER_TOL:.0%}): journals "
+             + ", ".join(cyl(c) for c in found.journals) + "; pins " + ", ".join(cyl(c) for c in found.pins)
+             + f"; {len(found.drillings)} drilling faces" + (f" ({', '.join(holes)} mm)" if holes else "")
+             + (f"; {found.other_tori} toroidal faces that round no journal or pin end" if found.other_tori else "")
+             + ". Fillets (the concave toroidal faces at each journal and pin end, one fillet per end however "
+             "many faces it has; its smallest minor radius):", "",
+             "| end | x (mm) | smallest radius (mm) | faces | description (mm) |", "|---|---|---|---|---|"]
+    lines += [f"| {f.end} | {f.x * 1e3:.2f} | {f.radius * 1e3:.2f} | {f.faces} | {f.described * 1e3:.2f}"
+              + (" (differs)" if f.differs else "") + " |" for f in found.fillets]
+    off = [f for f in found.fillets if f.differs]
+    if off:
+        radii = ", ".join(sorted({f"{f.radius * 1e3:.2f} mm" for f in off}))
+        lines += ["", f"**{len(off)} of the solid's {len(found.fillets)} fillets differ from the description's radius by "
+                  f"more than {FILLET_TOL:.0%}** (smallest on the solid: {radii}). The M53 and textbook fillet SCFs "
+                  "(the verdict's default method) take the description's radius (`[fillets]`); the FE meshes the "
+                  "solid's own fillets, refined on every toroidal face. To have the formulas take the solid's "
+                  "radius, state it in `[fillets]`."]
+    return lines + [""]
 
 
 def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:

@@ -26,6 +26,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..response.coupled import CoupledResponse
     from ..response.forced import ResponseResult
     from ..response.transient import TransientResult
+    from ..solid.recognise import SolidFeatures
     from ..studies.comparison import ComparisonResult
     from ..studies.sensitivity import SensitivityResult
     from ..studies.study import StudyResult
@@ -75,6 +76,8 @@ class FEOutcome:
     images: tuple[ModeImage, ...]
     #: A CAD crank's picture of the journals, pins, fillets and drillings found on its solid.
     solid_image: str = ""
+    #: What was found on a CAD crank's solid (None: a crank built from its dimensions).
+    solid_features: SolidFeatures | None = None
 
 
 @dataclass(frozen=True)

@@ -41,17 +41,14 @@ import gmsh
 import numpy as np
 
 from ..description.model import Crank, Cylinder, Web
-from ..errors import FetorsionError
+from ..errors import GeometryError
+from .recognise import UNIT_SLIPS, SolidFeatures, recognise
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
 # Tolerance for "same plane / same circle" searches, model units (mm): far above
 # OCC's 1e-7 and far below any real feature (≥ 0.1 mm).
 _FIND_TOL = 1e-3
-
-
-class GeometryError(FetorsionError):
-    """The description is valid field by field but does not make one sound solid."""
 
 
 @dataclass(frozen=True)
@@ -86,6 +83,8 @@ class CrankSolid:
     hole_faces: tuple[int, ...]
     axis_origin: tuple[float, float, float] = (0.0, 0.0, 0.0)
     axis_direction: tuple[float, float, float] = (1.0, 0.0, 0.0)
+    #: a CAD crank's journals, pins, fillets and drillings as found on its solid (None: built)
+    features: SolidFeatures | None = None
 
     @property
     def volumes(self) -> tuple[int, ...]:
@@ -442,15 +441,12 @@ def _built_solid(crank: Crank, pieces) -> int:
     return solid
 
 
-#: Factors a solid's size may be off by when its STEP header states the wrong unit.
-UNIT_SLIPS = {1000.0: "m read as mm", 0.001: "mm read as m", 25.4: "in read as mm", 1 / 25.4: "mm read as in",
-              10.0: "cm read as mm", 0.1: "mm read as cm"}
-
-
-def _imported_solid(crank: Crank, pieces) -> int:
-    """The crank's ``[solid]`` STEP file as one OCC volume; its tag. Refused, naming the file, when
-    it holds no closed volume, several bodies, or a solid whose length disagrees with the
-    description's layout (a wrong unit: :data:`UNIT_SLIPS`)."""
+def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
+    """The crank's ``[solid]`` STEP file as one OCC volume: its tag, and what was found on it
+    (:func:`fetorsion.solid.recognise.recognise`; None for a throw's slab, whose whole crank was
+    checked). Refused, naming the file, when it holds no closed volume, several bodies, a solid
+    whose length disagrees with the description's layout (a wrong unit: :data:`UNIT_SLIPS`), or
+    journals and pins that are not the described ones."""
     occ = gmsh.model.occ
     name = Path(crank.solid_step).name
     gmsh.option.setString("Geometry.OCCTargetUnit", "MM")  # OCC converts from the file header's unit
@@ -469,7 +465,11 @@ def _imported_solid(crank: Crank, pieces) -> int:
         if len(out) != 1:
             raise GeometryError(f"{name}: {len(out)} separate bodies, not one solid crank")
     (_, solid), = gmsh.model.getEntities(3)
-    if crank.solid_window is not None:  # a throw: its slab, moved to x = 0 and turned to put its pin at angle 0
+    features = None
+    if crank.solid_window is None:
+        _check_length(name, solid, pieces)
+        features = recognise(crank, pieces, solid, name, MODEL_UNIT)
+    else:  # a throw: its slab, moved to x = 0 and turned to put its pin at angle 0
         lo, hi, turn = crank.solid_window
         a, b = lo / MODEL_UNIT, hi / MODEL_UNIT
         box = occ.addBox(a, -1e4, -1e4, b - a, 2e4, 2e4)
@@ -480,6 +480,13 @@ def _imported_solid(crank: Crank, pieces) -> int:
         occ.rotate(out, 0, 0, 0, 1, 0, 0, turn)
         occ.synchronize()
         solid = out[0][1]
+        _check_length(name, solid, pieces)
+    return solid, features
+
+
+def _check_length(name: str, solid: int, pieces) -> None:
+    """Refuse, naming the file, a solid whose length along x is not the layout's (a unit slip is
+    named) or whose front end is not at x = 0."""
     x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, solid)
     length = pieces[-1].x1
     ratio = (x1 - x0) / length
@@ -491,7 +498,6 @@ def _imported_solid(crank: Crank, pieces) -> int:
     if abs(x0) > 0.02 * length:
         raise GeometryError(f"{name}: the solid starts at x = {x0:.6g} mm; its front (pulley) end must be at x = 0 "
                             "with the crank axis along x")
-    return solid
 
 
 def write_step(crank: Crank, path) -> Path:
@@ -550,7 +556,7 @@ def build_solid(crank: Crank) -> CrankSolid:
     occ = gmsh.model.occ
     s = 1.0 / MODEL_UNIT
     pieces = layout(crank)
-    solid = _imported_solid(crank, pieces) if crank.solid_step else _built_solid(crank, pieces)
+    solid, features = _imported_solid(crank, pieces) if crank.solid_step else (_built_solid(crank, pieces), None)
     occ.synchronize()
     n = len(gmsh.model.getEntities(3))
     if n != 1:
@@ -574,7 +580,7 @@ def build_solid(crank: Crank) -> CrankSolid:
     hole_r = 0.5 * crank.oil_holes.diameter * s
     drill = tuple(t for _, t in gmsh.model.getEntities(2)
                   if hole_r > 0 and gmsh.model.getType(2, t) == "Cylinder" and _radius_of(t) < 1.01 * hole_r)
-    return CrankSolid(crank.name, length * MODEL_UNIT, tuple(parts), front, rear, fillets, drill)
+    return CrankSolid(crank.name, length * MODEL_UNIT, tuple(parts), front, rear, fillets, drill, features=features)
 
 
 def _radius_of(surface: int) -> float:
@@ -634,6 +640,36 @@ def cad_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
     if key not in _CAD_MASS_PROPERTIES:
         _CAD_MASS_PROPERTIES[key] = crank_mass_properties(crank)
     return _CAD_MASS_PROPERTIES[key]
+
+
+def solid_features(crank: Crank) -> SolidFeatures:
+    """What is found on a CAD crank's solid (journals, pins, fillets, drillings;
+    :func:`fetorsion.solid.recognise.recognise`), checked against its description: read in a
+    private Gmsh session (the STEP import and its faces, no split, no mesh: well under a second for
+    the Renault) and kept per solid file, its state and the description's layout, radii and
+    drilling. ``fetorsion run`` calls it before any work, so a solid that is not the described
+    crank is refused first; the report and ``results.json`` list what it found.
+
+    Raises
+    ------
+    GeometryError
+        As :func:`build_solid` does for the same file, naming it.
+    """
+    import json
+    import os
+
+    stat = os.stat(crank.solid_step)
+    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size,
+           json.dumps([(p.name, p.x0, p.x1, getattr(p.spec, "diameter", 0.0), p.centre) for p in layout(crank)]),
+           crank.fillets.journal, crank.fillets.pin, crank.oil_holes.diameter)
+    if key not in _SOLID_FEATURES:
+        with gmsh_session("features"):
+            _SOLID_FEATURES[key] = _imported_solid(crank, layout(crank))[1]
+    return _SOLID_FEATURES[key]
+
+
+#: solid_features' results, by solid file, its state and the description's layout, radii and drilling.
+_SOLID_FEATURES: dict[tuple, SolidFeatures] = {}
 
 
 #: cad_mass_properties' results, by solid file, its state, the layout and the density.
