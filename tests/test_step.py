@@ -541,3 +541,34 @@ def test_an_oval_webbed_undercut_crank_runs_end_to_end(oval, tmp_path):
     gaps = [o.bearings.chain["fe"]["vs_bearings"] for o in (built, out)]
     assert abs(gaps[1] - gaps[0]) < 0.01
 
+
+
+@pytest.mark.slow
+@pytest.mark.fe
+@pytest.mark.parametrize("throw", [0, 1])
+def test_the_round_trip_has_the_same_fillet_scfs(tmp_path, throw):
+    """The fillet SCFs of the Renault's throw (the run's default stress mesh) built from its
+    dimensions and cut from its STEP written and read back: the same body meshed from imported
+    faces, so they agree to the spread the SCF convergence study shows between its two finest
+    levels, 2.5 % (docs/fillet-stress.md; measured here 0.0-2.0 %). Drillings are left out: the
+    built throw drills its half journals at their own centres, the STEP's slab at the journal's
+    (test_a_cad_cranks_throw_is_its_solids_slab). Throw 2 (pin at 180°) exercises the turn."""
+    from fetorsion.design.scf import DEFAULT_FILLET_SHARE, _larger_of_each, throw_scfs
+    from fetorsion.solid.geometry import write_step
+    from fetorsion.solid.mesh import default_fillet_size
+    from fetorsion.webs.throwfe import default_mesh_size, throw_of
+
+    text = RENAULT.read_text().replace("diameter = 5.0  # [N] typical automotive drilling", "diameter = 0.0")
+    text = text.replace('"oil_holes.diameter" = [4.0, 7.0]', "")
+    (tmp_path / "plain.toml").write_text(text)
+    built = fetorsion.load(tmp_path / "plain.toml")
+    write_step(built, tmp_path / "plain.step")
+    (tmp_path / "plain_step.toml").write_text(text + '\n[solid]\nstep = "plain.step"\n')
+    read = fetorsion.load(tmp_path / "plain_step.toml")
+    t = throw_of(built, throw)
+    size = default_mesh_size(t)
+    fine = DEFAULT_FILLET_SHARE * default_fillet_size(t, size, "stress")
+    b, s = (_larger_of_each(throw_scfs(c, throw, mesh_size=size, fillet_size=fine)[0]) for c in (built, read))
+    assert set(b) == set(s) and len(b) == 6
+    for key in b:
+        assert s[key] == pytest.approx(b[key], rel=0.025), key
