@@ -280,11 +280,22 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     oil = OilHoles(ot.number("diameter", 0.0, length=True, nonnegative=True),
                    ot.flag("in_journals"), ot.flag("in_pins"))
     ot.finish()
-    step = None
+    step = placement = None
     if "solid" in data:
         st = root.table("solid")
         given = st.text("step")
         st.text("source", default="")
+        axis = st.numbers("axis", required=False) or (1.0, 0.0, 0.0)
+        centre = st.numbers("front_centre", required=False) or (0.0, 0.0, 0.0)
+        if len(axis) != 3 or not math.hypot(*axis) > 0:
+            problems.append(Problem("solid.axis", st.data.get("axis"), "must be [x, y, z], a direction (not zero)"))
+        elif len(centre) != 3:
+            problems.append(Problem("solid.front_centre", st.data.get("front_centre"), "must be [x, y, z]"))
+        else:
+            n = math.hypot(*axis)
+            placement = (tuple(a / n for a in axis), tuple(v * st.scale for v in centre))
+            if placement == ((1.0, 0.0, 0.0), (0.0, 0.0, 0.0)):
+                placement = None  # already as fetorsion builds it
         st.finish()
         path = Path(source).parent / given
         if not given.lower().endswith((".step", ".stp")):
@@ -321,7 +332,8 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
                   tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings=bearings,
-                  distributions=distributions, dampers=dampers, limits=limits, design=design, solid_step=step)
+                  distributions=distributions, dampers=dampers, limits=limits, design=design, solid_step=step,
+                  solid_placement=placement)
     problems.extend(_geometry_problems(crank, root.scale))
     if check_uncertainty and not problems:
         problems.extend(uncertainty_bound_problems(crank, parse_crank))

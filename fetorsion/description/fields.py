@@ -134,7 +134,8 @@ OIL_HOLES = Section("oil_holes", "Diametral oil drillings.", (
 ))
 
 SOLID = Section("solid", "Optional: the crank's solid from CAD in place of the one built from the dimensions. The "
-                "solid's crank axis is the x axis, its front (pulley) end at x = 0, as fetorsion builds it; the "
+                "solid's crank axis is the x axis, its front (pulley) end at x = 0, as fetorsion builds it, unless `axis` and "
+                "`front_centre` say where they are in the file; the "
                 "tables above still say where the journals and pins lie (the parts are cut there) and what the "
                 "fillets and drillings are. Before any work the journals (cylinders coaxial with x) and pins "
                 "(cylinders on the described pin axes) found on the solid are checked against the journal and pin "
@@ -144,6 +145,12 @@ SOLID = Section("solid", "Optional: the crank's solid from CAD in place of the o
     Field("step", "a STEP file (`.step`, `.stp`; path relative to the description), one closed solid; its "
           "header's unit is read (a solid whose length or journal diameters disagree with the description's by a "
           "factor of about 1000, 25.4 or 10 is refused, naming the unit slip)", "an existing file"),
+    Field("axis", "`[x, y, z]`: the crank axis in the STEP file's coordinates, from the front (pulley) end to "
+          "the rear; default `[1, 0, 0]`. The solid is turned to put it on x", "a direction, not zero"),
+    Field("front_centre", "`[x, y, z]`: the point of the crank axis at the front end face in the STEP file's "
+          "coordinates (the description's length unit); default the origin. The solid is moved to put it at "
+          "x = 0, then turned about the axis so that the pin found nearest the first throw's place lies at "
+          "its described angle", "three numbers"),
     Field("source", "where the solid comes from", "a string"),
 ))
 

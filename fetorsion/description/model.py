@@ -455,6 +455,10 @@ class Crank:
     design: DesignSpace | None = None
     #: ``[solid] step``: the CAD solid (absolute path) the FE analyses mesh in place of the built one.
     solid_step: str | None = None
+    #: ``[solid] axis`` and ``front_centre``: the crank axis (unit vector, front to rear) and the
+    #: point of it at the front end face (m), in the STEP file's coordinates; None: the x axis
+    #: through the origin, as fetorsion builds a crank.
+    solid_placement: tuple[tuple[float, float, float], tuple[float, float, float]] | None = None
     #: A throw cut from that solid (:func:`fetorsion.webs.throwfe.throw_of`): its slab of the whole
     #: crank's (x from, x to, m) and the turn (rad, about x) that puts its pin at angle 0.
     solid_window: tuple[float, float, float] | None = None

@@ -42,7 +42,7 @@ import numpy as np
 
 from ..description.model import Crank, Cylinder, Web
 from ..errors import GeometryError
-from .recognise import UNIT_SLIPS, SolidFeatures, recognise
+from .recognise import UNIT_SLIPS, SolidFeatures, first_pin_turn, recognise
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
@@ -465,6 +465,7 @@ def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
         if len(out) != 1:
             raise GeometryError(f"{name}: {len(out)} separate bodies, not one solid crank")
     (_, solid), = gmsh.model.getEntities(3)
+    _place(crank, solid, pieces)
     features = None
     if crank.solid_window is None:
         _check_length(name, solid, pieces)
@@ -477,11 +478,37 @@ def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
         if len(out) != 1:
             raise GeometryError(f"{name}: the throw's slab x = {a:.6g}-{b:.6g} mm is {len(out)} pieces, not one")
         occ.translate(out, -a, 0, 0)
-        occ.rotate(out, 0, 0, 0, 1, 0, 0, turn)
         occ.synchronize()
         solid = out[0][1]
+        found = first_pin_turn(crank, pieces, solid, MODEL_UNIT)  # its pin to angle 0, as found on it
+        occ.rotate(out, 0, 0, 0, 1, 0, 0, turn if found is None else found)
+        occ.synchronize()
         _check_length(name, solid, pieces)
     return solid, features
+
+
+def _place(crank: Crank, solid: int, pieces) -> None:
+    """Move the imported ``solid`` where fetorsion builds a crank: ``[solid] front_centre`` to the
+    origin, ``axis`` onto +x (one rotation about axis × x), then about x so that its first pin
+    lies at the described angle (:func:`fetorsion.solid.recognise.first_pin_turn`; a CAD model's
+    angular origin is its own)."""
+    occ = gmsh.model.occ
+    if crank.solid_placement is not None:
+        axis, front = (np.asarray(v, float) for v in crank.solid_placement)
+        occ.translate([(3, solid)], *(-front / MODEL_UNIT))
+        cos = float(axis[0])
+        if cos < 1.0 - 1e-15:
+            about = np.cross(axis, [1.0, 0.0, 0.0])
+            if np.linalg.norm(about) < 1e-12:  # the axis is -x: half a turn about y
+                about = np.array([0.0, 1.0, 0.0])
+            occ.rotate([(3, solid)], 0, 0, 0, *about, math.acos(max(-1.0, cos)))
+        occ.synchronize()
+    if crank.solid_window is not None:
+        return  # a throw's slab is turned once it is cut (its own pin found there)
+    turn = first_pin_turn(crank, pieces, solid, MODEL_UNIT)
+    if turn is not None and abs(turn) > 1e-9:
+        occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, turn)
+        occ.synchronize()
 
 
 def _check_length(name: str, solid: int, pieces) -> None:
@@ -635,7 +662,7 @@ def cad_mass_properties(crank: Crank) -> tuple[Body, dict[str, Body]]:
     import os
 
     stat = os.stat(crank.solid_step)
-    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size,
+    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size, crank.solid_placement,
            json.dumps([(p.name, p.x0, p.x1) for p in layout(crank)]), crank.material.density)
     if key not in _CAD_MASS_PROPERTIES:
         _CAD_MASS_PROPERTIES[key] = crank_mass_properties(crank)
@@ -659,7 +686,7 @@ def solid_features(crank: Crank) -> SolidFeatures:
     import os
 
     stat = os.stat(crank.solid_step)
-    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size,
+    key = (crank.solid_step, stat.st_mtime_ns, stat.st_size, crank.solid_placement,
            json.dumps([(p.name, p.x0, p.x1, getattr(p.spec, "diameter", 0.0), p.centre) for p in layout(crank)]),
            crank.fillets.journal, crank.fillets.pin, crank.oil_holes.diameter)
     if key not in _SOLID_FEATURES:

@@ -253,6 +253,22 @@ def _read_faces(volume: int):
     return cyls, tori, convex_tori, drills
 
 
+def first_pin_turn(crank, pieces, volume: int, unit: float) -> float | None:
+    """The turn about x (rad) that puts the first pin found on ``volume`` (crank axis x, front at
+    x = 0) at its described angle: the convex cylinder parallel to x whose axis lies at the crank
+    radius (within :data:`AXIS_TOL`) and whose mid-x lies in the first pin of the layout ``pieces``
+    (mm), the largest such face; None when there is none (the check then names the missing pin)."""
+    R = crank.engine.crank_radius / unit
+    pin = next(p for p in pieces if p.kind == "pin")
+    near = [c for c in _read_faces(volume)[0]
+            if pin.x0 <= 0.5 * (c.x0 + c.x1) <= pin.x1 and abs(math.hypot(*c.centre) - R) < AXIS_TOL * R]
+    if not near:
+        return None
+    c = max(near, key=lambda c: c.area)
+    turn = math.atan2(pin.centre[1], pin.centre[0]) - math.atan2(c.centre[1], c.centre[0])
+    return math.remainder(turn, 2 * math.pi)
+
+
 # ---------------------------------------------------------------------------
 # The check against the description
 

@@ -127,7 +127,8 @@ def throw_of(crank: Crank, index: int) -> Crank:
     return Crank(name="throw", material=crank.material, engine=engine,
                  journals=(half(crank.journals[index]), half(crank.journals[index + 1])),
                  pins=(crank.pins[index],), webs=(crank.webs[2 * index], crank.webs[2 * index + 1]),
-                 fillets=crank.fillets, oil_holes=crank.oil_holes, solid_step=crank.solid_step, solid_window=window)
+                 fillets=crank.fillets, oil_holes=crank.oil_holes, solid_step=crank.solid_step, solid_window=window,
+                 solid_placement=crank.solid_placement)
 
 
 def default_mesh_size(crank: Crank) -> float:
@@ -323,7 +324,8 @@ def throw_key(throw: Crank, mesh_size: float | None) -> str:
               "fillets": dataclasses.asdict(throw.fillets), "oil_holes": dataclasses.asdict(throw.oil_holes),
               "mesh_size": mesh_size, "model": MODEL_VERSION}
     if throw.solid_step:  # a CAD crank's throw: its solid's content and the slab, not the dimensions alone
-        fields["solid"] = (hashlib.sha256(Path(throw.solid_step).read_bytes()).hexdigest(), throw.solid_window)
+        fields["solid"] = (hashlib.sha256(Path(throw.solid_step).read_bytes()).hexdigest(), throw.solid_window,
+                           throw.solid_placement)
     for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
         fields["material"].pop(key, None)
     text = json.dumps(fields, sort_keys=True, default=repr)
