@@ -233,7 +233,7 @@ def test_the_design_loop_lands_where_the_fe_verdict_binds(tmp_path):
     crank = fetorsion.load(src)
     (tmp_path / "thinner.toml").write_text(designed_text(src.read_text(), crank, thinner))
     fe = _confirm(tmp_path / "thinner.toml", tmp_path / "thinner", options, steps, 1.9)
-    assert not fe.verdict_passes and fe.safety < fe.required == 1.9
+    assert fe.safety < fe.required == 1.9  # the verdict's own 1.15 it passes; the design's 1.9 it fails
     assert "The crank as described: PASS" in (tmp_path / "d" / "run" / "report.md").read_text()
 
 
