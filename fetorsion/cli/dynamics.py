@@ -16,7 +16,7 @@ from ..io import write_text_atomic
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..response.forced import COMPARE_UNITS
 from ..description.defaults import (NONLINEAR_METHODS, DEFAULT_DAMPING_RATIO, DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES,
-                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_TEETH,
+                                    DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_STEP_DEG, DEFAULT_TEETH,
                                     DEFAULT_TRANSIENT_CYCLES, DEFAULT_WEB_METHOD, LUMPED17)
 from ..webs.methods import WEB_METHODS
 from ..description.model import DAMPER_STATIONS, DAMPER_TYPES
@@ -253,6 +253,11 @@ def cmd_transient(args) -> int:
         raise FetorsionError("--run-up A B needs --rate RPM_PER_S (how fast the speed changes)")
     if args.rate is not None and args.run_up is None:
         raise FetorsionError("--rate goes with --run-up A B (a steady --rpm has no rate)")
+    if args.step_deg > 180.0 / args.teeth:
+        raise FetorsionError(f"--step-deg {args.step_deg:g}: at most half a tooth of the {args.teeth}-tooth wheel, "
+                             f"{180.0 / args.teeth:.4g}° (or fewer --teeth)")
+    if args.settled_start and args.run_up is None:
+        raise FetorsionError("--settled-start goes with --run-up A B (a steady --rpm settles by itself)")
     if args.run_up is not None and args.run_up[0] == args.run_up[1]:
         raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
                              "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
@@ -284,7 +289,8 @@ def cmd_transient(args) -> int:
                         rate_rpm_per_s=args.rate, cycles=args.cycles, damping_ratio=args.damping,
                         partition=partition_of(args.source), web_method=stiffness_for(args), teeth=args.teeth,
                         track_station=0 if args.station is None else args.station - 1,
-                        variable_inertia=args.variable_inertia, method=args.integrator)
+                        variable_inertia=args.variable_inertia, method=args.integrator,
+                        step_rad=math.radians(args.step_deg), settled_start=args.settled_start)
     model = "" if isinstance(crank, (Chain, Network)) else (
         f"\n(the crank's lumped {partition_of(args.source)}-DOF chain, not the condensed crank the run and 'response' "
         "answer for: the condensed crank's time domain is steady running, --rpm, without dampers)")
@@ -385,6 +391,12 @@ def add_parsers(sub) -> None:
                     help="working cycles kept after settling, steady running (default %(default)s)")
     tp.add_argument("--teeth", type=integer(8, 10_000), default=DEFAULT_TEETH,
                     help="teeth of the simulated wheel the order tracking reads (default %(default)s)")
+    tp.add_argument("--step-deg", type=real(0.0, 180.0, unit="degrees"), default=DEFAULT_STEP_DEG,
+                    metavar="DEG", help="crank angle per time step at the run's top speed, degrees (default "
+                    "%(default)g; at most half a tooth, 180 / --teeth)")
+    tp.add_argument("--settled-start", action="store_true",
+                    help="a run first holds its start speed until starting from rest has rung out (the envelope "
+                         "and order track begin after the hold); without it the first revolutions ring")
     tp.add_argument("--station", type=integer(1), metavar="N",
                     help="1-based coordinate of the model whose angle is order-tracked (default 1, the pulley)")
     tp.add_argument("--source", choices=[f"lumped{d}" for d in PARTITIONS] + ["fe", "condensed"],

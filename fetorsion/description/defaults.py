@@ -35,6 +35,8 @@ DEFAULT_STUDY_SAMPLES = {"sobol": 512, "morris": 20, "montecarlo": 2000, "grid":
 DEFAULT_TRANSIENT_CYCLES = 8
 #: Teeth of the simulated toothed wheel whose edges the time domain's order tracking reads.
 DEFAULT_TEETH = 120
+#: Crank angle per time step at a time-domain run's top speed, degrees.
+DEFAULT_STEP_DEG = 0.5
 # A nonlinear element's friction (Coulomb) sticks through a spring this many times the stiffest of
 # its stages (an elastic-perfectly-plastic, Jenkins, element): stiff enough that the loop is the
 # Coulomb parallelogram within 1/STICK_FACTOR of its width at twists of a stage's size.
