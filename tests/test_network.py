@@ -184,3 +184,31 @@ def test_parse_chain_unchanged_for_list_form():
 
     c = parse_chain(tomllib.loads('[chain]\ninertias_kgm2 = [0.1, 0.2]\nstiffnesses_nm_per_rad = [1e4]\n'))
     assert isinstance(c, Chain) and c.stiffnesses == (1e4,)
+
+
+def test_a_locked_loop_of_shafts_and_gears_is_named():
+    """a -shaft- b =gear 0.8= c -shaft- d -shaft- a: round the loop the speed ratio is 0.8, so the
+    loop cannot turn as one (before: "the free network has no rigid-body root", naming neither the
+    file nor the loop). With a ratio of 1 the same loop reads and turns freely (a rigid root)."""
+    loop = NET.replace('[[chain.shafts]]\nbetween = ["a", "b"]', '[[chain.stations]]\nname = "d"\ninertia_kgm2 = 1.0\n'
+                       '[[chain.shafts]]\nbetween = ["a", "b"]') + (
+        '[[chain.gears]]\nbetween = ["b", "c"]\nratio = {r}\n[[chain.shafts]]\nbetween = ["c", "d"]\n'
+        'stiffness_nm_per_rad = 1.0e4\n[[chain.shafts]]\nbetween = ["d", "a"]\nstiffness_nm_per_rad = 1.0e4\n')
+    with pytest.raises(DescriptionError) as err:
+        read(loop.format(r=0.8))
+    (p,) = err.value.problems
+    assert p.field == "chain" and sorted(p.value) == ["a", "b", "c", "d"] and "multiply to 0.8, not 1" in p.rule
+    res = fetorsion.lumped(read(loop.format(r=1.0)))
+    assert abs(res.rigid_body_hz) < 1e-3 and len(res.frequencies_hz) == 2  # 4 stations, one gear
+
+
+def test_one_station_on_a_ground_spring_is_a_network():
+    """One disc on a ground shaft, ω² = k/J (before: refused, "needs at least 2 stations"); one
+    free disc alone has no elastic mode and is refused saying so."""
+    one = ('[chain]\nname = "one"\n[[chain.stations]]\nname = "a"\ninertia_kgm2 = 0.5\n'
+           '[[chain.shafts]]\nbetween = ["a", "ground"]\nstiffness_nm_per_rad = 2.0e4\n')
+    f = fetorsion.lumped(read(one)).frequencies_hz
+    assert f.shape == (1,) and f[0] == pytest.approx(math.sqrt(2.0e4 / 0.5) / (2 * math.pi), rel=1e-12)
+    free = one.replace('"ground"', '"a"')
+    with pytest.raises(DescriptionError):
+        read(free)

@@ -51,8 +51,10 @@ def parts_table(chain) -> list[dict]:
 def format_lumped_table(results, modes: int = MODES_SHOWN) -> str:
     """Plain-text table of the first ``modes`` elastic frequencies of each model."""
     name = results[0].name
+    net = results[0].network
+    support = "grounded" if net is not None and net.grounded else "free-free"
     head = f"{'model':>8} " + " ".join(f"{'f' + str(j + 1) + ' [Hz]':>10}" for j in range(modes))
-    lines = [f"{name}: free-free torsional natural frequencies", head, "-" * len(head)]
+    lines = [f"{name}: {support} torsional natural frequencies", head, "-" * len(head)]
     for r in results:
         tag = f"{r.dof} DOF" if r.partition else "chain"
         freqs = " ".join(f"{f:10.1f}" for f in r.frequencies_hz[:modes])

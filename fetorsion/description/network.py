@@ -220,8 +220,11 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     """A network must hang together (one piece through shafts and gears), and its gears must not
     close a loop (a loop of rigid meshes over-constrains the angles)."""
     n = len(labels)
-    if n < 2:
-        return [Problem("chain.stations", list(labels), "needs at least 2 stations")]
+    if n < 1:
+        return [Problem("chain.stations", list(labels), "needs at least 1 station")]
+    if n == 1 and not any(s.j < 0 for s in shafts):
+        return [Problem("chain.stations", list(labels), "one station alone has no elastic mode: give it a shaft "
+                                                        "to 'ground', or a second station")]
     parent = list(range(n))
 
     def root(a):
@@ -242,4 +245,45 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     apart = sorted({labels[i] for i in range(n) if root(i) != root(0)})
     if apart:
         out.append(Problem("chain.stations", apart, f"are not joined to '{labels[0]}' by any shaft or gear"))
+    if not out:
+        out += _locked_loops(labels, shafts, gears)
+    return out
+
+
+def _locked_loops(labels, shafts, gears) -> list[Problem]:
+    """A loop of shafts and gears whose speed ratios do not multiply to 1 cannot turn as one (its
+    shafts would wind up without end: a locked loop, no rigid-body motion): each such loop named
+    by its stations, once. A shaft keeps the speed; a gear multiplies it by its ratio."""
+    n = len(labels)
+    links = {s: [] for s in range(n)}
+    for s in shafts:
+        if s.j >= 0:
+            links[s.i].append((s.j, 1.0))
+            links[s.j].append((s.i, 1.0))
+    for g in gears:
+        links[g.i].append((g.j, g.ratio))
+        links[g.j].append((g.i, 1.0 / g.ratio))
+    speed, parent = {0: 1.0}, {0: None}
+    queue, out = [0], []
+    while queue:
+        a = queue.pop(0)
+        for b, r in links[a]:
+            if b not in speed:
+                speed[b], parent[b] = speed[a] * r, a
+                queue.append(b)
+            elif parent.get(a) != b and abs(speed[a] * r / speed[b] - 1.0) > 1e-9 and a < b:
+
+                def up(x):
+                    path = []
+                    while x is not None:
+                        path.append(x)
+                        x = parent[x]
+                    return path
+
+                pa, pb = up(a), up(b)
+                common = next(x for x in pa if x in pb)
+                loop = pa[:pa.index(common) + 1] + pb[:pb.index(common)][::-1]
+                out.append(Problem("chain", [labels[k] for k in loop],
+                                   f"these stations' shafts and gears form a loop whose speed ratios multiply to "
+                                   f"{speed[a] * r / speed[b]:.6g}, not 1: it cannot turn as one"))
     return out
