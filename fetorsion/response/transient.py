@@ -339,16 +339,26 @@ class TransientResult:
 
     def to_dict(self, every: int | None = None) -> dict:
         """JSON-ready: the envelope, the order track, and the signals thinned to at most ~20 000
-        samples (``every``: keep every so many)."""
+        samples: one per block of ``every`` (default so many that 20 000 remain), the block's
+        sample where the largest section |torque| peaks (so the record's peak is in it, not up to
+        1 % lower between kept samples), and each section's least and largest torque in each block
+        (``section_torque_min_nm``, ``section_torque_max_nm``: every section's peak, exactly)."""
         every = every or max(1, self.time_s.size // 20000)
+        T = self.section_torque_nm
+        n = T.shape[1]
+        starts = np.arange(0, n, every)
+        worst = np.abs(T).max(axis=0) if T.size else np.zeros(n)
+        keep = np.array([a + int(np.argmax(worst[a:a + every])) for a in starts], dtype=int) if n else starts
+        lo = np.minimum.reduceat(T, starts, axis=1) if T.size else T
+        hi = np.maximum.reduceat(T, starts, axis=1) if T.size else T
         return {"name": self.name, "mode": self.mode, "scheme": self.scheme, "step_s": self.step_s,
                 "settle_s": self.settle_s, "labels": self.labels, "sections": self.section_labels,
                 "notes": self.notes,
                 "block_rpm": self.block_rpm.tolist(), "block_peak_torque_nm": self.block_peak_nm.tolist(),
                 "order_track": {"station": self.track_station, **self.track.to_dict()},
-                "signals": {"every": every, "time_s": self.time_s[::every].tolist(),
-                            "rpm": self.rpm[::every].tolist(),
-                            "section_torque_nm": self.section_torque_nm[:, ::every].tolist()}}
+                "signals": {"every": every, "time_s": self.time_s[keep].tolist(), "rpm": self.rpm[keep].tolist(),
+                            "section_torque_nm": T[:, keep].tolist(), "section_torque_min_nm": lo.tolist(),
+                            "section_torque_max_nm": hi.tolist()}}
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""
