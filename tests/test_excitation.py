@@ -16,7 +16,7 @@ from fetorsion.lumped_model.lumped import chain_matrices
 from fetorsion.lumped_model.damped import DampedSystem
 from fetorsion.modes import modal_damping_matrix
 
-from conftest import GEOMETRY, assert_picture, read_raw
+from conftest import GEOMETRY, ROOT, assert_picture, read_raw
 
 
 @pytest.fixture(scope="module")
@@ -183,3 +183,23 @@ def test_the_rotating_big_end_adds_its_centrifugal_force_to_the_mean_radial_pin_
     orders = np.arange(1, 25) / 2
     h, k = pin_force_harmonics(renault, [rpm], orders), pin_force_harmonics(bare, [rpm], orders)
     np.testing.assert_allclose(h, k, rtol=0, atol=1e-9 * push)
+
+
+@pytest.mark.parametrize("path", ["examples/mendes2008/mwm6_chain.toml", "examples/networks/conventional_flywheel.toml",
+                                  "examples/networks/dual_mass_flywheel.toml", "examples/networks/geared_engine.toml",
+                                  "examples/networks/renault21_driveline.toml", "geometry/renault21.toml",
+                                  "geometry/inline6_diesel.toml"])
+def test_the_default_orders_leave_out_under_one_percent(path):
+    """The default orders of a forced response (0.5 ... 24) against orders to 48: every section's
+    alternating torque at every speed within 1 % of the largest section torque at that speed (the
+    share the dropped harmonics may carry). Orders to 12, the old default, left out up to 12 %
+    (the Renault at 2098 rpm); orders to 24 measured 0.3 % at most."""
+    from fetorsion.excitation.campbell import default_orders
+    from fetorsion.response.forced import run_response
+
+    model = fetorsion.load(ROOT / path)
+    default = run_response(model)
+    full = run_response(model, orders=default_orders(model, 48.0))
+    assert default.orders.max() == 24.0
+    share = np.abs(default.section_torque_nm - full.section_torque_nm) / full.section_torque_nm.max(axis=1, keepdims=True)
+    assert share.max() < 0.01, share.max()

@@ -198,10 +198,24 @@ def zeta_text(zeta) -> str:
     return ", ".join(f"{z:.3g}" for z in zeta) if isinstance(zeta, tuple) else f"{zeta:g}"
 
 
+#: The highest order a forced response sums by default. Orders to 12 left out up to 12 % of a
+#: section's torque at speeds away from resonance (the Renault 21 at 2098 rpm; 2.8 % of its largest)
+#: and 4.4 % of the geared example's largest; orders to 24 are within 0.3 % of orders to 48 on every
+#: example chain, network and reference crank (tests/test_forced.py).
+RESPONSE_HIGHEST_ORDER = 24.0
+
+
 def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
-    """0.5, 1, 1.5 … for a 4-stroke, 1, 2 … for a 2-stroke, up to ``highest``."""
+    """0.5, 1, 1.5 … for a 4-stroke, 1, 2 … for a 2-stroke, up to ``highest`` (the Campbell
+    diagram's orders; a response sums to :data:`RESPONSE_HIGHEST_ORDER`: :func:`response_orders`)."""
     step = 2 * np.pi / cycle_angle(crank.engine)
     return np.arange(1, int(round(highest / step)) + 1) * step
+
+
+def response_orders(crank: Crank) -> np.ndarray:
+    """The orders a forced response sums by default: :func:`default_orders` to
+    :data:`RESPONSE_HIGHEST_ORDER`."""
+    return default_orders(crank, RESPONSE_HIGHEST_ORDER)
 
 
 def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,

@@ -29,7 +29,7 @@ import numpy as np
 
 from ..description.defaults import DEFAULT_SPEED_STEPS
 from ..errors import FetorsionError
-from ..excitation.campbell import Crossing, default_orders
+from ..excitation.campbell import Crossing, default_orders, response_orders
 from ..excitation.torque import cycle_angle, firing_angles, pin_force_harmonics
 from ..fe.condensed import CondensedCrank
 from ..fe.couplings import DOF_NAMES
@@ -249,7 +249,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     rpm : array_like, optional
         Speeds, rpm (default :data:`DEFAULT_SPEED_STEPS` over the description's range).
     orders : array_like, optional
-        Orders (default 0.5 … 12 for a four-stroke).
+        Orders (default 0.5 … 24 for a four-stroke: :func:`fetorsion.excitation.campbell.response_orders`).
     damping_ratio : float, optional
         Modal damping ratio of every mode (default the description's).
     """
@@ -261,7 +261,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
     t0 = time.perf_counter()
     rpm = np.linspace(*ex.checked_range, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, float)
-    orders = default_orders(crank) if orders is None else np.asarray(orders, float)
+    orders = response_orders(crank) if orders is None else np.asarray(orders, float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     loads = master_loads(cc, rpm, orders)  # (speeds, orders, 6m)
     t1 = time.perf_counter()
@@ -318,7 +318,7 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
         ``bearings`` (default) or ``free``.
     rpm, orders : array_like, optional
         Speeds (rpm; default :data:`DEFAULT_SPEED_STEPS` over the checked range, to overspeed) and
-        orders (default 0.5 … 12 for a four-stroke).
+        orders (default 0.5 … 24 for a four-stroke: :func:`fetorsion.excitation.campbell.response_orders`).
     damping_ratio : float, optional
         The crank's modal damping ratio (default the description's).
     section_labels : list of str, optional
@@ -333,7 +333,7 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
     if ex is None:
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
     rpm = np.linspace(*ex.checked_range, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, float)
-    orders = default_orders(crank) if orders is None else np.asarray(orders, float)
+    orders = response_orders(crank) if orders is None else np.asarray(orders, float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     Kk, Mk, Ck, keep = supported_damping(cc, support, zeta)
     harm = pin_force_harmonics(crank, rpm, orders)

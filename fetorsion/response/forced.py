@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..excitation.campbell import default_orders
+from ..excitation.campbell import response_orders
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
@@ -213,7 +213,8 @@ def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=N
     rpm : array_like, optional
         Speeds, rpm; default :data:`DEFAULT_SPEED_STEPS` steps over the description's speed range.
     orders : array_like, optional
-        Orders summed; default 0.5 … 12 (4-stroke).
+        Orders summed; default 0.5 … 24 (4-stroke;
+        :data:`fetorsion.excitation.campbell.RESPONSE_HIGHEST_ORDER`).
     damping_ratio : float, optional
         Modal damping ratio; default the description's. A chain's absolute, relative and
         hysteretic dampers act in addition.
@@ -358,7 +359,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
     lo, hi = ex.checked_range
     rpm = np.linspace(lo, hi, DEFAULT_SPEED_STEPS) if rpm is None else np.asarray(rpm, dtype=float)
-    orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
+    orders = response_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     if misfire is not None and not 0 <= misfire < crank.engine.cylinders:
         raise FetorsionError(f"misfire cylinder {misfire + 1}: the engine has cylinders 1..{crank.engine.cylinders}")
