@@ -224,10 +224,10 @@ def test_a_coarser_step_still_equals_the_order_synthesis(chain):
     assert err.max() < 0.01, err
 
 
-@pytest.mark.parametrize("step", [0.0, -0.01, math.inf, math.nan, math.pi / 100])
+@pytest.mark.parametrize("step", [0.0, -0.01, math.inf, math.nan, math.pi / 20])
 def test_a_step_that_cannot_work_is_refused_by_name(chain, step):
-    """0 used to end in an OverflowError; a step over half a tooth of the 120-tooth wheel
-    (π/120 rad) cannot resolve what the wheel reads."""
+    """0 used to end in an OverflowError; a step over π/24 samples order 24, the highest a
+    response sums, less than twice a period."""
     from fetorsion.errors import ParameterError
 
     with pytest.raises(ParameterError, match="step_rad"):
@@ -238,8 +238,8 @@ def test_the_transient_command_takes_a_step_and_a_settled_start(tmp_path, capsys
     from fetorsion.cli.commands import main
 
     src = str(ROOT / "examples" / "mendes2008" / "mwm6_chain.toml")
-    assert main(["transient", src, "--rpm", "1500", "--step-deg", "2"]) == 2
-    assert "--step-deg 2: at most half a tooth of the 120-tooth wheel, 1.5°" in capsys.readouterr().err
+    assert main(["transient", src, "--rpm", "1500", "--step-deg", "9"]) == 2
+    assert "--step-deg 9: at most 7.5° (two steps a period" in capsys.readouterr().err
     assert main(["transient", src, "--rpm", "1500", "--settled-start"]) == 2
     assert "--settled-start goes with --run-up" in capsys.readouterr().err
 

@@ -253,9 +253,11 @@ def cmd_transient(args) -> int:
         raise FetorsionError("--run-up A B needs --rate RPM_PER_S (how fast the speed changes)")
     if args.rate is not None and args.run_up is None:
         raise FetorsionError("--rate goes with --run-up A B (a steady --rpm has no rate)")
-    if args.step_deg > 180.0 / args.teeth:
-        raise FetorsionError(f"--step-deg {args.step_deg:g}: at most half a tooth of the {args.teeth}-tooth wheel, "
-                             f"{180.0 / args.teeth:.4g}° (or fewer --teeth)")
+    from ..response.transient import MAX_STEP_RAD
+
+    if args.step_deg > math.degrees(MAX_STEP_RAD):
+        raise FetorsionError(f"--step-deg {args.step_deg:g}: at most {math.degrees(MAX_STEP_RAD):.4g}° (two steps a "
+                             "period of the highest order a response sums)")
     if args.settled_start and args.run_up is None:
         raise FetorsionError("--settled-start goes with --run-up A B (a steady --rpm settles by itself)")
     if args.run_up is not None and args.run_up[0] == args.run_up[1]:
@@ -393,7 +395,7 @@ def add_parsers(sub) -> None:
                     help="teeth of the simulated wheel the order tracking reads (default %(default)s)")
     tp.add_argument("--step-deg", type=real(0.0, 180.0, unit="degrees"), default=DEFAULT_STEP_DEG,
                     metavar="DEG", help="crank angle per time step at the run's top speed, degrees (default "
-                    "%(default)g; at most half a tooth, 180 / --teeth)")
+                    "%(default)g; at most 7.5)")
     tp.add_argument("--settled-start", action="store_true",
                     help="a run first holds its start speed until starting from rest has rung out (the envelope "
                          "and order track begin after the hold); without it the first revolutions ring")

@@ -59,12 +59,15 @@ from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
 from ..measured.torsiograph import OrderTrack, order_track
 from .nonlinear import METHODS, RTOL, Elements, SliderCranks, integrate_nonlinear
+from ..excitation.campbell import RESPONSE_HIGHEST_ORDER
 from ..description.defaults import (DEFAULT_PARTITION, DEFAULT_STEP_DEG, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES,
                                     DEFAULT_WEB_METHOD)
 
 #: Crank angle per time step at the top speed, rad: 0.5° (orders to 360 sampled; the force's
 #: linear interpolation errs by (qΔθ)²/8 at order q: 1.4e-3 at order 12).
 DEFAULT_STEP_RAD = math.radians(DEFAULT_STEP_DEG)
+#: The coarsest step: two samples a period of the highest order a response sums (Nyquist).
+MAX_STEP_RAD = math.pi / RESPONSE_HIGHEST_ORDER
 #: Speed grid of the torque tables, rpm (the gas torque's load and the inertia torque's ω² are
 #: read linearly between; the inertia torque is exactly ∝ ω², so its error is ≤ (Δn/n)²/4).
 TABLE_RPM_STEP = 25.0
@@ -625,7 +628,7 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         The lumped model of a crank (ignored for a chain or network).
     step_rad : float
         Crank angle per step at the run's top speed, rad (the step is constant in time); at most
-        half a tooth pitch of the wheel, π / ``teeth``.
+        :data:`MAX_STEP_RAD`.
     teeth : int
         Teeth of the simulated wheel whose edges the order tracking reads.
     track_station : int
@@ -655,10 +658,10 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         raise ParameterError("rpm", "give either a steady speed (rpm) or a run (run=(A, B) with rate_rpm_per_s)")
     if not (isinstance(teeth, int) and teeth >= 1):
         raise ParameterError("teeth", f"must be a whole number of teeth >= 1, got {teeth!r}")
-    if not (math.isfinite(step_rad) and 0 < step_rad <= math.pi / teeth):
-        # the record must resolve what the wheel does: at most half a tooth pitch per step
-        raise ParameterError("step_rad", f"must be > 0 and at most half a tooth of the {teeth}-tooth wheel, "
-                                         f"{math.pi / teeth:.4g} rad ({180 / teeth:.4g}°), got {step_rad!r}")
+    if not (math.isfinite(step_rad) and 0 < step_rad <= MAX_STEP_RAD):
+        raise ParameterError("step_rad", f"must be > 0 and at most {MAX_STEP_RAD:.4g} rad "
+                                         f"({math.degrees(MAX_STEP_RAD):.4g}°: two steps a period of order "
+                                         f"{RESPONSE_HIGHEST_ORDER:g}), got {step_rad!r}")
     if model.excitation is None or model.engine is None:
         raise FetorsionError(f"{model.source or model.name}: the description has no [engine] and [excitation]")
     top = rpm if run is None else max(run)
