@@ -343,8 +343,8 @@ class TransientResult:
     def to_dict(self, every: int | None = None) -> dict:
         """JSON-ready: the envelope, the order track, and the signals thinned to at most ~20 000
         samples: one per block of ``every`` (default so many that 20 000 remain), the block's
-        sample where the largest section |torque| peaks (so the record's peak is in it, not up to
-        1 % lower between kept samples), and each section's least and largest torque in each block
+        sample where the largest absolute section torque peaks (so the record's peak is in it, not
+        up to 1 % lower between kept samples), and each section's least and largest torque in each block
         (``section_torque_min_nm``, ``section_torque_max_nm``: every section's peak, exactly)."""
         every = every or max(1, self.time_s.size // 20000)
         T = self.section_torque_nm
