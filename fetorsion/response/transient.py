@@ -126,6 +126,25 @@ def held_schedule(hold_s: float, duration_s: float, n_of_t, phi_of_t):
     return hold_s + duration_s, n, phi
 
 
+def periodic_state(M, K, C, W, fire, grid, step, table, rpm: float, phi0: float, period: float):
+    """(q, q̇) at mean angle ``phi0`` of the periodic steady state at constant ``rpm``: the one-cycle
+    load Wᵀ T_c(θ − φ_c) read from the torque table (its every harmonic, to the table's
+    resolution) and, harmonic k of the cycle at ω_k = k (2π/period) Ω, Z_k = (K − ω_k² M + i ω_k C)⁻¹ F_k;
+    q(θ) = Re Σ_k 2 Z_k e^{i k 2π θ/period} (its mean, the static wind-up, left out as the load's is).
+    The start a run takes from it does not ring: every state is already the periodic one."""
+    S = table.shape[1]
+    theta = np.arange(S) * step
+    T = np.stack([read_table(grid, step, table, theta - f, np.full(S, rpm)) for f in fire])  # (cylinders, S)
+    F = np.fft.rfft(W.T @ T, axis=1) / S  # (r, S/2 + 1): F(θ_j) = Σ_k F_k e^{2πi jk/S}, one-sided doubled
+    k = np.arange(1, F.shape[1])
+    w = k * (2 * np.pi / period) * rpm * np.pi / 30
+    A = K[None] - w[:, None, None] ** 2 * M[None] + 1j * w[:, None, None] * C[None]
+    Z = np.linalg.solve(A, F[:, 1:].T[:, :, None])[:, :, 0]  # (harmonics, r)
+    Z[-1] *= 0.5 if S % 2 == 0 else 1.0  # the Nyquist term is not doubled
+    e = np.exp(1j * k * 2 * np.pi * phi0 / period)
+    return np.real(2 * e @ Z), np.real(2 * (1j * w * e) @ Z)
+
+
 def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total"):
     """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
 
@@ -187,6 +206,11 @@ class Propagator:
     a: np.ndarray
     b: np.ndarray
     rigid: np.ndarray | None
+    #: The modal states' share of η (2m × m, Vinv's first block) and the modal coordinates per
+    #: unit q (ΦᵀM, m × r; the rigid mode's φ₀ᵀM, r): an initial state's modal start.
+    Vinv_q: np.ndarray | None = None
+    PhiT_M: np.ndarray | None = None
+    rigid_M: np.ndarray | None = None
 
     @property
     def settling_s(self) -> float:
@@ -237,11 +261,14 @@ def propagator(M, K, C, h: float, grounded: bool = False, branches=None) -> Prop
     with np.errstate(divide="ignore", invalid="ignore"):
         I0 = np.where(small, h * (1 + lh / 2 + lh**2 / 6), (E - 1) / lam)
         I1 = np.where(small, h * h * (0.5 + lh / 6 + lh**2 / 24), (E - 1 - lh) / lam**2)
-    return Propagator(h, Phi, lam, V[:m], V[m:2 * m], Vinv[:, m:2 * m], E, I0 - I1 / h, I1 / h, rigid)
+    return Propagator(h, Phi, lam, V[:m], V[m:2 * m], Vinv[:, m:2 * m], E, I0 - I1 / h, I1 / h, rigid,
+                      Vinv[:, :m], Phi.T @ M, None if rigid is None else rigid @ M)
 
 
-def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.ndarray:
-    """q(t_k) (r × N), starting at rest (the rigid-body mode at ``rigid_speed``, rad/s of η₀), under the load ``load(start, stop)`` → F (r × (stop − start))
+def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0, start=None) -> np.ndarray:
+    """q(t_k) (r × N), starting at rest (the rigid-body mode at ``rigid_speed``, rad/s of η₀) or at
+    ``start`` = (q₀, q̇₀) (the coordinates' angles and speeds; the rigid mode's share of them
+    instead of ``rigid_speed``; not with Maxwell branches), under the load ``load(start, stop)`` → F (r × (stop − start))
     sampled every ``prop.h``. Runs in chunks of :data:`CHUNK` samples (the filters' states, the
     last load and the rigid mode's angle and speed carried on), so the memory is the output's.
     Conjugate modal states are one: only those with Im λ ≥ 0 are run, the others' share is the
@@ -257,6 +284,14 @@ def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.nd
     state = np.zeros(keep.sum(), complex)
     u_last = None
     v, eta = rigid_speed, 0.0
+    z0 = np.zeros(keep.sum(), complex)
+    if start is not None:
+        q0, v0 = (np.asarray(x, float) for x in start)
+        if prop.Vinv_B.shape[0] != 2 * prop.Phi.shape[1]:
+            raise FetorsionError("a start state with Maxwell branches (a rubber table's states) is not supported")
+        z0 = (prop.Vinv_q @ (prop.PhiT_M @ q0) + prop.Vinv_B @ (prop.PhiT_M @ v0))[keep]
+        if prop.rigid is not None:
+            eta, v = float(prop.rigid_M @ q0), float(prop.rigid_M @ v0)
     g_last = None
     h = prop.h
     for start in range(0, N, CHUNK):
@@ -266,8 +301,8 @@ def integrate(prop: Propagator, load, N: int, rigid_speed: float = 0.0) -> np.nd
         w = np.empty_like(u)
         w[:, 1:] = a[:, None] * u[:, :-1] + b[:, None] * u[:, 1:]
         if u_last is None:
-            w[:, 0] = 0.0  # z_0 = 0: the run starts at rest
-            zi = np.zeros_like(state)
+            w[:, 0] = 0.0  # z_0: rest, or the start state
+            zi = z0
         else:
             w[:, 0] = a * u_last + b * u[:, 0]
             zi = E * state
@@ -641,12 +676,14 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         The nonlinear integrator: one of :data:`fetorsion.response.nonlinear.METHODS` (scipy's
         ``solve_ivp``); the linear case ignores it.
     settled_start : bool
-        A run first holds its start speed until the slowest elastic transient of starting from rest
-        has fallen to :data:`START_SETTLED` of its size, as an engine runs steadily before a test
-        cell's run-up; the envelope and the order track begin after the hold (``settle_s``). Without
-        it the run starts from rest at speed A and its first cycles ring with the lightly damped
-        modes (a driveline's, for seconds). Not with ``variable_inertia`` (its tangential term takes
-        one rate).
+        A run starts as an engine does that has run steadily at speed A before a test cell's
+        run-up: a linear model in the periodic steady state at A (:func:`periodic_state`, from the
+        frequency domain); a model with nonlinear elements or a rubber table's Maxwell states first
+        holds A until the slowest elastic transient of starting from rest has fallen to
+        :data:`START_SETTLED` of its size (the envelope and the order track begin after the hold,
+        ``settle_s``). Without it the run starts from rest at speed A and its first cycles ring with
+        the lightly damped modes (a driveline's, for seconds). Not with ``variable_inertia`` (its
+        tangential term takes one rate).
 
     Returns
     -------
@@ -709,8 +746,10 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
                 raise ParameterError("settled_start", "not with variable inertia (its tangential term takes one rate)")
             if not math.isfinite(prop.settling_s):
                 raise FetorsionError(f"{model.name}: an elastic mode has no damping, a held start never settles")
-            settle = prop.settling_s * math.log(1 / START_SETTLED) / math.log(1 / SETTLED)
-            duration, n_of_t, phi_of_t = held_schedule(settle, duration, n_of_t, phi_of_t)
+            if getattr(model, "nonlinear", ()) or branches is not None:
+                # no periodic state to start from in closed form: hold the start speed until it rings out
+                settle = prop.settling_s * math.log(1 / START_SETTLED) / math.log(1 / SETTLED)
+                duration, n_of_t, phi_of_t = held_schedule(settle, duration, n_of_t, phi_of_t)
     N = int(duration / h) + 1
     t = np.arange(N) * h
     n_t, phi = n_of_t(t), phi_of_t(t)
@@ -726,8 +765,13 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         T = np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])  # (cylinders, n)
         return W.T @ T
 
-    rigid_speed = 0.0
-    if prop.rigid is not None:
+    rigid_speed, start = 0.0, None
+    if run is not None and settled_start and settle == 0.0:
+        # linear: the run starts in the frequency domain's periodic state at its start speed
+        start = periodic_state(M, K, C, W, fire, grid, step, table, run[0], float(phi[0]), period)
+        notes.append(f"settled start: the periodic steady state at {run[0]:g} rpm (every harmonic of the torque "
+                     "table) as the initial state")
+    elif prop.rigid is not None:
         # The mean motion is the schedule's: the rigid-body mode starts at the speed that leaves
         # its first cycle's mean speed zero (from rest it would drift at the mean of ∫φ₀ᵀF dt, and the
         # torque would no longer be in step with the angle that carries it).
@@ -743,7 +787,7 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         q, torque, scheme = _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t,
                                            run, rate_rpm_per_s, lo, top, elements, variable_inertia, method)
     else:
-        q = integrate(prop, load, N, rigid_speed)
+        q = integrate(prop, load, N, rigid_speed, start)
         torque = rows @ q
         scheme = "exact modal propagator, first-order hold, lfilter"
     # the tracked station turns at its speed factor times the crank: its angle for the wheel
