@@ -692,7 +692,7 @@ class Network:
     length_unit: str = "m"
     raw: dict = field(default_factory=dict, compare=False, repr=False)
     limits: Limits | None = None
-    dampers: tuple[Damper, ...] = ()  # not yet read for a network: always empty
+    dampers: tuple[Damper, ...] = ()  # at "front" (the first station) or "rear" (the last at the engine speed)
     #: ``[uncertainty]`` and ``[distributions]``, as a crank description's (``chain.stations.2.inertia_kgm2``)
     uncertainty: tuple = ()
     distributions: tuple = ()

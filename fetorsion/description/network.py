@@ -15,7 +15,7 @@ from .model import (CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, Gea
                     NonlinearSpring, Shaft)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
-from .tables import (read_engine, read_limits, read_chain_excitation, read_variations, stated_damping_excitation,
+from .tables import (read_dampers, read_engine, read_limits, read_chain_excitation, read_variations, stated_damping_excitation,
                      unique_problems, uncertainty_bound_problems)
 
 
@@ -122,10 +122,9 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
                                     f"must name one station per cylinder ({engine.cylinders})"))
         elif "engine" not in data and picked:
             problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
-    if "dampers" in data:
-        root.used.add("dampers")
-        problems.append(Problem("dampers", "[[dampers]]", "is not read for a network yet: join the damper's ring "
-                                "as a station with a shaft (tuned) or an absolute/relative damper"))
+    # at "front": the first station (the engine's speed reference); "rear": the last station that
+    # turns at the engine's speed (a gear's far side is not the flywheel's)
+    dampers = read_dampers(root)
     limits = read_limits(root, torque_only=True)
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
     excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
@@ -140,7 +139,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         raise DescriptionError(source, unique_problems(problems))
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
                       tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
-                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions)
+                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers)
     if check_uncertainty:
         bounds = uncertainty_bound_problems(network, parse_network)
         if bounds:

@@ -398,7 +398,9 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
                           Tq[:, :, None], phasors, W[:, None, :], rows,
                           section_labels, positions_m=res.positions_m,
                           pulley=0, flywheel=flywheel, model=model_name,
-                          stiffnesses=res.stiffnesses_nm_per_rad)
+                          stiffnesses=res.stiffnesses_nm_per_rad,
+                          # a network's rear damper sits on the last coordinate at the engine's speed
+                          damper_dof=None if res.network is None else {"front": 0, "rear": flywheel})
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup
