@@ -263,3 +263,32 @@ def test_a_damped_networks_time_domain_equals_its_order_synthesis():
     tr = run_transient(viscous, rpm=2000.0)
     fr = run_response(viscous, rpm=[2000.0], orders=np.arange(1, 49) * 0.5)
     assert np.abs(tr.steady_peak_nm()[:len(fr.section_labels)] / fr.section_torque_peak_nm[0] - 1).max() < 0.01
+
+
+def test_a_network_damper_on_a_named_station_is_its_ring_on_that_station():
+    """`at` may name a station at the engine's speed: a tuned damper at "flywheel" equals its ring
+    written out on a shaft from the flywheel (1e-9); on the propeller (geared to 0.4 of the speed)
+    it is refused by name (its ring is not referred yet), as is a station that no table names."""
+    import tomllib
+
+    from fetorsion.errors import FetorsionError
+
+    text = (NETWORKS / "geared_engine.toml").read_text()
+    src = str(NETWORKS / "geared_engine.toml")
+    damped = parse_network(tomllib.loads(text + TUNED.replace('at = "front"', 'at = "flywheel"')), src)
+    ring = text.replace("[[chain.shafts]]", '[[chain.stations]]\nname = "ring"\ninertia_kgm2 = 0.004\n\n'
+                        '[[chain.shafts]]\nbetween = ["flywheel", "ring"]\nstiffness_nm_per_rad = 2.0e4\n'
+                        'damping_nms_per_rad = 3.0\n\n[[chain.shafts]]', 1)
+    written = parse_network(tomllib.loads(ring), src)
+    rpm = np.linspace(1000.0, 4000.0, 31)
+    a, b = run_response(damped, rpm=rpm), run_response(written, rpm=rpm)
+    np.testing.assert_allclose(a.pulley_angle_deg, b.pulley_angle_deg, rtol=1e-9)
+    for s in a.section_labels:
+        np.testing.assert_allclose(a.section_torque_nm[:, a.section_labels.index(s)],
+                                   b.section_torque_nm[:, b.section_labels.index(s)], rtol=1e-9, atol=1e-9)
+    geared = parse_network(tomllib.loads(text + TUNED.replace('at = "front"', 'at = "propeller"')), src)
+    with pytest.raises(FetorsionError, match="damper 'tuned' at 'propeller', which turns at 0.4"):
+        run_response(geared, rpm=rpm)
+    with pytest.raises(DescriptionError) as err:
+        parse_network(tomllib.loads(text + TUNED.replace('at = "front"', 'at = "nowhere"')), src)
+    assert any(p.field == "dampers.1.at" for p in err.value.problems)

@@ -275,8 +275,9 @@ DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain
                   "`fetorsion damper` designs one (see {doc}`dampers`).", (
     Field("type", "`viscous` (Houdaille), `rubber` (tuned rubber) or `tuned` (plain tuned absorber)",
           _one_of(DAMPER_TYPES)),
-    Field("at", "`front` (pulley end, default) or `rear` (flywheel side): the first or last station of the chain",
-          _one_of(DAMPER_STATIONS)),
+    Field("at", "`front` (pulley end, default) or `rear` (flywheel side): the first or last station of the chain; "
+          "in a network the first station or the last one at the engine's speed, or a station's name (one at the "
+          "engine's speed)", _one_of(DAMPER_STATIONS) + "; in a network also a station's name"),
     Field("ring_inertia_kgm2", "inertia of the seismic ring, kg·m²", "> 0, required"),
     Field("housing_inertia_kgm2", "viscous: housing inertia added to the station, kg·m²; default 0",
           ">= 0; refused for the other types"),

@@ -123,8 +123,8 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         elif "engine" not in data and picked:
             problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
     # at "front": the first station (the engine's speed reference); "rear": the last station that
-    # turns at the engine's speed (a gear's far side is not the flywheel's)
-    dampers = read_dampers(root)
+    # turns at the engine's speed (a gear's far side is not the flywheel's); or a station's name
+    dampers = read_dampers(root, tuple(labels))
     limits = read_limits(root, torque_only=True)
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
     excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)

@@ -69,7 +69,7 @@ def read_engine(root: Table) -> Engine:
 _HUB_KEY = {"viscous": "housing_inertia_kgm2", "rubber": "hub_inertia_kgm2", "tuned": "hub_inertia_kgm2"}
 
 
-def read_dampers(root: Table) -> tuple[Damper, ...]:
+def read_dampers(root: Table, stations: tuple[str, ...] = ()) -> tuple[Damper, ...]:
     """The ``[[dampers]]`` tables (crank descriptions and chain files): one problem per bad field.
 
     Every type needs ``ring_inertia_kgm2`` > 0; ``viscous`` needs ``damping_nms_per_rad`` > 0 and
@@ -78,12 +78,14 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
     ascending) and takes ``hub_inertia_kgm2``; ``tuned`` needs ``stiffness_nm_per_rad`` and takes
     ``hub_inertia_kgm2`` and ``damping_nms_per_rad``. ``at``: ``front`` (pulley end, default) or
     ``rear`` (flywheel side). ``allowed_power_w`` (optional, > 0): the heat it may dissipate
-    continuously, its maker's rating, which the verdict checks.
+    continuously, its maker's rating, which the verdict checks. In a network ``at`` may also name
+    one of its ``stations``.
     """
     out = []
+    places = tuple(DAMPER_STATIONS) + tuple(s for s in stations if s not in DAMPER_STATIONS)
     for t in root.tables("dampers", required=False):
         kind = t.text("type", choices=DAMPER_TYPES)
-        at = t.text("at", "front", choices=DAMPER_STATIONS)
+        at = t.text("at", "front", choices=places)
         ring = t.number("ring_inertia_kgm2", positive=True)
         hub_key = _HUB_KEY.get(kind)
         hub = t.number(hub_key, 0.0, nonnegative=True) if hub_key else 0.0
@@ -106,7 +108,7 @@ def read_dampers(root: Table) -> tuple[Damper, ...]:
         allowed = t.number("allowed_power_w", 0.0, positive=True) if "allowed_power_w" in t.data else 0.0
         t.used.add("source")
         t.finish()
-        if kind in DAMPER_TYPES and at in DAMPER_STATIONS:
+        if kind in DAMPER_TYPES and at in places:
             out.append(Damper(kind, at, hub, ring, k, c, eta, table, name, str(t.data.get("source", "")), allowed,
                               **heat))
     return tuple(out)

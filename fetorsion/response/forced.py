@@ -400,10 +400,32 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
                           pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad,
                           # a network's rear damper sits on the last coordinate at the engine's speed
-                          damper_dof=None if res.network is None else {"front": 0, "rear": flywheel})
+                          damper_dof=None if res.network is None else network_damper_dof(crank, res, flywheel))
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup
+
+
+def network_damper_dof(net, res, flywheel: int) -> dict:
+    """Where a network's dampers act: ``front`` the first coordinate, ``rear`` the last one at the
+    engine's speed (``flywheel``), a station's name its coordinate. A damper on a station geared to
+    another speed is refused: its ring would have to be referred to the coordinate's speed."""
+    out = {"front": 0, "rear": flywheel}
+    f = speed_factors(net)
+    for d in getattr(net, "dampers", ()):
+        if d.at in out:
+            continue
+        s = list(res.network.labels).index(d.at)
+        if not np.isclose(f[s], 1.0):
+            raise FetorsionError(f"{net.source or net.name}: damper '{d.name}' at '{d.at}', which turns at {f[s]:.4g} "
+                                 "times the engine's speed: a damper there is not referred yet (write its ring as a "
+                                 "station on a shaft)")
+        masters = list(res.network.masters)
+        if s not in masters:
+            raise FetorsionError(f"{net.source or net.name}: damper '{d.name}' at '{d.at}': the station is geared "
+                                 "rigidly to another one's coordinate; put the damper on that station")
+        out[d.at] = masters.index(s)
+    return out
 
 
 def motored_harmonics(crank, rpm, orders) -> np.ndarray:
