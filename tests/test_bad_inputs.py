@@ -319,7 +319,8 @@ CASES = [
      2, ["chain.labels", "per station"]),
     ("network-cylinder-name", "campbell {d}/n.toml", {"n.toml": NETWORK.replace('["disc"]', '["dsic"]')},
      2, ["chain.cylinder_stations"]),
-    ("network-dampers", "response {d}/n.toml", {"n.toml": NETWORK + DAMPER}, 2, ["dampers", "network"]),
+    ("network-damper-station", "response {d}/n.toml", {"n.toml": NETWORK + DAMPER + 'at = "nowhere"\n'}, 2,
+     ["dampers.1.at", "nowhere"]),
     ("network-damper-command", "damper {d}/n.toml --objective twist", {"n.toml": NETWORK}, 2,
      ["'damper' does not take a network"]),
     # --- a crank description as a part of a network ([[chain.cranks]])
