@@ -148,6 +148,7 @@ def test_the_explorers_f1_is_the_lumped_models(tmp_path):
     assert out["f1_hz"] == pytest.approx(fetorsion.lumped(crank).frequencies_hz[0], rel=1e-9)
 
 
+@pytest.mark.slow  # 26 s; the default run keeps the clearance by hand and the explorer's f1
 def test_the_search_keeps_a_resonance_out_where_bisection_puts_it(tmp_path):
     """A made-up problem: the Renault's webs between 10 and 14 mm, least mass, safety >= 1.0 (met
     over the whole range), order 4's resonance with the first mode kept 12 % above the 6500 rpm
