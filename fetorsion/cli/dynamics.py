@@ -414,7 +414,8 @@ def add_parsers(sub) -> None:
                     help="each cylinder's reciprocating mass as the crank-angle-dependent inertia m S'(θ)² "
                          "(nonlinear integrator)")
     tp.add_argument("--integrator", choices=NONLINEAR_METHODS, default=NONLINEAR_METHODS[0],
-                    help="scipy solve_ivp method of the nonlinear integrator (default %(default)s)")
+                    help="the nonlinear integrator: compiled (Dormand-Prince in numba, friction as exact Jenkins "
+                         "elements) or a scipy solve_ivp method, the cross-check (default %(default)s)")
     add_json_option(tp)
     tp.add_argument("--plot", metavar="PATH", help="save the plot (.png, .pdf, .svg)")
     tp.set_defaults(func=cmd_transient)

@@ -41,9 +41,10 @@ DEFAULT_STEP_DEG = 0.5
 # its stages (an elastic-perfectly-plastic, Jenkins, element): stiff enough that the loop is the
 # Coulomb parallelogram within 1/STICK_FACTOR of its width at twists of a stage's size.
 DEFAULT_STICK_FACTOR = 20.0
-# The nonlinear time domain's integrators (scipy solve_ivp), the default first: LSODA switches between
-# Adams (non-stiff) and BDF (stiff, a friction element sticking) by itself.
-NONLINEAR_METHODS = ("LSODA", "Radau", "BDF")
+# The nonlinear time domain's integrators, the default first: the compiled Dormand-Prince kernel
+# (response/compiled.py, friction as exact Jenkins elements), then scipy solve_ivp's (friction by
+# Bouc-Wen's rate law; LSODA switches between Adams and BDF by itself), kept as the cross-check.
+NONLINEAR_METHODS = ("compiled", "LSODA", "Radau", "BDF")
 #: The run-up of ``fetorsion run``'s time-domain section, rpm/s: the rate of the issue's benchmark. Slow
 #: for the crank's own modes (their passage parameter α/Γ² = q (dΩ/dt) / (ζω)² is ~0.1–0.2 at 500 Hz and
 #: ζ = 0.02), fast for a driveline's (the report states α/Γ² of each crossing it compares), and a whole run

@@ -58,7 +58,7 @@ import scipy.signal
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
 from ..measured.torsiograph import OrderTrack, order_track
-from .nonlinear import METHODS, RTOL, Elements, SliderCranks, integrate_nonlinear
+from .nonlinear import METHODS, RTOL, Elements, SliderCranks, integrate_compiled, integrate_nonlinear
 from ..excitation.campbell import RESPONSE_HIGHEST_ORDER
 from ..description.defaults import (DEFAULT_PARTITION, DEFAULT_STEP_DEG, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES,
                                     DEFAULT_WEB_METHOD)
@@ -638,7 +638,7 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
                   damping_ratio: float | None = None,
                   partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
                   step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
-                  track_station: int = 0, variable_inertia: bool = False, method: str = "LSODA",
+                  track_station: int = 0, variable_inertia: bool = False, method: str = METHODS[0],
                   settled_start: bool = False) -> TransientResult:
     """Simulate a model with an engine in the time domain (module docs): linear by the exact
     propagator; with ``variable_inertia`` or a network's nonlinear elements by the nonlinear
@@ -673,8 +673,10 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         station (:mod:`fetorsion.response.nonlinear`), instead of its mean in the station's inertia
         and its inertia torque as a load.
     method : str
-        The nonlinear integrator: one of :data:`fetorsion.response.nonlinear.METHODS` (scipy's
-        ``solve_ivp``); the linear case ignores it.
+        The nonlinear integrator: one of :data:`fetorsion.response.nonlinear.METHODS`: ``"compiled"``
+        (the default: :mod:`fetorsion.response.compiled`, friction as exact Jenkins elements) or a
+        scipy ``solve_ivp`` method (friction by Bouc–Wen's rate law; the cross-check); the linear
+        case ignores it.
     settled_start : bool
         A run starts as an engine does that has run steadily at speed A before a test cell's
         run-up: a linear model in the periodic steady state at A (:func:`periodic_state`, from the
@@ -830,15 +832,26 @@ def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, 
     grid, step, table = torque_table(model, lo, top, part="gas" if variable_inertia else "total")
     alpha = 0.0 if run is None else math.copysign(rate, run[1] - run[0]) * math.pi / 30
 
-    def force(tt):
-        return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
-
     v0 = None if prop.rigid is None else rigid_speed * prop.rigid
-    q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha, force,
-                                     cranks, Elements(D, elements) if ne else None, v0, method)
+    parts = Elements(D, elements) if ne else None
+    if method == "compiled":
+        phi, n_t = phi_of_t(t), n_of_t(t)
+
+        def load(a, b):
+            return W.T @ np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])
+
+        q, z, nfev = integrate_compiled(M, K_lin, C, t, phi, n_t * (math.pi / 30), load, cranks, parts, v0)
+    else:
+        def force(tt):
+            return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
+
+        q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha,
+                                         force, cranks, parts, v0, method)
     torque = rows @ q
     if ne:
         torque[rows.shape[0] - ne:] = Elements(D, elements).torque(D @ q, z)
     what = " and ".join(w for w, on in (("variable inertia", variable_inertia),
                                         (f"{ne} nonlinear element{'s' * (ne > 1)}", ne)) if on)
-    return q, torque, f"{method} (scipy solve_ivp, rtol {RTOL:g}, {nfev} evaluations): {what}"
+    how = ("compiled Dormand-Prince 5(4), friction as exact Jenkins elements" if method == "compiled"
+           else f"{method} (scipy solve_ivp)")
+    return q, torque, f"{how}, rtol {RTOL:g}, {nfev} evaluations: {what}"

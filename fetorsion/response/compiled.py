@@ -1,0 +1,262 @@
+"""The nonlinear time domain compiled: Dormand–Prince 5(4) with error control, the slider-crank's
+variable inertia and exact Jenkins friction elements, in one numba kernel.
+
+The equations are those of :mod:`fetorsion.response.nonlinear` (its docs derive them):
+
+    (M + Wᵀ diag δJ(θ) W) q̈ = F(t) − C q̇ − K q − Wᵀ (½ δJ'(θ) θ̇² + δJ(θ) α) − Dᵀ T_e(D q, z).
+
+What differs from the scipy path is how the friction state z is carried. There, z follows Bouc–Wen's
+rate law with rounded corners, a stiff equation (its slip rate n ẋ/z_s reaches 10⁷ /s on a dual-mass
+flywheel's arc springs) that drives LSODA to about a hundred evaluations per sample. Here each
+friction element is the elastic-perfectly-plastic (Jenkins) element itself, written as its exact
+return map: over a step from (x_n, z_n), z(x) = clip(z_n + x − x_n, −z_s, z_s), z_s = T_f/k_s [Jenkins].
+That is exact while the twist x is monotone in the step (a reversal inside one step is met to the
+step's error control, since the torque stays continuous in x), and it leaves no stiff state: the
+error-controlled explicit steps are set by the structure's own modes, about one Dormand–Prince step
+per sample at the 0.5° sample step.
+
+The load F, the mean angle φ and speed Ω are given on the uniform sample grid and read linearly
+between samples: the same first-order hold the exact linear propagator uses (F's error
+(qΔθ)²/8 at order q; φ's α h²/8, below 10⁻⁸ rad at the shipped steps). The acceleration α is the
+speed's slope in each sample interval (exact for the piecewise-linear schedules of
+:func:`fetorsion.response.transient.speed_schedule` and its held start).
+
+The kernel is compiled once per machine (numba's on-disk cache, ``cache=True``) and takes about 2 s to
+compile the first time.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+# Dormand & Prince (1980) RK5(4)7M [DormandPrince]: nodes, the stage matrix, the 5th-order weights (the
+# last stage is the first of the next step: FSAL) and the error weights (5th minus embedded 4th order).
+_C = np.array([0.0, 1 / 5, 3 / 10, 4 / 5, 8 / 9, 1.0, 1.0])
+_A = np.array([
+    [0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [1 / 5, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [3 / 40, 9 / 40, 0.0, 0.0, 0.0, 0.0],
+    [44 / 45, -56 / 15, 32 / 9, 0.0, 0.0, 0.0],
+    [19372 / 6561, -25360 / 2187, 64448 / 6561, -212 / 729, 0.0, 0.0],
+    [9017 / 3168, -355 / 33, 46732 / 5247, 49 / 176, -5103 / 18656, 0.0],
+    [35 / 384, 0.0, 500 / 1113, 125 / 192, -2187 / 6784, 11 / 84],
+])
+_E = np.array([71 / 57600, 0.0, -71 / 16695, 71 / 1920, -17253 / 339200, 22 / 525, -1 / 40])
+#: Step-size control: safety factor, largest and smallest change of the step, the error exponent.
+_SAFETY, _GROW, _SHRINK, _EXPONENT = 0.9, 5.0, 0.2, -1.0 / 5.0
+#: Substeps within one sample interval before the kernel gives up (the error control has failed).
+MAX_SUBSTEPS = 100_000
+
+
+@njit(cache=True)
+def _elastic(x, k, edges, n):
+    """Odd piecewise-linear elastic torque at twist x: stage s of stiffness k[s] from edges[s]."""
+    a = abs(x)
+    t = 0.0
+    for s in range(n):
+        hi = edges[s + 1] if s + 1 < n else np.inf
+        if a > edges[s]:
+            t += k[s] * (min(a, hi) - edges[s])
+    return t if x >= 0 else -t
+
+
+@njit(cache=True)
+def _solve_small(A, b):
+    """A x = b for a small dense A (Gaussian elimination, partial pivoting); A and b are overwritten."""
+    n = b.size
+    for i in range(n):
+        p = i
+        for j in range(i + 1, n):
+            if abs(A[j, i]) > abs(A[p, i]):
+                p = j
+        if p != i:
+            for c in range(n):
+                A[i, c], A[p, c] = A[p, c], A[i, c]
+            b[i], b[p] = b[p], b[i]
+        for j in range(i + 1, n):
+            f = A[j, i] / A[i, i]
+            for c in range(i, n):
+                A[j, c] -= f * A[i, c]
+            b[j] -= f * b[i]
+    for i in range(n - 1, -1, -1):
+        s = b[i]
+        for c in range(i + 1, n):
+            s -= A[i, c] * b[c]
+        b[i] = s / A[i, i]
+    return b
+
+
+@njit(cache=True)
+def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
+                  W, fire, crank_r, crank_l, crank_m, mean, B, P,
+                  D, x0, preload, tf, ks, kst, edges, nst, xn, zn, f, wc, A):
+    """q̈ into ``out`` at fraction s of a sample interval (F, phi, omega: the interval's two ends).
+    Loops, not BLAS calls: at a few tens of coordinates a call's overhead is most of its cost; ``f``
+    (r) and ``wc`` (5, cylinders), ``A`` (cylinders, cylinders) are scratch."""
+    r = q.size
+    for i in range(r):
+        acc = (1.0 - s) * F[0, i] + s * F[1, i]
+        for j in range(r):
+            acc -= C[i, j] * v[j] + K[i, j] * q[j]
+        f[i] = acc
+    for e in range(x0.size):
+        x = 0.0
+        for j in range(r):
+            x += D[e, j] * q[j]
+        te = _elastic(x0[e] + x, kst[e], edges[e], nst[e]) - preload[e]
+        if tf[e] > 0:
+            zs = tf[e] / ks[e]
+            te += ks[e] * min(max(zn[e] + x - xn[e], -zs), zs)
+        for j in range(r):
+            f[j] -= D[e, j] * te
+    c = fire.size
+    if c:
+        th0 = (1.0 - s) * phi[0] + s * phi[1]
+        w0 = (1.0 - s) * omega[0] + s * omega[1]
+        lam = crank_r / crank_l
+        for i in range(c):
+            th = th0 - fire[i]
+            thd = w0
+            for j in range(r):
+                th += W[i, j] * q[j]
+                thd += W[i, j] * v[j]
+            sn, cs = np.sin(th), np.cos(th)
+            Dd = 1.0 - (lam * sn) ** 2
+            rD = np.sqrt(Dd)
+            s1 = -crank_r * (sn + lam * sn * cs / rD)
+            s2 = -crank_r * (cs + lam * (cs * cs - sn * sn + lam * lam * sn ** 4) / (Dd * rD))
+            wc[0, i] = crank_m * (s1 * s1 - mean)  # δJ
+            wc[1, i] = crank_m * s1 * s2 * thd * thd + wc[0, i] * alpha  # ½ δJ' θ̇² + δJ α
+        for j in range(r):
+            acc = 0.0
+            for i in range(c):
+                acc += W[i, j] * wc[1, i]
+            f[j] -= acc
+    for i in range(r):
+        acc = 0.0
+        for j in range(r):
+            acc += Minv[i, j] * f[j]
+        out[i] = acc
+    if c:
+        # (M + Wᵀ diag(δJ) W)⁻¹ by Woodbury, B = M⁻¹Wᵀ, P = W M⁻¹ Wᵀ:
+        # a = u − B (I + diag(δJ) P)⁻¹ diag(δJ) W u, u = M⁻¹ f
+        for i in range(c):
+            acc = 0.0
+            for j in range(r):
+                acc += W[i, j] * out[j]
+            wc[2, i] = wc[0, i] * acc
+            for k in range(c):
+                A[i, k] = wc[0, i] * P[i, k]
+            A[i, i] += 1.0
+        y = _solve_small(A, wc[2])
+        for j in range(r):
+            acc = 0.0
+            for i in range(c):
+                acc += B[j, i] * y[i]
+            out[j] -= acc
+
+
+@njit(cache=True)
+def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_l, crank_m, mean, B, P,
+               D, x0, preload, tf, ks, kst, edges, nst, rtol, atol_q, atol_v, q_out, z_out, h_try):
+    """Integrate samples 0 … N−1 (N = F.shape[0]) from state ``y`` = (q, q̇) and friction ``zstate``
+    at sample 0; writes q and z at every sample into ``q_out`` (r, N) and ``z_out`` (elements, N).
+    Returns (evaluations, the next step to try, status: 0 done, 1 the step control failed)."""
+    r = y.size // 2
+    N = F.shape[0]
+    ne = x0.size
+    q = y[:r].copy()
+    v = y[r:].copy()
+    z = zstate.copy()
+    kq = np.empty((7, r))
+    kv = np.empty((7, r))
+    qi = np.empty(r)
+    vi = np.empty(r)
+    xn = np.zeros(ne)
+    f = np.empty(r)
+    c = fire.size
+    wc = np.empty((5, c))
+    A = np.empty((c, c))
+    nfev = 0
+    for e in range(ne):
+        z_out[e, 0] = z[e]
+    q_out[:, 0] = q
+    have_first = False
+    a_first = np.empty(r)
+    for k in range(N - 1):
+        Fk = F[k:k + 2]
+        ph = phi[k:k + 2]
+        om = omega[k:k + 2]
+        alpha = (omega[k + 1] - omega[k]) / h
+        s = 0.0  # the fraction of the interval done
+        substeps = 0
+        while s < 1.0:
+            ds = min(h_try / h, 1.0 - s)
+            if 1.0 - s - ds < 1e-9:
+                ds = 1.0 - s
+            dt = ds * h
+            for e in range(ne):
+                acc = 0.0
+                for j in range(r):
+                    acc += D[e, j] * q[j]
+                xn[e] = acc
+            if not have_first:
+                _acceleration(a_first, s, q, v, Fk, ph, om, alpha, Minv, K, C, W, fire, crank_r, crank_l,
+                              crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, xn, z, f, wc, A)
+                nfev += 1
+                have_first = True
+            kq[0] = v
+            kv[0] = a_first
+            for i in range(1, 7):
+                for m in range(r):
+                    accq = q[m]
+                    accv = v[m]
+                    for j in range(i):
+                        accq += dt * _A[i, j] * kq[j, m]
+                        accv += dt * _A[i, j] * kv[j, m]
+                    qi[m] = accq
+                    vi[m] = accv
+                kq[i] = vi
+                _acceleration(kv[i], s + _C[i] * ds, qi, vi, Fk, ph, om, alpha, Minv, K, C, W, fire, crank_r,
+                              crank_l, crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, xn, z, f, wc, A)
+                nfev += 1
+            # stage 7 sits at the step's end with the 5th-order solution (FSAL): qi, vi are it
+            err = 0.0
+            for i in range(r):
+                eq = 0.0
+                ev = 0.0
+                for j in range(7):
+                    eq += _E[j] * kq[j, i]
+                    ev += _E[j] * kv[j, i]
+                sq = atol_q + rtol * max(abs(q[i]), abs(qi[i]))
+                sv = atol_v + rtol * max(abs(v[i]), abs(vi[i]))
+                err += (dt * eq / sq) ** 2 + (dt * ev / sv) ** 2
+            err = np.sqrt(err / (2 * r))
+            substeps += 1
+            if substeps > MAX_SUBSTEPS:
+                return nfev, h_try, 1
+            if err <= 1.0:
+                for e in range(ne):
+                    if tf[e] > 0:
+                        x1 = 0.0
+                        for j in range(r):
+                            x1 += D[e, j] * qi[j]
+                        zs = tf[e] / ks[e]
+                        z[e] = min(max(z[e] + x1 - xn[e], -zs), zs)
+                q[:] = qi
+                v[:] = vi
+                a_first[:] = kv[6]
+                s += ds
+                grow = _GROW if err == 0.0 else min(_GROW, _SAFETY * err ** _EXPONENT)
+                if ds * h >= h_try * (1 - 1e-12):  # a full step (not one cut short by the interval's end)
+                    h_try = dt * grow
+            else:
+                h_try = dt * max(_SHRINK, _SAFETY * err ** _EXPONENT)
+        q_out[:, k + 1] = q
+        for e in range(ne):
+            z_out[e, k + 1] = z[e]
+    y[:r] = q
+    y[r:] = v
+    zstate[:] = z
+    return nfev, h_try, 0
