@@ -393,6 +393,15 @@ CASES = [
      ["chain.nonlinear.1.stick_stiffness_nm_per_rad", "stiffest stage"]),
     ("nonlinear-station", "response {d}/n.toml", {"n.toml": with_nonlinear('"load", "ground"', '"lod", "ground"')},
      2, ["chain.nonlinear.1.between", "two different stations"]),
+    ("nonlinear-slip-below-preload", "transient {d}/n.toml --rpm 2000", {"n.toml": with_nonlinear(
+        "friction_torque_nm = 10.0", "friction_torque_nm = 10.0\npreload_nm = 150.0\nslip_torque_nm = 120.0")}, 2,
+     ["chain.nonlinear.1.slip_torque_nm", "mean torque", "150"]),
+    ("nonlinear-slip-scipy", "transient {d}/n.toml --run 1000 1200 --rate 1000 --integrator LSODA", {"n.toml": with_nonlinear(
+        "friction_torque_nm = 10.0", "friction_torque_nm = 10.0\nslip_torque_nm = 120.0")}, 2,
+     ["slip_torque", "compiled", "LSODA"]),
+    ("nonlinear-coast-stage-count", "lumped {d}/n.toml", {"n.toml": with_nonlinear(
+        "friction_torque_nm = 10.0", "friction_torque_nm = 10.0\ncoast_stiffnesses_nm_per_rad = [573.0, 2.8e4]")}, 2,
+     ["chain.nonlinear.1.coast_stage_angles_deg", "one fewer"]),
     ("nonlinear-unknown-key", "lumped {d}/n.toml", {"n.toml": with_nonlinear("friction_torque_nm", "friction_nm")},
      2, ["friction_nm"]),
     # --- [[dampers]] and [limits] (issue 14)

@@ -151,7 +151,7 @@ def one_mass_on_element(spring, J, v0, force=lambda t: np.zeros(1), t_end=1.0, n
     M, K, Cm = np.array([[J]]), np.zeros((1, 1)), np.array([[C]])
     if method == "compiled":
         F = np.array([force(tt) for tt in t]).T  # (1, n)
-        q, z, _ = integrate_compiled(M, K, Cm, t, np.zeros(n), np.zeros(n), lambda a, b: F[:, a:b],
+        q, z, _, _ = integrate_compiled(M, K, Cm, t, np.zeros(n), np.zeros(n), lambda a, b: F[:, a:b],
                                      elements=el, v0=np.array([v0]))
     else:
         q, z, _ = integrate_nonlinear(M, K, Cm, t, lambda tt: 0.0, lambda tt: 0.0, 0.0, force, elements=el,

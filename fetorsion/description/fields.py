@@ -412,6 +412,13 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
           "20 × the stiffest stage", "> the stiffest stage"),
     Field("preload_nm", "the mean torque the element carries (the drive torque through a clutch), N·m; default 0",
           "a finite number"),
+    Field("coast_stiffnesses_nm_per_rad", "the coast side's stages (negative twist), from the first outwards, "
+          "N·m/rad; default: the drive side's mirrored", "a list, each > 0"),
+    Field("coast_stage_angles_deg", "the coast side's stage starts (as magnitudes), deg",
+          "one fewer than the coast stiffnesses, each > 0, ascending"),
+    Field("slip_torque_nm", "a clutch's capacity: the plates slip while the total torque (preload plus the "
+          "vibratory part) would exceed it, N·m; default 0: it never slips (time domain only)",
+          "> |preload_nm|"),
     Field("source", "where the numbers come from", "a string"),
 ), array=True)
 

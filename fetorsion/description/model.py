@@ -558,14 +558,18 @@ class GearPair:
 @dataclass(frozen=True)
 class NonlinearSpring:
     """A nonlinear element of a network between stations ``i`` and ``j`` (0-based; ``j`` = -1:
-    ground): a clutch damper's or a dual-mass flywheel's springs.
+    ground): a clutch (its damper's springs, its plates' slip) or a dual-mass flywheel's springs.
 
-    The elastic torque is piecewise linear and odd in the twist x = θ_i − θ_j (rad):
-    ``stiffnesses[0]`` (N·m/rad) up to ``stage_angles[0]`` (rad), ``stiffnesses[1]`` beyond it, …;
-    in parallel a Coulomb friction ``friction`` (N·m) that sticks through ``stick_stiffness``
-    (N·m/rad; an elastic-perfectly-plastic element, its loop a parallelogram). ``preload`` (N·m)
-    is the mean torque it carries: it sets the operating point x0 on the elastic curve, and the
-    steady-state analyses take the stage's stiffness there (:meth:`tangent`).
+    The elastic torque is piecewise linear in the twist x = θ_i − θ_j (rad): on the drive side
+    (x ≥ 0) ``stiffnesses[0]`` (N·m/rad) up to ``stage_angles[0]`` (rad), ``stiffnesses[1]`` beyond
+    it, …; on the coast side (x < 0) the same curve mirrored, or ``coast_stiffnesses`` from 0 to
+    −``coast_stage_angles[0]``, … where given. In parallel a Coulomb friction ``friction`` (N·m, the
+    hysteresis) that sticks through ``stick_stiffness`` (N·m/rad; an elastic-perfectly-plastic
+    element, its loop a parallelogram). ``preload`` (N·m) is the mean torque it carries: it sets the
+    operating point x0 on the elastic curve, and the steady-state analyses take the stage's stiffness
+    there (:meth:`tangent`). ``slip_torque`` (N·m; 0: it never slips) is a clutch's capacity: the
+    plates in series with the damper slip while the total torque it transmits (the mean ``preload``
+    plus the vibratory part) would exceed it either way.
     """
 
     i: int
@@ -577,30 +581,46 @@ class NonlinearSpring:
     preload: float = 0.0
     name: str = ""
     source: str = ""
+    coast_stiffnesses: tuple[float, ...] = ()
+    coast_stage_angles: tuple[float, ...] = ()
+    slip_torque: float = 0.0
 
     def __post_init__(self):
         if not self.stick_stiffness > 0:  # the default: stiff against every stage
-            object.__setattr__(self, "stick_stiffness", DEFAULT_STICK_FACTOR * max(self.stiffnesses))
+            object.__setattr__(self, "stick_stiffness",
+                               DEFAULT_STICK_FACTOR * max(tuple(self.stiffnesses) + tuple(self.coast_stiffnesses)))
+
+    def curve(self, coast: bool) -> tuple[tuple[float, ...], tuple[float, ...]]:
+        """(stiffnesses N·m/rad, stage angles rad) of the drive side or, with ``coast``, the coast side."""
+        if coast and self.coast_stiffnesses:
+            return tuple(self.coast_stiffnesses), tuple(self.coast_stage_angles)
+        return tuple(self.stiffnesses), tuple(self.stage_angles)
 
     def elastic(self, x):
-        """The elastic torque at twist ``x`` (rad, array), N·m: odd, piecewise linear, continuous."""
+        """The elastic torque at twist ``x`` (rad, array), N·m: piecewise linear, continuous, of the
+        twist's sign."""
         import numpy as np
 
         x = np.asarray(x, dtype=float)
         a = np.abs(x)
-        edges = (0.0, *self.stage_angles)
         torque = np.zeros_like(a)
-        for s, k in enumerate(self.stiffnesses):
-            hi = edges[s + 1] if s + 1 < len(edges) else np.inf
-            torque += k * np.clip(a - edges[s], 0.0, hi - edges[s])
+        for coast in (False, True):
+            stiffnesses, angles = self.curve(coast)
+            edges = (0.0, *angles)
+            side = np.zeros_like(a)
+            for s, k in enumerate(stiffnesses):
+                hi = edges[s + 1] if s + 1 < len(edges) else np.inf
+                side += k * np.clip(a - edges[s], 0.0, hi - edges[s])
+            torque = np.where((x < 0) == coast, side, torque)
         return np.sign(x) * torque
 
     @property
     def operating_twist(self) -> float:
         """x0 with elastic(x0) = ``preload``, rad (the curve is increasing, so x0 is unique)."""
-        edges = (0.0, *self.stage_angles)
+        stiffnesses, angles = self.curve(self.preload < 0)
+        edges = (0.0, *angles)
         target, x, torque = abs(self.preload), 0.0, 0.0
-        for s, k in enumerate(self.stiffnesses):
+        for s, k in enumerate(stiffnesses):
             width = edges[s + 1] - edges[s] if s + 1 < len(edges) else math.inf
             if torque + k * width >= target:
                 x += (target - torque) / k
@@ -611,9 +631,10 @@ class NonlinearSpring:
     @property
     def tangent(self) -> float:
         """The stiffness of the stage at the operating point (the upper one on a boundary), N·m/rad."""
+        stiffnesses, angles = self.curve(self.preload < 0)
         x0 = abs(self.operating_twist)
-        stage = sum(1 for a in self.stage_angles if x0 >= a)
-        return self.stiffnesses[stage]
+        stage = sum(1 for a in angles if x0 >= a)
+        return stiffnesses[stage]
 
 
 #: The lumped partitions of a crank (:mod:`fetorsion.lumped_model.lumped`), named by their number of

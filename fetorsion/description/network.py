@@ -198,21 +198,31 @@ def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSprin
     friction = t.number("friction_torque_nm", 0.0, nonnegative=True)
     stick = t.number("stick_stiffness_nm_per_rad", 0.0, nonnegative=True)
     preload = t.number("preload_nm", 0.0)
+    kc = t.numbers("coast_stiffnesses_nm_per_rad", required=False)
+    angles_c = t.numbers("coast_stage_angles_deg", required=False)
+    slip = t.number("slip_torque_nm", 0.0, nonnegative=True)
     source = t.text("source")
     t.finish()
     before = len(problems)
-    if not k or not all(v > 0 for v in k):
-        problems.append(Problem(f"{t.path}.stiffnesses_nm_per_rad", list(k), "must be a list of stiffnesses, each > 0"))
-    if len(angles) != max(len(k) - 1, 0) or not all(a > 0 for a in angles) or list(angles) != sorted(set(angles)):
-        problems.append(Problem(f"{t.path}.stage_angles_deg", list(angles), "must give where each stage after the "
-                                "first begins: one fewer than the stiffnesses, each > 0, ascending"))
-    if stick and stick <= max(k, default=0.0):
+    for side, ks, a, needed in (("", k, angles, True), ("coast_", kc, angles_c, bool(kc or angles_c))):
+        if not needed:
+            continue
+        if not ks or not all(v > 0 for v in ks):
+            problems.append(Problem(f"{t.path}.{side}stiffnesses_nm_per_rad", list(ks),
+                                    "must be a list of stiffnesses, each > 0"))
+        if len(a) != max(len(ks) - 1, 0) or not all(x > 0 for x in a) or list(a) != sorted(set(a)):
+            problems.append(Problem(f"{t.path}.{side}stage_angles_deg", list(a), "must give where each stage after "
+                                    "the first begins: one fewer than the stiffnesses, each > 0, ascending"))
+    if stick and stick <= max((*k, *kc), default=0.0):
         problems.append(Problem(f"{t.path}.stick_stiffness_nm_per_rad", stick, "must exceed the stiffest stage "
                                 "(the friction sticks through it)"))
+    if slip and slip <= abs(preload):
+        problems.append(Problem(f"{t.path}.slip_torque_nm", slip, f"must exceed the mean torque it carries "
+                                f"(preload_nm {preload:g}): below it the clutch slips for good"))
     if len(problems) > before or pair is None:
         return None
     return NonlinearSpring(pair[0], pair[1], k, tuple(math.radians(a) for a in angles), friction,
-                           stick, preload, name, source)
+                           stick, preload, name, source, kc, tuple(math.radians(a) for a in angles_c), slip)
 
 
 def _network_topology(labels, shafts, gears) -> list[Problem]:

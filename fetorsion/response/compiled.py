@@ -51,14 +51,45 @@ MAX_SUBSTEPS = 100_000
 
 @njit(cache=True)
 def _elastic(x, k, edges, n):
-    """Odd piecewise-linear elastic torque at twist x: stage s of stiffness k[s] from edges[s]."""
+    """Piecewise-linear elastic torque at twist x: side 0 (drive, x ≥ 0) or 1 (coast) of the element's
+    curve, stage s of stiffness k[side, s] from edges[side, s]."""
+    side = 0 if x >= 0 else 1
     a = abs(x)
     t = 0.0
-    for s in range(n):
-        hi = edges[s + 1] if s + 1 < n else np.inf
-        if a > edges[s]:
-            t += k[s] * (min(a, hi) - edges[s])
+    for s in range(n[side]):
+        hi = edges[side, s + 1] if s + 1 < n[side] else np.inf
+        if a > edges[side, s]:
+            t += k[side, s] * (min(a, hi) - edges[side, s])
     return t if x >= 0 else -t
+
+
+@njit(cache=True)
+def _element_torque(e, xs, xsn, zn, x0, preload, tf, ks, kst, edges, nst):
+    """Element e's vibratory torque (preload off) with its spring twist ``xs`` on the path from ``xsn``,
+    where its friction state was ``zn``: the damper's elastic curve and its Jenkins friction."""
+    t = _elastic(x0[e] + xs, kst[e], edges[e], nst[e]) - preload[e]
+    if tf[e] > 0:
+        zs = tf[e] / ks[e]
+        t += ks[e] * min(max(zn + xs - xsn, -zs), zs)
+    return t
+
+
+@njit(cache=True)
+def _slip_point(e, xsn, xs, zn, target, x0, preload, tf, ks, kst, edges, nst):
+    """The spring twist on [xsn, xs] where the damper's torque (preload on) reaches ``target``: the
+    torque is monotone along the path, so bisection (to round-off) finds it."""
+    lo, hi = xsn, xs
+    up = xs > xsn
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid == lo or mid == hi:
+            break
+        over = preload[e] + _element_torque(e, mid, xsn, zn, x0, preload, tf, ks, kst, edges, nst) > target
+        if over == up:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
 
 
 @njit(cache=True)
@@ -90,8 +121,9 @@ def _solve_small(A, b):
 @njit(cache=True)
 def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
                   W, fire, crank_r, crank_l, crank_m, mean, B, P,
-                  D, x0, preload, tf, ks, kst, edges, nst, xn, zn, f, wc, A):
-    """q̈ into ``out`` at fraction s of a sample interval (F, phi, omega: the interval's two ends).
+                  D, x0, preload, tf, ks, kst, edges, nst, cap, xn, zn, sn, f, wc, A):
+    """q̈ into ``out`` at fraction s of a sample interval (F, phi, omega: the interval's two ends;
+    xn, zn, sn: the elements' twists, friction states and slips at the step's start).
     Loops, not BLAS calls: at a few tens of coordinates a call's overhead is most of its cost; ``f``
     (r) and ``wc`` (5, cylinders), ``A`` (cylinders, cylinders) are scratch."""
     r = q.size
@@ -104,10 +136,10 @@ def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
         x = 0.0
         for j in range(r):
             x += D[e, j] * q[j]
-        te = _elastic(x0[e] + x, kst[e], edges[e], nst[e]) - preload[e]
-        if tf[e] > 0:
-            zs = tf[e] / ks[e]
-            te += ks[e] * min(max(zn[e] + x - xn[e], -zs), zs)
+        # the spring's twist: the element's less the plates' slip, held over the step (the return map)
+        te = _element_torque(e, x - sn[e], xn[e] - sn[e], zn[e], x0, preload, tf, ks, kst, edges, nst)
+        if cap[e] > 0:
+            te = min(max(preload[e] + te, -cap[e]), cap[e]) - preload[e]
         for j in range(r):
             f[j] -= D[e, j] * te
     c = fire.size
@@ -158,10 +190,12 @@ def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
 
 
 @njit(cache=True)
-def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_l, crank_m, mean, B, P,
-               D, x0, preload, tf, ks, kst, edges, nst, rtol, atol_q, atol_v, q_out, z_out, h_try):
-    """Integrate samples 0 … N−1 (N = F.shape[0]) from state ``y`` = (q, q̇) and friction ``zstate``
-    at sample 0; writes q and z at every sample into ``q_out`` (r, N) and ``z_out`` (elements, N).
+def run_kernel(y, zstate, slip, h, F, phi, omega, Minv, K, Cs, fidx, W, fire, crank_r, crank_l, crank_m, mean, B, P,
+               D, x0, preload, tf, ks, kst, edges, nst, cap, rtol, atol_q, atol_v, q_out, z_out, s_out, h_try):
+    """Integrate samples 0 … N−1 (N = F.shape[0]) from state ``y`` = (q, q̇), friction ``zstate`` and
+    slip ``slip`` at sample 0; writes q, z and the slips at every sample into ``q_out`` (r, N),
+    ``z_out`` and ``s_out`` (elements, N). The damping of each step is ``Cs[m]``, m the bits of the
+    friction elements ``fidx`` that stick at its start (bit b: element fidx[b]).
     Returns (evaluations, the next step to try, status: 0 done, 1 the step control failed)."""
     r = y.size // 2
     N = F.shape[0]
@@ -169,6 +203,7 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
     q = y[:r].copy()
     v = y[r:].copy()
     z = zstate.copy()
+    sl = slip.copy()
     kq = np.empty((7, r))
     kv = np.empty((7, r))
     qi = np.empty(r)
@@ -181,9 +216,12 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
     nfev = 0
     for e in range(ne):
         z_out[e, 0] = z[e]
+        s_out[e, 0] = sl[e]
     q_out[:, 0] = q
     have_first = False
     a_first = np.empty(r)
+    state = -1
+    C = Cs[0]
     for k in range(N - 1):
         Fk = F[k:k + 2]
         ph = phi[k:k + 2]
@@ -201,9 +239,18 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
                 for j in range(r):
                     acc += D[e, j] * q[j]
                 xn[e] = acc
+            mask = 0
+            for b in range(fidx.size):
+                e = fidx[b]
+                if abs(z[e]) < tf[e] / ks[e] * (1.0 - 1e-12):
+                    mask += 1 << b
+            if mask != state:  # the damping of another stick state: the FSAL acceleration is not it
+                state = mask
+                have_first = False
+            C = Cs[state]
             if not have_first:
                 _acceleration(a_first, s, q, v, Fk, ph, om, alpha, Minv, K, C, W, fire, crank_r, crank_l,
-                              crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, xn, z, f, wc, A)
+                              crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, cap, xn, z, sl, f, wc, A)
                 nfev += 1
                 have_first = True
             kq[0] = v
@@ -219,7 +266,7 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
                     vi[m] = accv
                 kq[i] = vi
                 _acceleration(kv[i], s + _C[i] * ds, qi, vi, Fk, ph, om, alpha, Minv, K, C, W, fire, crank_r,
-                              crank_l, crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, xn, z, f, wc, A)
+                              crank_l, crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, cap, xn, z, sl, f, wc, A)
                 nfev += 1
             # stage 7 sits at the step's end with the 5th-order solution (FSAL): qi, vi are it
             err = 0.0
@@ -238,12 +285,21 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
                 return nfev, h_try, 1
             if err <= 1.0:
                 for e in range(ne):
+                    x1 = 0.0
+                    for j in range(r):
+                        x1 += D[e, j] * qi[j]
+                    xs, xsn = x1 - sl[e], xn[e] - sl[e]
+                    if cap[e] > 0:
+                        total = preload[e] + _element_torque(e, xs, xsn, z[e], x0, preload, tf, ks, kst, edges, nst)
+                        if abs(total) > cap[e]:
+                            # the plates slipped: the spring stops where the torque met the capacity
+                            stop = _slip_point(e, xsn, xs, z[e], cap[e] if total > 0 else -cap[e], x0, preload,
+                                               tf, ks, kst, edges, nst)
+                            sl[e] = x1 - stop
+                            xs = stop
                     if tf[e] > 0:
-                        x1 = 0.0
-                        for j in range(r):
-                            x1 += D[e, j] * qi[j]
                         zs = tf[e] / ks[e]
-                        z[e] = min(max(z[e] + x1 - xn[e], -zs), zs)
+                        z[e] = min(max(z[e] + xs - xsn, -zs), zs)
                 q[:] = qi
                 v[:] = vi
                 a_first[:] = kv[6]
@@ -256,7 +312,9 @@ def run_kernel(y, zstate, h, F, phi, omega, Minv, K, C, W, fire, crank_r, crank_
         q_out[:, k + 1] = q
         for e in range(ne):
             z_out[e, k + 1] = z[e]
+            s_out[e, k + 1] = sl[e]
     y[:r] = q
     y[r:] = v
     zstate[:] = z
+    slip[:] = sl
     return nfev, h_try, 0

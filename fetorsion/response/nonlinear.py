@@ -117,6 +117,41 @@ class SliderCranks:
 
 
 @dataclass(frozen=True)
+class ElementWork:
+    """What a nonlinear element did over a run: ``name``; its plates' slip (a clutch with
+    ``slip_torque``): total slip angle ``slip_rad`` (rad, both ways added), time slipping
+    ``slip_time_s`` (s), energy the plates turned into heat ``slip_energy_j`` (J: the capacity times
+    the slip angle) and ``slip_events`` (separate slips); the damper friction's heat
+    ``friction_energy_j`` (J: its torque times its slider's travel)."""
+
+    name: str
+    slip_rad: float
+    slip_time_s: float
+    slip_energy_j: float
+    slip_events: int
+    friction_energy_j: float
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "slip_rad": self.slip_rad, "slip_time_s": self.slip_time_s,
+                "slip_energy_j": self.slip_energy_j, "slip_events": self.slip_events,
+                "friction_energy_j": self.friction_energy_j}
+
+
+def element_work(springs, x, z, slip, h: float) -> list:
+    """Each element's :class:`ElementWork` from its twist ``x``, friction state ``z`` and slip
+    (rad, arrays (elements, N)) sampled every ``h`` seconds."""
+    out = []
+    for e, xe, ze, se in zip(springs, x, z, slip):
+        ds = np.abs(np.diff(se))
+        moving = ds > 1e-12 * max(1.0, float(np.abs(se).max()))
+        starts = int(np.count_nonzero(moving[1:] & ~moving[:-1]) + (1 if moving.size and moving[0] else 0))
+        slider = np.abs(np.diff(xe - se - ze)).sum() if e.friction > 0 else 0.0  # the friction slider's travel
+        out.append(ElementWork(e.name, float(ds.sum()), float(h * np.count_nonzero(moving)),
+                               float(e.slip_torque * ds.sum()), starts, float(e.friction * slider)))
+    return out
+
+
+@dataclass(frozen=True)
 class Elements:
     """A network's nonlinear elements on its coordinates: ``rows`` (elements × coordinates, the
     twist per unit q), the :class:`~fetorsion.description.model.NonlinearSpring` of each."""
@@ -162,8 +197,48 @@ class Elements:
         return np.where(self.friction > 0, xdot * (1.0 - np.where(loading, ratio**SLIP_EXPONENT, 0.0)), 0.0)
 
 
+def stick_damping_changes(M, K, ratio: float, rows, stick, size: int) -> np.ndarray:
+    """What the modal damping adds in each stick state of friction elements: for each mask m (bit b:
+    element b sticks), C_modal(K + Σ_b∈m k_s,b d_b d_bᵀ) − C_modal(K), padded to ``size`` coordinates.
+
+    The modal damping ratio is set on the modes of the structure as it moves: a friction element
+    that sticks adds its stick spring, and its mode is then the stiff one; without this a stuck
+    clutch's mode kept the damping matrix of the sliding state's lower frequency (ζ 0.03 fell to
+    0.010 there). Sliding, the friction itself dissipates.
+
+    Parameters
+    ----------
+    M, K : ndarray (n, n)
+        The mean inertia (kg·m²) and the stiffness with the elements at their operating stage
+        (N·m/rad) on which the modal damping was set.
+    ratio : float
+        The modal damping ratio ζ.
+    rows : ndarray (f, ≥ n)
+        Each friction element's twist per unit coordinate (its first n columns are read).
+    stick : ndarray (f,)
+        The stick springs, N·m/rad.
+    size : int
+        Coordinates of the integrated model (a damper's rings after the first n: no change there).
+
+    Returns
+    -------
+    ndarray (2^f, size, size)
+        The corrections, N·m·s/rad (mask 0, all sliding: zero).
+    """
+    from ..modes import modal_damping_matrix
+
+    n, f = M.shape[0], len(stick)
+    base = modal_damping_matrix(M, K, ratio)
+    out = np.zeros((1 << f, size, size))
+    for mask in range(1, 1 << f):
+        Ks = K + sum(stick[b] * np.outer(rows[b, :n], rows[b, :n]) for b in range(f) if mask >> b & 1)
+        out[mask, :n, :n] = modal_damping_matrix(M, Ks, ratio) - base
+    return out
+
+
 def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: SliderCranks | None = None,
-                        elements: Elements | None = None, v0=None, method: str = "LSODA", rtol: float = RTOL):
+                        elements: Elements | None = None, v0=None, method: str = "LSODA", rtol: float = RTOL,
+                        stuck_damping=None):
     """Integrate M(q, t) q̈ + (slider-crank terms) + C q̇ + K q + Σ dᵀ T_e = F(t) (module docs).
 
     Parameters
@@ -189,6 +264,10 @@ def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: Sli
         One of :data:`METHODS`.
     rtol : float
         Relative tolerance of the error control.
+    stuck_damping : ndarray (2^f, r, r), optional
+        The damping for each stick state of the f elements with friction, as in
+        :func:`integrate_compiled` (Bouc–Wen's z never sits strictly inside its limit while it slides:
+        an element sticks here while its state is below 0.99 of it).
 
     Returns
     -------
@@ -199,6 +278,8 @@ def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: Sli
     nfev : int
         Right-hand-side evaluations.
     """
+    if elements is not None and any(e.slip_torque > 0 for e in elements.springs):
+        raise ValueError(f"{method}: a clutch's slip (slip_torque) is integrated by the compiled kernel only")
     r = M.shape[0]
     ne = 0 if elements is None else elements.rows.shape[0]
     D = np.zeros((0, r)) if elements is None else elements.rows
@@ -212,9 +293,14 @@ def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: Sli
     if ne:
         jac[2 * r:, r:2 * r] = np.where(elements.friction[:, None] > 0, D, 0.0)
 
+    fidx = np.flatnonzero(elements.friction > 0) if ne else np.zeros(0, int)
+    zlim = elements.friction[fidx] / elements.stick[fidx] if ne else np.zeros(0)
+    bits = 1 << np.arange(fidx.size)
+
     def rhs(tt, y):
         q, v, z = y[:r], y[r:2 * r], y[2 * r:]
-        F = force(tt) - C @ v - K @ q
+        Cm = C if stuck_damping is None else stuck_damping[int(bits[np.abs(z[fidx]) < 0.99 * zlim].sum())]
+        F = force(tt) - Cm @ v - K @ q
         Meff = M
         if cranks is not None:
             W = cranks.weights
@@ -262,9 +348,10 @@ def _atol(r: int, ne: int) -> np.ndarray:
 
 
 def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None = None,
-                       elements: Elements | None = None, v0=None, rtol: float = RTOL):
+                       elements: Elements | None = None, v0=None, rtol: float = RTOL, stuck_damping=None):
     """Integrate the equations of :func:`integrate_nonlinear` by the compiled Dormand–Prince kernel
-    of :mod:`fetorsion.response.compiled`, its friction elements as exact Jenkins elements.
+    of :mod:`fetorsion.response.compiled`, its friction elements as exact Jenkins elements and a
+    clutch's plates (``slip_torque``) as a slider in series with its damper.
 
     Parameters
     ----------
@@ -287,6 +374,9 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
         Initial q̇, rad/s (rest otherwise).
     rtol : float
         Relative tolerance of the error control.
+    stuck_damping : ndarray (2^f, r, r), optional
+        The damping matrix for each stick state of the f elements with friction (in their order;
+        bit b set: the b-th sticks), N·m·s/rad; None: ``C`` throughout.
 
     Returns
     -------
@@ -294,6 +384,8 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
         The vibration angles, rad.
     z : ndarray (elements, N)
         The friction states (the stick springs' twists), rad.
+    slip : ndarray (elements, N)
+        The plates' slip of each element since the start, rad (0 for one that cannot slip).
     nfev : int
         Evaluations of the accelerations.
     """
@@ -312,36 +404,44 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
     springs = () if elements is None else elements.springs
     ne = len(springs)
     D = np.zeros((0, r)) if elements is None else np.ascontiguousarray(elements.rows, float)
-    stages = max([len(e.stiffnesses) for e in springs], default=1)
-    kst, edges = np.zeros((ne, stages)), np.full((ne, stages), np.inf)
+    stages = max([len(e.curve(c)[0]) for e in springs for c in (False, True)], default=1)
+    kst, edges = np.zeros((ne, 2, stages)), np.full((ne, 2, stages), np.inf)
+    nst = np.zeros((ne, 2), dtype=np.int64)
     for i, e in enumerate(springs):
-        kst[i, :len(e.stiffnesses)] = e.stiffnesses
-        edges[i, :len(e.stiffnesses)] = (0.0, *e.stage_angles)
-    nst = np.array([len(e.stiffnesses) for e in springs], dtype=np.int64)
+        for side in (0, 1):
+            k, angles = e.curve(bool(side))
+            kst[i, side, :len(k)], edges[i, side, :len(k)], nst[i, side] = k, (0.0, *angles), len(k)
     x0 = np.array([e.operating_twist for e in springs], float)
     preload = np.array([e.preload for e in springs], float)
     tf = np.array([e.friction for e in springs], float)
     ks = np.array([e.stick_stiffness for e in springs], float)
-    q, zs = np.empty((r, N)), np.empty((ne, N))
+    cap = np.array([e.slip_torque for e in springs], float)
+    fidx = np.flatnonzero(tf > 0).astype(np.int64)
+    Cs = np.ascontiguousarray(C[None] if stuck_damping is None else stuck_damping, float)
+    if Cs.shape[0] != (1 if stuck_damping is None else 1 << fidx.size):
+        raise ValueError(f"stuck_damping: needs 2^{fidx.size} matrices, got {Cs.shape[0]}")
+    if stuck_damping is None:
+        fidx = np.zeros(0, dtype=np.int64)
+    q, zs, ss = np.empty((r, N)), np.empty((ne, N)), np.empty((ne, N))
     y = np.zeros(2 * r)
     if v0 is not None:
         y[r:] = v0
-    z = np.zeros(ne)
+    z, slip = np.zeros(ne), np.zeros(ne)
     nfev, h_try, start = 0, h, 0
     atol = _atol(r, 0)
     while start < N - 1:
         stop = min(N - 1, start + SPAN)
         n = stop + 1 - start
         F = np.ascontiguousarray(np.asarray(load(start, stop + 1), float).T)
-        qo, zo = np.empty((r, n)), np.empty((ne, n))
-        done, h_try, status = run_kernel(y, z, h, F, np.ascontiguousarray(phi[start:stop + 1], float),
-                                         np.ascontiguousarray(omega[start:stop + 1], float), Minv, K, C, W, fire,
-                                         *geometry, B, P, D, x0, preload, tf, ks, kst,
-                                         edges, nst, rtol, atol[0], atol[r], qo, zo, h_try)
+        qo, zo, so = np.empty((r, n)), np.empty((ne, n)), np.empty((ne, n))
+        done, h_try, status = run_kernel(y, z, slip, h, F, np.ascontiguousarray(phi[start:stop + 1], float),
+                                         np.ascontiguousarray(omega[start:stop + 1], float), Minv, K, Cs, fidx, W,
+                                         fire, *geometry, B, P, D, x0, preload, tf, ks, kst, edges, nst, cap, rtol,
+                                         atol[0], atol[r], qo, zo, so, h_try)
         nfev += done
         if status:
             raise RuntimeError(f"the compiled integration failed between t = {t[start]:.6g} and {t[stop]:.6g} s: "
                                "its step control found no step that met the tolerance")
-        q[:, start:stop + 1], zs[:, start:stop + 1] = qo, zo
+        q[:, start:stop + 1], zs[:, start:stop + 1], ss[:, start:stop + 1] = qo, zo, so
         start = stop
-    return q, zs, nfev
+    return q, zs, ss, nfev

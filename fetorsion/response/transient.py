@@ -58,7 +58,8 @@ import scipy.signal
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles
 from ..measured.torsiograph import OrderTrack, order_track
-from .nonlinear import METHODS, RTOL, Elements, SliderCranks, integrate_compiled, integrate_nonlinear
+from .nonlinear import (METHODS, RTOL, Elements, SliderCranks, element_work, integrate_compiled, integrate_nonlinear,
+                        stick_damping_changes)
 from ..excitation.campbell import RESPONSE_HIGHEST_ORDER
 from ..description.defaults import (DEFAULT_PARTITION, DEFAULT_STEP_DEG, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES,
                                     DEFAULT_WEB_METHOD)
@@ -350,6 +351,9 @@ class TransientResult:
     track : OrderTrack
         The order track of station ``track_station`` from its simulated tooth edges
         (:func:`fetorsion.measured.torsiograph.order_track`).
+    elements : list of ElementWork
+        Each nonlinear element's slip and friction heat over the run
+        (:class:`fetorsion.response.nonlinear.ElementWork`; empty for a linear run).
     """
 
     name: str
@@ -369,6 +373,7 @@ class TransientResult:
     scheme: str = ""
     notes: list = field(default_factory=list)
     track_station: str = ""
+    elements: list = field(default_factory=list)
 
     def steady_peak_nm(self) -> np.ndarray:
         """Largest ``|torque|`` of each section after the settling time (a steady run), N·m."""
@@ -394,6 +399,7 @@ class TransientResult:
                 "notes": self.notes,
                 "block_rpm": self.block_rpm.tolist(), "block_peak_torque_nm": self.block_peak_nm.tolist(),
                 "order_track": {"station": self.track_station, **self.track.to_dict()},
+                "elements": [w.to_dict() for w in self.elements],
                 "signals": {"every": every, "time_s": self.time_s[keep].tolist(), "rpm": self.rpm[keep].tolist(),
                             "section_torque_nm": T[:, keep].tolist(), "section_torque_min_nm": lo.tolist(),
                             "section_torque_max_nm": hi.tolist()}}
@@ -406,6 +412,10 @@ class TransientResult:
                  f"({self.scheme})",
                  f"  largest section torque {self.block_peak_nm[b, k]:.1f} N m in {self.section_labels[k]} "
                  f"at {self.block_rpm[b]:.0f} rpm"]
+        for w in self.elements:
+            slip = (f"slipped {np.degrees(w.slip_rad):.2f} deg in {w.slip_events} slip(s), {w.slip_time_s:.3f} s, "
+                    f"{w.slip_energy_j:.1f} J" if w.slip_rad > 0 else "did not slip")
+            lines.append(f"  {w.name or 'element'}: {slip}; its friction {w.friction_energy_j:.1f} J")
         if self.mode.startswith("steady"):
             peaks = self.steady_peak_nm()
             lines.append("  steady peak |torque| per section [N m]: "
@@ -701,6 +711,11 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         raise ParameterError("step_rad", f"must be > 0 and at most {MAX_STEP_RAD:.4g} rad "
                                          f"({math.degrees(MAX_STEP_RAD):.4g}°: two steps a period of order "
                                          f"{RESPONSE_HIGHEST_ORDER:g}), got {step_rad!r}")
+    if method not in METHODS:
+        raise ParameterError("method", f"must be one of {', '.join(METHODS)}")
+    if method != "compiled" and any(e.slip_torque > 0 for e in getattr(model, "nonlinear", ())):
+        raise ParameterError("method", f"a clutch's slip_torque is integrated by the compiled integrator only, "
+                                       f"not {method}")
     if model.excitation is None or model.engine is None:
         raise FetorsionError(f"{model.source or model.name}: the description has no [engine] and [excitation]")
     top = rpm if run is None else max(run)
@@ -759,8 +774,6 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     rings = len(M) - len(setup.labels)  # the dampers' rings: coordinates that no cylinder drives
     W = np.pad(setup.load_map[:, 0, :].real, ((0, 0), (0, rings)))  # (cylinders, coordinates)
     elements = tuple(getattr(model, "nonlinear", ()))
-    if method not in METHODS:
-        raise ParameterError("method", f"must be one of {', '.join(METHODS)}")
     fire = firing_angles(model.engine)
 
     def load(a, b):  # the cylinders' alternating torques on the coordinates, samples a..b
@@ -786,10 +799,12 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
         if branches is not None:
             raise FetorsionError(f"{model.source or model.name}: a rubber damper's dynamic table (its Maxwell "
                                  "states) is not in the nonlinear integrator yet: run without variable inertia")
-        q, torque, scheme = _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t,
-                                           run, rate_rpm_per_s, lo, top, elements, variable_inertia, method)
+        q, torque, scheme, work = _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t,
+                                                 phi_of_t, run, rate_rpm_per_s, lo, top, elements, variable_inertia,
+                                                 method, setup)
     else:
         q = integrate(prop, load, N, rigid_speed, start)
+        work = []
         torque = rows @ q
         scheme = "exact modal propagator, first-order hold, lfilter"
     # the tracked station turns at its speed factor times the crank: its angle for the wheel
@@ -812,12 +827,13 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     block_rpm, peak = block_rpm[count > 0], peak[count > 0]
     return TransientResult(model.name, mode, list(setup.labels) + ring_labels, list(setup.section_labels), t, n_t,
                            phi, torque, q, block_rpm, peak, track, h, settle, scheme, notes,
-                           setup.labels[track_station])
+                           setup.labels[track_station], work)
 
 
 def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t, run, rate, lo, top,
-                   elements, variable_inertia, method):
-    """q (coordinates × N), the section torques and the scheme's description of a nonlinear run."""
+                   elements, variable_inertia, method, setup):
+    """q (coordinates × N), the section torques, the scheme's description and each element's
+    :class:`~fetorsion.response.nonlinear.ElementWork` of a nonlinear run."""
     ne = len(elements)
     tangent = np.array([e.tangent for e in elements])
     D = rows[rows.shape[0] - ne:] / tangent[:, None] if ne else np.zeros((0, M.shape[0]))
@@ -831,27 +847,40 @@ def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, 
         cranks = SliderCranks(W, fire, e.crank_radius, e.rod_length, ex.reciprocating_mass)
     grid, step, table = torque_table(model, lo, top, part="gas" if variable_inertia else "total")
     alpha = 0.0 if run is None else math.copysign(rate, run[1] - run[0]) * math.pi / 30
+    # the modal damping on the modes of each stick state of the friction elements
+    rubbing = [i for i, e in enumerate(elements) if e.friction > 0]
+    stuck = None
+    if rubbing and setup.zeta > 0:
+        stuck = C[None] + stick_damping_changes(np.real(setup.M), np.real(setup.K), setup.zeta, D[rubbing],
+                                                np.array([elements[i].stick_stiffness for i in rubbing]), M.shape[0])
 
     v0 = None if prop.rigid is None else rigid_speed * prop.rigid
     parts = Elements(D, elements) if ne else None
+    slip = np.zeros((ne, t.size))
     if method == "compiled":
         phi, n_t = phi_of_t(t), n_of_t(t)
 
         def load(a, b):
             return W.T @ np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])
 
-        q, z, nfev = integrate_compiled(M, K_lin, C, t, phi, n_t * (math.pi / 30), load, cranks, parts, v0)
+        q, z, slip, nfev = integrate_compiled(M, K_lin, C, t, phi, n_t * (math.pi / 30), load, cranks, parts, v0,
+                                              stuck_damping=stuck)
     else:
         def force(tt):
             return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
 
         q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha,
-                                         force, cranks, parts, v0, method)
+                                         force, cranks, parts, v0, method, stuck_damping=stuck)
     torque = rows @ q
+    work = []
     if ne:
-        torque[rows.shape[0] - ne:] = Elements(D, elements).torque(D @ q, z)
+        x = D @ q
+        torque[rows.shape[0] - ne:] = parts.torque(x - slip, z)
+        work = element_work(elements, x, z, slip, float(t[1] - t[0]))
     what = " and ".join(w for w, on in (("variable inertia", variable_inertia),
                                         (f"{ne} nonlinear element{'s' * (ne > 1)}", ne)) if on)
     how = ("compiled Dormand-Prince 5(4), friction as exact Jenkins elements" if method == "compiled"
            else f"{method} (scipy solve_ivp)")
-    return q, torque, f"{how}, rtol {RTOL:g}, {nfev} evaluations: {what}"
+    if stuck is not None:
+        what += ", modal damping on each stick state's modes"
+    return q, torque, f"{how}, rtol {RTOL:g}, {nfev} evaluations: {what}", work
