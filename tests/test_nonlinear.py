@@ -258,3 +258,29 @@ def test_compiled_integrator_equals_scipys_on_the_example_networks(example):
             for m in ("compiled", "LSODA")]
     assert "compiled" in runs[0].scheme and "LSODA" in runs[1].scheme
     assert np.abs(runs[0].block_peak_nm / runs[1].block_peak_nm - 1).max() < 0.005
+
+
+def test_a_held_start_of_the_dual_mass_flywheel_begins_in_its_steady_state():
+    # The DMF example (friction in its arc springs: no closed-form periodic state) run up from
+    # 1000 rpm at 100 rpm/s after the held start: the first working cycle's orders 2 and 4 (the
+    # four-cylinder's) equal a steady nonlinear run's at that cycle's mean speed within 1 %
+    # (the run-up moves the speed 0.6 % over the cycle, far from the DMF's resonances), and the
+    # orders between them (0.5, 1, 1.5: none in the steady state) stay below 1 % of order 2.
+    # From rest the same cycle rings: its order 0.5 is larger than order 2 itself. (Read by the
+    # order track with the schedule's known acceleration: before, a one-block record kept the
+    # run-up's bow, about 3.8 deg of order 0.5 in this case.)
+    from conftest import ROOT
+
+    model = fetorsion.load(ROOT / "examples" / "networks" / "dual_mass_flywheel.toml")
+    held = run_transient(model, run=(1000.0, 1300.0), rate_rpm_per_s=100.0, settled_start=True)
+    rest = run_transient(model, run=(1000.0, 1300.0), rate_rpm_per_s=100.0)
+    steady = run_transient(model, rpm=float(held.track.rpm[0]), cycles=4)
+    orders = held.track.orders
+    a = np.degrees(np.abs(held.track.amplitudes[0]))
+    b = np.degrees(np.abs(steady.track.amplitudes[-1]))
+    r = np.degrees(np.abs(rest.track.amplitudes[0]))
+    two, four = (int(np.argmin(np.abs(orders - q))) for q in (2.0, 4.0))
+    assert a[two] == pytest.approx(b[two], rel=0.01) and a[four] == pytest.approx(b[four], rel=0.01)
+    between = [int(np.argmin(np.abs(orders - q))) for q in (0.5, 1.0, 1.5)]
+    assert a[between].max() < 0.01 * a[two]
+    assert r[between[0]] > r[two]

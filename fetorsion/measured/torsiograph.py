@@ -481,7 +481,7 @@ def _grid(times, teeth: int, revolutions: int, errors, name: str, definition: st
 
 
 def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel",
-                accelerating: bool = False, definition: str = "angle") -> OrderTrack:
+                accelerating: bool = False, definition: str = "angle", alpha: float | None = None) -> OrderTrack:
     """The angle's vibration by order per block of ``revolutions`` whole revolutions.
 
     In each block the angle is sampled at equal angles (the tooth pitch), the block's mean
@@ -493,7 +493,8 @@ def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "w
     14°), which the transform reads as low orders falling as 1/k². With ``accelerating`` the bow
     ½ α τ (τ − T) (τ the time into the block; zero at both ends, so the chord's exactness for
     whole orders is kept) is taken off as well, α from the neighbouring blocks' mean speeds
-    (their chords: whole-order vibration does not move them); a steady record has α ≈ 0.
+    (their chords: whole-order vibration does not move them), or ``alpha`` where it is known (a
+    simulated run's schedule; a record of one block has no neighbours); a steady record has α ≈ 0.
 
     Parameters
     ----------
@@ -515,14 +516,18 @@ def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "w
         frequency k Ω̄ (Ω̄ the block's mean speed), as an analyser that resamples in time reads
         it. The two differ at second order in the vibration (a large amplitude at a high
         order: a few per cent).
+    alpha : float, optional
+        The wheel's mean angular acceleration where it is known, rad/s² (with ``accelerating``):
+        instead of the estimate from neighbouring blocks.
     """
     revolutions = _whole(revolutions, "revolutions")
     t_grid, theta = _grid(times, teeth, revolutions, errors, name, definition)
     speed = (theta[:, -1:] - theta[:, :1]) / (t_grid[:, -1:] - t_grid[:, :1])
     tau = t_grid - t_grid[:, :1]
     psi = (theta - theta[:, :1]) - speed * tau
-    if accelerating and speed.shape[0] > 1:
-        alpha = np.gradient(speed[:, 0], 0.5 * (t_grid[:, 0] + t_grid[:, -1]))[:, None]
+    if accelerating and (alpha is not None or speed.shape[0] > 1):
+        if alpha is None:
+            alpha = np.gradient(speed[:, 0], 0.5 * (t_grid[:, 0] + t_grid[:, -1]))[:, None]
         psi -= 0.5 * alpha * tau * (tau - tau[:, -1:])
     rpm, orders, c = _blocks(t_grid, psi, revolutions * teeth, revolutions, theta[:, 0])
     return OrderTrack(name, rpm, orders, c, definition)

@@ -812,8 +812,11 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     angle = factor * phi + q[track_station]
     revs = int(round(period / (2 * np.pi)))
     k0 = int(np.searchsorted(t, settle)) if run is not None else 0  # a held start is not tracked
+    # the schedule's acceleration is known: the bow of the mean rotation comes off exactly, a
+    # one-block record included
+    alpha = None if run is None else factor * math.copysign(rate_rpm_per_s, run[1] - run[0]) * math.pi / 30
     track = order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=setup.labels[track_station],
-                        accelerating=run is not None)
+                        accelerating=run is not None, alpha=alpha)
     # the envelope per block of whole cycles, from the crank's mean motion
     block = np.floor(phi / period).astype(int)
     # the last, unfinished cycle left out, and in a steady run the cycles before it settled
