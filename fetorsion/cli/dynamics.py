@@ -30,8 +30,12 @@ from .fe import condensed, engine_fillets
 def source_of(args, model) -> str:
     """``--source``, or its default: a crank description's engine model (the condensed crank in
     its bearings, the run's), a chain's or network's own lumped model."""
+    from ..response.driveline import condensed_part
+
     if args.source is not None:
         return args.source
+    if isinstance(model, Network) and condensed_part(model) is not None:
+        return "condensed"  # its [[chain.cranks]] names the condensed crank
     return LUMPED17 if isinstance(model, (Chain, Network)) else "condensed"
 
 
@@ -160,7 +164,19 @@ def cmd_response(args) -> int:
         cc, _ = engine_model(crank, args)
         res = run_coupled_response(cc, args.support, rpm=rpm, orders=args.orders, damping_ratio=args.damping)
         return report(res, res.table(), args)
-    if args.source == "condensed":
+    if args.source == "condensed" and isinstance(crank, Network):
+        # the driveline with its crank as the condensed FE crank in its bearings
+        from ..response.driveline import condensed_part, driveline_setup
+
+        part = condensed_part(crank)
+        if part is None:
+            raise FetorsionError(f"--source condensed: {args.file} has no [[chain.cranks]] with dof = \"condensed\"")
+        for option in ("misfire", "compare_section"):
+            if getattr(args, option) is not None:
+                raise FetorsionError(f"--{option.replace('_', '-')} is not taken for a network on a condensed crank yet")
+        cc, fillets = engine_model(part.crank, args)
+        res = solve_response(driveline_setup(crank, cc, rpm, args.orders, args.damping, [f.label for f in fillets]))
+    elif args.source == "condensed":
         cc, fillets = engine_model(crank, args)
         setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)
         if args.compare_section is not None and args.compare_section > len(setup.section_labels):
@@ -209,7 +225,19 @@ def cmd_damper(args) -> int:
         raise FetorsionError(f"--objective {objective}: {args.file} has no fillet radii (a sharp corner has no finite "
                              "SCF); give [fillets] or use --objective twist")
     rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
-    if args.source == "condensed":
+    if args.source == "condensed" and isinstance(crank, Network):
+        # the driveline with its crank as the condensed FE crank in its bearings
+        from ..response.driveline import condensed_part, driveline_setup
+
+        part = condensed_part(crank)
+        if part is None:
+            raise FetorsionError(f"--source condensed: {args.file} has no [[chain.cranks]] with dof = \"condensed\"")
+        for option in ("misfire", "compare_section"):
+            if getattr(args, option) is not None:
+                raise FetorsionError(f"--{option.replace('_', '-')} is not taken for a network on a condensed crank yet")
+        cc, fillets = engine_model(part.crank, args)
+        res = solve_response(driveline_setup(crank, cc, rpm, args.orders, args.damping, [f.label for f in fillets]))
+    elif args.source == "condensed":
         cc, fillets = engine_model(crank, args)
         setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)
     else:

@@ -373,7 +373,10 @@ CRANKS = Section("chain.cranks", "Network form: a crank description as one part 
     Field("name", "the crank's name, the prefix of its stations' names; default `crank`", "no `.`, not `ground`"),
     Field("file", "the crank description (.toml), relative to this chain file's folder", "an existing crank "
           "description (not a chain file), valid by its own rules, without `[[dampers]]`"),
-    Field("dof", f"its lumped partition; default {DEFAULT_PARTITION}", _one_of(PARTITIONS)),
+    Field("dof", f"its lumped partition, or `condensed`: the condensed FE crank in its bearings (the engine model of "
+          f"`fetorsion run`; the forced response and `fetorsion run` of the network solve it, its other stations "
+          f"are the {DEFAULT_PARTITION}-DOF partition's names and only its pulley and flywheel may be joined); "
+          f"default {DEFAULT_PARTITION}", _one_of(PARTITIONS) + " or `condensed`"),
     Field("stiffness", f"its web-stiffness method; default `{DEFAULT_WEB_METHOD}`", _one_of(WEB_METHOD_NAMES)),
 ), array=True)
 

@@ -643,6 +643,8 @@ PARTITIONS = (5, 6, 17, 19, 21)
 #: The web-stiffness methods' names (the registry :data:`fetorsion.webs.methods.WEB_METHODS` holds the
 #: functions and checks it has exactly these): a description may name one before the webs stage is loaded.
 WEB_METHOD_NAMES = ("carter", "ker-wilson", "beam", "fe", "fe-held", "chart")
+#: ``[[chain.cranks]] dof`` naming the condensed FE crank instead of a lumped partition.
+CONDENSED = "condensed"
 #: What a network may call a crank's first and last station besides their own labels.
 CRANK_END_ALIASES = ("pulley", "flywheel")
 
@@ -682,6 +684,10 @@ class NetworkCrank:
     web_method: str
     first: int = 0
     drives: bool = True
+    #: ``dof = "condensed"``: the condensed FE crank in its bearings (the engine model of
+    #: ``fetorsion run``) where the forced response is solved (:mod:`fetorsion.response.driveline`);
+    #: the lumped ``partition`` names its stations and stands in where an analysis takes no FE crank.
+    condensed: bool = False
 
     @property
     def labels(self) -> tuple[str, ...]:

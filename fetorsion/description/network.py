@@ -11,7 +11,7 @@ from pathlib import Path
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .fields import CHAIN_SCHEMA
-from .model import (CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, GearPair, Network, NetworkCrank,
+from .model import (CONDENSED, CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, GearPair, Network, NetworkCrank,
                     NonlinearSpring, Shaft)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
@@ -135,6 +135,14 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "network", problems)
     uncertainty, distributions = read_variations(root, data, problems)
     root.finish()
+    for c in cranks:
+        inner = [labels[s] for s in joined_inside(c, shafts, gears, nonlinear)] if c.condensed else []
+        if inner:
+            problems.append(Problem("chain.cranks.1.dof", CONDENSED, f"a condensed crank offers the network only its "
+                                    f"{c.name}.pulley and {c.name}.flywheel; {', '.join(inner)} joined here"))
+        if c.condensed and dampers:
+            problems.append(Problem("dampers", [d.name for d in dampers], "not read in a network on a condensed "
+                                    "crank yet: give them in the crank description"))
     if problems:
         raise DescriptionError(source, unique_problems(problems))
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
@@ -159,7 +167,7 @@ def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[Net
     for ct in tables[:1]:
         name = ct.text("name", "crank")
         file = ct.text("file")
-        dof = ct.choice("dof", PARTITIONS, DEFAULT_PARTITION)
+        dof = ct.choice("dof", PARTITIONS + (CONDENSED,), DEFAULT_PARTITION)
         method = ct.text("stiffness", DEFAULT_WEB_METHOD, choices=WEB_METHOD_NAMES)
         ct.finish()
         if not name or name == GROUND or "." in name:
@@ -185,8 +193,19 @@ def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[Net
             problems.append(Problem(f"{ct.path}.file", file, "its [[dampers]] are not read in a network yet: join "
                                     "the damper's ring as a station with a shaft, and leave [[dampers]] out"))
             continue
-        out.append(NetworkCrank(name, crank, dof, method))
+        condensed = dof == CONDENSED
+        # a condensed crank keeps the default partition's station names: its front and rear are
+        # what the network's other parts may join (its pulley and flywheel)
+        out.append(NetworkCrank(name, crank, DEFAULT_PARTITION if condensed else dof, method, condensed=condensed))
     return out
+
+
+def joined_inside(part: NetworkCrank, shafts, gears, nonlinear) -> list[int]:
+    """The inner stations of crank ``part`` (neither its first nor its last) that a shaft, gear
+    or nonlinear element joins, ascending: a condensed crank has no such stations to offer."""
+    inner = set(range(part.first + 1, part.first + len(part.labels) - 1))
+    ends = [(x.i, x.j) for x in (*shafts, *gears, *nonlinear)]
+    return sorted({a for pair in ends for a in pair if a in inner})
 
 
 def _nonlinear_spring(t: Table, pair, problems: list[Problem]) -> NonlinearSpring | None:

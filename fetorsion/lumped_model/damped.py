@@ -229,8 +229,9 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     The system is solved in the basis of its own undamped modes (springs at their stiffness at
     half the highest ω) below :data:`DAMPED_CUTOFF` × the highest ω, with the frequency-dependent
     damper springs and the full, non-proportional damping matrix projected on them (small dense
-    solves); the modes above act through their static flexibility (mode-acceleration
-    correction), so static loads come out exactly. Zero-frequency modes (rigid rotation; axial
+    solves; the imaginary part of K, loss factors of the model's own springs, likewise); the
+    modes above act through their static flexibility (mode-acceleration correction), so static
+    loads come out exactly. Zero-frequency modes (rigid rotation; axial
     motion without a thrust bearing) are kept dynamic; a static load on them has no solution.
 
     ``gyroscopic`` (stations × stations, skew, per unit spin speed) with ``spin`` (rad/s,
@@ -257,9 +258,13 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     # In this basis M is I and K + Re Σ k_d(nominal) J_d is diag(λ): only iωC and each damper's
     # departure from its nominal spring fill the matrices (two passes over the big array).
     Cp = low.T @ system.C @ low
+    Hs = np.imag(system.K)  # loss factors of the model's own springs (a network's shafts): i H on the kept modes
+    Hp = low.T @ Hs @ low if np.any(Hs) else None
     U = [low[s] - low[r] for s, r in system.joints]
     nominal = system._spring_terms(np.asarray(float(om.max()) / 2))
     A = np.multiply(1j * om[..., None, None], Cp)
+    if Hp is not None:
+        A = A + 1j * Hp
     rhs = complex_times(F, low)  # (..., r, kept)
     Fh = complex_times(F, high) / lam[count:] if high.shape[1] else None
     if gyroscopic is not None:

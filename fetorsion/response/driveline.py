@@ -1,0 +1,143 @@
+"""The condensed FE crank as a part of a network: the driveline's forced response on the engine
+model of ``fetorsion run``.
+
+A network whose ``[[chain.cranks]]`` says ``dof = "condensed"`` is solved with the crank as its
+condensed model in its bearings (:func:`fetorsion.response.coupled.condensed_setup`: masters with
+six DOF, interior modes, bearings, attachments, the pins' slider-crank forces, the Coriolis term of
+the rotating frame) and the rest of the network as its stations, shafts and gears
+(:mod:`fetorsion.lumped_model.network`). The two meet at the crank's ends: the network's
+``<crank>.pulley`` is the front master's θx, ``<crank>.flywheel`` the rear master's; the crank's
+other lumped stations take no part (nothing may join them). In the coordinates
+z = (the crank's free reduced DOF, the network's other coordinates after its gear constraint),
+with S (stations × z) the stations' angles (T of the gear constraint, its crank-end columns
+pointing at the two masters' θx):
+
+    M = M_crank ⊕ 0 + Sᵀ J S,   K = K_crank ⊕ 0 + Sᵀ (K_s + i H_s) S,   C = C_ζ + C_bearings + Sᵀ C_s S,
+
+J the stations' inertias (the crank's own zero: its inertia is the FE crank's), K_s, H_s, C_s
+the shafts' stiffness, loss factors and dampers. The modal damping ratio ζ is set on the modes of
+the whole assembly (as the lumped network's response sets it on its whole network), so a network
+of the crank alone has exactly the crank's own damping and response.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..description.model import CRANK_END_ALIASES, Network
+from ..description.network import joined_inside
+from ..errors import FetorsionError
+from ..fe.condensed import CondensedCrank
+from ..lumped_model.network import gear_constraint, spring_matrix
+from ..modes import modal_damping
+
+
+def condensed_part(net: Network):
+    """The network's crank part that is condensed, or None."""
+    return next((c for c in net.cranks if c.condensed), None)
+
+
+def _crank_stations(net: Network, part) -> tuple[int, int, range]:
+    """(front station, rear station, every station of the crank part) of ``part`` in ``net``."""
+    inside = range(part.first, part.first + len(part.labels))
+    return inside[0], inside[-1], inside
+
+
+def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, damping_ratio: float | None = None,
+                    section_labels=None):
+    """The network with its crank as the condensed FE crank ``cc`` in its bearings, as a
+    :class:`~fetorsion.response.forced.ResponseSetup` (module docs).
+
+    Parameters
+    ----------
+    net : Network
+        With one ``[[chain.cranks]]`` of ``dof = "condensed"`` (unresolved: as read).
+    cc : CondensedCrank
+        That crank condensed (:func:`fetorsion.fe.store.condensed_crank`, the run's: fillet cuts and
+        its bearings).
+    rpm, orders : array_like, optional
+        Speeds, rpm, and orders (the condensed setup's defaults).
+    damping_ratio : float, optional
+        Modal damping ratio on the whole assembly's modes (default the crank's description's).
+    section_labels : list of str, optional
+        Names of the crank's cuts (its fillets; default ``cut 1`` …).
+
+    Returns
+    -------
+    ResponseSetup
+        DOF: the crank's free reduced coordinates, then the network's other coordinates; sections:
+        the crank's cuts, then the network's shafts (their file order, as the lumped network names them).
+    """
+    import dataclasses
+
+    from .coupled import condensed_setup, supported_damping
+
+    part = condensed_part(net)
+    if part is None:
+        raise FetorsionError(f"{net.source or net.name}: no [[chain.cranks]] with dof = \"condensed\"")
+    if part.crank.name != cc.crank.name:
+        raise FetorsionError(f"{net.source or net.name}: the condensed crank given is {cc.crank.name!r}, the "
+                             f"network's part is {part.crank.name!r}")
+    bad = [net.labels[s] for s in joined_inside(part, net.shafts, net.gears, net.nonlinear)]
+    if bad:
+        raise FetorsionError(f"{net.source or net.name}: {', '.join(bad)}: a condensed crank offers only its "
+                             f"{' and '.join(f'{part.name}.{a}' for a in CRANK_END_ALIASES)} to the network")
+    if net.dampers:
+        raise FetorsionError(f"{net.source or net.name}: [[dampers]] with a condensed crank part are not read yet: "
+                             "put them in the crank description")
+    base = condensed_setup(cc, "bearings", rpm, orders, damping_ratio, section_labels)
+    zeta = base.zeta
+    R = len(base.labels)
+    front, rear, inside = _crank_stations(net, part)
+    n = len(net.labels)
+    T, masters = gear_constraint(n, net.gears)
+    others = [c for c, m in enumerate(masters) if m not in inside]
+    S_cols = np.zeros((masters.size, R + len(others)))  # each reduced network coordinate in z
+    for c, m in enumerate(masters):
+        if m == front:
+            S_cols[c, base.pulley] = 1.0
+        elif m == rear:
+            S_cols[c, base.flywheel] = 1.0
+    S_cols[others, R + np.arange(len(others))] = 1.0
+    S = T @ S_cols  # (stations, z)
+    J = np.array([0.0 if s in inside else v for s, v in enumerate(net.inertias)])
+    shafts = net.linear_shafts
+    i, j = [s.i for s in shafts], [s.j for s in shafts]
+    k = np.array([s.stiffness for s in shafts], float)
+    Ks = spring_matrix(n, i, j, k)
+    Hs = spring_matrix(n, i, j, k * np.array([s.loss_factor for s in shafts]))
+    Cs = spring_matrix(n, i, j, [s.damping for s in shafts])
+    if net.absolute_damping:
+        Cs += np.diag([0.0 if s in inside else c for s, c in enumerate(net.absolute_damping)])
+
+    def pad(A):
+        out = np.zeros((R + len(others),) * 2, A.dtype)
+        out[:R, :R] = A
+        return out
+
+    M = pad(base.M) + S.T @ np.diag(J) @ S
+    K = pad(base.K) + S.T @ Ks @ S
+    # ζ on the modes of the whole assembly (M-orthonormal), then the crank's bearings' dampers and the shafts' own
+    Linv = np.linalg.inv(np.linalg.cholesky(M))
+    lam, Y = np.linalg.eigh(Linv @ K @ Linv.T)
+    Phi = Linv.T @ Y
+    C = modal_damping(M, Phi, np.sqrt(np.clip(lam, 0.0, None)), zeta) + pad(supported_damping(cc, "bearings", 0.0)[2]) \
+        + S.T @ Cs @ S
+    Kc = K + 1j * (S.T @ Hs @ S) if np.any(Hs) else K
+    rows = np.zeros((len(shafts), n))
+    rows[np.arange(len(shafts)), i] = k
+    free = np.flatnonzero(np.array(j, int) >= 0)
+    rows[free, np.array(j, int)[free]] = -k[free]
+    names = [f"{net.labels[s.i]}-{net.labels[s.j] if s.j >= 0 else 'ground'}" for s in shafts]
+    names = names[:len(net.shafts)] + [e.name or m for e, m in zip(net.nonlinear, names[len(net.shafts):])]
+    section_rows = np.vstack([np.pad(base.section_rows, ((0, 0), (0, len(others)))), rows @ S])
+    extra = lambda A: np.pad(A, [(0, 0)] * (A.ndim - 1) + [(0, len(others))])  # noqa: E731
+    G = None if base.gyroscopic is None else pad(base.gyroscopic)
+    return dataclasses.replace(
+        base, name=net.name, labels=list(base.labels) + [net.labels[masters[c]] for c in others], M=M, K=Kc, C=C,
+        forces=extra(base.forces), load_map=extra(base.load_map), section_rows=section_rows,
+        section_labels=list(base.section_labels) + names,
+        section_x=None if base.section_x is None else np.concatenate([base.section_x, np.full(len(names), np.nan)]),
+        stated="stated dampers of the network" if np.any(Cs) or np.any(Hs) else "",
+        torsional_modes=None, gyroscopic=G,
+        model=f"network of {n - len(inside) + 2} stations on the {base.model}")
