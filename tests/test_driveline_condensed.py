@@ -100,3 +100,23 @@ def test_a_condensed_crank_offers_only_its_ends(tmp_path):
     (tmp_path / "n.toml").write_text(text)
     with pytest.raises(fetorsion.errors.DescriptionError, match=r"chain.cranks.1.dof.*r21.P2"):
         fetorsion.load(tmp_path / "n.toml")
+
+
+@pytest.mark.slow
+def test_fetorsion_response_of_the_crank_alone_network_is_the_cranks(tmp_path):
+    # End to end on the command line, the run's mesh (10 mm, the store's condensed crank with its
+    # fillet cuts and oil films): a network file holding only the Renault 21 as a condensed part
+    # answers as `fetorsion response` on the crank description itself: every fillet's torque at
+    # every speed within the issue's 0.1 %.
+    import json
+
+    from fetorsion.cli.commands import main
+
+    (tmp_path / "n.toml").write_text('[chain]\nname = "Renault 21 alone"\n\n[[chain.cranks]]\nname = "r21"\n'
+                                     f'file = "{ROOT / "geometry" / "renault21.toml"}"\ndof = "condensed"\n')
+    assert main(["response", str(tmp_path / "n.toml"), "--steps", "12", "--json", str(tmp_path / "a.json")]) == 0
+    assert main(["response", str(ROOT / "geometry" / "renault21.toml"), "--steps", "12",
+                 "--json", str(tmp_path / "b.json")]) == 0
+    a, b = (json.loads((tmp_path / f"{x}.json").read_text()) for x in "ab")
+    assert a["sections"] == b["sections"] and "network" in a["model"] and "condensed" in a["model"]
+    assert np.abs(np.array(a["section_torque_nm"]) / np.array(b["section_torque_nm"]) - 1).max() < 1e-3
