@@ -266,9 +266,10 @@ def test_a_damped_networks_time_domain_equals_its_order_synthesis():
 
 
 def test_a_network_damper_on_a_named_station_is_its_ring_on_that_station():
-    """`at` may name a station at the engine's speed: a tuned damper at "flywheel" equals its ring
-    written out on a shaft from the flywheel (1e-9); on the propeller (geared to 0.4 of the speed)
-    it is refused by name (its ring is not referred yet), as is a station that no table names."""
+    """`at` may name any station: a tuned damper at "flywheel" equals its ring written out on a
+    shaft from the flywheel (1e-9); one on the propeller (geared to 0.4 of the engine's speed) is
+    its ring referred to the coordinate by f² and equals its ring written out on a shaft from the
+    propeller (1e-9), its heat too; a station that no table names is refused by name."""
     import tomllib
 
     from fetorsion.errors import FetorsionError
@@ -287,8 +288,32 @@ def test_a_network_damper_on_a_named_station_is_its_ring_on_that_station():
         np.testing.assert_allclose(a.section_torque_nm[:, a.section_labels.index(s)],
                                    b.section_torque_nm[:, b.section_labels.index(s)], rtol=1e-9, atol=1e-9)
     geared = parse_network(tomllib.loads(text + TUNED.replace('at = "front"', 'at = "propeller"')), src)
-    with pytest.raises(FetorsionError, match="damper 'tuned' at 'propeller', which turns at 0.4"):
-        run_response(geared, rpm=rpm)
+    ring = text.replace("[[chain.shafts]]", '[[chain.stations]]\nname = "ring"\ninertia_kgm2 = 0.004\n\n'
+                        '[[chain.shafts]]\nbetween = ["propeller", "ring"]\nstiffness_nm_per_rad = 2.0e4\n'
+                        'damping_nms_per_rad = 3.0\n\n[[chain.shafts]]', 1)
+    written = parse_network(tomllib.loads(ring), src)
+    a, b = run_response(geared, rpm=rpm), run_response(written, rpm=rpm)
+    np.testing.assert_allclose(a.pulley_angle_deg, b.pulley_angle_deg, rtol=1e-9)
+    for s in a.section_labels:
+        np.testing.assert_allclose(a.section_torque_nm[:, a.section_labels.index(s)],
+                                   b.section_torque_nm[:, b.section_labels.index(s)], rtol=1e-9, atol=1e-9)
+    # its heat: the written-out ring's dashpot, ½ ω² c |θ_propeller − θ_ring|² over the orders, in the
+    # stations' own angles (θ = T q)
+    from fetorsion.lumped_model.network import network_matrices
+
+    T = network_matrices(written).T
+    station = b.theta @ T.T  # (speeds, orders, stations)
+    p, r = written.labels.index("propeller"), written.labels.index("ring")
+    om = b.orders[None, :] * rpm[:, None] * np.pi / 30
+    heat = 0.5 * om**2 * 3.0 * np.abs(station[..., p] - station[..., r]) ** 2
+    np.testing.assert_allclose(a.damper_power_w[:, 0, :], heat, rtol=1e-9, atol=1e-12 * heat.max())
+    # and the time domain takes the referred ring as well: a run-up's block peaks, same to 1e-9
+    from fetorsion.response.transient import run_transient
+
+    ta, tb = (run_transient(m, run=(1500.0, 2500.0), rate_rpm_per_s=500.0) for m in (geared, written))
+    for s in ta.section_labels:
+        np.testing.assert_allclose(ta.block_peak_nm[:, ta.section_labels.index(s)],
+                                   tb.block_peak_nm[:, tb.section_labels.index(s)], rtol=1e-9)
     with pytest.raises(DescriptionError) as err:
         parse_network(tomllib.loads(text + TUNED.replace('at = "front"', 'at = "nowhere"')), src)
     assert any(p.field == "dampers.1.at" for p in err.value.problems)

@@ -79,6 +79,20 @@ def damper_spring(damper, omegas) -> np.ndarray:
     return np.full(omegas.shape, damper.stiffness * (1 + 1j * damper.loss_factor))
 
 
+def referred_damper(damper, factor: float):
+    """``damper`` referred to a coordinate that turns 1/f times as fast as its station
+    (``factor`` = f²): inertias, springs (its table's too) and dashpot times f², so that its
+    energies and heat in the coordinate's angle are those of the damper on the station."""
+    if factor == 1.0:
+        return damper
+    from dataclasses import replace
+
+    return replace(damper, hub_inertia=damper.hub_inertia * factor, ring_inertia=damper.ring_inertia * factor,
+                   stiffness=damper.stiffness * factor, damping=damper.damping * factor,
+                   table=tuple((f, k * factor, e) for f, k, e in damper.table),
+                   temperature_table=tuple((T, f, k * factor, e) for T, f, k, e in damper.temperature_table))
+
+
 class DampedSystem:
     """A chain's matrices with its dampers' rings appended as the last degrees of freedom.
 
@@ -89,9 +103,12 @@ class DampedSystem:
     condensed FE crank): only (M, K, C, station) are used.
     """
 
-    def __init__(self, M, K, C, dampers=(), stations: int | None = None, at=None):
+    def __init__(self, M, K, C, dampers=(), stations: int | None = None, at=None, scale=None):
         n = len(M) if stations is None else stations
-        self.stations, self.dampers, self.rings, self.carriers, self.joints = n, tuple(dampers), [], [], []
+        # ``scale``: a function of the damper, f² for one on a station that turns f times its
+        # coordinate's speed (a network's geared station): its ring is referred to the coordinate
+        dampers = tuple(dampers) if scale is None else tuple(referred_damper(d, scale(d)) for d in dampers)
+        self.stations, self.dampers, self.rings, self.carriers, self.joints = n, dampers, [], [], []
         for d in self.dampers:
             # ``at``: one station for every damper, or a function of the damper (a condensed crank's
             # front or rear master twist)

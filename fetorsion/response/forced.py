@@ -277,6 +277,8 @@ class ResponseSetup:
     pulley: int = 0
     flywheel: int = -1
     damper_dof: dict | None = None  # {"front": DOF, "rear": DOF}; None: the chain's end stations
+    #: {at: f²} for a damper on a network's station turning f times its DOF's speed; None: all 1
+    damper_scale: dict | None = None
     #: Indices (in ascending order of the undamped modes) of the modes a damper is tuned on;
     #: None: every elastic mode of a free chain (all but the first, rigid one).
     torsional_modes: np.ndarray | None = None
@@ -318,6 +320,10 @@ class ResponseSetup:
         if self.damper_dof is None:
             return damper_station(damper, len(self.labels))
         return self.damper_dof[damper.at]
+
+    def damper_factor(self, damper) -> float:
+        """f² of a damper on a station that turns f times as fast as its DOF (1 elsewhere)."""
+        return 1.0 if self.damper_scale is None else self.damper_scale.get(damper.at, 1.0)
 
     @functools.cached_property
     def free_response(self) -> np.ndarray:
@@ -400,32 +406,28 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
                           pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad,
                           # a network's rear damper sits on the last coordinate at the engine's speed
-                          damper_dof=None if res.network is None else network_damper_dof(crank, res, flywheel))
+                          damper_dof=None if res.network is None else network_damper_dof(crank, res, flywheel)[0],
+                          damper_scale=None if res.network is None else network_damper_dof(crank, res, flywheel)[1])
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup
 
 
-def network_damper_dof(net, res, flywheel: int) -> dict:
-    """Where a network's dampers act: ``front`` the first coordinate, ``rear`` the last one at the
-    engine's speed (``flywheel``), a station's name its coordinate. A damper on a station geared to
-    another speed is refused: its ring would have to be referred to the coordinate's speed."""
-    out = {"front": 0, "rear": flywheel}
-    f = speed_factors(net)
+def network_damper_dof(net, res, flywheel: int) -> tuple[dict, dict]:
+    """Where a network's dampers act and how they are referred: ({at: coordinate}, {at: f²}).
+    ``front`` is the first coordinate, ``rear`` the last one at the engine's speed
+    (``flywheel``), a station's name its gear group's coordinate; a station that turns f times
+    as fast as that coordinate (row T of the gear constraint) carries the damper referred by f²
+    (:func:`fetorsion.lumped_model.damped.referred_damper`)."""
+    out, scale = {"front": 0, "rear": flywheel}, {}
+    T = res.network.T
     for d in getattr(net, "dampers", ()):
         if d.at in out:
             continue
         s = list(res.network.labels).index(d.at)
-        if not np.isclose(f[s], 1.0):
-            raise FetorsionError(f"{net.source or net.name}: damper '{d.name}' at '{d.at}', which turns at {f[s]:.4g} "
-                                 "times the engine's speed: a damper there is not referred yet (write its ring as a "
-                                 "station on a shaft)")
-        masters = list(res.network.masters)
-        if s not in masters:
-            raise FetorsionError(f"{net.source or net.name}: damper '{d.name}' at '{d.at}': the station is geared "
-                                 "rigidly to another one's coordinate; put the damper on that station")
-        out[d.at] = masters.index(s)
-    return out
+        col = int(np.flatnonzero(T[s])[0])
+        out[d.at], scale[d.at] = col, float(T[s, col]) ** 2
+    return out, scale
 
 
 def motored_harmonics(crank, rpm, orders) -> np.ndarray:
@@ -484,7 +486,8 @@ def _solve_theta(setup: ResponseSetup, dampers):
     from ..lumped_model.damped import with_dampers
 
     n = len(setup.labels)
-    system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station)
+    system = DampedSystem(setup.M, setup.K, setup.C, dampers, stations=n, at=setup.damper_station,
+                          scale=setup.damper_factor)
     omegas = setup.orders[None, :] * setup.rpm[:, None] * 2 * np.pi / 60
     if setup.projected:
         if not dampers:

@@ -615,10 +615,11 @@ def with_dampers(model, setup, dampers, speeds, partition, damping_ratio, web_me
         notes.extend(f"damper '{d.name}': rubber at {d.temperature_c:.1f} °C, the temperature its heat holds "
                      f"over {lo:g}-{hi:g} rpm in the frequency domain" for d in dampers if d.follows_heat)
     n = len(setup.labels)
-    system = DampedSystem(setup.M, setup.K, np.real(setup.C), dampers, stations=n, at=setup.damper_station)
+    system = DampedSystem(setup.M, setup.K, np.real(setup.C), dampers, stations=n, at=setup.damper_station,
+                          scale=setup.damper_factor)
     M, K, C = system.M, system.K.astype(complex), system.C
     rows, kb, cb, kmid = [], [], [], []
-    for d, (s, r) in zip(dampers, system.joints):
+    for d, (s, r) in zip(system.dampers, system.joints):
         u = np.zeros(len(M))
         u[s], u[r] = 1.0, -1.0
         if d.kind == "rubber" and d.table:
