@@ -27,7 +27,7 @@ from ..description.files import load
 from ..design.scfset import SCFSet
 from ..measured.dataset import MeasuredData
 from ..description.model import Chain, Crank, Network
-from ..errors import FetorsionError
+from ..errors import FetorsionError, ParameterError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from ..studies.runner import machine_workers
 from ..lumped_model.lumped import PARTITIONS, lumped
@@ -117,6 +117,9 @@ class RunContext:
     options: RunOptions
     outcome: RunOutcome
     results: dict = field(default_factory=dict)
+    #: The network whose condensed crank part ``crank`` is (``[[chain.cranks]] dof = "condensed"``):
+    #: the engine model's response, fatigue and verdict are then the crank's in that driveline.
+    network: Network | None = None
     #: What several steps derive from the crank, built once by the first that needs it: the
     #: crank's parts by web method, the forced response's setup, the fillets.
     built: dict = field(default_factory=dict)
@@ -183,9 +186,14 @@ class RunContext:
         if "condensed" not in self.built:
             return None
         from ..response.coupled import condensed_setup
+        from ..response.driveline import driveline_setup
 
-        return self.once("engine_setup", lambda: condensed_setup(
-            self.built["condensed"], "bearings", section_labels=[f.label for f in self.fillets()]))
+        labels = [f.label for f in self.fillets()]
+        if self.network is not None:
+            return self.once("engine_setup", lambda: driveline_setup(self.network, self.built["condensed"],
+                                                                     section_labels=labels))
+        return self.once("engine_setup", lambda: condensed_setup(self.built["condensed"], "bearings",
+                                                                 section_labels=labels))
 
     def lumped_setup(self):
         """The lumped 17-DOF chain's setup (built once): the fast model, and the engine model's yardstick."""
@@ -657,6 +665,13 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
+    network = None
+    if isinstance(crank, Network) and any(c.condensed for c in crank.cranks):
+        # a driveline on the condensed crank: the crank's own report, its engine model in that driveline
+        network, crank = crank, next(c for c in crank.cranks if c.condensed).crank
+        if options.no_fe or not any(s[2] is step_fe for s in steps):
+            raise ParameterError("no_fe", f"{path}: a network on the condensed crank needs the FE steps (its engine "
+                                          "model); give the crank dof = 17 for the lumped driveline")
     features = None
     if getattr(crank, "solid_step", None):  # a CAD crank: its solid against its description, before any work
         from ..solid.geometry import solid_features
@@ -665,9 +680,18 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force
     if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
     with atomic_folder(out) as work, background_executor() as background:
-        outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out))
+        outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out),
+                             driveline="" if network is None else network.name)
         no_fe = options.no_fe or not any(s[2] is step_fe for s in steps)
-        ctx = RunContext(crank, work, dataclasses.replace(options, no_fe=no_fe), outcome)
+        ctx = RunContext(crank, work, dataclasses.replace(options, no_fe=no_fe), outcome, network=network)
+        if network is not None:
+            ctx.results["driveline"] = {"network": network.name, "source": str(path),
+                                        "stations": [s for s in network.labels
+                                                     if not any(s in c.labels[1:-1] for c in network.cranks)],
+                                        "note": "the response, fatigue and verdict are the crank's in this driveline "
+                                                "(the condensed crank in its bearings joined to the network's stations); "
+                                                "the lumped models, the Campbell diagram and the bearings' coupled "
+                                                "response are the crank's alone"}
         if features is not None:
             ctx.results["solid"] = features.to_dict()
         scfs = not ctx.options.no_fe  # without the FE steps the verdict takes no FE SCF

@@ -47,6 +47,17 @@ def load_for(args):
     return model
 
 
+def only_lumped_driveline(crank, args, command: str) -> None:
+    """A network on the condensed crank (``dof = "condensed"``) is solved by ``response`` and
+    ``run``; the other commands take its lumped stand-in only when asked by ``--source lumpedN``."""
+    from ..response.driveline import condensed_part
+
+    if isinstance(crank, Network) and condensed_part(crank) is not None and not str(args.source).startswith("lumped"):
+        raise FetorsionError(f"{command}: {args.file} puts its crank in as the condensed crank, which `fetorsion "
+                             f"response` and `fetorsion run` solve; give --source lumped17 for the driveline on the "
+                             f"crank's lumped 17-DOF model")
+
+
 def engine_model(crank, args):
     """(the run's condensed crank, with its oil films, and the crank's fillets): from the
     store, or built once and kept (:func:`fetorsion.cli.fe.condensed`)."""
@@ -88,6 +99,7 @@ def cmd_campbell(args) -> int:
     from ..excitation.campbell import lumped_modes, run_campbell
 
     crank = load_for(args)
+    only_lumped_driveline(crank, args, "campbell")
     if not args.source.startswith("lumped") and args.source != "condensed" and getattr(crank, "dampers", ()):
         print(f"fetorsion: warning: {args.file}: the FE modes are the crank's without its [[dampers]] "
               "(lumped sources and 'response --source condensed' include them)", file=sys.stderr)
@@ -213,6 +225,7 @@ def cmd_damper(args) -> int:
     from ..design.dampers import run_damper
 
     crank = load_for(args)
+    only_lumped_driveline(crank, args, "damper")
     if args.source == "fe":
         raise FetorsionError("--source fe: the damper is designed on the condensed crank (default) or a lumped "
                              "model; choose --source condensed or lumpedN")
@@ -292,6 +305,7 @@ def cmd_transient(args) -> int:
         raise FetorsionError(f"--run-up {args.run_up[0]:g} {args.run_up[1]:g}: A and B must differ "
                              "(A < B a run-up, A > B a run-down; for one speed use --rpm)")
     crank = load_excited(args.file, args.source or LUMPED17)
+    only_lumped_driveline(crank, args, "transient")
     engine_can = args.run_up is None and not args.variable_inertia and not getattr(crank, "dampers", ())
     if args.source is None:
         # a crank's steady running: the engine model; what it cannot do yet, the lumped chain (said)

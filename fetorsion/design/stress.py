@@ -84,8 +84,8 @@ def fillet_sections(fillets: list[Fillet], model) -> np.ndarray:
     carries: the cut at the fillet when the model has cut sections (``section_x``: the
     condensed crank), else the chain spring between the anchors around it."""
     if getattr(model, "section_x", None) is not None:
-        x = np.asarray(model.section_x)
-        return np.array([int(np.argmin(np.abs(x - f.x))) for f in fillets])
+        x = np.asarray(model.section_x, float)  # NaN: a section off the crank (a driveline's shaft)
+        return np.array([int(np.nanargmin(np.abs(x - f.x))) for f in fillets])
     return fillet_springs(fillets, model.positions_m)
 
 

@@ -519,7 +519,13 @@ def summary_lines(run: RunOutcome) -> list[str]:
 
 def report_markdown(run: RunOutcome) -> str:
     """The whole report: a title, the summary, each section whose step ran, in pipeline order, the timings."""
-    lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""] + summary_lines(run)
+    lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""]
+    if run.driveline:
+        lines += [f"In the driveline **{run.driveline}**: the forced response, the fatigue and the verdict are the "
+                  "crank's in it (the condensed crank in its bearings joined to the network's stations at its pulley "
+                  "and flywheel); the lumped models, the Campbell diagram and the bearings' coupled response are "
+                  "the crank's alone.", ""]
+    lines += summary_lines(run)
     for key, render in SECTIONS:
         outcome = getattr(run, key)
         if outcome is not None:

@@ -192,3 +192,6 @@ class RunOutcome:
     timings_s: dict[str, float] | None = None
     #: The report folder the run wrote
     folder: str = ""
+    #: A network file whose condensed crank part ``crank`` is: the name of that driveline (the
+    #: response, fatigue and verdict are the crank's in it); "" for a crank, chain or network run.
+    driveline: str = ""

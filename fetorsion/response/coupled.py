@@ -362,11 +362,30 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
                          gyroscopic=cc.gyroscopic[np.ix_(keep, keep)] if rotating and cc.gyroscopic is not None else None)
 
 
+def assembly_modes(M, K) -> tuple[np.ndarray, np.ndarray]:
+    """(ω² ascending, M-orthonormal shapes) of the undamped assembly (real part of ``K``)."""
+    Linv = np.linalg.inv(np.linalg.cholesky(M))
+    lam, Y = np.linalg.eigh(Linv @ np.real(K) @ Linv.T)
+    return lam, Linv.T @ Y
+
+
+def redamped(setup, damping_ratio: float):
+    """A :func:`~fetorsion.response.driveline.driveline_setup` at another modal damping ratio: the modal part is linear in ζ,
+    so C + (ζ_new − ζ) M Φ diag(2ω) Φᵀ M; the bearings' and the shafts' dampers stay."""
+    import dataclasses
+
+    lam, Phi = assembly_modes(setup.M, setup.K)
+    change = modal_damping(setup.M, Phi, np.sqrt(np.clip(lam, 0.0, None)), damping_ratio - setup.zeta)
+    return dataclasses.replace(setup, C=setup.C + change, zeta=damping_ratio)
+
+
 def with_damping_ratio(setup, cc: CondensedCrank, support: str, damping_ratio: float):
     """``setup`` (:func:`condensed_setup` of ``cc`` in ``support``) at another modal damping
     ratio: its forces and sections kept (they do not depend on it), only C made anew."""
     import dataclasses
 
+    if setup.crank_dofs is not None:  # the crank in a driveline (:mod:`.driveline`): ζ on the whole assembly's modes
+        return redamped(setup, damping_ratio)
     _, _, Ck, _ = supported_damping(cc, support, damping_ratio)
     return dataclasses.replace(setup, C=Ck, zeta=damping_ratio)
 

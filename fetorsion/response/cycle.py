@@ -198,8 +198,10 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
 
     if cc.cut_rows is None:
         raise FetorsionError("the condensed crank has no fillet cuts (run_condensed(cuts=...))")
+    # the crank's DOF lead the setup's (a driveline's other coordinates follow them)
+    own = setup.labels if setup.crank_dofs is None else setup.labels[:setup.crank_dofs]
     keep = np.array([cc.dof(*lb.split(" ")) if not lb.startswith("interior") else
-                     cc.n_master_dofs + int(lb.split(" ")[1]) - 1 for lb in setup.labels])
+                     cc.n_master_dofs + int(lb.split(" ")[1]) - 1 for lb in own])
     theta, _, _ = solve_theta(setup, dampers)
     rows = cc.cut_rows[:, :, keep]  # (cuts, 6, DOF)
     n = len(keep)
@@ -211,6 +213,6 @@ def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_S
     elif len(mean) != len(setup.rpm):
         raise FetorsionError(f"mean cut loads at {len(mean)} speeds for a setup of {len(setup.rpm)}")
     history = mean[..., None] + waveform(vib, setup.orders, angles)
-    labels = list(setup.section_labels) if len(setup.section_labels) == len(rows) else \
+    labels = list(setup.section_labels)[:len(rows)] if len(setup.section_labels) >= len(rows) else \
         [f"cut {k + 1}" for k in range(len(rows))]
     return LoadCycle(cc.crank.name, np.asarray(setup.rpm), angles, labels, mean, history, cut_throw_angles(cc))

@@ -43,6 +43,24 @@ def _crank_stations(net: Network, part) -> tuple[int, int, range]:
     return inside[0], inside[-1], inside
 
 
+#: A mode of the driveline is the crank's own (a damper on the crank is tuned on it) when at least
+#: this share of its strain energy is the crank's: the driveline's modes turn the crank as one body.
+CRANK_STRAIN_SHARE = 0.5
+
+
+def crank_torsional_modes(cc: CondensedCrank, keep, K_crank, lam, Phi_crank) -> np.ndarray:
+    """Indices (ascending undamped modes) of the assembly's modes in which the crank itself twists:
+    at least :data:`CRANK_STRAIN_SHARE` of the mode's strain energy in the crank and, by the
+    journals' kinetic energy, torsional (:meth:`~fetorsion.fe.condensed.CondensedCrank.classify`)."""
+    strain = np.einsum("ij,ik,kj->j", Phi_crank, K_crank, Phi_crank)
+    elastic = lam > 1e-8 * np.abs(lam).max()  # the free motions (rotation; axial without a thrust bearing) are not
+    share = np.where(elastic, strain / np.where(elastic, lam, 1.0), 0.0)
+    full = np.zeros((cc.reduced.size, Phi_crank.shape[1]))
+    full[keep] = Phi_crank
+    _, kinds = cc.classify(full)
+    return np.array([j for j, k in enumerate(kinds) if k == "torsional" and share[j] >= CRANK_STRAIN_SHARE], int)
+
+
 def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, damping_ratio: float | None = None,
                     section_labels=None):
     """The network with its crank as the condensed FE crank ``cc`` in its bearings, as a
@@ -70,7 +88,7 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     """
     import dataclasses
 
-    from .coupled import condensed_setup, supported_damping
+    from .coupled import assembly_modes, condensed_setup, supported_damping
 
     part = condensed_part(net)
     if part is None:
@@ -118,11 +136,10 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     M = pad(base.M) + S.T @ np.diag(J) @ S
     K = pad(base.K) + S.T @ Ks @ S
     # ζ on the modes of the whole assembly (M-orthonormal), then the crank's bearings' dampers and the shafts' own
-    Linv = np.linalg.inv(np.linalg.cholesky(M))
-    lam, Y = np.linalg.eigh(Linv @ K @ Linv.T)
-    Phi = Linv.T @ Y
-    C = modal_damping(M, Phi, np.sqrt(np.clip(lam, 0.0, None)), zeta) + pad(supported_damping(cc, "bearings", 0.0)[2]) \
-        + S.T @ Cs @ S
+    lam, Phi = assembly_modes(M, K)
+    _, _, C_bearings, keep = supported_damping(cc, "bearings", 0.0)
+    C = modal_damping(M, Phi, np.sqrt(np.clip(lam, 0.0, None)), zeta) + pad(C_bearings) + S.T @ Cs @ S
+    torsional = crank_torsional_modes(cc, keep, base.K, lam, Phi[:R])
     Kc = K + 1j * (S.T @ Hs @ S) if np.any(Hs) else K
     rows = np.zeros((len(shafts), n))
     rows[np.arange(len(shafts)), i] = k
@@ -139,5 +156,5 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
         section_labels=list(base.section_labels) + names,
         section_x=None if base.section_x is None else np.concatenate([base.section_x, np.full(len(names), np.nan)]),
         stated="stated dampers of the network" if np.any(Cs) or np.any(Hs) else "",
-        torsional_modes=None, gyroscopic=G,
+        torsional_modes=torsional, gyroscopic=G, crank_dofs=R,
         model=f"network of {n - len(inside) + 2} stations on the {base.model}")

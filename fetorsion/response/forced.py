@@ -279,6 +279,8 @@ class ResponseSetup:
     damper_dof: dict | None = None  # {"front": DOF, "rear": DOF}; None: the chain's end stations
     #: {at: f²} for a damper on a network's station turning f times its DOF's speed; None: all 1
     damper_scale: dict | None = None
+    #: How many leading DOF are the condensed crank's (a driveline's other coordinates follow); None: all
+    crank_dofs: int | None = None
     #: Indices (in ascending order of the undamped modes) of the modes a damper is tuned on;
     #: None: every elastic mode of a free chain (all but the first, rigid one).
     torsional_modes: np.ndarray | None = None
