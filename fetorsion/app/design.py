@@ -216,17 +216,10 @@ def _frequency_factor(crank, options: RunOptions | None) -> float:
     lumped chain's first elastic mode: what the explorer's f1 is scaled by before any design is
     confirmed."""
     from ..design.search import first_elastic_hz
-    from ..design.stress import fillet_cuts, fillets_of
-    from ..fe.store import condensed_crank
-    from ..lumped_model.parts import build_parts
-    from ..response.coupled import with_film_bearings
     from ..response.forced import response_setup
-    from ..description.defaults import DEFAULT_WEB_METHOD
+    from .engine import engine_condensed
 
-    size = (options or RunOptions()).mesh_size
-    cuts = fillet_cuts(crank, fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD)))
-    cc, _ = condensed_crank(crank, size, cuts, progress=_say)
-    f_fe = with_film_bearings(cc).modes("bearings").first_carrying_torsion()
+    f_fe = engine_condensed(crank, (options or RunOptions()).mesh_size, _say).modes("bearings").first_carrying_torsion()
     f_lumped = first_elastic_hz(response_setup(crank))
     _say(f"the first mode in its bearings: {f_fe:.1f} Hz by the condensed FE crank, {f_lumped:.1f} Hz on the lumped "
          f"chain: the explorer's f1 is scaled by {f_fe / f_lumped:.4f} until a design is confirmed")

@@ -145,10 +145,9 @@ def format_mass_table(name: str, total, parts: dict) -> str:
 
 def engine_fillets(crank):
     """The crank's fillets, as the run finds them (their cuts are part of the condensed crank)."""
-    from ..design.stress import fillets_of
-    from ..lumped_model.parts import build_parts
+    from ..app.engine import engine_fillets as fillets
 
-    return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
+    return fillets(crank)
 
 
 def condensed(crank, mesh_size: float, mesh=None):
@@ -156,17 +155,13 @@ def condensed(crank, mesh_size: float, mesh=None):
     (:mod:`fetorsion.fe.store`), else built here (said on stderr) and kept; its oil-film
     bearings at the journals' mean loads when the description states none. A mesh read from a
     file is condensed as it is and not kept."""
-    from ..design.stress import fillet_cuts
+    from ..app.engine import engine_condensed
     from ..fe.condensed import run_condensed
-    from ..fe.store import condensed_crank
     from ..response.coupled import with_film_bearings
 
     if mesh is not None:
         return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh))
-    cuts = fillet_cuts(crank, engine_fillets(crank))
-    say = lambda m: print(f"[fetorsion] {m}", file=sys.stderr, flush=True)  # noqa: E731
-    cc, _ = condensed_crank(crank, mesh_size, cuts, progress=say)
-    return with_film_bearings(cc)
+    return engine_condensed(crank, mesh_size, lambda m: print(f"[fetorsion] {m}", file=sys.stderr, flush=True))
 
 
 def _add_purpose_options(p: argparse.ArgumentParser) -> None:

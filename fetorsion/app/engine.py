@@ -1,0 +1,43 @@
+"""The engine model of a run, as every command takes it: the crank condensed with a section cut at
+every fillet, from the store when built before (:mod:`fetorsion.fe.store`), in its bearings with
+their oil films at the journals' mean loads when the description states none."""
+
+from __future__ import annotations
+
+from ..description.defaults import DEFAULT_WEB_METHOD
+
+
+def engine_fillets(crank):
+    """The crank's fillets (and oil bores) as the run finds them: their cuts are part of the
+    condensed crank, and the verdict reads them in this order.
+
+    Parameters
+    ----------
+    crank : Crank
+        A crank description.
+    """
+    from ..design.stress import fillets_of
+    from ..lumped_model.parts import build_parts
+
+    return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
+
+
+def engine_condensed(crank, mesh_size: float, progress=None):
+    """The run's condensed crank (:class:`~fetorsion.fe.condensed.CondensedCrank`): from the
+    store, else built (said through ``progress``) and kept; with its oil films.
+
+    Parameters
+    ----------
+    crank : Crank
+        A crank description.
+    mesh_size : float
+        The FE mesh's element size, m.
+    progress : callable, optional
+        Called with a line of text when the crank has to be built.
+    """
+    from ..design.stress import fillet_cuts
+    from ..fe.store import condensed_crank
+    from ..response.coupled import with_film_bearings
+
+    cc, _ = condensed_crank(crank, mesh_size, fillet_cuts(crank, engine_fillets(crank)), progress=progress)
+    return with_film_bearings(cc)
