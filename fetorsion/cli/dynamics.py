@@ -238,19 +238,7 @@ def cmd_damper(args) -> int:
         raise FetorsionError(f"--objective {objective}: {args.file} has no fillet radii (a sharp corner has no finite "
                              "SCF); give [fillets] or use --objective twist")
     rpm = np.linspace(*(args.speed_range or crank.excitation.checked_range), args.steps)
-    if args.source == "condensed" and isinstance(crank, Network):
-        # the driveline with its crank as the condensed FE crank in its bearings
-        from ..response.driveline import condensed_part, driveline_setup
-
-        part = condensed_part(crank)
-        if part is None:
-            raise FetorsionError(f"--source condensed: {args.file} has no [[chain.cranks]] with dof = \"condensed\"")
-        for option in ("misfire", "compare_section"):
-            if getattr(args, option) is not None:
-                raise FetorsionError(f"--{option.replace('_', '-')} is not taken for a network on a condensed crank yet")
-        cc, fillets = engine_model(part.crank, args)
-        res = solve_response(driveline_setup(crank, cc, rpm, args.orders, args.damping, [f.label for f in fillets]))
-    elif args.source == "condensed":
+    if args.source == "condensed":
         cc, fillets = engine_model(crank, args)
         setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)
     else:
