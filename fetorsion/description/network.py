@@ -281,11 +281,23 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     return out
 
 
-def _locked_loops(labels, shafts, gears) -> list[Problem]:
-    """A loop of shafts and gears whose speed ratios do not multiply to 1 cannot turn as one (its
-    shafts would wind up without end: a locked loop, no rigid-body motion): each such loop named
-    by its stations, once. A shaft keeps the speed; a gear multiplies it by its ratio."""
-    n = len(labels)
+def speed_walk(n: int, shafts, gears):
+    """Each station's speed over station 1's, walked breadth-first from it (a shaft keeps the
+    speed, a gear multiplies it by its ratio): (factors (n,) with NaN where the walk does not
+    reach, each station's parent on the walk, [(a, b, ratio)] the links a → b whose speed
+    a × ratio differs from b's: each closes a locked loop, listed once).
+
+    Parameters
+    ----------
+    n : int
+        Stations.
+    shafts : sequence of Shaft
+        Springs (``j`` = -1: to ground, no link); nonlinear elements join as shafts do.
+    gears : sequence of GearPair
+        θ_j = ratio θ_i.
+    """
+    import numpy as np
+
     links = {s: [] for s in range(n)}
     for s in shafts:
         if s.j >= 0:
@@ -294,27 +306,39 @@ def _locked_loops(labels, shafts, gears) -> list[Problem]:
     for g in gears:
         links[g.i].append((g.j, g.ratio))
         links[g.j].append((g.i, 1.0 / g.ratio))
-    speed, parent = {0: 1.0}, {0: None}
-    queue, out = [0], []
+    speed, parent = np.full(n, np.nan), {0: None}
+    if n:
+        speed[0] = 1.0
+    queue, conflicts = [0] if n else [], []
     while queue:
         a = queue.pop(0)
         for b, r in links[a]:
-            if b not in speed:
+            if np.isnan(speed[b]):
                 speed[b], parent[b] = speed[a] * r, a
                 queue.append(b)
             elif parent.get(a) != b and abs(speed[a] * r / speed[b] - 1.0) > 1e-9 and a < b:
+                conflicts.append((a, b, speed[a] * r / speed[b]))
+    return speed, parent, conflicts
 
-                def up(x):
-                    path = []
-                    while x is not None:
-                        path.append(x)
-                        x = parent[x]
-                    return path
 
-                pa, pb = up(a), up(b)
-                common = next(x for x in pa if x in pb)
-                loop = pa[:pa.index(common) + 1] + pb[:pb.index(common)][::-1]
-                out.append(Problem("chain", [labels[k] for k in loop],
-                                   f"these stations' shafts and gears form a loop whose speed ratios multiply to "
-                                   f"{speed[a] * r / speed[b]:.6g}, not 1: it cannot turn as one"))
+def _locked_loops(labels, shafts, gears) -> list[Problem]:
+    """A loop of shafts and gears whose speed ratios do not multiply to 1 cannot turn as one (its
+    shafts would wind up without end: a locked loop, no rigid-body motion): each such loop named
+    by its stations, once."""
+    _, parent, conflicts = speed_walk(len(labels), shafts, gears)
+
+    def up(x):
+        path = []
+        while x is not None:
+            path.append(x)
+            x = parent[x]
+        return path
+
+    out = []
+    for a, b, ratio in conflicts:
+        pa, pb = up(a), up(b)
+        common = next(x for x in pa if x in pb)
+        loop = pa[:pa.index(common) + 1] + pb[:pb.index(common)][::-1]
+        out.append(Problem("chain", [labels[k] for k in loop], f"these stations' shafts and gears form a loop whose "
+                           f"speed ratios multiply to {ratio:.6g}, not 1: it cannot turn as one"))
     return out

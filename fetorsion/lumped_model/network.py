@@ -27,6 +27,7 @@ import numpy as np
 import scipy.linalg
 
 from ..description.model import Network, Shaft
+from ..description.network import speed_walk
 from ..errors import FetorsionError
 from .parts import build_parts, partition_matrices, pin_weights
 
@@ -182,24 +183,7 @@ def network_matrices(net: Network) -> NetworkMatrices:
 def speed_factors(net: Network) -> np.ndarray:
     """Each station's speed over station 1's (shafts keep the speed, a gear multiplies it by its ratio)."""
     net = resolved(net)
-    n = len(net.inertias)
-    links = {s: [] for s in range(n)}
-    for s in net.linear_shafts:
-        if s.j >= 0:
-            links[s.i].append((s.j, 1.0))
-            links[s.j].append((s.i, 1.0))
-    for g in net.gears:
-        links[g.i].append((g.j, g.ratio))
-        links[g.j].append((g.i, 1.0 / g.ratio))
-    f = np.full(n, np.nan)
-    f[0], queue = 1.0, [0]
-    while queue:
-        a = queue.pop()
-        for b, r in links[a]:
-            if np.isnan(f[b]):
-                f[b] = f[a] * r
-                queue.append(b)
-    return f
+    return speed_walk(len(net.inertias), net.linear_shafts, net.gears)[0]
 
 
 def referred(net: Network) -> Network:
