@@ -183,3 +183,52 @@ def test_fetorsion_run_of_a_driveline_on_the_condensed_crank(tmp_path):
                               outcome.fatigue.scf, misfire=False, fe_path=False)
     assert outcome.fatigue.verdict.configs[0].m53.governing.safety == pytest.approx(
         alone.configs[0].m53.governing.safety, rel=0.01)
+
+
+@pytest.mark.fe
+@pytest.mark.parametrize("station", ["gearbox input", "differential"])
+def test_a_network_damper_on_the_condensed_driveline_is_its_ring_written_out(condensed_renault, driveline, station):
+    # A tuned damper (ring 0.004 kg m², 2e4 N m/rad, 3 N m s/rad) on a driveline station — the gearbox
+    # input at the engine's speed, the differential at 0.1875 of it (its ring referred by f²) —
+    # against the same ring written out as a station on a shaft there. The same equations when the
+    # modal damping ratio is 0 (it is set on the assembly's modes: a written-out ring's mode would get
+    # it, a damper's ring does not), the other damping the shafts' loss factors and the bearings':
+    # the damper's solved exactly (Woodbury on the projected solve), the written ring's in the
+    # projected basis: section torques within 1e-4 of the largest (the projected solve's truncation).
+    from fetorsion.description.model import Damper
+
+    damper = Damper("tuned", at=station, ring_inertia=0.004, stiffness=2.0e4, damping=3.0, name="tuned")
+    damped = replace(driveline, dampers=(damper,))
+    n = len(driveline.labels)
+    written = replace(driveline, labels=driveline.labels + ("ring",), inertias=driveline.inertias + (0.004,),
+                      shafts=driveline.shafts + (fetorsion.description.model.Shaft(
+                          driveline.labels.index(station), n, 2.0e4, 3.0),),
+                      absolute_damping=driveline.absolute_damping + (0.0,) if driveline.absolute_damping else ())
+    a = solve_response(driveline_setup(damped, condensed_renault, rpm=RPM, damping_ratio=0.0), damped.dampers)
+    b = solve_response(driveline_setup(written, condensed_renault, rpm=RPM, damping_ratio=0.0))
+    top = b.section_torque_nm.max()
+    k = len(a.section_labels)  # b has the ring's shaft last
+    assert b.section_labels[:k] == a.section_labels
+    assert np.abs(a.section_torque_nm - b.section_torque_nm[:, :k]).max() < 1e-4 * top
+    assert a.damper_power_w.max() > 0
+
+
+def test_dampers_on_a_condensed_driveline_are_placed_or_refused_by_name(tmp_path):
+    # A damper on an inner station of the condensed crank is refused when the file is read; `fetorsion
+    # run` takes a network damper at the pulley ("front") only and refuses one elsewhere by name,
+    # before any work (no report folder).
+    from fetorsion.app.run import run
+
+    text = (ROOT / "examples" / "networks" / "renault21_driveline.toml").read_text()
+    text = text.replace("dof = 17", 'dof = "condensed"').replace("../../geometry/renault21.toml",
+                                                                  str(ROOT / "geometry" / "renault21.toml"))
+    tuned = '\n[[dampers]]\nname = "ring"\ntype = "tuned"\nat = "{}"\nring_inertia_kgm2 = 0.004\n' \
+            'stiffness_nm_per_rad = 2.0e4\n'
+    (tmp_path / "inner.toml").write_text(text + tuned.format("r21.P2"))
+    with pytest.raises(fetorsion.errors.DescriptionError, match=r"dampers.1.at.*inner station"):
+        fetorsion.load(tmp_path / "inner.toml")
+    (tmp_path / "gear.toml").write_text(text + tuned.format("gearbox input"))
+    assert fetorsion.load(tmp_path / "gear.toml").dampers[0].at == "gearbox input"
+    with pytest.raises(fetorsion.errors.FetorsionError, match="ring away from the crank's pulley"):
+        run(tmp_path / "gear.toml", tmp_path / "rep")
+    assert not (tmp_path / "rep").exists()

@@ -669,6 +669,13 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force
     if isinstance(crank, Network) and any(c.condensed for c in crank.cranks):
         # a driveline on the condensed crank: the crank's own report, its engine model in that driveline
         network, crank = crank, next(c for c in crank.cranks if c.condensed).crank
+        away = [d.name or d.at for d in network.dampers if d.at != "front"]
+        if away:
+            raise FetorsionError(f"{path}: damper(s) {', '.join(away)} away from the crank's pulley: the report of a "
+                                 "network on the condensed crank takes a damper at \"front\" only yet (`fetorsion "
+                                 "response` takes one on any station)")
+        # the network's dampers at the pulley are the crank's in the report (its verdict's "as described")
+        crank = dataclasses.replace(crank, dampers=tuple(network.dampers))
         if options.no_fe or not any(s[2] is step_fe for s in steps):
             raise ParameterError("no_fe", f"{path}: a network on the condensed crank needs the FE steps (its engine "
                                           "model); give the crank dof = 17 for the lumped driveline")

@@ -187,7 +187,8 @@ def cmd_response(args) -> int:
             if getattr(args, option) is not None:
                 raise FetorsionError(f"--{option.replace('_', '-')} is not taken for a network on a condensed crank yet")
         cc, fillets = engine_model(part.crank, args)
-        res = solve_response(driveline_setup(crank, cc, rpm, args.orders, args.damping, [f.label for f in fillets]))
+        res = solve_response(driveline_setup(crank, cc, rpm, args.orders, args.damping, [f.label for f in fillets]),
+                             crank.dampers)
     elif args.source == "condensed":
         cc, fillets = engine_model(crank, args)
         setup = engine_setup(cc, fillets, args.support, rpm, args.orders, args.damping)

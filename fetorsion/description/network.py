@@ -140,12 +140,14 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         if inner:
             problems.append(Problem("chain.cranks.1.dof", CONDENSED, f"a condensed crank offers the network only its "
                                     f"{c.name}.pulley and {c.name}.flywheel; {', '.join(inner)} joined here"))
+        if c.condensed:
+            inner = set(c.labels[1:-1])
+            problems += [Problem(f"dampers.{k + 1}.at", d.at, f"an inner station of the condensed crank {c.name}: a "
+                                 f"damper on it goes in the crank description, or at {c.name}.pulley / flywheel")
+                         for k, d in enumerate(dampers) if d.at in inner]
         if c.condensed and not c.drives:
             problems.append(Problem("engine", "given", "a condensed crank's pins carry its own cylinders (its [engine] "
                                     "and [excitation]): leave the network's [engine] out"))
-        if c.condensed and dampers:
-            problems.append(Problem("dampers", [d.name for d in dampers], "not read in a network on a condensed "
-                                    "crank yet: give them in the crank description"))
     if problems:
         raise DescriptionError(source, unique_problems(problems))
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..description.model import CRANK_END_ALIASES, Network
-from ..description.network import joined_inside
+from ..description.network import joined_inside, speed_walk
 from ..errors import FetorsionError
 from ..fe.condensed import CondensedCrank
 from ..lumped_model.network import gear_constraint, spring_matrix
@@ -100,9 +100,6 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     if bad:
         raise FetorsionError(f"{net.source or net.name}: {', '.join(bad)}: a condensed crank offers only its "
                              f"{' and '.join(f'{part.name}.{a}' for a in CRANK_END_ALIASES)} to the network")
-    if net.dampers:
-        raise FetorsionError(f"{net.source or net.name}: [[dampers]] with a condensed crank part are not read yet: "
-                             "put them in the crank description")
     base = condensed_setup(cc, "bearings", rpm, orders, damping_ratio, section_labels)
     zeta = base.zeta
     R = len(base.labels)
@@ -150,11 +147,24 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     section_rows = np.vstack([np.pad(base.section_rows, ((0, 0), (0, len(others)))), rows @ S])
     extra = lambda A: np.pad(A, [(0, 0)] * (A.ndim - 1) + [(0, len(others))])  # noqa: E731
     G = None if base.gyroscopic is None else pad(base.gyroscopic)
+    # the network's [[dampers]]: front and rear on the crank's masters, a named station on its
+    # coordinate in z, referred by f² where it turns f times as fast (as in a lumped network)
+    places, scale = dict(base.damper_dof), {}
+    speed = speed_walk(n, net.linear_shafts, net.gears)[0]
+    outer = [s for s in range(n) if s not in inside or s in (front, rear)]
+    for d in net.dampers:
+        if d.at == "front":
+            continue
+        # "rear": the last station at the engine's speed, as a lumped network reads it
+        s = max(x for x in outer if np.isclose(speed[x], 1.0)) if d.at == "rear" else net.labels.index(d.at)
+        col = int(np.flatnonzero(T[s])[0])
+        places[d.at] = int(np.flatnonzero(S_cols[col])[0])
+        scale[d.at] = float(T[s, col]) ** 2
     return dataclasses.replace(
         base, name=net.name, labels=list(base.labels) + [net.labels[masters[c]] for c in others], M=M, K=Kc, C=C,
         forces=extra(base.forces), load_map=extra(base.load_map), section_rows=section_rows,
         section_labels=list(base.section_labels) + names,
         section_x=None if base.section_x is None else np.concatenate([base.section_x, np.full(len(names), np.nan)]),
         stated="stated dampers of the network" if np.any(Cs) or np.any(Hs) else "",
-        torsional_modes=torsional, gyroscopic=G, crank_dofs=R,
+        torsional_modes=torsional, gyroscopic=G, crank_dofs=R, damper_dof=places, damper_scale=scale or None,
         model=f"network of {n - len(inside) + 2} stations on the {base.model}")
