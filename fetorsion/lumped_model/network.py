@@ -94,6 +94,13 @@ def gear_constraint(n: int, gears) -> tuple[np.ndarray, np.ndarray]:
     return T, masters
 
 
+def group_place(T: np.ndarray, station: int) -> tuple[int, float]:
+    """(the column of ``station``'s gear group in the constraint T of :func:`gear_constraint`, f²):
+    f its speed against that column's master, the factor by which a damper on it is referred."""
+    col = int(np.flatnonzero(T[station])[0])
+    return col, float(T[station, col]) ** 2
+
+
 @dataclass(frozen=True)
 class NetworkMatrices:
     """A network's matrices in the reduced coordinates q (one angle per gear group).

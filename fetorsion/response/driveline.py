@@ -28,7 +28,7 @@ from ..description.model import CRANK_END_ALIASES, Network
 from ..description.network import joined_inside, speed_walk
 from ..errors import FetorsionError
 from ..fe.condensed import CondensedCrank
-from ..lumped_model.network import gear_constraint, spring_matrix
+from ..lumped_model.network import gear_constraint, group_place, spring_matrix
 from ..modes import modal_damping
 
 
@@ -157,9 +157,8 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
             continue
         # "rear": the last station at the engine's speed, as a lumped network reads it
         s = max(x for x in outer if np.isclose(speed[x], 1.0)) if d.at == "rear" else net.labels.index(d.at)
-        col = int(np.flatnonzero(T[s])[0])
+        col, scale[d.at] = group_place(T, s)
         places[d.at] = int(np.flatnonzero(S_cols[col])[0])
-        scale[d.at] = float(T[s, col]) ** 2
     return dataclasses.replace(
         base, name=net.name, labels=list(base.labels) + [net.labels[masters[c]] for c in others], M=M, K=Kc, C=C,
         forces=extra(base.forces), load_map=extra(base.load_map), section_rows=section_rows,

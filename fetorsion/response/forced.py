@@ -28,7 +28,7 @@ from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
-from ..lumped_model.network import speed_factors
+from ..lumped_model.network import group_place, speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
@@ -426,9 +426,7 @@ def network_damper_dof(net, res, flywheel: int) -> tuple[dict, dict]:
     for d in getattr(net, "dampers", ()):
         if d.at in out:
             continue
-        s = list(res.network.labels).index(d.at)
-        col = int(np.flatnonzero(T[s])[0])
-        out[d.at], scale[d.at] = col, float(T[s, col]) ** 2
+        out[d.at], scale[d.at] = group_place(T, list(res.network.labels).index(d.at))
     return out, scale
 
 

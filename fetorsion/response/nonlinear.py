@@ -411,17 +411,15 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
         for side in (0, 1):
             k, angles = e.curve(bool(side))
             kst[i, side, :len(k)], edges[i, side, :len(k)], nst[i, side] = k, (0.0, *angles), len(k)
-    x0 = np.array([e.operating_twist for e in springs], float)
+    x0, tf, ks = (np.zeros(0), np.zeros(0), np.zeros(0)) if elements is None else \
+        (elements.x0, elements.friction, elements.stick)
     preload = np.array([e.preload for e in springs], float)
-    tf = np.array([e.friction for e in springs], float)
-    ks = np.array([e.stick_stiffness for e in springs], float)
     cap = np.array([e.slip_torque for e in springs], float)
-    fidx = np.flatnonzero(tf > 0).astype(np.int64)
+    # the stick states select the damping only where it was given for them
+    fidx = np.zeros(0, np.int64) if stuck_damping is None else np.flatnonzero(tf > 0).astype(np.int64)
     Cs = np.ascontiguousarray(C[None] if stuck_damping is None else stuck_damping, float)
-    if Cs.shape[0] != (1 if stuck_damping is None else 1 << fidx.size):
+    if Cs.shape[0] != 1 << fidx.size:
         raise ValueError(f"stuck_damping: needs 2^{fidx.size} matrices, got {Cs.shape[0]}")
-    if stuck_damping is None:
-        fidx = np.zeros(0, dtype=np.int64)
     q, zs, ss = np.empty((r, N)), np.empty((ne, N)), np.empty((ne, N))
     y = np.zeros(2 * r)
     if v0 is not None:

@@ -177,6 +177,16 @@ def read_table(grid, step, table, theta, rpm):
     return lo * (1 - fs) + hi * fs
 
 
+def table_load(W, fire, grid, step, table, phi, rpm):
+    """``load(a, b)`` → (coordinates, b − a): the cylinders' torques read from :func:`torque_table`
+    at samples a … b − 1 of the mean angle ``phi`` (rad) and speed ``rpm``, each at its firing angle,
+    put on the coordinates by the weights ``W`` (cylinders × coordinates)."""
+    def load(a, b):
+        return W.T @ np.stack([read_table(grid, step, table, phi[a:b] - f, rpm[a:b]) for f in fire])
+
+    return load
+
+
 def hysteretic_equivalent(M, K, H) -> np.ndarray:
     """Viscous C_η = MΦ diag(φ_jᵀHφ_j/ω_j)ΦᵀM: the loss factors' dissipation at each elastic
     mode's resonance (module docs); the rigid-body mode gets none."""
@@ -777,9 +787,7 @@ def run_transient(model, rpm: float | None = None, run: tuple[float, float] | No
     elements = tuple(getattr(model, "nonlinear", ()))
     fire = firing_angles(model.engine)
 
-    def load(a, b):  # the cylinders' alternating torques on the coordinates, samples a..b
-        T = np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])  # (cylinders, n)
-        return W.T @ T
+    load = table_load(W, fire, grid, step, table, phi, n_t)
 
     rigid_speed, start = 0.0, None
     if run is not None and settled_start and settle == 0.0:
@@ -856,7 +864,7 @@ def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, 
     stuck = None
     if rubbing and setup.zeta > 0:
         stuck = C[None] + stick_damping_changes(np.real(setup.M), np.real(setup.K), setup.zeta, D[rubbing],
-                                                np.array([elements[i].stick_stiffness for i in rubbing]), M.shape[0])
+                                                Elements(D, elements).stick[rubbing], M.shape[0])
 
     v0 = None if prop.rigid is None else rigid_speed * prop.rigid
     parts = Elements(D, elements) if ne else None
@@ -864,9 +872,7 @@ def _nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, 
     if method == "compiled":
         phi, n_t = phi_of_t(t), n_of_t(t)
 
-        def load(a, b):
-            return W.T @ np.stack([read_table(grid, step, table, phi[a:b] - f, n_t[a:b]) for f in fire])
-
+        load = table_load(W, fire, grid, step, table, phi, n_t)
         q, z, slip, nfev = integrate_compiled(M, K_lin, C, t, phi, n_t * (math.pi / 30), load, cranks, parts, v0,
                                               stuck_damping=stuck)
     else:
