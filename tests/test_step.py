@@ -411,14 +411,14 @@ def test_a_cad_cranks_fe_scfs_are_read_where_its_fillets_are(written, oval, tmp_
     out to its lip (the profile's height), against the description's 2.5 mm on the journal's side."""
     import numpy as np
 
-    from fetorsion.design.scf import _found_zones, fillet_zone, found_zone
+    from fetorsion.design.scf import found_zones, fillet_zone, found_zone
     from fetorsion.webs.throwfe import throw_of
 
     for f in (written, oval):
         (tmp_path / f.name).write_bytes(f.read_bytes())
     crank = fetorsion.load(with_solid(tmp_path, written.name))
     throw = throw_of(crank, 0)
-    zones = _found_zones(crank, 0, throw)
+    zones = found_zones(crank, 0, throw)
     j1, w1, pin = throw.journals[0], throw.webs[0], throw.pins[0]
     x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, throw.webs[1].thickness])
     R, r = throw.engine.crank_radius, crank.fillets.journal
@@ -430,7 +430,7 @@ def test_a_cad_cranks_fe_scfs_are_read_where_its_fillets_are(written, oval, tmp_
         ours, theirs = found_zone(xyz, centre, extent, radius), fillet_zone(xyz, xf, side, c, a, r)
         assert theirs.sum() > 300 and np.count_nonzero(ours != theirs) <= 2
     undercut = fetorsion.load(with_solid(tmp_path, oval.name))
-    (centre, (x0, x1, r0, r1), radius), *_ = _found_zones(undercut, 0, throw_of(undercut, 0))
+    (centre, (x0, x1, r0, r1), radius), *_ = found_zones(undercut, 0, throw_of(undercut, 0))
     profile = undercut_profile(*UNDERCUT)
     c1, h = profile[0][0], profile[6][1]  # where the undercut leaves the journal; its lip's height
     assert radius == pytest.approx(UNDERCUT[0] * 1e-3, rel=1e-9)

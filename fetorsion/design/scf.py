@@ -216,7 +216,7 @@ def found_zone(xyz: np.ndarray, centre, extent, fillet: float) -> np.ndarray:
     return (xyz[:, 0] >= x0 - slack) & (xyz[:, 0] <= x1 + slack) & (rho >= r0 - slack) & (rho <= r1 + slack)
 
 
-def _found_zones(crank: Crank, index: int, throw: Crank) -> list[tuple] | None:
+def found_zones(crank: Crank, index: int, throw: Crank) -> list[tuple] | None:
     """For a CAD crank, the four fillets of throw ``index`` as found on its solid (journal, web 1;
     pin, web 1; pin, web 2; journal, web 2), each as (axis centre, extent, smallest radius) in the
     throw's frame (its slab moved to x = 0, its pin turned to +y: distances from an axis do not
@@ -363,7 +363,7 @@ def throw_scfs(crank: Crank, index: int = 0, mesh_size: float | None = None, fil
     R = throw.engine.crank_radius
     x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, w2.thickness])  # faces of the stack
     rj, rp = crank.fillets.journal, crank.fillets.pin
-    found = _found_zones(crank, index, throw)
+    found = found_zones(crank, index, throw)
     out = {}
     for load, sol in zip(loads, sols):
         xyz = sol.skfem_mesh.doflocs.T

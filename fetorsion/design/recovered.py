@@ -1,0 +1,290 @@
+"""The ``fe`` path's assessment: Findley on the stress recovered at every fillet and oil bore.
+
+For each location (:func:`fetorsion.design.recovery.crank_locations`) and speed, the local
+plane-stress history at the zone's surface nodes is the unit-load fields times the rear-face load
+of the cut(s) it reads (the static part from the cycle's order-0 loads, the vibratory part the
+rest), and Findley's safety (:func:`fetorsion.design.criterion.findley_surface`) at the least safe
+node is the location's. The strength is local:
+
+    f₋₁ = S_e · n,     t₋₁ = f₋₁ / √3,
+
+S_e the material's endurance limit with its Marin surface, size and reliability factors
+([Budynas] eq. 6-18; the size factor at the section's diameter), n = K_t / K_f the notch's
+support (K_f = 1 + q (K_t − 1), Neuber's q for the notch radius, [Budynas] eqs. 6-32 to 6-35a;
+K_t the zone's own peak over nominal under the pure couple that bends it: the recovered stress
+is the elastic peak, so the notch's support is the part of K_t the material does not feel).
+A fatigue strength given in ``[limits]`` (against local stresses) replaces f₋₁ with n = 1.
+
+Nodes: a zone has thousands of surface nodes and a run hundreds of speeds, so the nodes that can
+govern are screened first (:func:`candidate_nodes`: the extreme loads over every speed and angle
+along 256 directions in load space, and the nodes with the largest von Mises chord or stress
+under them); Findley sweeps every speed on those (:func:`assess_location`), and at each
+location's worst speed checks the rest: a node the screen missed joins the candidates.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from ..errors import FetorsionError
+from .assessment import HAIGH_LOCATIONS, CrankAssessment
+from .criterion import findley_constants, findley_surface, signed_von_mises, von_mises_amplitude, von_mises_plane
+from .fatigue import (DEFAULT_RELIABILITY, FatigueAssessment, FatigueMaterial, FatigueResult, endurance_limit,
+                      fatigue_material, fatigue_notch_factor, marin_reliability, marin_size, marin_surface,
+                      notch_sensitivity)
+
+#: The method's name in results.
+METHOD = "findley-recovered"
+
+
+def support_factor(kt: float, tensile_strength: float, notch_radius: float) -> tuple[float, float]:
+    """(n = K_t / K_f, q) of a notch with elastic factor ``kt`` and radius ``notch_radius`` (m):
+    Neuber's q in bending ([Budynas] eqs. 6-32, 6-34, 6-35a)."""
+    q = notch_sensitivity(tensile_strength, notch_radius)
+    return kt / fatigue_notch_factor(kt, q), q
+
+
+def zone_kt(location) -> float:
+    """The zone's elastic K_t under the pure couple that bends it in the throw's plane (a fillet:
+    about the throw frame's z; a drilling: about the bar's z, the drilling in the moment's
+    plane): the largest principal stress of either sign over the section's 32 M D/(π(D⁴ − d⁴))."""
+    from .scf import nominal_bending
+
+    s = location.zone.influence[:, :, 5]  # unit Mz
+    centre = 0.5 * (s[:, 0] + s[:, 1])
+    radius = np.sqrt(0.25 * (s[:, 0] - s[:, 1]) ** 2 + s[:, 2] ** 2)
+    peak = float(np.max(np.abs(centre) + radius))
+    return peak / float(nominal_bending(1.0, location.diameter))
+
+
+@dataclass(frozen=True)
+class LocalStrength:
+    """f₋₁ (Pa) of one location and how it was found (``factors``)."""
+
+    bending: float
+    factors: dict
+
+    @property
+    def torsion(self) -> float:
+        return self.bending / math.sqrt(3.0)
+
+
+def local_strength(mat: FatigueMaterial, location, reliability: float = DEFAULT_RELIABILITY) -> LocalStrength:
+    """The location's local fatigue limit in reversed bending (module docstring)."""
+    if mat.fatigue_strength:
+        return LocalStrength(mat.fatigue_strength, {"given": mat.fatigue_strength_source, "support": 1.0})
+    kt = zone_kt(location)
+    n, q = support_factor(kt, mat.tensile_strength, location.notch_radius)
+    se = endurance_limit(mat.tensile_strength, location.diameter, mat.surface, reliability)
+    return LocalStrength(se * n, {"S_e_pa": se, "ka": marin_surface(mat.tensile_strength, mat.surface),
+                                  "kb": marin_size(location.diameter), "ke": marin_reliability(reliability),
+                                  "surface": mat.surface, "Kt": kt, "q": q, "support": n})
+
+
+@dataclass
+class RecoveredAssessment(CrankAssessment):
+    """:class:`~fetorsion.design.assessment.CrankAssessment` of the recovered path: per location
+    its governing node (``nodes_m``, sub-model frame) and Findley's figures at its worst speed."""
+
+    nodes_m: list = field(default_factory=list)
+
+    def table(self) -> str:
+        lines = [f"{self.name}: Findley on the recovered local stress, each place at its worst speed",
+                 f"{'location':<28} {'rpm':>6} {'σ_vM,a [MPa]':>12} {'σ_vM,m [MPa]':>12} {'Findley [MPa]':>13} "
+                 f"{'limit [MPa]':>11} {'f₋₁ [MPa]':>9} {'safety':>7} {'required':>8}"]
+        for j, a in enumerate(self.worst.locations):
+            f = a.criteria.get("findley", {})
+            lines.append(f"{self.labels[j]:<28} {self.worst_rpm[j]:6.0f} {a.equivalent_alternating / 1e6:12.1f} "
+                         f"{a.equivalent_mean / 1e6:12.1f} {f.get('value', math.nan) / 1e6:13.1f} "
+                         f"{f.get('limit', math.nan) / 1e6:11.1f} {a.strength / 1e6:9.1f} {a.safety:7.2f} {a.required:8.2f}")
+        return "\n".join(lines)
+
+    def haigh(self, count: int = HAIGH_LOCATIONS, ax=None):
+        """The ``count`` least safe places at their worst speeds: von Mises mean (signed) and
+        amplitude of the local stress, against each one's Findley limit for a uniaxial history
+        (σ_a at the limit for each mean: the least over planes of (λ − k c² σ_m) / (s c + k c²)).
+        Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4.5))
+        rm = self.worst.material.tensile_strength
+        sm = np.linspace(-0.5 * rm, rm, 200)
+        th = np.linspace(1e-3, 0.5 * math.pi, 400)[:, None]
+        c, s = np.cos(th), np.sin(th)
+        for j in np.argsort(self.safety.min(axis=0))[:count]:
+            a = self.worst.locations[j]
+            k, lam = findley_constants(a.strength, a.strength / math.sqrt(3.0))
+            sa = np.min((lam - k * c * c * sm[None]) / (s * c + k * c * c), axis=0)
+            line, = ax.plot(sm / 1e6, np.maximum(sa, 0) / 1e6, lw=0.8, ls="--", label=f"Findley limit, {self.labels[j]}")
+            ax.plot([a.equivalent_mean / 1e6], [a.equivalent_alternating / 1e6], "o", color=line.get_color(),
+                    label=f"{self.labels[j]}, {self.worst_rpm[j]:.0f} rpm")
+        ax.axvline(0, color="k", lw=0.5)
+        ax.set_ylim(bottom=0)
+        ax.set_xlabel("mean von Mises stress, signed by the trace [MPa]")
+        ax.set_ylabel("von Mises amplitude [MPa]")
+        ax.set_title(f"{self.name}: Haigh diagram of the recovered local stress", fontsize=9)
+        ax.legend(fontsize=6)
+        return ax
+
+
+#: Directions in load space whose extreme loads (over every speed and angle) screen the nodes.
+SCREEN_DIRECTIONS = 96
+#: Nodes kept by each screen: the largest chord and the largest stress under the extreme loads.
+SCREEN_RANGE, SCREEN_PEAK = 12, 6
+#: The sweep over every speed: the screen's leading nodes, every SWEEP_STRIDE-th angle, planes
+#: every 180/SWEEP_PLANES degrees; the REFINED_SPEEDS least safe speeds are then taken again on
+#: every candidate at every angle and the full plane grid.
+SWEEP_NODES, SWEEP_STRIDE, SWEEP_PLANES, REFINED_SPEEDS = 3, 4, 18, 5
+#: Nodes of the all-node check at a location's worst speed that go on to Findley (by their
+#: components' half ranges at every SWEEP_STRIDE-th angle).
+CHECK_NODES = 100
+
+
+def extreme_loads(loads: np.ndarray, directions: int = SCREEN_DIRECTIONS) -> tuple[np.ndarray, np.ndarray]:
+    """The loads (speeds, 6, angles) that are largest and least along each of ``directions`` seeded
+    directions in load space (each component scaled by its spread): (directions, 6) each."""
+    x = np.moveaxis(loads, 1, -1).reshape(-1, 6)
+    scale = x.std(axis=0) + 1e-30
+    w = np.random.default_rng(52).normal(size=(directions, 6))
+    w /= np.linalg.norm(w, axis=1)[:, None]
+    proj = (w / scale) @ x.T  # (directions, samples): each row's extremes are contiguous
+    return x[np.argmax(proj, axis=1)], x[np.argmin(proj, axis=1)]
+
+
+def candidate_nodes(location, loads: np.ndarray) -> np.ndarray:
+    """Nodes of ``location``'s zone whose stress can govern under ``loads`` (speeds, 6, angles), the
+    most likely first: the largest von Mises chord between the extreme loads of one direction, then
+    the largest von Mises stress under any extreme load."""
+    hi, lo = extreme_loads(loads)
+    P = location.zone.influence.reshape(-1, 6)  # (nodes·3, 6)
+    n = len(location.zone.xyz)
+    at = lambda e: von_mises_plane(np.moveaxis((P @ e.T).reshape(n, 3, -1), 1, -1)).max(axis=1)  # noqa: E731
+    chord = at(hi - lo)
+    peak = np.maximum(at(hi), at(lo))
+    order = list(np.argsort(chord)[::-1][:SCREEN_RANGE]) + list(np.argsort(peak)[::-1][:SCREEN_PEAK])
+    return np.array(list(dict.fromkeys(int(i) for i in order)))
+
+
+def _findley(location, nodes, static_loads, vib, k, lam, planes=None):
+    """Findley's safety (speeds, nodes) at ``nodes`` under static (speeds, 6) and vibratory
+    (speeds, 6, angles) rear-face loads."""
+    from .criterion import PLANES
+
+    st = location.stresses(static_loads[..., None], nodes)[..., 0]
+    return findley_surface(st, location.stresses(vib, nodes), k, lam, planes or PLANES)["safety"]
+
+
+def assess_location(location, static_loads: np.ndarray, loads: np.ndarray, strength: LocalStrength,
+                    check: bool = True) -> dict:
+    """Findley at every speed on the location's least safe node.
+
+    ``static_loads`` (speeds, 6) and ``loads`` (speeds, 6, angles): the rear-face loads of the
+    order-0 part and of the whole history. The screen (:func:`candidate_nodes`) orders the nodes;
+    the sweep over every speed takes its :data:`SWEEP_NODES` leading ones coarsely, the
+    :data:`REFINED_SPEEDS` least safe speeds are taken again on every candidate, at every angle,
+    on the full plane grid; ``check``: at the worst speed every node is checked (the
+    :data:`CHECK_NODES` largest by their components' half ranges), and a node the screen missed
+    joins the candidates. Returns ``safety`` (speeds,), ``node`` (speeds,), the ``candidates``
+    and Findley's ``k`` and ``limit``."""
+    k, lam = findley_constants(strength.bending, strength.torsion)
+    vib = loads - static_loads[..., None]
+    cand = candidate_nodes(location, loads)
+
+    def sweep(nodes):
+        lead = nodes[:SWEEP_NODES]
+        safe = np.full((len(loads), len(nodes)), np.inf)
+        safe[:, :len(lead)] = _findley(location, lead, static_loads, vib[..., ::SWEEP_STRIDE], k, lam, SWEEP_PLANES)
+        refine = np.argsort(safe.min(axis=1))[:REFINED_SPEEDS]
+        safe[refine] = _findley(location, nodes, static_loads[refine], vib[refine], k, lam)
+        return safe
+
+    safe = sweep(cand)
+    if check:
+        worst = int(np.argmin(safe.min(axis=1)))
+        h = location.stresses(vib[worst][:, ::SWEEP_STRIDE])  # (all nodes, 3, angles)
+        half = von_mises_plane(0.5 * (h.max(axis=-1) - h.min(axis=-1)))
+        few = np.argsort(half)[-CHECK_NODES:]
+        full = _findley(location, few, static_loads[worst], vib[worst], k, lam)
+        if full.min() < safe[worst].min() * (1 - 1e-9) and int(few[np.argmin(full)]) not in cand:
+            cand = np.r_[cand, int(few[np.argmin(full)])]
+            safe = sweep(cand)
+    best = np.argmin(safe, axis=1)
+    return {"safety": safe[np.arange(len(safe)), best], "node": cand[best], "candidates": cand,
+            "k": k, "limit": lam}
+
+
+def run_recovered_assessment(crank, cycle, locations, required: float | None = None,
+                             reliability: float = DEFAULT_RELIABILITY, check: bool = True) -> RecoveredAssessment:
+    """Findley on the recovered local stress at every location of ``crank`` at every speed of ``cycle``.
+
+    Parameters
+    ----------
+    crank : Crank
+        Its ``[material]`` (missing strengths from the default forging steel, named) and ``[limits]``.
+    cycle : LoadCycle
+        The cuts' loads over the cycle (:func:`fetorsion.response.cycle.run_load_cycle`).
+    locations : list of Location
+        :func:`fetorsion.design.recovery.crank_locations` of the crank on the cycle's cuts.
+    required : float, optional
+        Required safety (default ``[limits] fatigue_required_safety``, else 1.0).
+    reliability : float
+        The endurance limit's reliability ([Budynas] Table 6-5).
+    check : bool
+        Check every node at each location's worst speed (:func:`assess_location`).
+    """
+    if not locations:
+        raise FetorsionError("the recovered assessment needs at least one location")
+    mat, defaulted = fatigue_material(crank.material)
+    limits = crank.limits
+    if limits is not None and getattr(limits, "fatigue_strength_bending", 0.0) > 0:
+        mat = replace(mat, fatigue_strength=float(limits.fatigue_strength_bending),
+                      fatigue_strength_source=f"[limits] fatigue_strength_bending_pa ({limits.source})")
+    if required is None:
+        required = float(getattr(limits, "fatigue_required_safety", 0.0) or 1.0)
+    rpm = np.asarray(cycle.rpm)
+    safety = np.empty((len(rpm), len(locations)))
+    worst_locs, nodes_m = [], []
+    for j, loc in enumerate(locations):
+        strength = local_strength(mat, loc, reliability)
+        loads = loc.rear_loads(cycle.history)  # (speeds, 6, angles)
+        static = loc.rear_loads(cycle.mean[..., None])[..., 0]  # (speeds, 6)
+        res = assess_location(loc, static, loads, strength, check)
+        safety[:, j] = res["safety"]
+        s = int(np.argmin(res["safety"]))
+        node = int(res["node"][s])
+        hist = loc.stresses(loads[s], [node])[0]  # (3, angles)
+        st = loc.stresses(static[s][:, None], [node])[0, :, 0]
+        f = findley_surface(st, hist - st[:, None], res["k"], res["limit"])
+        peak = float(von_mises_plane(hist.T).max())
+        crit = {"findley": {"value": float(f["value"]), "limit": res["limit"], "k": res["k"],
+                            "plane_rad": float(f["plane"]), "tau_a_pa": float(f["tau_a"]),
+                            "sigma_n_max_pa": float(f["sigma_n_max"]), "safety": float(res["safety"][s])}}
+        factors = {**strength.factors, "node_m": loc.zone.xyz[node].tolist(), "zone": loc.zone.name,
+                   "peak_von_mises_pa": peak, "surface_traction_residual": loc.zone.normal_residual}
+        worst_locs.append(FatigueAssessment(loc.label, loc.kind, METHOD, strength.bending, von_mises_amplitude(hist),
+                                            signed_von_mises(st), float(res["safety"][s]), required,
+                                            yield_safety=mat.yield_strength / peak if peak > 0 else math.inf,
+                                            factors=factors, criteria=crit))
+        nodes_m.append(loc.zone.xyz[node].tolist())
+    worst_speed = np.argmin(safety, axis=0)
+    notes = ["local stresses recovered from six unit end loads on each throw (fillets) and on a bar with the "
+             "drilling (oil bores), superposed with the cut loads over the cycle; Findley's critical plane on "
+             "planes through the surface, the static part with its sign, the safety a factor on the vibratory part"]
+    if mat.fatigue_strength:
+        notes.append(f"fatigue strength {mat.fatigue_strength / 1e6:.0f} MPa against local stresses: "
+                     f"{mat.fatigue_strength_source}, no notch support")
+    else:
+        notes.append(f"local strength f₋₁ = S_e · K_t/K_f: S_e with the '{mat.surface}' surface factor "
+                     f"([Budynas] Table 6-2; the material's surface field), size and reliability {reliability:g}; "
+                     "Neuber's q for each notch")
+    if defaulted:
+        notes.append(f"material strengths not in the description ({', '.join(defaulted)}): {mat.name} ({mat.source})")
+    result = FatigueResult(METHOD, mat, tuple(defaulted), tuple(worst_locs))
+    return RecoveredAssessment(crank.name, METHOD, rpm, [loc.label for loc in locations], safety, result,
+                               rpm[worst_speed], "stress recovery (six unit end loads)", notes,
+                               np.array([loc.diameter for loc in locations]),
+                               tuple(loc.cuts[0] for loc in locations), nodes_m)

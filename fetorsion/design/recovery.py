@@ -1,0 +1,488 @@
+"""Local stress at the fillets and oil bores, recovered from unit end loads and the cut loads.
+
+A fillet's stress is not its pure-couple SCF times the cut's bending moment: a throw's sections
+carry shear forces, axial force and moments about both axes as well, and under a rod force the
+fillets' stress follows the shear as much as the moment (the pin fillet reads 0.64x and the
+journal fillet 2.19x the pure-couple prediction, issue 52). Quasi-static stress recovery, as
+FEMFAT and AVL EXCITE do with unit loads ([Rennert]'s local approach takes the local stress
+tensor so found):
+
+    σ(x, t) = Σ_j S_j(x) L_j(t),        j = 1 … 6,
+
+S_j the stress field of the sub-model under a unit end load j (three forces, three moments at the
+loaded face's centre; front face held; one factorisation, six right-hand sides) and L(t) the
+section load history of the cut at the location, moved into the sub-model's frame and carried
+to the loaded face by statics. A sub-model held at its front face and loaded at its rear face
+carries that load through every section (a statically determinate cantilever), so any cut
+between the faces sees exactly the rear load moved to the cut's centre: L_rear = (F, M + (c − p)
+× F) for a cut resultant (F, M) about c and the loaded face's centre p.
+
+Sub-models: each throw (:func:`fetorsion.webs.throwfe.throw_of`, journal centre to journal
+centre, its pin drilling kept, the journal drillings left to the bar below: they sit on the
+throw's end faces), whose four fillet zones (the nodes of :func:`fetorsion.design.scf.fillet_zone`
+on the surface) read their own cut; and each drilled kind of section as the bar with a
+transverse hole of :mod:`fetorsion.design.oilbore` (the drilling's wall), which reads the mean
+of its pin's (journal's) fillet cuts moved to the drilling's centre.
+
+Only surface nodes are kept, with their tangent frame: at a free surface the stress is plane,
+(σ₁₁, σ₂₂, σ₁₂) in (e₁, e₂); the criterion (:mod:`fetorsion.design.criterion`) reads those.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+import os
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import FetorsionError
+
+#: The six unit end loads (Fx, Fy, Fz, Mx, My, Mz) at the loaded face's centre, N and N·m.
+UNIT_LOADS = tuple(tuple(float(i == j) for i in range(6)) for j in range(6))
+#: Part of every stored field's key: bump when the sub-models or the zones change.
+MODEL_VERSION = "recovery-1"
+#: The recovered fields' folder in the store.
+FOLDER = "recovery"
+
+#: Faces of a tetrahedron by the vertex each one leaves out, and the VTK 10-node mid-edge node of
+#: each vertex pair.
+_FACES = ((1, 2, 3), (0, 2, 3), (0, 1, 3), (0, 1, 2))
+_EDGE = {(0, 1): 4, (1, 2): 5, (0, 2): 6, (0, 3): 7, (1, 3): 8, (2, 3): 9}
+
+
+def surface_normals(nodes: np.ndarray, tets: np.ndarray) -> np.ndarray:
+    """Outward unit normal at every node of a 10-node tetrahedral mesh on its boundary (area-weighted
+    over the boundary faces it belongs to), zero at interior nodes: (nodes, 3)."""
+    faces = tets[:, :4][:, _FACES]  # (E, 4, 3)
+    n = len(nodes)
+    key = np.sort(faces, axis=2).astype(np.int64)
+    code = (key[..., 0] * n + key[..., 1]) * n + key[..., 2]
+    _, inv, count = np.unique(code.ravel(), return_inverse=True, return_counts=True)
+    e, k = np.divmod(np.flatnonzero(count[inv] == 1), 4)
+    a, b, c = (nodes[faces[e, k, i]] for i in range(3))
+    normal = np.cross(b - a, c - a)
+    opposite = nodes[tets[e, k]]
+    normal *= np.where(np.einsum("ij,ij->i", normal, opposite - a) > 0, -1.0, 1.0)[:, None]
+    out = np.zeros((n, 3))
+    for i in range(3):
+        np.add.at(out, faces[e, k, i], normal)
+    verts = np.array(_FACES)[k]  # local vertex numbers of each boundary face
+    for i, j in ((0, 1), (1, 2), (0, 2)):
+        lo, hi = np.minimum(verts[:, i], verts[:, j]), np.maximum(verts[:, i], verts[:, j])
+        mid = np.array([_EDGE[(int(p), int(q))] for p, q in zip(lo, hi)], dtype=np.int64)
+        np.add.at(out, tets[e, mid], normal)
+    length = np.linalg.norm(out, axis=1)
+    on = length > 0
+    out[on] /= length[on, None]
+    return out
+
+
+def tangent_frames(normals: np.ndarray) -> np.ndarray:
+    """(nodes, 2, 3): e₁, e₂ tangent to the surface (e₁ as near the x axis as the normal allows,
+    e₂ = n × e₁)."""
+    ref = np.where(np.abs(normals[:, :1]) < 0.9, np.array([[1.0, 0.0, 0.0]]), np.array([[0.0, 1.0, 0.0]]))
+    e1 = ref - np.einsum("ij,ij->i", ref, normals)[:, None] * normals
+    e1 /= np.linalg.norm(e1, axis=1)[:, None]
+    return np.stack([e1, np.cross(normals, e1)], axis=1)
+
+
+def node_stresses(sol, material, dofs: np.ndarray) -> np.ndarray:
+    """Stress tensors (len(dofs), 3, 3), Pa, at DOF-numbered nodes ``dofs`` of a solution, each the
+    average over the elements sharing the node of the element's P2 gradient at that node (the
+    nodal averaging of :func:`fetorsion.design.scf.nodal_stress`, on those elements only)."""
+    from skfem import Basis, ElementTetP2
+
+    from ..fe.assembly import lame
+
+    m = sol.skfem_mesh
+    elem = ElementTetP2()
+    element_dofs = Basis(m, elem, intorder=1).element_dofs  # (10, E)
+    wanted = np.zeros(element_dofs.max() + 1, bool)
+    wanted[dofs] = True
+    elements = np.flatnonzero(wanted[element_dofs].any(axis=0))
+    at_nodes = Basis(m, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)), elements=elements)
+    u = sol.u.reshape(-1, 3)
+    grad = np.stack([at_nodes.interpolate(u[:, c]).grad for c in range(3)])  # (comp, dir, E', 10)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    lam, mu = lame(material.youngs_modulus, material.poisson_ratio)
+    sig = 2 * mu * eps + lam * np.trace(eps)[None, None] * np.eye(3)[:, :, None, None]
+    local = element_dofs[:, elements].T.ravel()  # element-major, matching sig's (E', 10)
+    flat = sig.reshape(9, -1)
+    slot = np.full(wanted.size, -1)
+    slot[dofs] = np.arange(len(dofs))
+    keep = slot[local] >= 0
+    idx = slot[local[keep]]
+    total = np.stack([np.bincount(idx, flat[c, keep], minlength=len(dofs)) for c in range(9)], axis=1)
+    count = np.bincount(idx, minlength=len(dofs))
+    return (total / np.maximum(count, 1)[:, None]).reshape(-1, 3, 3)
+
+
+@dataclass(frozen=True)
+class StressZone:
+    """The surface nodes of one fillet or drilling in its sub-model, with their unit-load stresses.
+
+    Attributes
+    ----------
+    name : str
+        ``journal fillet, web 1``, …, ``oil bore``.
+    kind : str
+        ``pin-fillet``, ``journal-fillet`` or ``oil-bore``.
+    xyz : ndarray (nodes, 3)
+        Positions in the sub-model's frame, m.
+    frames : ndarray (nodes, 2, 3)
+        Tangent unit vectors e₁, e₂ at each node.
+    influence : ndarray (nodes, 3, 6)
+        (σ₁₁, σ₂₂, σ₁₂) in (e₁, e₂) per unit end load (Pa per N, Pa per N·m).
+    loaded : ndarray (3,)
+        The loaded face's centre, where the unit loads act, m.
+    normal_residual : float
+        The largest traction on the surface |σ n| at any node and load over the largest stress:
+        zero at an exact free surface (the nodal averaging's error there).
+    """
+
+    name: str
+    kind: str
+    xyz: np.ndarray
+    frames: np.ndarray
+    influence: np.ndarray
+    loaded: np.ndarray
+    normal_residual: float = 0.0
+
+
+def zone_of(name: str, kind: str, sols, material, mask: np.ndarray, normals: np.ndarray, loaded) -> StressZone:
+    """The :class:`StressZone` of the DOF nodes ``mask`` that lie on the surface (``normals``
+    over DOF nodes) under the six unit solutions ``sols``."""
+    dofs = np.flatnonzero(mask & (np.linalg.norm(normals, axis=1) > 0.5))
+    if len(dofs) == 0:
+        raise FetorsionError(f"{name}: no surface node in the zone (is its radius > 0?)")
+    frames = tangent_frames(normals[dofs])
+    n = normals[dofs]
+    influence = np.empty((len(dofs), 3, 6))
+    residual, largest = 0.0, 0.0
+    for j, sol in enumerate(sols):
+        sig = node_stresses(sol, material, dofs)
+        e1, e2 = frames[:, 0], frames[:, 1]
+        influence[:, 0, j] = np.einsum("ni,nij,nj->n", e1, sig, e1)
+        influence[:, 1, j] = np.einsum("ni,nij,nj->n", e2, sig, e2)
+        influence[:, 2, j] = np.einsum("ni,nij,nj->n", e1, sig, e2)
+        residual = max(residual, float(np.linalg.norm(np.einsum("nij,nj->ni", sig, n), axis=1).max()))
+        largest = max(largest, float(np.abs(sig).max()))
+    xyz = sols[0].skfem_mesh.doflocs.T[dofs]
+    return StressZone(name, kind, xyz, frames, influence, np.asarray(loaded, float),
+                      residual / largest if largest > 0 else 0.0)
+
+
+def dof_normals(mesh, dof_of_node: np.ndarray, count: int) -> np.ndarray:
+    """:func:`surface_normals` of a TetMesh carried onto the DOF-numbered nodes."""
+    normals = surface_normals(mesh.nodes, mesh.tets)
+    out = np.zeros((count, 3))
+    used = dof_of_node >= 0
+    out[dof_of_node[used]] = normals[used]
+    return out
+
+
+def _loaded_centre(sol, mesh, name: str = "rear_face") -> np.ndarray:
+    xyz = sol.skfem_mesh.doflocs.T
+    nodes = sol.dof_of_node[mesh.node_sets[name]]
+    return np.array([xyz[nodes, 0].mean(), 0.0, 0.0])
+
+
+def recovery_throw(crank, index: int):
+    """Throw ``index`` of ``crank`` as its recovery sub-model: :func:`~fetorsion.webs.throwfe.throw_of`
+    without the journal drillings (at the journals' mid-length, the throw's end faces: the bar
+    model assesses them), the pin drilling kept (it is between the pin fillets)."""
+    from ..webs.throwfe import throw_of
+
+    throw = throw_of(crank, index)
+    holes = throw.oil_holes
+    if holes is not None and holes.in_journals and not throw.solid_step:
+        throw = dataclasses.replace(throw, oil_holes=dataclasses.replace(holes, in_journals=False))
+    return throw
+
+
+def throw_zones(crank, index: int, size: float | None = None, fine: float | None = None) -> list[StressZone]:
+    """The four fillet zones of throw ``index`` (journal, web 1; pin, web 1; pin, web 2; journal,
+    web 2) under the six unit end loads at its rear face (front face held), one factorisation."""
+    from ..solid.isolate import call_isolated
+    from ..solid.mesh import default_fillet_size, mesh_crank
+    from ..fe.tetmesh import TetMesh
+    from ..webs.throwfe import default_mesh_size, end_load_solutions
+    from .scf import DEFAULT_FILLET_SHARE, found_zones, fillet_zone, found_zone
+
+    throw = recovery_throw(crank, index)
+    size = default_mesh_size(throw) if size is None else size
+    fine = DEFAULT_FILLET_SHARE * default_fillet_size(throw, size, "stress") if fine is None else fine
+    cm = call_isolated(mesh_crank, throw, size, fine, "stress", what="Gmsh, recovery throw")
+    mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
+    sols = end_load_solutions(mesh, throw.material, UNIT_LOADS)
+    xyz = sols[0].skfem_mesh.doflocs.T
+    normals = dof_normals(mesh, sols[0].dof_of_node, len(xyz))
+    j1, j2 = throw.journals
+    w1, w2 = throw.webs
+    pin = throw.pins[0]
+    R = throw.engine.crank_radius
+    x = np.cumsum([0.0, j1.length, w1.thickness, pin.length, w2.thickness])
+    rj, rp = crank.fillets.journal, crank.fillets.pin
+    found = found_zones(crank, index, throw)
+    masks = ([found_zone(xyz, *f) for f in found] if found
+             else [fillet_zone(xyz, x[1], -1, (0, 0), 0.5 * j1.diameter, rj),
+                   fillet_zone(xyz, x[2], +1, (R, 0), 0.5 * pin.diameter, rp),
+                   fillet_zone(xyz, x[3], -1, (R, 0), 0.5 * pin.diameter, rp),
+                   fillet_zone(xyz, x[4], +1, (0, 0), 0.5 * j2.diameter, rj)])
+    loaded = _loaded_centre(sols[0], mesh)
+    names = ("journal fillet, web 1", "pin fillet, web 1", "pin fillet, web 2", "journal fillet, web 2")
+    kinds = ("journal-fillet", "pin-fillet", "pin-fillet", "journal-fillet")
+    return [zone_of(nm, kd, sols, throw.material, m, normals, loaded) for nm, kd, m in zip(names, kinds, masks)]
+
+
+def bore_zone(diameter: float, hole: float, bore: float, material, share: float | None = None) -> StressZone:
+    """The drilling's wall of the bar with a transverse hole (:func:`fetorsion.design.oilbore.transverse_hole_mesh`:
+    bar along x, 2 · 1.5 D long, hole along y at mid-length) under the six unit end loads at its
+    rear face."""
+    from ..solid.isolate import call_isolated
+    from ..webs.throwfe import end_load_solutions
+    from .oilbore import HALF_LENGTH, OIL_BORE_SHARES, WALL_SLACK, check_hole, transverse_hole_mesh
+
+    check_hole(diameter, hole, bore)
+    share = OIL_BORE_SHARES[0] if share is None else share
+    mesh = call_isolated(transverse_hole_mesh, diameter, hole, bore, share * hole, what="Gmsh, transverse hole")
+    sols = end_load_solutions(mesh, material, UNIT_LOADS)
+    xyz = sols[0].skfem_mesh.doflocs.T
+    normals = dof_normals(mesh, sols[0].dof_of_node, len(xyz))
+    wall = np.hypot(xyz[:, 0] - HALF_LENGTH * diameter, xyz[:, 2]) <= 0.5 * hole * (1 + WALL_SLACK)
+    return zone_of("oil bore", "oil-bore", sols, material, wall, normals, _loaded_centre(sols[0], mesh))
+
+
+# ---------------------------------------------------------------------------
+# Stored fields
+
+
+def _key(payload: dict) -> str:
+    from ..io import code_hash
+
+    text = json.dumps({**payload, "model": MODEL_VERSION, "code": code_hash()}, sort_keys=True, default=repr)
+    return hashlib.sha256(text.encode()).hexdigest()[:24]
+
+
+def _material_key(material) -> dict:
+    return {"E": material.youngs_modulus, "nu": material.poisson_ratio}
+
+
+def throw_zone_key(crank, index: int) -> str:
+    """The stored key of throw ``index``'s zones: its geometry, material's elasticity, the code."""
+    from ..webs.throwfe import throw_key
+
+    return _key({"throw": throw_key(recovery_throw(crank, index), None), "kind": "throw"})
+
+
+def bore_zone_key(diameter: float, hole: float, bore: float, material) -> str:
+    """The stored key of a drilled section's zone."""
+    return _key({"bar": [diameter, hole, bore], "material": _material_key(material), "kind": "bore"})
+
+
+def _folder(store=None) -> Path:
+    from ..io import default_store
+
+    return Path(store if store is not None else default_store()) / FOLDER
+
+
+def _save(zones: list[StressZone], path: Path) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    data = {}
+    for i, z in enumerate(zones):
+        data.update({f"{i}_xyz": z.xyz, f"{i}_frames": z.frames, f"{i}_influence": z.influence,
+                     f"{i}_loaded": z.loaded, f"{i}_meta": np.array(json.dumps([z.name, z.kind, z.normal_residual]))})
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        with open(tmp, "wb") as fh:
+            np.savez(fh, count=np.array(len(zones)), **data)
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def _load(path: Path) -> list[StressZone] | None:
+    try:
+        with np.load(path) as d:
+            out = []
+            for i in range(int(d["count"])):
+                name, kind, residual = json.loads(str(d[f"{i}_meta"]))
+                out.append(StressZone(name, kind, d[f"{i}_xyz"], d[f"{i}_frames"], d[f"{i}_influence"],
+                                      d[f"{i}_loaded"], float(residual)))
+            return out
+    except (OSError, ValueError, KeyError):
+        return None
+
+
+def stored_zones(key: str, build, store=None) -> list[StressZone]:
+    """The zones stored under ``key``, else ``build()``'s, stored (atomically) for the next run."""
+    path = _folder(store) / f"{key}.npz"
+    if path.exists():
+        zones = _load(path)
+        if zones is not None:
+            return zones
+        path.unlink(missing_ok=True)  # unreadable: built again
+    zones = build()
+    try:
+        _save(zones, path)
+    except OSError:
+        pass  # a store that cannot be written is only a lost speed-up
+    return zones
+
+
+# ---------------------------------------------------------------------------
+# The crank's locations: which zone reads which cuts, and how
+
+
+def _rotation(angle: float) -> np.ndarray:
+    """Rotation about x by ``angle`` (rad)."""
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+def _skew(v) -> np.ndarray:
+    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+
+
+def load_map(rotation: np.ndarray, cut: np.ndarray, loaded: np.ndarray) -> np.ndarray:
+    """The 6 × 6 map from a cut resultant (F, M about the cut's centre; crank frame) to the
+    sub-model's rear-face load: F' = R F, M' = R M + (c' − p) × R F, with ``cut`` c' the cut's
+    centre and ``loaded`` p the loaded face's centre, both in the sub-model's frame."""
+    A = np.zeros((6, 6))
+    A[:3, :3] = rotation
+    A[3:, 3:] = rotation
+    A[3:, :3] = _skew(np.asarray(cut) - np.asarray(loaded)) @ rotation
+    return A
+
+
+@dataclass(frozen=True)
+class Location:
+    """One assessed place of the crank: its zone, the cuts it reads and how.
+
+    ``cuts`` are indices into the load cycle's cuts; ``maps`` (len(cuts), 6, 6) take each cut's
+    resultant to the zone's rear-face load, and the location reads their mean (an oil bore: the
+    two fillet cuts of its pin moved to the drilling's centre). ``diameter`` (m) is the section's,
+    ``notch_radius`` (m) the fillet's radius or half the drilling's diameter."""
+
+    label: str
+    kind: str
+    zone: StressZone
+    cuts: tuple
+    maps: np.ndarray
+    diameter: float
+    notch_radius: float
+
+    def rear_loads(self, history: np.ndarray) -> np.ndarray:
+        """(..., 6, angles) rear-face loads from a cycle's history (..., cuts, 6, angles)."""
+        h = history[..., list(self.cuts), :, :]
+        return np.einsum("cij,...cjt->...it", self.maps, h) / len(self.cuts)
+
+    def stresses(self, loads: np.ndarray, nodes=None) -> np.ndarray:
+        """(..., nodes, 3, angles) in-plane stress at the zone's nodes (all, or ``nodes``) under
+        rear-face loads (..., 6, angles)."""
+        P = self.zone.influence if nodes is None else self.zone.influence[nodes]
+        return np.einsum("nck,...kt->...nct", P, loads, optimize=True)
+
+
+def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progress=None) -> list[Location]:
+    """Every fillet of ``fillets`` (the load cycle's cuts, about ``cut_centres`` (cuts, 3), m) as a
+    :class:`Location` in its throw's zone, then every drilled pin and journal in its bar's
+    (:func:`fetorsion.design.assessment.oil_bore_sections`); the throws' and bars' fields taken
+    from the store or computed once per distinct geometry."""
+    from .assessment import oil_bore_sections
+
+    say = progress or (lambda m: None)
+    angles = np.asarray(crank.engine.crank_angles, float)
+    cached: dict[str, list[StressZone]] = {}
+
+    def zones_of(key, build):
+        if key not in cached:
+            cached[key] = stored_zones(key, build, store)
+        return cached[key]
+
+    out = []
+    for k, f in enumerate(fillets):
+        i = f.index if f.kind == "pin" else (f.index if f.x >= _journal_centre(crank, fillets, f) else f.index - 1)
+        i = min(max(i, 0), crank.cylinders - 1)
+        key = throw_zone_key(crank, i)
+        if key not in cached:
+            say(f"  stress recovery: throw {i + 1} under six unit end loads (static 3D FE) ...")
+        zones = zones_of(key, lambda i=i: throw_zones(crank, i))
+        origin = _throw_origin(crank, fillets, i)
+        if f.kind == "pin":
+            centre = 0.5 * (_pin_span(fillets, i)[0] + _pin_span(fillets, i)[1])
+            z = zones[1] if f.x < centre else zones[2]
+        else:
+            z = zones[0] if f.index == i else zones[3]
+        R = _rotation(-angles[i])
+        c = R @ (cut_centres[k] - np.array([origin, 0.0, 0.0]))
+        radius = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
+        out.append(Location(f.label, z.kind, z, (k,), load_map(R, c, z.loaded)[None], f.diameter, radius))
+    holes = crank.oil_holes
+    for b in oil_bore_sections(crank, fillets):
+        key = bore_zone_key(b.diameter, holes.diameter, _bore_of(crank, b), crank.material)
+        if key not in cached:
+            say(f"  stress recovery: {b.kind} oil bore under six unit end loads (static 3D FE) ...")
+        z = zones_of(key, lambda b=b: [bore_zone(b.diameter, holes.diameter, _bore_of(crank, b), crank.material)])[0]
+        # the bar's frame: x along the section's axis, y along the drilling (the throw's tangent
+        # e_t at angle a), z = x × y = −e_r; its centre at mid-length on the axis
+        a = b.angle
+        rows = np.array([[1.0, 0.0, 0.0], [0.0, -math.sin(a), math.cos(a)], [0.0, -math.cos(a), -math.sin(a)]])
+        xs = [cut_centres[j] for j in b.cuts]
+        axis = np.array(xs[0][1:])
+        centre_x = _section_mid(crank, fillets, b)
+        half = 0.5 * (z.loaded[0])  # the bar's mid-length: the hole
+        maps = []
+        for j in b.cuts:
+            c = rows @ (cut_centres[j] - np.array([centre_x, axis[0], axis[1]])) + np.array([half, 0.0, 0.0])
+            maps.append(load_map(rows, c, z.loaded))
+        out.append(Location(b.label, "oil-bore", z, tuple(b.cuts), np.array(maps), b.diameter, 0.5 * holes.diameter))
+    return out
+
+
+def _bore_of(crank, b) -> float:
+    parts = crank.pins if b.kind == "pin" else crank.journals
+    return parts[int(b.label[1:].split(" ")[0]) - 1].bore
+
+
+def _journal_centre(crank, fillets, f) -> float:
+    """x of the centre of the journal a journal fillet ``f`` sits on, m."""
+    same = [g.x for g in fillets if g.kind == "journal" and g.index == f.index]
+    length = crank.journals[f.index].length
+    if len(same) == 2:
+        return 0.5 * (same[0] + same[1])
+    # an end journal has one fillet: its web is on the side towards the crank's middle
+    return f.x - 0.5 * length if f.index == 0 else f.x + 0.5 * length
+
+
+def _throw_origin(crank, fillets, i: int) -> float:
+    """x (crank frame) of throw ``i``'s front journal centre (the throw model's x = 0), m; a CAD
+    crank's throw slab starts where its window does."""
+    from ..webs.throwfe import throw_of
+
+    t = throw_of(crank, i)
+    if t.solid_window is not None:
+        return float(t.solid_window[0])
+    front = [g for g in fillets if g.kind == "journal" and g.index == i]
+    return _journal_centre(crank, fillets, front[-1]) if front else 0.0
+
+
+def _pin_span(fillets, i: int) -> tuple[float, float]:
+    xs = [g.x for g in fillets if g.kind == "pin" and g.index == i]
+    return min(xs), max(xs)
+
+
+def _section_mid(crank, fillets, b) -> float:
+    """x (crank frame) of a drilled section's mid-length (its drilling), m."""
+    i = int(b.label[1:].split(" ")[0]) - 1
+    if b.kind == "pin":
+        lo, hi = _pin_span(fillets, i)
+        return 0.5 * (lo + hi)
+    f = [g for g in fillets if g.kind == "journal" and g.index == i][0]
+    return _journal_centre(crank, fillets, f)
