@@ -8,9 +8,9 @@ with that damper. Each is assessed by both methods:
 
 * ``iacs-m53``: :mod:`fetorsion.design.m53`, the rule as written (the statically determinate
   throw's bending, the vibration calculation's largest alternating torque, the rule's SCFs);
-* ``fe``: fetorsion's own path, :func:`fetorsion.design.assessment.run_assessment` on the
-  condensed crank's load cycle (its in-plane bending with the resonant part, FE SCFs under either
-  sign of the load, the material's strength with Marin factors and Goodman's mean-stress line).
+* ``fe``: fetorsion's own path, :func:`fetorsion.design.recovered.run_recovered_assessment` on
+  the condensed crank's load cycle (the local stress recovered at every fillet and oil bore from
+  six unit end loads, Findley's critical plane with the sign of the mean, the local strength).
 
 One of them decides (``method``); the other is printed beside it with its difference. The
 damping is the description's modal damping ratio; the verdict also says at which damping ratio
@@ -33,6 +33,9 @@ from .m53 import M53Result, polar_modulus, run_m53_crank
 
 FATIGUE_METHODS = ("iacs-m53", "fe")
 DEFAULT_FATIGUE_METHOD = "iacs-m53"
+#: The places within this factor of the governing safety are the ones the damping searches of the
+#: ``fe`` path read.
+NEAR_GOVERNING = 1.5
 #: The damping ratios the flip search brackets.
 FLIP_BRACKET = (1e-4, 0.3)
 
@@ -276,8 +279,9 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     from ..response.coupled import with_damping_ratio
     from ..response.cycle import mean_cut_loads, run_load_cycle
     from ..response.forced import misfire_harmonics, solve_response
-    from .assessment import run_assessment
     from .m53 import m53_geometry, scf_comparison
+    from .recovered import run_recovered_assessment
+    from .recovery import crank_locations
     from .verdict import allowed_power
 
     if method not in FATIGUE_METHODS:
@@ -285,15 +289,17 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     say = progress or (lambda m: None)
     ex = crank.excitation
     mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
+    locations = crank_locations(crank, fillets, cc.cut_centres, progress=say) if fe_path else None
 
     def m53_of(s, dampers, response=None):
         response = solve_response(s, dampers) if response is None else response
         return run_m53_crank(crank, fillets, fillet_torque_amplitude(s, response, fillets), s.rpm, fe_scf=scf)
 
-    def fe_of(s, dampers):
+    def fe_of(s, dampers, places=None, check=True):
         if not fe_path:
             return None
-        return run_assessment(crank, run_load_cycle(cc, s, dampers, mean=mean), fillets, scf, "textbook")
+        return run_recovered_assessment(crank, run_load_cycle(cc, s, dampers, mean=mean),
+                                        locations if places is None else places, check=check)
 
     def config(name, s, dampers, cylinder=None):
         response = solve_response(s, dampers)  # one solve: M53's torques and the dampers' heat
@@ -342,11 +348,18 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     described = crank.dampers
     required = configs[0].answer(method)["required"]
 
+    near = None
+    if fe_path:
+        # the damping searches read the places within 1.5x of the governing one (the others cannot
+        # govern across the band): a load cycle each, not 25 places' Findley sweeps
+        own = configs[1 if crank.dampers else 0].fe.safety.min(axis=0)
+        near = [loc for loc, q in zip(locations, own) if q <= NEAR_GOVERNING * own.min()]
+
     def safety_at(zeta):
         s = with_damping_ratio(setup, cc, "bearings", zeta)
         if method == "iacs-m53":
             return m53_of(s, described).governing.safety
-        a = fe_of(s, described)
+        a = fe_of(s, described, near, check=False)
         return float(a.safety.min())
 
     say("fatigue verdict: the damping ratio at which it flips ...")

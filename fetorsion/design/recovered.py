@@ -91,6 +91,11 @@ class RecoveredAssessment(CrankAssessment):
 
     nodes_m: list = field(default_factory=list)
 
+    def to_dict(self) -> dict:
+        """:meth:`CrankAssessment.to_dict` with the criterion and each place's governing node (m,
+        in its sub-model's frame: a throw's, journal centre at x = 0, pin on +y; a bar's)."""
+        return {**super().to_dict(), "criterion": "findley", "nodes_m": list(self.nodes_m)}
+
     def table(self) -> str:
         lines = [f"{self.name}: Findley on the recovered local stress, each place at its worst speed",
                  f"{'location':<28} {'rpm':>6} {'σ_vM,a [MPa]':>12} {'σ_vM,m [MPa]':>12} {'Findley [MPa]':>13} "

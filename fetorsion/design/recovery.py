@@ -390,65 +390,91 @@ class Location:
         return np.einsum("nck,...kt->...nct", P, loads, optimize=True)
 
 
-def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progress=None) -> list[Location]:
-    """Every fillet of ``fillets`` (the load cycle's cuts, about ``cut_centres`` (cuts, 3), m) as a
-    :class:`Location` in its throw's zone, then every drilled pin and journal in its bar's
-    (:func:`fetorsion.design.assessment.oil_bore_sections`); the throws' and bars' fields taken
-    from the store or computed once per distinct geometry."""
-    from .assessment import oil_bore_sections
+def _throw_index(crank, fillets, f) -> int:
+    """0-based throw whose web the fillet ``f`` meets."""
+    if f.kind == "pin":
+        i = f.index
+    else:
+        i = f.index if f.x >= _journal_centre(crank, fillets, f) else f.index - 1
+    return min(max(i, 0), crank.cylinders - 1)
 
-    say = progress or (lambda m: None)
-    angles = np.asarray(crank.engine.crank_angles, float)
-    cached: dict[str, list[StressZone]] = {}
 
-    def zones_of(key, build):
-        if key not in cached:
-            cached[key] = stored_zones(key, build, store)
-        return cached[key]
-
-    out = []
-    for k, f in enumerate(fillets):
-        i = f.index if f.kind == "pin" else (f.index if f.x >= _journal_centre(crank, fillets, f) else f.index - 1)
-        i = min(max(i, 0), crank.cylinders - 1)
-        key = throw_zone_key(crank, i)
-        if key not in cached:
-            say(f"  stress recovery: throw {i + 1} under six unit end loads (static 3D FE) ...")
-        zones = zones_of(key, lambda i=i: throw_zones(crank, i))
-        origin = _throw_origin(crank, fillets, i)
-        if f.kind == "pin":
-            centre = 0.5 * (_pin_span(fillets, i)[0] + _pin_span(fillets, i)[1])
-            z = zones[1] if f.x < centre else zones[2]
-        else:
-            z = zones[0] if f.index == i else zones[3]
-        R = _rotation(-angles[i])
-        c = R @ (cut_centres[k] - np.array([origin, 0.0, 0.0]))
-        radius = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
-        out.append(Location(f.label, z.kind, z, (k,), load_map(R, c, z.loaded)[None], f.diameter, radius))
+def _bar_sections(crank):
+    """{kind: (diameter, drilling, bore)} of each drilled kind of section (its first pin or journal
+    stands for all: one number in practice, as :func:`fetorsion.design.oilbore.oil_bore_scfs`)."""
     holes = crank.oil_holes
-    for b in oil_bore_sections(crank, fillets):
-        key = bore_zone_key(b.diameter, holes.diameter, _bore_of(crank, b), crank.material)
-        if key not in cached:
-            say(f"  stress recovery: {b.kind} oil bore under six unit end loads (static 3D FE) ...")
-        z = zones_of(key, lambda b=b: [bore_zone(b.diameter, holes.diameter, _bore_of(crank, b), crank.material)])[0]
-        # the bar's frame: x along the section's axis, y along the drilling (the throw's tangent
-        # e_t at angle a), z = x × y = −e_r; its centre at mid-length on the axis
-        a = b.angle
-        rows = np.array([[1.0, 0.0, 0.0], [0.0, -math.sin(a), math.cos(a)], [0.0, -math.cos(a), -math.sin(a)]])
-        xs = [cut_centres[j] for j in b.cuts]
-        axis = np.array(xs[0][1:])
-        centre_x = _section_mid(crank, fillets, b)
-        half = 0.5 * (z.loaded[0])  # the bar's mid-length: the hole
-        maps = []
-        for j in b.cuts:
-            c = rows @ (cut_centres[j] - np.array([centre_x, axis[0], axis[1]])) + np.array([half, 0.0, 0.0])
-            maps.append(load_map(rows, c, z.loaded))
-        out.append(Location(b.label, "oil-bore", z, tuple(b.cuts), np.array(maps), b.diameter, 0.5 * holes.diameter))
+    if holes is None or not holes.diameter > 0:
+        return {}
+    out = {}
+    for kind, drilled, parts in (("pin", holes.in_pins, crank.pins), ("journal", holes.in_journals, crank.journals)):
+        if drilled and parts:
+            out[kind] = (parts[0].diameter, holes.diameter, parts[0].bore)
     return out
 
 
-def _bore_of(crank, b) -> float:
-    parts = crank.pins if b.kind == "pin" else crank.journals
-    return parts[int(b.label[1:].split(" ")[0]) - 1].bore
+def crank_zones(crank, store=None, progress=None) -> dict:
+    """Every distinct throw's fillet zones and every drilled kind of section's bar zone of ``crank``,
+    from the store or computed once each (and stored): ``{("throw", i): [4 zones], ("bar", kind):
+    zone}``. The run computes them in its background process, first, beside the FE steps."""
+    say = progress or (lambda m: None)
+    out, seen = {}, {}
+    for i in range(crank.cylinders):
+        key = throw_zone_key(crank, i)
+        if key not in seen:
+            if not (_folder(store) / f"{key}.npz").exists():
+                say(f"  stress recovery: throw {i + 1} under six unit end loads (static 3D FE) ...")
+            seen[key] = stored_zones(key, lambda i=i: throw_zones(crank, i), store)
+        out[("throw", i)] = seen[key]
+    for kind, (D, d, bore) in _bar_sections(crank).items():
+        key = bore_zone_key(D, d, bore, crank.material)
+        if key not in seen:
+            if not (_folder(store) / f"{key}.npz").exists():
+                say(f"  stress recovery: the {kind} oil bore under six unit end loads (static 3D FE) ...")
+            seen[key] = stored_zones(key, lambda D=D, d=d, bore=bore: [bore_zone(D, d, bore, crank.material)], store)
+        out[("bar", kind)] = seen[key][0]
+    return out
+
+
+def zones_stored(crank, store=None) -> bool:
+    """True when every zone :func:`crank_zones` needs is in the store."""
+    keys = {throw_zone_key(crank, i) for i in range(crank.cylinders)}
+    keys |= {bore_zone_key(D, d, b, crank.material) for D, d, b in _bar_sections(crank).values()}
+    return all((_folder(store) / f"{k}.npz").exists() for k in keys)
+
+
+def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progress=None) -> list[Location]:
+    """Every fillet of ``fillets`` (the load cycle's cuts, about ``cut_centres`` (cuts, 3), m) as a
+    :class:`Location` in its throw's zone, then every drilled pin and journal in its bar's
+    (:func:`fetorsion.design.assessment.oil_bore_sections`), on :func:`crank_zones`."""
+    from .assessment import oil_bore_sections
+
+    zones = crank_zones(crank, store, progress)
+    angles = np.asarray(crank.engine.crank_angles, float)
+    out = []
+    for k, f in enumerate(fillets):
+        i = _throw_index(crank, fillets, f)
+        throw = zones[("throw", i)]
+        if f.kind == "pin":
+            lo, hi = _pin_span(fillets, i)
+            z = throw[1] if f.x < 0.5 * (lo + hi) else throw[2]
+        else:
+            z = throw[0] if f.index == i else throw[3]
+        R = _rotation(-angles[i])
+        c = R @ (cut_centres[k] - np.array([_throw_origin(crank, fillets, i), 0.0, 0.0]))
+        radius = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
+        out.append(Location(f.label, z.kind, z, (k,), load_map(R, c, z.loaded)[None], f.diameter, radius))
+    for b in oil_bore_sections(crank, fillets):
+        z = zones[("bar", b.kind)]
+        # the bar's frame: x along the section's axis, y along the drilling (the throw's tangent
+        # e_t at angle a), z = x × y = −e_r; the drilling at its mid-length on the axis
+        a = b.angle
+        rows = np.array([[1.0, 0.0, 0.0], [0.0, -math.sin(a), math.cos(a)], [0.0, -math.cos(a), -math.sin(a)]])
+        axis = cut_centres[b.cuts[0]][1:]
+        centre = np.array([_section_mid(crank, fillets, b), axis[0], axis[1]])
+        hole = np.array([0.5 * z.loaded[0], 0.0, 0.0])
+        maps = np.array([load_map(rows, rows @ (cut_centres[j] - centre) + hole, z.loaded) for j in b.cuts])
+        out.append(Location(b.label, "oil-bore", z, tuple(b.cuts), maps, b.diameter, 0.5 * crank.oil_holes.diameter))
+    return out
 
 
 def _journal_centre(crank, fillets, f) -> float:

@@ -12,7 +12,6 @@ import math
 from pathlib import Path
 
 from ..description.model import Crank
-from ..design.scfset import SCFSet
 from ..excitation.campbell import zeta_text
 from ..fe.condensed import TORSION_SHARE_NOTED
 from ..lumped_model.lumped import PARTITIONS
@@ -288,13 +287,6 @@ def verdict_section(crank: Crank, outcome: VerdictOutcome | Skipped) -> list[str
 
 
 
-def _oil_bore_scf_text(scf: SCFSet) -> str:
-    """The oil-bore SCFs as a clause of the fatigue paragraph; empty without drilled sections."""
-    if not scf.oil_bore:
-        return ""
-    each = ", ".join(f"{k} bending **{b:.3f}**, torsion **{t:.3f}**" for k, (b, t) in scf.oil_bore.items())
-    return f"; at the oil-bore exits the moment about the throw's radius and the torque, SCFs {each} (peak σ₁ on the drilling)"
-
 def _damper_spec(d) -> str:
     return (f"ring {d.ring_inertia:.4g} kg m^2" + (f", stiffness {d.stiffness:.4g} N m/rad" if d.stiffness else "")
             + (f", loss factor {d.loss_factor:.3g}" if d.loss_factor else "")
@@ -308,7 +300,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     stress it started from."""
     if isinstance(outcome, Skipped):
         return ["## Verdict: fatigue of the fillets and oil bores", "", f"Not run: {outcome.reason}.", ""]
-    v, a, scf = outcome.verdict, outcome.assessment, outcome.scf
+    v, a = outcome.verdict, outcome.assessment
     mat = a.worst.material
     lines = ["## Verdict: fatigue of the fillets and oil bores", "",
              f"Computed on the **{outcome.model}**. **{v.method}** decides; {v.other} is "
@@ -361,18 +353,12 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
                      f"{'inside' if row['in_range'] else 'OUTSIDE: ' + '; '.join(row['outside'])} |")
     lines += ["", "### fetorsion's own path (`fe`)", "",
               "The condensed crank's fillet sections over the cycle (mean of the gas and inertia forces solved "
-              "statically, every vibratory order, the resonant in-plane bending included), nominal stresses × FE "
-              f"SCFs taken over the whole fillet under either sign of the load (bending: pin **{scf.bending['pin']:.3f}**, "
-              f"journal **{scf.bending['journal']:.3f}** against their own sections; torsion: pin **{scf.torsion['pin']:.3f}**, "
-              f"journal **{scf.torsion['journal']:.3f}**; {scf.source})" + _oil_bore_scf_text(scf)
-              + "; the strength with its Marin factors and Goodman's mean-stress line ([Budynas]). The crank as "
-              "described, each place at its worst speed:", "", "```", a.table(), "```", ""]
-    crit = a.worst.locations[a.governing].criteria
-    if crit:
-        lines.append(f"Cross-checks on the governing place's whole history at ζ = {v.damping_ratio:.4g}, on the "
-                     f"`fe` path's strength (f₋₁ = S_e, t₋₁ = S_e/√3): Crossland safety "
-                     f"{crit['crossland'].get('safety', float('nan')):.2f}, Findley safety "
-                     f"{crit['findley'].get('safety', float('nan')):.2f}.")
+              "statically, every vibratory order, the resonant bending included) drive the local stress recovered "
+              "at every surface node of each fillet (its throw under six unit end loads) and oil bore (a bar with "
+              "the drilling under the same six); Findley's critical plane on planes through the surface, the mean "
+              "with its sign ([Findley], [Socie]); the local strength f₋₁ = S_e · K_t/K_f ([Budynas]). The crank as "
+              "described, each place at its worst speed (σ_vM: von Mises amplitude and signed mean at the governing "
+              "node; Findley: the damage τ_a + k σ_n,max against its limit):", "", "```", a.table(), "```", ""]
     lines += [""] + [f"- {n}" for n in a.notes + v.notes] + [""]
     if outcome.stress is not None:
         lines += ["The vibratory torsional stress at the fillets that both methods start from (SCF × 16 T D / "
