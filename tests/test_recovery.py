@@ -1,4 +1,4 @@
-"""Stress recovery at the fillets and oil bores, and Findley with the sign of the mean (issue 52)."""
+"""Stress recovery at the fillets and oil bores, and Findley with the sign of the mean."""
 
 import math
 
@@ -95,7 +95,7 @@ def test_oil_bore_under_in_phase_bending_and_torsion_gives_the_plate_with_hole_p
         assert sb + st > 1.1 * peak
 
 
-@pytest.mark.fe
+@pytest.mark.slow
 def test_fillets_under_a_pure_shear_end_force_match_the_directly_solved_throw():
     """A throw loaded by a pure shear force at its front face (rear face held: another
     factorisation and the other end held) against the recovery (the unit fields of the throw held

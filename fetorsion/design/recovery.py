@@ -3,7 +3,7 @@
 A fillet's stress is not its pure-couple SCF times the cut's bending moment: a throw's sections
 carry shear forces, axial force and moments about both axes as well, and under a rod force the
 fillets' stress follows the shear as much as the moment (the pin fillet reads 0.64x and the
-journal fillet 2.19x the pure-couple prediction, issue 52). Quasi-static stress recovery, as
+journal fillet 2.19x the pure-couple prediction in an independent recovery). Quasi-static stress recovery, as
 FEMFAT and AVL EXCITE do with unit loads ([Rennert]'s local approach takes the local stress
 tensor so found):
 
