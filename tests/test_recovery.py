@@ -146,3 +146,69 @@ def test_fillets_under_a_pure_shear_end_force_match_the_directly_solved_throw():
         results[name] = (peak_rec, peak_direct)
     for name, (peak_rec, peak_direct) in results.items():
         assert peak_rec == pytest.approx(peak_direct, rel=0.10), (name, results)
+
+
+@pytest.mark.slow
+def test_a_rod_force_on_the_pin_is_recovered_at_the_fillets_it_loads():
+    """Saint-Venant, the recovery's assumption: a throw held at its front face with a 10 kN rod
+    force spread over the pin's top surface (the load where a rod puts it, not at an end face),
+    against the recovery of each fillet cut's statics (the right part's external load) through
+    the unit end loads. The peak von Mises stress of the journal fillet and the pin fillet on the
+    loaded side within 10 % (the issue's bound for a shear-loaded fillet). Measured on the plain
+    Renault 21 throw (fillet elements 1.25 mm): recovered / direct 80.6 / 80.9 and 86.1 / 83.9 MPa
+    (with its pin drilling: 99.1 / 99.6 and 124.0 / 120.0). The pin fillet on the other side
+    carries no section load and reads 5.9 MPa in the direct FE (22.7 with the drilling): the rod's
+    pressure next to it, a local effect no end load carries, printed here, stated in docs/fatigue.md."""
+    from fetorsion.design.recovery import UNIT_LOADS, dof_normals, load_map, node_stresses, recovery_throw, zone_of
+    from fetorsion.design.criterion import von_mises_plane
+    from fetorsion.design.scf import fillet_zone
+    from fetorsion.fe import assembly
+    from fetorsion.fe.eigen import factorize
+    from fetorsion.fe.rigid import RigidBody, reduction
+    from fetorsion.fe.tetmesh import TetMesh
+    from fetorsion.solid.mesh import mesh_crank
+    from fetorsion.webs.throwfe import TorsionSolution, default_mesh_size, end_load_solutions
+
+    crank = plain("renault21.toml")
+    throw = recovery_throw(crank, 0)
+    cm = mesh_crank(throw, default_mesh_size(throw), 0.5 * crank.fillets.pin, "stress")
+    mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
+    unit = end_load_solutions(mesh, throw.material, UNIT_LOADS)
+    dof_of_node, xyz = unit[0].dof_of_node, unit[0].skfem_mesh.doflocs.T
+    K = assembly.stiffness(unit[0].basis, throw.material.youngs_modulus, throw.material.poisson_ratio)
+    bodies = []
+    for face in ("front_face", "rear_face"):
+        nodes = dof_of_node[mesh.node_sets[face]]
+        bodies.append(RigidBody(face, nodes, 0.0, np.zeros((3, 3)), np.array([xyz[nodes, 0].mean(), 0, 0])))
+    red = reduction(K.shape[0], bodies, xyz)
+    Kr, n = red.reduce(K), red.n_free
+    keep = np.r_[np.arange(n), np.arange(n + 6, n + 12)]  # the front body held, the rear one free
+    j1, w1, pin = throw.journals[0], throw.webs[0], throw.pins[0]
+    R, rp = throw.engine.crank_radius, crank.fillets.pin
+    x = np.cumsum([0.0, j1.length, w1.thickness, pin.length])
+    top = (np.abs(np.hypot(xyz[:, 1] - R, xyz[:, 2]) - 0.5 * pin.diameter) < 1e-2 * pin.diameter) \
+        & (xyz[:, 0] > x[2] + rp + 1e-3) & (xyz[:, 0] < x[3] - rp - 1e-3) & (xyz[:, 1] > R + 0.25 * pin.diameter)
+    f = np.zeros(K.shape[0])
+    f[3 * np.flatnonzero(top) + 1] = -1.0e4 / top.sum()
+    q = np.zeros(Kr.shape[0])
+    q[keep] = np.asarray(factorize(Kr[keep][:, keep].tocsc(), "auto")((red.T.T @ f)[keep][:, None])).ravel()
+    direct = TorsionSolution(unit[0].skfem_mesh, unit[0].basis, red.T @ q, 0.0, len(keep), dof_of_node)
+    normals = dof_normals(mesh, dof_of_node, len(xyz))
+    forces = f.reshape(-1, 3)
+    peaks = {}
+    for name, xc, axis, side, radius, r in (("journal fillet", x[1], (0, 0), -1, 0.5 * j1.diameter, crank.fillets.journal),
+                                            ("pin fillet, loaded side", x[2], (R, 0), +1, 0.5 * pin.diameter, rp),
+                                            ("pin fillet, other side", x[3], (R, 0), -1, 0.5 * pin.diameter, rp)):
+        mask = fillet_zone(xyz, xc, side, axis, radius, r)
+        zone = zone_of(name, "fillet", unit, throw.material, mask, normals, bodies[1].centre)
+        c = np.array([xc, *axis])
+        right = xyz[:, 0] > xc  # the right part's external load is what it exerts on the left
+        cut = np.r_[forces[right].sum(axis=0), np.cross(xyz[right] - c, forces[right]).sum(axis=0)]
+        rec = np.einsum("nck,k->nc", zone.influence, load_map(np.eye(3), c, zone.loaded) @ cut)
+        sig = node_stresses(direct, throw.material, np.flatnonzero(mask & (np.linalg.norm(normals, axis=1) > 0.5)))
+        e1, e2 = zone.frames[:, 0], zone.frames[:, 1]
+        plane = np.stack([np.einsum("ni,nij,nj->n", a, sig, b) for a, b in ((e1, e1), (e2, e2), (e1, e2))], axis=1)
+        peaks[name] = (von_mises_plane(rec).max(), von_mises_plane(plane).max())
+    print({k: (a / 1e6, b / 1e6) for k, (a, b) in peaks.items()})
+    for name in ("journal fillet", "pin fillet, loaded side"):
+        assert peaks[name][0] == pytest.approx(peaks[name][1], rel=0.10), name
