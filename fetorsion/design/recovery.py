@@ -97,22 +97,12 @@ def node_stresses(sol, material, dofs: np.ndarray) -> np.ndarray:
     nodal averaging of :func:`fetorsion.design.scf.nodal_stress`, on those elements only)."""
     from skfem import Basis, ElementTetP2
 
-    from ..fe.assembly import lame
+    from .scf import element_node_stresses
 
-    m = sol.skfem_mesh
-    elem = ElementTetP2()
-    element_dofs = Basis(m, elem, intorder=1).element_dofs  # (10, E)
+    element_dofs = Basis(sol.skfem_mesh, ElementTetP2(), intorder=1).element_dofs  # (10, E)
     wanted = np.zeros(element_dofs.max() + 1, bool)
     wanted[dofs] = True
-    elements = np.flatnonzero(wanted[element_dofs].any(axis=0))
-    at_nodes = Basis(m, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)), elements=elements)
-    u = sol.u.reshape(-1, 3)
-    grad = np.stack([at_nodes.interpolate(u[:, c]).grad for c in range(3)])  # (comp, dir, E', 10)
-    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
-    lam, mu = lame(material.youngs_modulus, material.poisson_ratio)
-    sig = 2 * mu * eps + lam * np.trace(eps)[None, None] * np.eye(3)[:, :, None, None]
-    local = element_dofs[:, elements].T.ravel()  # element-major, matching sig's (E', 10)
-    flat = sig.reshape(9, -1)
+    flat, local = element_node_stresses(sol, material, np.flatnonzero(wanted[element_dofs].any(axis=0)))
     slot = np.full(wanted.size, -1)
     slot[dofs] = np.arange(len(dofs))
     keep = slot[local] >= 0

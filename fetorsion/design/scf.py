@@ -132,6 +132,24 @@ def nominal_shear(torque, diameter: float, bore: float = 0.0):
     return 16.0 * np.asarray(torque) * diameter / (math.pi * (diameter**4 - bore**4))
 
 
+def element_node_stresses(sol, material, elements=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each element's stress at its own ten nodes, from its P2 gradient there: (9, E·10) tensor
+    components (Pa, element-major) and the DOF-numbered node of each column. ``elements``: those
+    elements only (default all)."""
+    from skfem import Basis, ElementTetP2
+
+    elem = ElementTetP2()
+    # Quadrature "points" at the element's own ten nodes: the gradient there, element by element.
+    at_nodes = Basis(sol.skfem_mesh, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)),
+                     **({} if elements is None else {"elements": elements}))
+    u = sol.u.reshape(-1, 3)
+    grad = np.stack([at_nodes.interpolate(u[:, c]).grad for c in range(3)])  # (comp, dir, E, 10)
+    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
+    lam, mu = lame(material.youngs_modulus, material.poisson_ratio)
+    sig = 2 * mu * eps + lam * np.trace(eps)[None, None] * np.eye(3)[:, :, None, None]
+    return sig.reshape(9, -1), at_nodes.element_dofs.T.ravel()  # element-major, matching sig's (E, 10)
+
+
 def nodal_stress(sol, material, measure=None) -> tuple[np.ndarray, np.ndarray]:
     """Stress at every DOF-numbered node, from each element's P2 gradient at its own nodes.
 
@@ -142,19 +160,8 @@ def nodal_stress(sol, material, measure=None) -> tuple[np.ndarray, np.ndarray]:
     element-wise quantity instead of the largest shear (e.g. :func:`max_principal`), or a tuple
     of them (then a list of element-wise values, one per measure).
     """
-    from skfem import Basis, ElementTetP2
-
-    elem = ElementTetP2()
-    # Quadrature "points" at the element's own ten nodes: the gradient there, element by element.
-    at_nodes = Basis(sol.skfem_mesh, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)))
-    u = sol.u.reshape(-1, 3)
-    grad = np.stack([at_nodes.interpolate(u[:, c]).grad for c in range(3)])  # (comp, dir, E, 10)
-    eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))
-    lam, mu = lame(material.youngs_modulus, material.poisson_ratio)
-    sig = 2 * mu * eps + lam * np.trace(eps)[None, None] * np.eye(3)[:, :, None, None]
-    dofs = at_nodes.element_dofs.T.ravel()  # element-major, matching sig's (E, 10) order
-    flat = sig.reshape(9, -1)
-    n = at_nodes.N
+    flat, dofs = element_node_stresses(sol, material)
+    n = sol.skfem_mesh.doflocs.shape[1]
     total = np.stack([np.bincount(dofs, flat[k], minlength=n) for k in range(9)], axis=1)
     count = np.bincount(dofs, minlength=n)
     tensors = flat.T.reshape(-1, 3, 3)
