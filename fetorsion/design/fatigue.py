@@ -463,6 +463,18 @@ def assess_textbook(loc: LocationStress, mat: FatigueMaterial, required: float =
                              yield_safety=mat.yield_strength / smax if smax > 0 else math.inf, factors=factors)
 
 
+def with_limits(mat: FatigueMaterial, limits, required: float | None = None) -> tuple[FatigueMaterial, float | None]:
+    """The description's ``[limits]`` applied: its ``fatigue_strength_bending`` (Pa, against local
+    stresses) as the material's fatigue strength, and its ``fatigue_required_safety`` as the
+    required safety unless ``required`` is given (None when neither says)."""
+    if limits is not None and getattr(limits, "fatigue_strength_bending", 0.0) > 0:
+        mat = replace(mat, fatigue_strength=float(limits.fatigue_strength_bending),
+                      fatigue_strength_source=f"[limits] fatigue_strength_bending_pa ({limits.source})")
+    if required is None and limits is not None and getattr(limits, "fatigue_required_safety", 0.0) > 0:
+        required = float(limits.fatigue_required_safety)
+    return mat, required
+
+
 def run_fatigue(locations, material: Material | FatigueMaterial | None = None, method: str = "iacs-m53",
                 required: float | None = None, mean_stress: str = "goodman",
                 reliability: float = DEFAULT_RELIABILITY, limits=None) -> FatigueResult:
@@ -500,11 +512,7 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
         mat, defaulted = material, []
     else:
         mat, defaulted = fatigue_material(material)
-    if limits is not None and getattr(limits, "fatigue_strength_bending", 0.0) > 0:
-        mat = replace(mat, fatigue_strength=float(limits.fatigue_strength_bending),
-                      fatigue_strength_source=f"[limits] fatigue_strength_bending_pa ({limits.source})")
-    if required is None and limits is not None and getattr(limits, "fatigue_required_safety", 0.0) > 0:
-        required = float(limits.fatigue_required_safety)
+    mat, required = with_limits(mat, limits, required)
     out = []
     for loc in locations:
         if method == "iacs-m53":

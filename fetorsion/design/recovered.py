@@ -25,7 +25,7 @@ location's worst speed checks the rest: a node the screen missed joins the candi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -34,7 +34,7 @@ from .assessment import HAIGH_LOCATIONS, CrankAssessment
 from .criterion import findley_constants, findley_surface, signed_von_mises, von_mises_amplitude, von_mises_plane
 from .fatigue import (DEFAULT_RELIABILITY, FatigueAssessment, FatigueMaterial, FatigueResult, endurance_limit,
                       fatigue_material, fatigue_notch_factor, marin_reliability, marin_size, marin_surface,
-                      notch_sensitivity)
+                      notch_sensitivity, with_limits)
 
 #: The method's name in results.
 METHOD = "findley-recovered"
@@ -244,12 +244,8 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
     if not locations:
         raise FetorsionError("the recovered assessment needs at least one location")
     mat, defaulted = fatigue_material(crank.material)
-    limits = crank.limits
-    if limits is not None and getattr(limits, "fatigue_strength_bending", 0.0) > 0:
-        mat = replace(mat, fatigue_strength=float(limits.fatigue_strength_bending),
-                      fatigue_strength_source=f"[limits] fatigue_strength_bending_pa ({limits.source})")
-    if required is None:
-        required = float(getattr(limits, "fatigue_required_safety", 0.0) or 1.0)
+    mat, required = with_limits(mat, crank.limits, required)
+    required = 1.0 if required is None else required
     rpm = np.asarray(cycle.rpm)
     safety = np.empty((len(rpm), len(locations)))
     worst_locs, nodes_m = [], []

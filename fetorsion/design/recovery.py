@@ -154,9 +154,9 @@ def zone_of(name: str, kind: str, sols, material, mask: np.ndarray, normals: np.
     n = normals[dofs]
     influence = np.empty((len(dofs), 3, 6))
     residual, largest = 0.0, 0.0
+    e1, e2 = frames[:, 0], frames[:, 1]
     for j, sol in enumerate(sols):
         sig = node_stresses(sol, material, dofs)
-        e1, e2 = frames[:, 0], frames[:, 1]
         influence[:, 0, j] = np.einsum("ni,nij,nj->n", e1, sig, e1)
         influence[:, 1, j] = np.einsum("ni,nij,nj->n", e2, sig, e2)
         influence[:, 2, j] = np.einsum("ni,nij,nj->n", e1, sig, e2)
@@ -440,6 +440,7 @@ def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progres
 
     zones = crank_zones(crank, store, progress)
     angles = np.asarray(crank.engine.crank_angles, float)
+    origins = [_throw_origin(crank, fillets, i) for i in range(crank.cylinders)]  # one throw_of each
     out = []
     for k, f in enumerate(fillets):
         i = _throw_index(crank, fillets, f)
@@ -450,7 +451,7 @@ def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progres
         else:
             z = throw[0] if f.index == i else throw[3]
         R = _rotation(-angles[i])
-        c = R @ (cut_centres[k] - np.array([_throw_origin(crank, fillets, i), 0.0, 0.0]))
+        c = R @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0]))
         radius = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
         out.append(Location(f.label, z.kind, z, (k,), load_map(R, c, z.loaded)[None], f.diameter, radius))
     for b in oil_bore_sections(crank, fillets):
