@@ -212,3 +212,36 @@ def test_a_rod_force_on_the_pin_is_recovered_at_the_fillets_it_loads():
     print({k: (a / 1e6, b / 1e6) for k, (a, b) in peaks.items()})
     for name in ("journal fillet", "pin fillet, loaded side"):
         assert peaks[name][0] == pytest.approx(peaks[name][1], rel=0.10), name
+
+
+def test_stored_fields_load_back_rebuild_when_broken_and_stay_bounded(tmp_path, monkeypatch):
+    """The recovered fields are kept under their key and read back as written; a broken file of
+    ours is built again; past the bound the least recently used go first, the one just written
+    stays; no temporary is left."""
+    from fetorsion.design import recovery
+    from fetorsion.design.recovery import StressZone, stored_zones
+    from fetorsion.io import store_max_bytes
+
+    rng = np.random.default_rng(1)
+    zone = StressZone("pin fillet, web 1", "pin-fillet", rng.normal(size=(50, 3)), rng.normal(size=(50, 2, 3)),
+                      rng.normal(size=(50, 3, 6)), np.array([0.1, 0.0, 0.0]), 0.01)
+    built = []
+
+    def build():
+        built.append(1)
+        return [zone]
+
+    key = "a" * 64
+    first = stored_zones(key, build, tmp_path)[0]
+    again = stored_zones(key, build, tmp_path)[0]
+    assert len(built) == 1 and np.array_equal(again.influence, zone.influence) and again.name == zone.name
+    assert again.normal_residual == zone.normal_residual and first is zone
+    path = tmp_path / "recovery" / f"{key}.npz"
+    path.write_bytes(b"not a zip")
+    stored_zones(key, build, tmp_path)
+    assert len(built) == 2
+    size = path.stat().st_size
+    monkeypatch.setattr(recovery, "BOUND_SHARE", 1.5 * size / store_max_bytes())
+    stored_zones("b" * 64, build, tmp_path)
+    names = sorted(p.name for p in (tmp_path / "recovery").iterdir())
+    assert names == [f"{'b' * 64}.npz"]

@@ -256,7 +256,7 @@ def _key(payload: dict) -> str:
     from ..io import code_hash
 
     text = json.dumps({**payload, "model": MODEL_VERSION, "code": code_hash()}, sort_keys=True, default=repr)
-    return hashlib.sha256(text.encode()).hexdigest()[:24]
+    return hashlib.sha256(text.encode()).hexdigest()
 
 
 def _material_key(material) -> dict:
@@ -282,19 +282,15 @@ def _folder(store=None) -> Path:
 
 
 def _save(zones: list[StressZone], path: Path) -> None:
-    path.parent.mkdir(parents=True, exist_ok=True)
+    from ..io import atomic_output
+
     data = {}
     for i, z in enumerate(zones):
         data.update({f"{i}_xyz": z.xyz, f"{i}_frames": z.frames, f"{i}_influence": z.influence,
                      f"{i}_loaded": z.loaded, f"{i}_meta": np.array(json.dumps([z.name, z.kind, z.normal_residual]))})
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
+    with atomic_output(path) as tmp:
         with open(tmp, "wb") as fh:
             np.savez(fh, count=np.array(len(zones)), **data)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
 
 
 def _load(path: Path) -> list[StressZone] | None:
@@ -306,21 +302,32 @@ def _load(path: Path) -> list[StressZone] | None:
                 out.append(StressZone(name, kind, d[f"{i}_xyz"], d[f"{i}_frames"], d[f"{i}_influence"],
                                       d[f"{i}_loaded"], float(residual)))
             return out
-    except (OSError, ValueError, KeyError):
+    except Exception:  # noqa: BLE001 - any unreadable file of ours is built again, never trusted
         return None
 
 
+#: The recovered fields' share of the store's bound (the condensed cranks have another quarter).
+BOUND_SHARE = 0.25
+
+
 def stored_zones(key: str, build, store=None) -> list[StressZone]:
-    """The zones stored under ``key``, else ``build()``'s, stored (atomically) for the next run."""
+    """The zones stored under ``key``, else ``build()``'s, stored (atomically) for the next run;
+    the least recently used fields go first once the folder passes :data:`BOUND_SHARE` of the
+    store's bound (:func:`fetorsion.fe.store.trim`)."""
+    from ..fe.store import trim
+    from ..io import store_max_bytes
+
     path = _folder(store) / f"{key}.npz"
     if path.exists():
         zones = _load(path)
         if zones is not None:
+            os.utime(path)  # least recently used goes first
             return zones
-        path.unlink(missing_ok=True)  # unreadable: built again
+        path.unlink(missing_ok=True)  # ours, unreadable: built again
     zones = build()
     try:
         _save(zones, path)
+        trim(path.parent, int(BOUND_SHARE * store_max_bytes()), keep=path)
     except OSError:
         pass  # a store that cannot be written is only a lost speed-up
     return zones
