@@ -218,8 +218,8 @@ def test_stored_fields_load_back_rebuild_when_broken_and_stay_bounded(tmp_path, 
     """The recovered fields are kept under their key and read back as written; a broken file of
     ours is built again; past the bound the least recently used go first, the one just written
     stays; no temporary is left."""
-    from fetorsion.design import recovery
     from fetorsion.design.recovery import StressZone, stored_zones
+    from fetorsion.fe import store
     from fetorsion.io import store_max_bytes
 
     rng = np.random.default_rng(1)
@@ -241,7 +241,7 @@ def test_stored_fields_load_back_rebuild_when_broken_and_stay_bounded(tmp_path, 
     stored_zones(key, build, tmp_path)
     assert len(built) == 2
     size = path.stat().st_size
-    monkeypatch.setattr(recovery, "BOUND_SHARE", 1.5 * size / store_max_bytes())
+    monkeypatch.setattr(store, "BOUND_SHARE", 1.5 * size / store_max_bytes())
     stored_zones("b" * 64, build, tmp_path)
     names = sorted(p.name for p in (tmp_path / "recovery").iterdir())
     assert names == [f"{'b' * 64}.npz"]

@@ -306,16 +306,11 @@ def _load(path: Path) -> list[StressZone] | None:
         return None
 
 
-#: The recovered fields' share of the store's bound (the condensed cranks have another quarter).
-BOUND_SHARE = 0.25
-
-
 def stored_zones(key: str, build, store=None) -> list[StressZone]:
     """The zones stored under ``key``, else ``build()``'s, stored (atomically) for the next run;
-    the least recently used fields go first once the folder passes :data:`BOUND_SHARE` of the
-    store's bound (:func:`fetorsion.fe.store.trim`)."""
+    the least recently used fields go first once the folder passes the share of the store's bound
+    the condensed cranks have (:func:`fetorsion.fe.store.trim`, a folder of its own)."""
     from ..fe.store import trim
-    from ..io import store_max_bytes
 
     path = _folder(store) / f"{key}.npz"
     if path.exists():
@@ -327,7 +322,7 @@ def stored_zones(key: str, build, store=None) -> list[StressZone]:
     zones = build()
     try:
         _save(zones, path)
-        trim(path.parent, int(BOUND_SHARE * store_max_bytes()), keep=path)
+        trim(path.parent, keep=path)
     except OSError:
         pass  # a store that cannot be written is only a lost speed-up
     return zones
