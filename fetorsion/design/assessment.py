@@ -183,20 +183,29 @@ class CrankAssessment:
         return ax
 
     def plot(self, ax=None):
-        """Safety of every fillet against speed, the required value dashed. Returns the Axes."""
+        """Safety of every place against speed: the :data:`HAIGH_LOCATIONS` least safe in colour and
+        named, the others thin grey; the required value dashed; the axis up to three times the
+        least safety (a place far above cannot govern). Returns the Axes."""
         import matplotlib.pyplot as plt
 
         if ax is None:
             _, ax = plt.subplots(figsize=(7, 4))
-        for j, lb in enumerate(self.labels):
-            ax.plot(self.rpm, self.safety[:, j], lw=1.2 if j == self.governing else 0.7, label=lb)
-        ax.axhline(self.worst.locations[0].required, color="k", ls="--", lw=0.8, label="required")
+        least = self.safety.min(axis=0)
+        worst = [int(j) for j in np.argsort(least)[:HAIGH_LOCATIONS]]
+        others = [j for j in range(len(self.labels)) if j not in worst]
+        for j in others:
+            ax.plot(self.rpm, self.safety[:, j], lw=0.5, color="0.75", label="the other places" if j == others[0] else None)
+        for j in worst:
+            ax.plot(self.rpm, self.safety[:, j], lw=1.4 if j == self.governing else 1.0,
+                    label=f"{self.labels[j]} (least {least[j]:.2f})")
+        required = self.worst.locations[0].required
+        ax.axhline(required, color="k", ls="--", lw=0.8, label=f"required {required:.2f}")
+        ax.set_ylim(0, max(3.0 * least.min(), 1.5 * required))
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("fatigue safety factor [-]")
-        ax.set_title(f"{self.name}: fatigue of fillets and oil bores ({self.method})", fontsize=10)
-        ax.legend(fontsize=6, ncol=2)
+        ax.set_title(f"{self.name}\nfatigue of fillets and oil bores ({self.method})", fontsize=9)
+        ax.legend(fontsize=7)
         return ax
-
 
 #: run_assessment's strength criteria, each applied to fetorsion's own loads and FE SCFs:
 #: ``textbook`` (the ``fe`` path's) and ``m53-criterion`` (M53's σ_V, σ_DW and Q on those loads:
