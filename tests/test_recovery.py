@@ -245,3 +245,26 @@ def test_stored_fields_load_back_rebuild_when_broken_and_stay_bounded(tmp_path, 
     stored_zones("b" * 64, build, tmp_path)
     names = sorted(p.name for p in (tmp_path / "recovery").iterdir())
     assert names == [f"{'b' * 64}.npz"]
+
+
+def test_the_determinate_throws_cut_is_m53s_triangular_moment():
+    """A radial force on the simply supported throw: at each web's centre the cut carries the
+    shear and the moment of [KR-M53] §2.1's triangular diagram (m53.throw_loads: M_BRF = F (L3 −
+    L2)/L3 · L1 at the front web, F L2/L3 · L1 at the rear), to round-off; the force's own torque
+    about the axis is left to the vibration calculation."""
+    from fetorsion.design.m53 import throw_loads, throw_spans
+    from fetorsion.design.recovered import determinate_cut
+
+    crank = plain("renault21.toml")
+    spans = throw_spans(crank, 0)
+    R, F = crank.engine.crank_radius, 1.0e4
+    ref = throw_loads(spans, np.array([F]), np.array([0.0]))
+    pin = np.array([spans.L2, R, 0.0])
+    front = determinate_cut(np.array([0.0, F, 0.0]), pin, np.array([spans.L1[0], 0, 0]), spans.L3)
+    rear = determinate_cut(np.array([0.0, F, 0.0]), pin, np.array([spans.L3 - spans.L1[1], 0, 0]), spans.L3)
+    assert abs(front[5]) == pytest.approx(ref["M_BRF"][0, 0], rel=1e-12)
+    assert abs(rear[5]) == pytest.approx(ref["M_BRF"][1, 0], rel=1e-12)
+    assert abs(front[1]) == pytest.approx(ref["Q_RF"][0, 0], rel=1e-12)
+    tangential = determinate_cut(np.array([0.0, 0.0, F]), pin, pin + [1e-9, 0, 0], spans.L3)
+    assert tangential[3] == 0.0
+    assert abs(tangential[4]) == pytest.approx(throw_loads(spans, np.array([0.0]), np.array([F]))["M_BTO"][0], rel=1e-6)

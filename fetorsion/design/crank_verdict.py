@@ -184,6 +184,9 @@ class CrankVerdict:
     damper: DamperResult | None = None  # the recommended damper's design
     scf_m53: dict[str, dict[str, float | bool | str | list | None]] = field(default_factory=dict)
     notes: list = field(default_factory=list)
+    #: The ``fe`` path's σ_V on M53's own loads beside M53's, per place
+    #: (:func:`fetorsion.design.recovered.same_load`): the recovery against the rule's SCFs.
+    same_load: dict[str, dict[str, float]] = field(default_factory=dict)
 
     @property
     def other(self) -> str:
@@ -221,7 +224,7 @@ class CrankVerdict:
                 "damping_assumed": self.damping_assumed, "flip": asdict(self.flip), "band": list(self.band),
                 "configurations": [c.to_dict() for c in self.configs], "lines": self.lines(),
                 "damper": None if self.damper is None else self.damper.to_dict(), "scf_m53": self.scf_m53,
-                "notes": list(self.notes)}
+                "notes": list(self.notes), "same_load": self.same_load}
 
 
 @dataclass(frozen=True)
@@ -281,7 +284,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     from ..response.forced import misfire_harmonics, solve_response
     from .m53 import m53_geometry, scf_comparison
     from .recovered import run_recovered_assessment
-    from .recovery import crank_locations
+    from .recovered import same_load
+    from .recovery import crank_locations, crank_zones
     from .verdict import allowed_power
 
     if method not in FATIGUE_METHODS:
@@ -289,7 +293,8 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     say = progress or (lambda m: None)
     ex = crank.excitation
     mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
-    locations = crank_locations(crank, fillets, cc.cut_centres, progress=say) if fe_path else None
+    zones = crank_zones(crank, progress=say) if fe_path else None
+    locations = crank_locations(crank, fillets, cc.cut_centres, zones=zones) if fe_path else None
 
     def m53_of(s, dampers, response=None):
         response = solve_response(s, dampers) if response is None else response
@@ -369,5 +374,6 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     assumed = not given
     source = given or "assumed: the description states no source"
     comparison = scf_comparison(m53_geometry(crank), scf)
+    own = configs[1 if crank.dampers else 0]
     return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
-                        comparison, notes)
+                        comparison, notes, same_load(crank, own.m53, zones) if fe_path else {})

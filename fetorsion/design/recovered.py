@@ -289,3 +289,102 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
                                rpm[worst_speed], "stress recovery (six unit end loads)", notes,
                                np.array([loc.diameter for loc in locations]),
                                tuple(loc.cuts[0] for loc in locations), nodes_m)
+
+
+def determinate_cut(force: np.ndarray, at: np.ndarray, cut: np.ndarray, span: float) -> np.ndarray:
+    """The resultant (F, M about ``cut``) that the right part exerts on the left at the plane
+    x = cut[0] of a throw simply supported at its journal centres x = 0 and x = ``span`` (on its
+    axis) under a force ``force`` (N, across the axis) at ``at`` (throw frame, m): [KR-M53] §2.1's
+    statically determinate throw, the left part's external loads reversed. The force's torque
+    about the axis is left out (M53 takes the torsion from the vibration calculation)."""
+    force, at = np.asarray(force, float), np.asarray(at, float)
+    r_rear = -force * at[0] / span  # the moment balance about the front support
+    loads = [(np.zeros(3), -force - r_rear), (np.array([span, 0.0, 0.0]), r_rear), (at, force)]
+    F, M = np.zeros(3), np.zeros(3)
+    for x, f in loads:
+        if x[0] < cut[0]:
+            F -= f
+            M -= np.cross(x - cut, f)
+    M[0] = 0.0
+    return np.r_[F, M]
+
+
+def same_load(crank, m53, zones: dict) -> dict:
+    """The ``fe`` path's σ_V on M53's own loads beside M53's, for the pin fillet, the journal
+    fillet and the pin's oil bore of the first throw variant: the rod force's alternating part
+    at the rated speed on the statically determinate throw (radial force at the fillets; at the
+    oil bore the tangential force's bending, ψ = 0, as the rule), the largest alternating torque
+    M_TN of the vibration calculation, combined in phase as the rule does, the largest von Mises
+    stress of the recovered local amplitude over the zone's nodes (either relative sign of torque
+    and bending). No mean, no σ_add on either side (σ_V without it).
+
+    Parameters
+    ----------
+    crank : Crank
+        The description (its rod forces at ``m53.rated_rpm``).
+    m53 : M53Result
+        :func:`fetorsion.design.m53.run_m53_crank` of the configuration.
+    zones : dict
+        :func:`fetorsion.design.recovery.crank_zones` of the crank.
+
+    Returns ``{place: {"m53_sigma_v_pa", "fe_sigma_v_pa", "ratio"}}`` (ratio fe/M53).
+    """
+    from ..excitation.torque import cylinder_pin_forces
+    from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
+    from .m53 import alternating, throw_spans
+    from .recovery import load_map
+
+    force = cylinder_pin_forces(crank, m53.rated_rpm)
+    fr, ft = float(alternating(force["radial"])), float(alternating(force["tangential"]))
+    spans = throw_spans(crank, 0)
+    R = crank.engine.crank_radius
+    pin_at = np.array([spans.L2, R, 0.0])
+    name = next(iter(m53.nominal))
+    nom = m53.nominal[name]
+    throw = zones[("throw", 0)]
+
+    def peak(zone, cut_load, cut_torque, centre):
+        A = load_map(np.eye(3), centre, zone.loaded)
+        b = np.einsum("nck,k->nc", zone.influence, A @ cut_load)
+        t = np.einsum("nck,k->nc", zone.influence, A @ np.r_[0, 0, 0, cut_torque, 0, 0])
+        return float(max(von_mises_plane(b + t).max(), von_mises_plane(b - t).max()))
+
+    out = {}
+    places = {loc.kind: loc for loc in m53.locations if loc.name.startswith(name)}
+    cut_x = {"journal-fillet": (throw[0], throw[3]), "pin-fillet": (throw[1], throw[2])}
+    j1, w1, pin = crank.journals[0], crank.webs[0], crank.pins[0]
+    faces = np.cumsum([0.5 * j1.length, w1.thickness, pin.length, crank.webs[1].thickness])
+    centres = {"journal-fillet": (np.array([faces[0], 0, 0]), np.array([faces[3], 0, 0])),
+               "pin-fillet": (np.array([faces[1], R, 0]), np.array([faces[2], R, 0]))}
+    for kind in ("pin-fillet", "journal-fillet"):
+        torque = nom["M_TN_pin_nm"] if kind == "pin-fillet" else nom["M_TN_journal_nm"]
+        fe = max(peak(z, determinate_cut(np.array([0.0, fr, 0.0]), pin_at, c, spans.L3), torque, c)
+                 for z, c in zip(cut_x[kind], centres[kind]))
+        loc = places[kind]
+        out[kind] = {"m53_sigma_v_pa": float(m53_equivalent_fillet(loc.bending, loc.torsion, 0.0)),
+                     "fe_sigma_v_pa": fe}
+    if "oil-bore" in places and ("bar", "pin") in zones:
+        bar = zones[("bar", "pin")]
+        # the pin's centre section: the mean of its two sides (the force acts there)
+        eps = 1e-9
+        cut = 0.5 * sum(determinate_cut(np.array([0.0, 0.0, ft]), pin_at, pin_at + d, spans.L3)
+                        for d in (np.array([-eps, 0, 0]), np.array([eps, 0, 0])))
+        rows = np.array([[1.0, 0, 0], [0, 0, 1.0], [0, -1.0, 0]])  # crank angle 0: y = e_t, z = −e_r
+        hole = np.array([0.5 * bar.loaded[0], 0.0, 0.0])
+        A = load_map(rows, hole, bar.loaded)
+        b = np.einsum("nck,k->nc", bar.influence, A @ cut)
+        t = np.einsum("nck,k->nc", bar.influence, A @ np.r_[0, 0, 0, nom["M_TN_pin_nm"], 0, 0])
+        loc = places["oil-bore"]
+        out["oil-bore"] = {"m53_sigma_v_pa": float(m53_equivalent_oil_bore(loc.bending, loc.torsion)),
+                           "fe_sigma_v_pa": float(max(_principal_plane(b + t).max(), _principal_plane(b - t).max()))}
+    for v in out.values():
+        v["ratio"] = v["fe_sigma_v_pa"] / v["m53_sigma_v_pa"]
+    return out
+
+
+def _principal_plane(s: np.ndarray) -> np.ndarray:
+    """The largest principal stress of either sign |σ|₁ of plane stresses (..., 3): at a drilling's
+    wall the rule's σ_V is the peak principal stress (plate with a hole)."""
+    c = 0.5 * (s[..., 0] + s[..., 1])
+    r = np.sqrt(0.25 * (s[..., 0] - s[..., 1]) ** 2 + s[..., 2] ** 2)
+    return np.abs(c) + r

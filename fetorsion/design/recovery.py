@@ -434,13 +434,15 @@ def zones_stored(crank, store=None) -> bool:
     return all((_folder(store) / f"{k}.npz").exists() for k in keys)
 
 
-def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progress=None) -> list[Location]:
+def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progress=None,
+                    zones: dict | None = None) -> list[Location]:
     """Every fillet of ``fillets`` (the load cycle's cuts, about ``cut_centres`` (cuts, 3), m) as a
     :class:`Location` in its throw's zone, then every drilled pin and journal in its bar's
-    (:func:`fetorsion.design.assessment.oil_bore_sections`), on :func:`crank_zones`."""
+    (:func:`fetorsion.design.assessment.oil_bore_sections`), on ``zones`` (default
+    :func:`crank_zones`)."""
     from .assessment import oil_bore_sections
 
-    zones = crank_zones(crank, store, progress)
+    zones = crank_zones(crank, store, progress) if zones is None else zones
     angles = np.asarray(crank.engine.crank_angles, float)
     origins = [_throw_origin(crank, fillets, i) for i in range(crank.cylinders)]  # one throw_of each
     out = []
