@@ -359,6 +359,12 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
               "with its sign ([Findley], [Socie]); the local strength f₋₁ = S_e · K_t/K_f ([Budynas]). The crank as "
               "described, each place at its worst speed (σ_vM: von Mises amplitude and signed mean at the governing "
               "node; Findley: the damage τ_a + k σ_n,max against its limit):", "", "```", a.table(), "```", ""]
+    if v.same_load:
+        lines += ["The recovery on M53's own loads (the statically determinate throw at the rated speed, M_TN in "
+                  "phase, no mean, no σ_add): σ_V of the `fe` path against the rule's, "
+                  + "; ".join(f"{k}: {x['fe_sigma_v_pa'] / 1e6:.1f} against {x['m53_sigma_v_pa'] / 1e6:.1f} MPa "
+                              f"({100 * (x['ratio'] - 1):+.1f} %)" for k, x in v.same_load.items())
+                  + ". What is left of the two methods' difference is load, strength and mean, not the stress at the notch.", ""]
     lines += [""] + [f"- {n}" for n in a.notes + v.notes] + [""]
     if outcome.stress is not None:
         lines += ["The vibratory torsional stress at the fillets that both methods start from (SCF × 16 T D / "
