@@ -284,7 +284,7 @@ def test_the_verdict_fails_a_described_damper_over_its_heat_rating(tmp_path):
     heat = float(response.damper_power_w.sum(axis=(1, 2)).max())
     assert m53.passes and heat > 0
     for rating, passes in ((0.5 * heat, False), (2.0 * heat, True)):
-        config = VerdictConfig("with the description's damper(s)", (damper,), m53, damper_power_w=heat,
+        config = VerdictConfig("with the description's damper(s)", (damper,), {"iacs-m53": m53}, damper_power_w=heat,
                                allowed_power_w=rating, as_described=True)
         verdict = CrankVerdict(crank.name, "iacs-m53", [config], 0.02, "assumed", True, DampingFlip(None, "-"), [])
         assert verdict.passes is passes

@@ -414,7 +414,8 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     the condensed crank in its bearings at the description's damping; the method of
     ``options.fatigue_method`` (else the description's ``[limits] fatigue_method``, else
     ``iacs-m53``) decides (:func:`fetorsion.design.crank_verdict.run_crank_verdict`)."""
-    from ..design.crank_verdict import DEFAULT_FATIGUE_METHOD, run_crank_verdict
+    from ..design.crank_verdict import run_crank_verdict
+    from ..design.methods import described_method
     from ..design.stress import fillet_stress
 
     crank = ctx.crank
@@ -428,8 +429,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     missing = scf.missing_bending()
     if missing:
         return Skipped(f"no {', '.join(missing)} SCF in {scf.source or 'the SCFs'}")
-    method = (ctx.options.fatigue_method or getattr(crank.limits, "fatigue_method", "")
-              or DEFAULT_FATIGUE_METHOD)
+    method = described_method(crank, ctx.options.fatigue_method)
     cc, fillets, setup = ctx.built["condensed"], ctx.fillets(), ctx.engine_setup()
     verdict = run_crank_verdict(crank, cc, setup, fillets, scf, method,
                                 mu=ctx.options.inertia_ratio, progress=_progress)
@@ -675,6 +675,10 @@ def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force
     out = Path(out)
     check_report_folder(out, "out", force=force, inputs=[path])
     crank = load(path)  # every input rule is checked here, before any work or any file
+    if isinstance(crank, Crank):
+        from ..design.methods import described_method
+
+        described_method(crank, options.fatigue_method)  # the fatigue method against the registry
     network = None
     if isinstance(crank, Network) and any(c.condensed for c in crank.cranks):
         # a driveline on the condensed crank: the crank's own report, its engine model in that driveline

@@ -10,6 +10,7 @@ from .options import MM
 from ..description.files import load
 from ..description.model import Chain, Network
 from ..description.plausibility import plausibility_warnings
+from ..design.methods import described_method
 from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 
@@ -34,6 +35,7 @@ def load_description(path: str):
     """Read a description; print a warning line for each implausible dimension."""
     model = load(path)
     if not isinstance(model, (Chain, Network)):
+        described_method(model)  # [limits] fatigue_method against the registry, before any work
         for line in plausibility_warnings(model):
             print(f"fetorsion: warning: {path}: {line}", file=sys.stderr)
     return model

@@ -12,6 +12,7 @@ from ..errors import FetorsionError
 from ..io import check_report_folder
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE, LUMPED17
 from .common import SUPPORT_CHOICES, check_mesh_size, load_description
+from ..design.methods import FATIGUE_METHODS
 from .measured import add_measured_options
 
 
@@ -105,7 +106,7 @@ def add_parser(sub) -> None:
                          "less one, at least 1)")
     up.add_argument("--inertia-ratio", type=real(0.0, 2.0), default=DEFAULT_INERTIA_RATIO, metavar="MU",
                     help="the verdict's damper designs: ring inertia ratio, 0 < MU < 2 (default %(default)s)")
-    up.add_argument("--fatigue-method", choices=("iacs-m53", "fe"),
+    up.add_argument("--fatigue-method", choices=tuple(FATIGUE_METHODS),
                     help="the method that decides a crank's fatigue verdict: IACS UR M53 as written (default, or "
                          "the description's [limits] fatigue_method) or fetorsion's own FE path; the report shows "
                          "both")

@@ -267,6 +267,12 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
     Field("modal_damping_source", "where the damping band comes from", "required with `modal_damping_band`"),
     Field("modal_damping_ratio_source", "where `modal_damping_ratio` comes from (a measurement, a published "
           "table); without it the verdict says its damping is assumed", "text"),
+    Field("bending_damping_ratio", "ζ of the condensed crank's bending modes in its bearings (each mode "
+          "takes ζ_t s + ζ_b (1 − s), s its torsion share of kinetic energy); without it every mode takes "
+          "`modal_damping_ratio`, and the report gives the `fe` fatigue path at ζ_b 0.02 and 0.10 unless "
+          "an oil film in `[bearings]` damps the bending", "0 < ζ_b < 1"),
+    Field("bending_damping_ratio_source", "where `bending_damping_ratio` comes from",
+          "required with `bending_damping_ratio`"),
 ))
 
 DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain files. A damper's ring is one more "

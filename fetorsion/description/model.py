@@ -204,6 +204,10 @@ class Excitation:
     #: Where ``modal_damping_ratio`` comes from ("": not stated, the verdict then says its damping
     #: is assumed).
     modal_damping_ratio_source: str = ""
+    #: ζ of the condensed crank's bending (None: the torsional ``modal_damping_ratio`` on every
+    #: mode, the bending's damping then assumed unless an oil film gives it) and its source.
+    bending_damping_ratio: float | None = None
+    bending_damping_ratio_source: str = ""
 
     @property
     def checked_range(self) -> tuple[float, float]:

@@ -180,9 +180,6 @@ FATIGUE_LIMIT_KEYS = ("fatigue_strength_bending_pa", "fatigue_required_safety", 
 SHEAR_LIMIT_KEYS = ("continuous_shear_pa", "fatigue_strength_shear_pa", "safety_factor", "transient_shear_pa")
 
 
-FATIGUE_METHOD_NAMES = ("iacs-m53", "fe")
-
-
 def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     """The ``[limits]`` table. A chain or network file (``torque_only``): the permissible
     vibratory section torque for continuous running (``continuous_torque_nm``) and passing through
@@ -219,9 +216,9 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
                                                "(and yield_strength_pa), or the crank's own as [limits] "
                                                "fatigue_strength_bending_pa, the margin as fatigue_required_safety"))
         t.used.update(old)
+    # the name is checked against the fatigue methods' registry (fetorsion.design.methods, a later
+    # stage) when a command loads the description or a run starts
     method = t.text("fatigue_method", "")
-    if method and method not in FATIGUE_METHOD_NAMES:
-        t.problems.append(Problem(f"{t.path}.fatigue_method", method, f"must be one of {', '.join(FATIGUE_METHOD_NAMES)}"))
     lim = Limits(source=source, fatigue_method=method,
                  fatigue_strength_bending=t.number("fatigue_strength_bending_pa", 0.0, nonnegative=True),
                  fatigue_required_safety=t.number("fatigue_required_safety", 0.0, nonnegative=True),
@@ -261,7 +258,18 @@ def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_
     if "modal_damping_band" in t.data and not source.strip():
         t.problems.append(Problem(f"{t.path}.modal_damping_source", source,
                                   "is required with modal_damping_band: say where the band comes from"))
-    common = dict(reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
+    bending = t.number("bending_damping_ratio", 0.0, positive=True, below=1.0) if "bending_damping_ratio" in t.data \
+        else None
+    bending_source = t.text("bending_damping_ratio_source", "").strip()
+    if bending is not None and not bending_source:
+        t.problems.append(Problem(f"{t.path}.bending_damping_ratio_source", bending_source,
+                                  "is required with bending_damping_ratio: say where it comes from (a measurement, "
+                                  "a published value)"))
+    elif bending is None and bending_source:
+        t.problems.append(Problem(f"{t.path}.bending_damping_ratio_source", bending_source,
+                                  "names the source of a bending_damping_ratio the table does not give"))
+    common = dict(bending_damping_ratio=bending, bending_damping_ratio_source=bending_source,
+                  reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
                   damping_band=(float(band[0]), float(band[1])),
                   damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE,
                   modal_damping_ratio_source=t.text("modal_damping_ratio_source", "").strip())

@@ -31,21 +31,16 @@ from .scfset import SCFSet
 from .dampers import DamperResult
 from .m53 import M53Result, polar_modulus, run_m53_crank
 
-FATIGUE_METHODS = ("iacs-m53", "fe")
-DEFAULT_FATIGUE_METHOD = "iacs-m53"
+from .methods import DEFAULT_FATIGUE_METHOD, FATIGUE_METHODS, ConfigLoads, fatigue_method, fillet_torque_amplitude  # noqa: F401
 #: The places within this factor of the governing safety are the ones the damping searches of the
 #: ``fe`` path read.
 NEAR_GOVERNING = 1.5
 #: The damping ratios the flip search brackets.
 FLIP_BRACKET = (1e-4, 0.3)
-
-
-def fillet_torque_amplitude(setup, response, fillets) -> np.ndarray:
-    """(speeds, fillets): the alternating torque (half peak-to-peak, N·m) each fillet's section
-    carries in ``response`` (a :func:`~fetorsion.response.forced.solve_response` of ``setup``)."""
-    from .stress import fillet_sections
-
-    return np.asarray(response.section_torque_nm)[:, fillet_sections(fillets, setup)]
+#: The bending damping ratios the ``fe`` path is also given at where the bending's is assumed:
+#: the torsional default and five times it, a bracket (not a source) for an undamped-looking
+#: crank in rigid bearings against one whose film and block damp its bending well.
+BENDING_SENSITIVITY = (0.02, 0.10)
 
 
 def m53_utilisation(result: M53Result, fillets, setup):
@@ -129,43 +124,48 @@ class VerdictConfig:
 
     name: str
     dampers: tuple
-    m53: M53Result
-    fe: object = None  # CrankAssessment, or None where the fe path did not run
+    #: Each method's assessment by its name in :data:`FATIGUE_METHODS` (``iacs-m53`` always).
+    results: dict[str, object]
     misfire: int | None = None  # 0-based cylinder
     damper_power_w: float = 0.0
     allowed_power_w: float = 0.0
     #: The crank as described (its own dampers, or none): the configurations the verdict is on.
     as_described: bool = False
+    #: Per fillet, the vibratory bending against the determinate throw's
+    #: (:func:`fetorsion.design.recovered.vibratory_bending`; as-described configurations).
+    bending: list = field(default_factory=list)
+    #: The two methods term by term (:func:`fetorsion.design.bridge.method_bridge`); {} without the fe path.
+    bridge: dict = field(default_factory=dict)
 
     @property
     def heat_ok(self) -> bool:
         """The dampers' heat within their ratings (True where they are not rated, or none)."""
         return not self.allowed_power_w or self.damper_power_w <= self.allowed_power_w
 
+    def result(self, method: str):
+        """The assessment of ``method`` (a name of :data:`FATIGUE_METHODS`), None where it did not run."""
+        return self.results.get(method)
+
+    @property
+    def m53(self) -> M53Result:
+        return self.results["iacs-m53"]
+
+    @property
+    def fe(self):
+        """The ``fe`` path's :class:`~fetorsion.design.recovered.RecoveredAssessment`, None where it did not run."""
+        return self.results.get("fe")
+
     def answer(self, method: str) -> dict:
-        """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method``."""
-        if method == "iacs-m53":
-            g = self.m53.governing
-            return {"safety": g.safety, "required": g.required, "location": g.name,
-                    "where": g.torque_section, "rpm": g.torque_rpm, "passes": self.m53.passes,
-                    "yielding": [a.name for a in self.m53.locations if a.yielding]}
-        if self.fe is None:
-            return {}
-        a = self.fe
-        j = a.governing
-        loc = a.worst.locations[j]
-        yielding = [a.labels[k] for k, x in enumerate(a.worst.locations) if x.yield_safety is not None
-                    and x.yield_safety < 1.0]
-        return {"safety": float(a.safety[:, j].min()), "required": loc.required, "location": a.labels[j],
-                "where": a.labels[j], "rpm": float(a.worst_rpm[j]), "yielding": yielding,
-                "passes": bool(a.safety.min() >= loc.required and not yielding)}
+        """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method`` ({} where it did not run)."""
+        r = self.result(method)
+        return {} if r is None else fatigue_method(method).answer(r)
 
     def to_dict(self) -> dict:
         return {"name": self.name, "dampers": [d.name for d in self.dampers], "as_described": self.as_described,
                 "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
                 "iacs-m53": {**self.answer("iacs-m53"), "result": self.m53.to_dict()},
                 "fe": self.answer("fe"), "damper_power_w": self.damper_power_w,
-                "damper_allowed_power_w": self.allowed_power_w}
+                "damper_allowed_power_w": self.allowed_power_w, "bending": list(self.bending)}
 
 
 @dataclass
@@ -187,9 +187,18 @@ class CrankVerdict:
     #: The ``fe`` path's σ_V on M53's own loads beside M53's, per place
     #: (:func:`fetorsion.design.recovered.same_load`): the recovery against the rule's SCFs.
     same_load: dict[str, dict[str, float]] = field(default_factory=dict)
+    #: The bending damping (``ratio``, ``source``, ``assumed``) and, where it is assumed, the
+    #: ``sensitivity``: both methods' governing safeties at :data:`BENDING_SENSITIVITY`.
+    bending: dict[str, float | str | bool | list] = field(default_factory=dict)
+
+    def bending_flags(self) -> list[tuple[str, dict]]:
+        """(configuration, fillet) where the vibratory bending is over the flag's multiple of the
+        determinate throw's."""
+        return [(c.name, b) for c in self.configs for b in c.bending if b["flag"]]
 
     @property
     def other(self) -> str:
+        """The method shown beside the deciding one (the registry's other)."""
         return [m for m in FATIGUE_METHODS if m != self.method][0]
 
     @property
@@ -224,7 +233,8 @@ class CrankVerdict:
                 "damping_assumed": self.damping_assumed, "flip": asdict(self.flip), "band": list(self.band),
                 "configurations": [c.to_dict() for c in self.configs], "lines": self.lines(),
                 "damper": None if self.damper is None else self.damper.to_dict(), "scf_m53": self.scf_m53,
-                "notes": list(self.notes), "same_load": self.same_load}
+                "notes": list(self.notes), "same_load": self.same_load, "bending": self.bending,
+                "bridge": [{"configuration": c.name, **c.bridge} for c in self.configs if c.bridge]}
 
 
 @dataclass(frozen=True)
@@ -283,35 +293,43 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     from ..response.cycle import mean_cut_loads, run_load_cycle
     from ..response.forced import misfire_harmonics, solve_response
     from .m53 import m53_geometry, scf_comparison
-    from .recovered import run_recovered_assessment
-    from .recovered import same_load
+    from ..response.coupled import bending_damping
+    from .bridge import method_bridge
+    from .recovered import run_recovered_assessment, same_load, vibratory_bending
     from .recovery import crank_locations, crank_zones
     from .verdict import allowed_power
 
-    if method not in FATIGUE_METHODS:
-        raise FetorsionError(f"fatigue method must be one of {', '.join(FATIGUE_METHODS)}, got {method!r}")
+    fatigue_method(method, "the fatigue method")
     say = progress or (lambda m: None)
     ex = crank.excitation
     mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
     zones = crank_zones(crank, progress=say) if fe_path else None
     locations = crank_locations(crank, fillets, cc.cut_centres, zones=zones) if fe_path else None
 
-    def m53_of(s, dampers, response=None):
-        response = solve_response(s, dampers) if response is None else response
-        return run_m53_crank(crank, fillets, fillet_torque_amplitude(s, response, fillets), s.rpm, fe_scf=scf)
+    methods = [m for m in FATIGUE_METHODS.values() if fe_path or not m.needs_recovery]
 
-    def fe_of(s, dampers, places=None, check=True):
-        if not fe_path:
-            return None
-        return run_recovered_assessment(crank, run_load_cycle(cc, s, dampers, mean=mean),
-                                        locations if places is None else places, check=check)
+    def loads_of(s, dampers, places=None, check=True):
+        return ConfigLoads(crank, cc, s, tuple(dampers), fillets, scf, locations if places is None else places,
+                           mean, check)
 
-    def config(name, s, dampers, cylinder=None):
-        response = solve_response(s, dampers)  # one solve: M53's torques and the dampers' heat
-        c = VerdictConfig(name, tuple(dampers), m53_of(s, dampers, response), fe_of(s, dampers), cylinder,
-                          as_described=tuple(dampers) == tuple(crank.dampers))
-        if dampers:
-            p = response.damper_power_w.sum(axis=(1, 2))
+    def safety_of(name, s, dampers, places=None):
+        """The governing safety of method ``name`` alone (the damping searches)."""
+        m = FATIGUE_METHODS[name]
+        return m.answer(m.assess(loads_of(s, dampers, places, check=False)))["safety"]
+
+    def config(name, s, dampers, cylinder=None, results=None):
+        loads = loads_of(s, dampers)
+        results = dict(results or {})
+        results.update({m.name: m.assess(loads) for m in methods if m.name not in results})
+        described = tuple(dampers) == tuple(crank.dampers)
+        c = VerdictConfig(name, tuple(dampers), results, cylinder, as_described=described)
+        if fe_path and described:  # the rule's bending against the crank's own, where the verdict is
+            c.bending = vibratory_bending(crank, loads.cycle, fillets, cc.cut_centres, c.m53.rated_rpm)
+        loads.release()
+        if fe_path:
+            c.bridge = method_bridge(crank, c.fe, c.m53, locations, fillets, zones)
+        if dampers:  # one solve: M53's torques and the dampers' heat
+            p = loads.response.damper_power_w.sum(axis=(1, 2))
             c.damper_power_w, c.allowed_power_w = float(p.max()), allowed_power(dampers)
         return c
 
@@ -337,14 +355,13 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
         rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
         for name, dampers in rows + [(f"with the recommended {kind} damper", (best,))]:
             worst, worst_c, worst_s = None, None, None
-            for c in range(crank.engine.cylinders):
+            for c in range(crank.engine.cylinders):  # the worst cylinder by M53 (a response each)
                 ms = setup.with_misfire(c, motored)
-                r = m53_of(ms, dampers)
+                r = FATIGUE_METHODS["iacs-m53"].assess(loads_of(ms, dampers))
                 if worst is None or r.governing.safety < worst.governing.safety:
                     worst, worst_c, worst_s = r, c, ms
-            cfg = VerdictConfig(f"misfire of cylinder {worst_c + 1}, {name}", tuple(dampers), worst,
-                                fe_of(worst_s, dampers), worst_c, as_described=tuple(dampers) == tuple(crank.dampers))
-            configs.append(cfg)
+            configs.append(config(f"misfire of cylinder {worst_c + 1}, {name}", worst_s, dampers, worst_c,
+                                  {"iacs-m53": worst}))
         notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
                       "M53's bending keeps the firing rod forces (the larger)")
     elif misfire:
@@ -361,19 +378,24 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
         near = [loc for loc, q in zip(locations, own) if q <= NEAR_GOVERNING * own.min()]
 
     def safety_at(zeta):
-        s = with_damping_ratio(setup, cc, "bearings", zeta)
-        if method == "iacs-m53":
-            return m53_of(s, described).governing.safety
-        a = fe_of(s, described, near, check=False)
-        return float(a.safety.min())
+        return safety_of(method, with_damping_ratio(setup, cc, "bearings", zeta), described, near)
 
     say("fatigue verdict: the damping ratio at which it flips ...")
     flip = _flip(safety_at, required)
     band = [{"damping_ratio": z, "safety": safety_at(z)} for z in sorted(set(ex.damping_band))]
+    bending = bending_damping(crank)
+    if fe_path and bending["assumed"]:
+        say("fatigue verdict: the fe path at two bending damping ratios ...")
+
+        def at_bending(zb):
+            s = with_damping_ratio(setup, cc, "bearings", ex.modal_damping_ratio, zb)
+            return {"bending_damping_ratio": zb, **{m.name: safety_of(m.name, s, described, near) for m in methods}}
+
+        bending["sensitivity"] = [at_bending(zb) for zb in BENDING_SENSITIVITY]
     given = ex.modal_damping_ratio_source if hasattr(ex, "modal_damping_ratio_source") else ""
     assumed = not given
     source = given or "assumed: the description states no source"
     comparison = scf_comparison(m53_geometry(crank), scf)
     own = configs[1 if crank.dampers else 0]
     return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
-                        comparison, notes, same_load(crank, own.m53, zones) if fe_path else {})
+                        comparison, notes, same_load(crank, own.m53, zones) if fe_path else {}, bending)

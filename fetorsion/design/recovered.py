@@ -261,9 +261,12 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
         st = loc.stresses(static[s][:, None], [node])[0, :, 0]
         f = findley_surface(st, hist - st[:, None], res["k"], res["limit"])
         peak = float(von_mises_plane(hist.T).max())
+        # the same node and speed with the mean taken away: the bridge's mean factor
+        free = findley_surface(np.zeros(3), hist - st[:, None], res["k"], res["limit"])
         crit = {"findley": {"value": float(f["value"]), "limit": res["limit"], "k": res["k"],
                             "plane_rad": float(f["plane"]), "tau_a_pa": float(f["tau_a"]),
-                            "sigma_n_max_pa": float(f["sigma_n_max"]), "safety": float(res["safety"][s])}}
+                            "sigma_n_max_pa": float(f["sigma_n_max"]), "safety": float(res["safety"][s]),
+                            "safety_without_mean": float(free["safety"])}}
         factors = {**strength.factors, "node_m": loc.zone.xyz[node].tolist(), "zone": loc.zone.name,
                    "peak_von_mises_pa": peak, "surface_traction_residual": loc.zone.normal_residual}
         worst_locs.append(FatigueAssessment(loc.label, loc.kind, METHOD, strength.bending, von_mises_amplitude(hist),
@@ -309,9 +312,62 @@ def determinate_cut(force: np.ndarray, at: np.ndarray, cut: np.ndarray, span: fl
     return np.r_[F, M]
 
 
-def same_load(crank, m53, zones: dict) -> dict:
+#: A fillet's vibratory bending above this multiple of the statically determinate throw's is
+#: flagged: the rule's bending (the determinate throw, [IACSM53]) does not cover it.
+BENDING_FLAG = 1.5
+
+
+def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm: float) -> list[dict]:
+    """Per fillet cut of ``cycle``: the vibratory bending moment in its throw's plane (half peak
+    to peak over the cycle, the largest over the speeds, N·m, and that speed) against the
+    statically determinate throw's under the rod force's alternating radial part at
+    ``rated_rpm`` ([KR-M53] §2.1: M53's bending): the larger of its moment at the cut and at the
+    centre of the fillet's web (M_BRFN, the nominal the rule's α_B and β_B multiply; near a
+    journal the cut's own is small, the shear carrying the fillet's stress), and their ratio;
+    ``flag`` above :data:`BENDING_FLAG`. Where the crank's bending modes resonate, the first is
+    the larger.
+
+    ``fillets`` and ``cut_centres`` (cuts, 3; m) as :func:`fetorsion.design.recovery.crank_locations`.
+    """
+    from ..excitation.torque import cylinder_pin_forces
+    from .m53 import alternating, throw_spans
+    from .recovery import throw_rotation, throw_index, throw_origin
+
+    fr = float(alternating(cylinder_pin_forces(crank, rated_rpm)["radial"]))
+    amp = alternating(cycle.bending_in_plane(), axis=-1)  # (speeds, cuts)
+    angles = np.asarray(crank.engine.crank_angles, float)
+    R = crank.engine.crank_radius
+    origins, out = {}, []
+    for k, f in enumerate(fillets):
+        if f.kind not in ("pin", "journal"):
+            continue
+        i = throw_index(crank, fillets, f)
+        if i not in origins:
+            origins[i] = throw_origin(crank, fillets, i)
+        x = float((throw_rotation(-angles[i]) @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0])))[0])
+        spans = throw_spans(crank, i)
+        web = spans.L1[0] if x < spans.L2 else spans.L3 - spans.L1[1]  # the fillet's web's centre
+        rule = max(abs(float(determinate_cut(np.array([0.0, fr, 0.0]), np.array([spans.L2, R, 0.0]),
+                                             np.array([at, 0.0, 0.0]), spans.L3)[5])) for at in (x, web))
+        s = int(np.argmax(amp[:, k]))
+        run = float(amp[s, k])
+        ratio = run / rule if rule > 0 else math.inf
+        out.append({"name": f.label, "vibratory_nm": run, "rpm": float(cycle.rpm[s]), "determinate_nm": rule,
+                    "ratio": ratio, "flag": bool(ratio > BENDING_FLAG)})
+    return out
+
+
+def m53_variant(m53, throw: int) -> str:
+    """The name of ``m53``'s throw variant (a key of ``m53.nominal``) that holds 0-based ``throw``."""
+    for name in m53.nominal:
+        if throw + 1 in [int(x) for x in name.split(" ", 1)[1].split(", ")]:
+            return name
+    raise FetorsionError(f"M53 has no variant for throw {throw + 1} (variants: {', '.join(m53.nominal)})")
+
+
+def same_load(crank, m53, zones: dict, throw: int = 0) -> dict:
     """The ``fe`` path's σ_V on M53's own loads beside M53's, for the pin fillet, the journal
-    fillet and the pin's oil bore of the first throw variant: the rod force's alternating part
+    fillet and the pin's oil bore of the throw variant that holds 0-based ``throw``: the rod force's alternating part
     at the rated speed on the statically determinate throw (radial force at the fillets; at the
     oil bore the tangential force's bending, ψ = 0, as the rule), the largest alternating torque
     M_TN of the vibration calculation, combined in phase as the rule does, the largest von Mises
@@ -336,12 +392,13 @@ def same_load(crank, m53, zones: dict) -> dict:
 
     force = cylinder_pin_forces(crank, m53.rated_rpm)
     fr, ft = float(alternating(force["radial"])), float(alternating(force["tangential"]))
-    spans = throw_spans(crank, 0)
+    i = throw
+    spans = throw_spans(crank, i)
     R = crank.engine.crank_radius
     pin_at = np.array([spans.L2, R, 0.0])
-    name = next(iter(m53.nominal))
+    name = m53_variant(m53, i)
     nom = m53.nominal[name]
-    throw = zones[("throw", 0)]
+    throw = zones[("throw", i)]
 
     def peak(zone, cut_load, cut_torque, centre):
         A = load_map(np.eye(3), centre, zone.loaded)
@@ -350,10 +407,10 @@ def same_load(crank, m53, zones: dict) -> dict:
         return float(max(von_mises_plane(b + t).max(), von_mises_plane(b - t).max()))
 
     out = {}
-    places = {loc.kind: loc for loc in m53.locations if loc.name.startswith(name)}
+    places = {loc.kind: loc for loc in m53.locations if loc.name.startswith(name + ":")}
     cut_x = {"journal-fillet": (throw[0], throw[3]), "pin-fillet": (throw[1], throw[2])}
-    j1, w1, pin = crank.journals[0], crank.webs[0], crank.pins[0]
-    faces = np.cumsum([0.5 * j1.length, w1.thickness, pin.length, crank.webs[1].thickness])
+    j1, w1, pin = crank.journals[i], crank.webs[2 * i], crank.pins[i]
+    faces = np.cumsum([0.5 * j1.length, w1.thickness, pin.length, crank.webs[2 * i + 1].thickness])
     centres = {"journal-fillet": (np.array([faces[0], 0, 0]), np.array([faces[3], 0, 0])),
                "pin-fillet": (np.array([faces[1], R, 0]), np.array([faces[2], R, 0]))}
     for kind in ("pin-fillet", "journal-fillet"):

@@ -332,7 +332,7 @@ def stored_zones(key: str, build, store=None) -> list[StressZone]:
 # The crank's locations: which zone reads which cuts, and how
 
 
-def _rotation(angle: float) -> np.ndarray:
+def throw_rotation(angle: float) -> np.ndarray:
     """Rotation about x by ``angle`` (rad)."""
     c, s = math.cos(angle), math.sin(angle)
     return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
@@ -382,7 +382,7 @@ class Location:
         return np.einsum("nck,...kt->...nct", P, loads, optimize=True)
 
 
-def _throw_index(crank, fillets, f) -> int:
+def throw_index(crank, fillets, f) -> int:
     """0-based throw whose web the fillet ``f`` meets."""
     if f.kind == "pin":
         i = f.index
@@ -444,17 +444,17 @@ def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progres
 
     zones = crank_zones(crank, store, progress) if zones is None else zones
     angles = np.asarray(crank.engine.crank_angles, float)
-    origins = [_throw_origin(crank, fillets, i) for i in range(crank.cylinders)]  # one throw_of each
+    origins = [throw_origin(crank, fillets, i) for i in range(crank.cylinders)]  # one throw_of each
     out = []
     for k, f in enumerate(fillets):
-        i = _throw_index(crank, fillets, f)
+        i = throw_index(crank, fillets, f)
         throw = zones[("throw", i)]
         if f.kind == "pin":
             lo, hi = _pin_span(fillets, i)
             z = throw[1] if f.x < 0.5 * (lo + hi) else throw[2]
         else:
             z = throw[0] if f.index == i else throw[3]
-        R = _rotation(-angles[i])
+        R = throw_rotation(-angles[i])
         c = R @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0]))
         radius = crank.fillets.pin if f.kind == "pin" else crank.fillets.journal
         out.append(Location(f.label, z.kind, z, (k,), load_map(R, c, z.loaded)[None], f.diameter, radius))
@@ -482,7 +482,7 @@ def _journal_centre(crank, fillets, f) -> float:
     return f.x - 0.5 * length if f.index == 0 else f.x + 0.5 * length
 
 
-def _throw_origin(crank, fillets, i: int) -> float:
+def throw_origin(crank, fillets, i: int) -> float:
     """x (crank frame) of throw ``i``'s front journal centre (the throw model's x = 0), m; a CAD
     crank's throw slab starts where its window does."""
     from ..webs.throwfe import throw_of

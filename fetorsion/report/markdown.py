@@ -13,7 +13,9 @@ from pathlib import Path
 
 from ..description.model import Crank
 from ..excitation.campbell import zeta_text
-from ..fe.condensed import TORSION_SHARE_NOTED
+from ..design.bridge import DISAGREEMENT as BRIDGE_DISAGREEMENT
+from ..design.bridge import FACTORS as BRIDGE_FACTORS
+from ..design.recovered import BENDING_FLAG
 from ..lumped_model.lumped import PARTITIONS
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
@@ -293,6 +295,69 @@ def _damper_spec(d) -> str:
             + (f", damping {d.damping:.4g} N m s/rad" if d.damping else ""))
 
 
+def bending_lines(v) -> list[str]:
+    """The verdict's bending, as summary bullets: the bending damping and its source (with both
+    methods at two bending damping ratios where it is assumed), and every fillet whose vibratory
+    bending is beyond the statically determinate throw's (M53's)."""
+    b = v.bending
+    if not b:
+        return []
+    out = [f"- **Bending damping:** ζ_b = {b['ratio']:.4g} on the bending modes, "
+           + (f"**{b['source']}**" if b["assumed"] else f"from {b['source']}")
+           + ("" if not b.get("sensitivity") else
+              "; the deciding safeties at " + ", ".join(
+                  f"ζ_b = {x['bending_damping_ratio']:.2f}: "
+                  + ", ".join(f"{k} {q:.2f}" for k, q in x.items() if k != "bending_damping_ratio")
+                  for x in b["sensitivity"]) + " (torsional ζ held; the crank as described)") + "."]
+    flags = v.bending_flags()
+    if flags:
+        worst = max(flags, key=lambda f: f[1]["ratio"])
+        c, f = worst
+        out.append(f"- **Bending beyond the rule:** {len(flags)} fillet(s) carry a vibratory bending over "
+                   f"{BENDING_FLAG:g}× the statically determinate throw's; the largest, {f['name']} ({c}): "
+                   f"{f['vibratory_nm'] / 1e3:.2f} kN m at {f['rpm']:.0f} rpm against {f['determinate_nm'] / 1e3:.2f} kN m "
+                   f"({f['ratio']:.1f}×). M53's bending is the determinate throw's: it does not cover this; the fe path "
+                   "carries it.")
+    return out
+
+
+def bridge_lines(v) -> list[str]:
+    """The two methods term by term (:mod:`fetorsion.design.bridge`): per configuration and
+    governing place, fe's safety over M53's and the five factors whose product it is."""
+    rows = [(c.name, p) for c in v.configs if c.bridge for p in c.bridge["places"]]
+    if not rows:
+        return []
+    out = ["**From M53 to the `fe` path, term by term** (each factor above 1 makes `fe` the safer; their product "
+           "is the ratio of the safeties at the place): load (M53's loads and σ_add against the crank's cycle, both "
+           "recovered), stress (the rule's SCFs against the recovery on M53's loads), combination (Findley against "
+           "the von Mises amplitude), strength (f₋₁ against σ_DW), mean (Findley with the signed mean against "
+           "without):", "",
+           "| configuration | fe place | M53 place | fe | M53 | fe/M53 | load | stress | combination | strength | mean "
+           "| product |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for name, p in rows:
+        f = p["factors"]
+        out.append(f"| {name} | {p['fe_place']} | {p['m53_place']} | {p['fe_safety']:.2f} | {p['m53_safety']:.2f} | "
+                   f"**{p['ratio']:.3f}** | " + " | ".join(f"{f[k]:.3f}" for k in BRIDGE_FACTORS)
+                   + f" | {p['product']:.3f} |")
+    return out + [""]
+
+
+def disagreement_lines(v) -> list[str]:
+    """A summary bullet per configuration where the two methods' governing safeties are further
+    apart than :data:`fetorsion.design.bridge.DISAGREEMENT`, naming the factor that carries it."""
+    out = []
+    for c in v.configs:
+        b = c.bridge
+        if b and b["disagrees"] and b["places"]:
+            p = b["places"][0]
+            out.append(f"- **The methods disagree, {c.name}:** fe {b['fe_safety']:.2f} against iacs-m53 "
+                       f"{b['m53_safety']:.2f} ({100 * (b['ratio'] - 1):+.0f} %, beyond ±{100 * BRIDGE_DISAGREEMENT:.0f} %); "
+                       f"at {p['fe_place']} the **{b['carried_by']}** factor carries most of it ({p['factors'][b['carried_by']]:.2f}; "
+                       + ", ".join(f"{k} {p['factors'][k]:.2f}" for k in BRIDGE_FACTORS if k != b["carried_by"])
+                       + "; the fatigue section's bridge table).")
+    return out
+
+
 def fatigue_section(crank: Crank, outcome) -> list[str]:
     """A crank's verdict: every configuration by the deciding method with the other beside it, the
     damping and where it comes from, the flip damping ratio and the band, the recommended damper,
@@ -318,7 +383,15 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
                      + (f"{y['safety']:.2f} | {y['required']:.2f} | {y['location']} |" if y else "- | - | - |"))
     lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
-              + f" ({crank.excitation.damping_source}).", ""]
+              + f" ({crank.excitation.damping_source}).", ""] + bending_lines(v) + [""]
+    bent = [b for c in v.configs for b in c.bending]
+    if bent:
+        lines += ["Vibratory bending in each fillet's throw plane (the crank as described; the largest half peak-to-peak "
+                  "over the speeds) against the statically determinate throw's under the rod force's alternating radial "
+                  "part at the rated speed (M53's bending):", "",
+                  "| fillet | vibratory [kN m] | at rpm | determinate [kN m] | ratio |", "|---|---|---|---|---|"]
+        lines += [f"| {b['name']} | {b['vibratory_nm'] / 1e3:.3f} | {b['rpm']:.0f} | {b['determinate_nm'] / 1e3:.3f} | "
+                  f"{'**' if b['flag'] else ''}{b['ratio']:.2f}{'**' if b['flag'] else ''} |" for b in bent] + [""]
     if v.damper is not None and v.damper.optimised is not None:
         d = v.damper.optimised
         rec = [c for c in v.configs if d in c.dampers and c.misfire is None]
@@ -365,6 +438,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
                   + "; ".join(f"{k}: {x['fe_sigma_v_pa'] / 1e6:.1f} against {x['m53_sigma_v_pa'] / 1e6:.1f} MPa "
                               f"({100 * (x['ratio'] - 1):+.1f} %)" for k, x in v.same_load.items())
                   + ". What is left of the two methods' difference is load, strength and mean, not the stress at the notch.", ""]
+    lines += bridge_lines(v)
     lines += [""] + [f"- {n}" for n in a.notes + v.notes] + [""]
     if outcome.stress is not None:
         lines += ["The vibratory torsional stress at the fillets that both methods start from (SCF × 16 T D / "
@@ -421,6 +495,13 @@ SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearing
             ("measured", measured_section), ("transient", transient_section))
 
 
+#: The headline "f1 in the engine" is the first mode with at least this share of its kinetic
+#: energy in torsion: a coupled mode the torque drives is not skipped.
+F1_TORSION_SHARE = 0.3
+#: The modes below the headline f1 listed by name in the summary.
+BELOW_F1_LISTED = 8
+
+
 def summary_lines(run: RunOutcome) -> list[str]:
     """The answers first, each naming the model it comes from: free-free f1 against the
     measurement with the reconstruction's band, f1 in the engine, the worst location and its
@@ -443,16 +524,23 @@ def summary_lines(run: RunOutcome) -> list[str]:
         support = ("rigid main bearings" if b.rigid else "oil-film main bearings" if b.oil_film is not None
                    else "the [bearings] stiffness")
         held = bearings.bearings
-        # below the first mostly torsional mode, modes that carry a real share of torsion: the
-        # free-free torsional mode split among coupled ones (not a stiffer crank)
-        shared = [(f, t) for f, t in zip(held.frequencies_hz, held.fractions[:, 0])
-                  if f < bearings.f1_bearings_hz and t >= TORSION_SHARE_NOTED]
-        out.append(f"- **f1 in the engine: {bearings.f1_bearings_hz:.1f} Hz** (condensed crank in {support}, "
-                   f"{bearings.condensed.reduced.size} DOF; {100 * (bearings.f1_bearings_hz / bearings.f1_free_hz - 1):+.1f} % "
-                   "on free-free; the first mode whose kinetic energy is mostly torsion)"
-                   + ("" if not shared else ". Below it the torsion is shared with bending, in coupled modes at "
-                      + ", ".join(f"{f:.1f} Hz ({100 * t:.0f} % torsion)" for f, t in shared)
-                      + ": the forced response and the verdict carry every one of them") + ".")
+        # the headline is the first mode the engine's torque drives with a real share of torsion;
+        # every mode below it is named, so a coupled bending mode is never hidden behind it
+        f1 = held.first_carrying_torsion(F1_TORSION_SHARE)
+        below = [(f, k, t) for f, k, t in zip(held.frequencies_hz, held.kinds, held.fractions[:, 0]) if f < f1]
+        line = (f"- **f1 in the engine: {f1:.1f} Hz** (condensed crank in {support}, "
+                f"{bearings.condensed.reduced.size} DOF; {100 * (f1 / bearings.f1_free_hz - 1):+.1f} % on free-free; "
+                f"the first mode with at least {100 * F1_TORSION_SHARE:.0f} % of its kinetic energy in torsion")
+        if abs(f1 - bearings.f1_bearings_hz) > 1e-6 * f1:
+            line += f"; the first mostly torsional one is at {bearings.f1_bearings_hz:.1f} Hz"
+        line += ")"
+        if below:
+            shown = below[:BELOW_F1_LISTED]
+            line += (f". Below it, {len(below)} mode(s) of the crank in its bearings: "
+                     + ", ".join(f"{f:.1f} Hz ({k}, {100 * t:.0f} % torsion)" for f, k, t in shown)
+                     + (f" and {len(below) - len(shown)} more" if len(below) > len(shown) else "")
+                     + "; the forced response and the verdict carry every one of them")
+        out.append(line + ".")
     if isinstance(ver, VerdictOutcome):
         unit, scale = ver.verdict.unit
         rows = ver.verdict.rows()
@@ -486,6 +574,7 @@ def summary_lines(run: RunOutcome) -> list[str]:
                    + ("**assumed** (no source stated)" if v.damping_assumed else f"from {v.damping_source}")
                    + "; " + (f"it {v.flip.kind}" if v.flip.zeta is None or v.flip.zeta <= v.damping_ratio
                              else f"as described it would pass from ζ = {v.flip.zeta:.4g} up") + ".")
+        out += bending_lines(v) + disagreement_lines(v)
         if v.damper is not None and v.damper.optimised is not None:
             out.append(f"- **Recommended damper:** {_damper_spec(v.damper.optimised)}, designed for the iacs-m53 "
                        "verdict's governing safety" + ("" if v.method == "iacs-m53" else

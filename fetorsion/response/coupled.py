@@ -80,16 +80,53 @@ def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omega
     return np.divide(P, den, out=np.zeros_like(P), where=~free) @ Vfull.T
 
 
-def supported_damping(cc: CondensedCrank, support: str, damping_ratio: float):
+def bending_damping(crank, damping_ratio: float | None = None) -> dict:
+    """The condensed crank's bending damping and where it comes from: ``ratio`` (ζ_b of its
+    bending modes), ``source`` (a phrase) and ``assumed`` (True where nothing in the description
+    gives it: the torsional ζ is then carried onto the bending, which the oil film or the
+    engine's structure damp differently). ``damping_ratio``: the torsional ζ (default the
+    description's)."""
+    ex = crank.excitation
+    zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
+    if ex.bending_damping_ratio is not None:
+        return {"ratio": ex.bending_damping_ratio, "source": ex.bending_damping_ratio_source, "assumed": False}
+    b = crank.main_bearings
+    if not b.rigid and b.oil_film is not None:
+        return {"ratio": zeta, "assumed": False,
+                "source": "the main bearings' oil film (its linearised damping, [bearings]) beside ζ on every mode"}
+    return {"ratio": zeta, "assumed": True,
+            "source": "assumed: the torsional ζ on the bending modes too (no bending_damping_ratio, no oil film)"}
+
+
+def mode_damping_ratios(fractions: np.ndarray, damping_ratio: float, bending_ratio: float) -> np.ndarray:
+    """ζ of each mode from its torsion share s of kinetic energy (``fractions[:, 0]``):
+    ζ_b + (ζ_t − ζ_b) s. The modal strain-energy rule's weighting of each part's loss by its
+    share of the mode's energy [Johnson1982], with the kinetic share standing for the strain
+    energy's (they are equal over the whole mode, not per part: a stated approximation)."""
+    s = np.clip(np.asarray(fractions, float)[:, 0], 0.0, 1.0)
+    return bending_ratio + (damping_ratio - bending_ratio) * s
+
+
+def supported_damping(cc: CondensedCrank, support: str, damping_ratio: float, bending_ratio: float | None = None):
     """(K, M, C, kept DOF) of the reduced crank in ``support`` with the held DOF removed: the
-    crank's own losses as ``damping_ratio`` on its undamped modes, plus the bearings' dampers."""
+    crank's own losses as ``damping_ratio`` on its torsional modes and ``bending_ratio`` on its
+    bending ones (:func:`mode_damping_ratios`; default the description's
+    ``bending_damping_ratio``, else ``damping_ratio``), plus the bearings' dampers."""
     Dk, Dm, held = cc.support_terms(support)
     m = cc.n_master_dofs
     K, M = supported_matrices(cc.reduced, Dk, Dm)
     keep = np.setdiff1d(np.arange(cc.reduced.size), held)
     Kk, Mk = K[np.ix_(keep, keep)], M[np.ix_(keep, keep)]
     w2, V, _ = reduced_modes(cc.reduced, Dk, Dm, held)
-    Ck = modal_damping(Mk, V, np.sqrt(np.clip(w2, 0.0, None)), damping_ratio)
+    ex = cc.crank.excitation
+    if bending_ratio is None:
+        bending_ratio = damping_ratio if ex is None or ex.bending_damping_ratio is None else ex.bending_damping_ratio
+    zeta = damping_ratio
+    if bending_ratio != damping_ratio:
+        full = np.zeros((cc.reduced.size, V.shape[1]))
+        full[keep] = V
+        zeta = mode_damping_ratios(cc.classify(full)[0], damping_ratio, bending_ratio)
+    Ck = modal_damping(Mk, V, np.sqrt(np.clip(w2, 0.0, None)), zeta)
     if support == "bearings":
         Cb = np.zeros_like(K)
         Cb[:m, :m] = cc.bearing_damping
@@ -379,14 +416,16 @@ def redamped(setup, damping_ratio: float):
     return dataclasses.replace(setup, C=setup.C + change, zeta=damping_ratio)
 
 
-def with_damping_ratio(setup, cc: CondensedCrank, support: str, damping_ratio: float):
+def with_damping_ratio(setup, cc: CondensedCrank, support: str, damping_ratio: float,
+                       bending_ratio: float | None = None):
     """``setup`` (:func:`condensed_setup` of ``cc`` in ``support``) at another modal damping
-    ratio: its forces and sections kept (they do not depend on it), only C made anew."""
+    ratio (and ``bending_ratio`` on the bending modes, default as :func:`supported_damping`): its
+    forces and sections kept (they do not depend on it), only C made anew."""
     import dataclasses
 
     if setup.crank_dofs is not None:  # the crank in a driveline (:mod:`.driveline`): ζ on the whole assembly's modes
         return redamped(setup, damping_ratio)
-    _, _, Ck, _ = supported_damping(cc, support, damping_ratio)
+    _, _, Ck, _ = supported_damping(cc, support, damping_ratio, bending_ratio)
     return dataclasses.replace(setup, C=Ck, zeta=damping_ratio)
 
 

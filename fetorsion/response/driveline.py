@@ -134,7 +134,7 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     K = pad(base.K) + S.T @ Ks @ S
     # ζ on the modes of the whole assembly (M-orthonormal), then the crank's bearings' dampers and the shafts' own
     lam, Phi = assembly_modes(M, K)
-    _, _, C_bearings, keep = supported_damping(cc, "bearings", 0.0)
+    _, _, C_bearings, keep = supported_damping(cc, "bearings", 0.0, 0.0)
     C = modal_damping(M, Phi, np.sqrt(np.clip(lam, 0.0, None)), zeta) + pad(C_bearings) + S.T @ Cs @ S
     torsional = crank_torsional_modes(cc, keep, base.K, lam, Phi[:R])
     Kc = K + 1j * (S.T @ Hs @ S) if np.any(Hs) else K
