@@ -313,7 +313,8 @@ def bending_lines(v) -> list[str]:
     if flags:
         worst = max(flags, key=lambda f: f[1]["ratio"])
         c, f = worst
-        out.append(f"- **Bending beyond the rule:** {len(flags)} fillet(s) carry a vibratory bending over "
+        out.append(f"- **Bending beyond the rule:** {len({x['name'] for _, x in flags})} fillet(s) carry a vibratory "
+                   "bending over "
                    f"{BENDING_FLAG:g}× the statically determinate throw's; the largest, {f['name']} ({c}): "
                    f"{f['vibratory_nm'] / 1e3:.2f} kN m at {f['rpm']:.0f} rpm against {f['determinate_nm'] / 1e3:.2f} kN m "
                    f"({f['ratio']:.1f}×). M53's bending is the determinate throw's: it does not cover this; the fe path "
