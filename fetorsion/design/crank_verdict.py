@@ -398,4 +398,6 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     comparison = scf_comparison(m53_geometry(crank), scf)
     own = configs[1 if crank.dampers else 0]
     return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
-                        comparison, notes, same_load(crank, own.m53, zones) if fe_path else {}, bending)
+                        comparison, notes,
+                        same_load(crank, own.m53, zones, fe_factors={k: row["fe"] for k, row in comparison.items()})
+                        if fe_path else {}, bending)

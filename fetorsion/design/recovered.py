@@ -365,7 +365,24 @@ def m53_variant(m53, throw: int) -> str:
     raise FetorsionError(f"M53 has no variant for throw {throw + 1} (variants: {', '.join(m53.nominal)})")
 
 
-def same_load(crank, m53, zones: dict, throw: int = 0) -> dict:
+def m53_with_factors(loc, nominal: dict, factors: dict) -> float:
+    """σ_V of M53's place ``loc`` (the rule's combination, no σ_add) with its SCFs replaced by
+    ``factors`` where given ({name: value}, M53's convention: fetorsion's FE per [KR-M53]
+    Appendix III, which the rule allows in place of its formulas), its nominal stresses kept."""
+    from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
+
+    f = {**loc.scfs, **{k: v for k, v in factors.items() if k in loc.scfs and v}}
+    if loc.kind == "pin-fillet":
+        return float(m53_equivalent_fillet(loc.bending * f["alpha_B"] / loc.scfs["alpha_B"],
+                                           loc.torsion * f["alpha_T"] / loc.scfs["alpha_T"], 0.0))
+    if loc.kind == "journal-fillet":
+        bending = f["beta_B"] * nominal["sigma_BFN_pa"] + f["beta_Q"] * nominal["sigma_QFN_pa"]
+        return float(m53_equivalent_fillet(bending, loc.torsion * f["beta_T"] / loc.scfs["beta_T"], 0.0))
+    return float(m53_equivalent_oil_bore(loc.bending * f["gamma_B"] / loc.scfs["gamma_B"],
+                                         loc.torsion * f["gamma_T"] / loc.scfs["gamma_T"]))
+
+
+def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None = None) -> dict:
     """The ``fe`` path's σ_V on M53's own loads beside M53's, for the pin fillet, the journal
     fillet and the pin's oil bore of the throw variant that holds 0-based ``throw``: the rod force's alternating part
     at the rated speed on the statically determinate throw (radial force at the fillets; at the
@@ -382,6 +399,11 @@ def same_load(crank, m53, zones: dict, throw: int = 0) -> dict:
         :func:`fetorsion.design.m53.run_m53_crank` of the configuration.
     zones : dict
         :func:`fetorsion.design.recovery.crank_zones` of the crank.
+
+    fe_factors : dict, optional
+        fetorsion's FE SCFs in M53's convention ({name: value}, :func:`fetorsion.design.m53.scf_comparison`'s
+        ``fe``): M53's σ_V with them (:func:`m53_with_factors`) is given beside, ``m53_fe_scf_sigma_v_pa``
+        and ``ratio_fe_scf`` (the recovery against the rule's combination on the same FE's factors).
 
     Returns ``{place: {"m53_sigma_v_pa", "fe_sigma_v_pa", "ratio"}}`` (ratio fe/M53).
     """
@@ -434,8 +456,11 @@ def same_load(crank, m53, zones: dict, throw: int = 0) -> dict:
         loc = places["oil-bore"]
         out["oil-bore"] = {"m53_sigma_v_pa": float(m53_equivalent_oil_bore(loc.bending, loc.torsion)),
                            "fe_sigma_v_pa": float(max(_principal_plane(b + t).max(), _principal_plane(b - t).max()))}
-    for v in out.values():
+    for kind, v in out.items():
         v["ratio"] = v["fe_sigma_v_pa"] / v["m53_sigma_v_pa"]
+        if fe_factors:
+            v["m53_fe_scf_sigma_v_pa"] = m53_with_factors(places[kind], nom, fe_factors)
+            v["ratio_fe_scf"] = v["fe_sigma_v_pa"] / v["m53_fe_scf_sigma_v_pa"]
     return out
 
 

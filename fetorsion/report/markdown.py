@@ -437,7 +437,10 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
         lines += ["The recovery on M53's own loads (the statically determinate throw at the rated speed, M_TN in "
                   "phase, no mean, no σ_add): σ_V of the `fe` path against the rule's, "
                   + "; ".join(f"{k}: {x['fe_sigma_v_pa'] / 1e6:.1f} against {x['m53_sigma_v_pa'] / 1e6:.1f} MPa "
-                              f"({100 * (x['ratio'] - 1):+.1f} %)" for k, x in v.same_load.items())
+                              f"({100 * (x['ratio'] - 1):+.1f} %"
+                              + (f"; {100 * (x['ratio_fe_scf'] - 1):+.1f} % against the rule's combination with "
+                                 "fetorsion's FE SCFs in its convention, Appendix III" if "ratio_fe_scf" in x else "")
+                              + ")" for k, x in v.same_load.items())
                   + ". What is left of the two methods' difference is load, strength and mean, not the stress at the notch.", ""]
     lines += bridge_lines(v)
     lines += [""] + [f"- {n}" for n in a.notes + v.notes] + [""]
