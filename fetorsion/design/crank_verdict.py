@@ -352,11 +352,13 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     if misfire and ex.pressure_curve is None:
         say("fatigue verdict: misfire of each cylinder ...")
         motored = misfire_harmonics(crank, setup)
+        # one setup per cylinder: its undamped response is solved once and serves every damper row
+        # (a damper's response is that one and the shared unit responses, with_dampers)
+        misfired = [setup.with_misfire(c, motored) for c in range(crank.engine.cylinders)]
         rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
         for name, dampers in rows + [(f"with the recommended {kind} damper", (best,))]:
             worst, worst_c, worst_s = None, None, None
-            for c in range(crank.engine.cylinders):  # the worst cylinder by M53 (a response each)
-                ms = setup.with_misfire(c, motored)
+            for c, ms in enumerate(misfired):  # the worst cylinder by M53
                 r = FATIGUE_METHODS["iacs-m53"].assess(loads_of(ms, dampers))
                 if worst is None or r.governing.safety < worst.governing.safety:
                     worst, worst_c, worst_s = r, c, ms
@@ -387,7 +389,11 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     if fe_path and bending["assumed"]:
         say("fatigue verdict: the fe path at two bending damping ratios ...")
 
+        own = configs[1 if crank.dampers else 0]
+
         def at_bending(zb):
+            if zb == bending["ratio"]:  # the crank as described: its configuration has them
+                return {"bending_damping_ratio": zb, **{m.name: own.answer(m.name)["safety"] for m in methods}}
             s = with_damping_ratio(setup, cc, "bearings", ex.modal_damping_ratio, zb)
             return {"bending_damping_ratio": zb, **{m.name: safety_of(m.name, s, described, near) for m in methods}}
 
