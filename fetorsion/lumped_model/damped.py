@@ -236,6 +236,9 @@ def damper_impedance(damper, omegas) -> np.ndarray:
 #: that is itself small).
 DAMPED_CUTOFF = 3.0
 MIN_MODES = 30
+#: Complex entries of the kept-mode matrices a projected solve builds at once (a chunk of the
+#: frequencies): 2**21 entries, 32 MiB.
+PROJECTED_CHUNK_ENTRIES = 2**21
 
 
 def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray, gyroscopic=None,
@@ -279,11 +282,6 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     Hp = low.T @ Hs @ low if np.any(Hs) else None
     U = [low[s] - low[r] for s, r in system.joints]
     nominal = system._spring_terms(np.asarray(float(om.max()) / 2))
-    A = np.multiply(1j * om[..., None, None], Cp)
-    if Hp is not None:
-        A = A + 1j * Hp
-    rhs = complex_times(F, low)  # (..., r, kept)
-    Fh = complex_times(F, high) / lam[count:] if high.shape[1] else None
     if gyroscopic is not None:
         # Coriolis coupling i ω Ω G: among the kept modes in full; with the others condensed out
         # statically (η = Λ_h⁻¹ (F_h − i ω Ω G_hl ξ)), which adds (ω Ω)² G_lh Λ_h⁻¹ G_hl to the kept
@@ -291,26 +289,46 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
         # of the pins' and journals' Coriolis forces (without them the truncation misses 20 % of
         # the Coriolis effect on the Renault's fillet torques)
         n = system.stations
-        wO = om * np.broadcast_to(spin, om.shape)
         Gn = np.zeros((len(Mn), len(Mn)))
         Gn[:n, :n] = gyroscopic
         Gll, Glh, Ghl = low.T @ Gn @ low, low.T @ Gn @ high, high.T @ Gn @ low
-        A += (1j * wO)[..., None, None] * Gll
-        if Fh is not None:
-            H = (Glh / lam[count:]) @ Ghl
-            A += (wO**2)[..., None, None] * H
-            rhs = rhs - (1j * wO)[..., None, None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
-    diag = np.einsum("...ii->...i", A)
-    diag += lam[:count] - om[..., None] ** 2
-    for d, u, (s, r) in zip(system.dampers, U, system.joints):
-        k = damper_spring(d, om) - np.real(nominal[s, s])
-        A += k[..., None, None] * np.outer(u, u)
-    xi = np.swapaxes(np.linalg.solve(A, np.swapaxes(rhs, -1, -2)), -1, -2)
-    x = complex_times(xi, np.ascontiguousarray(low.T))
-    if Fh is not None:
+        H = (Glh / lam[count:]) @ Ghl if count < len(lam) else None
+        spin_all = np.broadcast_to(np.asarray(spin, float), om.shape)
+    # the frequencies in chunks: each chunk's kept-mode matrices (chunk × count² complex) stay a
+    # few tens of MB, not the whole sweep's (a condensed crank's 300 speeds × 48 orders × 80² is
+    # 1.5 GB) — the same arithmetic, memory bounded and cache-friendly
+    flat_om = om.reshape(-1)
+    flat_F = F.reshape((-1,) + F.shape[om.ndim:])
+    flat_spin = spin_all.reshape(-1) if gyroscopic is not None else None
+    x = np.empty(flat_F.shape, complex)
+    step = max(1, PROJECTED_CHUNK_ENTRIES // max(count * count, 1))
+    for a in range(0, len(flat_om), step):
+        b = min(a + step, len(flat_om))
+        w, Fc = flat_om[a:b], flat_F[a:b]
+        A = np.multiply(1j * w[:, None, None], Cp)
+        if Hp is not None:
+            A = A + 1j * Hp
+        rhs = complex_times(Fc, low)  # (chunk, r, kept)
+        Fh = complex_times(Fc, high) / lam[count:] if high.shape[1] else None
         if gyroscopic is not None:
-            Fh = Fh - (1j * wO)[..., None, None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
-        x = x + complex_times(Fh, np.ascontiguousarray(high.T))
+            wO = w * flat_spin[a:b]
+            A += (1j * wO)[:, None, None] * Gll
+            if Fh is not None:
+                A += (wO**2)[:, None, None] * H
+                rhs = rhs - (1j * wO)[:, None, None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
+        diag = np.einsum("...ii->...i", A)
+        diag += lam[:count] - w[:, None] ** 2
+        for d, u, (s_, r_) in zip(system.dampers, U, system.joints):
+            k = damper_spring(d, w) - np.real(nominal[s_, s_])
+            A += k[:, None, None] * np.outer(u, u)
+        xi = np.swapaxes(np.linalg.solve(A, np.swapaxes(rhs, -1, -2)), -1, -2)
+        xc = complex_times(xi, np.ascontiguousarray(low.T))
+        if Fh is not None:
+            if gyroscopic is not None:
+                Fh = Fh - (1j * wO)[:, None, None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
+            xc = xc + complex_times(Fh, np.ascontiguousarray(high.T))
+        x[a:b] = xc
+    x = x.reshape(F.shape)
     return x if block else x[..., 0, :]
 
 
