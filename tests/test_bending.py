@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import plain, toml_text
+from conftest import plain, toml_text  # noqa: F401  (renault_raw is a fixture)
 
 import fetorsion
 from fetorsion.errors import FetorsionError
@@ -155,3 +155,46 @@ def test_a_fatigue_method_comes_from_the_registry(monkeypatch, renault_raw, tmp_
     assert methods.described_method(fetorsion.load(path)) == "half"
     c = VerdictConfig("t", (), {"iacs-m53": None, "half": 3.0})
     assert c.answer("half")["safety"] == 1.5
+
+
+def test_a_surface_treatment_states_its_factor_and_scales_the_local_strength(tmp_path, renault_raw):
+    """[material] surface_treatment needs its factor and source (fetorsion ships none); the factor
+    multiplies the fe path's local strength at the fillets (and at the bores unless the fillets
+    were rolled), and with no mean Findley's safety grows by exactly that factor (k depends on
+    t₋₁/f₋₁ only, λ on t₋₁)."""
+    from types import SimpleNamespace
+
+    from fetorsion.design.criterion import findley_constants, findley_surface
+    from fetorsion.design.fatigue import fatigue_material
+    from fetorsion.design.recovered import local_strength
+    from fetorsion.design.recovery import StressZone
+
+    for fields, name in (({"surface_treatment": "nitrided"}, "material.surface_treatment_factor"),
+                         ({"surface_treatment_factor": 1.3, "surface_treatment_source": "x"},
+                          "material.surface_treatment_factor"),
+                         ({"surface_treatment": "polished"}, "material.surface_treatment")):
+        path = tmp_path / "x.toml"
+        path.write_text(toml_text({**renault_raw, "material": {**renault_raw["material"], **fields}}))
+        with pytest.raises(FetorsionError, match=name.replace(".", r"\.")):
+            fetorsion.load(path)
+    influence = np.zeros((2, 3, 6))
+    influence[:, 0, 5] = [2.0e5, 1.0e5]  # 2e5 Pa per N·m of Mz at the peak node
+    zone = StressZone("z", "pin-fillet", np.zeros((2, 3)), np.zeros((2, 3, 3)), influence, np.zeros(3))
+    strengths = {}
+    for treatment in ("none", "fillet-rolled", "nitrided"):
+        extra = {} if treatment == "none" else {"surface_treatment": treatment, "surface_treatment_factor": 1.4,
+                                                "surface_treatment_source": "a rolling test"}
+        path = tmp_path / f"{treatment}.toml"
+        path.write_text(toml_text({**renault_raw, "material": {**renault_raw["material"], **extra}}))
+        mat, _ = fatigue_material(fetorsion.load(path).material)
+        for kind in ("pin-fillet", "oil-bore"):
+            loc = SimpleNamespace(zone=zone, kind=kind, diameter=0.048, notch_radius=0.0025)
+            strengths[treatment, kind] = local_strength(mat, loc).bending
+    assert strengths["fillet-rolled", "pin-fillet"] == pytest.approx(1.4 * strengths["none", "pin-fillet"], rel=1e-12)
+    assert strengths["fillet-rolled", "oil-bore"] == pytest.approx(strengths["none", "oil-bore"], rel=1e-12)
+    assert strengths["nitrided", "oil-bore"] == pytest.approx(1.4 * strengths["none", "oil-bore"], rel=1e-12)
+    f = strengths["none", "pin-fillet"]
+    rng = np.random.default_rng(7)
+    vib = rng.normal(size=(5, 3, 40)) * 1e8
+    safe = [findley_surface(np.zeros((5, 3)), vib, *findley_constants(s, s / math.sqrt(3)))["safety"] for s in (f, 1.4 * f)]
+    np.testing.assert_allclose(safe[1], 1.4 * safe[0], rtol=1e-12)

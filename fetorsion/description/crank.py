@@ -19,7 +19,7 @@ from pathlib import Path
 from ..errors import DescriptionError, Problem
 from .fields import CRANK_SCHEMA
 from .model import (ATTACH_POINTS, Attachment, AttachPoint, Bearings, Crank, Cylinder, Fillets, Material, OilFilm,
-                    OilHoles, PROCESSES, SURFACES, Web)
+                    OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
 from .reader import Table, finite_number, read_length_unit, read_toml
 from .tables import (read_engine, read_dampers, read_design, read_limits, read_excitation, read_uncertainty, read_distributions,
                      unique_problems, uncertainty_bound_problems)
@@ -354,9 +354,38 @@ def _strength(mt: Table) -> dict:
         if field in mt.data:
             value = mt.text(field, choices=choices)
             out[field] = value if value in choices else None
+    out.update(_treatment(mt))
     if out["tensile_strength"] and out["yield_strength"] and out["yield_strength"] > out["tensile_strength"]:
         mt.problems.append(Problem("material.yield_strength_pa", mt.data["yield_strength_pa"],
                                    f"must not exceed tensile_strength_pa ({mt.data['tensile_strength_pa']})"))
+    return out
+
+
+def _treatment(mt: Table) -> dict:
+    """``surface_treatment`` of ``[material]`` with its factor and source: a treatment other than
+    ``none`` needs both (fetorsion ships no factor of its own), and a factor or source needs a
+    treatment."""
+    out = {"surface_treatment": None, "surface_treatment_factor": None, "surface_treatment_source": ""}
+    if "surface_treatment" in mt.data:
+        value = mt.text("surface_treatment", choices=TREATMENTS)
+        out["surface_treatment"] = value if value in TREATMENTS else None
+    treated = out["surface_treatment"] not in (None, "none")
+    if "surface_treatment_factor" in mt.data:
+        value = mt.number("surface_treatment_factor", positive=True)
+        out["surface_treatment_factor"] = None if math.isnan(value) else value
+    out["surface_treatment_source"] = mt.text("surface_treatment_source", "").strip()
+    if treated:
+        for key in ("surface_treatment_factor", "surface_treatment_source"):
+            if key not in mt.data:
+                mt.problems.append(Problem(f"material.{key}", None,
+                                           f"is required with surface_treatment = {out['surface_treatment']!r}: "
+                                           "the factor on the local fatigue strength and where it comes from (a "
+                                           "test of the process, a guideline's table)"))
+    else:
+        for key in ("surface_treatment_factor", "surface_treatment_source"):
+            if key in mt.data:
+                mt.problems.append(Problem(f"material.{key}", mt.data[key],
+                                           "belongs to a surface_treatment other than 'none'"))
     return out
 
 

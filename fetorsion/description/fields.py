@@ -13,7 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
-from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PARTITIONS, PROCESSES, SURFACES, WEB_METHOD_NAMES
+from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PARTITIONS, PROCESSES, SURFACES, TREATMENTS, WEB_METHOD_NAMES
 from .units import LENGTH_UNITS
 
 
@@ -88,6 +88,14 @@ MATERIAL = Section("material", "An isotropic elastic steel; the strengths feed t
     Field("surface", "optional fillet finish, for the Marin surface factor", _one_of(SURFACES)),
     Field("process", "optional manufacturing route, for the IACS M53 factor K (1.05, 1.05, 1.0, 0.93)",
           _one_of(PROCESSES)),
+    Field("surface_treatment", "optional treatment of the fillets (and drilling edges): the `fe` fatigue path "
+          "multiplies its local fatigue strength by `surface_treatment_factor` (fillet rolling at the fillets only, "
+          "the others at the oil bores too); absent or `none`: untreated. IACS M53 as written does not credit it",
+          _one_of(TREATMENTS)),
+    Field("surface_treatment_factor", "the factor the treatment gives the local fatigue strength (fetorsion ships "
+          "none: a process test or a guideline's table)", "> 0; required with a treatment other than `none`"),
+    Field("surface_treatment_source", "where `surface_treatment_factor` comes from",
+          "required with a treatment other than `none`"),
     Field("source", "where the numbers come from", "a string"),
 ), required=True)
 

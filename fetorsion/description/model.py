@@ -30,9 +30,14 @@ ATTACH_POINTS = tuple(p.value for p in AttachPoint)
 SURFACES = ("ground", "machined", "cold-drawn", "hot-rolled", "as-forged")
 #: Manufacturing routes of the IACS UR M53 fatigue-strength factor K: ``[material] process``.
 PROCESSES = ("continuous-grain-flow", "drop-forged", "free-form-forged", "cast-cold-rolled")
+#: Surface treatments a fillet (or a drilling's edge) may have had: ``[material]
+#: surface_treatment``; each other than ``none`` raises the local fatigue strength by the factor
+#: the description states with its source (fetorsion ships no constant for them).
+TREATMENTS = ("none", "fillet-rolled", "nitrided", "induction-hardened", "shot-peened")
 #: The Material fields that only fatigue reads (not the elastic stiffness): caches keyed on
 #: stiffness leave them out.
-STRENGTH_FIELDS = ("tensile_strength", "yield_strength", "surface", "process")
+STRENGTH_FIELDS = ("tensile_strength", "yield_strength", "surface", "process", "surface_treatment",
+                   "surface_treatment_factor", "surface_treatment_source")
 
 
 @dataclass(frozen=True)
@@ -53,6 +58,11 @@ class Material:
     yield_strength: float | None = None
     surface: str | None = None
     process: str | None = None
+    #: One of :data:`TREATMENTS` (None: not given, untreated), the factor on the local fatigue
+    #: strength the treatment gives and where that factor comes from.
+    surface_treatment: str | None = None
+    surface_treatment_factor: float | None = None
+    surface_treatment_source: str = ""
 
     @property
     def shear_modulus(self) -> float:

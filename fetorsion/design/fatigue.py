@@ -78,6 +78,11 @@ class FatigueMaterial:
     #: fatigue_strength_bending_pa``): replaces M53's σ_DW and the textbook's S_e when set.
     fatigue_strength: float | None = None
     fatigue_strength_source: str = ""
+    #: The fillets' surface treatment (``none``: untreated), its factor on the local fatigue
+    #: strength and the factor's source, as the description states them.
+    surface_treatment: str = "none"
+    treatment_factor: float = 1.0
+    treatment_source: str = ""
 
 
 #: Used where the description gives no strength: 42CrMo4 (1.7225, ~SAE 4140) quenched and
@@ -102,7 +107,11 @@ def fatigue_material(material: Material | None) -> tuple[FatigueMaterial, list[s
     source = d.source if defaulted else "description"
     if defaulted and len(defaulted) < 4:
         source = f"description; {', '.join(defaulted)} from {d.source}"
-    return FatigueMaterial(**values, name=name, source=source), defaulted
+    treatment = getattr(material, "surface_treatment", None) or "none"
+    factor = getattr(material, "surface_treatment_factor", None) if treatment != "none" else None
+    return FatigueMaterial(**values, name=name, source=source, surface_treatment=treatment,
+                           treatment_factor=factor or 1.0,
+                           treatment_source=getattr(material, "surface_treatment_source", "") if factor else ""), defaulted
 
 
 # ---------------------------------------------------------------------------

@@ -72,16 +72,31 @@ class LocalStrength:
         return self.bending / math.sqrt(3.0)
 
 
+#: The treatments that reach a drilling's edge as well as the fillets (a fillet roller does not).
+TREATED_BORES = ("nitrided", "induction-hardened", "shot-peened")
+
+
+def treatment_factor(mat: FatigueMaterial, kind: str) -> float:
+    """The description's surface-treatment factor at a place of ``kind`` (1 where it does not reach)."""
+    if mat.surface_treatment == "none" or (kind == "oil-bore" and mat.surface_treatment not in TREATED_BORES):
+        return 1.0
+    return mat.treatment_factor
+
+
 def local_strength(mat: FatigueMaterial, location, reliability: float = DEFAULT_RELIABILITY) -> LocalStrength:
-    """The location's local fatigue limit in reversed bending (module docstring)."""
+    """The location's local fatigue limit in reversed bending (module docstring), times the
+    description's surface-treatment factor where the treatment reaches (:func:`treatment_factor`;
+    not on a strength the description gives against local stresses, which is the treated part's)."""
     if mat.fatigue_strength:
         return LocalStrength(mat.fatigue_strength, {"given": mat.fatigue_strength_source, "support": 1.0})
     kt = zone_kt(location)
     n, q = support_factor(kt, mat.tensile_strength, location.notch_radius)
     se = endurance_limit(mat.tensile_strength, location.diameter, mat.surface, reliability)
-    return LocalStrength(se * n, {"S_e_pa": se, "ka": marin_surface(mat.tensile_strength, mat.surface),
-                                  "kb": marin_size(location.diameter), "ke": marin_reliability(reliability),
-                                  "surface": mat.surface, "Kt": kt, "q": q, "support": n})
+    kv = treatment_factor(mat, location.kind)
+    return LocalStrength(se * n * kv, {"S_e_pa": se, "ka": marin_surface(mat.tensile_strength, mat.surface),
+                                       "kb": marin_size(location.diameter), "ke": marin_reliability(reliability),
+                                       "surface": mat.surface, "Kt": kt, "q": q, "support": n,
+                                       "treatment": mat.surface_treatment, "treatment_factor": kv})
 
 
 @dataclass
@@ -283,8 +298,18 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
                      f"{mat.fatigue_strength_source}, no notch support")
     else:
         notes.append(f"local strength f₋₁ = S_e · K_t/K_f: S_e with the '{mat.surface}' surface factor "
-                     f"([Budynas] Table 6-2; the material's surface field), size and reliability {reliability:g}; "
-                     "Neuber's q for each notch")
+                     f"([Budynas] Table 6-2; the material's surface field"
+                     + (", not given: machined, the finish of a turned fillet, the most conservative of a "
+                        "ground, rolled or machined one" if "surface" in defaulted else "")
+                     + f"), size and reliability {reliability:g}; Neuber's q for each notch")
+        if mat.surface_treatment != "none":
+            notes.append(f"surface treatment '{mat.surface_treatment}': the local strength × {mat.treatment_factor:g} "
+                         f"({mat.treatment_source}) at the fillets"
+                         + (" and the oil bores" if mat.surface_treatment in TREATED_BORES else "")
+                         + "; IACS M53 as written does not credit it")
+        else:
+            notes.append("no surface treatment stated: untreated fillets and bores (a rolled or nitrided fillet states "
+                         "[material] surface_treatment with its factor and source)")
     if defaulted:
         notes.append(f"material strengths not in the description ({', '.join(defaulted)}): {mat.name} ({mat.source})")
     result = FatigueResult(METHOD, mat, tuple(defaulted), tuple(worst_locs))
