@@ -480,9 +480,9 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | No
     stored or computed. Run in the background process, first, when the crank has no stored throw
     data (:func:`needs_throw_fe`), so that the bearings step (the lumped ``fe`` column) and the
     verdict find them done. ``scfs=False`` (a run without the FE steps, whose verdict takes no FE
-    SCF): the web stiffnesses only. With the SCFs, the ``fe`` path's stress-recovery fields
-    (:func:`fetorsion.design.recovery.crank_zones`: every distinct throw and drilled section under
-    six unit end loads) are stored too. SCFs that fail here are left to the verdict, which says why."""
+    SCF): the web stiffnesses only. With the SCFs, and an ``[excitation]`` for a verdict to read
+    them, the ``fe`` path's stress-recovery fields (:func:`fetorsion.design.recovery.crank_zones`:
+    every distinct throw and drilled section under six unit end loads) are stored too. SCFs that fail here are left to the verdict, which says why."""
     from ..design.recovery import crank_zones
     from ..design.scf import fillet_scfs
     from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
@@ -500,9 +500,11 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | No
         throw = throw_of(crank, i)
         torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
     forget_end_loaded()
-    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0:
+    # the fe path's stress recovery, stored for the verdict: only where there is one (a crank
+    # without [excitation] has no load cycle, and its zones would cost a minute for nothing)
+    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and crank.excitation is not None:
         try:
-            crank_zones(crank)  # the fe path's stress recovery: stored for the verdict
+            crank_zones(crank)
         except FetorsionError:
             pass  # left to the verdict, which says why
     return torsion, scf
@@ -518,7 +520,7 @@ def needs_throw_fe(crank: Crank, scfs: bool = True) -> bool:
     if any(stored_throw_torsion(throw_of(crank, i)) is None for i in range(len(crank.pins))):
         return True
     return scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and (
-        stored_fillet_scfs(crank) is None or not zones_stored(crank))
+        stored_fillet_scfs(crank) is None or (crank.excitation is not None and not zones_stored(crank)))
 
 
 #: Niceness of the background studies' process (and the Dask workers it starts): they take the

@@ -317,7 +317,7 @@ def bending_lines(v) -> list[str]:
                    "bending over "
                    f"{BENDING_FLAG:g}× the statically determinate throw's; the largest, {f['name']} ({c}): "
                    f"{f['vibratory_nm'] / 1e3:.2f} kN m at {f['rpm']:.0f} rpm against {f['determinate_nm'] / 1e3:.2f} kN m "
-                   f"({f['ratio']:.1f}×). M53's bending is the determinate throw's: it does not cover this; the fe path "
+                   f"({f['ratio']:.2f}×). M53's bending is the determinate throw's: it does not cover this; the fe path "
                    "carries it.")
     return out
 
@@ -344,19 +344,22 @@ def bridge_lines(v) -> list[str]:
 
 
 def disagreement_lines(v) -> list[str]:
-    """A summary bullet per configuration where the two methods' governing safeties are further
-    apart than :data:`fetorsion.design.bridge.DISAGREEMENT`, naming the factor that carries it."""
-    out = []
+    """One summary bullet for the configurations where the two methods' governing safeties are
+    further apart than :data:`fetorsion.design.bridge.DISAGREEMENT`, each with the factor that
+    carries most of it at the ``fe`` path's governing place."""
+    rows = []
     for c in v.configs:
         b = c.bridge
         if b and b["disagrees"] and b["places"]:
             p = b["places"][0]
-            out.append(f"- **The methods disagree, {c.name}:** fe {b['fe_safety']:.2f} against iacs-m53 "
-                       f"{b['m53_safety']:.2f} ({100 * (b['ratio'] - 1):+.0f} %, beyond ±{100 * BRIDGE_DISAGREEMENT:.0f} %); "
-                       f"at {p['fe_place']} the **{b['carried_by']}** factor carries most of it ({p['factors'][b['carried_by']]:.2f}; "
-                       + ", ".join(f"{k} {p['factors'][k]:.2f}" for k in BRIDGE_FACTORS if k != b["carried_by"])
-                       + "; the fatigue section's bridge table).")
-    return out
+            rows.append(f"{c.name}: fe {b['fe_safety']:.2f} against {b['m53_safety']:.2f} "
+                        f"({100 * (b['ratio'] - 1):+.0f} %), at {p['fe_place']} **{b['carried_by']}** "
+                        f"{p['factors'][b['carried_by']]:.2f}")
+    if not rows:
+        return []
+    return [f"- **The methods disagree** (beyond ±{100 * BRIDGE_DISAGREEMENT:.0f} %) in {len(rows)} configuration(s), "
+            "the factor that carries most of each named: " + "; ".join(rows)
+            + " (the fatigue section's bridge table has all five factors)."]
 
 
 def fatigue_section(crank: Crank, outcome) -> list[str]:
