@@ -71,11 +71,20 @@ def test_store_command_prints_the_store_and_clears_it(tmp_path, capsys):
     from fetorsion.cli import main
 
     SampleStore(tmp_path).put_many([(str(i), record(i)) for i in range(5)])
+    (tmp_path / "recovery").mkdir()
+    (tmp_path / "recovery" / f"{'c' * 64}.npz").write_bytes(b"x" * 2048)  # a stress-recovery field of ours
+    (tmp_path / "recovery" / "notes.txt").write_text("someone else's")  # never touched
     assert main(["store", "--store", str(tmp_path)]) == 0
     out = capsys.readouterr().out
     assert str(tmp_path / "samples.sqlite") in out and "5 samples" in out and "MiB" in out
+    assert f"{tmp_path / 'recovery'}: 1 stress-recovery fields" in out
     assert main(["store", "--store", str(tmp_path), "--clear"]) == 0
-    assert "removed 5 samples" in capsys.readouterr().out and not list(tmp_path.iterdir())
+    out = capsys.readouterr().out
+    assert "removed 5 samples" in out and "removed 1 stress-recovery fields" in out
+    assert [p.name for p in (tmp_path / "recovery").iterdir()] == ["notes.txt"]
+    (tmp_path / "recovery" / "notes.txt").unlink()
+    (tmp_path / "recovery").rmdir()
+    assert not list(tmp_path.iterdir())
 
 
 def test_a_bad_store_bound_is_named_before_any_work(tmp_path, capsys, monkeypatch):

@@ -70,11 +70,12 @@ def add_parser(sub) -> None:
     sp.add_argument("--force", action="store_true", help="replace --out even if it is not an earlier fetorsion report")
     sp.set_defaults(func=cmd_study)
 
-    tp = sub.add_parser("store", help="where the store is (the studies' samples, the condensed cranks), how full; "
-                        "--clear empties it")
+    tp = sub.add_parser("store", help="where the store is (the studies' samples, the condensed cranks, the "
+                        "stress-recovery fields), how full; --clear empties it")
     tp.add_argument("--store", metavar="DIR", help=f"the store's folder (default ${STORE_ENV}, else "
                                                    "~/.cache/fetorsion/samples)")
-    tp.add_argument("--clear", action="store_true", help="remove every stored sample and condensed crank")
+    tp.add_argument("--clear", action="store_true", help="remove every stored sample, condensed crank and "
+                    "stress-recovery field")
     tp.set_defaults(func=cmd_store)
 
 
@@ -84,6 +85,7 @@ def cmd_store(args) -> int:
     if os.path.lexists(folder) and not folder.is_dir():
         raise FetorsionError(f"--store {folder}: exists and is not a folder")
     store_max_bytes()  # a bad $FETORSION_STORE_MAX_MB is named before anything is touched
+    from ..design.recovery import FOLDER as RECOVERY_FOLDER
     from ..fe.store import clear_condensed, condensed_store_info
 
     store = open_store(folder)
@@ -92,10 +94,15 @@ def cmd_store(args) -> int:
         print(f"removed {n} samples from {store.file}")
         n = clear_condensed(folder)
         print(f"removed {n} condensed cranks from {folder / 'condensed'}")
+        n = clear_condensed(folder, RECOVERY_FOLDER)
+        print(f"removed {n} stress-recovery fields from {folder / RECOVERY_FOLDER}")
     print(store.describe().replace("sample store ", "", 1) + f" (the bound: ${STORE_MAX_ENV})")
     c = condensed_store_info(folder)
     print(f"{c['folder']}: {c['cranks']} condensed cranks, {c['bytes'] / 2**20:.1f} MiB of at most "
           f"{c['max_bytes'] / 2**20:.0f} MiB (a quarter of the bound)")
+    r = condensed_store_info(folder, RECOVERY_FOLDER)
+    print(f"{r['folder']}: {r['cranks']} stress-recovery fields (throws and drilled bars of the fe fatigue path), "
+          f"{r['bytes'] / 2**20:.1f} MiB of at most {r['max_bytes'] / 2**20:.0f} MiB (a quarter of the bound)")
     return 0
 
 

@@ -109,17 +109,19 @@ def trim(folder: Path, max_bytes: int | None = None, keep: Path | None = None) -
     return removed
 
 
-def condensed_store_info(store=None) -> dict:
-    """``folder``, ``cranks`` (count), ``bytes`` and ``max_bytes`` of the condensed cranks kept."""
-    folder = condensed_folder(store)
+def condensed_store_info(store=None, name: str = FOLDER) -> dict:
+    """``folder``, ``cranks`` (count), ``bytes`` and ``max_bytes`` of the condensed cranks kept (or,
+    ``name``, of another folder of the store kept the same way: the stress-recovery fields')."""
+    folder = Path(store if store is not None else default_store()) / name
     files = _files(folder)
     return {"folder": str(folder), "cranks": len(files), "bytes": sum(p.stat().st_size for p in files),
             "max_bytes": int(BOUND_SHARE * store_max_bytes())}
 
 
-def clear_condensed(store=None) -> int:
-    """Remove every condensed crank kept (only the ``.npz`` files fetorsion wrote there); the count."""
-    files = _files(condensed_folder(store))
+def clear_condensed(store=None, name: str = FOLDER) -> int:
+    """Remove every condensed crank kept (only the ``.npz`` files fetorsion wrote there; ``name``:
+    another folder of the store kept the same way); the count."""
+    files = _files(Path(store if store is not None else default_store()) / name)
     for p in files:
         p.unlink(missing_ok=True)
     return len(files)
