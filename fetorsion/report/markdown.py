@@ -388,11 +388,12 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
               + f" ({crank.excitation.damping_source}).", ""] + bending_lines(v) + [""]
-    bent = [b for c in v.configs for b in c.bending]
+    first = next((c for c in v.configs if c.bending), None)
+    bent = first.bending if first is not None else []
     if bent:
-        lines += ["Vibratory bending in each fillet's throw plane (the crank as described; the largest half peak-to-peak "
-                  "over the speeds) against the statically determinate throw's under the rod force's alternating radial "
-                  "part at the rated speed (M53's bending):", "",
+        lines += [f"Vibratory bending in each fillet's throw plane ({first.name}, the crank as described; the largest "
+                  "half peak-to-peak over the speeds) against the statically determinate throw's under the rod force's "
+                  "alternating radial part at the rated speed (M53's bending; its misfire rows are in results.json):", "",
                   "| fillet | vibratory [kN m] | at rpm | determinate [kN m] | ratio |", "|---|---|---|---|---|"]
         lines += [f"| {b['name']} | {b['vibratory_nm'] / 1e3:.3f} | {b['rpm']:.0f} | {b['determinate_nm'] / 1e3:.3f} | "
                   f"{'**' if b['flag'] else ''}{b['ratio']:.2f}{'**' if b['flag'] else ''} |" for b in bent] + [""]
