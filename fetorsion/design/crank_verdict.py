@@ -289,13 +289,12 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     progress : callable, optional
         Called with a line of text as each configuration starts (the run's progress lines).
     """
-    from ..response.coupled import with_damping_ratio
-    from ..response.cycle import mean_cut_loads, run_load_cycle
-    from ..response.forced import misfire_harmonics, solve_response
-    from .m53 import m53_geometry, scf_comparison
-    from ..response.coupled import bending_damping
+    from ..response.coupled import bending_damping, with_damping_ratio
+    from ..response.cycle import mean_cut_loads
+    from ..response.forced import misfire_harmonics
     from .bridge import method_bridge
-    from .recovered import run_recovered_assessment, same_load, vibratory_bending
+    from .m53 import m53_geometry, scf_comparison
+    from .recovered import same_load, vibratory_bending
     from .recovery import crank_locations, crank_zones
     from .verdict import allowed_power
 
@@ -371,13 +370,14 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     # the damping: the description's ratio decides; the flip ratio and the band are sensitivities
     described = crank.dampers
     required = configs[0].answer(method)["required"]
+    own = configs[1 if crank.dampers else 0]  # the crank as described, firing
 
     near = None
     if fe_path:
         # the damping searches read the places within 1.5x of the governing one (the others cannot
         # govern across the band): a load cycle each, not 25 places' Findley sweeps
-        own = configs[1 if crank.dampers else 0].fe.safety.min(axis=0)
-        near = [loc for loc, q in zip(locations, own) if q <= NEAR_GOVERNING * own.min()]
+        least = own.fe.safety.min(axis=0)
+        near = [loc for loc, q in zip(locations, least) if q <= NEAR_GOVERNING * least.min()]
 
     def safety_at(zeta):
         return safety_of(method, with_damping_ratio(setup, cc, "bearings", zeta), described, near)
@@ -388,8 +388,6 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     bending = bending_damping(crank)
     if fe_path and bending["assumed"]:
         say("fatigue verdict: the fe path at two bending damping ratios ...")
-
-        own = configs[1 if crank.dampers else 0]
 
         def at_bending(zb):
             if zb == bending["ratio"]:  # the crank as described: its configuration has them
@@ -402,7 +400,6 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     assumed = not given
     source = given or "assumed: the description states no source"
     comparison = scf_comparison(m53_geometry(crank), scf)
-    own = configs[1 if crank.dampers else 0]
     return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
                         comparison, notes,
                         same_load(crank, own.m53, zones, fe_factors={k: row["fe"] for k, row in comparison.items()})
