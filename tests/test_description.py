@@ -69,6 +69,12 @@ CASES = [
     (lambda r: r["engine"].update(cylindres=4), "engine.cylindres", "not a known field"),
     (lambda r: r.update(fillets={"pin": 12.0}), "fillets.pin", "half the thickness"),
     (lambda r: r.update(oil_holes={"diameter": 30.0, "in_pins": True}), "oil_holes.diameter", "smaller than the length"),
+    # Issue 53: a drilling's exit tangent to its fillets (25/2 - 15/2 - 5 = 0 mm) is a surface Gmsh cannot
+    # mesh; one that cuts into them (24/2 - 16/2 - 5 = -1 mm) a notch no fillet or bore model describes.
+    (lambda r: r.update(fillets={"journal": 5.0}, oil_holes={"diameter": 15.0, "in_journals": True}),
+     "journals.1.length", "the drilling's exit touches the 5.0 mm fillets"),
+    (lambda r: r.update(fillets={"pin": 5.0}, oil_holes={"diameter": 16.0, "in_pins": True}),
+     "pins.4.length", "cuts 1.0 mm into the 5.0 mm fillets"),
     (lambda r: r.update(attachments=[{"name": "x", "at": "middle", "polar_inertia_kgm2": 1.0}]),
      "attachments.1.at", "must be one of"),
     (lambda r: r.update(attachments=[{"name": "x", "at": "rear", "polar_inertia_kgm2": -1.0}]),

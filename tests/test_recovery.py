@@ -103,14 +103,14 @@ def test_fillets_under_a_pure_shear_end_force_match_the_directly_solved_throw():
     largest principal stress of each pin and journal fillet within 10 % (the ends' rigid ties
     are half a journal from the journal fillets). The pure-couple SCF times the cut's in-plane
     moment (the former path) is printed beside it: it misses the shear."""
-    from fetorsion.design.recovery import UNIT_LOADS, dof_normals, load_map, node_stresses, recovery_throw, zone_of
+    from fetorsion.design.recovery import UNIT_LOADS, dof_normals, load_map, node_stresses, zone_of
     from fetorsion.design.scf import fillet_zone
     from fetorsion.fe.tetmesh import TetMesh
     from fetorsion.solid.mesh import mesh_crank
-    from fetorsion.webs.throwfe import default_mesh_size, end_load_solutions
+    from fetorsion.webs.throwfe import default_mesh_size, end_load_solutions, throw_of
 
     crank = plain("renault21.toml")
-    throw = recovery_throw(crank, 0)
+    throw = throw_of(crank, 0)
     size = default_mesh_size(throw)
     cm = mesh_crank(throw, size, crank.fillets.pin, "stress")
     mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
@@ -159,7 +159,7 @@ def test_a_rod_force_on_the_pin_is_recovered_at_the_fillets_it_loads():
     (with its pin drilling: 99.1 / 99.6 and 124.0 / 120.0). The pin fillet on the other side
     carries no section load and reads 5.9 MPa in the direct FE (22.7 with the drilling): the rod's
     pressure next to it, a local effect no end load carries, printed here, stated in docs/fatigue.md."""
-    from fetorsion.design.recovery import UNIT_LOADS, dof_normals, load_map, node_stresses, recovery_throw, zone_of
+    from fetorsion.design.recovery import UNIT_LOADS, dof_normals, load_map, node_stresses, zone_of
     from fetorsion.design.criterion import von_mises_plane
     from fetorsion.design.scf import fillet_zone
     from fetorsion.fe import assembly
@@ -167,10 +167,10 @@ def test_a_rod_force_on_the_pin_is_recovered_at_the_fillets_it_loads():
     from fetorsion.fe.rigid import RigidBody, reduction
     from fetorsion.fe.tetmesh import TetMesh
     from fetorsion.solid.mesh import mesh_crank
-    from fetorsion.webs.throwfe import TorsionSolution, default_mesh_size, end_load_solutions
+    from fetorsion.webs.throwfe import TorsionSolution, default_mesh_size, end_load_solutions, throw_of
 
     crank = plain("renault21.toml")
-    throw = recovery_throw(crank, 0)
+    throw = throw_of(crank, 0)
     cm = mesh_crank(throw, default_mesh_size(throw), 0.5 * crank.fillets.pin, "stress")
     mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
     unit = end_load_solutions(mesh, throw.material, UNIT_LOADS)

@@ -106,10 +106,36 @@ def test_fe_method_runs_fe_once_per_distinct_throw(monkeypatch, tmp_path):
     assert throwfe.throw_key(throw_of(other, 0), None) != throwfe.throw_key(throw_of(crank, 0), None)
 
 
+def test_short_drilled_journal_throw_meshes():
+    """Issue 53's three-cylinder (the Renault's sections, 20 mm journals, 2.5 mm fillets, 5 mm
+    drillings): the whole crank leaves 10 - 2.5 - 2.5 = 5 mm between each journal drilling and
+    its fillets, but a half journal drilled at its own mid-length left 5 - 2.5 - 2.5 = 0 mm, and
+    Gmsh could not mesh the tangent edges. The throw carries no journal drilling (its place is the
+    throw's end face); the pin drilling stays, and the throw meshes."""
+    from fetorsion.solid.mesh import default_fillet_size, mesh_crank
+
+    renault = fetorsion.load(GEOMETRY / "renault21.toml")
+    journals = tuple(dataclasses.replace(j, length=0.020) for j in renault.journals[:4])
+    engine = dataclasses.replace(renault.engine, cylinders=3, crank_angles=(0.0, 2 * math.pi / 3, 4 * math.pi / 3),
+                                 firing_order=(1, 2, 3))
+    three = dataclasses.replace(renault, engine=engine, journals=journals, pins=renault.pins[:3],
+                                webs=renault.webs[:6], uncertainty={})
+    throw = throw_of(three, 1)
+    assert not throw.oil_holes.in_journals and throw.oil_holes.in_pins
+    size = throwfe.default_mesh_size(throw)
+    mesh = mesh_crank(throw, size, default_fillet_size(throw, size, "stress"), "stress")
+    assert mesh.quality.min_sicn > 0 and mesh.quality.n_tets > 1000
+
+
 def test_reference_throws_are_shipped():
     """`fetorsion run --all` (every web method) must not mesh the reference throws again."""
+    from fetorsion.design.scf import SHIPPED_SCF, scf_key
+
     shipped = json.loads(throwfe.SHIPPED_CACHE.read_text())
+    scfs = json.loads(SHIPPED_SCF.read_text())
     for name in ("peugeot_glx", "renault21"):
         crank = fetorsion.load(GEOMETRY / f"{name}.toml")
         for i in range(crank.cylinders):
             assert throwfe.throw_key(throw_of(crank, i), None) in shipped, (name, i)
+    for name in ("peugeot_glx", "renault21", "inline6_diesel"):  # `fetorsion run` meshes no SCF throw of theirs
+        assert scf_key(fetorsion.load(GEOMETRY / f"{name}.toml")) in scfs, name

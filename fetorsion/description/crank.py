@@ -432,7 +432,34 @@ def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
         if small:
             out.append(Problem("oil_holes.diameter", show(oh.diameter),
                                f"must be smaller than the length and wall of {kind}.{small[0] + 1}"))
+        radius = crank.fillets.journal if kind == "journals" else crank.fillets.pin
+        for i, c in enumerate(parts):
+            if used and i not in small and _drilling_gap(c.length, oh.diameter, radius) <= _TOUCH_M:
+                out.append(Problem(f"{kind}.{i + 1}.length", show(c.length), _drilling_meets_fillet(
+                    kind[:-1], c.length, radius, oh.diameter, show, u)))
     return out
+
+
+#: Closer than this (m) a drilling's exit touches its fillet: a nanometre, below any drawing's tolerance
+#: and above the rounding of the lengths' arithmetic.
+_TOUCH_M = 1e-9
+
+
+def _drilling_gap(length: float, diameter: float, fillet: float) -> float:
+    """Axial distance (m) between a drilling's exit, at mid-length of a journal or pin, and the
+    fillets at its ends (where each fillet meets the cylinder, one radius from the web)."""
+    return 0.5 * length - 0.5 * diameter - fillet
+
+
+def _drilling_meets_fillet(part: str, length: float, fillet: float, diameter: float, show, u: str) -> str:
+    """Why a drilling that reaches its fillet is refused, in the crank's words. Tangent, the two
+    edges make a surface Gmsh cannot mesh (issue 53); overlapping, the fillet and the drilling are
+    one notch that neither the rule's nor the FE path's fillet and bore models describe."""
+    gap = _drilling_gap(length, diameter, fillet)
+    meet = "touches" if abs(gap) <= _TOUCH_M else f"cuts {show(-gap)} {u} into"
+    return (f"its {show(length)} {u} leaves no room for the {show(diameter)} {u} oil drilling at mid-length: the "
+            f"drilling's exit {meet} the {show(fillet)} {u} fillets (2 x fillet + drilling = "
+            f"{show(2 * fillet + diameter)} {u}); lengthen the {part}, or shrink the fillet or the drilling")
 
 
 def crank_file(path: Path, data: dict) -> Crank:

@@ -182,29 +182,16 @@ def _loaded_centre(sol, mesh, name: str = "rear_face") -> np.ndarray:
     return np.array([xyz[nodes, 0].mean(), 0.0, 0.0])
 
 
-def recovery_throw(crank, index: int):
-    """Throw ``index`` of ``crank`` as its recovery sub-model: :func:`~fetorsion.webs.throwfe.throw_of`
-    without the journal drillings (at the journals' mid-length, the throw's end faces: the bar
-    model assesses them), the pin drilling kept (it is between the pin fillets)."""
-    from ..webs.throwfe import throw_of
-
-    throw = throw_of(crank, index)
-    holes = throw.oil_holes
-    if holes is not None and holes.in_journals and not throw.solid_step:
-        throw = dataclasses.replace(throw, oil_holes=dataclasses.replace(holes, in_journals=False))
-    return throw
-
-
 def throw_zones(crank, index: int, size: float | None = None, fine: float | None = None) -> list[StressZone]:
     """The four fillet zones of throw ``index`` (journal, web 1; pin, web 1; pin, web 2; journal,
     web 2) under the six unit end loads at its rear face (front face held), one factorisation."""
     from ..solid.isolate import call_isolated
     from ..solid.mesh import default_fillet_size, mesh_crank
     from ..fe.tetmesh import TetMesh
-    from ..webs.throwfe import default_mesh_size, end_load_solutions
+    from ..webs.throwfe import default_mesh_size, end_load_solutions, throw_of
     from .scf import DEFAULT_FILLET_SHARE, found_zones, fillet_zone, found_zone
 
-    throw = recovery_throw(crank, index)
+    throw = throw_of(crank, index)
     size = default_mesh_size(throw) if size is None else size
     fine = DEFAULT_FILLET_SHARE * default_fillet_size(throw, size, "stress") if fine is None else fine
     cm = call_isolated(mesh_crank, throw, size, fine, "stress", what="Gmsh, recovery throw")
@@ -265,9 +252,9 @@ def _material_key(material) -> dict:
 
 def throw_zone_key(crank, index: int) -> str:
     """The stored key of throw ``index``'s zones: its geometry, material's elasticity, the code."""
-    from ..webs.throwfe import throw_key
+    from ..webs.throwfe import throw_key, throw_of
 
-    return _key({"throw": throw_key(recovery_throw(crank, index), None), "kind": "throw"})
+    return _key({"throw": throw_key(throw_of(crank, index), None), "kind": "throw"})
 
 
 def bore_zone_key(diameter: float, hole: float, bore: float, material) -> str:
