@@ -15,7 +15,8 @@ import platform
 import time
 from pathlib import Path
 
-from fetorsion.description.samples import plausible_cranks, try_crank
+from fetorsion.description.samples import plausible_cranks
+from fetorsion.studies.plausible import try_crank
 from fetorsion.io import write_text_atomic
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -29,7 +30,7 @@ def cpu() -> str:
 
 
 def row_text(i: int, r: dict) -> str:
-    lumped, modal = r.get("lumped --stiffness fe", {}), r.get("modal", {})
+    lumped, modal = r.get("lumped, fe webs", {}), r.get("modal", {})
     feats = ", ".join(k for k in ("fillets", "drillings", "counterweights", "hollow_pins") if r[k]) or "-"
     f1 = (f"{lumped['f1_hz']:.0f} / {modal['f1_hz']:.0f} ({100 * (lumped['f1_hz'] / modal['f1_hz'] - 1):+.1f} %)"
           if "f1_hz" in modal else "")

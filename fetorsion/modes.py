@@ -15,6 +15,26 @@ from dataclasses import dataclass
 import numpy as np
 
 
+#: A mode with at least this share of its kinetic energy in torsion carries torsion: the
+#: engine's torque drives it (the report names such modes below the first mostly torsional one).
+TORSION_SHARE_NOTED = 0.10
+#: The headline f1 of a model whose modes mix torsion with bending (the 3D FE crank, free or in
+#: its bearings) is the first mode with at least this share of its kinetic energy in torsion: a
+#: coupled mode the engine's torque drives is not skipped for a purer one above it.
+F1_TORSION_SHARE = 0.3
+
+
+def first_with_torsion(frequencies_hz, fractions, share: float, what: str) -> float:
+    """The lowest of ``frequencies_hz`` (Hz) whose mode has at least ``share`` of its kinetic
+    energy in torsion (``fractions[:, 0]``); ``what`` names the mode set in the error."""
+    idx = np.flatnonzero(np.asarray(fractions)[:, 0] >= share)
+    if not len(idx):
+        from .errors import FetorsionError
+
+        raise FetorsionError(f"no mode with {100 * share:.0f} % torsion among the {len(frequencies_hz)} {what}")
+    return float(np.asarray(frequencies_hz)[idx[0]])
+
+
 @dataclass(frozen=True)
 class TorsionalModes:
     """What the Campbell severity needs of a set of torsional modes, SI units.

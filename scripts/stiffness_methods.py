@@ -57,7 +57,7 @@ def main(argv=None) -> int:
         table = {m: [float(fetorsion.lumped(crank, d, m).frequencies_hz[0]) for d in PARTITIONS] for m in WEB_METHODS}
         seconds = time.perf_counter() - t0
         webs = {m: [web_equivalent_length(crank, w, d_e, m) for w in range(len(crank.webs))] for m in WEB_METHODS}
-        throws = [throwfe.throw_torsion(throwfe.throw_of(crank, i)) for i in range(crank.cylinders)]
+        throws = [throwfe.throw_torsion(throwfe.throw_of(crank, i)) for i in range(crank.throws)]
         c, q = chart_coordinates(crank, 0)
         bare = dataclasses.replace(crank, webs=tuple(dataclasses.replace(w, counterweight_radius=0.0,
                                                                             counterweight_angle=0.0)

@@ -31,7 +31,7 @@ def test_attachments_carry_the_described_inertia(renault_fe):
         q[6 * k + 3] = 1.0
         q[6 * k:6 * k + 3] = np.cross([1.0, 0.0, 0.0], p)
     about_axis = q @ sys_.attachment_mass @ q
-    described = sum(a.polar_inertia * (crank.cylinders if a.at == "pins" else 1) for a in crank.attachments)
+    described = sum(a.polar_inertia * (crank.engine.cylinders if a.at == "pins" else 1) for a in crank.attachments)
     assert about_axis == pytest.approx(described, rel=1e-12)
 
 

@@ -66,7 +66,7 @@ def test_mean_torque_through_the_crank_is_the_sum_of_the_cylinders_mean_torques(
         if f.kind != "journal" or f.index == 0:
             continue
         # a journal fillet behind pin f.index - 1 ... or ahead of pin f.index: cylinders ahead of it
-        ahead = sum(1 for c in range(crank.cylinders) if cc.positions[cc.labels.index(f"P{c + 1}")][0] < f.x)
+        ahead = sum(1 for c in range(crank.throws) if cc.positions[cc.labels.index(f"P{c + 1}")][0] < f.x)
         np.testing.assert_allclose(np.abs(torque[:, k]), ahead * np.abs(one), rtol=1e-2)
 
 

@@ -75,17 +75,17 @@ def test_reference_crank_is_one_solid_with_named_parts_and_faces(path):
                 seen.add(v)
                 todo += adjacency[v] - seen
         assert seen == set(solid.volumes)
-    assert len(solid.parts) == 2 * crank.cylinders + crank.cylinders + crank.cylinders + 1 + 2 + 2
+    assert len(solid.parts) == 2 * crank.throws + crank.throws + crank.throws + 1 + 2 + 2
     assert {"front_face", "rear_face", "journal_1", "web_8", "pin_4", "front_1", "rear_2"} <= names
-    assert len(solid.fillet_faces) == 4 * crank.cylinders  # one per journal/web and pin/web junction
-    assert len(solid.hole_faces) == 2 * crank.cylinders + 1
+    assert len(solid.fillet_faces) == 4 * crank.throws  # one per journal/web and pin/web junction
+    assert len(solid.hole_faces) == 2 * crank.throws + 1
     assert front == pytest.approx(math.pi / 4 * crank.front[0].diameter**2, rel=1e-9)
     assert rear == pytest.approx(math.pi / 4 * crank.rear[-1].diameter**2, rel=1e-9)
     # Fillets add exactly their rings (Pappus; OCC's exact torus to round-off).
     rho = crank.material.density
     added = crank_mass_properties(no_holes)[0].mass - crank_mass_properties(plain(crank))[0].mass
     # Inner journals and every pin meet two webs, the end journals one.
-    webs_met = [1] + [2] * (crank.cylinders - 1) + [1]
+    webs_met = [1] + [2] * (crank.throws - 1) + [1]
     rings = sum(n * fillet_ring_volume(c.diameter / 2, crank.fillets.journal) for n, c in zip(webs_met, crank.journals)) \
         + 2 * sum(fillet_ring_volume(c.diameter / 2, crank.fillets.pin) for c in crank.pins)
     assert added == pytest.approx(rho * rings, rel=1e-6)

@@ -41,7 +41,7 @@ def test_web_method_names_are_the_registry():
 @pytest.mark.parametrize("dof", fetorsion.PARTITIONS)
 def test_partition_labels_are_the_lumped_models(dof):
     crank = load(RENAULT)
-    assert list(partition_labels(crank.cylinders, dof)) == fetorsion.lumped(crank, dof).labels
+    assert list(partition_labels(crank.throws, dof)) == fetorsion.lumped(crank, dof).labels
 
 
 @pytest.mark.parametrize("dof,stiffness", [(17, "carter"), (5, "ker-wilson"), (21, "beam")])
@@ -67,7 +67,7 @@ def by_hand(crank, extra_stations, extra_shafts, gears=()):
     names = [f"r21.{lb}" for lb in own.labels]
     raw = read_toml(RENAULT)
     return {"units": raw["units"], "engine": raw["engine"], "excitation": raw["excitation"], "chain": {
-        "name": "by hand", "cylinder_stations": [f"r21.P{c + 1}" for c in range(crank.cylinders)],
+        "name": "by hand", "cylinder_stations": [f"r21.P{c + 1}" for c in range(crank.engine.cylinders)],
         "stations": [{"name": n, "inertia_kgm2": float(J)} for n, J in zip(names, own.inertias_kgm2)] + extra_stations,
         "shafts": [{"between": [a, b], "stiffness_nm_per_rad": float(k)}
                    for a, b, k in zip(names, names[1:], own.stiffnesses_nm_per_rad)] + extra_shafts,
@@ -114,7 +114,7 @@ def test_geared_driveline_behind_the_crank_equals_its_referred_chain():
     chain = parse_chain({"units": raw["units"], "engine": raw["engine"], "excitation": raw["excitation"], "chain": {
         "name": "referred", "inertias_kgm2": own.inertias_kgm2.tolist() + [Ji + n**2 * Jo, n**2 * Jv],
         "stiffnesses_nm_per_rad": own.stiffnesses_nm_per_rad.tolist() + [k1, k2 * n**2],
-        "cylinder_stations": [own.labels.index(f"P{c + 1}") + 1 for c in range(crank.cylinders)]}})
+        "cylinder_stations": [own.labels.index(f"P{c + 1}") + 1 for c in range(crank.engine.cylinders)]}})
     np.testing.assert_allclose(fetorsion.lumped(net).frequencies_hz, fetorsion.lumped(chain).frequencies_hz, rtol=EXACT)
     a, b = run_response(net), run_response(chain)
     expected = b.section_torque_nm.copy()

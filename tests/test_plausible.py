@@ -15,9 +15,39 @@ def test_draws_are_valid_plausible_and_repeatable():
     raws = plausible_cranks(7, 120)
     cranks = [parse_crank(raw, source=f"draw {i}") for i, raw in enumerate(raws)]
     assert all(not plausibility_warnings(c) for c in cranks)
-    assert {c.cylinders for c in cranks} == set(LAYOUTS)
+    assert {c.engine.cylinders for c in cranks} == set(LAYOUTS)
     for key in ("fillets", "oil_holes"):
         assert 0 < sum(key in raw for raw in raws) < len(raws), key
     assert 0 < sum("counterweight_radius" in raw["webs"][0] for raw in raws) < len(raws)
     assert plausible_cranks(7, 3) == raws[:3]
     assert plausible_crank(np.random.default_rng(1)) != plausible_crank(np.random.default_rng(2))
+
+
+def test_a_drilling_at_its_fillet_is_refused_before_any_fe():
+    """The sweep's refusal path: a crank whose journal drilling is tangent to its fillets (length
+    2 × fillet + drilling) is refused by the reader, in its own words, before any FE."""
+    from fetorsion.studies.plausible import try_crank
+
+    raw = plausible_crank(np.random.default_rng(3), 4)
+    d, r = 6.0, 3.0
+    raw["fillets"] = {"journal": r, "pin": 2.0}
+    raw["oil_holes"] = {"diameter": d, "in_journals": True, "in_pins": False}
+    for j in raw["journals"]:
+        j["length"] = 2 * r + d
+    row = try_crank(raw, "tangent drilling")
+    assert row["status"] == "refused" and row["step"] == "read"
+    assert "journals.1.length" in row["message"] and "touches the 3.0 mm fillets" in row["message"]
+
+
+@pytest.mark.fe
+@pytest.mark.slow
+@pytest.mark.parametrize("index", [0, 5])
+def test_a_sample_of_the_sweep_meshes_and_solves(index):
+    """Two cranks of the sweep (seed 53: #0 a five-cylinder with hollow pins and counterweights, #5
+    a three-cylinder with drillings) through both FE steps at the default mesh: they mesh and give
+    a mode that carries torsion (the whole sweep: benchmarks/bench_plausible_sweep.py)."""
+    from fetorsion.studies.plausible import try_crank
+
+    row = try_crank(plausible_cranks(53, index + 1)[index], f"plausible seed 53 #{index}")
+    assert row["status"] == "ok", row
+    assert row["modal"]["f1_hz"] > 0 and row["lumped, fe webs"]["f1_hz"] > 0

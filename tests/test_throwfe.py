@@ -59,7 +59,7 @@ def test_throw_of_is_journal_centre_to_journal_centre():
     crank = fetorsion.load(GEOMETRY / "peugeot_glx.toml")
     t = throw_of(crank, 3)
     assert [j.length for j in t.journals] == [0.5 * crank.journals[3].length, 0.5 * crank.journals[4].length]
-    assert t.pins == (crank.pins[3],) and t.webs == crank.webs[6:8] and t.cylinders == 1
+    assert t.pins == (crank.pins[3],) and t.webs == crank.webs[6:8] and t.throws == 1
     assert throw_of(crank, 0) == throw_of(crank, 1)  # equal throws compare equal: one FE run
     with pytest.raises(fetorsion.FetorsionError, match="throw 5"):
         throw_of(crank, 4)
@@ -135,7 +135,7 @@ def test_reference_throws_are_shipped():
     scfs = json.loads(SHIPPED_SCF.read_text())
     for name in ("peugeot_glx", "renault21"):
         crank = fetorsion.load(GEOMETRY / f"{name}.toml")
-        for i in range(crank.cylinders):
+        for i in range(crank.throws):
             assert throwfe.throw_key(throw_of(crank, i), None) in shipped, (name, i)
     for name in ("peugeot_glx", "renault21", "inline6_diesel"):  # `fetorsion run` meshes no SCF throw of theirs
         assert scf_key(fetorsion.load(GEOMETRY / f"{name}.toml")) in scfs, name

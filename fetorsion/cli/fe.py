@@ -63,6 +63,7 @@ def _mesh_job(crank, size: float, outputs: list[str], fillet_size: float | None,
 
 def cmd_modal(args) -> int:
     from ..fe.crankfe import REFINE_RATIO, run_modal, run_refinement
+    from ..modes import TORSION_SHARE_NOTED
     from ..solid.mesh import read_mesh
 
     if args.refine and args.mesh:
@@ -91,6 +92,11 @@ def cmd_modal(args) -> int:
     torsional = res.of_kind("torsional")
     payload["first_torsional_hz"] = float(torsional[0]) if len(torsional) else None
     print(f"first torsional: {payload['first_torsional_hz']} Hz", file=out)
+    carrying = res.first_carrying_torsion() if (res.fractions[:, 0] >= TORSION_SHARE_NOTED).any() else None
+    payload["first_carrying_torsion_hz"] = carrying
+    if carrying is not None and payload["first_torsional_hz"] is not None and carrying < payload["first_torsional_hz"]:
+        print(f"first mode with at least {100 * TORSION_SHARE_NOTED:.0f} % torsion: {carrying} Hz (coupled with "
+              "bending; the engine's torque drives it first)", file=out)
     if refinement:
         payload["refinement"] = refinement
         print(f"refinement: f1 = {refinement['first_torsional_hz']} Hz at {refinement['dofs']} DOF -> "

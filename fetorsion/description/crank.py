@@ -261,7 +261,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     mt.finish()
 
     engine = read_engine(root)
-    n = engine.cylinders
+    n = engine.throws if len(engine.crank_angles) else engine.cylinders // (2 if engine.layout == "vee" else 1)
 
     journals = tuple(_cylinder(t) for t in root.tables("journals"))
     pins = tuple(_cylinder(t) for t in root.tables("pins"))
@@ -270,7 +270,9 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     rear = tuple(_cylinder(t) for t in root.tables("rear", required=False))
     for key, items, want in (("journals", journals, n + 1), ("pins", pins, n), ("webs", webs, 2 * n)):
         if n and len(items) != want:
-            problems.append(Problem(key, f"{len(items)} entries", f"a {n}-cylinder crank needs {want} [[{key}]]"))
+            what = (f"{n}-cylinder" if n == engine.cylinders else
+                    f"{n}-throw ({engine.cylinders} cylinders, {engine.layout})")
+            problems.append(Problem(key, f"{len(items)} entries", f"a {what} crank needs {want} [[{key}]]"))
 
     ft = root.table("fillets", required=False)
     fillets = Fillets(ft.number("journal", 0.0, length=True, nonnegative=True),
@@ -424,6 +426,11 @@ def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
                 out.append(Problem(f"fillets.{part}", show(radius),
                                    f"must be smaller than half the thickness of the thinnest web "
                                    f"(webs.{thinnest + 1}: {show(min(thickness))} {u})"))
+    spacing = max((abs(2 * o) for o in crank.engine.rod_offsets), default=0.0)
+    short = [i for i, p in enumerate(crank.pins) if spacing >= p.length]
+    if short:
+        out.append(Problem("engine.rod_spacing", show(spacing), f"the two big ends must sit on the pin: must be less "
+                           f"than the length of pins.{short[0] + 1} ({show(crank.pins[short[0]].length)} {u})"))
     oh = crank.oil_holes
     if oh.diameter > 0 and not (oh.in_journals or oh.in_pins):
         out.append(Problem("oil_holes.diameter", show(oh.diameter), "set in_journals and/or in_pins to place the holes"))
@@ -453,7 +460,7 @@ def _drilling_gap(length: float, diameter: float, fillet: float) -> float:
 
 def _drilling_meets_fillet(part: str, length: float, fillet: float, diameter: float, show, u: str) -> str:
     """Why a drilling that reaches its fillet is refused, in the crank's words. Tangent, the two
-    edges make a surface Gmsh cannot mesh (issue 53); overlapping, the fillet and the drilling are
+    edges make a surface Gmsh cannot mesh (docs/plausible-cranks.md); overlapping, the fillet and the drilling are
     one notch that neither the rule's nor the FE path's fillet and bore models describe."""
     gap = _drilling_gap(length, diameter, fillet)
     meet = "touches" if abs(gap) <= _TOUCH_M else f"cuts {show(-gap)} {u} into"

@@ -107,14 +107,30 @@ ENGINE = Section("engine", "The slider-crank data; read the same way in a crank 
     Field("rod_length", "connecting-rod length, eye centre to eye centre (file length unit)",
           "> 0, longer than R"),
     Field("bore", "cylinder bore (file length unit); needed for the gas force", ">= 0; > 0 with a synthetic cycle"),
-    Field("crank_angles_deg", "angle of each throw, deg: cylinder c reaches TDC this far after cylinder 1",
-          "one per cylinder"),
-    Field("firing_order", "cylinders in firing sequence", "a permutation of 1..N that `crank_angles_deg` can fire"),
+    Field("crank_angles_deg", "angle of each throw, deg: the throw's first cylinder (in-line: its only one) "
+          "reaches TDC this far after cylinder 1", "one per throw (in-line and opposed: per cylinder; vee: N/2)"),
+    Field("firing_order", "cylinders in firing sequence", "a permutation of 1..N that `crank_angles_deg` (and "
+          "the bank angle) can fire"),
+    Field("layout", "`in-line` (default): one cylinder per throw; `opposed`: one per throw, the cylinders "
+          "alternating between two banks 180° apart (2, 4 ... in the second, reaching TDC 180° after their "
+          "throw's angle); `vee`: two banks sharing each throw", "one of `in-line`, `vee`, `opposed`"),
+    Field("bank_angle_deg", "vee: how far after the first bank's cylinder on the same throw the second bank's "
+          "reaches TDC, deg (negative: before; a 90° V8 whose second bank leads is −90)",
+          "in (−180, 180], not 0; required with `layout = \"vee\"`"),
+    Field("numbering", "vee: `by-bank` (default): the first bank's cylinders are 1..N/2 front to rear, the "
+          "second's N/2+1..N; `alternate`: 1 and 2 on throw 1 (first bank, second bank), 3 and 4 on throw 2 …",
+          "one of `by-bank`, `alternate`; vee only"),
+    Field("rods", "vee: how the two rods share a pin: `side-by-side` (default; the first bank's rod in front), "
+          "`fork-and-blade` (both at mid-pin), `articulated` (master and articulated rod: refused, not modelled)",
+          "one of `side-by-side`, `fork-and-blade`, `articulated`; vee only"),
+    Field("rod_spacing", "vee, side by side: the distance between the two big ends' centres along the pin "
+          "(file length unit)", "> 0, less than the pin's length; required with side-by-side rods"),
 ), required=True)
 
-JOURNALS = _round("journals", "Main journals, front to rear: N + 1 of them.", True)
-PINS = _round("pins", "Crank pins, front to rear: N of them.", True)
-WEBS = Section("webs", "Crank webs, front to rear: 2N of them; webs 2i−1 and 2i belong to throw i. The outline "
+JOURNALS = _round("journals", "Main journals, front to rear: T + 1 of them (T throws: N in-line and opposed, N/2 vee).",
+                  True)
+PINS = _round("pins", "Crank pins, front to rear: one per throw, T of them.", True)
+WEBS = Section("webs", "Crank webs, front to rear: 2T of them; webs 2i−1 and 2i belong to throw i. The outline "
                "is the convex hull of the circle of diameter `width_journal` around the crank axis and the "
                "circle of diameter `width_pin` around the pin centre, united with the counterweight sector.", (
     Field("thickness", "axial thickness L_b (file length unit)", "> 0"),

@@ -97,9 +97,24 @@ class Web:
     counterweight_angle: float = 0.0
 
 
+#: Engine layouts: one cylinder per throw in one plane, two banks sharing each throw, two
+#: opposed banks with a throw per cylinder.
+LAYOUTS = ("in-line", "vee", "opposed")
+
+
 @dataclass(frozen=True)
 class Engine:
-    """Cylinder layout and slider-crank data; lengths in m, angles in rad."""
+    """Cylinder layout and slider-crank data; lengths in m, angles in rad.
+
+    ``crank_angles`` has one angle per throw: how far the TDC of the throw's first cylinder
+    (its lowest-numbered one) lags cylinder 1's. In an in-line engine each cylinder is its
+    throw's only one. ``cylinder_throws`` (0-based, one per cylinder; empty: cylinder c on
+    throw c) puts several cylinders on one throw (a vee). ``bank_angles`` (one per cylinder;
+    empty: all 0) adds to a cylinder's TDC lag the angle between its bank's axis and the first
+    bank's (a vee's bank angle, an opposed engine's 180°). ``rod_offsets`` (m, one per cylinder;
+    empty: all 0) places each big end along its pin, from the pin's mid-length, rearwards
+    positive (two rods side by side).
+    """
 
     cylinders: int
     strokes_per_cycle: int
@@ -108,16 +123,39 @@ class Engine:
     crank_angles: tuple[float, ...]
     firing_order: tuple[int, ...]
     bore: float = 0.0
+    layout: str = "in-line"
+    cylinder_throws: tuple[int, ...] = ()
+    bank_angles: tuple[float, ...] = ()
+    rod_offsets: tuple[float, ...] = ()
 
     @property
     def crank_radius(self) -> float:
         """R = stroke / 2 in m."""
         return 0.5 * self.stroke
 
+    @property
+    def throws(self) -> int:
+        """Number of crank throws (pins)."""
+        return len(self.crank_angles)
+
+    def throw_of_cylinder(self, cylinder: int) -> int:
+        """0-based throw of 0-based ``cylinder``."""
+        return self.cylinder_throws[cylinder] if self.cylinder_throws else cylinder
+
+    def rod_offset(self, cylinder: int) -> float:
+        """Axial position (m) of 0-based ``cylinder``'s big end from its pin's mid-length."""
+        return self.rod_offsets[cylinder] if self.rod_offsets else 0.0
+
+    def tdc_lags(self) -> tuple[float, ...]:
+        """How far each cylinder's TDC lags cylinder 1's throw's first cylinder, rad: its throw's
+        crank angle plus its bank angle (mod nothing: :meth:`firing_angles` wraps)."""
+        bank = self.bank_angles or (0.0,) * self.cylinders
+        return tuple(self.crank_angles[self.throw_of_cylinder(c)] + bank[c] for c in range(self.cylinders))
+
     def firing_angles(self) -> tuple[float, ...]:
         """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0.
 
-        ``crank_angles[c]`` is how far cylinder c's TDC lags cylinder 1's; each cylinder has
+        :meth:`tdc_lags` gives how far cylinder c's TDC lags cylinder 1's; each cylinder has
         ``strokes_per_cycle / 2`` TDCs per cycle, and the firing order picks, cylinder by
         cylinder, the first TDC after the previous firing.
 
@@ -129,7 +167,8 @@ class Engine:
         """
         period = math.pi * self.strokes_per_cycle
         turn = 2 * math.pi
-        tdc = [(a - self.crank_angles[0]) % turn for a in self.crank_angles]
+        lags = self.tdc_lags()
+        tdc = [(a - lags[0]) % turn for a in lags]
         out = [0.0] * self.cylinders
         order = list(self.firing_order)
         start = order.index(1)
@@ -478,8 +517,9 @@ class Crank:
     solid_window: tuple[float, float, float] | None = None
 
     @property
-    def cylinders(self) -> int:
-        return self.engine.cylinders
+    def throws(self) -> int:
+        """Number of throws (crank pins); as many as cylinders in an in-line engine."""
+        return len(self.pins)
 
     @property
     def main_bearings(self) -> Bearings:
@@ -705,7 +745,7 @@ class NetworkCrank:
 
     @property
     def labels(self) -> tuple[str, ...]:
-        return tuple(f"{self.name}.{lb}" for lb in partition_labels(self.crank.cylinders, self.partition))
+        return tuple(f"{self.name}.{lb}" for lb in partition_labels(self.crank.throws, self.partition))
 
 
 @dataclass(frozen=True)

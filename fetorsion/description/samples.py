@@ -1,4 +1,4 @@
-"""Plausible crank descriptions drawn at random, seeded: a test tool (issue 53).
+"""Plausible crank descriptions drawn at random, seeded: a test tool.
 
 A new user's crank is not one of the shipped ones. :func:`plausible_crank` draws one the way a
 designer would size it, from the bore and stroke, by the layout rules the reference geometries
@@ -121,42 +121,3 @@ def plausible_cranks(seed: int, count: int) -> list[dict]:
     counts = sorted(LAYOUTS)
     return [plausible_crank(rng, counts[(i + seed) % len(counts)]) for i in range(count)]
 
-
-def try_crank(raw: dict, source: str, mesh_size: float | None = None) -> dict:
-    """What a new user gets from ``raw``: read (every check), ``lumped --stiffness fe`` (the throws'
-    static FE), ``modal`` (the whole crank's free-free FE) at the default mesh size.
-
-    Returns a row: ``status`` ``"ok"``, ``"refused"`` (the reader or a check before any FE work
-    said why, in ``message``) or ``"failed"`` (an error after FE work began, in ``step`` and
-    ``message``), with the seconds and first torsional frequencies of the steps that ran.
-    """
-    import time
-
-    from ..errors import DescriptionError, FetorsionError
-    from ..cli.common import check_mesh_size
-    from ..fe.crankfe import run_modal
-    from ..lumped_model.lumped import lumped
-    from .crank import parse_crank
-    from .defaults import DEFAULT_MESH_SIZE
-
-    size = DEFAULT_MESH_SIZE if mesh_size is None else mesh_size
-    row = {"name": source, "cylinders": raw["engine"]["cylinders"], "stroke_mm": raw["engine"]["stroke"],
-           "fillets": "fillets" in raw, "drillings": "oil_holes" in raw,
-           "counterweights": "counterweight_radius" in raw["webs"][0], "hollow_pins": "bore" in raw["pins"][0]}
-    try:
-        crank = parse_crank(raw, source=source)
-        check_mesh_size(crank, size, "modal")
-    except (DescriptionError, FetorsionError) as exc:
-        return {**row, "status": "refused", "step": "read", "message": str(exc)}
-    def modal():
-        res = run_modal(crank, size)
-        return {"f1_hz": float(res.first_torsional()), "dofs": int(res.dofs)}
-
-    for step, call in (("lumped --stiffness fe", lambda: {"f1_hz": float(lumped(crank, stiffness="fe").frequencies_hz[0])}),
-                       ("modal", modal)):
-        t0 = time.perf_counter()
-        try:
-            row[step] = {**call(), "seconds": time.perf_counter() - t0}
-        except FetorsionError as exc:
-            return {**row, "status": "failed", "step": step, "message": str(exc)}
-    return {**row, "status": "ok"}

@@ -10,7 +10,7 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
-from .model import (table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, Damper, DesignSpace, Engine,
+from .model import (table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, LAYOUTS, Damper, DesignSpace, Engine,
                     Excitation, Limits)
 from .reader import field_keys, MAX_DESCRIPTION_BYTES, Table, finite_number, resolve_field
 
@@ -41,6 +41,7 @@ def read_engine(root: Table) -> Engine:
     bore = et.number("bore", 0.0, length=True, nonnegative=True)
     angles = et.numbers("crank_angles_deg")
     firing = et.raw("firing_order")
+    banks = _banks(et, n)
     et.finish()
     if firing is None:
         firing = []
@@ -49,20 +50,75 @@ def read_engine(root: Table) -> Engine:
         problems.append(Problem("engine.firing_order", firing,
                                 f"must be a permutation of the cylinder numbers 1..{n or 'N'}"))
         firing = []
-    if n and angles and len(angles) != n:
-        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per cylinder ({n})"))
+    throws = banks["throws"]
+    if throws and angles and len(angles) != throws:
+        per = "cylinder" if banks["layout"] != "vee" else "throw: a vee's two banks share each throw"
+        problems.append(Problem("engine.crank_angles_deg", list(angles), f"must list one angle per {per} ({throws})"))
     if rod <= 0.5 * stroke:
         problems.append(Problem("engine.rod_length", rod / root.scale,
                                 f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
-    engine = Engine(n, strokes, stroke, rod,
-                    tuple(math.radians(a) for a in angles), tuple(firing), bore)
-    if n and firing and angles and len(angles) == n:
+    engine = Engine(n, strokes, stroke, rod, tuple(math.radians(a) for a in angles), tuple(firing), bore,
+                    banks["layout"], banks["cylinder_throws"], banks["bank_angles"], banks["rod_offsets"])
+    if n and firing and angles and len(angles) == throws:
         try:
             engine.firing_angles()
         except ValueError as exc:
             problems.append(Problem("engine.firing_order", list(firing),
                                     f"cannot be fired by crank_angles_deg {list(angles)}: {exc}"))
     return engine
+
+
+#: How a vee's cylinders are numbered: "by-bank", the first bank's 1..T front to rear, then the
+#: second's; "alternate", cylinders 1 and 2 on throw 1 (first bank, second bank), 3 and 4 on throw 2.
+NUMBERINGS = ("by-bank", "alternate")
+#: How a vee's two rods share a pin: side by side (each on its own half, ``rod_spacing`` apart),
+#: fork-and-blade (one inside the other, both at mid-pin), master and articulated (refused).
+RODS = ("side-by-side", "fork-and-blade", "articulated")
+
+
+def _banks(et, n: int) -> dict:
+    """``[engine]``'s layout fields: which throw each cylinder drives, the angle of its bank
+    (added to its throw's TDC lag) and its rod's place along the pin. In-line: cylinder c on
+    throw c; opposed: the same, the cylinders alternating between two banks 180° apart (the
+    second, fourth ... in the second); vee: two cylinders per throw, numbered by
+    ``numbering``, the second bank's ``bank_angle_deg`` later to TDC (negative: earlier)."""
+    problems = et.problems
+    layout = et.text("layout", "in-line", choices=LAYOUTS)
+    out = {"layout": layout if layout in LAYOUTS else "in-line", "throws": n, "cylinder_throws": (),
+           "bank_angles": (), "rod_offsets": ()}
+    vee_only = ("bank_angle_deg", "numbering", "rods", "rod_spacing")
+    if out["layout"] != "vee":
+        for key in vee_only:
+            if key in et.data:
+                et.get(key)
+                problems.append(Problem(f"engine.{key}", et.data[key], 'belongs to layout = "vee"'))
+        if out["layout"] == "opposed" and n:
+            out["bank_angles"] = tuple(math.pi * (c % 2) for c in range(n))
+        return out
+    bank = et.number("bank_angle_deg", above=-180.0, below=180.0 + 1e-9)
+    numbering = et.text("numbering", "by-bank", choices=NUMBERINGS)
+    rods = et.text("rods", "side-by-side", choices=RODS)
+    spacing = et.number("rod_spacing", 0.0 if rods != "side-by-side" else None, length=True, positive=True) \
+        if rods == "side-by-side" or "rod_spacing" in et.data else 0.0
+    if bank == 0:
+        problems.append(Problem("engine.bank_angle_deg", bank, "must not be 0: two banks at 0° are an in-line engine"))
+    if rods == "articulated":
+        problems.append(Problem("engine.rods", rods, "master and articulated rods are not modelled: the articulated "
+                                                     "rod's piston path, stroke and TDC differ from the master's; "
+                                                     "describe them as fork-and-blade to approximate"))
+    if rods == "fork-and-blade" and "rod_spacing" in et.data:
+        problems.append(Problem("engine.rod_spacing", et.data["rod_spacing"], 'belongs to rods = "side-by-side" '
+                                                                               "(a fork's blade runs at mid-pin)"))
+    if n % 2:
+        problems.append(Problem("engine.cylinders", n, "a vee has two cylinders on each throw: must be even"))
+        return out
+    throws = n // 2
+    first = [c < throws if numbering == "by-bank" else c % 2 == 0 for c in range(n)]
+    out.update(throws=throws,
+               cylinder_throws=tuple(c % throws if numbering == "by-bank" else c // 2 for c in range(n)),
+               bank_angles=tuple(0.0 if f else math.radians(bank if math.isfinite(bank) else 0.0) for f in first),
+               rod_offsets=tuple((-0.5 if f else 0.5) * (spacing if math.isfinite(spacing) else 0.0) for f in first))
+    return out
 
 
 # The inertia key of each damper type: a viscous damper's housing, a rubber or tuned damper's hub.

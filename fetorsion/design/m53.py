@@ -304,17 +304,25 @@ def throw_spans(crank, throw: int = 0) -> ThrowSpans:
                       float(x[1] + 0.5 * pin.length), L3)
 
 
-def throw_loads(spans: ThrowSpans, radial, tangential) -> dict:
+def throw_loads(spans: ThrowSpans, radial, tangential, offset=None) -> dict:
     """The simply supported throw's loads over a cycle from the pin force's radial and tangential
     components (arrays, N): ``M_BRF`` (2, angles), the bending moment of the radial component at
     each web's centre, N·m; ``Q_RF`` (2, angles), the radial force in each web, N; ``M_BRO``,
     ``M_BTO`` (angles,), the moments of the two components at the pin's centre (its oil bore), N·m.
-    Triangular moment diagrams: the front support takes F (L3 − L2)/L3, the rear F L2/L3."""
-    fr, ft = np.asarray(radial, float), np.asarray(tangential, float)
-    a, b = (spans.L3 - spans.L2) / spans.L3, spans.L2 / spans.L3  # support shares
-    return {"M_BRF": np.stack([a * fr * spans.L1[0], b * fr * spans.L1[1]]),
-            "Q_RF": np.stack([a * fr, b * fr]),
-            "M_BRO": a * fr * spans.L2, "M_BTO": a * ft * spans.L2}
+    Triangular moment diagrams: a force at s from the front support is carried F (L3 − s)/L3 by
+    it and F s/L3 by the rear one.
+
+    Two rods on one throw (a vee): ``radial``, ``tangential`` (rods, angles), each rod at its phase,
+    and ``offset`` (rods,), m, each big end's place from the pin's mid-length; their moments are
+    superposed angle by angle ([IACSM53] §2.1: the rods of one throw with their phase)."""
+    fr, ft = np.atleast_2d(np.asarray(radial, float)), np.atleast_2d(np.asarray(tangential, float))
+    s = spans.L2 + (np.zeros(len(fr)) if offset is None else np.asarray(offset, float))  # each force's place
+    a, b = ((spans.L3 - s) / spans.L3)[:, None], (s / spans.L3)[:, None]  # support shares, per rod
+    # the moment at the pin centre L2 of a force at s: front share · L2 behind it, rear share · (L3 − L2) before
+    at_pin = np.where((s >= spans.L2)[:, None], a * spans.L2, b * (spans.L3 - spans.L2))
+    return {"M_BRF": np.stack([(a * fr).sum(0) * spans.L1[0], (b * fr).sum(0) * spans.L1[1]]),
+            "Q_RF": np.stack([(a * fr).sum(0), (b * fr).sum(0)]),
+            "M_BRO": (at_pin * fr).sum(0), "M_BTO": (at_pin * ft).sum(0)}
 
 
 def alternating(x, axis: int = -1):
@@ -465,7 +473,7 @@ def run_m53(g: M53Geometry, spans: ThrowSpans, pin_force: dict, torque_pin: floa
     scfs = empirical_scfs(g) if scfs is None else scfs
     scf_source = scf_source or {k: "M53 §3 formula" for k in scfs}
     where = where or {}
-    loads = throw_loads(spans, pin_force["radial"], pin_force["tangential"])
+    loads = throw_loads(spans, pin_force["radial"], pin_force["tangential"], pin_force.get("offset"))
     nom = nominal_bending_stresses(g, loads, strokes)
     s_bfn, s_qfn = float(np.max(nom["sigma_BFN"])), float(np.max(nom["sigma_QFN"]))
     tau_pin = torque_pin / polar_modulus(g.D, g.D_BH)
@@ -544,6 +552,7 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
         ``additional_bending`` (σ_add, Pa) replaces §4's trunk-piston value when > 0;
         ``fatigue_strength_bending`` replaces σ_DW; ``fatigue_required_safety`` the 1.15.
     """
+    from ..excitation.cylinders import throw_rods
     from ..excitation.torque import cylinder_pin_forces
     from .fatigue import fatigue_material
 
@@ -553,20 +562,23 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
     sigma_add = getattr(limits, "additional_bending", 0.0) or SIGMA_ADD_TRUNK_PISTON
     required = m53_required(limits)
     user_strength = getattr(limits, "fatigue_strength_bending", 0.0) or mat.fatigue_strength or None
-    force = cylinder_pin_forces(crank, rated)
+    one = cylinder_pin_forces(crank, rated)
     torques = largest_torques(fillets, torque_amplitude, rpm)
     groups: dict = {}
-    for i in range(crank.cylinders):  # throws of one geometry are one variant ([KR-M53] §2.(1)(B)(a)(iv))
-        groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i)), []).append(i + 1)
+    rods = [throw_rods(crank, one, i) for i in range(crank.throws)]
+    for i in range(crank.throws):  # throws of one geometry and load are one variant ([KR-M53] §2.(1)(B)(a)(iv))
+        signature = (tuple(np.round(rods[i]["offset"], 9)), tuple(np.round(rods[i]["radial"][:, ::60].ravel(), 3)))
+        groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i), signature), []).append(i + 1)
     locations, nominal, sources = [], {}, {}
-    for (g, spans), throws in groups.items():
+    for (g, spans, _), throws in groups.items():
         name = f"throw{'s' if len(throws) > 1 else ''} {', '.join(map(str, throws))}"
         scfs, source = choose_scfs(g, fe_scf)
+        force = rods[throws[0] - 1]
         locs, nom = run_m53(g, spans, force, torques["pin"][0], torques["journal"][0], mat.tensile_strength,
                             mat.process, crank.engine.strokes_per_cycle, sigma_add, scfs, source, name,
                             {k: v[1:] for k, v in torques.items()}, user_strength)
         locations += [dataclasses_replace(a, required=required, yield_strength=mat.yield_strength) for a in locs]
-        nominal[name] = {**nom, "B_m": g.B, "W_m": g.W, "D_m": g.D, "D_G_m": g.D_G, "D_BH_m": g.D_BH,
+        nominal[name] = {**nom, "cylinders": [[int(c) + 1 for c in rods[t - 1]["cylinders"]] for t in throws], "B_m": g.B, "W_m": g.W, "D_m": g.D, "D_G_m": g.D_G, "D_BH_m": g.D_BH,
                          "D_BG_m": g.D_BG, "ratios": g.ratios()}
         sources[name] = source
     notes = [f"bending from the rod forces at the rated {rated:.0f} rpm (top of the running range) on the "

@@ -361,11 +361,12 @@ def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm:
 
     ``fillets`` and ``cut_centres`` (cuts, 3; m) as :func:`fetorsion.design.recovery.crank_locations`.
     """
+    from ..excitation.cylinders import throw_rods
     from ..excitation.torque import cylinder_pin_forces
     from .m53 import alternating, throw_spans
     from .recovery import throw_rotation, throw_index, throw_origin
 
-    fr = float(alternating(cylinder_pin_forces(crank, rated_rpm)["radial"]))
+    one = cylinder_pin_forces(crank, rated_rpm)
     amp = alternating(cycle.bending_in_plane(), axis=-1)  # (speeds, cuts)
     angles = np.asarray(crank.engine.crank_angles, float)
     R = crank.engine.crank_radius
@@ -379,13 +380,34 @@ def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm:
         x = float((throw_rotation(-angles[i]) @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0])))[0])
         spans = throw_spans(crank, i)
         web = spans.L1[0] if x < spans.L2 else spans.L3 - spans.L1[1]  # the fillet's web's centre
-        rule = max(abs(float(determinate_cut(np.array([0.0, fr, 0.0]), np.array([spans.L2, R, 0.0]),
-                                             np.array([at, 0.0, 0.0]), spans.L3)[5])) for at in (x, web))
+        rods = throw_rods(crank, one, i)
+        rule = max(abs(float(half_range_cut(rods, "radial", spans, R, (at, 0.0, 0.0))[5])) for at in (x, web))
         s = int(np.argmax(amp[:, k]))
         run = float(amp[s, k])
         ratio = run / rule if rule > 0 else math.inf
         out.append({"name": f.label, "vibratory_nm": run, "rpm": float(cycle.rpm[s]), "determinate_nm": rule,
                     "ratio": ratio, "flag": bool(ratio > BENDING_FLAG)})
+    return out
+
+
+def half_range_cut(rods: dict, component: str, spans, R: float, at) -> np.ndarray:
+    """The statically determinate throw's cut load (F, M; 6,) at the point ``at`` (m, throw frame)
+    from the rod forces' ``component`` (``radial`` along y or ``tangential`` along z) over the
+    cycle, as M53 takes it: half the change between the two crank angles where the throw's summed
+    force of that component is largest and smallest. One rod: the alternating force's own cut;
+    two rods of a vee, each at its own place along the pin and with its phase, superposed.
+
+    ``rods``: :func:`fetorsion.excitation.cylinders.throw_rods` of the throw; ``spans``: its
+    :class:`~fetorsion.design.m53.ThrowSpans`."""
+    f = np.asarray(rods[component], float)  # (rods, samples)
+    total = f.sum(axis=0)
+    hi, lo = int(np.argmax(total)), int(np.argmin(total))
+    axis = 1 if component == "radial" else 2
+    out = np.zeros(6)
+    for r, offset in enumerate(rods["offset"]):
+        unit = np.zeros(3)
+        unit[axis] = 0.5 * (f[r, hi] - f[r, lo])
+        out += determinate_cut(unit, np.array([spans.L2 + offset, R, 0.0]), np.asarray(at, float), spans.L3)
     return out
 
 
@@ -439,13 +461,13 @@ def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None =
 
     Returns ``{place: {"m53_sigma_v_pa", "fe_sigma_v_pa", "ratio"}}`` (ratio fe/M53).
     """
+    from ..excitation.cylinders import throw_rods
     from ..excitation.torque import cylinder_pin_forces
     from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
-    from .m53 import alternating, throw_spans
+    from .m53 import throw_spans
     from .recovery import load_map
 
-    force = cylinder_pin_forces(crank, m53.rated_rpm)
-    fr, ft = float(alternating(force["radial"])), float(alternating(force["tangential"]))
+    rods = throw_rods(crank, cylinder_pin_forces(crank, m53.rated_rpm), throw)
     i = throw
     spans = throw_spans(crank, i)
     R = crank.engine.crank_radius
@@ -469,7 +491,7 @@ def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None =
                "pin-fillet": (np.array([faces[1], R, 0]), np.array([faces[2], R, 0]))}
     for kind in ("pin-fillet", "journal-fillet"):
         torque = nom["M_TN_pin_nm"] if kind == "pin-fillet" else nom["M_TN_journal_nm"]
-        fe = max(peak(z, determinate_cut(np.array([0.0, fr, 0.0]), pin_at, c, spans.L3), torque, c)
+        fe = max(peak(z, half_range_cut(rods, "radial", spans, R, c), torque, c)
                  for z, c in zip(cut_x[kind], centres[kind]))
         loc = places[kind]
         out[kind] = {"m53_sigma_v_pa": float(m53_equivalent_fillet(loc.bending, loc.torsion, 0.0)),
@@ -478,7 +500,7 @@ def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None =
         bar = zones[("bar", "pin")]
         # the pin's centre section: the mean of its two sides (the force acts there)
         eps = 1e-9
-        cut = 0.5 * sum(determinate_cut(np.array([0.0, 0.0, ft]), pin_at, pin_at + d, spans.L3)
+        cut = 0.5 * sum(half_range_cut(rods, "tangential", spans, R, pin_at + d)
                         for d in (np.array([-eps, 0, 0]), np.array([eps, 0, 0])))
         rows = np.array([[1.0, 0, 0], [0, 0, 1.0], [0, -1.0, 0]])  # crank angle 0: y = e_t, z = −e_r
         hole = np.array([0.5 * bar.loaded[0], 0.0, 0.0])

@@ -375,7 +375,7 @@ def throw_index(crank, fillets, f) -> int:
         i = f.index
     else:
         i = f.index if f.x >= _journal_centre(crank, fillets, f) else f.index - 1
-    return min(max(i, 0), crank.cylinders - 1)
+    return min(max(i, 0), crank.throws - 1)
 
 
 def _bar_sections(crank):
@@ -397,7 +397,7 @@ def crank_zones(crank, store=None, progress=None) -> dict:
     zone}``. The run computes them in its background process, first, beside the FE steps."""
     say = progress or (lambda m: None)
     out, seen = {}, {}
-    for i in range(crank.cylinders):
+    for i in range(crank.throws):
         key = throw_zone_key(crank, i)
         if key not in seen:
             if not (_folder(store) / f"{key}.npz").exists():
@@ -416,7 +416,7 @@ def crank_zones(crank, store=None, progress=None) -> dict:
 
 def zones_stored(crank, store=None) -> bool:
     """True when every zone :func:`crank_zones` needs is in the store."""
-    keys = {throw_zone_key(crank, i) for i in range(crank.cylinders)}
+    keys = {throw_zone_key(crank, i) for i in range(crank.throws)}
     keys |= {bore_zone_key(D, d, b, crank.material) for D, d, b in _bar_sections(crank).values()}
     return all((_folder(store) / f"{k}.npz").exists() for k in keys)
 
@@ -431,7 +431,7 @@ def crank_locations(crank, fillets, cut_centres: np.ndarray, store=None, progres
 
     zones = crank_zones(crank, store, progress) if zones is None else zones
     angles = np.asarray(crank.engine.crank_angles, float)
-    origins = [throw_origin(crank, fillets, i) for i in range(crank.cylinders)]  # one throw_of each
+    origins = [throw_origin(crank, fillets, i) for i in range(crank.throws)]  # one throw_of each
     out = []
     for k, f in enumerate(fillets):
         i = throw_index(crank, fillets, f)

@@ -205,7 +205,11 @@ def zeta_text(zeta) -> str:
 RESPONSE_HIGHEST_ORDER = 24.0
 
 
-def default_orders(crank: Crank, highest: float = 12.0) -> np.ndarray:
+#: The highest order the Campbell diagram draws and the report's major orders go to.
+CAMPBELL_HIGHEST_ORDER = 12.0
+
+
+def default_orders(crank: Crank, highest: float = CAMPBELL_HIGHEST_ORDER) -> np.ndarray:
     """0.5, 1, 1.5 … for a 4-stroke, 1, 2 … for a 2-stroke, up to ``highest`` (the Campbell
     diagram's orders; a response sums to :data:`RESPONSE_HIGHEST_ORDER`: :func:`response_orders`)."""
     step = 2 * np.pi / cycle_angle(crank.engine)
@@ -216,6 +220,25 @@ def response_orders(crank: Crank) -> np.ndarray:
     """The orders a forced response sums by default: :func:`default_orders` to
     :data:`RESPONSE_HIGHEST_ORDER`."""
     return default_orders(crank, RESPONSE_HIGHEST_ORDER)
+
+
+def order_sums(engine, pin_amplitudes, orders) -> np.ndarray:
+    """|Σ_c a_c e^{−i q φ_c}| / Σ_c |a_c|: how much of each order ``q`` the cylinders' torques
+    put into a mode with twist ``a_c`` at cylinder c's pin (``pin_amplitudes`` (modes,
+    cylinders) or (cylinders,)), φ_c the firing angles (1: every cylinder in phase; 0: they
+    cancel). A rigid crank (every a_c = 1) gives the engine's own order content: an even-firing
+    four-stroke of z cylinders adds fully at the multiples of z/2 and cancels the rest."""
+    a = np.atleast_2d(np.asarray(pin_amplitudes, float))
+    phasors = np.exp(-1j * np.asarray(orders, float)[:, None] * firing_angles(engine)[None, :])  # (orders, cylinders)
+    return np.abs(a @ phasors.T) / np.abs(a).sum(axis=1, keepdims=True)
+
+
+def major_orders(engine, highest: float = CAMPBELL_HIGHEST_ORDER) -> np.ndarray:
+    """The orders up to ``highest`` in which every cylinder's torque adds in phase on a rigid crank
+    (:func:`order_sums` of 1 to 1e-9): the engine's major orders (a V8's 4, 8, 12)."""
+    step = 2 * np.pi / cycle_angle(engine)  # 0.5 for a 4-stroke, 1 for a 2-stroke
+    orders = np.arange(1, int(round(highest / step)) + 1) * step
+    return orders[order_sums(engine, np.ones(engine.cylinders), orders)[0] > 1 - 1e-9]
 
 
 def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
@@ -281,7 +304,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     phi = firing_angles(crank.engine)
     phasors = np.exp(-1j * orders[:, None] * phi[None, :])  # (orders, cylinders)
     S = modes.pin_amplitudes[:k] @ phasors.T  # (modes, orders)
-    phase_sum = np.abs(S) / np.abs(modes.pin_amplitudes[:k]).sum(axis=1, keepdims=True)
+    phase_sum = order_sums(crank.engine, modes.pin_amplitudes[:k], orders)
     period = cycle_angle(crank.engine)
     Tq = np.empty_like(rpm, dtype=complex)
     for j in range(k):  # one torque cycle per mode and order (distinct speeds)

@@ -150,9 +150,7 @@ def cut_recovery(sys_: CrankSystem, centres: np.ndarray):
     return recover
 
 
-#: A mode with at least this share of its kinetic energy in torsion carries torsion: the
-#: engine's torque drives it (the report names such modes below the first mostly torsional one).
-TORSION_SHARE_NOTED = 0.10
+from ..modes import TORSION_SHARE_NOTED  # noqa: E402  (the share at which a mode carries torsion)
 
 @dataclass
 class CondensedModes:
@@ -192,11 +190,9 @@ class CondensedModes:
         """The lowest mode with at least ``share`` of its kinetic energy in torsion, Hz: the first
         mode the engine's torque drives in resonance. Where a flywheel's rocking couples torsion
         with bending, it lies below :meth:`first_torsional` (the first mostly torsional mode)."""
-        idx = np.flatnonzero(self.fractions[:, 0] >= share)
-        if not len(idx):
-            raise FetorsionError(f"no mode with {100 * share:.0f} % torsion among the {len(self.kinds)} "
-                                 f"condensed-crank modes ({self.support})")
-        return float(self.frequencies_hz[idx[0]])
+        from ..modes import first_with_torsion
+
+        return first_with_torsion(self.frequencies_hz, self.fractions, share, f"condensed-crank modes ({self.support})")
 
 
 @dataclass
@@ -298,10 +294,13 @@ class CondensedCrank:
         Each mode carries its torsion/bending share as its label, so a coupled mode shows."""
         md = self.modes(support, n)
         R = self.crank.engine.crank_radius
-        pins = np.empty((len(md.frequencies_hz), self.crank.cylinders))
-        for c, a in enumerate(self.crank.engine.crank_angles):
-            ty, tz = md.vectors[self.dof(f"P{c + 1}", "ty")], md.vectors[self.dof(f"P{c + 1}", "tz")]
-            pins[:, c] = (-math.sin(a) * ty + math.cos(a) * tz) / R
+        pins = np.empty((len(md.frequencies_hz), self.crank.throws))
+        for t, a in enumerate(self.crank.engine.crank_angles):
+            ty, tz = md.vectors[self.dof(f"P{t + 1}", "ty")], md.vectors[self.dof(f"P{t + 1}", "tz")]
+            pins[:, t] = (-math.sin(a) * ty + math.cos(a) * tz) / R
+        from ..description.cylinders import per_cylinder
+
+        pins = per_cylinder(self.crank.engine, pins, axis=1)  # each cylinder twists with its throw
         labels = tuple(f"{k} ({f[0]:.2f}/{f[1]:.2f})" for k, f in zip(md.kinds, md.fractions))
         return TorsionalModes(f"condensed FE crank, {support} ({self.reduced.size} DOF)", md.frequencies_hz, pins,
                               md.vectors[self.dof("front", "rx")], np.ones(len(md.frequencies_hz)), labels)

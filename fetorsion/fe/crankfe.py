@@ -68,7 +68,10 @@ class CrankModal(ModalResult):
             raise FetorsionError("no torsional mode among the computed modes; ask for more modes")
         U = self.shapes[idx]
         twist = lambda nodes: slab_fit(U[:, nodes], self.mesh.nodes[nodes], np.ones(len(nodes)))[0][:, 3]  # noqa: E731
-        pins = np.stack([twist(part_nodes(self.mesh, f"pin_{i + 1}")) for i in range(self.crank.cylinders)], axis=1)
+        from ..description.cylinders import per_cylinder
+
+        pins = np.stack([twist(part_nodes(self.mesh, f"pin_{i + 1}")) for i in range(self.crank.throws)], axis=1)
+        pins = per_cylinder(self.crank.engine, pins, axis=1)  # each cylinder twists with its throw
         return TorsionalModes(f"FE ({self.dofs} DOF)", self.frequencies_hz[idx], pins,
                               twist(self.mesh.node_sets["front_face"]), np.ones(len(idx)))
 
@@ -127,7 +130,7 @@ def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = D
     cm, xyz = sys_.mesh, sys_.xyz
     U = sys_.expand(X[:, 6:]).T.reshape(len(elastic), -1, 3)  # (modes, DOF nodes, 3)
     slabs = []
-    for k in range(crank.cylinders + 1):
+    for k in range(crank.throws + 1):
         d = sys_.dof_of_node[part_nodes(cm, f"journal_{k + 1}")]
         slabs.append(d[d >= 0])
     bodies, body_motion = [], {}

@@ -70,7 +70,7 @@ def master_labels(crank: Crank) -> list[str]:
     """The labels of a crank's masters (:func:`crank_masters`), known before any mesh: ``front``,
     ``J1``, ``P1``, ``J2``, …, ``rear``."""
     inner = [lb for j in range(len(crank.journals))
-             for lb in ((f"J{j + 1}", f"P{j + 1}") if j < crank.cylinders else (f"J{j + 1}",))]
+             for lb in ((f"J{j + 1}", f"P{j + 1}") if j < crank.throws else (f"J{j + 1}",))]
     return ["front", *inner, "rear"]
 
 
@@ -84,7 +84,7 @@ def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
         xm = _part_mid(cm, f"journal_{j + 1}")
         masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
                               _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
-        if j < crank.cylinders:
+        if j < crank.throws:
             pin, a = crank.pins[j], crank.engine.crank_angles[j]
             yz = (R * math.cos(a), R * math.sin(a))
             xp = _part_mid(cm, f"pin_{j + 1}")
@@ -124,11 +124,13 @@ def attachment_masses(crank: Crank, labels: list[str], positions: np.ndarray) ->
         Dm[6 * k:6 * k + 6, 6 * k:6 * k + 6] += point_mass_block(mass, inertia, centre, positions[k])
     pistons = crank.attachments_at(AttachPoint.PINS)
     if pistons:
-        inertia = sum(a.polar_inertia for a in pistons)
-        for c in range(crank.cylinders):
-            k = labels.index(f"P{c + 1}")
+        from ..description.cylinders import cylinders_per_throw
+
+        inertia = sum(a.polar_inertia for a in pistons)  # per cylinder: a vee's throw carries two
+        for t, count in enumerate(cylinders_per_throw(crank.engine)):
+            k = labels.index(f"P{t + 1}")
             r2 = float(positions[k, 1] ** 2 + positions[k, 2] ** 2)
-            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += inertia / r2 * np.eye(3)
+            Dm[6 * k:6 * k + 3, 6 * k:6 * k + 3] += count * inertia / r2 * np.eye(3)
     return Dm
 
 

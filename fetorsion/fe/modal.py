@@ -103,6 +103,16 @@ class ModalResult:
                                  "ask for more modes")
         return float(tors[0])
 
+    def first_carrying_torsion(self, share: float | None = None) -> float:
+        """The lowest mode with at least ``share`` (default
+        :data:`~fetorsion.modes.TORSION_SHARE_NOTED`) of its kinetic energy in torsion, Hz. Below
+        :meth:`first_torsional` where torsion couples with bending (a crank without its flywheel,
+        a flat crank of equal throws): the mode the engine's torque drives first."""
+        from ..modes import TORSION_SHARE_NOTED, first_with_torsion
+
+        return first_with_torsion(self.frequencies_hz, self.fractions, TORSION_SHARE_NOTED if share is None else share,
+                                  "computed modes; ask for more modes")
+
     def to_dict(self) -> dict:
         """Plain JSON-ready dict (SI units): frequencies, kinds, fractions, mesh and timings."""
         return {

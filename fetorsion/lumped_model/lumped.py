@@ -35,6 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.linalg
 
+from ..description.cylinders import per_cylinder
 from ..description.model import Chain, Crank, Network
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
@@ -246,7 +247,8 @@ def lumped(model: Crank | Chain | Network, dof: int = DEFAULT_PARTITION, stiffne
     inertias, springs, labels, anchors = partition_matrices(chain, dof)
     rigid, hz, shapes = solve_chain(inertias, springs)
     return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,
-                        {"stiffness_method": stiffness, "source": model.source}, pin_weights(chain, dof))
+                        {"stiffness_method": stiffness, "source": model.source},
+                        per_cylinder(model.engine, pin_weights(chain, dof)))
 
 
 def network_lumped(net: Network) -> LumpedResult:

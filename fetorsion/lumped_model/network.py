@@ -155,8 +155,10 @@ def resolved(net: Network) -> Network:
         inertias[c.first:c.first + len(J)] = J.tolist()
         inside += [Shaft(c.first + s, c.first + s + 1, float(v)) for s, v in enumerate(k)]
         if c.drives:
-            W = np.zeros((c.crank.cylinders, len(inertias)))
-            W[:, c.first:c.first + len(J)] = pin_weights(parts, c.partition)
+            from ..description.cylinders import per_cylinder
+
+            W = np.zeros((c.crank.engine.cylinders, len(inertias)))
+            W[:, c.first:c.first + len(J)] = per_cylinder(c.crank.engine, pin_weights(parts, c.partition))
             weights = tuple(map(tuple, W.tolist()))
     return replace(net, inertias=tuple(inertias), shafts=tuple(inside) + net.shafts, cranks=(),
                    cylinder_weights=weights)

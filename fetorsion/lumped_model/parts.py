@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..description.cylinders import cylinders_per_throw
 from ..description.model import PARTITIONS, AttachPoint, Crank, Cylinder, partition_labels
 from ..errors import FetorsionError, ParameterError
 from ..description.defaults import DEFAULT_WEB_METHOD
@@ -100,7 +101,8 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
     d_e = crank.journals[0].diameter
     j_e = math.pi * d_e**4 / 32
     oil = crank.oil_holes
-    piston = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.PINS))
+    piston = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.PINS))  # per cylinder
+    rods = cylinders_per_throw(crank.engine)
     if crank.solid_step:  # a CAD crank: its parts' inertias integrated on its own solid
         from ..solid.geometry import part_inertias
 
@@ -115,13 +117,13 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
     for i, c in enumerate(crank.front):
         pieces.append(("front", i, c.length, cylinder_equivalent_length(c, d_e), own("front", i, cylinder_inertia(c, rho)),
                        0.0))
-    for t in range(crank.cylinders + 1):
+    for t in range(crank.throws + 1):
         j = crank.journals[t]
         inertia = cylinder_inertia(j, rho)
         if oil.in_journals:
             inertia -= oil_hole_inertia(j, oil.diameter, rho)
         pieces.append(("journal", t, j.length, cylinder_equivalent_length(j, d_e), own("journal", t, inertia), 0.0))
-        if t == crank.cylinders:
+        if t == crank.throws:
             break
         for side in (0, 1):
             w = 2 * t + side
@@ -131,7 +133,8 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
                 inertia = cylinder_inertia(p, rho, R)
                 if oil.in_pins:
                     inertia -= oil_hole_inertia(p, oil.diameter, rho, R)
-                pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), own("pin", t, inertia), piston))
+                pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), own("pin", t, inertia),
+                               float(piston * rods[t])))
             length = web_equivalent_length(crank, w, d_e, web_method) if web_length is None else web_length(crank, w, d_e)
             pieces.append(("web", w, web.thickness, length, own("web", w, mass_properties(web, R, rho)["polar_inertia"]),
                            0.0))

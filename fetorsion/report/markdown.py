@@ -17,6 +17,7 @@ from ..design.bridge import DISAGREEMENT as BRIDGE_DISAGREEMENT
 from ..design.bridge import FACTORS as BRIDGE_FACTORS
 from ..design.recovered import BENDING_FLAG
 from ..lumped_model.lumped import PARTITIONS
+from ..modes import F1_TORSION_SHARE, TORSION_SHARE_NOTED
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
@@ -169,6 +170,17 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     return lines + [f"![]({img})" for img in outcome.images] + [""]
 
 
+def _major_orders_line(crank) -> str:
+    """The engine's major orders: where every cylinder's torque adds in phase on a rigid crank."""
+    from ..excitation.campbell import CAMPBELL_HIGHEST_ORDER, major_orders
+
+    orders = major_orders(crank.engine)
+    listed = ", ".join(f"{q:g}" for q in orders) if len(orders) else "none (the firing is uneven)"
+    return (f"Major orders of this {crank.engine.cylinders}-cylinder {crank.engine.layout} engine, where every "
+            f"cylinder's torque adds in phase on a rigid crank (to order {CAMPBELL_HIGHEST_ORDER:g}): "
+            f"{listed}.")
+
+
 def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[str]:
     """Crossings by severity, the diagram, and the forced response."""
     if isinstance(outcome, Skipped):
@@ -179,6 +191,7 @@ def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[s
             f"Crossings inside the checked range {camp.speed_range_rpm[0]:.0f}-{camp.speed_range_rpm[1]:.0f} rpm (to "
             f"overspeed), most severe first ({camp.source}; severity in {camp.severity_unit.split(': ')[1]} for "
             f"ζ = {zeta_text(camp.damping_ratio)}, {camp.severity_unit.split(':')[0]}):", "", "```", camp.table(), "```",
+            "", _major_orders_line(crank),
             "", f"![]({a})", "", f"Forced response on the {resp.model}, every order summed with its phase:", "",
             "```", resp.table(), "```", "", f"![]({b})", ""]
 
@@ -414,7 +427,10 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
                      f"{loc.equivalent / 1e6:.1f} | {loc.strength / 1e6:.1f} | **{loc.safety:.2f}** | {loc.required:.2f} | "
                      + ", ".join(f"{k} {val:.3f}" for k, val in loc.scfs.items()) + " |")
     for name, nom in m.nominal.items():
-        lines += ["", f"{name}: σ_BFN {nom['sigma_BFN_pa'] / 1e6:.2f} MPa, σ_QFN {nom['sigma_QFN_pa'] / 1e6:.2f} MPa "
+        per_throw = nom.get("cylinders", [])
+        rods = ("" if all(len(c) < 2 for c in per_throw) else " (each throw's rods superposed with their phases: "
+                + ", ".join(f"cylinders {' and '.join(map(str, c))}" for c in per_throw) + ")")
+        lines += ["", f"{name}{rods}: σ_BFN {nom['sigma_BFN_pa'] / 1e6:.2f} MPa, σ_QFN {nom['sigma_QFN_pa'] / 1e6:.2f} MPa "
                   f"(web section B {nom['B_m'] * 1e3:.1f} × W {nom['W_m'] * 1e3:.1f} mm), σ_BON {nom['sigma_BON_pa'] / 1e6:.2f} MPa; "
                   f"τ_N {nom['tau_N_pin_pa'] / 1e6:.2f} MPa (pin, M_TN {nom['M_TN_pin_nm']:.1f} N m), "
                   f"{nom['tau_N_journal_pa'] / 1e6:.2f} MPa (journal, M_TN {nom['M_TN_journal_nm']:.1f} N m); SCF sources: "
@@ -503,11 +519,20 @@ SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearing
             ("measured", measured_section), ("transient", transient_section))
 
 
-#: The headline "f1 in the engine" is the first mode with at least this share of its kinetic
-#: energy in torsion: a coupled mode the torque drives is not skipped.
-F1_TORSION_SHARE = 0.3
 #: The modes below the headline f1 listed by name in the summary.
 BELOW_F1_LISTED = 8
+
+
+def _coupled_below(modal, f1: float) -> float | None:
+    """The first free-free mode with :data:`TORSION_SHARE_NOTED` torsion when it lies below the first
+    mostly torsional one ``f1`` (Hz), else None."""
+    from ..errors import FetorsionError
+
+    try:
+        f = modal.first_carrying_torsion(TORSION_SHARE_NOTED)
+    except FetorsionError:
+        return None
+    return f if f < f1 * (1 - 1e-9) else None
 
 
 def summary_lines(run: RunOutcome) -> list[str]:
@@ -522,6 +547,11 @@ def summary_lines(run: RunOutcome) -> list[str]:
         line = f"- **Free-free f1: {f1:.1f} Hz** (3D FE, {fe.modal.dofs} DOF)"
         if measured:
             line += f"; measured {measured:g} Hz ({100 * (f1 / measured - 1):+.1f} %)"
+        coupled = _coupled_below(fe.modal, f1)
+        if coupled:
+            line += (f"; below it a mode coupled with bending at {coupled:.1f} Hz carries at least "
+                     f"{100 * TORSION_SHARE_NOTED:.0f} % of its kinetic energy in torsion: the engine's torque drives it "
+                     "first")
         if isinstance(sens, SensitivityOutcome) and sens.studies:
             b = sens.studies["montecarlo"].bands["f1"]
             line += (f"; the reconstruction's inputs put f1 at {b['p5']:.0f}–{b['p95']:.0f} Hz (5–95 %, "

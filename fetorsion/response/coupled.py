@@ -39,16 +39,23 @@ from .synthesis import half_peak_to_peak, waveform
 
 
 def pin_load_map(cc: CondensedCrank) -> np.ndarray:
-    """(cylinders, 2, 6·masters): master forces of a unit tangential and radial force on each pin.
+    """(cylinders, 2, 6·masters): master forces of a unit tangential and radial rod force of each
+    cylinder on its throw's pin.
 
-    Pin c at angle a_c: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a) (a
-    positive tangential force turns the crank in +θx)."""
+    Pin t at angle a_t: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a) (a
+    positive tangential force turns the crank in +θx). A big end at ``rod_offset`` d along the
+    pin from its master (the pin's mid-length) adds the force's moment d e_x × e at the master."""
     crank = cc.crank
-    out = np.zeros((crank.cylinders, 2, cc.n_master_dofs))
-    for c, a in enumerate(crank.engine.crank_angles):
-        iy, iz = cc.dof(f"P{c + 1}", "ty"), cc.dof(f"P{c + 1}", "tz")
-        out[c, 0, [iy, iz]] = -math.sin(a), math.cos(a)
-        out[c, 1, [iy, iz]] = math.cos(a), math.sin(a)
+    engine = crank.engine
+    out = np.zeros((engine.cylinders, 2, cc.n_master_dofs))
+    for c in range(engine.cylinders):
+        t = engine.throw_of_cylinder(c)
+        a, d = engine.crank_angles[t], engine.rod_offset(c)
+        pin = f"P{t + 1}"
+        for k, e in enumerate(((0.0, -math.sin(a), math.cos(a)), (0.0, math.cos(a), math.sin(a)))):
+            out[c, k, [cc.dof(pin, "ty"), cc.dof(pin, "tz")]] = e[1], e[2]
+            if d:  # d e_x × (0, e_y, e_z) = d (0, −e_z, e_y)
+                out[c, k, [cc.dof(pin, "ry"), cc.dof(pin, "rz")]] = -d * e[2], d * e[1]
     return out
 
 
@@ -313,7 +320,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     front, rear = cc.dof("front", "rx"), cc.dof("rear", "rx")
     res = np.einsum("sor,mcr->smco", z, cc.sections)  # (speeds, masters, 6, orders)
     J = [cc.labels.index(f"J{j + 1}") for j in range(len(crank.journals))]
-    P = [cc.labels.index(f"P{c + 1}") for c in range(crank.cylinders)]
+    P = [cc.labels.index(f"P{c + 1}") for c in range(crank.throws)]
     theta = np.linspace(0.0, period, int(np.ceil(24 * orders.max() * period / (2 * np.pi))), endpoint=False)
 
     def largest_magnitude(vec):  # vec: (..., 2, orders) -> (...), the largest |v(θ)| over the cycle
@@ -376,7 +383,7 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, ord
     harm = pin_force_harmonics(crank, rpm, orders)
     phasors = np.exp(-1j * np.outer(orders, firing_angles(crank.engine)))
     m = cc.n_master_dofs
-    load_map = np.zeros((crank.cylinders, 2, cc.reduced.size))
+    load_map = np.zeros((crank.engine.cylinders, 2, cc.reduced.size))
     load_map[:, :, :m] = pin_load_map(cc)
     load_map = load_map[:, :, keep]
     forces = np.einsum("sok,oc,ckd->sod", harm, phasors, load_map)
@@ -550,7 +557,7 @@ def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
     held = np.array(sorted([6 * k + d for k in journals for d in (1, 2)] + [axial, cc.dof("rear", "rx")]))
     keep = np.setdiff1d(np.arange(cc.reduced.size), held)
     K = cc.reduced.K
-    unit = np.zeros((cc.reduced.size, crank.cylinders * 2))
+    unit = np.zeros((cc.reduced.size, crank.engine.cylinders * 2))
     unit[:m] = pin_load_map(cc).reshape(-1, m).T  # columns: cylinder c tangential, radial
     z = np.zeros_like(unit)
     z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], unit[keep])
@@ -560,8 +567,8 @@ def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
     f = cylinder_pin_forces(crank, rpm)
     theta, period = f["theta"], cycle_angle(crank.engine)
     phi = firing_angles(crank.engine)
-    forces = np.empty((len(theta), crank.cylinders * 2))
-    for c in range(crank.cylinders):  # cylinder c's force at θ is cylinder 1's at θ − φ_c
+    forces = np.empty((len(theta), crank.engine.cylinders * 2))
+    for c in range(crank.engine.cylinders):  # cylinder c's force at θ is cylinder 1's at θ − φ_c
         for k, name in enumerate(("tangential", "radial")):
             forces[:, 2 * c + k] = np.interp(theta - phi[c], theta, f[name], period=period)
     on_crank = np.einsum("jdk,tk->tjd", A, forces)  # (angles, journals, y z), crank frame

@@ -150,7 +150,7 @@ def cut_throw_angles(cc: CondensedCrank) -> np.ndarray:
     """Throw-plane angle of each cut: its pin's angle for a pin cut (the centre off the axis);
     for a journal cut, the nearer pin's (the throw whose web meets that journal)."""
     centres = cc.cut_centres
-    pins = np.array([cc.positions[cc.labels.index(f"P{c + 1}")][0] for c in range(cc.crank.cylinders)])
+    pins = np.array([cc.positions[cc.labels.index(f"P{c + 1}")][0] for c in range(cc.crank.throws)])
     angles = np.asarray(cc.crank.engine.crank_angles, float)
     out = np.empty(len(centres))
     for k, c in enumerate(centres):

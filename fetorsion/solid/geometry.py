@@ -149,9 +149,9 @@ def layout(crank: Crank) -> list[_Piece]:
     R = crank.engine.crank_radius * s
     seq: list[tuple[str, int, object, float]] = []
     seq += [("front", i, c, 0.0) for i, c in enumerate(crank.front)]
-    for t in range(crank.cylinders + 1):
+    for t in range(crank.throws + 1):
         seq.append(("journal", t, crank.journals[t], 0.0))
-        if t == crank.cylinders:
+        if t == crank.throws:
             break
         a = crank.engine.crank_angles[t]
         seq += [("web", 2 * t, crank.webs[2 * t], a), ("pin", t, crank.pins[t], a),
@@ -340,7 +340,7 @@ def _oil_holes(occ, crank: Crank, pieces: list[_Piece], s: float) -> list[tuple[
     if oh.diameter <= 0:
         return []
     tools = []
-    n = crank.cylinders
+    n = crank.throws
     for p in pieces:
         if not ((p.kind == "journal" and oh.in_journals) or (p.kind == "pin" and oh.in_pins)):
             continue

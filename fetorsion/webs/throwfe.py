@@ -108,7 +108,7 @@ def throw_of(crank: Crank, index: int) -> Crank:
     is the throw's end face, held plane by the rigid coupling: the half journal cannot hold it.
     Drilled at the half journal's own mid-length (as the solid builder places a drilling) it
     would stand a quarter journal from the web, counted once in each neighbouring throw, and
-    on a short journal it meets the fillet (issue 53: a 20 mm journal with a 2.5 mm fillet
+    on a short journal it meets the fillet (a 20 mm journal with a 2.5 mm fillet
     and a 5 mm drilling left 0 mm between them and Gmsh failed). The pin drilling stays.
 
     Parameters
@@ -118,8 +118,8 @@ def throw_of(crank: Crank, index: int) -> Crank:
     index : int
         0-based throw (cylinder) index.
     """
-    if not 0 <= index < crank.cylinders:
-        raise FetorsionError(f"throw {index + 1} does not exist: the crank has {crank.cylinders}")
+    if not 0 <= index < crank.throws:
+        raise FetorsionError(f"throw {index + 1} does not exist: the crank has {crank.throws}")
     half = lambda c: dataclasses.replace(c, length=0.5 * c.length)  # noqa: E731
     e = crank.engine
     engine = Engine(cylinders=1, strokes_per_cycle=e.strokes_per_cycle, stroke=e.stroke,

@@ -1,0 +1,52 @@
+"""Which cylinder loads which throw, and how: the one seam between an engine's cylinders and its
+crank's throws.
+
+Every cylinder is the same slider-crank: its torque and its pin force, as functions of the
+crank angle from its own firing TDC, are cylinder 1's (:mod:`fetorsion.excitation.torque`).
+A vee cylinder differs from an in-line one only in when it fires (its throw's angle plus its
+bank's, :meth:`fetorsion.description.model.Engine.tdc_lags`) and where its rod sits along the
+pin. In the throw's own frame (radial along the crank arm, tangential ahead of it) its rod
+force is the in-line one, a function of the crank angle from its own bank's axis: the bank's
+direction enters through the phase alone. So the load maps keep one row per cylinder, built
+from that cylinder's throw (:mod:`fetorsion.description.cylinders`; a misfire of one cylinder
+is one row), and a throw's load is the sum of its rows with their phases (:func:`throw_rods`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..description.cylinders import cylinder_throws
+
+
+def throw_rods(crank, force: dict[str, np.ndarray], throw: int) -> dict[str, np.ndarray]:
+    """The rods on 0-based ``throw`` over one working cycle, each at its own phase.
+
+    Parameters
+    ----------
+    crank : Crank
+    force : dict
+        One cylinder's pin force over its cycle from its firing TDC
+        (:func:`fetorsion.excitation.torque.cylinder_pin_forces`: ``theta`` rad, ``radial`` and
+        ``tangential`` N).
+    throw : int
+
+    Returns
+    -------
+    dict
+        ``cylinders`` (rods,) 0-based; ``radial``, ``tangential`` (rods, samples), N, on the
+        grid ``theta`` of the throw's first cylinder's cycle (each rod's force is cylinder 1's
+        delayed by its firing angle less the first rod's); ``offset`` (rods,), m: each big end's
+        axial place from the pin's mid-length.
+    """
+    from .torque import cycle_angle, firing_angles
+
+    engine = crank.engine
+    rods = np.flatnonzero(cylinder_throws(engine) == throw)
+    phi = firing_angles(engine)[rods]
+    theta = np.asarray(force["theta"], float)
+    period = cycle_angle(engine)
+    shifted = {k: np.stack([np.interp(theta - (p - phi[0]), theta, np.asarray(force[k], float), period=period)
+                            for p in phi]) for k in ("radial", "tangential")}
+    return {"cylinders": rods, "theta": theta, **shifted,
+            "offset": np.array([engine.rod_offset(int(c)) for c in rods])}
