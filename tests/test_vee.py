@@ -162,3 +162,17 @@ def test_m53_throw_loads_superpose_two_rods_by_hand():
     assert loads["M_BTO"][0] == pytest.approx(t_front * 0.10 - 300.0 * 0.01)
     one = throw_loads(spans, F[0], T[0])  # one rod at mid-pin: the rule's triangle
     assert one["M_BRO"][0] == pytest.approx(1000.0 * 0.5 * 0.10)
+
+
+@pytest.mark.parametrize("name, interval", [("v8_petrol", 90.0), ("v12_diesel", 60.0), ("flat4_boxer", 180.0)])
+def test_shipped_vee_and_opposed_cranks_fire_evenly(name, interval):
+    """The example files fire every 720°/z, and their major orders are the multiples of z/2 up to
+    12 (turn5-leads: an even-firing four-stroke of z cylinders)."""
+    import fetorsion
+
+    from conftest import GEOMETRY
+
+    crank = fetorsion.load(GEOMETRY / f"{name}.toml")
+    z = crank.engine.cylinders
+    assert np.sort(np.degrees(firing_angles(crank.engine))) == pytest.approx(np.arange(z) * interval)
+    assert list(major_orders(crank.engine)) == list(np.arange(z / 2, 12.0 + 1e-9, z / 2))
