@@ -261,7 +261,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     mt.finish()
 
     engine = read_engine(root)
-    n = engine.throws if len(engine.crank_angles) else engine.cylinders // (2 if engine.layout == "vee" else 1)
+    n = engine.cylinders // (2 if engine.layout == "vee" else 1)  # throws: as the layout has them, not as listed
 
     journals = tuple(_cylinder(t) for t in root.tables("journals"))
     pins = tuple(_cylinder(t) for t in root.tables("pins"))
