@@ -176,3 +176,34 @@ def test_shipped_vee_and_opposed_cranks_fire_evenly(name, interval):
     z = crank.engine.cylinders
     assert np.sort(np.degrees(firing_angles(crank.engine))) == pytest.approx(np.arange(z) * interval)
     assert list(major_orders(crank.engine)) == list(np.arange(z / 2, 12.0 + 1e-9, z / 2))
+
+
+def test_each_rod_loads_its_pin_master_with_its_offset_moment():
+    """`pin_load_map` on the V8: each cylinder's unit tangential and radial force lands on its throw's
+    pin master in the throw's frame, with the moment r × F of its big end's axial offset r = d e_x
+    (numpy's cross product); the two rods of a throw, ±d apart, give opposite moments for equal
+    forces. A stand-in for the condensed crank carries only what the map reads (the masters' DOF
+    numbering, in fetorsion.fe.couplings.DOF_NAMES order tx ty tz rx ry rz)."""
+    from types import SimpleNamespace
+
+    from fetorsion.response.coupled import pin_load_map
+
+    crank = parse_crank(v8())
+    labels = ["front"] + [x for t in range(4) for x in (f"J{t + 1}", f"P{t + 1}")] + ["J5", "rear"]
+    names = ("tx", "ty", "tz", "rx", "ry", "rz")
+    cc = SimpleNamespace(crank=crank, n_master_dofs=6 * len(labels),
+                         dof=lambda label, name: 6 * labels.index(label) + names.index(name))
+    load = pin_load_map(cc)
+    e = crank.engine
+    assert load.shape == (8, 2, 6 * len(labels))
+    for c in range(8):
+        t = e.throw_of_cylinder(c)
+        a = e.crank_angles[t]
+        block = load[c].reshape(2, len(labels), 6)
+        k = labels.index(f"P{t + 1}")
+        assert np.count_nonzero(np.delete(block, k, axis=1)) == 0  # nothing on another master
+        for row, force in zip(block[:, k], ([0.0, -math.sin(a), math.cos(a)], [0.0, math.cos(a), math.sin(a)])):
+            assert row[:3] == pytest.approx(force, abs=1e-15)
+            assert row[3:] == pytest.approx(np.cross([e.rod_offset(c), 0.0, 0.0], force), abs=1e-15)
+    # cylinders 1 and 2 share throw 1 at -6 and +6 mm: equal forces, opposite moments
+    assert (load[0] + load[1]).reshape(2, -1, 6)[:, :, 3:] == pytest.approx(0.0, abs=1e-15)
