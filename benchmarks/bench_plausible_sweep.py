@@ -6,7 +6,7 @@ each like a file and runs both FE steps at the default mesh size. Prints the tab
 docs/plausible-cranks.md carries and writes results/plausible/sweep.json. Heavy (about a
 minute per crank on 2 cores): run it niced, alone.
 
-    nice -n 5 .venv/bin/python benchmarks/bench_plausible_sweep.py [--seed 53] [--count 40]
+    nice -n 5 .venv/bin/python benchmarks/bench_plausible_sweep.py [--seed 53] [--count 40] [--layout vee]
 """
 
 import argparse
@@ -44,22 +44,25 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seed", type=int, default=53)
     ap.add_argument("--count", type=int, default=40)
-    ap.add_argument("--out", default=str(ROOT / "results" / "plausible" / "sweep.json"))
+    ap.add_argument("--layout", choices=("in-line", "vee"), default="in-line")
+    ap.add_argument("--out", help="the table as JSON (default results/plausible/sweep.json, sweep_vee.json)")
     args = ap.parse_args()
     t0 = time.perf_counter()
     rows = []
     print("| # | cyl | stroke (mm) | features | status | modal DOF | f1 lumped fe / 3D FE (Hz) | time (s) | why |")
     print("|---|---|---|---|---|---|---|---|---|")
-    for i, raw in enumerate(plausible_cranks(args.seed, args.count)):
-        rows.append(try_crank(raw, f"plausible seed {args.seed} #{i}"))
+    for i, raw in enumerate(plausible_cranks(args.seed, args.count, args.layout)):
+        rows.append(try_crank(raw, f"plausible {args.layout} seed {args.seed} #{i}"))
         print(row_text(i, rows[-1]), flush=True)
     total = time.perf_counter() - t0
     counts = {s: sum(r["status"] == s for r in rows) for s in ("ok", "refused", "failed")}
     print(f"\n{counts['ok']} ok, {counts['refused']} refused, {counts['failed']} failed of {len(rows)} "
           f"in {total / 60:.1f} min on {cpu()}")
-    out = Path(args.out)
+    out = Path(args.out or ROOT / "results" / "plausible" / ("sweep.json" if args.layout == "in-line" else
+                                                             "sweep_vee.json"))
     out.parent.mkdir(parents=True, exist_ok=True)
-    write_text_atomic(out, json.dumps({"seed": args.seed, "count": args.count, "seconds": total, "cpu": cpu(),
+    write_text_atomic(out, json.dumps({"seed": args.seed, "count": args.count, "layout": args.layout,
+                                       "seconds": total, "cpu": cpu(),
                                        "counts": counts, "rows": rows}, indent=1) + "\n")
 
 

@@ -23,6 +23,22 @@ def test_draws_are_valid_plausible_and_repeatable():
     assert plausible_crank(np.random.default_rng(1)) != plausible_crank(np.random.default_rng(2))
 
 
+def test_vee_draws_are_valid_and_fire_as_their_layout():
+    """Vees of 6-12 cylinders (two rods side by side on each pin): every draw is read without a
+    warning; the V8, V10 and V12 fire every 720°/z, the 60° V6 on three 120° throws does not (it
+    would need split pins)."""
+    from fetorsion.description.samples import VEE_LAYOUTS
+    from fetorsion.excitation.torque import firing_angles
+
+    cranks = [parse_crank(raw, source=f"vee {i}") for i, raw in enumerate(plausible_cranks(7, 40, "vee"))]
+    assert all(not plausibility_warnings(c) for c in cranks)
+    assert {c.engine.cylinders for c in cranks} == set(VEE_LAYOUTS)
+    for c in cranks:
+        z = c.engine.cylinders
+        gaps = np.diff(np.sort(np.degrees(firing_angles(c.engine))))
+        assert c.throws == z // 2 and (z == 6) != np.allclose(gaps, 720.0 / z)
+
+
 def test_a_drilling_at_its_fillet_is_refused_before_any_fe():
     """The sweep's refusal path: a crank whose journal drilling is tangent to its fillets (length
     2 × fillet + drilling) is refused by the reader, in its own words, before any FE."""
