@@ -57,14 +57,15 @@ def test_a_drilling_at_its_fillet_is_refused_before_any_fe():
 
 @pytest.mark.fe
 @pytest.mark.slow
-@pytest.mark.parametrize("index", [0, 5])
-def test_a_sample_of_the_sweep_meshes_and_solves(index):
-    """Two cranks of the sweep (seed 53: #0 a five-cylinder with hollow pins and counterweights, #5
-    a three-cylinder with drillings) through both FE steps at the default mesh: they mesh and give
-    a mode that carries torsion (the whole sweep: benchmarks/bench_plausible_sweep.py)."""
+@pytest.mark.parametrize("layout, index", [("in-line", 0), ("in-line", 5), ("vee", 0)])
+def test_a_sample_of_the_sweep_meshes_and_solves(layout, index):
+    """Three cranks of the sweeps (seed 53: in-line #0 a five-cylinder with hollow pins and
+    counterweights, #5 a three-cylinder with drillings; vee #0 a V8 with fillets) through both FE
+    steps at the default mesh: they mesh and give a mode that carries torsion (the whole sweeps:
+    benchmarks/bench_plausible_sweep.py, docs/plausible-cranks.md)."""
     from fetorsion.studies.plausible import try_crank
 
-    row = try_crank(plausible_cranks(53, index + 1)[index], f"plausible seed 53 #{index}")
+    row = try_crank(plausible_cranks(53, index + 1, layout)[index], f"plausible {layout} seed 53 #{index}")
     assert row["status"] == "ok", row
     assert row["modal"]["f1_hz"] > 0 and row["lumped, fe webs"]["f1_hz"] > 0
 
