@@ -567,7 +567,7 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
     groups: dict = {}
     rods = [throw_rods(crank, one, i) for i in range(crank.throws)]
     for i in range(crank.throws):  # throws of one geometry and load are one variant ([KR-M53] §2.(1)(B)(a)(iv))
-        signature = (tuple(np.round(rods[i]["offset"], 9)), tuple(np.round(rods[i]["radial"][:, ::60].ravel(), 3)))
+        signature = tuple(np.round(np.r_[rods[i]["offset"], rods[i]["phase"]], 9))  # its rods' places and phases
         groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i), signature), []).append(i + 1)
     locations, nominal, sources = [], {}, {}
     for (g, spans, _), throws in groups.items():

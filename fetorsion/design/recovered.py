@@ -370,18 +370,17 @@ def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm:
     amp = alternating(cycle.bending_in_plane(), axis=-1)  # (speeds, cuts)
     angles = np.asarray(crank.engine.crank_angles, float)
     R = crank.engine.crank_radius
-    origins, out = {}, []
+    origins, rods_of, out = {}, {}, []
     for k, f in enumerate(fillets):
         if f.kind not in ("pin", "journal"):
             continue
         i = throw_index(crank, fillets, f)
         if i not in origins:
-            origins[i] = throw_origin(crank, fillets, i)
+            origins[i], rods_of[i] = throw_origin(crank, fillets, i), throw_rods(crank, one, i)
         x = float((throw_rotation(-angles[i]) @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0])))[0])
         spans = throw_spans(crank, i)
         web = spans.L1[0] if x < spans.L2 else spans.L3 - spans.L1[1]  # the fillet's web's centre
-        rods = throw_rods(crank, one, i)
-        rule = max(abs(float(half_range_cut(rods, "radial", spans, R, (at, 0.0, 0.0))[5])) for at in (x, web))
+        rule = max(abs(float(half_range_cut(rods_of[i], "radial", spans, R, (at, 0.0, 0.0))[5])) for at in (x, web))
         s = int(np.argmax(amp[:, k]))
         run = float(amp[s, k])
         ratio = run / rule if rule > 0 else math.inf

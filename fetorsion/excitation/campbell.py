@@ -303,8 +303,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)
     phi = firing_angles(crank.engine)
     phasors = np.exp(-1j * orders[:, None] * phi[None, :])  # (orders, cylinders)
-    S = modes.pin_amplitudes[:k] @ phasors.T  # (modes, orders)
-    phase_sum = order_sums(crank.engine, modes.pin_amplitudes[:k], orders)
+    phase_sum = order_sums(crank.engine, modes.pin_amplitudes[:k], orders)  # (modes, orders)
+    S = phase_sum * np.abs(modes.pin_amplitudes[:k]).sum(axis=1, keepdims=True)  # |Σ_c a_jc e^{−iqφ_c}|
     period = cycle_angle(crank.engine)
     Tq = np.empty_like(rpm, dtype=complex)
     for j in range(k):  # one torque cycle per mode and order (distinct speeds)

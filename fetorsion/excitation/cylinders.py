@@ -36,8 +36,8 @@ def throw_rods(crank, force: dict[str, np.ndarray], throw: int) -> dict[str, np.
     dict
         ``cylinders`` (rods,) 0-based; ``radial``, ``tangential`` (rods, samples), N, on the
         grid ``theta`` of the throw's first cylinder's cycle (each rod's force is cylinder 1's
-        delayed by its firing angle less the first rod's); ``offset`` (rods,), m: each big end's
-        axial place from the pin's mid-length.
+        delayed by its firing angle less the first rod's, ``phase`` (rods,) rad); ``offset``
+        (rods,), m: each big end's axial place from the pin's mid-length.
     """
     from .torque import cycle_angle, firing_angles
 
@@ -48,5 +48,5 @@ def throw_rods(crank, force: dict[str, np.ndarray], throw: int) -> dict[str, np.
     period = cycle_angle(engine)
     shifted = {k: np.stack([np.interp(theta - (p - phi[0]), theta, np.asarray(force[k], float), period=period)
                             for p in phi]) for k in ("radial", "tangential")}
-    return {"cylinders": rods, "theta": theta, **shifted,
+    return {"cylinders": rods, "theta": theta, **shifted, "phase": phi - phi[0],
             "offset": np.array([engine.rod_offset(int(c)) for c in rods])}

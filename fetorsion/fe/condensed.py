@@ -22,7 +22,7 @@ import scipy.sparse as sp
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_TORSIONAL_MODES
 from ..description.model import Crank
 from ..errors import FetorsionError
-from ..modes import TorsionalModes
+from ..modes import TORSION_SHARE_NOTED, TorsionalModes
 from ..solid.mesh import CrankMesh
 from . import assembly, modeshape
 from .couplings import DOF_NAMES
@@ -149,8 +149,6 @@ def cut_recovery(sys_: CrankSystem, centres: np.ndarray):
 
     return recover
 
-
-from ..modes import TORSION_SHARE_NOTED  # noqa: E402  (the share at which a mode carries torsion)
 
 @dataclass
 class CondensedModes:
