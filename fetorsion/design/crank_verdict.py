@@ -29,7 +29,7 @@ from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..errors import FetorsionError
 from .scfset import SCFSet
 from .dampers import DamperResult
-from .m53 import M53Result, polar_modulus, run_m53_crank
+from .m53 import M53Result, m53_utilisation, run_m53_crank
 
 from .methods import DEFAULT_FATIGUE_METHOD, FATIGUE_METHODS, ConfigLoads, fatigue_method, fillet_torque_amplitude  # noqa: F401
 #: The places within this factor of the governing safety are the ones the damping searches of the
@@ -41,38 +41,6 @@ FLIP_BRACKET = (1e-4, 0.3)
 #: the torsional default and five times it, a bracket (not a source) for an undamped-looking
 #: crank in rigid bearings against one whose film and block damp its bending well.
 BENDING_SENSITIVITY = (0.02, 0.10)
-
-
-def m53_utilisation(result: M53Result, fillets, setup):
-    """A function (speeds, sections) alternating section torques → (speeds,) M53 utilisation
-    σ_V/σ_DW of the worst place at each speed (1/Q): ``result``'s bending parts held (they do not
-    depend on the torsional vibration), its torsion taken from the torques given, pin places from
-    the largest pin-section torque at that speed, journal places from the journal's. The damper
-    optimiser's objective: minimising its largest value maximises M53's governing Q."""
-    from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
-    from .stress import fillet_sections
-
-    sections = fillet_sections(fillets, setup)
-    cols = {k: sections[[j for j, f in enumerate(fillets) if f.kind == k]] for k in ("pin", "journal")}
-    rows = []
-    for a in result.locations:
-        kind = "journal" if a.kind == "journal-fillet" else "pin"
-        nominal = result.nominal[a.name.split(":")[0]]
-        modulus = polar_modulus(nominal["D_G_m"], nominal["D_BG_m"]) if kind == "journal" else \
-            polar_modulus(nominal["D_m"], nominal["D_BH_m"])
-        t_scf = a.scfs.get("beta_T") or a.scfs.get("alpha_T") or a.scfs.get("gamma_T")
-        rows.append((a.kind, kind, a.bending, a.additional, a.strength, t_scf / modulus))
-
-    def utilisation(torque):
-        t = np.asarray(torque, float)
-        worst = np.zeros(t.shape[0])
-        for loc_kind, kind, bending, add, strength, per_nm in rows:
-            tau = per_nm * t[:, cols[kind]].max(axis=1)
-            sv = m53_equivalent_oil_bore(bending, tau) if loc_kind == "oil-bore" else m53_equivalent_fillet(bending, tau, add)
-            worst = np.maximum(worst, sv / strength)
-        return worst
-
-    return utilisation
 
 
 #: The most speeds the damper optimiser evaluates its objective on (every ``k``-th of the setup's).
@@ -246,16 +214,63 @@ class DampingFlip:
     kind: str
 
 
-def _flip(safety_at, required: float) -> DampingFlip:
-    """The damping ratio at which ``safety_at(ζ)`` meets ``required`` (safety grows with damping)."""
-    lo, hi = FLIP_BRACKET
-    f_lo, f_hi = safety_at(lo) - required, safety_at(hi) - required
-    if f_lo >= 0:
-        return DampingFlip(None, f"passes down to ζ = {lo:g} (the search's end)")
-    if f_hi < 0:
-        return DampingFlip(None, f"fails up to ζ = {hi:g} (the search's end)")
-    z = math.exp(scipy.optimize.brentq(lambda x: safety_at(math.exp(x)) - required, math.log(lo), math.log(hi),
-                                       xtol=1e-3))
+#: The flip search stops when its next step in ln ζ, or its bracket, is below this: ζ to 0.1 %.
+FLIP_TOLERANCE = 1e-3
+
+
+def _flip(safety_at, required: float, known: dict | None = None) -> DampingFlip:
+    """The damping ratio at which ``safety_at(ζ)`` meets ``required`` (safety grows with damping).
+
+    ``known``: {ζ: safety} already computed (the damping band's). In ln safety against ln ζ the
+    curve is nearly straight (near a resonance the safety goes as ζ, away from it more slowly):
+    the root is bracketed from the known points by steps along their secant, each a quarter
+    longer than the secant says and at least a factor 2 in ζ, clamped to :data:`FLIP_BRACKET`;
+    then regula falsi (Illinois) in that bracket until :data:`FLIP_TOLERANCE`. Two to five
+    evaluations where a bisecting search from the bracket's ends took a dozen."""
+    lo, hi = math.log(FLIP_BRACKET[0]), math.log(FLIP_BRACKET[1])
+    seen = {math.log(z): s for z, s in (known or {}).items() if FLIP_BRACKET[0] <= z <= FLIP_BRACKET[1]}
+
+    def g(u):  # ln(safety / required) at ζ = e^u; a safety of 0 (statically over) reads as far below
+        if u not in seen:
+            seen[u] = safety_at(math.exp(u))
+        return math.log(max(seen[u], 1e-300) / required)
+
+    if not seen:
+        g(math.log(0.02))
+    while True:
+        us = sorted(seen)
+        signs = [g(u) >= 0 for u in us]
+        pair = next((k for k in range(len(us) - 1) if signs[k] != signs[k + 1]), None)
+        if pair is not None:
+            a, b = us[pair], us[pair + 1]
+            break
+        down = signs[0]  # passes everywhere seen: the root is below; fails everywhere: above
+        end = us[0] if down else us[-1]
+        if end == (lo if down else hi):
+            return DampingFlip(None, f"passes down to ζ = {FLIP_BRACKET[0]:g} (the search's end)" if down
+                               else f"fails up to ζ = {FLIP_BRACKET[1]:g} (the search's end)")
+        step = -math.log(2.0) if down else math.log(2.0)
+        if len(us) > 1:
+            u0, u1 = (us[0], us[1]) if down else (us[-2], us[-1])
+            slope = (g(u1) - g(u0)) / (u1 - u0)
+            if slope > 0:
+                guess = -1.25 * g(end) / slope
+                step = min(guess, step) if down else max(guess, step)
+        g(min(max(end + step, lo), hi))
+    fa, fb = g(a), g(b)
+    c = b
+    while abs(b - a) > FLIP_TOLERANCE:
+        slope = (fb - fa) / (b - a)
+        c = b - fb / slope
+        fc = g(c)
+        if abs(fc / slope) < FLIP_TOLERANCE:  # the secant's next step would move ζ by under the tolerance
+            break
+        if (fc > 0) != (fb > 0):
+            a, fa = b, fb
+        else:
+            fa *= 0.5  # Illinois: the end that stays is halved, so the bracket closes from both sides
+        b, fb = c, fc
+    z = math.exp(c)
     return DampingFlip(z, f"passes down to ζ = {z:.4g}")
 
 
@@ -313,8 +328,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
 
     def safety_of(name, s, dampers, places=None):
         """The governing safety of method ``name`` alone (the damping searches)."""
-        m = FATIGUE_METHODS[name]
-        return m.answer(m.assess(loads_of(s, dampers, places, check=False)))["safety"]
+        return FATIGUE_METHODS[name].governing_safety(loads_of(s, dampers, places, check=False))
 
     def config(name, s, dampers, cylinder=None, results=None):
         loads = loads_of(s, dampers)
@@ -353,16 +367,13 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
         motored = misfire_harmonics(crank, setup)
         # one setup per cylinder: its undamped response is solved once and serves every damper row
         # (a damper's response is that one and the shared unit responses, with_dampers)
-        misfired = [setup.with_misfire(c, motored) for c in range(crank.engine.cylinders)]
+        misfired = setup.with_misfires(motored)
         rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
         for name, dampers in rows + [(f"with the recommended {kind} damper", (best,))]:
-            worst, worst_c, worst_s = None, None, None
-            for c, ms in enumerate(misfired):  # the worst cylinder by M53
-                r = FATIGUE_METHODS["iacs-m53"].assess(loads_of(ms, dampers))
-                if worst is None or r.governing.safety < worst.governing.safety:
-                    worst, worst_c, worst_s = r, c, ms
-            configs.append(config(f"misfire of cylinder {worst_c + 1}, {name}", worst_s, dampers, worst_c,
-                                  {"iacs-m53": worst}))
+            # the worst cylinder by M53 (its governing safety alone), then its configuration in full
+            worst_c = int(np.argmin([FATIGUE_METHODS["iacs-m53"].governing_safety(loads_of(ms, dampers, check=False))
+                                     for ms in misfired]))
+            configs.append(config(f"misfire of cylinder {worst_c + 1}, {name}", misfired[worst_c], dampers, worst_c))
         notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
                       "M53's bending keeps the firing rod forces (the larger)")
     elif misfire:
@@ -382,9 +393,9 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     def safety_at(zeta):
         return safety_of(method, with_damping_ratio(setup, cc, "bearings", zeta), described, near)
 
-    say("fatigue verdict: the damping ratio at which it flips ...")
-    flip = _flip(safety_at, required)
+    say("fatigue verdict: the damping band and the damping ratio at which it flips ...")
     band = [{"damping_ratio": z, "safety": safety_at(z)} for z in sorted(set(ex.damping_band))]
+    flip = _flip(safety_at, required, {b["damping_ratio"]: b["safety"] for b in band})
     bending = bending_damping(crank)
     if fe_path and bending["assumed"]:
         say("fatigue verdict: the fe path at two bending damping ratios ...")

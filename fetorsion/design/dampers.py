@@ -35,7 +35,7 @@ from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_PARTITION
 from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
 from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
-from ..response.synthesis import half_peak_to_peak, largest_half_peak_to_peak
+from ..response.synthesis import group_maxima, half_peak_to_peak, largest_half_peak_to_peak
 from .scfset import SCFSet
 
 OBJECTIVES = ("stress", "twist", "fatigue")
@@ -260,7 +260,7 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
         :func:`fetorsion.design.stress.fillets_of` the crank, when the caller has them.
     utilisation : callable, optional
         For ``fatigue``: (speeds, sections) alternating section torques (N·m, half peak-to-peak)
-        → (speeds,) utilisation (:func:`fetorsion.design.crank_verdict.m53_utilisation`).
+        → (speeds,) utilisation (:func:`fetorsion.design.m53.m53_utilisation`).
     **setup_options
         To :func:`~fetorsion.response.forced.response_setup` when ``setup`` is not given.
 
@@ -303,7 +303,10 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
 
     def peak(dampers):  # its largest value, what the optimiser calls some 80 times
         if objective == "fatigue":
-            return float(curve(dampers).max())
+            if getattr(utilisation, "groups", None) is None:
+                return float(curve(dampers).max())
+            z, _ = signals(dampers)
+            return float(utilisation(group_maxima(z, setup.orders, setup.period, utilisation.groups))[0])
         z, scale = signals(dampers)
         return largest_half_peak_to_peak(z, setup.orders, setup.period, scale)
 

@@ -593,3 +593,38 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
                                              if bigger else "NOT covered by M53 (journals smaller than the pins): "
                                              "separate documentation required"))
     return M53Result(tuple(locations), nominal, sources, rated, tuple(notes))
+
+
+def m53_utilisation(result: M53Result, fillets, setup):
+    """A function (speeds, sections) alternating section torques → (speeds,) M53 utilisation
+    σ_V/σ_DW of the worst place at each speed (1/Q): ``result``'s bending parts held (they do not
+    depend on the torsional vibration), its torsion taken from the torques given, pin places from
+    the largest pin-section torque at that speed, journal places from the journal's. The damper
+    optimiser's objective: minimising its largest value maximises M53's governing Q."""
+    from .stress import fillet_sections
+
+    sections = fillet_sections(fillets, setup)
+    cols = {k: sections[[j for j, f in enumerate(fillets) if f.kind == k]] for k in ("pin", "journal")}
+    rows = []
+    for a in result.locations:
+        kind = "journal" if a.kind == "journal-fillet" else "pin"
+        nominal = result.nominal[a.name.split(":")[0]]
+        modulus = polar_modulus(nominal["D_G_m"], nominal["D_BG_m"]) if kind == "journal" else \
+            polar_modulus(nominal["D_m"], nominal["D_BH_m"])
+        t_scf = a.scfs.get("beta_T") or a.scfs.get("alpha_T") or a.scfs.get("gamma_T")
+        rows.append((a.kind, kind, a.bending, a.additional, a.strength, t_scf / modulus))
+
+    def utilisation(torque):
+        t = np.asarray(torque, float)
+        worst = np.zeros(t.shape[0])
+        for loc_kind, kind, bending, add, strength, per_nm in rows:
+            tau = per_nm * t[:, cols[kind]].max(axis=1)
+            sv = m53_equivalent_oil_bore(bending, tau) if loc_kind == "oil-bore" else m53_equivalent_fillet(bending, tau, add)
+            worst = np.maximum(worst, sv / strength)
+        return worst
+
+    # it reads the pin and the journal sections only through their largest torque at each speed,
+    # and σ_V grows with τ: its largest value over the speeds follows from the two largest
+    # torques (:func:`fetorsion.response.synthesis.group_maxima`)
+    utilisation.groups = [cols["pin"], cols["journal"]]
+    return utilisation

@@ -77,6 +77,14 @@ class FatigueMethod:
     needs_recovery: bool
     assess: Callable
     answer: Callable
+    #: ``safety(loads) -> float``, the governing safety alone where a method has a shorter way to
+    #: it than its whole assessment (the damping searches call it a dozen times); None: from
+    #: :attr:`assess` and :attr:`answer`.
+    safety: Callable | None = None
+
+    def governing_safety(self, loads: "ConfigLoads") -> float:
+        """The governing safety of ``loads`` by this method (:attr:`safety`, else the whole assessment's)."""
+        return self.safety(loads) if self.safety is not None else self.answer(self.assess(loads))["safety"]
 
 
 def fillet_torque_amplitude(setup, response, fillets) -> np.ndarray:
@@ -93,6 +101,25 @@ def assess_m53(loads: ConfigLoads):
 
     return run_m53_crank(loads.crank, loads.fillets, fillet_torque_amplitude(loads.setup, loads.response, loads.fillets),
                          loads.setup.rpm, fe_scf=loads.scf)
+
+
+def safety_m53(loads: ConfigLoads) -> float:
+    """M53's governing safety alone: the rule reads from the vibration calculation only the largest
+    alternating torque through a pin and through a journal fillet section over the speeds
+    ([KR-M53] §2.(2)(A)(f)), so those two are synthesised by bound
+    (:func:`fetorsion.response.synthesis.largest_half_peak_to_peak`, the same values as the whole
+    response's) and put into the rule's places with their bending held
+    (:func:`fetorsion.design.m53.m53_utilisation`), instead of every section at every speed."""
+    from ..response.forced import section_torques, solve_theta
+    from ..response.synthesis import group_maxima
+    from .m53 import m53_utilisation, run_m53_crank
+
+    setup = loads.setup
+    held = run_m53_crank(loads.crank, loads.fillets, np.zeros((1, len(loads.fillets))), setup.rpm[:1], fe_scf=loads.scf)
+    utilisation = m53_utilisation(held, loads.fillets, setup)
+    theta, _, _ = solve_theta(setup, loads.dampers)
+    torque = group_maxima(section_torques(setup, theta), setup.orders, setup.period, utilisation.groups)
+    return 1.0 / float(utilisation(torque)[0])
 
 
 def answer_m53(result) -> dict:
@@ -119,7 +146,7 @@ def answer_recovered(a) -> dict:
 
 
 FATIGUE_METHODS: dict[str, FatigueMethod] = {
-    "iacs-m53": FatigueMethod("iacs-m53", "IACS UR M53 as written", False, assess_m53, answer_m53),
+    "iacs-m53": FatigueMethod("iacs-m53", "IACS UR M53 as written", False, assess_m53, answer_m53, safety_m53),
     "fe": FatigueMethod("fe", "fetorsion's own path: Findley on the stress recovered at every fillet and oil bore",
                         True, assess_recovered, answer_recovered),
 }

@@ -25,6 +25,7 @@ location's worst speed checks the rest: a node the screen missed joins the candi
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -244,6 +245,22 @@ def assess_location(location, static_loads: np.ndarray, loads: np.ndarray, stren
             "k": k, "limit": lam}
 
 
+def threaded_map(fn, items) -> list:
+    """``[fn(x) for x in items]`` on a thread per core: the places are independent and their
+    numpy work (products, reductions over the cycle) releases the interpreter; each thread's BLAS
+    on one thread."""
+    items = list(items)
+    workers = min(os.cpu_count() or 1, len(items))
+    if workers <= 1:
+        return [fn(x) for x in items]
+    from concurrent.futures import ThreadPoolExecutor
+
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1), ThreadPoolExecutor(workers) as pool:
+        return list(pool.map(fn, items))
+
+
 def run_recovered_assessment(crank, cycle, locations, required: float | None = None,
                              reliability: float = DEFAULT_RELIABILITY, check: bool = True) -> RecoveredAssessment:
     """Findley on the recovered local stress at every location of ``crank`` at every speed of ``cycle``.
@@ -271,11 +288,14 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
     rpm = np.asarray(cycle.rpm)
     safety = np.empty((len(rpm), len(locations)))
     worst_locs, nodes_m = [], []
-    for j, loc in enumerate(locations):
+
+    def assessed(loc):
         strength = local_strength(mat, loc, reliability)
         loads = loc.rear_loads(cycle.history)  # (speeds, 6, angles)
         static = loc.rear_loads(cycle.mean[..., None])[..., 0]  # (speeds, 6)
-        res = assess_location(loc, static, loads, strength, check)
+        return strength, loads, static, assess_location(loc, static, loads, strength, check)
+
+    for j, (loc, (strength, loads, static, res)) in enumerate(zip(locations, threaded_map(assessed, locations))):
         safety[:, j] = res["safety"]
         s = int(np.argmin(res["safety"]))
         node = int(res["node"][s])

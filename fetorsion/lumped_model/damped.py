@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, replace
 
+import os
+
 import numpy as np
 
 from ..errors import FetorsionError
@@ -239,6 +241,8 @@ MIN_MODES = 30
 #: Complex entries of the kept-mode matrices a projected solve builds at once (a chunk of the
 #: frequencies): 2**21 entries, 32 MiB.
 PROJECTED_CHUNK_ENTRIES = 2**21
+#: Threads over a projected solve's chunks (None: one per core).
+PROJECTED_THREADS = None
 
 
 def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray, gyroscopic=None,
@@ -302,12 +306,13 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     flat_spin = spin_all.reshape(-1) if gyroscopic is not None else None
     x = np.empty(flat_F.shape, complex)
     step = max(1, PROJECTED_CHUNK_ENTRIES // max(count * count, 1))
-    for a in range(0, len(flat_om), step):
+
+    def chunk(a):
         b = min(a + step, len(flat_om))
         w, Fc = flat_om[a:b], flat_F[a:b]
         A = np.multiply(1j * w[:, None, None], Cp)
         if Hp is not None:
-            A = A + 1j * Hp
+            A += 1j * Hp
         rhs = complex_times(Fc, low)  # (chunk, r, kept)
         Fh = complex_times(Fc, high) / lam[count:] if high.shape[1] else None
         if gyroscopic is not None:
@@ -328,6 +333,21 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
                 Fh = Fh - (1j * wO)[:, None, None] * complex_times(xi, np.ascontiguousarray(Ghl.T / lam[count:]))
             xc = xc + complex_times(Fh, np.ascontiguousarray(high.T))
         x[a:b] = xc
+
+    starts = range(0, len(flat_om), step)
+    workers = min(PROJECTED_THREADS or os.cpu_count() or 1, len(starts))
+    if workers > 1:
+        # the chunks are independent and numpy's stacked solves and products release the
+        # interpreter: a thread per core, each chunk's matrices BLAS's alone (one thread each)
+        from concurrent.futures import ThreadPoolExecutor
+
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(1), ThreadPoolExecutor(workers) as pool:
+            list(pool.map(chunk, starts))
+    else:
+        for a in starts:
+            chunk(a)
     x = x.reshape(F.shape)
     return x if block else x[..., 0, :]
 

@@ -317,6 +317,18 @@ class ResponseSetup:
             out.unit_response = self.unit_response
         return out
 
+    def with_misfires(self, motored: np.ndarray) -> list["ResponseSetup"]:
+        """:meth:`with_misfire` of every cylinder, in order. A projected setup's misfire responses
+        come from one projected solve: each is the firing response plus the response to its
+        cylinder's change of force (the same matrices: superposition), the changes a block of
+        right-hand sides on each frequency's one factorisation, not a solve per cylinder."""
+        out = [self.with_misfire(c, motored) for c in range(self.phasors.shape[1])]
+        if self.projected:
+            change = self._projected(np.stack([o.forces - self.forces for o in out], axis=2))
+            for c, o in enumerate(out):
+                o.free_response = self.free_response + change[:, :, c]
+        return out
+
     def damper_station(self, damper) -> int:
         """The DOF a damper at ``damper.at`` (front or rear) acts on."""
         if self.damper_dof is None:
