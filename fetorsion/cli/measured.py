@@ -456,7 +456,8 @@ def add_calibrate_parser(sub) -> None:
                     "the original): every changed value commented with its source")
     cp.add_argument("--force", action="store_true", help="replace an existing --out file (never the original)")
     cp.add_argument("--write-all", action="store_true",
-                    help="--out changes every input the least squares moved, not only the identified ones")
+                    help="--out changes every input the least squares moved, not only the identified ones "
+                         "(without it: the identified ones, or every one moved where none is identified on its own)")
     cp.add_argument("--plot", metavar="PATH", help="figure of each input's prior, estimate and posterior "
                     "(.png, .pdf, .svg)")
     add_json_option(cp)
@@ -464,4 +465,6 @@ def add_calibrate_parser(sub) -> None:
     cp.epilog = (f"An input is identified when the data's information at the least-squares estimate brings its "
                  f"(Laplace) posterior standard deviation below {IDENTIFIED_RATIO:g} of its prior's: a deterministic "
                  "rule, the same for every seed; the sampled posterior's width is reported beside it. --out writes "
-                 "the identified inputs only, unless --write-all.")
+                 "the identified inputs (least squares); where none is identified on its own, every input the "
+                 "calibration moved, at its posterior median, each change commented; every input the least squares "
+                 "moved with --write-all.")

@@ -33,7 +33,9 @@ inputs it is such a combination, not each input, that is determined — the resu
 The MCMC posterior's own 5–95 % width against the prior's is reported beside the rule, with its
 Monte Carlo standard error (batch means over the chain), as a check of the linearisation; a
 sampled ratio is never the decision, because it moves with the seed by more than its margin.
-Only identified inputs are written to a calibrated description unless all are asked for.
+A calibrated description changes the identified inputs; where the data identify none on its own,
+every input the calibration moved, at its posterior median; every input the least squares moved
+when all are asked for.
 
 Measured modes are matched to the model's by order: the k frequencies given are the k lowest
 elastic torsional modes of the free-free lumped chain, in ascending order. A modal test whose
@@ -76,6 +78,11 @@ CALIBRATION_MODELS = tuple(f"lumped{d}" for d in PARTITIONS)
 #: 17-DOF chain's f1 differs from the 3D FE's by 0.6 % (Renault 21) and 2.1 % (Peugeot GLX)
 #: (docs/validation.md), a modal test's frequency error is ~0.1 %: the model's form dominates.
 DEFAULT_SIGMA_PERCENT = 2.0
+#: What a calibrated description changes, by :meth:`CalibrationResult.written_rule`.
+WRITTEN_RULES = {"identified": "the inputs the data identify on their own, at their least-squares estimate",
+                 "moved": "no input is identified on its own (the data fix a combination of them): every input "
+                          "the calibration moved, at its posterior median (else its least-squares estimate)",
+                 "all": "every input the least squares moved (write_all)"}
 #: An input is identified when the data bring its (Laplace) posterior standard deviation below
 #: this fraction of its prior's; a combination of inputs is determined likewise.
 IDENTIFIED_RATIO = 0.5
@@ -463,25 +470,55 @@ class CalibrationResult:
             rows.append(row)
         return rows
 
+    def written_rule(self) -> str:
+        """Which inputs a calibrated description changes: ``identified`` (the data identify some
+        on their own: those), ``moved`` (none on its own, only a combination: every input the
+        calibration moved, the posterior's median where there is one) or ``all`` (``write_all``:
+        every input the least squares moved)."""
+        if self.write_all:
+            return "all"
+        return "identified" if any(r.get("identified") for r in self.input_rows()) else "moved"
+
     def calibrated_values(self) -> dict[str, float]:
-        """The inputs a calibrated description changes, with their values (file units): of every
-        identified input (every input, with ``write_all``), the least-squares estimate, else
-        (``bayes`` alone) the posterior median, each rounded to :data:`WRITTEN_DIGITS`
-        significant digits."""
+        """The inputs a calibrated description changes (:meth:`written_rule`), with their values
+        (file units), each rounded to :data:`WRITTEN_DIGITS` significant digits and kept where
+        that differs from the nominal: the least-squares estimate of the identified inputs (or of
+        every input, ``write_all``), else the posterior median; with no input identified on its
+        own, every input the posterior median (else the estimate) moves."""
+        rule = self.written_rule()
         out = {}
         for i, (inp, row) in enumerate(zip(self.inputs, self.input_rows())):
-            if not (self.write_all or row.get("identified")):
+            if rule == "identified" and not row.get("identified"):
                 continue
-            x = float(self.lsq.values[i]) if self.lsq is not None else row["median"]
+            median = row.get("median")
+            if rule == "moved" and median is not None or self.lsq is None:
+                x = median
+            else:
+                x = float(self.lsq.values[i])
             x = float(f"{x:.{WRITTEN_DIGITS}g}")
             if x != float(f"{inp.nominal:.{WRITTEN_DIGITS}g}"):
                 out[inp.name] = x
         return out
 
+    def change_note(self, name: str) -> str:
+        """What a written change of input ``name`` rests on: its posterior (median and 5-95 %
+        interval) where there is one, and whether the data identify it on its own."""
+        row = next(r for r in self.input_rows() if r["input"] == name)
+        parts = []
+        if "median" in row:
+            parts.append(f"posterior median {row['median']:.4g} (5-95 %: {row['q5']:.4g} to {row['q95']:.4g})")
+        if "lsq" in row:
+            parts.append(f"least squares {row['lsq']:.4g}")
+        if "identified" in row:
+            parts.append("identified on its own" if row["identified"] else
+                         "not identified on its own (the data fix a combination of the inputs)")
+        return "; ".join(parts)
+
     def source_note(self) -> str:
         """Where the calibrated values come from, for the comments of the file written."""
         hz = ", ".join(f"{f:g}" for f in self.measured_hz)
-        how = "lsq" if self.lsq is not None else "bayes (posterior median)"
+        median = self.lsq is None or (self.written_rule() == "moved" and self.posterior is not None)
+        how = "bayes (posterior median)" if median else "lsq"
         return f"calibrated to {hz} Hz measured, fetorsion calibrate {how}, {self.date}"
 
     # -- the results protocol
@@ -494,7 +531,7 @@ class CalibrationResult:
                "matching": "by order: the measured frequencies are the lowest elastic modes, ascending",
                "identified_rule": f"Laplace posterior sd < {IDENTIFIED_RATIO:g} x prior sd, from the information at "
                                   "the least-squares estimate (deterministic)",
-               "written": "every input the least squares moved" if self.write_all else "identified inputs only",
+               "written": WRITTEN_RULES[self.written_rule()],
                "inputs": self.input_rows(), "predictions": self.prediction_rows(),
                "calibrated_values": self.calibrated_values(), "evaluations_per_s": self.evaluations_per_s,
                "seconds": self.seconds, "date": self.date}
@@ -559,8 +596,7 @@ class CalibrationResult:
         if self.identification is not None:
             lines += self.identification.lines([i.name for i in self.inputs])
         written = self.calibrated_values()
-        lines.append(f"a calibrated description would change {len(written)} input(s)"
-                     + (" (every one moved: write_all)" if self.write_all else " (the identified ones)"))
+        lines.append(f"a calibrated description would change {len(written)} input(s): {WRITTEN_RULES[self.written_rule()]}")
         lines.append(f"{self.evaluations_per_s:.0f} model evaluations/s; {self.seconds:.1f} s")
         return "\n".join(lines)
 
@@ -945,12 +981,9 @@ def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str
         changed line edited and commented; and every concrete field's new value.
     """
     values = result.calibrated_values()
-    if not values and not result.write_all:
-        raise ParameterError("write_all", "writes every input the least squares moved: the data identify none of "
-                             "the inputs on its own (only a combination of them: see the table), so a calibrated "
-                             "description of the identified inputs would change nothing")
     if not values:
-        raise FetorsionError("calibrate: the calibration changes no input; no calibrated description to write")
+        raise FetorsionError("calibrate: the calibration moves no input from its nominal value (to "
+                             f"{WRITTEN_DIGITS} digits); no calibrated description to write")
     note = result.source_note()
     fields = {}
     header = [f"# Calibrated description: {note}.",
@@ -960,7 +993,7 @@ def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str
     by_name = {i.name: i for i in result.inputs}
     for name, x in values.items():
         inp = by_name[name]
-        header.append(f"#   {name}: {inp.nominal:g} -> {x:g}")
+        header.append(f"#   {name}: {inp.nominal:g} -> {x:g} ({result.change_note(name)})")
         for path, v in inp.values(x).items():
             fields[path] = float(f"{v:.{WRITTEN_DIGITS}g}")
     body = edit_toml_values(text, fields, note)
