@@ -139,3 +139,18 @@ def test_reference_throws_are_shipped():
             assert throwfe.throw_key(throw_of(crank, i), None) in shipped, (name, i)
     for name in ("peugeot_glx", "renault21", "inline6_diesel"):  # `fetorsion run` meshes no SCF throw of theirs
         assert scf_key(fetorsion.load(GEOMETRY / f"{name}.toml")) in scfs, name
+
+
+def test_the_reference_cranks_in_bearing_throw_stiffnesses_are_shipped(monkeypatch):
+    """Each reference crank's fe-held entry is found under the key the code computes today (no
+    FE; the cache of the environment left out). The key once held every engine field, and the vee
+    engines' new ones orphaned both entries silently: a `run --no-fe` then condensed the whole
+    crank (37 s) for one column of the lumped table. A field that does not change a stiffness
+    (firing order, rods, banks) leaves the key as it is."""
+    monkeypatch.delenv(throwfe.CACHE_ENV, raising=False)
+    monkeypatch.setattr(throwfe, "_CACHE", {})
+    for name in ("renault21.toml", "peugeot_glx.toml"):
+        crank = fetorsion.load(GEOMETRY / name)
+        assert throwfe.held_stiffnesses_stored(crank), name
+        fired = dataclasses.replace(crank, engine=dataclasses.replace(crank.engine, firing_order=(1, 2, 4, 3)))
+        assert throwfe.held_key(fired, 0.01) == throwfe.held_key(crank, 0.01)

@@ -163,6 +163,13 @@ class RunContext:
         def build():
             if method == "fe":
                 self.throw_fe()
+            if method == "fe-held" and "condensed" not in self.built and self.options.no_fe:
+                from ..webs.throwfe import held_stiffnesses_stored
+
+                if not held_stiffnesses_stored(self.crank, self.options.mesh_size):
+                    # a quick report does not condense the whole crank for one column of a table
+                    raise FetorsionError("fe-held: the throws' stiffness inside the whole crank in its bearings "
+                                         "needs the crank's FE, which a run without the FE steps does not build")
             web_length = None
             if method == "fe-held" and "condensed" in self.built:
                 size = self.options.mesh_size

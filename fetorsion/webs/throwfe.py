@@ -495,7 +495,10 @@ def stepped_shaft_mesh(d: float, D: float, l_small: float, l_large: float, fille
 
 def held_key(crank: Crank, mesh_size: float) -> str:
     """A stable key of what the in-bearing throw stiffnesses depend on."""
-    fields = {"material": dataclasses.asdict(crank.material), "engine": dataclasses.asdict(crank.engine),
+    # the engine's geometry only: its cylinders, rods and firing (vee banks, rod offsets) do not
+    # change a stiffness, and a field added to the engine must not orphan the shipped entries
+    engine = {"stroke": crank.engine.stroke, "crank_angles": list(crank.engine.crank_angles)}
+    fields = {"material": dataclasses.asdict(crank.material), "engine": engine,
               "journals": [dataclasses.asdict(j) for j in crank.journals],
               "pins": [dataclasses.asdict(p) for p in crank.pins],
               "webs": [dataclasses.asdict(w) for w in crank.webs],
@@ -505,6 +508,14 @@ def held_key(crank: Crank, mesh_size: float) -> str:
     for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
         fields["material"].pop(key, None)
     return hashlib.sha256(json.dumps(fields, sort_keys=True, default=repr).encode()).hexdigest()[:20]
+
+
+def held_stiffnesses_stored(crank: Crank, mesh_size: float | None = None) -> bool:
+    """True when :func:`held_throw_stiffnesses` of ``crank`` needs no FE (shipped, cached or in memory)."""
+    from ..description.defaults import DEFAULT_MESH_SIZE
+
+    key = held_key(crank, DEFAULT_MESH_SIZE if mesh_size is None else mesh_size)
+    return key in _CACHE or key in _load_disk(SHIPPED_CACHE) or key in _load_disk()
 
 
 def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None, condensed=None) -> np.ndarray:
