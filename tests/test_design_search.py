@@ -50,6 +50,7 @@ def test_the_design_table_is_read_and_checked(tmp_path):
     assert "pins" not in text  # a design range may leave the given value (48 mm) out
 
 
+@pytest.mark.slow  # 38-45 s of lumped search; the default run keeps the clearance by hand and the explorer's f1
 def test_the_search_finds_the_thickness_bisection_finds(tmp_path):
     """A made-up problem whose answer is found independently: the Renault's webs between 10 and
     14 mm, least mass, M53 safety >= 1.4 on the explorer. Safety rises with thickness there (the
