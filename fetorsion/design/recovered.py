@@ -25,12 +25,12 @@ location's worst speed checks the rest: a node the screen missed joins the candi
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import FetorsionError
+from ..lumped_model.damped import threaded_map
 from .assessment import HAIGH_LOCATIONS, CrankAssessment
 from .criterion import findley_constants, findley_surface, signed_von_mises, von_mises_amplitude, von_mises_plane
 from .fatigue import (DEFAULT_RELIABILITY, FatigueAssessment, FatigueMaterial, FatigueResult, endurance_limit,
@@ -243,22 +243,6 @@ def assess_location(location, static_loads: np.ndarray, loads: np.ndarray, stren
     best = np.argmin(safe, axis=1)
     return {"safety": safe[np.arange(len(safe)), best], "node": cand[best], "candidates": cand,
             "k": k, "limit": lam}
-
-
-def threaded_map(fn, items) -> list:
-    """``[fn(x) for x in items]`` on a thread per core: the places are independent and their
-    numpy work (products, reductions over the cycle) releases the interpreter; each thread's BLAS
-    on one thread."""
-    items = list(items)
-    workers = min(os.cpu_count() or 1, len(items))
-    if workers <= 1:
-        return [fn(x) for x in items]
-    from concurrent.futures import ThreadPoolExecutor
-
-    from threadpoolctl import threadpool_limits
-
-    with threadpool_limits(1), ThreadPoolExecutor(workers) as pool:
-        return list(pool.map(fn, items))
 
 
 def run_recovered_assessment(crank, cycle, locations, required: float | None = None,

@@ -241,7 +241,7 @@ MIN_MODES = 30
 #: Complex entries of the kept-mode matrices a projected solve builds at once (a chunk of the
 #: frequencies): 2**21 entries, 32 MiB.
 PROJECTED_CHUNK_ENTRIES = 2**21
-#: Threads over a projected solve's chunks (None: one per core).
+#: Threads over a projected solve's chunks (None: one per core this process may use).
 PROJECTED_THREADS = None
 
 
@@ -334,22 +334,27 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
             xc = xc + complex_times(Fh, np.ascontiguousarray(high.T))
         x[a:b] = xc
 
-    starts = range(0, len(flat_om), step)
-    workers = min(PROJECTED_THREADS or os.cpu_count() or 1, len(starts))
-    if workers > 1:
-        # the chunks are independent and numpy's stacked solves and products release the
-        # interpreter: a thread per core, each chunk's matrices BLAS's alone (one thread each)
-        from concurrent.futures import ThreadPoolExecutor
-
-        from threadpoolctl import threadpool_limits
-
-        with threadpool_limits(1), ThreadPoolExecutor(workers) as pool:
-            list(pool.map(chunk, starts))
-    else:
-        for a in starts:
-            chunk(a)
+    # the chunks are independent, and numpy's stacked solves and products release the interpreter
+    threaded_map(chunk, range(0, len(flat_om), step), PROJECTED_THREADS)
     x = x.reshape(F.shape)
     return x if block else x[..., 0, :]
+
+
+def threaded_map(fn, items, threads: int | None = None) -> list:
+    """``[fn(x) for x in items]`` on ``threads`` threads (None: one per core this process may
+    use), each thread's BLAS on one thread: for independent pieces of numpy work that release
+    the interpreter (a projected solve's frequency chunks, the ``fe`` path's places)."""
+    items = list(items)
+    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+    workers = min(threads or usable, len(items))
+    if workers <= 1:
+        return [fn(x) for x in items]
+    from concurrent.futures import ThreadPoolExecutor
+
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(1), ThreadPoolExecutor(workers) as pool:
+        return list(pool.map(fn, items))
 
 
 def unit_torques(shape: tuple, stations: int, places) -> np.ndarray:
