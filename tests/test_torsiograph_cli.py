@@ -205,3 +205,51 @@ def test_a_reference_wheel_record_that_never_passes_its_gap_is_refused():
         repaired_edges(t[5:50], "60-2", "rec.csv: pulley")
     with pytest.raises(FetorsionError, match="only reference gap is among its last"):
         repaired_edges(t[20:60], "60-2", "rec.csv: pulley")
+
+
+def write_one(path, times, channel=None) -> str:
+    """A one-wheel tooth-edge CSV as a test rig writes it: its column headed ``t_s`` (the unit in
+    the column's name), the wheel named by a ``# channel`` line or not at all."""
+    head = f"# channel = {channel}\n" if channel else ""
+    path.write_text(head + "t_s\n" + "\n".join(f"{t:.12e}" for t in times) + "\n")
+    return str(path)
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_one_file_per_wheel_and_their_calibrations_are_matched_by_channel(tmp_path, capsys, engine, swap):
+    """Issue 54: a record and a calibration run per wheel, each file one column headed `t_s` and
+    its wheel named by a `# channel` line: with the calibration files in either order and no
+    --time-unit (the column's name gives it), every order of both wheels within 1 % and 1° of the
+    truth. Before, the second calibration file's `t_s` replaced the first's and the flywheel's
+    tooth errors corrected the pulley (order 6 read 20 % low)."""
+    rec = [write_one(tmp_path / f"{w}.csv", engine["edges"][w], w) for w in TEETH]
+    cal = [write_one(tmp_path / f"{w}_calibration.csv", engine["calibration"][w], w) for w in TEETH]
+    out, _ = compare(tmp_path, capsys, *rec, "--teeth", "pulley=60", "flywheel=132", "--calibration",
+                     *(cal[::-1] if swap else cal))
+    for a, k, phi in PULLEY:
+        assert_orders(track(out, "pulley", k), expected(a, phi), f"pulley order {k}")
+    for a, k, phi in FLYWHEEL:
+        assert_orders(track(out, "flywheel", k), expected(a, phi), f"flywheel order {k}")
+
+
+def test_a_calibration_that_fits_no_record_or_two_is_refused_naming_the_files(tmp_path, capsys, engine):
+    """Two calibration runs of one channel name, a calibration of a channel no record has, and one
+    that two records would share: each refused before any work, naming both files."""
+    p, f = engine["edges"]["pulley"], engine["edges"]["flywheel"]
+    cp, cf = engine["calibration"]["pulley"], engine["calibration"]["flywheel"]
+    cases = [
+        ([write_one(tmp_path / "p1.csv", p, "pulley"), write_one(tmp_path / "f1.csv", f, "flywheel")],
+         [write_one(tmp_path / "pulley_cal.csv", cp), write_one(tmp_path / "flywheel_cal.csv", cf)],
+         ["pulley_cal.csv and flywheel_cal.csv both calibrate channel 't_s'"]),
+        ([write_one(tmp_path / "p2.csv", p, "pulley")], [write_one(tmp_path / "c2.csv", cf, "flywheel")],
+         ["c2.csv", "'flywheel' is in no measured record", "'pulley'"]),
+        ([write_one(tmp_path / "a3.csv", p), write_one(tmp_path / "b3.csv", f)], [write_one(tmp_path / "c3.csv", cp)],
+         ["c3.csv", "'t_s' is in both a3.csv and b3.csv"]),
+    ]
+    for records, calibrations, messages in cases:
+        capsys.readouterr()
+        assert main(["compare", str(GEOMETRY / "renault21.toml"), *records, "--teeth", "60", "--calibration",
+                     *calibrations, "--source", "lumped17"]) == 2
+        err = capsys.readouterr().err
+        assert all(m in err for m in messages), err
+        assert "Traceback" not in err

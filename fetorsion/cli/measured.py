@@ -98,9 +98,15 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
         raise FetorsionError(f"--band {band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     units = frf_units(frf_unit)
     frfs, cuts, tracks, where, notes = [], [], [], {}, []
-    calibrated = {}
+    calibrated, calibrated_from = {}, {}
     for c in calibration or ():
-        calibrated.update(read_edges_csv(c, time_unit))
+        for channel, times in read_edges_csv(c, time_unit).items():
+            if channel in calibrated:
+                raise FetorsionError(f"--calibration: {Path(calibrated_from[channel]).name} and {Path(c).name} both "
+                                     f"calibrate channel {channel!r}; name each file's wheel with a "
+                                     "'# channel = NAME' line (pulley, flywheel ...)")
+            calibrated[channel], calibrated_from[channel] = times, c
+    _check_calibration_channels(paths, kinds, calibrated_from, time_unit)
     for path, kind in zip(paths, kinds):
         if kind == "uff":
             try:
@@ -150,6 +156,29 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
         raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
     return MeasuredData(tuple(frfs), tuple(cuts), tuple(tracks), None if band is None else tuple(band), where,
                         tuple(notes))
+
+
+def _check_calibration_channels(paths, kinds, calibrated_from: dict, time_unit) -> None:
+    """Each calibration run's channel is a channel of exactly one tooth-edge record: one that
+    matches none, or that two records would share, is refused naming the files."""
+    from ..measured.torsiograph import read_edges_csv
+
+    if not calibrated_from:
+        return
+    holders: dict[str, list] = {}
+    for path, kind in zip(paths, kinds):
+        if kind == "edges":
+            for channel in read_edges_csv(path, time_unit):
+                holders.setdefault(channel, []).append(path)
+    for channel, cal in calibrated_from.items():
+        found = holders.get(channel, [])
+        if not found:
+            raise FetorsionError(f"--calibration {Path(cal).name}: its channel {channel!r} is in no measured record "
+                                 f"(they have {', '.join(repr(h) for h in holders) or 'none'})")
+        if len(found) > 1:
+            raise FetorsionError(f"--calibration {Path(cal).name}: channel {channel!r} is in both "
+                                 f"{Path(found[0]).name} and {Path(found[1]).name}: which wheel is it? Name each "
+                                 "file's wheel with a '# channel = NAME' line")
 
 
 def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:

@@ -25,6 +25,8 @@ estimate over an even number of revolutions.
 
 from __future__ import annotations
 
+import re
+
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -115,7 +117,23 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None =
              f"timestamps ({numeric[0]})")
     if not all(names) or len(set(names)) != len(names):
         fail(f"line {rows[0][0]}: the header row needs distinct channel names, got {rows[0][1]!r}")
+    # a column headed by a time and its unit (t_s, time [ms]) is a timestamp column, not a channel's
+    # name: the unit is read from it, and the channel is the file's '# channel = NAME' line
+    column_units = {TIME_COLUMN.fullmatch(n).group(1) for n in names if TIME_COLUMN.fullmatch(n)}
+    if "channel" in header:
+        if len(names) != 1:
+            fail(f"'# channel = {header['channel']}' names one channel, but the file has {len(names)} columns "
+                 f"({', '.join(names)}): name each in the header row instead")
+        names = [header["channel"]]
+    if len(column_units) > 1:
+        fail(f"its columns' names give different time units ({', '.join(sorted(column_units))})")
     written = header.get("unit")
+    if column_units:
+        (named,) = column_units
+        if written is not None and unit_of(written, f"{path}: '# unit'", ("time",)).factor != \
+                unit_of(named, f"{path}: the column's unit", ("time",)).factor:
+            fail(f"says '# unit = {written}', but its column's name says {named}")
+        written = named
     if written is None and unit is None:
         fail("the timestamps have no unit: give one (unit=...) or a '# unit = s' line")
     found = unit_of(written, f"{path}: '# unit'", ("time",)) if written is not None else None
@@ -145,6 +163,10 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None =
         out[name] = check_edges(column[: present.size] * factor, z or 1, f"{path}: channel {name!r}",
                                 revolutions=1 if z else 0)
     return out
+
+
+#: A timestamp column's header: a time and its unit (``t_s``, ``time_ms``, ``t [us]``, ``time (s)``).
+TIME_COLUMN = re.compile(r"(?i)(?:t|time)\s*(?:_|\[|\()\s*(s|ms|us|µs)\s*[\])]?")
 
 
 def _is_number(text: str) -> bool:
