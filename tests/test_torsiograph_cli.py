@@ -253,3 +253,30 @@ def test_a_calibration_that_fits_no_record_or_two_is_refused_naming_the_files(tm
         err = capsys.readouterr().err
         assert all(m in err for m in messages), err
         assert "Traceback" not in err
+
+
+def test_the_tracked_orders_default_to_the_engines_major_orders(tmp_path, capsys, engine):
+    """Issue 54: without --track-orders a record is compared in the engine's lowest major orders
+    (the Renault's in-line four: 2, 4, 6, where every cylinder's torque adds), not in order 2 alone;
+    each is the record's own (the pulley's order 4 within 1 % and 1° of the truth)."""
+    import fetorsion
+    from fetorsion.cli.measured import tracked_orders
+    from fetorsion.excitation.campbell import order_sums
+
+    crank = fetorsion.load(GEOMETRY / "renault21.toml")
+    orders = tracked_orders(crank)
+    assert orders == (2.0, 4.0, 6.0)
+    sums = order_sums(crank.engine, np.ones(4), np.array(orders))[0]
+    assert sums == pytest.approx(1.0)  # a rigid crank's cylinders add fully in each
+    rec = write_edges(tmp_path / "rec.csv", engine["edges"])
+    cal = write_edges(tmp_path / "cal.csv", engine["calibration"])
+    path = tmp_path / "c.json"
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), rec, "--teeth", "pulley=60", "flywheel=132",
+                 "--calibration", cal, "--time-unit", "s", "--source", "lumped17", "--order-definition", "time",
+                 "--json", str(path)]) == 0
+    out = json.loads(path.read_text())
+    said = capsys.readouterr().out
+    for k in (2, 4, 6):
+        assert sum(line.startswith(f"order {k} at ") for line in said.splitlines()) == 2, said  # both wheels
+    a, k, phi = PULLEY[2]
+    assert_orders(track(out, "pulley", k), expected(a, phi), "pulley order 4")

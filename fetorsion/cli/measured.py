@@ -256,7 +256,7 @@ def cmd_compare(args) -> int:
     if source != LUMPED17:
         check_mesh_size(crank, args.mesh_size, "modal")
     check_station(crank, args.station, source)
-    measured = measured_of(args, args.measured, args.unit, args.order)
+    measured = measured_of(args, args.measured, args.unit, args.order, crank)
     for line in measured.notes:
         print(f"fetorsion: warning: {line}", file=sys.stderr)
     measured = check_measured(crank, measured, args.station, source)
@@ -311,20 +311,44 @@ def add_measured_options(p) -> None:
     p.add_argument("--revolutions", type=integer(1), default=2,
                    help="revolutions per block of a torsiograph's order tracking (default %(default)s: half orders "
                         "fall on its bins)")
-    p.add_argument("--track-orders", type=real(0.0), nargs="+", default=[2.0], metavar="K",
-                   help="orders of a torsiograph's recording to compare (default 2)")
+    p.add_argument("--track-orders", type=real(0.0), nargs="+", metavar="K",
+                   help=f"orders of a torsiograph's recording to compare (default: the engine's lowest "
+                        f"{TRACKED_MAJOR_ORDERS} major orders, an in-line four's 2, 4, 6; order 2 without an engine)")
 
 
-def measured_of(args, paths, unit=None, order=None) -> MeasuredData:
-    """:func:`read_measured` with the options of :func:`add_measured_options`."""
+#: The major orders a torsiograph's recording is compared in without ``--track-orders``.
+TRACKED_MAJOR_ORDERS = 3
+
+
+def tracked_orders(crank) -> tuple[float, ...]:
+    """The orders a torsiograph's recording is compared in by default: the engine's lowest
+    :data:`TRACKED_MAJOR_ORDERS` major orders (:func:`fetorsion.excitation.campbell.major_orders`:
+    an in-line four's 2, 4, 6, an in-line six's 3, 6, 9, a V8's 4, 8, 12), where the torque of
+    every cylinder adds and the engine's response is largest; order 2 where the file has no engine."""
+    engine = getattr(crank, "engine", None)
+    if engine is None:
+        return (2.0,)
+    from ..excitation.campbell import major_orders
+
+    try:
+        found = major_orders(engine)
+    except (FetorsionError, AttributeError, ValueError):
+        return (2.0,)
+    return tuple(float(k) for k in found[:TRACKED_MAJOR_ORDERS]) or (2.0,)
+
+
+def measured_of(args, paths, unit=None, order=None, crank=None) -> MeasuredData:
+    """:func:`read_measured` with the options of :func:`add_measured_options` (``crank``: the
+    description compared with, whose engine gives the default tracked orders)."""
     stations = {}
     for item in args.channel_station:
         channel, eq, station = item.partition("=")
         if not (eq and channel.strip() and station.strip()):
             raise FetorsionError(f"--channel-station {item}: give CHANNEL=STATION")
         stations[channel.strip()] = station.strip()
-    return read_measured(paths, args.band, unit, order, teeth_of(args.teeth), args.revolutions, args.track_orders,
-                         args.calibration, args.twist, stations, args.time_unit, args.frf_unit, args.order_definition)
+    return read_measured(paths, args.band, unit, order, teeth_of(args.teeth), args.revolutions,
+                         args.track_orders or tracked_orders(crank), args.calibration, args.twist, stations,
+                         args.time_unit, args.frf_unit, args.order_definition)
 
 
 def add_parsers(sub) -> None:

@@ -69,7 +69,7 @@ def cmd_run(args) -> int:
 
         engine = not args.no_fe and args.source == "condensed" and not isinstance(crank, (Chain, Network))
         check_station(crank, args.station, "condensed" if engine else LUMPED17)
-        measured = measured_of(args, args.measured)
+        measured = measured_of(args, args.measured, crank=crank)
         for line in measured.notes:
             print(f"fetorsion: warning: {line}", file=sys.stderr)
         measured = check_measured(crank, measured, args.station, "condensed" if engine else LUMPED17)
