@@ -278,5 +278,6 @@ def test_the_tracked_orders_default_to_the_engines_major_orders(tmp_path, capsys
     said = capsys.readouterr().out
     for k in (2, 4, 6):
         assert sum(line.startswith(f"order {k} at ") for line in said.splitlines()) == 2, said  # both wheels
+    assert said.count("phases (deg): arg c_k of the cosine series") == 1  # what a phase is, said once
     a, k, phi = PULLEY[2]
     assert_orders(track(out, "pulley", k), expected(a, phi), "pulley order 4")

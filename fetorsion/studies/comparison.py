@@ -230,6 +230,12 @@ class OrderCutComparison:
                 f"common speeds {p['rms_difference_deg']:.3g} deg"]
 
 
+#: What a printed phase is, said once above the order cuts that carry one.
+PHASE_REFERENCE = ("phases (deg): arg c_k of the cosine series psi(theta) = Re sum_k c_k exp(i k theta) of the "
+                   "vibration angle, theta the shaft's angle from the record's tooth 0 (a 60-2 wheel: the first "
+                   "tooth after its gap)")
+
+
 @dataclass
 class Waterfall:
     """A torsiograph track's order map and the model's crossings on it.
@@ -358,6 +364,8 @@ class ComparisonResult:
             lines += f.lines()
         if self.order_cuts or self.waterfalls:
             lines.append(f"running measurements against the {self.model}")
+        if any(c.measured_phase_deg is not None for c in self.order_cuts):
+            lines.append(PHASE_REFERENCE)
         for c in self.order_cuts:
             lines += c.lines()
         for w in self.waterfalls:
