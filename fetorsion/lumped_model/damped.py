@@ -6,9 +6,8 @@ classical optima and the tuning live in :mod:`fetorsion.design.dampers`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
-
 import os
+from dataclasses import dataclass, replace
 
 import numpy as np
 
