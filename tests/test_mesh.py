@@ -168,6 +168,7 @@ def test_cli_mesh_writes_the_file_and_refuses_unknown_formats(tmp_path, capsys):
     assert "-o" in err and "unknown output format" in err and ".stl" in err
 
 
+@pytest.mark.slow  # 17-21 s: meshes and renders a crank
 def test_cli_png_is_a_picture(tmp_path):
     pytest.importorskip("pyvista")
     out = tmp_path / "glx.png"

@@ -137,6 +137,7 @@ def test_report_files_are_readable_by_others(tmp_path):
         assert mode == expected, (p, oct(mode))
 
 
+@pytest.mark.slow  # 28-33 s: a whole run without FE, its f1 studies included
 def test_a_run_builds_what_its_steps_share_once(tmp_path, monkeypatch):
     # Every step that needs the crank's parts (per web method), the forced response's setup or
     # the fillet list gets the one the run built; studies' variants are other cranks and build

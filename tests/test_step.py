@@ -489,6 +489,7 @@ def test_a_designed_cad_crank_still_finds_its_solid(written, tmp_path):
     assert back.solid_step == crank.solid_step and len(back.dampers) == 1
 
 
+@pytest.mark.slow  # 20-25 s: a design search on a CAD crank's solids
 def test_a_cad_cranks_design_objectives_are_its_solids(written, tmp_path):
     """A [solid] crank's mass and rotating inertia in the design search are its solid's
     (OpenCASCADE, fillets and drillings in) plus the attachments', as its lumped chain's are."""
