@@ -106,7 +106,8 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
                                      f"calibrate channel {channel!r}; name each file's wheel with a "
                                      "'# channel = NAME' line (pulley, flywheel ...)")
             calibrated[channel], calibrated_from[channel] = times, c
-    _check_calibration_channels(paths, kinds, calibrated_from, time_unit)
+    records = {path: read_edges_csv(path, time_unit) for path, kind in zip(paths, kinds) if kind == "edges"}
+    _check_calibration_channels(records, calibrated_from)
     for path, kind in zip(paths, kinds):
         if kind == "uff":
             try:
@@ -118,7 +119,7 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
         elif kind == "order-cut":
             cuts.append(read_order_cut_csv(path, unit, order))
         else:
-            edges = read_edges_csv(path, time_unit)
+            edges = records[path]
             wheels = teeth if isinstance(teeth, dict) else {c: teeth for c in set(edges) | set(calibrated)}
             lacking = [c for c in edges if c not in wheels]
             if lacking:
@@ -158,18 +159,14 @@ def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutio
                         tuple(notes))
 
 
-def _check_calibration_channels(paths, kinds, calibrated_from: dict, time_unit) -> None:
-    """Each calibration run's channel is a channel of exactly one tooth-edge record: one that
-    matches none, or that two records would share, is refused naming the files."""
-    from ..measured.torsiograph import read_edges_csv
-
-    if not calibrated_from:
-        return
+def _check_calibration_channels(records: dict, calibrated_from: dict) -> None:
+    """Each calibration run's channel is a channel of exactly one tooth-edge record (``records``:
+    path -> channels): one that matches none, or that two records would share, is refused naming
+    the files."""
     holders: dict[str, list] = {}
-    for path, kind in zip(paths, kinds):
-        if kind == "edges":
-            for channel in read_edges_csv(path, time_unit):
-                holders.setdefault(channel, []).append(path)
+    for path, edges in records.items():
+        for channel in edges:
+            holders.setdefault(channel, []).append(path)
     for channel, cal in calibrated_from.items():
         found = holders.get(channel, [])
         if not found:

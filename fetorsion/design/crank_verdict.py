@@ -23,7 +23,6 @@ import math
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
-import scipy.optimize
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO
 from ..errors import FetorsionError
