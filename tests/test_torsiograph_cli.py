@@ -181,7 +181,7 @@ def test_orders_against_time_or_against_the_shafts_angle(tmp_path, capsys):
     (["--teeth", "pulley=60", "--twist", "pulley", "crank"], "has no channel 'crank'"),
     (["--teeth", "60", "--channel-station", "pulley=J9"], "station 'J9' is not in the model"),
     (["--teeth", "60", "--channel-station", "pulley"], "give CHANNEL=STATION"),
-    (["--teeth", "flywheel=132"], "channel 'pulley', whose wheel is not given"),
+    (["--teeth", "flywheel=132"], "--teeth of rec.csv's channel 'pulley': not given (give pulley=TEETH)"),
     (["--teeth", "60", "--frf-unit", "furlong"], "unit 'furlong' is not known"),
 ])
 def test_bad_torsiograph_options_give_one_message(tmp_path, capsys, args, message):

@@ -45,21 +45,50 @@ def test_common_label_spellings_and_none_labels_are_read(tmp_path, ordinate, den
     np.testing.assert_allclose(f.ordinate, scale * H, rtol=1e-10)
 
 
-@pytest.mark.parametrize("kwargs, message", [
-    (dict(ordinate_label="rad/s"), "record 9 says data type 8 (displacement), but its unit label 'rad/s' is a unit "
-                                   "of angular velocity"),
-    (dict(ordinate_label="NONE", denominator_label="m/s^2"), "record 10 says data type 13 (force), but its unit "
-                                                              "label 'm/s^2' is a unit of acceleration"),
-    (dict(ordinate_label="rad/Nm", denominator_label="N"), "names the excitation in 'Nm', but record 10's label "
-                                                            "says 'N'"),
-    (dict(ordinate_label="radians"), "'radians' is not a unit fetorsion knows; its data type 8 (displacement) "
-                                     "reads it in rad"),
-    (dict(ordinate_label="NONE", ordinate_type=0), "no unit label and record 9 says no quantity"),
+@pytest.mark.parametrize("kwargs, scale, note", [
+    (dict(ordinate_label="rad/s"), 1.0, "record 9 field 1 says data type 8 (displacement), but its unit label "
+                                        "(field 6) 'rad/s' is a unit of angular velocity: read as angle, in rad"),
+    (dict(ordinate_label="NONE", denominator_label="m/s^2"), 1.0,
+     "record 10 field 1 says data type 13 (force), but its unit label (field 6) 'm/s^2' is a unit of acceleration"),
+    (dict(ordinate_label="rad/Nm", denominator_label="N"), 1.0, "names the excitation in 'Nm', but record 10's "
+                                                                "label (field 6) says 'N'"),
+    (dict(ordinate_label="radians"), 1.0, "'radians' is not a unit fetorsion knows: read in rad, the SI unit of its "
+                                          "data type 8 (displacement)"),
 ])
-def test_a_label_that_contradicts_its_data_type_is_refused_naming_both(tmp_path, kwargs, message):
-    with pytest.raises(FetorsionError, match=message.replace("(", r"\(").replace(")", r"\)").replace("^", r"\^")
-                       .replace("*", r"\*")):
-        read_uff58(export(tmp_path / "h.uff", **kwargs))
+def test_the_data_type_decides_and_a_contradicting_label_is_noted(tmp_path, kwargs, scale, note):
+    """Issue 54: a record's data type (field 1) decides what its values are; a label of another
+    quantity, or one that cannot be read, is noted naming the record and the field, and the FRF
+    is read in its data type's SI unit (the receptance as written, rad/N m)."""
+    f, = read_uff58(export(tmp_path / "h.uff", **kwargs))
+    assert (f.unit, f.reference_unit) == ("rad", "N m")
+    np.testing.assert_allclose(f.ordinate, scale * H, rtol=1e-10)
+    assert any(note in n for n in f.notes), f.notes
+
+
+def test_a_record_without_a_quantity_or_a_readable_label_is_refused(tmp_path):
+    with pytest.raises(FetorsionError, match=r"no unit label and record 9 says no quantity"):
+        read_uff58(export(tmp_path / "h.uff", ordinate_label="NONE", ordinate_type=0))
+    with pytest.raises(FetorsionError, match=r"'radians' is not a unit fetorsion knows, and record 9 field 1 says "
+                                             r"no quantity"):
+        read_uff58(export(tmp_path / "g.uff", ordinate_label="radians", ordinate_type=0))
+
+
+def test_a_mobility_typed_receptance_is_read_as_its_type_says_unless_told(tmp_path):
+    """The issue's file: record 9 says velocity (11), its label 'rad/Nm'. The data type decides
+    (a mobility, in rad/s per N m) and the contradiction is noted; ``frf_type='receptance'``
+    reads it as the receptance it is, noting the data type it overrides."""
+    path = export(tmp_path / "h.uff", ordinate_label="rad/Nm", ordinate_type=11)
+    f, = read_uff58(path)
+    assert (f.unit, f.reference_unit) == ("rad/s", "N m")
+    assert any("record 9 field 1 says data type 11 (velocity), but its unit label (field 6) 'rad/Nm' (its response "
+               "'rad') is a unit of angle" in n for n in f.notes), f.notes
+    g, = read_uff58(path, frf_type="receptance")
+    assert g.unit == "rad"
+    np.testing.assert_allclose(g.ordinate, H, rtol=1e-10)
+    assert any("read as a receptance, as stated" in n for n in g.notes), g.notes
+    assert not any("is a unit of angle" in n for n in g.notes)  # the label agrees with what it is now read as
+    with pytest.raises(FetorsionError, match="frf_type 'rate'"):
+        read_uff58(path, frf_type="rate")
 
 
 def test_a_stated_unit_reads_an_unlabelled_untyped_record(tmp_path):
@@ -74,7 +103,7 @@ def test_the_command_line_names_its_own_option_for_an_unreadable_label(tmp_path,
     from conftest import GEOMETRY
     from fetorsion.cli import main
 
-    path = export(tmp_path / "h.uff", "radians")
+    path = export(tmp_path / "h.uff", "radians", ordinate_type=0)
     assert main(["compare", str(GEOMETRY / "renault21.toml"), str(path), "--band", "400", "600",
                  "--source", "lumped17"]) == 2
     err = capsys.readouterr().err

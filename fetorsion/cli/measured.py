@@ -10,29 +10,14 @@ from pathlib import Path
 
 from ..description.defaults import LUMPED17
 from ..measured.dataset import MeasuredData
+from ..measured.uff import UnstatedUnit
+from ..measured.reading import (TRACKED_MAJOR_ORDERS, UFF_SUFFIXES, MeasuredOptions, measured_kind, read_measured,
+                                tracked_orders)
 from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
                      save_plot)
 from .options import integer, real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
-
-#: Suffixes read as Universal File Format.
-UFF_SUFFIXES = (".uff", ".unv", ".uf")
-
-
-def _measured_kind(path: str, teeth) -> str:
-    """What a measured file is, by its suffix (and --teeth for edge recordings), checked before any work."""
-    p = Path(path)
-    if not p.is_file():
-        raise FetorsionError(f"compare: {path}: no such file")
-    suffix = p.suffix.lower()
-    if suffix in UFF_SUFFIXES:
-        return "uff"
-    if suffix == ".csv":
-        return "edges" if teeth is not None else "order-cut"
-    raise FetorsionError(f"compare: {path}: give a UFF file ({', '.join(UFF_SUFFIXES)}) or a CSV "
-                         "(an order cut, or tooth-edge times with --teeth)")
-
 
 def teeth_of(values) -> dict | str | None:
     """``--teeth``: one wheel for every channel (``60``, ``60-2``), or ``CHANNEL=WHEEL`` each;
@@ -68,123 +53,6 @@ def frf_units(text: str | None) -> dict:
         return {"ordinate": ratio[0], "reference": ratio[1]}
     unit(text, "--frf-unit")
     return {"ordinate": text}
-
-
-def read_measured(paths, band=None, unit=None, order=None, teeth=None, revolutions: int = 2,
-                  track_orders=(2.0,), calibration=(), twist_of=None, stations=None, time_unit=None,
-                  frf_unit=None, definition: str = "angle") -> MeasuredData:
-    """Every measured file read and checked, before any model is solved
-    (:class:`~fetorsion.measured.dataset.MeasuredData`). One message naming the file or option
-    otherwise.
-
-    Tooth-edge files take ``teeth`` (one wheel, or channel -> wheel; ``60-2`` a reference-gap
-    wheel), ``calibration`` (tooth-edge files of a calibration run, channels by name: each
-    channel's tooth spacing errors), ``twist_of`` (two channels: their twist is tracked too),
-    ``time_unit`` (for files without a ``# unit`` line) and ``definition`` (orders against
-    shaft angle or time). A channel named as a model station (pulley, flywheel, front, J1 ...)
-    is compared there unless ``stations`` (channel -> station) says otherwise."""
-    from ..measured.ordercut import read_order_cut_csv
-    from ..measured.torsiograph import TWIST, read_edges_csv, run_torsiograph
-    from ..measured.uff import UnstatedUnit, read_uff58
-    from ..studies.comparison import track_order_cut
-
-    kinds = [_measured_kind(m, teeth) for m in paths]
-    for c in calibration or ():
-        if _measured_kind(c, teeth) != "edges":
-            raise FetorsionError(f"--calibration {c}: a calibration run is a tooth-edge CSV (with --teeth)")
-    if (calibration or twist_of or stations) and "edges" not in kinds:
-        raise FetorsionError("--calibration, --twist and --channel-station go with a tooth-edge CSV (and --teeth)")
-    if band is not None and not 0 <= band[0] < band[1]:
-        raise FetorsionError(f"--band {band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
-    units = frf_units(frf_unit)
-    frfs, cuts, tracks, where, notes = [], [], [], {}, []
-    calibrated, calibrated_from = {}, {}
-    for c in calibration or ():
-        for channel, times in read_edges_csv(c, time_unit).items():
-            if channel in calibrated:
-                raise FetorsionError(f"--calibration: {Path(calibrated_from[channel]).name} and {Path(c).name} both "
-                                     f"calibrate channel {channel!r}; name each file's wheel with a "
-                                     "'# channel = NAME' line (pulley, flywheel ...)")
-            calibrated[channel], calibrated_from[channel] = times, c
-    records = {path: read_edges_csv(path, time_unit) for path, kind in zip(paths, kinds) if kind == "edges"}
-    _check_calibration_channels(records, calibrated_from)
-    for path, kind in zip(paths, kinds):
-        if kind == "uff":
-            try:
-                functions = read_uff58(path, units)
-            except UnstatedUnit as exc:
-                raise FetorsionError(exc.stating("--frf-unit, e.g. 'rad/N m'")) from None
-            frfs += [f for f in functions if f.kind == "frf"]
-            cuts += [f for f in functions if f.kind == "order function" and f.abscissa_quantity == "speed"]
-        elif kind == "order-cut":
-            cuts.append(read_order_cut_csv(path, unit, order))
-        else:
-            edges = records[path]
-            wheels = teeth if isinstance(teeth, dict) else {c: teeth for c in set(edges) | set(calibrated)}
-            lacking = [c for c in edges if c not in wheels]
-            if lacking:
-                raise FetorsionError(f"--teeth: {Path(path).name} has channel {lacking[0]!r}, whose wheel is not given "
-                                     f"(give {lacking[0]}=TEETH)")
-            pair = None
-            if twist_of is not None:
-                absent = [c for c in twist_of if c not in edges]
-                if absent:
-                    raise FetorsionError(f"--twist {' '.join(twist_of)}: {Path(path).name} has no channel "
-                                         f"{absent[0]!r} (it has {', '.join(edges)})")
-                pair = tuple(twist_of)
-            for c in stations or {}:
-                if c not in edges and c != TWIST:
-                    raise FetorsionError(f"--channel-station {c}=...: {Path(path).name} has no channel {c!r} "
-                                         f"(it has {', '.join(edges)})")
-            res = run_torsiograph(edges, wheels, revolutions, {c: t for c, t in calibrated.items() if c in edges},
-                                  pair, definition)
-            notes += [f"{Path(path).name}: {line}" for line in res.warnings()]
-            for channel, track in res.tracks.items():
-                name = f"{Path(path).name}: {channel}"
-                if channel == TWIST:
-                    station = (channel_station(pair[0], stations), channel_station(pair[1], stations))
-                    station = (tuple(x[0] for x in station), any(x[1] for x in station))
-                else:
-                    station = channel_station(channel, stations)
-                for k in track_orders:
-                    cut = track_order_cut(track, k, name)
-                    cuts.append(cut)
-                    where[cut.label] = station
-                tracks.append((name, track))
-    if frfs and band is None:
-        raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
-    if not (frfs or cuts):
-        raise FetorsionError("compare: the measured files hold no FRF and no order cut against speed")
-    return MeasuredData(tuple(frfs), tuple(cuts), tuple(tracks), None if band is None else tuple(band), where,
-                        tuple(notes))
-
-
-def _check_calibration_channels(records: dict, calibrated_from: dict) -> None:
-    """Each calibration run's channel is a channel of exactly one tooth-edge record (``records``:
-    path -> channels): one that matches none, or that two records would share, is refused naming
-    the files."""
-    holders: dict[str, list] = {}
-    for path, edges in records.items():
-        for channel in edges:
-            holders.setdefault(channel, []).append(path)
-    for channel, cal in calibrated_from.items():
-        found = holders.get(channel, [])
-        if not found:
-            raise FetorsionError(f"--calibration {Path(cal).name}: its channel {channel!r} is in no measured record "
-                                 f"(they have {', '.join(repr(h) for h in holders) or 'none'})")
-        if len(found) > 1:
-            raise FetorsionError(f"--calibration {Path(cal).name}: channel {channel!r} is in both "
-                                 f"{Path(found[0]).name} and {Path(found[1]).name}: which wheel is it? Name each "
-                                 "file's wheel with a '# channel = NAME' line")
-
-
-def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
-    """(the station a channel was measured at, whether the user said so): as ``stations`` says,
-    else the channel's own name, which :func:`check_measured` keeps where it is one of the
-    model's stations (a channel called ``pulley``, ``flywheel``, ``J3`` ...)."""
-    if stations and channel in stations:
-        return stations[channel], True
-    return channel, False
 
 
 def check_measured(crank, measured: MeasuredData, station: str | None, source: str = LUMPED17) -> MeasuredData:
@@ -243,7 +111,7 @@ def cmd_compare(args) -> int:
     from ..studies.comparison import model_response, run_comparison
 
     for m in args.measured:
-        _measured_kind(m, args.teeth)
+        measured_kind(m, args.teeth)
     teeth_of(args.teeth)
     if args.band is not None and not 0 <= args.band[0] < args.band[1]:
         raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
@@ -302,6 +170,9 @@ def add_measured_options(p) -> None:
     p.add_argument("--time-unit", help="unit of tooth-edge times without a '# unit' line (s, ms, us, ns)")
     p.add_argument("--frf-unit", help="unit of UFF FRF records without a unit label (rad/N m; the records' data types "
                    "give SI where they say the quantity)")
+    p.add_argument("--frf-type", choices=("receptance", "mobility", "accelerance"),
+                   help="what the UFF FRFs' responses are (displacement, velocity, acceleration per load, in SI or "
+                        "the label's scale), over what their records' data types say")
     p.add_argument("--order-definition", choices=("angle", "time"), default="angle",
                    help="a torsiograph's orders against the shaft's own angle (default: computed order tracking) or "
                         "against time (resampled at equal times, as a time-domain analyser reads them)")
@@ -313,39 +184,29 @@ def add_measured_options(p) -> None:
                         f"{TRACKED_MAJOR_ORDERS} major orders, an in-line four's 2, 4, 6; order 2 without an engine)")
 
 
-#: The major orders a torsiograph's recording is compared in without ``--track-orders``.
-TRACKED_MAJOR_ORDERS = 3
-
-
-def tracked_orders(crank) -> tuple[float, ...]:
-    """The orders a torsiograph's recording is compared in by default: the engine's lowest
-    :data:`TRACKED_MAJOR_ORDERS` major orders (:func:`fetorsion.excitation.campbell.major_orders`:
-    an in-line four's 2, 4, 6, an in-line six's 3, 6, 9, a V8's 4, 8, 12), where the torque of
-    every cylinder adds and the engine's response is largest; order 2 where the file has no engine."""
-    engine = getattr(crank, "engine", None)
-    if engine is None:
-        return (2.0,)
-    from ..excitation.campbell import major_orders
-
-    try:
-        found = major_orders(engine)
-    except (FetorsionError, AttributeError, ValueError):
-        return (2.0,)
-    return tuple(float(k) for k in found[:TRACKED_MAJOR_ORDERS]) or (2.0,)
-
-
 def measured_of(args, paths, unit=None, order=None, crank=None) -> MeasuredData:
-    """:func:`read_measured` with the options of :func:`add_measured_options` (``crank``: the
-    description compared with, whose engine gives the default tracked orders)."""
+    """:func:`~fetorsion.measured.reading.read_measured` with the options of
+    :func:`add_measured_options` (``crank``: the description compared with, whose engine gives
+    the default tracked orders)."""
     stations = {}
     for item in args.channel_station:
         channel, eq, station = item.partition("=")
         if not (eq and channel.strip() and station.strip()):
             raise FetorsionError(f"--channel-station {item}: give CHANNEL=STATION")
         stations[channel.strip()] = station.strip()
-    return read_measured(paths, args.band, unit, order, teeth_of(args.teeth), args.revolutions,
-                         args.track_orders or tracked_orders(crank), args.calibration, args.twist, stations,
-                         args.time_unit, args.frf_unit, args.order_definition)
+    kinds = [measured_kind(m, args.teeth) for m in paths]
+    if (args.calibration or args.twist or stations) and "edges" not in kinds:
+        raise FetorsionError("--calibration, --twist and --channel-station go with a tooth-edge CSV (and --teeth)")
+    options = MeasuredOptions(
+        band=None if args.band is None else tuple(args.band), unit=unit, order=order, teeth=teeth_of(args.teeth),
+        revolutions=args.revolutions, track_orders=tuple(args.track_orders or tracked_orders(crank)),
+        calibration=tuple(args.calibration), twist_of=None if args.twist is None else tuple(args.twist),
+        stations=stations, time_unit=args.time_unit, frf_units=frf_units(args.frf_unit), frf_type=args.frf_type,
+        definition=args.order_definition)
+    try:
+        return read_measured(paths, options)
+    except UnstatedUnit as exc:
+        raise FetorsionError(exc.stating("--frf-unit, e.g. 'rad/N m'")) from None
 
 
 def add_parsers(sub) -> None:
@@ -368,7 +229,8 @@ def add_parsers(sub) -> None:
                     help=f"FE mesh size of the condensed crank (default {DEFAULT_MESH_SIZE / MM:g}; the run's, so its "
                          "stored condensed crank is used)")
     cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="frequency band (Hz) in which to fit the measured FRFs' modes")
+                    help="frequency band (Hz) in which to fit the measured FRFs' modes (default: the FRFs' own, from "
+                         "their first frequency above 0 Hz)")
     cp.add_argument("--station", help="where the order cuts were measured: pulley (default), flywheel, or a "
                     "station of the model by name or number (the condensed crank's front, J1, P1, ..., rear; the "
                     "chain's labels)")
@@ -396,10 +258,8 @@ def _calibration_frequencies(args) -> list[float] | None:
             raise FetorsionError(f"--measured {m}: no such file")
         if Path(m).suffix.lower() not in UFF_SUFFIXES:
             raise FetorsionError(f"--measured {m}: give a universal file of FRFs ({', '.join(UFF_SUFFIXES)}); "
-                                 "the modes fitted in --band are the measured frequencies")
-    if args.band is None:
-        raise FetorsionError("--band LOW HIGH: give the frequency band (Hz) to fit the measured FRFs' modes in")
-    if not 0 <= args.band[0] < args.band[1]:
+                                 "the modes fitted in --band (default the files' own) are the measured frequencies")
+    if args.band is not None and not 0 <= args.band[0] < args.band[1]:
         raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     return None
 
@@ -444,11 +304,17 @@ def cmd_calibrate(args) -> int:
     else:
         from ..measured.modal import run_modal_fit
 
-        measured = read_measured(args.measured, args.band)
+        try:
+            measured = read_measured(args.measured, MeasuredOptions(band=None if args.band is None else tuple(args.band)))
+        except UnstatedUnit as exc:
+            raise FetorsionError(exc.stating("an FRF file whose records say their units")) from None
         if not measured.frfs:
             raise FetorsionError(f"--measured: {', '.join(args.measured)} hold no FRF to fit modes to")
-        measured_hz = sorted(run_modal_fit(measured.frfs, tuple(args.band)).frequencies_hz)
-        print(f"measured (fitted in {args.band[0]:g}-{args.band[1]:g} Hz): "
+        for line in measured.notes:
+            print(f"fetorsion: warning: {line}", file=sys.stderr)
+        band = measured.band
+        measured_hz = sorted(run_modal_fit(measured.frfs, band).frequencies_hz)
+        print(f"measured (fitted in {band[0]:g}-{band[1]:g} Hz): "
               f"{', '.join(f'{f:.2f}' for f in measured_hz)} Hz", file=sys.stderr)
     res = run_calibration(crank, measured_hz, args.sigma_hz, args.sigma_percent, args.inputs, args.model,
                           args.method, args.stiffness, args.walkers, args.steps, args.burn, args.seed, args.write_all)
@@ -479,7 +345,7 @@ def add_calibrate_parser(sub) -> None:
                       help="universal files (.uff/.unv) of measured FRFs: their modes fitted in --band are the "
                            "measured frequencies")
     cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="with --measured: the frequency band (Hz) to fit the FRFs' modes in")
+                    help="with --measured: the frequency band (Hz) to fit the FRFs' modes in (default: the FRFs' own)")
     sig = cp.add_mutually_exclusive_group()
     sig.add_argument("--sigma-hz", type=real(0.0, unit="Hz"), nargs="+", metavar="HZ",
                      help="standard deviation of the measured frequencies, measurement and model error (Hz): "

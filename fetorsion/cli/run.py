@@ -114,7 +114,7 @@ def add_parser(sub) -> None:
                     help="measured files to set the model against in the report (as 'fetorsion compare': UFF 58 "
                          "FRFs and order functions, CSV order cuts, tooth-edge CSV with --teeth)")
     up.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="frequency band (Hz) to fit the measured FRFs' modes in")
+                    help="frequency band (Hz) to fit the measured FRFs' modes in (default: the FRFs' own)")
     up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
                     "station of the model by name or number (as 'fetorsion compare')")
     add_measured_options(up)

@@ -102,11 +102,7 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None =
         raise FetorsionError(f"{path}: {rule}")
 
     lines = checked_text(path, MAX_EDGE_FILE_BYTES).splitlines()
-    header = {}
-    for line in lines:
-        key, eq, value = line.lstrip("#").partition("=")
-        if line.startswith("#") and eq:
-            header[key.strip()] = value.strip()
+    header = header_lines(lines)
     rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip() and not line.startswith("#")]
     if not rows:
         fail("has no header row naming the channels")
@@ -163,6 +159,33 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None =
         out[name] = check_edges(column[: present.size] * factor, z or 1, f"{path}: channel {name!r}",
                                 revolutions=1 if z else 0)
     return out
+
+
+def header_lines(lines) -> dict[str, str]:
+    """The ``# key = value`` lines of a tooth-edge file (``unit``, ``channel``, ``station``)."""
+    header = {}
+    for line in lines:
+        key, eq, value = line.lstrip("#").partition("=")
+        if line.startswith("#") and eq:
+            header[key.strip()] = value.strip()
+    return header
+
+
+def edges_header(path) -> dict[str, str]:
+    """The ``# key = value`` lines of a tooth-edge CSV (:func:`read_edges_csv` checks the file)."""
+    return header_lines(checked_text(Path(path), MAX_EDGE_FILE_BYTES).splitlines())
+
+
+def track_order_cut(track, order: float, name: str):
+    """A tracked order of :class:`OrderTrack` as a measured order cut against its blocks' mean
+    speeds (angle, rad; the node 0 until the comparison places it)."""
+    from .uff import MeasuredFunction
+
+    rpm = np.asarray(track.rpm, float)
+    amp = np.asarray(track.at(order))
+    keep = np.argsort(rpm)
+    return MeasuredFunction("order function", rpm[keep], "speed", amp[keep], "rad", (0, 4),
+                            label=f"{name}, torsiograph", order=float(order))
 
 
 #: A timestamp column's header: a time and its unit (``t_s``, ``time_ms``, ``t [us]``, ``time (s)``).

@@ -5,16 +5,17 @@ specification [Uff58].
 What the file says is checked before it is used: the function type (record 6), the abscissa's
 specific data type (record 8: frequency, rpm or order) and the units of records 8 to 10. A
 record's specific data type (with the response or reference direction: 1-3 translation, 4-6
-rotation) is the truth about what its values are — displacement at a rotational direction is
-an angle, in the file's units, SI [Uff58] — and its free-text unit label only repeats it, in
-whatever spelling the test system uses (``rad/Nm``, ``rad/N-m``, ``rad/(N*m)``, ``deg/Nm``,
-``NONE``; an FRF's ordinate label often names the whole ratio). So a record whose label is
-empty or ``NONE`` is read in the SI unit of its data type; a label that names a unit is used
-for its scale (``deg``, ``mrad``) and must be a unit of the data type's quantity, else the
-file is refused naming both; a label fetorsion cannot read is refused, naming the unit the
-data type would give, so the user confirms it (``units=``). A record without
-a usable data type (0, general) needs a label or a stated unit. Values are converted to SI on
-reading (abscissae: Hz, rpm or order).
+rotation) decides what its values are — displacement at a rotational direction is an angle, in
+the file's units, SI [Uff58] — and its free-text unit label only repeats it, in whatever
+spelling the test system uses (``rad/Nm``, ``rad/N-m``, ``rad/(N*m)``, ``deg/Nm``, ``NONE``;
+an FRF's ordinate label often names the whole ratio). So a record whose label is empty or
+``NONE`` is read in the SI unit of its data type, and a label that names a unit of the data
+type's quantity gives the scale (``deg``, ``mrad``). A label of another quantity, or one
+fetorsion cannot read, does not decide: the record is read in its data type's SI unit and the
+function carries a note naming the record and the fields (``frf_type=``, the command line's
+``--frf-type``, says what an FRF's response is where the data type is wrong). A record without
+a usable data type (0, general) needs a readable label or a stated unit. Values are converted to
+SI on reading (abscissae: Hz, rpm or order).
 
 pyuff 2.5.8 writes function types 0, 1, 2, 3, 4, 6 and 9 only; a spectrum (type 12) and an
 order function (type 27) are written as type 0 and their record 6 set afterwards, so that
@@ -80,6 +81,9 @@ class MeasuredFunction:
         The engine order of an order function against speed (an order cut).
     rpm : float, optional
         The speed [rpm] of an order function against order (an order spectrum).
+    notes : tuple of str
+        What reading found questionable and how it was read (a unit label that contradicts its
+        record's data type, or that fetorsion cannot read).
     """
 
     kind: str
@@ -93,6 +97,7 @@ class MeasuredFunction:
     label: str = ""
     order: float | None = None
     rpm: float | None = None
+    notes: tuple[str, ...] = ()
 
     @property
     def abscissa_unit(self) -> str:
@@ -167,37 +172,53 @@ def _same(a: str, b: str) -> bool | None:
 
 
 def _units_of(dset, where: str, units: dict, record: str, key: str, allowed, code: int,
-              direction: int | None, label: str | None = None):
-    """The Unit of one record (see the module docstring): its label where it names a unit, else
-    the caller's, else the SI unit of its data type; the label, the caller's unit and the data
-    type must agree."""
+              direction: int | None, notes: list, label: str | None = None):
+    """The Unit of one record (see the module docstring). The data type decides the quantity;
+    the label gives the scale where it names a unit of that quantity; a label of another
+    quantity, or one fetorsion cannot read, is noted in ``notes`` (naming the record and its
+    fields) and the record read in its data type's SI unit. A unit the caller states must agree
+    with a readable label."""
     number = RECORDS[record]
     labelled = label if label is not None else _label(dset.get(f"{key}_axis_units_lab", ""))
     stated = units.get(record)
     typed = typed_quantity(code, direction)
+    if typed is not None:  # at its direction the data type says one quantity
+        allowed = (typed,)
     kind = f"data type {code} ({TYPE_NAMES[code]})" if code in TYPE_NAMES else f"data type {code}"
-    found = None
-    if labelled is not None:
-        found = UNITS.get(normalise(labelled))
-        if found is None and stated is None:
-            implied = f"; its {kind} reads it in {UNITS_SI[typed]}" if typed else ""
-            raise UnstatedUnit(f"{where}: the {record}'s unit label (record {number}) {labelled!r} is not a unit "
-                               f"fetorsion knows{implied}: state the unit ({{how}}) to read it", record)
-        if found is not None and allowed is not None and found.quantity not in allowed:
-            raise FetorsionError(f"{where}: record {number} says {kind}, but its unit label {labelled!r} is a unit "
-                                 f"of {found.quantity}, not of {' or '.join(allowed)}")
     given = unit(stated, f"{where}: stated {record} unit", allowed) if stated is not None else None
+    found = UNITS.get(normalise(labelled)) if labelled is not None else None
+    if labelled is not None and found is None and given is None and typed is None:
+        raise UnstatedUnit(f"{where}: the {record}'s unit label (record {number} field 6) {labelled!r} is not a "
+                           f"unit fetorsion knows, and record {number} field 1 says no quantity ({kind}): state the "
+                           "unit ({how}) to read it", record)
     if found is not None and given is not None and (found.quantity, found.factor) != (given.quantity, given.factor):
         raise FetorsionError(f"{where}: the file's {record} unit is {labelled!r}, but {stated!r} was stated")
-    if found is None and given is None:
-        if typed is None:
-            raise UnstatedUnit(f"{where}: the {record} has no unit label and record {number} says no quantity "
-                               f"({kind}); state its unit ({{how}})", record)
-        return unit(UNITS_SI[typed], where)
-    return found or given
+    if given is not None:
+        return given
+    if found is not None and (allowed is None or found.quantity in allowed):
+        return found
+    if typed is None:
+        raise UnstatedUnit(f"{where}: the {record} has no unit label and record {number} says no quantity "
+                           f"({kind}); state its unit ({{how}})", record)
+    si = UNITS_SI[typed]
+    raw = _label(dset.get(f"{key}_axis_units_lab", ""))
+    shown = repr(labelled) if raw in (None, labelled) else f"{raw!r} (its response {labelled!r})"
+    if found is not None:
+        notes.append(f"{where}: record {number} field 1 says {kind}, but its unit label (field 6) {shown} "
+                     f"is a unit of {found.quantity}: read as {typed}, in {si} (the data type decides{OVERRIDE})")
+    elif labelled is not None:
+        notes.append(f"{where}: record {number}'s unit label (field 6) {shown} is not a unit fetorsion "
+                     f"knows: read in {si}, the SI unit of its {kind} (state the FRF unit if it is another scale)")
+    return unit(si, where)
 
 
-def _function(dset, where: str, units: dict) -> MeasuredFunction:
+#: How a reader overrides the data type of an FRF's response (said where a label contradicts it)
+OVERRIDE = "; stating the FRFs' type (receptance, mobility, accelerance) overrides it"
+#: An FRF's form -> the data type of its response (record 9 field 1)
+FRF_TYPES = {"receptance": 8, "mobility": 11, "accelerance": 12}
+
+
+def _function(dset, where: str, units: dict, frf_type: str | None = None) -> MeasuredFunction:
     code = int(dset["func_type"])
     abscissa_code = int(dset["abscissa_spec_data_type"])
     quantity = ABSCISSA_TYPES.get(abscissa_code)
@@ -220,23 +241,29 @@ def _function(dset, where: str, units: dict) -> MeasuredFunction:
         raise FetorsionError(f"{where}: needs >= 2 finite values")
     if np.any(np.diff(x) <= 0):
         raise FetorsionError(f"{where}: the abscissa is not ascending")
-    xu = _units_of(dset, where, units, "abscissa", "abscissa", (quantity,), abscissa_code, None)
+    notes: list[str] = []
+    xu = _units_of(dset, where, units, "abscissa", "abscissa", (quantity,), abscissa_code, None, notes)
     ordinate_code = int(dset["ordinate_spec_data_type"])
+    if kind == "frf" and frf_type is not None:
+        if ordinate_code not in (0, 1, FRF_TYPES[frf_type]):
+            notes.append(f"{where}: record 9 field 1 says data type {ordinate_code} "
+                         f"({TYPE_NAMES.get(ordinate_code, 'other')}); read as a {frf_type}, as stated")
+        ordinate_code = FRF_TYPES[frf_type]
     response_dir, reference_dir = int(dset["rsp_dir"]), int(dset["ref_dir"])
     ordinate_label = _label(dset.get("ordinate_axis_units_lab", ""))
     ratio = split_ratio(ordinate_label) if kind == "frf" and ordinate_label is not None else None
     yu = _units_of(dset, where, units, "ordinate", "ordinate", ORDINATE_TYPES.get(ordinate_code), ordinate_code,
-                   response_dir, None if ratio is None else ratio[0])
+                   response_dir, notes, None if ratio is None else ratio[0])
     reference = ru = None
     scale = yu.factor
     if kind == "frf":
         denominator_code = int(dset["orddenom_spec_data_type"])
         own = _label(dset.get("orddenom_axis_units_lab", ""))
         if ratio is not None and own is not None and _same(own, ratio[1]) is False:
-            raise FetorsionError(f"{where}: the ordinate's label {ordinate_label!r} names the excitation in "
-                                 f"{ratio[1]!r}, but record 10's label says {own!r}")
+            notes.append(f"{where}: the ordinate's label {ordinate_label!r} names the excitation in {ratio[1]!r}, "
+                         f"but record 10's label (field 6) says {own!r}: record 10's is read")
         ru = _units_of(dset, where, units, "reference", "orddenom", ORDINATE_TYPES.get(denominator_code),
-                       denominator_code, reference_dir, own if own is not None else (ratio and ratio[1]))
+                       denominator_code, reference_dir, notes, own if own is not None else (ratio and ratio[1]))
         scale /= ru.factor
         reference = (int(dset["ref_node"]), reference_dir)
     z_code, z = int(dset.get("z_axis_spec_data_type", 0)), float(dset.get("z_axis_value", 0.0))
@@ -245,10 +272,10 @@ def _function(dset, where: str, units: dict) -> MeasuredFunction:
         response=(int(dset["rsp_node"]), int(dset["rsp_dir"])), reference=reference,
         reference_unit=ru.si if ru else None, label=_label(dset.get("id1", "")) or "",
         order=z if quantity == "speed" and z_code == ABSCISSA_CODES["order"] else None,
-        rpm=z if quantity == "order" and z_code == ABSCISSA_CODES["speed"] else None)
+        rpm=z if quantity == "order" and z_code == ABSCISSA_CODES["speed"] else None, notes=tuple(notes))
 
 
-def read_uff58(path, units: dict[str, str] | None = None) -> list[MeasuredFunction]:
+def read_uff58(path, units: dict[str, str] | None = None, frf_type: str | None = None) -> list[MeasuredFunction]:
     """The dataset-58 functions of a universal file, in SI, or one message naming the file.
 
     Parameters
@@ -260,6 +287,9 @@ def read_uff58(path, units: dict[str, str] | None = None) -> list[MeasuredFuncti
         Units for records without a unit label: keys ``'abscissa'``, ``'ordinate'`` and
         ``'reference'`` (an FRF's excitation), values such as ``'Hz'``, ``'rad'``, ``'N m'``.
         A record with a label keeps it; a stated unit that disagrees with it is refused.
+    frf_type : {'receptance', 'mobility', 'accelerance'}, optional
+        What every FRF's response is (displacement, velocity or acceleration per load), over
+        record 9's data type; a record whose data type says otherwise gets a note.
 
     Returns
     -------
@@ -271,6 +301,8 @@ def read_uff58(path, units: dict[str, str] | None = None) -> list[MeasuredFuncti
     path, units = Path(path), dict(units or {})
     if not path.is_file():
         raise FetorsionError(f"{path}: is not a file")
+    if frf_type is not None and frf_type not in FRF_TYPES:
+        raise FetorsionError(f"frf_type {frf_type!r}: choose one of {', '.join(FRF_TYPES)}")
     unknown = set(units) - {"abscissa", "ordinate", "reference"}
     if unknown:
         raise FetorsionError(f"{path}: units has keys {sorted(unknown)}; use 'abscissa', 'ordinate', 'reference'")
@@ -291,7 +323,7 @@ def read_uff58(path, units: dict[str, str] | None = None) -> list[MeasuredFuncti
         raise
     except Exception as exc:  # pyuff raises bare Exceptions on a malformed record
         raise FetorsionError(f"{path}: is not a readable dataset 58 ({exc})") from None
-    return [_function(d, f"{path} (dataset {i + 1})", units) for i, d in zip(found, sets)]
+    return [_function(d, f"{path} (dataset {i + 1})", units, frf_type) for i, d in zip(found, sets)]
 
 
 # ---------------------------------------------------------------------------

@@ -555,18 +555,6 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
                               phase)
 
 
-def track_order_cut(track, order: float, name: str):
-    """A torsiograph's tracked order (:class:`~fetorsion.measured.torsiograph.OrderTrack`) as a
-    measured order cut against its blocks' mean speeds."""
-    from ..measured.uff import MeasuredFunction
-
-    rpm = np.asarray(track.rpm, float)
-    amp = np.asarray(track.at(order))
-    keep = np.argsort(rpm)
-    return MeasuredFunction("order function", rpm[keep], "speed", amp[keep], "rad", (0, 4),
-                            label=f"{name}, torsiograph", order=float(order))
-
-
 def model_response(crank, source: str = LUMPED17, condensed=None):
     """The forced response of the running model: the lumped chain's, or the condensed crank's in
     its bearings with the description's dampers (:class:`~fetorsion.response.forced.ResponseResult`)."""
