@@ -14,7 +14,7 @@ the pole of the cluster's median frequency.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -51,6 +51,8 @@ class ModalEstimate:
         (node, direction) of each row of ``shapes``.
     mass_normalised : bool
         Whether ``shapes`` are mass-normalised.
+    chart : StabilityChart, optional
+        The poles of every model order the modes were chosen from.
     """
 
     frequencies_hz: np.ndarray
@@ -58,6 +60,7 @@ class ModalEstimate:
     shapes: np.ndarray
     stations: list
     mass_normalised: bool
+    chart: StabilityChart | None = None
 
     def to_dict(self) -> dict:
         return {"frequencies_hz": self.frequencies_hz.tolist(), "damping_ratios": self.damping_ratios.tolist(),
@@ -156,31 +159,104 @@ def frf_matrix(functions):
     return first.abscissa, np.array([f.ordinate for f in frfs]), stations, form, driving
 
 
-def _stable_modes(pole_freq, pole_xi, all_poles, band):
-    """One pole per mode: the stable physical poles of all orders, clustered by frequency."""
-    found = []  # (frequency, damping, pole)
+@dataclass(frozen=True, eq=False)
+class StabilityChart:
+    """The poles of every model order of an LSCF fit, as a stability chart shows them [Peeters].
+
+    Attributes
+    ----------
+    orders : ndarray (poles,)
+        The model order each pole came from.
+    frequencies_hz : ndarray (poles,)
+        Its undamped frequency, Hz.
+    damping_ratios : ndarray (poles,)
+    stable : ndarray of bool (poles,)
+        Stable in frequency and damping against the next lower order, and physical.
+    band_hz : (float, float)
+        The band the poles were sought in.
+    poles : ndarray, complex (poles,)
+        The poles themselves (rad/s), as the estimator gives them.
+    """
+
+    orders: np.ndarray
+    frequencies_hz: np.ndarray
+    damping_ratios: np.ndarray
+    stable: np.ndarray
+    band_hz: tuple[float, float]
+    poles: np.ndarray = field(default_factory=lambda: np.zeros(0, complex), repr=False)
+
+    def to_dict(self) -> dict:
+        return {"orders": self.orders.tolist(), "frequencies_hz": self.frequencies_hz.tolist(),
+                "damping_ratios": self.damping_ratios.tolist(), "stable": self.stable.tolist(),
+                "band_hz": list(self.band_hz)}
+
+    def plot(self, ax, modes_hz=(), frequency_hz=None, frf=None):
+        """The chart on ``ax``: stable poles as dots, the others as small grey crosses, the chosen
+        modes as vertical lines; behind them, on a second axis, the sum of the FRFs' magnitudes
+        (``frequency_hz``, ``frf`` (stations, frequencies)) where given. Returns ``ax``."""
+        if frf is not None:
+            back = ax.twinx()
+            back.semilogy(frequency_hz, np.sum(np.abs(np.atleast_2d(frf)), axis=0), color="0.75", lw=0.8, zorder=0)
+            back.set_ylabel("sum of |FRF|", color="0.5", fontsize=8)
+            back.tick_params(axis="y", labelsize=7, colors="0.5")
+            ax.set_zorder(back.get_zorder() + 1)
+            ax.patch.set_visible(False)
+        ax.plot(self.frequencies_hz[~self.stable], self.orders[~self.stable], "x", color="0.6", ms=3,
+                label="pole, not stable")
+        ax.plot(self.frequencies_hz[self.stable], self.orders[self.stable], "o", color="C0", ms=3,
+                label="stable pole (frequency and damping)")
+        for f in modes_hz:
+            ax.axvline(f, color="C3", lw=0.8)
+        ax.set_xlim(*self.band_hz)
+        ax.set_xlabel("frequency [Hz]")
+        ax.set_ylabel("model order")
+        ax.set_title(f"stabilisation diagram: {len(modes_hz)} mode(s) chosen (red)", fontsize=9)
+        ax.legend(fontsize=7, loc="upper left")
+        return ax
+
+
+def stability_chart(pole_freq, pole_xi, all_poles, band) -> StabilityChart:
+    """Every physical pole of every order (in the band, 0 < ζ < ``MAX_DAMPING``), each marked
+    stable where the next lower order has one within ``FREQUENCY_STABLE`` in frequency and
+    ``DAMPING_STABLE`` in damping [Peeters]."""
+    orders, freqs, zetas, stable, poles = [], [], [], [], []
     for j in range(1, len(all_poles)):
-        f, z, p = np.asarray(pole_freq[j]), np.asarray(pole_xi[j]), np.asarray(all_poles[j])
-        f0, z0 = np.asarray(pole_freq[j - 1]), np.asarray(pole_xi[j - 1])
+        f, z, p = np.asarray(pole_freq[j], float), np.asarray(pole_xi[j], float), np.asarray(all_poles[j])
+        f0, z0 = np.asarray(pole_freq[j - 1], float), np.asarray(pole_xi[j - 1], float)
         physical = (f > band[0]) & (f < band[1]) & (z > 0) & (z < MAX_DAMPING)
-        if not physical.any() or not f0.size:
-            continue
-        df = np.abs(f[physical, None] - f0[None, :]) / f[physical, None]
-        dz = np.abs(z[physical, None] - z0[None, :]) / z[physical, None]
-        stable = np.any((df < FREQUENCY_STABLE) & (dz < DAMPING_STABLE), axis=1)
-        found += [(fi, zi, pi, j) for fi, zi, pi in zip(f[physical][stable], z[physical][stable],
-                                                       p[physical][stable])]
-    if not found:
+        f, z, p = f[physical], z[physical], p[physical]
+        if f0.size:
+            df = np.abs(f[:, None] - f0[None, :]) / f[:, None]
+            dz = np.abs(z[:, None] - z0[None, :]) / z[:, None]
+            ok = np.any((df < FREQUENCY_STABLE) & (dz < DAMPING_STABLE), axis=1)
+        else:
+            ok = np.zeros(f.size, bool)
+        orders += [j] * f.size
+        freqs.append(f)
+        zetas.append(z)
+        stable.append(ok)
+        poles.append(p)
+
+    def cat(xs, dtype):
+        return np.concatenate(xs).astype(dtype) if xs else np.zeros(0, dtype)
+
+    return StabilityChart(np.asarray(orders, int), cat(freqs, float), cat(zetas, float), cat(stable, bool),
+                          (float(band[0]), float(band[1])), cat(poles, complex))
+
+
+def _stable_modes(chart: StabilityChart, orders: int):
+    """One pole per mode: the chart's stable poles clustered by frequency, each cluster that recurs
+    in ``RECURRENCE`` of the ``orders`` compared orders giving the pole of its median frequency."""
+    keep = np.flatnonzero(chart.stable)
+    if not keep.size:
         return []
-    found.sort(key=lambda x: x[0])
-    freqs = np.array([x[0] for x in found])
+    keep = keep[np.argsort(chart.frequencies_hz[keep], kind="stable")]
+    freqs = chart.frequencies_hz[keep]
     breaks = np.flatnonzero(np.diff(freqs) / freqs[:-1] > CLUSTER_WIDTH) + 1
     modes = []
-    for cluster in np.split(np.arange(len(found)), breaks):
-        orders = {found[i][3] for i in cluster}
-        if len(orders) >= RECURRENCE * (len(all_poles) - 1):
-            median = cluster[len(cluster) // 2]
-            modes.append(found[median][2])
+    for cluster in np.split(keep, breaks):
+        if len(set(chart.orders[cluster].tolist())) >= RECURRENCE * orders:
+            modes.append(chart.poles[cluster[len(cluster) // 2]])
     return modes
 
 
@@ -228,7 +304,8 @@ def estimate_modes(frequency_hz, frf, band_hz, form: str = "receptance", station
         warnings.simplefilter("ignore", RuntimeWarning)
         model = EMA.Model(frf=h, freq=f, lower=low, upper=high, pol_order_high=int(max_order), frf_form=form)
         model.get_poles(method="lscf", show_progress=False)
-        poles = _stable_modes(model.pole_freq, model.pole_xi, model.all_poles, (low, high))
+        chart = stability_chart(model.pole_freq, model.pole_xi, model.all_poles, (low, high))
+        poles = _stable_modes(chart, len(model.all_poles) - 1)
         if not poles:
             raise FetorsionError(f"estimate_modes: no stable mode between {low:g} and {high:g} Hz")
         poles = np.array(sorted(poles, key=abs))
@@ -248,7 +325,7 @@ def estimate_modes(frequency_hz, frf, band_hz, form: str = "receptance", station
     shapes *= np.where(shapes[np.argmax(np.abs(shapes), axis=0), np.arange(shapes.shape[1])] < 0, -1.0, 1.0)
     return ModalEstimate(frequencies_hz=omega / (2 * np.pi), damping_ratios=-poles.real / omega, shapes=shapes,
                          stations=list(stations) if stations is not None else [(i, 0) for i in range(h.shape[0])],
-                         mass_normalised=driving_point is not None)
+                         mass_normalised=driving_point is not None, chart=chart)
 
 
 def run_modal_fit(functions, band_hz, max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:

@@ -67,6 +67,11 @@ class FrequencyComparison:
     mac: np.ndarray | None = None
     #: Why there is no MAC, when there is none
     mac_note: str = ""
+    #: Each measured FRF beside the model's (:func:`frf_overlays`), and why any is missing
+    overlays: list = field(default_factory=list)
+    overlay_note: str = ""
+    #: The stability chart the measured modes were chosen from
+    chart: object = None
 
     @property
     def difference_percent(self) -> np.ndarray:
@@ -76,7 +81,9 @@ class FrequencyComparison:
         return {"source": self.source, "measured_hz": self.measured_hz.tolist(),
                 "damping_ratios": self.damping_ratios.tolist(), "model_hz": self.model_hz.tolist(),
                 "model_kinds": list(self.model_kinds), "difference_percent": self.difference_percent.tolist(),
-                "mac": None if self.mac is None else self.mac.tolist(), "mac_note": self.mac_note}
+                "mac": None if self.mac is None else self.mac.tolist(), "mac_note": self.mac_note,
+                "frf_overlays": [o.station for o in self.overlays], "overlay_note": self.overlay_note,
+                "stabilisation": None if self.chart is None else self.chart.to_dict()}
 
     def lines(self) -> list[str]:
         out = [f"natural frequencies: measured (fitted modes) against the nearest mode of the {self.source} model",
@@ -88,7 +95,38 @@ class FrequencyComparison:
                                                             self.model_kinds, self.difference_percent, macs))]
         if self.mac_note:
             out.append(f"(no MAC: {self.mac_note})")
+        if self.overlay_note:
+            out.append(f"(FRF overlays: {self.overlay_note})")
         return out
+
+    def plot(self, axes):
+        """Onto ``axes`` (rows of two Axes): each measured FRF's magnitude and phase beside the
+        model's, then the stabilisation diagram beside the model-against-measured frequencies."""
+        for k, (row, o) in enumerate(zip(axes, self.overlays)):
+            o.plot(row[0], row[1], self.measured_hz)
+            if k:
+                row[0].get_legend().remove()  # said once, on the first station
+        last = axes[len(self.overlays)]
+        if self.chart is not None:
+            back = self.overlays[0] if self.overlays else None
+            self.chart.plot(last[0], self.measured_hz, None if back is None else back.frequency_hz,
+                            None if back is None else np.array([o.measured for o in self.overlays]))
+        else:
+            last[0].set_axis_off()
+        ax = last[1]
+        lim = [0, 1.1 * max(self.measured_hz.max(), self.model_hz.max())]
+        ax.plot(lim, lim, "k--", lw=0.7)
+        ax.plot(self.measured_hz, self.model_hz, "o")
+        for m, mod, d in zip(self.measured_hz, self.model_hz, self.difference_percent):
+            ax.annotate(f"{d:+.2f} %", (m, mod), fontsize=7, xytext=(4, -8), textcoords="offset points")
+        ax.set_xlabel("measured [Hz]")
+        ax.set_ylabel(f"model ({self.source}) [Hz]")
+        ax.set_title("natural frequencies: model against measured", fontsize=9)
+
+    @property
+    def rows(self) -> int:
+        """Rows of two panels :meth:`plot` draws."""
+        return len(self.overlays) + 1
 
 
 def pair_frequencies(measured_hz, model_hz, model_kinds=None) -> tuple[np.ndarray, list]:
@@ -373,27 +411,22 @@ class ComparisonResult:
         return "\n".join(lines + list(self.gaps) + [f"note: {n}" for n in self.notes])
 
     def plot(self):
-        """One panel per quantity: the frequencies (model against measured, the diagonal) and each
-        order cut (measured points, model line). Returns the Figure."""
+        """The measured FRFs beside the model's (magnitude and phase per station), the
+        stabilisation diagram and the frequencies; each order cut (measured points, model line);
+        each waterfall. Returns the Figure."""
         import matplotlib.pyplot as plt
 
-        n = len(self.frequencies) + len(self.order_cuts) + len(self.waterfalls)
-        if n == 0:
+        rows = sum(f.rows for f in self.frequencies) + len(self.order_cuts) + len(self.waterfalls)
+        if rows == 0:
             raise FetorsionError("compare: nothing measured to plot")
-        fig, axes = plt.subplots(n, 1, figsize=(7, 3.2 * n), squeeze=False)
+        fig = plt.figure(figsize=(11, 3.0 * rows + 0.6))
+        grid = fig.add_gridspec(rows, 2)
         k = 0
         for f in self.frequencies:
-            ax = axes[k, 0]
-            lim = [0, 1.1 * max(f.measured_hz.max(), f.model_hz.max())]
-            ax.plot(lim, lim, "k--", lw=0.7)
-            ax.plot(f.measured_hz, f.model_hz, "o")
-            for m, mod, d in zip(f.measured_hz, f.model_hz, f.difference_percent):
-                ax.annotate(f"{d:+.1f} %", (m, mod), fontsize=7, xytext=(4, -8), textcoords="offset points")
-            ax.set_xlabel("measured [Hz]")
-            ax.set_ylabel(f"model ({f.source}) [Hz]")
-            k += 1
+            f.plot([[fig.add_subplot(grid[k + r, 0]), fig.add_subplot(grid[k + r, 1])] for r in range(f.rows)])
+            k += f.rows
         for c in self.order_cuts:
-            ax = axes[k, 0]
+            ax = fig.add_subplot(grid[k, :])
             ax.plot(c.rpm, c.measured_deg, ".", label=f"measured: {c.name}")
             ax.plot(c.model_rpm, c.model_deg, "-", label="model")
             ax.set_xlabel("engine speed [rpm]")
@@ -401,7 +434,7 @@ class ComparisonResult:
             ax.legend(fontsize=7)
             k += 1
         for w in self.waterfalls:
-            w.plot(axes[k, 0])
+            w.plot(fig.add_subplot(grid[k, :]))
             k += 1
         fig.suptitle(f"{self.name}: model against measurement", fontsize=10)
         fig.tight_layout()
@@ -607,8 +640,14 @@ def run_comparison(crank, measured: MeasuredData, source: str = LUMPED17, statio
                "the lumped 17-DOF chain" if source == LUMPED17 else "condensed crank in its bearings")
     out = ComparisonResult(crank.name, model=running)  # the response's own name once it is solved
     if measured.frfs:
-        out.frequencies.append(compare_frequencies(run_modal_fit(measured.frfs, measured.band), crank,
-                                                   source, condensed, mesh_size))
+        estimate = run_modal_fit(measured.frfs, measured.band)
+        found = compare_frequencies(estimate, crank, source, condensed, mesh_size)
+        found.chart = estimate.chart
+        if source != LUMPED17 and condensed is None:
+            found.overlay_note = "the model's FRFs are the condensed crank's, which was not built"
+        else:
+            found.overlays, found.overlay_note = frf_overlays(crank, measured.frfs, source, condensed)
+        out.frequencies.append(found)
     if measured.cuts:
         if getattr(crank, "excitation", None) is None:
             raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
@@ -636,13 +675,11 @@ def gap_line(lumped_cut: OrderCutComparison, engine_cut: OrderCutComparison) -> 
             f"the lumped one is {100 * (mine['model_peak_deg'] / theirs['model_peak_deg'] - 1):+.1f} % from it)")
 
 
-def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
-                      condensed=None) -> np.ndarray:
-    """The free-free model's receptances (rad/N·m) at the pulley and flywheel ends to a torque at
-    the pulley end, with the description's modal damping ratio on every elastic mode (and a chain
-    file's stated dampers and loss factors):
-    (2, frequencies) complex. The lumped chain's (``stations``: 0-based chain stations), or,
-    given ``condensed``, the condensed crank's (its front and rear masters' θx)."""
+def free_model(crank, damping_ratio: float | None = None, condensed=None):
+    """The free-free model's (K, M, C) and the matrix row of each of its stations (1-based
+    station n is row ``rows[n - 1]``: a chain's stations; the condensed crank's masters' θx),
+    with the description's modal damping ratio on every elastic mode (and a chain file's stated
+    dampers and loss factors, in a complex K)."""
     from ..description.defaults import DEFAULT_DAMPING_RATIO
 
     zeta = damping_ratio if damping_ratio is not None else getattr(getattr(crank, "excitation", None),
@@ -651,22 +688,26 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
         from ..response.coupled import supported_damping
 
         K, M, C, keep = supported_damping(condensed, "free", zeta)
-        where = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in ("front", "rear")]
-        drive, read = where[0], where
-    else:
-        from ..description.model import Chain
-        from ..lumped_model.lumped import chain_matrices, lumped, stated_damping
-        from ..modes import modal_damping_matrix
+        rows = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in condensed.labels]
+        return K, M, C, rows
+    from ..description.model import Chain
+    from ..lumped_model.lumped import chain_matrices, lumped, stated_damping
+    from ..modes import modal_damping_matrix
 
-        res = lumped(crank, 17)
-        M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
-        C = modal_damping_matrix(M, K, zeta)
-        if isinstance(crank, Chain):  # a chain file's own dampers and loss factors, as its forced response has them
-            C_stated, H_loss = stated_damping(crank, res)
-            C, K = C + C_stated, K + 1j * H_loss
-        drive, read = 0, list(stations)
+    res = lumped(crank, 17)
+    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    C = modal_damping_matrix(M, K, zeta)
+    if isinstance(crank, Chain):  # a chain file's own dampers and loss factors, as its forced response has them
+        C_stated, H_loss = stated_damping(crank, res)
+        C, K = C + C_stated, K + 1j * H_loss
+    return K, M, C, list(range(len(M)))
+
+
+def free_receptances(K, M, C, drive: int, read, frequency_hz) -> np.ndarray:
+    """(len(read), frequencies) complex: the rows ``read`` of (K − ω²M + iωC)⁻¹ e_drive, NaN at
+    0 Hz (a free body has no static receptance)."""
     w = 2 * np.pi * np.asarray(frequency_hz, float)
-    w = np.where(w > 0, w, np.nan)  # a free body has no static receptance
+    w = np.where(w > 0, w, np.nan)
     f = np.zeros(len(M))
     f[drive] = 1.0
     H = np.empty((len(w), len(M)), complex)
@@ -674,7 +715,88 @@ def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: floa
         b = slice(a, a + 100)
         Z = K[None] - w[b, None, None] ** 2 * M[None] + 1j * w[b, None, None] * C[None]
         H[b] = np.linalg.solve(np.nan_to_num(Z), np.broadcast_to(f, (Z.shape[0], len(M)))[..., None])[..., 0]
-    return H[:, read].T
+    H[~np.isfinite(w)] = np.nan
+    return H[:, list(read)].T
+
+
+def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
+                      condensed=None) -> np.ndarray:
+    """The free-free model's receptances (rad/N·m) at the pulley and flywheel ends to a torque at
+    the pulley end, with the description's modal damping ratio on every elastic mode (and a chain
+    file's stated dampers and loss factors): (2, frequencies) complex. The lumped chain's
+    (``stations``: 0-based chain stations), or, given ``condensed``, the condensed crank's (its
+    front and rear masters' θx)."""
+    K, M, C, rows = free_model(crank, damping_ratio, condensed)
+    read = [rows[0], rows[-1]] if condensed is not None else [rows[s] for s in stations]
+    return free_receptances(K, M, C, rows[0], read, frequency_hz)
+
+
+#: An FRF's form -> the power of iω that takes a receptance to it
+FORM_POWERS = {"receptance": 0, "mobility": 1, "accelerance": 2}
+
+
+@dataclass
+class FrfOverlay:
+    """A measured FRF and the model's at the same station, to the same reference, in the same form.
+
+    Attributes
+    ----------
+    station : str
+        ``node:direction`` of the response (node n the model's n-th station).
+    frequency_hz : ndarray
+    measured, model : ndarray, complex
+        In SI, ``unit`` per ``reference_unit``.
+    form : str
+        ``'receptance'``, ``'mobility'`` or ``'accelerance'``.
+    """
+
+    station: str
+    frequency_hz: np.ndarray
+    measured: np.ndarray
+    model: np.ndarray
+    form: str
+    unit: str
+    reference_unit: str
+
+    def plot(self, magnitude_ax, phase_ax, modes_hz=()):
+        """Magnitude (log) and phase against frequency, measured as dots, the model as a line."""
+        for ax in (magnitude_ax, phase_ax):
+            for f in modes_hz:
+                ax.axvline(f, color="0.85", lw=0.8, zorder=0)
+        magnitude_ax.semilogy(self.frequency_hz, np.abs(self.measured), ".", ms=2, color="C0", label="measured")
+        magnitude_ax.semilogy(self.frequency_hz, np.abs(self.model), "-", lw=1.2, color="C3", label="model")
+        magnitude_ax.set_ylabel(f"|{self.form}| [{self.unit}/{self.reference_unit}]", fontsize=8)
+        magnitude_ax.set_title(f"FRF at {self.station}: magnitude", fontsize=9)
+        magnitude_ax.legend(fontsize=7)
+        phase_ax.plot(self.frequency_hz, np.degrees(np.angle(self.measured)), ".", ms=2, color="C0")
+        phase_ax.plot(self.frequency_hz, np.degrees(np.angle(self.model)), "-", lw=1.2, color="C3")
+        phase_ax.set_ylim(-190, 190)
+        phase_ax.set_yticks([-180, -90, 0, 90, 180])
+        phase_ax.set_ylabel("phase [deg]", fontsize=8)
+        phase_ax.set_title(f"FRF at {self.station}: phase", fontsize=9)
+        for ax in (magnitude_ax, phase_ax):
+            ax.set_xlabel("frequency [Hz]", fontsize=8)
+
+
+def frf_overlays(crank, frfs, source: str = LUMPED17, condensed=None) -> tuple[list, str]:
+    """Each measured FRF with the free-free model's at its station (node n the model's n-th
+    station, as :func:`paired_mac` reads them) to the measured reference, in the measured form
+    (the model's receptance times (iω)^p), and why any is left out."""
+    from ..measured.modal import frf_matrix
+
+    frequency, _, stations, form, _ = frf_matrix(frfs)
+    K, M, C, rows = free_model(crank, condensed=condensed if source != LUMPED17 else None)
+    reference = frfs[0].reference
+    if not 1 <= reference[0] <= len(rows):
+        return [], f"the FRFs' reference node {reference[0]} is not one of the model's {len(rows)} stations"
+    nodes = [n for n, _ in stations]
+    inside = [k for k, n in enumerate(nodes) if 1 <= n <= len(rows)]
+    H = free_receptances(K, M, C, rows[reference[0] - 1], [rows[nodes[k] - 1] for k in inside], frequency)
+    H = H * (1j * 2 * np.pi * np.asarray(frequency)) ** FORM_POWERS[form]
+    out = [FrfOverlay(f"{nodes[k]}:{stations[k][1]}", np.asarray(frequency), np.asarray(frfs[k].ordinate), h,
+                      form, frfs[k].unit, frfs[k].reference_unit) for k, h in zip(inside, H)]
+    left = [f"{n}:{d}" for k, (n, d) in enumerate(stations) if k not in inside]
+    return out, (f"no model station for {', '.join(left)}" if left else "")
 
 
 def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = LUMPED17,
