@@ -281,3 +281,25 @@ def test_the_tracked_orders_default_to_the_engines_major_orders(tmp_path, capsys
     assert said.count("phases (deg): arg c_k of the cosine series") == 1  # what a phase is, said once
     a, k, phi = PULLEY[2]
     assert_orders(track(out, "pulley", k), expected(a, phi), "pulley order 4")
+
+
+def test_a_files_station_line_places_its_channel_and_the_option_overrides_it(tmp_path, capsys, engine):
+    """Issue 54: a one-wheel file's `# station = NAME` line says where its wheel sat (its channel,
+    `wheel B`, is no station's name), and the table names that station for each of its orders;
+    --channel-station overrides the file. A station line on a file of two channels is refused,
+    naming the file and the option."""
+    head = "# channel = wheel B\n# station = flywheel\nt_s\n"
+    rec = tmp_path / "b.csv"
+    rec.write_text(head + "\n".join(f"{t:.12e}" for t in engine["edges"]["flywheel"]) + "\n")
+    out, said = compare(tmp_path, capsys, str(rec), "--teeth", "132")
+    stations = {c["station"] for c in out["order_cuts"]}
+    assert stations == {"J5 (flywheel end)"}, stations
+    assert all("at J5 (flywheel end)" in x for x in said.out.splitlines() if x.startswith("order ")), said.out
+    out, _ = compare(tmp_path, capsys, str(rec), "--teeth", "132", "--channel-station", "wheel B=J3")
+    assert {c["station"] for c in out["order_cuts"]} == {"J3"}
+    two = tmp_path / "two.csv"
+    two.write_text("# station = flywheel\n" + open(write_edges(tmp_path / "x.csv", engine["edges"])).read())
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), str(two), "--teeth", "pulley=60", "flywheel=132",
+                 "--time-unit", "s", "--source", "lumped17"]) == 2
+    err = capsys.readouterr().err
+    assert "--channel-station CHANNEL=STATION: " in err and "two.csv's '# station = flywheel' line" in err, err
