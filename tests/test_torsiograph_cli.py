@@ -303,3 +303,28 @@ def test_a_files_station_line_places_its_channel_and_the_option_overrides_it(tmp
                  "--time-unit", "s", "--source", "lumped17"]) == 2
     err = capsys.readouterr().err
     assert "--channel-station CHANNEL=STATION: " in err and "two.csv's '# station = flywheel' line" in err, err
+
+
+def test_a_steady_record_is_drawn_as_an_order_spectrum_not_a_map(tmp_path, capsys, engine):
+    """Issue 54: a steady 3000 rpm record has no speed axis: the figure draws its order spectrum
+    (every tracked order's mean amplitude, the compared orders' model amplitudes beside them), not
+    a map over ±0.02 rpm, and no per-order cut panels; the title says the speed and the blocks."""
+    import matplotlib.pyplot as plt
+
+    from fetorsion.measured import MeasuredOptions, read_measured
+    from fetorsion.studies.comparison import run_comparison
+
+    import fetorsion
+
+    rec = write_edges(tmp_path / "rec.csv", {"pulley": engine["edges"]["pulley"]})
+    measured = read_measured([rec], MeasuredOptions(teeth=60, time_unit="s", track_orders=(1.5, 2.0, 4.0)))
+    res = run_comparison(fetorsion.load(GEOMETRY / "renault21.toml"), measured)
+    fig = res.plot()
+    titles = [ax.get_title() for ax in fig.axes]
+    assert titles == ["rec.csv: pulley: order spectrum, steady at 3000 rpm over 20 blocks"], titles
+    ax = fig.axes[0]
+    model = [line for line in ax.lines if line.get_label() == "model at this speed"]
+    assert len(model) == 1  # one legend entry for the three compared orders' diamonds
+    diamonds = [line.get_xydata()[0] for line in ax.lines if line.get_marker() == "D"]
+    assert sorted(x for x, _ in diamonds) == [1.5, 2.0, 4.0]
+    plt.close(fig)

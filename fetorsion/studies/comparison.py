@@ -39,6 +39,14 @@ SOURCES = ("condensed", LUMPED17, "fe")
 CONDENSED_MODES = 20
 #: Crossings a waterfall's summary line quotes (those the measurement responds to most).
 WATERFALL_LINES = 4
+#: A record whose blocks' mean speeds lie within this fraction of each other is steady: one speed
+STEADY_SPREAD = 0.02
+
+
+def is_steady(rpm) -> bool:
+    """Whether a record's block speeds are one speed (within :data:`STEADY_SPREAD`)."""
+    rpm = np.asarray(rpm, float)
+    return rpm.size >= 2 and rpm.max() <= (1 + STEADY_SPREAD) * rpm.min()
 
 
 @dataclass
@@ -239,7 +247,7 @@ class OrderCutComparison:
         mean amplitude and its spread over the blocks, the mean phase, and the model's
         amplitude at that speed; None for a cut over a speed range."""
         rpm = np.asarray(self.rpm, float)
-        if rpm.size < 2 or rpm.max() > 1.02 * rpm.min():
+        if not is_steady(rpm):
             return None
         at = float(rpm.mean())
         out = {"rpm": at, "blocks": int(rpm.size), "measured_deg": float(self.measured_deg.mean()),
@@ -310,8 +318,13 @@ class Waterfall:
         return [f"- waterfall {self.name}: {len(self.crossings)} model crossing(s) in the measured speeds and orders"
                 + ("; the strongest measured: " + "; ".join(near) if near else "")]
 
-    def plot(self, ax):
-        """The order map (amplitude in deg, logarithmic colours) with the crossings marked."""
+    def plot(self, ax, steady_cuts=()):
+        """A run-up's speed-order colour map (amplitude in deg, logarithmic colours) with the
+        model's crossings marked; a steady record's order spectrum instead (there is no speed axis
+        to draw a map over), each order's mean amplitude over the blocks with its spread, and the
+        model's amplitude at that speed for the orders compared (``steady_cuts``)."""
+        if is_steady(self.track.rpm):
+            return self._spectrum(ax, steady_cuts)
         from matplotlib.colors import LogNorm
 
         order = np.argsort(self.track.rpm)
@@ -326,7 +339,28 @@ class Waterfall:
             ax.annotate(f"{m}", (n, k), color="w", fontsize=7, xytext=(4, 3), textcoords="offset points")
         ax.set_xlabel("mean speed [rpm]")
         ax.set_ylabel("order")
-        ax.set_title(f"{self.name}: measured order map, model crossings (o: mode number)", fontsize=9)
+        ax.set_title(f"{self.name}: speed-order map, model crossings (o: mode number)", fontsize=9)
+        return ax
+
+    def _spectrum(self, ax, steady_cuts):
+        amp = np.degrees(np.abs(self.track.amplitudes))
+        mean, low, high = amp.mean(axis=0), amp.min(axis=0), amp.max(axis=0)
+        floor = max(mean.max() * 1e-4, 1e-12)
+        orders = self.track.orders
+        ax.vlines(orders, floor, np.maximum(mean, floor), color="C0", lw=1.5, label="measured (mean over the blocks)")
+        ax.errorbar(orders, np.maximum(mean, floor), yerr=[mean - np.maximum(low, floor), high - mean], fmt="none",
+                    ecolor="0.4", lw=0.8, capsize=2, label="spread over the blocks")
+        for j, c in enumerate(steady_cuts):
+            ax.plot(c.order, c.steady()["model_deg"], "D", color="C3", ms=6, label="model at this speed" if j == 0
+                    else None)
+        ax.set_yscale("log")
+        ax.set_ylim(bottom=floor)
+        ax.set_xlabel("order")
+        ax.set_ylabel("vibration [deg]")
+        ax.set_title(f"{self.name}: order spectrum, steady at {self.track.rpm.mean():.0f} rpm over "
+                     f"{self.track.rpm.size} blocks", fontsize=9)
+        ax.legend(fontsize=7)
+        return ax
 
 
 def model_crossings(model_hz, orders, rpm) -> list:
@@ -416,7 +450,11 @@ class ComparisonResult:
         each waterfall. Returns the Figure."""
         import matplotlib.pyplot as plt
 
-        rows = sum(f.rows for f in self.frequencies) + len(self.order_cuts) + len(self.waterfalls)
+        # a steady record's cuts are points at one speed: drawn on its order spectrum, not as cuts
+        steady = {id(c) for c in self.order_cuts if c.steady() is not None
+                  and any(c.name == f"{w.name}, torsiograph" for w in self.waterfalls)}
+        cuts = [c for c in self.order_cuts if id(c) not in steady]
+        rows = sum(f.rows for f in self.frequencies) + len(cuts) + len(self.waterfalls)
         if rows == 0:
             raise FetorsionError("compare: nothing measured to plot")
         fig = plt.figure(figsize=(11, 3.0 * rows + 0.6))
@@ -425,7 +463,7 @@ class ComparisonResult:
         for f in self.frequencies:
             f.plot([[fig.add_subplot(grid[k + r, 0]), fig.add_subplot(grid[k + r, 1])] for r in range(f.rows)])
             k += f.rows
-        for c in self.order_cuts:
+        for c in cuts:
             ax = fig.add_subplot(grid[k, :])
             ax.plot(c.rpm, c.measured_deg, ".", label=f"measured: {c.name}")
             ax.plot(c.model_rpm, c.model_deg, "-", label="model")
@@ -434,7 +472,8 @@ class ComparisonResult:
             ax.legend(fontsize=7)
             k += 1
         for w in self.waterfalls:
-            w.plot(fig.add_subplot(grid[k, :]))
+            w.plot(fig.add_subplot(grid[k, :]), [c for c in self.order_cuts if id(c) in steady
+                                                 and c.name == f"{w.name}, torsiograph"])
             k += 1
         fig.suptitle(f"{self.name}: model against measurement", fontsize=10)
         fig.tight_layout()
