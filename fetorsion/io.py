@@ -319,3 +319,37 @@ def store_max_bytes() -> int:
     if not (mb > 0 and math.isfinite(mb)):
         raise FetorsionError(f"{STORE_MAX_ENV}={env!r}: must be a positive number of MiB")
     return int(mb * 2**20)
+
+
+class Stages:
+    """Progress through a long computation's stages, one line per stage: the stage, the share of
+    the expected time done before it, the time so far and the time left at that pace.
+
+    Parameters
+    ----------
+    what : str
+        The computation (``modal``, ``condense``).
+    seconds : dict[str, float]
+        Each stage's expected time, in the order the stages run (a measured run's: only the
+        shares matter).
+    say : callable
+        Takes each line (print to stderr, say).
+    """
+
+    def __init__(self, what: str, seconds: dict[str, float], say):
+        import time
+
+        self.what, self.seconds, self.say = what, dict(seconds), say
+        self.clock = time.perf_counter
+        self.start = self.clock()
+
+    def __call__(self, stage: str) -> None:
+        names = list(self.seconds)
+        if stage not in self.seconds:
+            raise ValueError(f"{self.what}: stage {stage!r} is not one of {names}")
+        k = names.index(stage)
+        done = sum(self.seconds[n] for n in names[:k]) / sum(self.seconds.values())
+        elapsed = self.clock() - self.start
+        left = f", about {elapsed * (1 - done) / done:.0f} s left" if done > 0 and elapsed > 0.5 else ""
+        self.say(f"{self.what}: {stage} (stage {k + 1} of {len(names)}, {100 * done:.0f} % done, "
+                 f"{elapsed:.0f} s{left})")

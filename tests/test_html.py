@@ -116,11 +116,15 @@ def test_page_is_self_contained_and_small(report):
     assert report.stat().st_size < 25 * 2**20
 
 
-def test_modal_and_campbell_write_their_own_pages(tmp_path):
+def test_modal_and_campbell_write_their_own_pages(tmp_path, capsys):
     assert main(["campbell", str(GEOMETRY / "renault21.toml"), "--html", str(tmp_path / "c.html")]) == 0
     assert 'id="campbell"' in (tmp_path / "c.html").read_text()
     crank = plain_copy(tmp_path)
+    capsys.readouterr()
     assert main(["modal", str(crank), "--mesh-size", "30", "--modes", "8", "--html", str(tmp_path / "m.html")]) == 0
+    err = capsys.readouterr().err  # issue 54: a progress line per stage, with the share done
+    for k, name in enumerate(("meshing", "assembling", "factorising", "eigensolving")):
+        assert f"modal: {name} (stage {k + 1} of 4, " in err, err
     page = (tmp_path / "m.html").read_text()
     # the 3D mode view with its controls, offering each torsional and bending mode of the table
     assert 'id="modes-mode"' in page and 'id="modes-play"' in page and "fetorsionModeView(\"modes\"" in page

@@ -154,33 +154,56 @@ def test_fe_scfs_in_m53s_convention_are_near_its_formulas(name):
 
 @pytest.mark.fe
 @pytest.mark.slow
-def test_the_reports_verdict_is_one_line_per_configuration(tmp_path):
+def test_the_reports_verdict_is_one_row_per_configuration(tmp_path, monkeypatch):
     """Issue 39 end to end on the Renault 21 (fillets, drillings, 30 mm mesh), fe deciding: one
-    summary line per configuration naming the method, the damping and its source, the governing
-    place and speed and the safety against the required, the other method beside it; the damping
-    flip; the recommended damper checked by both methods; every SCF in M53's convention."""
+    summary table row per configuration (issue 54: a compact table, not a paragraph each) naming
+    the governing place and speed and the safety against the required, the other method beside
+    it, the method, damping and its source said once above it; the damping flip; the recommended
+    damper checked by both methods; every SCF in M53's convention. Issue 54: every figure the run
+    writes passes the figure checks (titles inside, at most 8 coloured lines; the fatigue and
+    damper figures' required line, the Campbell diagram's size key in MPa)."""
     import json
     import re
 
+    from figure_checks import figure_problems
+
+    import fetorsion.app.run as app_run
     from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
 
+    problems, drawn = {}, []
+    saving = app_run.save_figure_atomic
+
+    def checked(fig, path, **kwargs):
+        name = Path(path).name
+        drawn.append(name)
+        found = figure_problems(fig, required=name in ("fatigue_safety.png", "damper_design.png"),
+                                key_unit="MPa" if name == "campbell.png" else None)
+        if found:
+            problems[name] = found
+        return saving(fig, path, **kwargs)
+
+    monkeypatch.setattr(app_run, "save_figure_atomic", checked)
     steps = tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings", "campbell", "fatigue"))
     out = Path(run(ROOT / "geometry" / "renault21.toml", tmp_path / "r", steps=steps,
               options=RunOptions(mesh_size=0.03, fatigue_method="fe")).folder)
+    assert {"campbell.png", "fatigue_safety.png", "fatigue_haigh.png", "damper_design.png"} <= set(drawn), drawn
+    assert not problems, problems
     data = json.loads((out / "results.json").read_text())["fatigue"]
     assert data["method"] == "fe"
     names = [c["name"] for c in data["configurations"]]
     assert names[0] == "without a damper" and names[1] == "with the recommended rubber damper"
     assert len(names) == 4 and all(n.startswith("misfire of cylinder ") for n in names[2:])
     summary = (out / "report.md").read_text().split("## Summary", 1)[1].split("\n## ", 1)[0]
-    lines = [x for x in summary.splitlines() if x.startswith("- **Verdict, ")]
-    assert len(lines) == len(names)
-    for line, c in zip(lines, data["configurations"]):
+    assert "Verdict by fe, ζ = 0.02 (assumed" in summary
+    rows = [x for x in summary.splitlines() if x.startswith("| ") and not x.startswith("| configuration")]
+    assert len(rows) == len(names)
+    for row, c in zip(rows, data["configurations"]):
         a, b = c["fe"], c["iacs-m53"]
-        assert line.startswith(f"- **Verdict, {c['name']}:** fe, ζ = 0.02 (assumed")
-        assert f"{a['rpm']:.0f} rpm): safety {a['safety']:.2f} against {a['required']:.2f}: " in line
-        assert f"; iacs-m53 {b['safety']:.2f} against {b['required']:.2f} " in line
-        assert ("FAIL" in line) == (not a["passes"])
+        cells = [x.strip() for x in row.strip("|").split("|")]
+        assert cells[0] == c["name"] and cells[1] == ("yes" if c["as_described"] else "informs")
+        assert cells[3:6] == [f"{a['rpm']:.0f}", f"{a['safety']:.2f}", f"{a['required']:.2f}"]
+        assert cells[7] == f"{b['safety']:.2f}"
+        assert ("FAIL" in cells[6]) == (not a["passes"])
     # the recommended damper's line is its own check by both methods (not the undamped one's)
     assert data["configurations"][1]["iacs-m53"]["safety"] > data["configurations"][0]["iacs-m53"]["safety"]
     assert "designed for the iacs-m53 verdict's governing safety and checked by the deciding fe method" in summary

@@ -22,7 +22,7 @@ def engine_fillets(crank):
     return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
 
 
-def engine_condensed(crank, mesh_size: float, progress=None):
+def engine_condensed(crank, mesh_size: float, progress=None, stage=None):
     """The run's condensed crank (:class:`~fetorsion.fe.condensed.CondensedCrank`): from the
     store, else built (said through ``progress``) and kept; with its oil films.
 
@@ -34,10 +34,13 @@ def engine_condensed(crank, mesh_size: float, progress=None):
         The FE mesh's element size, m.
     progress : callable, optional
         Called with a line of text when the crank has to be built.
+    stage : callable, optional
+        Called with each stage's name as the build starts it (a :class:`~fetorsion.io.Stages`).
     """
     from ..design.stress import fillet_cuts
     from ..fe.store import condensed_crank
     from ..response.coupled import with_film_bearings
 
-    cc, _ = condensed_crank(crank, mesh_size, fillet_cuts(crank, engine_fillets(crank)), progress=progress)
+    cc, _ = condensed_crank(crank, mesh_size, fillet_cuts(crank, engine_fillets(crank)), progress=progress,
+                            stage=stage)
     return with_film_bearings(cc)

@@ -237,6 +237,21 @@ class RunContext:
         return name
 
 
+#: A mode image's named places: the mesh's end faces
+MODE_IMAGE_PLACES = (("front_face", "pulley end"), ("rear_face", "flywheel end"))
+
+
+def mode_image_places(mesh) -> tuple:
+    """(point, name) of the crank's pulley and flywheel ends on a mode image: each end face's
+    centre (the faces the condensed crank's front and rear masters tie)."""
+    found = []
+    for key, name in MODE_IMAGE_PLACES:
+        nodes = mesh.node_sets.get(key)
+        if nodes is not None and len(nodes):
+            found.append((mesh.nodes[np.asarray(nodes)].mean(axis=0), name))
+    return tuple(found)
+
+
 def _progress(message: str) -> None:
     print(f"[fetorsion] {message}", file=sys.stderr, flush=True)
 
@@ -301,10 +316,11 @@ def step_fe(ctx: RunContext) -> FEOutcome:
     picks = [j for j, k in enumerate(fe.kinds) if k == "torsional"][:3]
     picks += [j for j, k in enumerate(fe.kinds) if k == "bending"][:2]
     images = tuple(ModeImage(j, f"mode_{j + 1:02d}_{fe.kinds[j]}.png") for j in sorted(picks))
+    places = mode_image_places(cm)
     for im in images:  # drawn later (RunContext.deferred): nothing after reads them
         ctx.deferred.append(functools.partial(
             render_mode, cm.nodes, cm.tets, fe.shapes[im.mode], ctx.folder / im.file,
-            title=f"mode {im.mode + 1}: {fe.frequencies_hz[im.mode]:.1f} Hz, {fe.kinds[im.mode]}"))
+            title=f"mode {im.mode + 1}: {fe.frequencies_hz[im.mode]:.1f} Hz, {fe.kinds[im.mode]}", places=places))
     solid_image, features = "", None
     if ctx.crank.solid_step:  # a CAD solid: what was recognised on it, for the user to check
         from ..report.render import render_solid
@@ -444,12 +460,21 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     a = described.fe
     stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets) \
         if isinstance(ctx.outcome.campbell, CampbellOutcome) else None
-    images = (ctx.save(a.plot().figure, "fatigue_safety.png"), ctx.save(a.haigh().figure, "fatigue_haigh.png"),
+    images = (ctx.save(verdict.fatigue_figure(described), "fatigue_safety.png"),
+              ctx.save(haigh_of(verdict, a).figure, "fatigue_haigh.png"),
               ctx.save(verdict.damper.plot().figure, "damper_design.png"))
     ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict(), "scf": scf.to_dict()}
     if stress is not None:
         ctx.results["stress"] = stress.to_dict()
     return FatigueOutcome(verdict, a, stress, scf, images, setup.model)
+
+
+def haigh_of(verdict, assessment):
+    """The ``fe`` path's Haigh diagram, titled with whether that path decides the verdict (M53
+    reads no mean stress: it has no Haigh diagram of its own)."""
+    ax = assessment.haigh()
+    ax.set_title(f"{ax.get_title()} (fe path, Findley)\n{verdict.decides('fe')}", fontsize=8)
+    return ax
 
 
 def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, parts=None):

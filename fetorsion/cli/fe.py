@@ -10,7 +10,7 @@ from pathlib import Path
 from .options import MM, integer, millimetres
 from ..errors import FetorsionError
 from ..solid.isolate import call_isolated
-from ..io import write_text_atomic
+from ..io import Stages, write_text_atomic
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_WEB_METHOD
 from .common import (SUPPORT_CHOICES, add_json_option, add_mesh_size_option, check_mesh_size, emit_json, load_crank,
                      report, save_plot)
@@ -83,8 +83,11 @@ def cmd_modal(args) -> int:
         runs, refinement = run_refinement(crank, args.mesh_size, args.modes, args.fillet_size, args.purpose)
         fe = runs[-1]
     else:
+        from ..fe.crankfe import MODAL_STAGES
+
         mesh = read_mesh(args.mesh, crank) if args.mesh else None
-        fe = run_modal(crank, args.mesh_size, args.modes, args.fillet_size, mesh=mesh, purpose=args.purpose)
+        fe = run_modal(crank, args.mesh_size, args.modes, args.fillet_size, mesh=mesh, purpose=args.purpose,
+                       stage=Stages("modal", MODAL_STAGES, say))
     res = fe
     out = sys.stderr if args.json == "-" else sys.stdout
     print(f"{crank.name}: {res.table()}", file=out)
@@ -165,9 +168,17 @@ def condensed(crank, mesh_size: float, mesh=None):
     from ..fe.condensed import run_condensed
     from ..response.coupled import with_film_bearings
 
+    from ..fe.condensed import CONDENSE_STAGES
+
+    stage = Stages("condense", CONDENSE_STAGES, say)
     if mesh is not None:
-        return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh))
-    return engine_condensed(crank, mesh_size, lambda m: print(f"[fetorsion] {m}", file=sys.stderr, flush=True))
+        return with_film_bearings(run_condensed(crank, mesh_size, mesh=mesh, stage=stage))
+    return engine_condensed(crank, mesh_size, say, stage)
+
+
+def say(line: str) -> None:
+    """A progress line on stderr (stdout keeps the results)."""
+    print(f"[fetorsion] {line}", file=sys.stderr, flush=True)
 
 
 def _add_purpose_options(p: argparse.ArgumentParser) -> None:

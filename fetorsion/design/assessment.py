@@ -24,7 +24,7 @@ import numpy as np
 
 from ..errors import FetorsionError
 from .scfset import SCFSet
-from .fatigue import FatigueResult, LocationStress, run_fatigue
+from .fatigue import HAIGH_LOCATIONS, FatigueResult, LocationStress, run_fatigue
 
 
 def section_modulus_factor(diameter: float, bore: float) -> float:
@@ -90,8 +90,6 @@ def oil_bore_stress_histories(cycle, bore: OilBoreSection) -> tuple[np.ndarray, 
     return 32 * w * moment, 16 * w * h[:, :, 3].mean(axis=1)
 
 
-#: Locations (the least safe) drawn in the Haigh diagram.
-HAIGH_LOCATIONS = 3
 
 
 @dataclass

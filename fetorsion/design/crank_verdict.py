@@ -20,7 +20,7 @@ it would flip, and what the description's (or the default) damping band gives.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -81,8 +81,11 @@ def run_fatigue_damper(crank, setup, fillets, scf: SCFSet, kind: str = "rubber",
         undamped = run_m53_crank(crank, fillets, fillet_torque_amplitude(setup, solve_response(setup, ()), fillets),
                                  setup.rpm, fe_scf=scf)
     coarse = design_speeds(setup)
-    return run_damper(crank, kind, mu, optimise, "fatigue", at, hub_inertia, setup=coarse, fillets=fillets,
-                      utilisation=m53_utilisation(undamped, fillets, coarse))
+    design = run_damper(crank, kind, mu, optimise, "fatigue", at, hub_inertia, setup=coarse, fillets=fillets,
+                        utilisation=m53_utilisation(undamped, fillets, coarse))
+    required = undamped.governing.required
+    return replace(design, limit=1.0 / required,
+                               limit_label=f"required: M53 Q {required:.2f}, utilisation 1/{required:.2f} = {1 / required:.3f}")
 
 
 @dataclass
@@ -192,6 +195,35 @@ class CrankVerdict:
                 text += f"; {self.other} {b['safety']:.2f} against {b['required']:.2f} ({b['location']})"
             out.append(text)
         return out
+
+    def decides(self, method: str) -> str:
+        """A phrase for a figure of ``method``'s: that it decides, or which method does and by how
+        much this one differs from it (the as-described firing configuration's governing safety)."""
+        described = next(c for c in self.configs if c.as_described)
+        mine, theirs = described.answer(method), described.answer(self.method)
+        if method == self.method:
+            return f"{method} decides: safety {mine['safety']:.2f} against {mine['required']:.2f}"
+        gap = 100 * (mine["safety"] / theirs["safety"] - 1) if mine and theirs else float("nan")
+        return (f"shown beside; {self.method} decides ({theirs['safety']:.2f}); this method's least "
+                f"{mine.get('safety', float('nan')):.2f} is {gap:+.0f} % from it")
+
+    def fatigue_figure(self, config: VerdictConfig | None = None):
+        """The deciding method's figure beside the other's, for one configuration (default the
+        crank as described, firing): M53's Q of every place (:meth:`M53Result.plot`), the ``fe``
+        path's safety over speed (:meth:`CrankAssessment.plot`), each titled with whether it
+        decides. Returns the Figure."""
+        import matplotlib.pyplot as plt
+
+        config = config or next(c for c in self.configs if c.as_described)
+        methods = [m for m in (self.method, self.other) if config.result(m) is not None]
+        fig, axes = plt.subplots(1, len(methods), figsize=(6.5 * len(methods), 4.6), squeeze=False)
+        for ax, m in zip(axes[0], methods):
+            config.result(m).plot(ax=ax)
+            title = ax.get_title().split("\n")[-1]
+            ax.set_title(f"{title}\n{self.decides(m)}", fontsize=8.5, fontweight="bold" if m == self.method else None)
+        fig.suptitle(f"{self.name}: fatigue, {config.name}", fontsize=10)
+        fig.tight_layout()
+        return fig
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""

@@ -168,6 +168,10 @@ class DamperResult:
     curves: dict = field(default_factory=dict)
     peaks: dict = field(default_factory=dict)
     evaluations: int = 0
+    #: The objective's acceptable largest value, where it has one (a fatigue utilisation's
+    #: 1/required safety), and what it is
+    limit: float | None = None
+    limit_label: str = ""
 
     @property
     def unit(self) -> str:
@@ -187,7 +191,8 @@ class DamperResult:
                 "mode_hz": self.mode_hz, "equivalent_inertia_kgm2": self.equivalent_inertia_kgm2,
                 "den_hartog": damper(self.den_hartog), "optimised": damper(self.optimised),
                 "rpm": self.rpm.tolist(), **{f"{k}_{unit}": v.tolist() for k, v in self.curves.items()},
-                **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations}
+                **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations,
+                "limit": self.limit, "limit_label": self.limit_label}
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""
@@ -216,7 +221,10 @@ class DamperResult:
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel({"stress": "fillet shear stress", "twist": "pulley twist",
                        "fatigue": "fatigue utilisation 1/safety"}[self.objective] + f" [{self.unit}]")
-        ax.set_title(f"{self.name}: {self.kind} damper, μ = {self.mu:g}", fontsize=10)
+        if self.limit is not None:
+            ax.axhline(self.limit, color="k", ls="--", lw=0.8, label=self.limit_label or f"limit {self.limit:.3g}")
+            ax.set_ylim(0, 1.1 * max(self.limit, max(float(np.max(self._scaled(c))) for c in self.curves.values())))
+        ax.set_title(f"{self.name}:\n{self.kind} damper, μ = {self.mu:g}", fontsize=9)
         ax.legend(fontsize=8)
         return ax
 

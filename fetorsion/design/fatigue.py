@@ -64,6 +64,10 @@ METHODS = ("iacs-m53", "textbook")
 assert set(M53_PROCESS_FACTOR) == set(PROCESSES) and set(MARIN_SURFACE) == set(SURFACES)
 
 
+#: The least safe places a fatigue figure names in colour (the Haigh diagram's points; the rest grey)
+HAIGH_LOCATIONS = 3
+
+
 @dataclass(frozen=True)
 class FatigueMaterial:
     """Static strengths (Pa), surface and manufacturing route of a crank's steel."""

@@ -41,7 +41,7 @@ import numpy as np
 
 from ..errors import FetorsionError
 from .scfset import SCFSet
-from .fatigue import M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
+from .fatigue import HAIGH_LOCATIONS, M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
 
 #: [KR-M53] §4: σ_add of a trunk-piston engine (every engine fetorsion describes; a crosshead
 #: engine's is ±30 N/mm²: ±20 axial vibration, ±10 misalignment), Pa.
@@ -411,6 +411,31 @@ class M53Result:
     @property
     def passes(self) -> bool:
         return all(a.passes for a in self.locations)
+
+    def plot(self, ax=None, count: int = HAIGH_LOCATIONS):
+        """Q of every place as a bar, the ``count`` least safe in colour and named by their Q, the
+        others grey; the required Q dashed and labelled; the axis up to three times the least Q
+        (a place far above cannot govern). Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        if ax is None:
+            _, ax = plt.subplots(figsize=(6, 4))
+        order = sorted(range(len(self.locations)), key=lambda j: self.locations[j].safety)
+        q = np.array([self.locations[j].safety for j in order])
+        colours = [f"C{k}" if k < count else "0.75" for k in range(len(order))]
+        y = np.arange(len(order))[::-1]
+        ax.barh(y, q, color=colours, height=0.7)
+        ax.set_yticks(y, [self.locations[j].name for j in order], fontsize=6 if len(order) > 12 else 8)
+        for k in range(min(count, len(order))):
+            ax.annotate(f"Q {q[k]:.2f}", (min(q[k], 3.0 * q[0]), y[k]), xytext=(3, 0), textcoords="offset points",
+                        va="center", fontsize=7)
+        required = self.locations[order[0]].required
+        ax.axvline(required, color="k", ls="--", lw=0.8, label=f"required Q {required:.2f}")
+        ax.set_xlim(0, max(3.0 * q[0], 1.5 * required))
+        ax.set_xlabel("M53 acceptability factor Q = σ_DW / σ_V [-]")
+        ax.set_title(f"UR M53 at the rated {self.rated_rpm:.0f} rpm: Q of every place", fontsize=9)
+        ax.legend(fontsize=7, loc="lower right")
+        return ax
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""

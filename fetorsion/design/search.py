@@ -429,9 +429,17 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     def population(func, us):  # a generation at once: its samples spread over the cluster's workers
         return [cost_of(c) for c in candidates(list(us))]
 
+    done = [0]
+
     def generation(intermediate_result):
+        done[0] += 1
         if progress is not None:
-            progress(f"design: {len(seen)} candidates, best cost {intermediate_result.fun:.4f}")
+            spent = time.perf_counter() - start
+            progress(f"design: generation {done[0]} of at most {maxiter}, {len(seen)} candidates, best cost "
+                     f"{intermediate_result.fun:.4f} (its objective over the given design's, 1 = as given, plus "
+                     f"{PENALTY:g} per unit of relative shortfall of a constraint); {spent:.0f} s, at most "
+                     f"{spent / done[0] * (maxiter - done[0]):.0f} s left at this pace (the search may end sooner), "
+                     "then the constraint walk")
 
     unit = [(0.0, 1.0)] * len(bounds)
     x0 = [min(max((_nominal(crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]

@@ -135,6 +135,8 @@ class CampbellResult:
     crossings: list[Crossing]
     harmonics_table: dict[str, dict[str, list[float] | float]] = field(default_factory=dict)
     severity_unit: str = "deg: resonant vibratory angle at the pulley"
+    #: The engine's major orders among ``orders`` (:func:`major_orders`), drawn bold
+    major: tuple[float, ...] = ()
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
@@ -160,7 +162,8 @@ class CampbellResult:
         return "\n".join(lines)
 
     def plot(self, ax=None, max_rpm: float | None = None):
-        """Campbell diagram: modes, order lines, operating range, crossings sized by severity."""
+        """Campbell diagram: modes, order lines (the engine's major orders bold), the operating
+        range, crossings sized by severity with a key of three sizes in the severity's unit."""
         import matplotlib.pyplot as plt
 
         if ax is None:
@@ -170,27 +173,46 @@ class CampbellResult:
         fmax = max(self.frequencies_hz) * 1.15
         ax.axvspan(lo, hi, color="0.92", zorder=0, label="operating range")
         rpm = np.array([0.0, top])
+        major = {round(float(q), 9) for q in self.major}
         for q in self.orders:
-            ax.plot(rpm, q * rpm / 60, color="0.55", lw=0.7, zorder=1)
+            bold = round(float(q), 9) in major
+            ax.plot(rpm, q * rpm / 60, color="0.1" if bold else "0.6", lw=1.6 if bold else 0.6, zorder=1,
+                    label="major order (all cylinders in phase)" if bold and round(float(q), 9) == min(major) else None)
             end = min(top, fmax * 60 / q)
-            ax.text(end, q * end / 60, f" {q:g}", fontsize=7, color="0.35", va="bottom")
+            ax.text(end, q * end / 60, f" {q:g}", fontsize=8 if bold else 7, color="0.1" if bold else "0.45",
+                    va="bottom", fontweight="bold" if bold else None)
         for j, f in enumerate(self.frequencies_hz):
             ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz")
         inside = [c for c in self.crossings if c.in_range]
+        unit = self.severity_unit.split(":")[0]
         if inside:
             sev = np.array([c.severity for c in inside])
-            size = 20 + 400 * sev / sev.max()
-            ax.scatter([c.rpm for c in inside], [c.frequency_hz for c in inside], s=size,
-                       facecolors="none", edgecolors="crimson", lw=1.3, zorder=3,
-                       label="crossing (size ∝ severity)")
+            top_sev = sev.max()
+            area = (lambda v: 20 + 400 * np.asarray(v) / top_sev)  # noqa: E731
+            ax.scatter([c.rpm for c in inside], [c.frequency_hz for c in inside], s=area(sev),
+                       facecolors="none", edgecolors="crimson", lw=1.3, zorder=3)
+            for v in size_key(top_sev):  # the key: the same area for the same severity
+                ax.scatter([], [], s=area(v), facecolors="none", edgecolors="crimson", lw=1.3,
+                           label=f"crossing, {v:g} {unit}")
         ax.set_xlim(0, top)
         ax.set_ylim(0, fmax)
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
-        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {zeta_text(self.damping_ratio)}", fontsize=10)
-        ax.legend(fontsize=7, loc="upper left")
+        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {zeta_text(self.damping_ratio)}",
+                     fontsize=9)
+        ax.legend(fontsize=7, loc="upper left", labelspacing=1.1, borderpad=0.8)
         ax.figure.tight_layout()
         return ax
+
+
+def size_key(largest: float) -> list[float]:
+    """Three round severities for a size key: the largest crossing's, rounded down to 1, 2 or 5
+    times a power of ten, and a half and a fifth of that (each a round number too)."""
+    if not largest > 0:
+        return []
+    decade = 10.0 ** np.floor(np.log10(largest))
+    top = max(m for m in (1.0, 2.0, 5.0, 10.0) if m * decade <= largest * (1 + 1e-12)) * decade
+    return [float(f"{v:.3g}") for v in (top, top / 2, top / 5)]
 
 
 def zeta_text(zeta) -> str:
@@ -329,7 +351,8 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
         h = harmonics(cylinder_torque(crank, speed)["total"], period)
         table[f"{speed:.0f}"] = {"orders": orders.tolist(), "amplitude_nm": np.abs(h.at(orders)).tolist(),
                                  "phase_rad": np.angle(h.at(orders)).tolist(), "mean_nm": h.mean_nm}
-    return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table)
+    return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table,
+                          major=tuple(float(q) for q in major_orders(crank.engine) if np.any(np.isclose(orders, q))))
 
 
 __all__ = ["CampbellResult", "TorsionalModes", "default_orders", "lumped_modes", "run_campbell"]

@@ -26,7 +26,7 @@ from ..modes import TORSION_SHARE_NOTED, TorsionalModes
 from ..solid.mesh import CrankMesh
 from . import assembly, modeshape
 from .couplings import DOF_NAMES
-from .cranksystem import CrankSystem, build_system
+from .cranksystem import SYSTEM_STAGES, CrankSystem, build_system
 from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, reduced_modes, supported_modes
 from .tetmesh import TetMesh
 
@@ -378,10 +378,15 @@ class CondensedCrank:
         return ax
 
 
+#: :func:`run_condensed`'s stages and their times (the system's, then the condensation: 10.1 s on
+#: the Renault 21 at 10 mm)
+CONDENSE_STAGES = {**SYSTEM_STAGES, "condensing": 10.1}
+
+
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
                   keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid",
-                  system: CrankSystem | None = None, cuts=None, start_modes: int = 0) -> CondensedCrank:
+                  system: CrankSystem | None = None, cuts=None, start_modes: int = 0, stage=None) -> CondensedCrank:
     """Condense the crank's FE system (:func:`fetorsion.fe.cranksystem.build_system`) to its masters.
 
     Parameters
@@ -415,9 +420,13 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
         Keep the lowest this many free-free modes of the reduced model, expanded onto the
         system's solved DOF, as ``free_ritz`` (the free-free modes of the same run, checked:
         :func:`fetorsion.fe.crankfe.run_modal` ``ritz``).
+    stage : callable, optional
+        Called with each stage's name as it starts (:data:`CONDENSE_STAGES`).
     """
     t0 = time.perf_counter()
-    sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties)
+    sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties, stage=stage)
+    if stage is not None:
+        stage("condensing")
     itf = sys_.interface
     labels, positions = sys_.labels, sys_.positions
     centres = None if cuts is None else np.asarray(cuts, float).reshape(-1, 3)

@@ -204,9 +204,14 @@ class CrankSystem:
         return np.asarray(self.T[k::3] @ x) if self.T is not None else np.ascontiguousarray(x[k::3])
 
 
+#: The stages of :func:`build_system` with their times on the Renault 21 at the default 10 mm mesh
+#: (322 686 DOF, AMD EPYC 2 cores, a fresh clone): a progress line's shares, not a promise
+SYSTEM_STAGES = {"meshing": 3.1, "assembling": 9.3, "factorising": 7.7}
+
+
 def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: CrankMesh | None = None,
                  backend: str = "auto", end_ties: str = "rigid", fillet_size: float | None = None,
-                 purpose: str = "modal", keep_mesh_stiffness: bool = False) -> CrankSystem:
+                 purpose: str = "modal", keep_mesh_stiffness: bool = False, stage=None) -> CrankSystem:
     """Mesh (unless ``mesh`` is given), assemble, tie, couple and factorise a crank.
 
     Parameters
@@ -227,12 +232,19 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
         ``modal`` or ``stress`` (the fillet size's default).
     keep_mesh_stiffness : bool
         Keep the stiffness on the mesh DOF as ``K`` (see :class:`CrankSystem`).
+    stage : callable, optional
+        Called with each stage's name as it starts (:data:`SYSTEM_STAGES`; a
+        :class:`~fetorsion.io.Stages`).
     """
+    stage = stage or (lambda name: None)
     if end_ties not in END_TIES:
         raise FetorsionError(f"unknown end_ties {end_ties!r}; choose from {', '.join(END_TIES)}")
     t0 = time.perf_counter()
+    if mesh is None:
+        stage("meshing")
     cm = mesh or mesh_crank(crank, mesh_size, fillet_size, purpose)
     t1 = time.perf_counter()
+    stage("assembling")
     tm = TetMesh(cm.nodes, cm.tets, dict(cm.node_sets))
     m, dof_of_node = assembly.skfem_mesh(tm)
     basis = assembly.p2_basis(m)
@@ -262,6 +274,7 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
         G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
         groups = red.groups()
     t2 = time.perf_counter()
+    stage("factorising")
     itf = interface(Kc, Mc, G, default_shift(tm, mat), backend, groups=groups)
     labels = [mst.label for mst in masters]
     positions = np.array([mst.position for mst in masters])

@@ -127,7 +127,8 @@ def clear_condensed(store=None, name: str = FOLDER) -> int:
     return len(files)
 
 
-def condensed_crank(crank, mesh_size: float, cuts=None, store=None, progress=None) -> tuple[CondensedCrank, bool]:
+def condensed_crank(crank, mesh_size: float, cuts=None, store=None, progress=None,
+                    stage=None) -> tuple[CondensedCrank, bool]:
     """(the condensed crank, whether it came from the cache): from the cache, else built
     (:func:`~fetorsion.fe.condensed.run_condensed`, saying so through ``progress``) and kept."""
     cc = stored_condensed(crank, mesh_size, cuts, store)
@@ -136,6 +137,6 @@ def condensed_crank(crank, mesh_size: float, cuts=None, store=None, progress=Non
     if progress is not None:
         progress(f"building the condensed crank ({mesh_size * 1e3:g} mm mesh: mesh, assembly, condensation; "
                  "kept for the next command) ...")
-    cc = run_condensed(crank, mesh_size, cuts=cuts)
+    cc = run_condensed(crank, mesh_size, cuts=cuts, stage=stage)
     remember_condensed(cc, mesh_size, cuts, store)
     return cc, False

@@ -607,7 +607,7 @@ def summary_lines(run: RunOutcome) -> list[str]:
         out.append(f"- **The crank as described: {'PASS' if v.passes else 'FAIL'}** by {v.method}, ζ = "
                    f"{v.damping_ratio:.4g} ({v.damping_source}) (decided by: "
                    f"{'; '.join(decide)}; the other rows inform: no damper where it has one, the recommended damper).")
-        out += [f"- **Verdict, {line.split(': ', 1)[0]}:** {line.split(': ', 1)[1]} ({fat.model})." for line in v.lines()]
+        out.append(f"- **Verdict per configuration:** the table below ({fat.model}).")
         out.append(f"- **Damping:** the verdict rests on ζ = {v.damping_ratio:.4g}, "
                    + ("**assumed** (no source stated)" if v.damping_assumed else f"from {v.damping_source}")
                    + "; " + (f"it {v.flip.kind}" if v.flip.zeta is None or v.flip.zeta <= v.damping_ratio
@@ -633,7 +633,29 @@ def summary_lines(run: RunOutcome) -> list[str]:
             out.append(f"- **Order {c.order:g} at {c.station} ({c.name}): model peak {p['peak_difference_percent']:+.1f} %, "
                        f"{p['peak_rpm_difference']:+.0f} rpm** against the measurement "
                        f"({mea.comparison.model or 'lumped chain'}).")
-    return ["## Summary", "", *out, ""] if out else []
+    table = verdict_table(fat.verdict) if fat is not None and not isinstance(fat, Skipped) else []
+    return ["## Summary", "", *out, "", *table] if out else []
+
+
+def verdict_table(v) -> list[str]:
+    """The verdict as one row per configuration: whether it decides, the deciding method's
+    governing place and speed, its safety against the required and the result, the other
+    method's safety beside it."""
+    rows = [f"| configuration | decides | {v.method}: governing place | rpm | safety | required | result "
+            f"| {v.other} |", "|---|---|---|---:|---:|---:|---|---:|"]
+    for c in v.configs:
+        a, b = c.answer(v.method), c.answer(v.other)
+        result = "pass" if a["passes"] else "**FAIL**"
+        if not c.heat_ok:
+            result = f"**FAIL** (damper heat {c.damper_power_w:.0f} W over {c.allowed_power_w:.0f} W)"
+        elif a.get("yielding"):
+            result += f" (YIELDING at {', '.join(a['yielding'])})"
+        other = f"{b['safety']:.2f}" if b else "—"
+        rows.append(f"| {c.name} | {'yes' if c.as_described else 'informs'} | {a['location']} ({a['where']}) "
+                    f"| {a['rpm']:.0f} | {a['safety']:.2f} | {a['required']:.2f} | {result} | {other} |")
+    return [f"Verdict by {v.method}, ζ = {v.damping_ratio:.4g} ({v.damping_source}); the rows marked 'yes' "
+            f"decide, the others inform; {v.other} is shown beside, against its own required "
+            f"{v.configs[0].answer(v.other).get('required', float('nan')):.2f}:", "", *rows, ""]
 
 
 def report_markdown(run: RunOutcome) -> str:

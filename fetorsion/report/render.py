@@ -55,8 +55,11 @@ def mode_scale(nodes: np.ndarray, displacement: np.ndarray, fraction: float = MO
     return fraction * size / peak if peak > 0 else 0.0
 
 
-def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1400, 600), fraction: float = MODE_SCALE_FRACTION):
-    """Write a PNG of one mode: deformed shape coloured by |u|, undeformed outline, two views.
+def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1400, 600),
+                fraction: float = MODE_SCALE_FRACTION, places=()):
+    """Write a PNG of one mode: deformed shape coloured by |u|, undeformed outline, two views,
+    the places named (``places``: (point (3,) m, name), the pulley and flywheel ends, say) and
+    the deformation's scale stated under the title.
 
     Parameters
     ----------
@@ -70,6 +73,8 @@ def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1
         Output PNG, written atomically.
     title : str
         Text on the image (frequency and kind, say).
+    places : sequence of (array_like, str)
+        Points to name on both views.
     """
     pv = _pyvista()
     nodes = np.asarray(nodes, dtype=float)
@@ -91,11 +96,24 @@ def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1
             plotter.view_vector((0.0, -1.0, 0.0), viewup=(0.0, 0.0, 1.0))
         else:
             plotter.view_vector((1.0, -1.2, 0.8), viewup=(0.0, 0.0, 1.0))
+        if places:  # marked on the model, named at the edge of the view on their side (x runs left to right)
+            points = np.array([p for p, _ in places], float)
+            plotter.add_points(points, color="crimson", point_size=12, render_points_as_spheres=True)
+            corners = ("lower_left", "lower_right") if view == "side" else ("upper_left", "right_edge")
+            for k, ((point, name), corner) in enumerate(zip(sorted(places, key=lambda q: q[0][0]), corners)):
+                plotter.add_text(f"<- {name}" if k == 0 else f"{name} ->", position=corner, font_size=9,
+                                 color="crimson")
         plotter.reset_camera()
         plotter.camera.zoom(1.15)
         if col == 0 and title:
-            plotter.add_text(title, font_size=11, color="black")
+            plotter.add_text(f"{title}\n{scale_text(fraction)}", font_size=11, color="black")
     return _screenshot(plotter, path)
+
+
+def scale_text(fraction: float = MODE_SCALE_FRACTION) -> str:
+    """How a mode image's deformation is scaled (a mode shape has no size of its own)."""
+    return (f"deformation drawn with its largest displacement {100 * fraction:g} % of the crank's length; "
+            "colour |u| / max |u|; grey: undeformed edges")
 
 
 def _screenshot(plotter, path) -> Path:

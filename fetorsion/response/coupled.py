@@ -478,7 +478,7 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
         The name of each cut (a fillet's label): each crossing then names its worst section
         (``worst_section``), else gives its index (``worst_cut``).
     """
-    from ..excitation.campbell import CampbellResult
+    from ..excitation.campbell import CampbellResult, major_orders
 
     crank = cc.crank
     if forces is None:
@@ -527,7 +527,8 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
     return CampbellResult(getattr(crank, "name", ""), f"condensed FE crank, {support} ({cc.reduced.size} DOF), "
                           "full pin forces", f, orders, (lo, hi), zeta, crossings,
                           severity_unit="MPa: peak nominal equivalent stress sqrt(sigma_b^2 + 3 tau^2) at the worst "
-                                        "section, resonant, one mode")
+                                        "section, resonant, one mode",
+                          major=tuple(float(q) for q in major_orders(crank.engine) if np.any(np.isclose(orders, q))))
 
 
 def _section_parts(cc: CondensedCrank):
