@@ -253,6 +253,38 @@ def test_a_chain_file_carries_uncertainty_and_is_calibrated(tmp_path):
         fetorsion.load(tmp_path / "bad.toml")
 
 
+def test_a_chain_file_without_uncertainty_gets_stated_default_priors(tmp_path, capsys):
+    """Issue 54: the four-inertia chain of docs/chain-format.md with no [uncertainty]: every
+    inertia and stiffness gets a ±20 % prior, said in the table, the JSON and the written file;
+    the model is named as the chain's own (not "lumped17, carter"); its three elastic modes are
+    predicted, no fourth row of NaN. Measured: the chain with every stiffness 5 % lower (every
+    frequency × √0.95). Written with every moved input (--write-all: without it only the inputs the
+    data identify alone are written), the chain's own frequencies are within 2 σ of each measured
+    one (σ 0.5 Hz: the ±20 % prior pulls a residual by less than its σ where the data outweigh it)."""
+    from fetorsion.studies.calibration import CHAIN_PRIOR_SHARE
+
+    src = tmp_path / "chain4.toml"
+    src.write_text('[chain]\nname = "four inertias"\ninertias_kgm2 = [0.01, 0.02, 0.02, 0.3]\n'
+                   'stiffnesses_nm_per_rad = [4.0e5, 5.0e5, 4.5e5]\nlabels = ["pulley", "throw 1", "throw 2", '
+                   '"flywheel"]\n')
+    chain = fetorsion.load(src)
+    measured = np.sqrt(0.95) * np.asarray(fetorsion.lumped(chain, 17).frequencies_hz[:3])
+    out = tmp_path / "calibrated.toml"
+    assert main(["calibrate", str(src), "--measured-hz", *[f"{f:.4f}" for f in measured], "--sigma-hz", "0.5",
+                 "--method", "lsq", "--write-all", "--out", str(out), "--json", str(tmp_path / "c.json")]) == 0
+    said = capsys.readouterr().out
+    res = json.loads((tmp_path / "c.json").read_text())
+    assert res["model"] == "the chain file's own 4-inertia chain" and "lumped17" not in said
+    assert f"±{100 * CHAIN_PRIOR_SHARE:g} %" in res["priors"] and "priors: no [uncertainty] in the file" in said
+    assert len(res["inputs"]) == 7 and len(res["predictions"]) == 3 and "nan" not in said
+    rows = {r["input"]: r for r in res["inputs"]}
+    assert rows["chain.stiffnesses_nm_per_rad.2"]["low"] == pytest.approx(4.0e5)
+    written = out.read_text()
+    assert "# Priors: no [uncertainty] in the file" in written
+    again = fetorsion.lumped(fetorsion.load(out), 17).frequencies_hz[:3]
+    assert np.all(np.abs(np.asarray(again) - measured) < 2 * 0.5), (again, measured)
+
+
 def test_a_network_file_is_calibrated_through_its_stations_tables(tmp_path):
     """A geared network (Friswell's three-branch example) with one station's inertia in
     `[uncertainty]`: its first frequency made with that inertia at 3500 kg m² (file 3200) gives

@@ -92,6 +92,39 @@ MC_BATCHES = 10
 COMBINATION_SHARE = 0.1
 #: Natural frequencies predicted (with their bands) beside the measured ones.
 PREDICTED_MODES = 4
+#: A chain file without ``[uncertainty]``: each inertia and stiffness within this share of its
+#: value (a chain from a book, a supplier or an older calculation; stated with every result)
+CHAIN_PRIOR_SHARE = 0.2
+
+
+def default_chain_priors(chain: Chain) -> Chain:
+    """``chain`` with an ``[uncertainty]`` entry for every inertia and stiffness, each within
+    :data:`CHAIN_PRIOR_SHARE` of its value, where the file states none (a chain's inputs are its
+    inertias and stiffnesses; a crank description's are its dimensions, which it must name)."""
+    from dataclasses import replace
+
+    if chain.uncertainty:
+        return chain
+    entries = []
+    for key, values in (("inertias_kgm2", chain.inertias), ("stiffnesses_nm_per_rad", chain.stiffnesses)):
+        for k, v in enumerate(values):
+            path = f"chain.{key}.{k + 1}"
+            entries.append((path, ((path, (1 - CHAIN_PRIOR_SHARE) * v, (1 + CHAIN_PRIOR_SHARE) * v),)))
+    return replace(chain, uncertainty=tuple(entries))
+
+
+def model_label(crank, model: str, stiffness: str) -> str:
+    """What the calibrated model is, in words: a chain file's own chain, or the crank's lumped
+    partition with its web-stiffness method."""
+    if isinstance(crank, Chain):
+        return f"the chain file's own {len(crank.inertias)}-inertia chain"
+    return f"{model}, {stiffness} web stiffness"
+
+
+def elastic_modes(crank, dof: int) -> int:
+    """The model's elastic modes: a chain file's stations less the rigid rotation, else the
+    partition's."""
+    return len(crank.inertias) - 1 if isinstance(crank, Chain) else dof - 1
 #: Posterior and prior interval reported: 5-95 %.
 CREDIBLE_PERCENT = (5.0, 95.0)
 #: The ensemble's default size and length: 32 walkers (at least 2 per input plus 2), 500 steps
@@ -171,7 +204,8 @@ class CalibrationInput:
 
 
 def calibration_inputs(crank: Crank | Chain | Network, names=None) -> list[CalibrationInput]:
-    """The ``[uncertainty]`` entries of ``crank`` as calibration inputs: all, or those in ``names``.
+    """The ``[uncertainty]`` entries of ``crank`` as calibration inputs: all, or those in ``names``
+    (a chain file without the table: :func:`default_chain_priors`).
 
     Parameters
     ----------
@@ -184,6 +218,8 @@ def calibration_inputs(crank: Crank | Chain | Network, names=None) -> list[Calib
     -------
     list of CalibrationInput
     """
+    if isinstance(crank, Chain):
+        crank = default_chain_priors(crank)
     if not getattr(crank, "uncertainty", None):
         raise FetorsionError(f"{crank.source or crank.name}: the description has no [uncertainty] table: "
                              "nothing to calibrate")
@@ -425,6 +461,8 @@ class CalibrationResult:
     evaluations_per_s: float = math.nan
     seconds: float = math.nan
     date: str = field(default_factory=lambda: datetime.date.today().isoformat())
+    #: Where the inputs' ranges came from when the file states none (a chain's default priors)
+    priors: str = ""
 
     # -- the posterior's summaries
 
@@ -529,6 +567,7 @@ class CalibrationResult:
         out = {"name": self.name, "source": self.source, "model": self.model, "method": self.method,
                "measured_hz": self.measured_hz.tolist(), "sigma_hz": self.sigma_hz.tolist(),
                "matching": "by order: the measured frequencies are the lowest elastic modes, ascending",
+               "priors": self.priors or "the file's [uncertainty] table",
                "identified_rule": f"Laplace posterior sd < {IDENTIFIED_RATIO:g} x prior sd, from the information at "
                                   "the least-squares estimate (deterministic)",
                "written": WRITTEN_RULES[self.written_rule()],
@@ -552,6 +591,8 @@ class CalibrationResult:
         each natural frequency (measured, nominal, calibrated, band)."""
         lines = [f"{self.name}: calibrated to measured natural frequencies ({self.model}, {self.method})",
                  "measured modes matched by order to the model's lowest elastic modes"]
+        if self.priors:
+            lines.append(f"priors: {self.priors}")
         head = f"{'input':<30} {'nominal':>10} {'range':>19}"
         if self.lsq is not None:
             head += f" {'lsq':>10} {'± sd':>9}"
@@ -870,16 +911,23 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
         raise ParameterError("stiffness", f"{stiffness}: choose from {', '.join(CALIBRATION_STIFFNESS)} (an FE web "
                              "method would mesh every one of the calibration's thousands of variants)")
     f_meas, sig = check_measured_hz(measured_hz, sigma_hz, sigma_percent)
-    if f_meas.size > dof - 1:
-        raise ParameterError("measured_hz", f"{f_meas.size} frequencies: the {dof}-DOF chain has {dof - 1} elastic modes")
+    elastic = elastic_modes(crank, dof)
+    if f_meas.size > elastic:
+        raise ParameterError("measured_hz", f"{f_meas.size} frequencies: {model_label(crank, model, stiffness)} has "
+                             f"{elastic} elastic modes")
+    priors = ""
+    if isinstance(crank, Chain) and not crank.uncertainty:
+        priors = (f"no [uncertainty] in the file: every inertia and stiffness within ±{100 * CHAIN_PRIOR_SHARE:g} % "
+                  "of its value (the default prior of a chain)")
     chosen = calibration_inputs(crank, inputs)
     if method != "lsq":
         walkers = check_ensemble(len(chosen), walkers, steps, burn)
     t0 = time.perf_counter()
-    fm = FrequencyModel(crank, chosen, dof, stiffness, min(dof - 1, max(PREDICTED_MODES, f_meas.size)))
+    fm = FrequencyModel(crank, chosen, dof, stiffness, min(elastic, max(PREDICTED_MODES, f_meas.size)))
     nominal = fm([i.nominal for i in chosen])
-    out = CalibrationResult(crank.name, str(crank.source), f"{model}, {stiffness}", method, f_meas, sig, chosen,
-                            nominal)
+    out = CalibrationResult(crank.name, str(crank.source), model_label(crank, model, stiffness), method, f_meas, sig,
+                            chosen, nominal)
+    out.priors = priors
     out.lsq = least_squares_fit(fm, chosen, f_meas, sig)
     out.identification = identification(out.lsq, chosen, sig)
     out.write_all = write_all
@@ -989,6 +1037,7 @@ def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str
     header = [f"# Calibrated description: {note}.",
               f"# Model {result.model}; sigma {', '.join(f'{s:.3g}' for s in result.sigma_hz)} Hz; "
               "every changed value below is commented with its old value.",
+              *([f"# Priors: {result.priors}."] if result.priors else []),
               "# Changed inputs (file units):"]
     by_name = {i.name: i for i in result.inputs}
     for name, x in values.items():
