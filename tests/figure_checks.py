@@ -72,3 +72,30 @@ def figure_problems(fig, required: bool = False, key_unit: str | None = None) ->
     if key_unit is not None:
         out += size_key(fig, key_unit)
     return out
+
+
+#: The report figures that carry a required line, and the one with a size key (its unit)
+REQUIRED_FIGURES = ("fatigue_safety.png", "damper_design.png")
+KEYED_FIGURES = {"campbell.png": "MPa"}
+
+
+def check_run_figures(monkeypatch):
+    """Check every figure a ``fetorsion run`` writes as it writes it: returns (problems by figure
+    name, the names drawn), filled as the run saves."""
+    from pathlib import Path
+
+    import fetorsion.app.run as app_run
+
+    problems, drawn = {}, []
+    saving = app_run.save_figure_atomic
+
+    def checked(fig, path, **kwargs):
+        name = Path(path).name
+        drawn.append(name)
+        found = figure_problems(fig, required=name in REQUIRED_FIGURES, key_unit=KEYED_FIGURES.get(name))
+        if found:
+            problems[name] = found
+        return saving(fig, path, **kwargs)
+
+    monkeypatch.setattr(app_run, "save_figure_atomic", checked)
+    return problems, drawn

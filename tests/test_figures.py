@@ -83,3 +83,26 @@ def test_the_damper_figure_draws_its_required_line():
     ax = res.plot()
     assert figure_problems(ax.figure, required=True) == []
     plt.close(ax.figure)
+
+
+@pytest.mark.fe
+@pytest.mark.slow
+def test_every_figure_of_the_inline_six_run_reads_at_a_glance(tmp_path, monkeypatch):
+    """Issue 54: the inline six's run (every step but the background studies, 30 mm mesh): each
+    figure passes the checks (titles inside the canvas, at most 8 coloured lines, the fatigue and
+    damper figures' labelled required line, the Campbell diagram's size key in MPa); the fatigue
+    figure's first panel is the deciding method's."""
+    from figure_checks import check_run_figures
+
+    from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
+
+    problems, drawn = check_run_figures(monkeypatch)
+    steps = tuple(s for s in DEFAULT_STEPS if s[1] != "sensitivity")
+    out = run(GEOMETRY / "inline6_diesel.toml", tmp_path / "i6", steps=steps, options=RunOptions(mesh_size=0.03))
+    assert {"campbell.png", "response.png", "fatigue_safety.png", "fatigue_haigh.png",
+            "damper_design.png"} <= set(drawn), drawn
+    assert not problems, problems
+    verdict = out.fatigue.verdict
+    fig = verdict.fatigue_figure()
+    assert fig.axes[0].get_title().splitlines()[-1].startswith(f"{verdict.method} decides: safety ")
+    plt.close(fig)

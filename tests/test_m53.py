@@ -165,24 +165,11 @@ def test_the_reports_verdict_is_one_row_per_configuration(tmp_path, monkeypatch)
     import json
     import re
 
-    from figure_checks import figure_problems
+    from figure_checks import check_run_figures
 
-    import fetorsion.app.run as app_run
     from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
 
-    problems, drawn = {}, []
-    saving = app_run.save_figure_atomic
-
-    def checked(fig, path, **kwargs):
-        name = Path(path).name
-        drawn.append(name)
-        found = figure_problems(fig, required=name in ("fatigue_safety.png", "damper_design.png"),
-                                key_unit="MPa" if name == "campbell.png" else None)
-        if found:
-            problems[name] = found
-        return saving(fig, path, **kwargs)
-
-    monkeypatch.setattr(app_run, "save_figure_atomic", checked)
+    problems, drawn = check_run_figures(monkeypatch)
     steps = tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings", "campbell", "fatigue"))
     out = Path(run(ROOT / "geometry" / "renault21.toml", tmp_path / "r", steps=steps,
               options=RunOptions(mesh_size=0.03, fatigue_method="fe")).folder)

@@ -18,8 +18,12 @@ LUMPED = tuple(step for step in DEFAULT_STEPS if step[1] == "lumped")
 
 
 @pytest.mark.slow
-def test_run_writes_report_consistent_with_the_api(tmp_path):
+def test_run_writes_report_consistent_with_the_api(tmp_path, monkeypatch):
+    from figure_checks import check_run_figures
+
+    problems, drawn = check_run_figures(monkeypatch)  # issue 54: the studies' figures read at a glance too
     out = Path(run(GEOMETRY / "peugeot_glx.toml", tmp_path / "glx", steps=NO_FE).folder)
+    assert {"sensitivity.png", "f1_montecarlo.png", "f1_sobol.png"} <= set(drawn) and not problems, problems
     report = (out / "report.md").read_text()
     assert "## Lumped models" in report and "905.9" in report
     data = json.loads((out / "results.json").read_text())
@@ -70,7 +74,12 @@ def test_full_run_with_fe_and_mode_images(tmp_path, monkeypatch):
     monkeypatch.setattr(condensed_module, "run_condensed", counted)
     for module in (crankfe, condensed_module, cranksystem):
         monkeypatch.setattr(module, "build_system", built)
+    from figure_checks import check_run_figures
+
+    problems, drawn = check_run_figures(monkeypatch)  # issue 54: every figure of the whole run
     out = Path(run(src, tmp_path / "r21", options=RunOptions(mesh_size=0.03)).folder)
+    assert {"campbell.png", "response.png", "modes_free_and_bearings.png"} <= set(drawn), drawn  # no [uncertainty]: no studies
+    assert not problems, problems
     # one mesh, one assembly and one factorisation serve the free-free modes, the condensed crank
     # (free and in bearings) and the lumped fe-held column (its throws' in-bearing stiffness)
     assert systems == [(0.03,)] and len(condensations) == 1 and condensations[0] is not None

@@ -473,7 +473,7 @@ def haigh_of(verdict, assessment):
     """The ``fe`` path's Haigh diagram, titled with whether that path decides the verdict (M53
     reads no mean stress: it has no Haigh diagram of its own)."""
     ax = assessment.haigh()
-    ax.set_title(f"{ax.get_title()} (fe path, Findley)\n{verdict.decides('fe')}", fontsize=8)
+    ax.set_title(f"{ax.get_title()} (fe path, Findley)\n{verdict.decides('fe')}", fontsize=8, wrap=True)
     return ax
 
 

@@ -101,7 +101,7 @@ def cmd_balance(args) -> int:
         if "overbalance_given" in rep:
             g = rep["overbalance_given"]
             bal.residual_locus(g["k"], np.radians(g["alpha_deg"]), lam).plot(ax, label="given")
-        ax.set_title(f"{rep['name']}: residual force, λ = {lam:.3f}", fontsize=9)
+        ax.set_title(f"{rep['name']}: residual force, λ = {lam:.3f}", fontsize=9, wrap=True)
         _save_plot(fig, args.plot)
     return 0
 

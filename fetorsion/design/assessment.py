@@ -176,7 +176,7 @@ class CrankAssessment:
         ax.set_xlabel("mean equivalent stress [MPa]")
         ax.set_ylabel("alternating equivalent stress [MPa]")
         ax.set_title(f"{self.name}: Haigh diagram" + (" (dotted: M53 sigma_DW)" if self.method == "m53-criterion" else ""),
-                     fontsize=9)
+                     fontsize=9, wrap=True)
         ax.legend(fontsize=6)
         return ax
 
@@ -201,7 +201,7 @@ class CrankAssessment:
         ax.set_ylim(0, max(3.0 * least.min(), 1.5 * required))
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("fatigue safety factor [-]")
-        ax.set_title(f"{self.name}\nfatigue of fillets and oil bores ({self.method})", fontsize=9)
+        ax.set_title(f"{self.name}\nfatigue of fillets and oil bores ({self.method})", fontsize=9, wrap=True)
         ax.legend(fontsize=7)
         return ax
 

@@ -220,8 +220,9 @@ class CrankVerdict:
         for ax, m in zip(axes[0], methods):
             config.result(m).plot(ax=ax)
             title = ax.get_title().split("\n")[-1]
-            ax.set_title(f"{title}\n{self.decides(m)}", fontsize=8.5, fontweight="bold" if m == self.method else None)
-        fig.suptitle(f"{self.name}: fatigue, {config.name}", fontsize=10)
+            ax.set_title(f"{title}\n{self.decides(m)}", fontsize=8.5, fontweight="bold" if m == self.method else None,
+                         wrap=True)
+        fig.suptitle(f"{self.name}: fatigue, {config.name}", fontsize=10, wrap=True)
         fig.tight_layout()
         return fig
 

@@ -224,7 +224,7 @@ class DamperResult:
         if self.limit is not None:
             ax.axhline(self.limit, color="k", ls="--", lw=0.8, label=self.limit_label or f"limit {self.limit:.3g}")
             ax.set_ylim(0, 1.1 * max(self.limit, max(float(np.max(self._scaled(c))) for c in self.curves.values())))
-        ax.set_title(f"{self.name}:\n{self.kind} damper, μ = {self.mu:g}", fontsize=9)
+        ax.set_title(f"{self.name}:\n{self.kind} damper, μ = {self.mu:g}", fontsize=9, wrap=True)
         ax.legend(fontsize=8)
         return ax
 

@@ -147,7 +147,7 @@ class RecoveredAssessment(CrankAssessment):
         ax.set_ylim(bottom=0)
         ax.set_xlabel("mean von Mises stress, signed by the trace [MPa]")
         ax.set_ylabel("von Mises amplitude [MPa]")
-        ax.set_title(f"{self.name}\nHaigh diagram of the recovered local stress", fontsize=9)
+        ax.set_title(f"{self.name}\nHaigh diagram of the recovered local stress", fontsize=9, wrap=True)
         ax.legend(fontsize=6)
         return ax
 

@@ -450,7 +450,7 @@ class FilletSCFResult:
         ax.plot(h, [r["journal_scf"] for r in self.rows], "s-", label="journal fillet")
         ax.set_xlabel("element size on the fillets [mm]")
         ax.set_ylabel("torsional SCF [-]")
-        ax.set_title(f"{self.name}: fillet SCF convergence", fontsize=10)
+        ax.set_title(f"{self.name}: fillet SCF convergence", fontsize=10, wrap=True)
         ax.legend(fontsize=8)
         return ax
 

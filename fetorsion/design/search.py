@@ -216,7 +216,7 @@ class DesignResult:
         ax.axhline(self.required, color="crimson", lw=1, ls="--", label=f"required {self.required:.2f}")
         ax.set_xlabel(f"{self.objective} [{OBJECTIVE_UNITS[self.objective]}]")
         ax.set_ylabel("M53 governing safety (explorer: lumped chain)")
-        ax.set_title(f"{self.name}: design search", fontsize=10)
+        ax.set_title(f"{self.name}: design search", fontsize=10, wrap=True)
         ax.legend(fontsize=7)
         ax.figure.tight_layout()
         return ax

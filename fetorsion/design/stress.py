@@ -150,7 +150,7 @@ class StressResult:
                 ax.plot(self.rpm, self.stress_pa[:, cols].max(axis=1) / 1e6, style, label=f"worst {kind} fillet")
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("vibratory shear stress [MPa]")
-        ax.set_title(f"{self.name}: fillet shear stress (SCF × nominal)", fontsize=10)
+        ax.set_title(f"{self.name}: fillet shear stress (SCF × nominal)", fontsize=10, wrap=True)
         ax.legend(fontsize=8)
         return ax
 

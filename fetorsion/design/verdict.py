@@ -134,7 +134,7 @@ class VerdictResult:
             ax.axhline(self.limits.transient / s, color="crimson", ls=":", label="passing-through limit")
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel(("worst fillet shear stress" if self.limits.kind == "stress" else "worst section torque") + f" [{u}]")
-        ax.set_title(f"{self.name}: verdict", fontsize=10)
+        ax.set_title(f"{self.name}: verdict", fontsize=10, wrap=True)
         ax.legend(fontsize=7)
         return ax
 

@@ -199,7 +199,7 @@ class CampbellResult:
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
         ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {zeta_text(self.damping_ratio)}",
-                     fontsize=9)
+                     fontsize=9, wrap=True)
         ax.legend(fontsize=7, loc="upper left", labelspacing=1.1, borderpad=0.8)
         ax.figure.tight_layout()
         return ax

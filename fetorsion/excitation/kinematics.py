@@ -351,7 +351,7 @@ class KinematicsResult:
         axes[0].legend(fontsize=8)
         axes[-1].set_xlabel("crank angle from TDC [deg]")
         axes[0].set_title(f"{self.name}: r = {1e3 * self.crank_radius_m:g} mm, l = {1e3 * self.rod_length_m:g} mm, "
-                          f"λ = {self.crank_ratio:.3f}, {self.omega_rad_s * 30 / np.pi:g} rpm")
+                          f"λ = {self.crank_ratio:.3f}, {self.omega_rad_s * 30 / np.pi:g} rpm", wrap=True)
         fig.tight_layout()
         return axes[0]
 

@@ -170,7 +170,7 @@ class LumpedResult:
         ax.set_xticks(x, self.labels, rotation=60, fontsize=7)
         ax.set_ylabel("relative twist angle")
         title = f"{self.name}: {self.dof}-DOF lumped model" if self.partition else f"{self.name}: chain"
-        ax.set_title(title)
+        ax.set_title(title, wrap=True)
         ax.legend(fontsize=8)
         ax.figure.tight_layout()
         return ax

@@ -216,7 +216,7 @@ class FlywheelSizing:
                         label=f"ΔE = {self.delta_e_j:.1f} J")
         ax.set_xlabel("crank angle from firing TDC [deg]")
         ax.set_ylabel("torque [N·m]")
-        ax.set_title(f"{self.name}: I = {self.inertia_kgm2:.4f} kg·m² at C_s = {self.speed_fluctuation:g}")
+        ax.set_title(f"{self.name}: I = {self.inertia_kgm2:.4f} kg·m² at C_s = {self.speed_fluctuation:g}", wrap=True)
         ax.legend(fontsize=8)
         ax.figure.tight_layout()
         return ax

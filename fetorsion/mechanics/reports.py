@@ -43,7 +43,7 @@ def plot_planetary(pairs):
     fig, axes = plt.subplots(2, len(pairs), figsize=(4.2 * len(pairs), 8), squeeze=False)
     for j, (res, conv) in enumerate(pairs):
         res.plot(axes[0, j])
-        axes[0, j].set_title(res.label(), fontsize=9)
+        axes[0, j].set_title(res.label(), fontsize=9, wrap=True)
         ax = axes[1, j]
         deg = np.degrees(res.phi_rad)
         ax.plot(deg, 1e3 * res.piston_m, label="planetary")

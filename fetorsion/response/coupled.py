@@ -275,7 +275,7 @@ class CoupledResponse:
         ax2.set_ylabel("kN")
         ax.legend(loc="upper left", fontsize=8)
         ax2.legend(loc="upper right", fontsize=8)
-        ax.set_title(f"{self.name}: condensed crank, {self.support}")
+        ax.set_title(f"{self.name}: condensed crank, {self.support}", wrap=True)
         ax.figure.tight_layout()
         return ax
 

@@ -175,7 +175,7 @@ class ResponseResult:
         a1.plot(self.rpm, self.pulley_twist_deg, label="pulley twist against flywheel end")
         a1.set_ylabel("vibratory angle [deg]")
         a1.legend(fontsize=8)
-        a1.set_title(f"{self.name}\nforced response, {self.damping_text().replace('zeta', 'ζ')}", fontsize=10)
+        a1.set_title(f"{self.name}\nforced response, {self.damping_text().replace('zeta', 'ζ')}", fontsize=10, wrap=True)
         c = self.compare
         if c and c["quantity"] == "pulley_angle_deg":
             a1.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")

@@ -452,7 +452,7 @@ class TransientResult:
                 label=f"section {self.section_labels[k]}")
         a1.set_xlabel("time [s]")
         a1.set_ylabel("vibratory torque [N m]")
-        a1.set_title(f"{self.name}: {self.mode}", fontsize=10)
+        a1.set_title(f"{self.name}: {self.mode}", fontsize=10, wrap=True)
         a1.legend(fontsize=8)
         if a2 is not None:
             for q in orders:
@@ -481,7 +481,7 @@ class TransientResult:
         ax.figure.colorbar(mesh, ax=ax, label=f"{self.track_station}: vibration [deg]")
         ax.set_xlabel("mean speed [rpm]")
         ax.set_ylabel("order")
-        ax.set_title(f"{self.name}: {self.mode}, order track of {self.track_station}", fontsize=10)
+        ax.set_title(f"{self.name}: {self.mode}, order track of {self.track_station}", fontsize=10, wrap=True)
         ax.figure.tight_layout()
         return ax
 
@@ -583,7 +583,7 @@ def plot_order_cuts(result: TransientResult, response, cuts, ax=None):
     ax.set_yscale("log")  # a low order's rigid-body swing at idle would flatten the resonances
     ax.set_xlabel("mean speed [rpm]")
     ax.set_ylabel(f"{result.track_station}: vibration [deg]")
-    ax.set_title(f"{result.name}: order cuts, {result.mode} (solid) and steady state (dashed)", fontsize=9)
+    ax.set_title(f"{result.name}: order cuts, {result.mode} (solid) and steady state (dashed)", fontsize=9, wrap=True)
     ax.legend(fontsize=8, ncol=2)
     ax.figure.tight_layout()
     return ax

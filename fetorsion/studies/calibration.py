@@ -668,7 +668,7 @@ class CalibrationResult:
         ax.set_xlim(-0.02, 1.02)
         ax.set_xlabel("position in the [uncertainty] range (0 = low, 1 = high)")
         hz = ", ".join(f"{f:g}" for f in self.measured_hz)
-        ax.set_title(f"{self.name}\ncalibrated to {hz} Hz ({self.model}, {self.method})", fontsize=9)
+        ax.set_title(f"{self.name}\ncalibrated to {hz} Hz ({self.model}, {self.method})", fontsize=9, wrap=True)
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
         ax.figure.tight_layout()
         return ax

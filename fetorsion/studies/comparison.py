@@ -339,7 +339,7 @@ class Waterfall:
             ax.annotate(f"{m}", (n, k), color="w", fontsize=7, xytext=(4, 3), textcoords="offset points")
         ax.set_xlabel("mean speed [rpm]")
         ax.set_ylabel("order")
-        ax.set_title(f"{self.name}: speed-order map, model crossings (o: mode number)", fontsize=9)
+        ax.set_title(f"{self.name}: speed-order map, model crossings (o: mode number)", fontsize=9, wrap=True)
         return ax
 
     def _spectrum(self, ax, steady_cuts):
@@ -358,7 +358,7 @@ class Waterfall:
         ax.set_xlabel("order")
         ax.set_ylabel("vibration [deg]")
         ax.set_title(f"{self.name}: order spectrum, steady at {self.track.rpm.mean():.0f} rpm over "
-                     f"{self.track.rpm.size} blocks", fontsize=9)
+                     f"{self.track.rpm.size} blocks", fontsize=9, wrap=True)
         ax.legend(fontsize=7)
         return ax
 
@@ -475,7 +475,7 @@ class ComparisonResult:
             w.plot(fig.add_subplot(grid[k, :]), [c for c in self.order_cuts if id(c) in steady
                                                  and c.name == f"{w.name}, torsiograph"])
             k += 1
-        fig.suptitle(f"{self.name}: model against measurement", fontsize=10)
+        fig.suptitle(f"{self.name}: model against measurement", fontsize=10, wrap=True)
         fig.tight_layout()
         return fig
 

@@ -98,7 +98,7 @@ class SensitivityResult:
         if self.measured_hz is not None:
             ax.axvline(self.measured_hz, color="crimson", lw=1.5, ls="--", label=f"measured {self.measured_hz:g} Hz")
         ax.set_xlabel("first torsional frequency [Hz]")
-        ax.set_title(f"{self.name}\nf1 sensitivity ({self.model})", fontsize=10)
+        ax.set_title(f"{self.name}\nf1 sensitivity ({self.model})", fontsize=10, wrap=True)
         ax.legend(fontsize=7)
         ax.figure.tight_layout()
         return ax

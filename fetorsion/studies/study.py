@@ -157,7 +157,7 @@ def _histogram(ax, res: StudyResult, output: str) -> None:
                    label=f"measured {res.measured_hz:g} Hz ({pct:.0f} % below)")
     ax.set_xlabel(f"{output} [{unit}]")
     ax.set_ylabel("runs")
-    ax.set_title(f"{res.name}\n{output}: {res.method}, {len(y)} runs of {res.model}", fontsize=10)
+    ax.set_title(f"{res.name}\n{output}: {res.method}, {len(y)} runs of {res.model}", fontsize=10, wrap=True)
     ax.legend(fontsize=7)
 
 
@@ -177,7 +177,7 @@ def _index_bars(ax, res: StudyResult, output: str, idx: dict) -> None:
         ax.set_xlabel(f"Morris μ* of {output} (bars: {100 * CONF_LEVEL:g} % confidence)")
     ax.set_yticks(pos, [names[j] for j in order], fontsize=7)
     ax.axvline(0, color="k", lw=0.5)
-    ax.set_title(f"{res.name}\n{res.method} indices of {output} ({res.model}, {len(res.X)} runs)", fontsize=10)
+    ax.set_title(f"{res.name}\n{res.method} indices of {output} ({res.model}, {len(res.X)} runs)", fontsize=10, wrap=True)
     ax.legend(fontsize=7)
 
 
