@@ -19,7 +19,7 @@ _LAZY = {
     "run_campbell": "excitation.campbell",
     "PARTITIONS": "lumped_model.lumped", "LumpedResult": "lumped_model.lumped", "lumped": "lumped_model.lumped",
     "run_response": "response.forced", "run_transient": "response.transient",
-    "run_sensitivity": "studies.sensitivity", "with_values": "studies.sensitivity",
+    "run_sensitivity": "studies.sensitivity", "with_values": "description.edit",
     "run_crank_study": "studies.study",
     "run_stress": "design.stress", "run_damper": "design.dampers", "run_verdict": "design.verdict",
     "run_condensed": "fe.condensed", "run_coupled_response": "response.coupled",

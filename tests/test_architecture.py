@@ -344,3 +344,17 @@ def test_no_untyped_hand_off_crosses_a_stage():
         bad += [f"{target}.{n}: {arg}: {ast.unparse(ann)}" for arg, ann in typed
                 if untyped_names(ast.unparse(ann)) and (target, n, arg) not in TOML_DOCUMENT]
     assert not bad, bad
+
+
+def test_no_stage_reads_or_edits_the_parsed_document():
+    """Issue 56: the description is edited as data (``fetorsion.description.edit``: a new, checked
+    description with named fields changed; the values a path names; the document it was read
+    from); no module outside ``description/`` touches a description's ``raw`` document."""
+    offences = []
+    for name, path in modules().items():
+        if name.startswith("fetorsion.description"):
+            continue
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Attribute) and node.attr == "raw":
+                offences.append(f"{name}:{node.lineno}")
+    assert not offences, offences

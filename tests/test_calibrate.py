@@ -16,7 +16,7 @@ import fetorsion
 from conftest import GEOMETRY
 from fetorsion.cli import main
 from fetorsion.studies.calibration import IDENTIFIED_RATIO, calibration_inputs, run_calibration
-from fetorsion.studies.variants import with_values
+from fetorsion.description.edit import with_values
 
 # The Peugeot GLX crank alone, three inputs moved inside their ranges. They are the best-posed
 # three of its inputs for four frequencies (the largest smallest singular value of the normalised

@@ -193,7 +193,7 @@ def test_the_runs_background_throw_fe_is_what_the_fe_column_and_the_verdict_read
 
     from fetorsion.app.run import RunContext, needs_throw_fe
     from fetorsion.report.outcomes import RunOutcome
-    from fetorsion.studies.variants import with_values
+    from fetorsion.description.edit import with_values
     from fetorsion.webs import throwfe
 
     crank = with_values(fetorsion.load(GEOMETRY / "renault21.toml"), {"pins.*.diameter": 49.0})

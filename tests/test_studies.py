@@ -196,7 +196,7 @@ def test_cli_study_on_an_existing_scheduler_writes_the_table(tmp_path, monkeypat
 
     from fetorsion.cli import main
     from fetorsion.lumped_model.lumped import lumped
-    from fetorsion.studies.variants import with_values
+    from fetorsion.description.edit import with_values
 
     geometry = Path(__file__).resolve().parents[1] / "geometry" / "peugeot_glx.toml"
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, dashboard_address=":0") as cluster:
@@ -238,7 +238,7 @@ def test_distributions_from_the_file_shape_the_monte_carlo_samples():
     # The grid spans the ranges whatever the distributions.
     assert np.array_equal(np.unique(sample_matrix("grid", inputs, 2)[:, 1]), [165e9, 212e9])
     # The variant a sample makes carries no ranges nor distributions: a new design.
-    from fetorsion.studies.variants import with_values
+    from fetorsion.description.edit import with_values
     assert with_values(crank, {"webs.*.thickness": 20.0}).distributions == ()
 
 
@@ -275,7 +275,7 @@ def test_a_sample_that_kills_its_worker_is_recorded_and_its_batch_mates_are_not(
 def test_fe_study_on_the_cluster_equals_direct_fe_runs(client, tmp_path):
     # Two FE samples on the workers (one BLAS thread each) against the same variants solved
     # here: the same mesh and solver, so the same f1 up to the solver's round-off (1e-8).
-    from fetorsion.studies.variants import with_values
+    from fetorsion.description.edit import with_values
 
     crank = fetorsion.load(Path(__file__).resolve().parents[1] / "geometry" / "peugeot_glx.toml")
     res = fetorsion.run_crank_study(crank, "montecarlo", 2, "fe", inputs=["webs.*.thickness", "material"],

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import sys
 
+from ..description.edit import document
 from ..description.model import Chain, Network
 from ..errors import FetorsionError
 from ..lumped_model.lumped import MODES_SHOWN, PARTITIONS, lumped
@@ -36,7 +37,7 @@ def cmd_lumped(args) -> int:
     payload = {"file": args.file, "models": [r.to_dict() for r in results]}
     if not isinstance(model, (Chain, Network)):
         payload.update(stiffness_method=args.stiffness, parts=parts_table(build_parts(model, args.stiffness)),
-                       web_inertia="analytic web outline (fetorsion.solid.outline), no fillets", description=model.raw)
+                       web_inertia="analytic web outline (fetorsion.solid.outline), no fillets", description=document(model))
     emit_json(payload, args.json)
     return 0
 

@@ -31,7 +31,7 @@ import scipy.optimize
 from ..description.model import Crank, Damper
 from ..errors import FetorsionError
 from ..solid.outline import mass_properties
-from ..studies.variants import with_values
+from ..description.edit import field_values, with_values
 from .scfset import SCFSet
 
 #: Differential evolution's generations by default.
@@ -324,9 +324,8 @@ def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
 
 def _nominal(crank: Crank, path: str) -> float:
     """The value at ``path`` (its first entry where ``*`` names several), file units."""
-    from ..description.reader import resolve_field
 
-    return float(resolve_field(crank.raw, path)[0][1])
+    return float(field_values(crank, path)[0][1])
 
 
 def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6,
@@ -500,12 +499,11 @@ def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> s
     (and its ``[distributions]`` line) commented out, saying why: the ranges were the given
     design's, and the description's rule that a range holds its nominal value would refuse the
     file. The other entries stay."""
-    from ..description.reader import resolve_field
 
     stale = set()
     for name, members in crank.uncertainty:
         for path, low, high in members:
-            if any(where in changes and not low <= changes[where] <= high for where, _ in resolve_field(crank.raw, path)):
+            if any(where in changes and not low <= changes[where] <= high for where, _ in field_values(crank, path)):
                 stale.add(name)
     if not stale:
         return text
@@ -538,12 +536,11 @@ def _solid_path_absolute(text: str, step: str) -> str:
 def designed_text(text: str, crank: Crank, best: Candidate) -> str:
     """The description ``text`` with the chosen design: each moved input set (every entry a ``*``
     path names) and commented, and the added damper as a ``[[dampers]]`` table."""
-    from ..description.reader import resolve_field
     from ..studies.calibration import edit_toml_values
 
     changes = {}
     for path, value in best.values.items():
-        for where, _ in resolve_field(crank.raw, path):
+        for where, _ in field_values(crank, path):
             changes[where] = round(value, 3)
     out = edit_toml_values(text, changes, "fetorsion design") if changes else text
     out = _ranges_left_behind(out, crank, changes)

@@ -20,6 +20,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_TORSIONAL_MODES
+from ..description.edit import document
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..modes import TORSION_SHARE_NOTED, TorsionalModes
@@ -493,7 +494,7 @@ def save_condensed(cc: CondensedCrank, path, shapes: bool = True) -> None:
                   attachment_mass=cc.attachment_mass, bearing_stiffness=cc.bearing_stiffness,
                   bearing_damping=cc.bearing_damping, held=cc.held, sections=cc.sections,
                   interior_hz=cc.reduced.fixed_interface_hz, full_dofs=cc.full_dofs,
-                  description_json=json.dumps(cc.crank.raw))
+                  description_json=json.dumps(document(cc.crank)))
     for name in ("cut_rows", "cut_centres", "gyroscopic", "centrifugal"):
         if getattr(cc, name) is not None:
             arrays[name] = getattr(cc, name)

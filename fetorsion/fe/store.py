@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..description.edit import document
 from ..io import code_hash, default_store, store_max_bytes
 from .condensed import NPZ_FORMAT, CondensedCrank, load_condensed, run_condensed, save_condensed
 
@@ -46,7 +47,7 @@ def condensed_key(crank, mesh_size: float, cuts=None) -> str:
     ((k, 3) m or None): module docstring."""
     exact = lambda a: [float(v).hex() for v in np.asarray(a, float).ravel()]  # noqa: E731
     solid = getattr(crank, "solid_step", None)  # a CAD solid: its content, not its name, is the geometry
-    text = json.dumps({"description": {k: v for k, v in crank.raw.items() if k not in NOT_READ_BY_FE},
+    text = json.dumps({"description": document(crank, without=NOT_READ_BY_FE),
                        "solid": None if solid is None else hashlib.sha256(Path(solid).read_bytes()).hexdigest(),
                        "mesh_size": exact([mesh_size]), "cuts": None if cuts is None else exact(cuts),
                        "layout": NPZ_FORMAT, "code": code_hash()}, sort_keys=True, default=str)

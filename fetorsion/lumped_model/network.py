@@ -219,9 +219,11 @@ def referred(net: Network) -> Network:
         for c, row in enumerate(net.cylinder_weights):
             np.add.at(W[c], col, np.asarray(row) * f)
         weights = tuple(map(tuple, W.tolist()))
-    return Network(f"{net.name} (referred to station 1's speed)", labels, tuple(J.tolist()), shafts, (),
-                   tuple(ca.tolist()) if net.absolute_damping else (), net.source, stations, net.engine,
-                   net.excitation, net.length_unit, net.raw, net.limits, cylinder_weights=weights)
+    # the same description, its stations referred: gears, dampers, nonlinear elements and parts gone
+    return replace(net, name=f"{net.name} (referred to station 1's speed)", labels=labels, inertias=tuple(J.tolist()),
+                   shafts=shafts, gears=(), absolute_damping=tuple(ca.tolist()) if net.absolute_damping else (),
+                   cylinder_stations=stations, dampers=(), uncertainty=(), distributions=(), nonlinear=(), cranks=(),
+                   cylinder_weights=weights)
 
 
 def network_modes(mats: NetworkMatrices):

@@ -66,7 +66,7 @@ from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..webs.methods import WEB_METHODS
 from .sampling import study_inputs
-from .variants import with_values
+from ..description.edit import field_values, with_values
 
 METHODS = ("lsq", "bayes", "both")
 #: Web-stiffness methods a calibration can run: not the static FE of each throw (``fe``,
@@ -239,7 +239,7 @@ def calibration_inputs(crank: Crank | Chain | Network, names=None) -> list[Calib
         (path0, lo, hi) = s.members[0]
         entries = []
         for path, low, high in s.members:
-            entries += [(where, float(v), float(low), float(high)) for where, v in resolve_field(crank.raw, path)]
+            entries += [(where, float(v), float(low), float(high)) for where, v in field_values(crank, path)]
         out.append(CalibrationInput(s.name, float(s.nominal), float(lo), float(hi), tuple(entries),
                                     s.distribution, s.sd))
     return out

@@ -19,7 +19,7 @@ from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_WEB_METHOD
 from ..description.model import Crank
 from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
-from .variants import with_values
+from ..description.edit import document, with_values
 
 #: What each kind of model gives (Hz; ``severity``: the largest Campbell severity in the
 #: operating range, degrees of vibratory angle at the pulley).
@@ -36,7 +36,7 @@ FE_MODES = 12
 def description_hash(crank: Crank) -> str:
     """Hash of what a variant is built from: the file's data (without its ranges) and the
     parsed excitation (a pressure CSV's content lives there, not in the file's data)."""
-    raw = {k: v for k, v in crank.raw.items() if k not in ("uncertainty", "distributions")}
+    raw = document(crank, without=("uncertainty", "distributions"))
     h = hashlib.sha256(json.dumps(raw, sort_keys=True, default=str).encode())
     h.update(pickle.dumps(crank.excitation))
     return h.hexdigest()[:24]

@@ -61,13 +61,13 @@ def study_inputs(crank, names=None, exclude_prefixes=()) -> tuple[list[StudyInpu
     """The ``[uncertainty]`` entries as inputs: all, or those in ``names``; entries whose
     paths start with one of ``exclude_prefixes`` (details a model leaves out) are returned
     apart, as the second list, held at their nominal values."""
-    from ..description.reader import resolve_field
+    from ..description.edit import field_values
 
     dists = {name: (kind, sd) for name, kind, sd in getattr(crank, "distributions", ())}
 
     def entry(name, members):
         kind, sd = dists.get(name, ("uniform", None))
-        values = [v for _, v in resolve_field(crank.raw, members[0][0])]
+        values = [v for _, v in field_values(crank, members[0][0])]
         return StudyInput(name, tuple(members), kind, float(sum(values) / len(values)), sd)
 
     entries = [entry(n, m) for n, m in crank.uncertainty]

@@ -15,10 +15,9 @@ from dataclasses import asdict, dataclass
 
 from ..description.model import Crank
 
-from ..description.reader import resolve_field
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
-from .variants import with_values
+from ..description.edit import field_values, with_values
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 
 
@@ -180,7 +179,7 @@ def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str =
         highs = {path: high for path, _, high in members}
         f_lo, f_hi = f1(with_values(crank, lows)), f1(with_values(crank, highs))
         path, low, high = members[0]  # the group's first member scales the elasticity
-        values = [v for _, v in resolve_field(crank.raw, path)]
+        values = [v for _, v in field_values(crank, path)]
         x0 = sum(values) / len(values)
         rows.append(SensitivityRow(name, x0, low, high, f_lo, f_hi, (f_hi - f_lo) / nominal / ((high - low) / x0)))
         (lower if f_lo <= f_hi else upper).update(lows)

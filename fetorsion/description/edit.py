@@ -1,10 +1,24 @@
-"""A variant of a crank description: the same file with some fields set to other values."""
+"""The description edited as data: a new, checked description with named fields changed
+(:func:`with_values`), the values a field path names (:func:`field_values`) and the document a
+description was read from (:func:`document`), so that no stage reads or edits the parsed TOML
+itself.
+
+Examples
+--------
+>>> import fetorsion
+>>> from fetorsion.description.edit import field_values, with_values
+>>> crank = fetorsion.load("geometry/renault21.toml")
+>>> field_values(crank, "webs.3.thickness")
+[('webs.3.thickness', 22.0)]
+>>> field_values(with_values(crank, {"webs.3.thickness": 24.0}), "webs.3.thickness")
+[('webs.3.thickness', 24.0)]
+"""
 
 from __future__ import annotations
 
-from ..description.reader import field_keys
-from ..description.files import parse_description
-from ..description.model import Crank
+from .files import parse_description
+from .model import Crank
+from .reader import field_keys, resolve_field
 
 
 def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
@@ -69,3 +83,16 @@ def _copied_along(tree: dict, path: str) -> list[dict]:
                 nxt.append(child)
         found = nxt
     return found
+
+
+def field_values(description, path: str) -> list[tuple[str, object]]:
+    """(concrete path, value) of every field ``path`` names in ``description`` (a crank, chain or
+    network), in file units: ``"webs.*.thickness"`` gives one pair per web, 1-based."""
+    return resolve_field(description.raw, path)
+
+
+def document(description, without=()) -> dict:
+    """The document ``description`` was read from (file units), its top-level tables named in
+    ``without`` left out: what a store keys on or a result records. A shallow copy: read it, do
+    not edit it (:func:`with_values` makes an edited description)."""
+    return {k: v for k, v in description.raw.items() if k not in without}
