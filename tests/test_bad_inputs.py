@@ -675,7 +675,6 @@ CASES = [
     ("calibrate-model-fe", "calibrate {d}/crank.toml --measured-hz 530 --model fe", {}, 2, ["--model"]),
     ("calibrate-stiffness-fe", "calibrate {d}/crank.toml --measured-hz 530 --stiffness fe", {}, 2, ["--stiffness", "fe"]),
     ("calibrate-method", "calibrate {d}/crank.toml --measured-hz 530 --method mcmc", {}, 2, ["--method", "mcmc"]),
-    ("calibrate-chain", "calibrate {d}/chain.toml --measured-hz 530", {}, 2, ["chain.toml", "no [uncertainty] table"]),
     ("calibrate-out-is-input", "calibrate {d}/crank.toml --measured-hz 530 --out {d}/crank.toml --force", {}, 2,
      ["--out", "never over the original"]),
     ("calibrate-out-exists", "calibrate {d}/crank.toml --measured-hz 530 --out {d}/chain.toml", {}, 2,

@@ -87,6 +87,9 @@ CASES = [
     (lambda r: r.update(uncertainty={"webs.*.thicknes": [18.0, 25.0]}), "uncertainty.webs.*.thicknes",
      "does not name a numeric field"),
     (lambda r: r.update(uncertainty={"pins.*.length": [30.0, 20.0]}), "uncertainty.pins.*.length", "low < high"),
+    # issue 56: a count cannot vary between its bounds (it was refused only by the bounds' firing orders)
+    (lambda r: r.update(uncertainty={"engine.cylinders": [3, 5]}), "uncertainty.engine.cylinders",
+     "'engine.cylinders' is a count (an integer field)"),
 ]
 
 

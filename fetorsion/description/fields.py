@@ -217,8 +217,9 @@ UNCERTAINTY = Section("uncertainty", "The range of each reconstructed input, for
                       "field path (`\"webs.*.thickness\"`, 1-based indices, `*` = every entry) with "
                       "`[low, high]` in file units; or a group name with an inline table of such paths that move "
                       "together (low with low), e.g. a material's E and density.", (
-    Field("<field path>", "`[low, high]`: the range of one input (file units)", "names a numeric field; low < high; "
-          "contains the nominal value; the description with the input at either bound obeys every rule"),
+    Field("<field path>", "`[low, high]`: the range of one input (file units)", "names a numeric field, not a "
+          "count (`engine.cylinders`); low < high; contains the nominal value; the description with the input at "
+          "either bound obeys every rule"),
     Field("<group name>", "`{ \"path\" = [low, high], ... }`: inputs that move together", "as above, per member"),
 ), free=True)
 
@@ -498,3 +499,15 @@ def markdown(sections, heading: str = "###") -> str:
             parts.append(f"| {_cell(key)} | {_cell(f.meaning)} | {_cell(f.rule)} |")
         parts.append("")
     return "\n".join(parts)
+
+
+def is_count(path: str) -> bool:
+    """Whether a field path (``engine.cylinders``, ``webs.*.thickness``) names a field whose rule is
+    an integer (a count): such a field cannot take the values between its range's bounds, so it
+    is no ``[uncertainty]`` input and no ``[design]`` variable."""
+    parts = path.split(".")
+    for section in (*CRANK_SECTIONS, *CHAIN_SECTIONS):
+        if section.name == parts[0] or section.name == ".".join(parts[:2]):
+            if any(f.key == parts[-1] and f.rule.startswith("integer") for f in section.fields):
+                return True
+    return False

@@ -9,6 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
+from .fields import is_count
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .model import (table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, LAYOUTS, Damper, DesignSpace, Engine,
                     Excitation, Limits)
@@ -439,6 +440,11 @@ def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str =
             targets = resolve_field(data, path)
             if not targets or any(isinstance(v, bool) or not isinstance(v, (int, float)) for _, v in targets):
                 problems.append(Problem(where_name, rng, f"'{path}' does not name a numeric field of this description"))
+                continue
+            if is_count(path):
+                problems.append(Problem(where_name, rng, f"'{path}' is a count (an integer field): it cannot take the "
+                                        f"values between {rng[0]:g} and {rng[1]:g}; [{table}] moves dimensions and "
+                                        "properties (describe each count as a description of its own)"))
                 continue
             refused = {p.field for p in problems}  # a nominal value already refused is reported once
             for where, v in targets:
