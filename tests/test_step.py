@@ -96,7 +96,7 @@ def test_a_step_that_is_not_one_closed_solid_in_the_right_unit_is_refused(writte
 
     _write_shapes(tmp_path / "inch.step", inches)
     with pytest.raises(FetorsionError, match=r"inch.step: the solid is .* mm long along x, the description's crank "
-                                             r".* mm; its unit looks wrong \(in read as mm\)"):
+                                             r".* mm; its unit looks wrong: drawn in mm while its header says in"):
         _load_and_build(with_solid(tmp_path, "inch.step"))
     with pytest.raises(DescriptionError, match=r"solid.step = 'missing.step': no such file"):
         fetorsion.load(with_solid(tmp_path, "missing.step"))
@@ -386,7 +386,8 @@ def test_a_solid_that_is_not_the_described_crank_is_refused_before_any_work(writ
     cases = {
         "wide": (text + '\n[solid]\nstep = "wide.step"\n',
                  r"^wide.step: the journals found on the solid are 10 times the description's diameters; "
-                 r"its unit looks wrong \(cm read as mm\)$"),
+                 r"its unit looks wrong: drawn in mm while its header says cm \(export it in cm, or with a header "
+                 r"that says mm\)$"),
         "pins": (text.replace("diameter = 48.0", "diameter = 49.5") + f'\n[solid]\nstep = "{written.name}"\n',
                  r"^renault21.step: diameters disagree with the description by more than 2%: pin_1 is 48 mm on the "
                  r"solid, 49.5 mm in the description; pin_2 is 48 mm .*; pin_4 is 48 mm on the solid, 49.5 mm in "
@@ -632,3 +633,15 @@ def test_a_placed_steps_throw_is_cut_and_turned_as_the_unmoved_one(written, tmp_
     moved, plain = fetorsion.load(tmp_path / "m.toml"), fetorsion.load(with_solid(tmp_path, str(written)))
     k = [throwfe.torsional_stiffness_fe(throwfe.throw_of(c, 1), 0.02, 0.003).stiffness for c in (moved, plain)]
     assert k[0] == pytest.approx(k[1], rel=1e-3)
+
+
+@pytest.mark.parametrize("ratio, drawn, header", [(1 / 25.4, "in", "mm"), (25.4, "mm", "in"), (1e-3, "m", "mm"),
+                                                  (10.0, "mm", "cm")])
+def test_a_unit_slip_is_named_the_way_round_it_happened(ratio, drawn, header):
+    """Issue 56: a crank drawn in inches whose header says mm reads 1/25.4 of its size; the message
+    says "drawn in in while its header says mm" (it said "mm read as in"). A solid off by no unit
+    gets no such sentence."""
+    from fetorsion.solid.recognise import unit_slip
+
+    assert unit_slip(ratio * 1.01).startswith(f"its unit looks wrong: drawn in {drawn} while its header says {header}")
+    assert unit_slip(1.3) == ""

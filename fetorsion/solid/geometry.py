@@ -42,7 +42,7 @@ import numpy as np
 
 from ..description.model import Crank, Cylinder, Web
 from ..errors import GeometryError
-from .recognise import UNIT_SLIPS, SolidFeatures, first_pin_turn, recognise
+from .recognise import SolidFeatures, first_pin_turn, recognise, unit_slip
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
@@ -445,7 +445,7 @@ def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
     """The crank's ``[solid]`` STEP file as one OCC volume: its tag, and what was found on it
     (:func:`fetorsion.solid.recognise.recognise`; None for a throw's slab, whose whole crank was
     checked). Refused, naming the file, when it holds no closed volume, several bodies, a solid
-    whose length disagrees with the description's layout (a wrong unit: :data:`UNIT_SLIPS`), or
+    whose length disagrees with the description's layout (a wrong unit: :func:`~fetorsion.solid.recognise.unit_slip`), or
     journals and pins that are not the described ones."""
     occ = gmsh.model.occ
     name = Path(crank.solid_step).name
@@ -518,8 +518,8 @@ def _check_length(name: str, solid: int, pieces) -> None:
     length = pieces[-1].x1
     ratio = (x1 - x0) / length
     if abs(ratio - 1.0) > 0.02:
-        slip = min(UNIT_SLIPS, key=lambda f: abs(math.log(ratio / f)))
-        why = f"; its unit looks wrong ({UNIT_SLIPS[slip]})" if abs(math.log(ratio / slip)) < 0.05 else ""
+        slip = unit_slip(ratio)
+        why = f"; {slip}" if slip else ""
         raise GeometryError(f"{name}: the solid is {x1 - x0:.6g} mm long along x, the description's crank "
                             f"{length:.6g} mm{why}")
     if abs(x0) > 0.02 * length:

@@ -37,9 +37,22 @@ import numpy as np
 
 from ..errors import GeometryError
 
-#: Factors a solid's size may be off by when its STEP header states the wrong unit.
-UNIT_SLIPS = {1000.0: "m read as mm", 0.001: "mm read as m", 25.4: "in read as mm", 1 / 25.4: "mm read as in",
-              10.0: "cm read as mm", 0.1: "mm read as cm"}
+#: Factors a solid's size (as read, over the description's) may be off by when its STEP header states
+#: another unit than the one it was drawn in: the factor is the header's unit over the drawing's, so
+#: a crank drawn in inches whose header says mm reads 1/25.4 of its size. Each: (drawn in, header says).
+UNIT_SLIPS = {0.001: ("m", "mm"), 1000.0: ("mm", "m"), 1 / 25.4: ("in", "mm"), 25.4: ("mm", "in"),
+              0.1: ("cm", "mm"), 10.0: ("mm", "cm")}
+
+
+def unit_slip(ratio: float) -> str:
+    """What a solid ``ratio`` times the described size says of its unit: '' when no slip of
+    :data:`UNIT_SLIPS` explains it (within 5 %), else the slip in the drawing's own words."""
+    slip = min(UNIT_SLIPS, key=lambda f: abs(math.log(ratio / f)))
+    if abs(math.log(ratio / slip)) >= 0.05:
+        return ""
+    drawn, header = UNIT_SLIPS[slip]
+    return (f"its unit looks wrong: drawn in {drawn} while its header says {header} (export it in {header}, or "
+            f"with a header that says {drawn})")
 
 #: Largest relative disagreement between a journal's or pin's diameter found on the solid and the
 #: description's before the solid is refused: a diameter is drawn to hundredths of a mm and
@@ -320,10 +333,10 @@ def recognise(crank, pieces, volume: int, name: str, unit: float) -> SolidFeatur
               for p in shafts if p.kind == "journal" and found[p.name]]
     if ratios:
         ratio = float(np.median(ratios))
-        slip = min(UNIT_SLIPS, key=lambda f: abs(math.log(ratio / f)))
-        if abs(math.log(ratio / slip)) < 0.05:
+        slip = unit_slip(ratio)
+        if slip:
             raise GeometryError(f"{name}: the journals found on the solid are {ratio:.4g} times the description's "
-                                f"diameters; its unit looks wrong ({UNIT_SLIPS[slip]})")
+                                f"diameters; {slip}")
     missing = []
     for p in shafts:
         if found[p.name]:
