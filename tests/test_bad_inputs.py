@@ -323,6 +323,11 @@ CASES = [
      ["dampers.1.at", "nowhere"]),
     ("network-damper-command", "damper {d}/n.toml --objective twist", {"n.toml": NETWORK}, 2,
      ["'damper' does not take a network"]),
+    # issue 56: a network on the condensed crank is refused as a network, not sent to --source lumped17 (which
+    # then refused it as a network)
+    ("network-condensed-damper", "damper {d}/n.toml --objective twist",
+     {"n.toml": CRANK_NETWORK.replace("dof = 17", 'dof = "condensed"')}, 2,
+     ["'damper' does not take a network"]),
     # --- a crank description as a part of a network ([[chain.cranks]])
     ("network-crank-missing", "lumped {d}/n.toml", {"n.toml": CRANK_NETWORK.replace('"crank.toml"', '"nowhere.toml"')},
      2, ["chain.cranks.1.file", "nowhere.toml", "no such file"]),

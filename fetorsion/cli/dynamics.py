@@ -226,11 +226,10 @@ def cmd_damper(args) -> int:
     from ..design.dampers import run_damper
 
     crank = load_for(args)
-    only_lumped_driveline(crank, args, "damper")
+    refuse_network(crank, args.file, "damper")  # first: no --source makes a network a damper's model yet
     if args.source == "fe":
         raise FetorsionError("--source fe: the damper is designed on the condensed crank (default) or a lumped "
                              "model; choose --source condensed or lumpedN")
-    refuse_network(crank, args.file, "damper")
     objective = args.objective or ("twist" if isinstance(crank, Chain) else "fatigue")
     if objective in ("stress", "fatigue") and isinstance(crank, Chain):
         raise FetorsionError(f"--objective {objective}: {args.file} is a chain file, it has no shaft sections; "
