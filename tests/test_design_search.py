@@ -317,3 +317,17 @@ def test_the_design_loop_maps_the_resonance_onto_the_fe_crank(tmp_path):
     assert outcome.chosen is not None and outcome.chosen.passes
     f1 = json.loads((tmp_path / "d" / "run" / "results.json").read_text())["bearings"]["f1_bearings_hz"]
     assert 60.0 * f1 / 4.0 / 6500.0 - 1.0 >= 0.2
+
+
+def test_a_design_space_holding_no_valid_crank_names_the_rule_it_breaks(tmp_path, capsys):
+    """Issue 56: webs of 1-2 mm cannot carry the Renault's 2.5 mm fillets: every candidate's
+    description breaks that rule, and the search says so, naming the fields and the rule, not
+    "no candidate met the constraints"."""
+    from fetorsion.cli import main
+
+    path = with_design(tmp_path, "renault21", 'objective = "mass"\n"webs.*.thickness" = [1.0, 2.0]\n')
+    assert main(["design", str(path), "--out", str(tmp_path / "out"), "--generations", "1", "--no-verify"]) == 2
+    err = capsys.readouterr().err
+    assert "no candidate of the [design] space is a valid crank" in err
+    assert "fillets.pin = 2.5: must be smaller than half the thickness of the thinnest web" in err
+    assert "no candidate met the constraints" not in err and not (tmp_path / "out").exists()

@@ -165,6 +165,10 @@ def _loop(crank, path: Path, out: Path, name: str, seed: int, generations: int, 
         t = result.targets
         pick = result.best
         if pick is None:
+            if not result.candidates and result.failures:  # every candidate broke a rule of the description
+                first = result.failures[0].removeprefix("DescriptionError: ")
+                raise FetorsionError("design: no candidate of the [design] space is a valid crank; the first "
+                                     f"refused: {first}\nnarrow the [design] bounds that break these rules")
             if not verify or not result.candidates:
                 raise FetorsionError(f"design: no candidate met the constraints on the explorer (safety "
                                      f"{result.required:.3f}{_others(t)}); widen the [design] bounds or allow a damper")

@@ -144,6 +144,8 @@ class DesignResult:
     seconds: float
     notes: list[str] = field(default_factory=list)
     targets: DesignTargets | None = None
+    #: Why candidates could not be evaluated (their description broke a rule, say), each reason once
+    failures: list[str] = field(default_factory=list)
 
     def meets_others(self, c: Candidate) -> bool:
         """``c`` meets the constraints other than the safety (the added damper's heat, the
@@ -386,8 +388,11 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     model = ExplorerModel(crank, verdict_scfs(crank) if scf is None else scf)
     store = open_store() if store is None else store
 
+    failures: dict[str, None] = {}
+
     def evaluate_all(samples: list[dict]) -> list[Candidate | None]:
         records, _ = run_samples(model, samples, store, client, progress=False, label=f"{crank.name}: design")
+        failures.update((r["error"], None) for r in records if "error" in r)
         return [candidate_of(crank, s, r["outputs"]) if "outputs" in r else None for s, r in zip(samples, records)]
 
     given = evaluate_all([{}])[0]
@@ -491,7 +496,7 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
                          f" (its rating {space.damper_heat_rating:.1f} W re-aimed by the FE verdict)"
                          if targets.heat_limit_w != space.damper_heat_rating else ""))
     return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes,
-                        targets)
+                        targets, list(failures))
 
 
 def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> str:
