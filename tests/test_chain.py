@@ -76,7 +76,7 @@ def test_hysteretic_two_inertia_closed_form():
     rpm = np.linspace(0.7, 1.3, 61) * 60 * f_n / q
     res = run_response(chain, rpm=rpm, orders=[q])
     w = q * rpm * 2 * np.pi / 60
-    Tq = np.array([abs(harmonics(cylinder_torque(chain, n)["total"], 4 * np.pi).at([q])[0]) for n in rpm])
+    Tq = np.array([abs(harmonics(cylinder_torque(chain, n).total, 4 * np.pi).at([q])[0]) for n in rpm])
     closed = k * Tq / np.abs(k * (1 + 1j * eta) * (1 + J1 / J2) - w**2 * J1)
     # The response takes the half peak-to-peak on 720 samples of the 4π cycle (π/180 apart): a sample can
     # miss the crest of order 2 by half a step, π/180 of phase, so it reads low by at most 1 − cos(π/180) = 1.52e-4.

@@ -41,7 +41,7 @@ def test_single_cylinder_inertia_torque_has_integer_orders_of_closed_form(renaul
     raw["engine"]["rod_length"] = 835.0  # λ = 0.05 so the O(λ²) terms are < 0.3 % of each order
     crank = parse_crank(raw)
     rpm = 3000.0
-    t = cylinder_torque(crank, rpm)["inertia"]
+    t = cylinder_torque(crank, rpm).inertia
     h = harmonics(t, 4 * np.pi)
     half = h.at(np.arange(0.5, 12, 1.0))
     assert np.abs(half).max() < 1e-9 * np.abs(h.complex_nm).max()  # a 360° period: no half orders
@@ -156,8 +156,8 @@ def test_campbell_cli_writes_json_and_plot(tmp_path):
 
 def test_inline4_engine_torque_has_only_major_orders_and_four_times_the_mean(renault):
     from fetorsion.excitation.torque import engine_torque
-    one = harmonics(cylinder_torque(renault, 2500.0)["total"], 4 * np.pi)
-    four = harmonics(engine_torque(renault, 2500.0)["total"], 4 * np.pi)
+    one = harmonics(cylinder_torque(renault, 2500.0).total, 4 * np.pi)
+    four = harmonics(engine_torque(renault, 2500.0).total, 4 * np.pi)
     assert four.mean_nm == pytest.approx(4 * one.mean_nm, rel=1e-12)
     orders = np.arange(0.5, 20.5, 0.5)
     major = orders % 2 == 0

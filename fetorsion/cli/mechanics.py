@@ -137,8 +137,8 @@ def _flywheel_from_engine_torque(crank, args) -> int:
     if args.rpm is None:
         raise FetorsionError(f"{args.file} is a crank description: give the speed with --rpm")
     t = engine_torque(crank, args.rpm)
-    theta = np.append(t["theta"], t["theta"][-1] + (t["theta"][1] - t["theta"][0]))
-    delta_e, mean = fw.fluctuation_energy(theta, np.append(t["total"], t["total"][0]))
+    theta = np.append(t.theta, t.theta[-1] + (t.theta[1] - t.theta[0]))
+    delta_e, mean = fw.fluctuation_energy(theta, np.append(t.total, t.total[0]))
     omega = args.rpm * 2 * np.pi / 60
     inertia = fw.flywheel_inertia(delta_e, args.speed_fluctuation, omega)
     have = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.REAR))

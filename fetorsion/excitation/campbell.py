@@ -331,7 +331,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     Tq = np.empty_like(rpm, dtype=complex)
     for j in range(k):  # one torque cycle per mode and order (distinct speeds)
         for i, q in enumerate(orders):
-            Tq[j, i] = harmonics(cylinder_torque(crank, rpm[j, i])["total"], period).at([q])[0]
+            Tq[j, i] = harmonics(cylinder_torque(crank, rpm[j, i]).total, period).at([q])[0]
     omega = 2 * np.pi * f[:, None]
     theta = (np.abs(modes.pulley_amplitude[:k, None]) * np.abs(Tq) * np.abs(S)
              / (2 * zeta_modes[:, None] * omega**2 * modes.modal_inertia[:k, None]))
@@ -348,7 +348,7 @@ def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None,
     ]
     table = {}
     for speed in np.linspace(lo, hi, 5):
-        h = harmonics(cylinder_torque(crank, speed)["total"], period)
+        h = harmonics(cylinder_torque(crank, speed).total, period)
         table[f"{speed:.0f}"] = {"orders": orders.tolist(), "amplitude_nm": np.abs(h.at(orders)).tolist(),
                                  "phase_rad": np.angle(h.at(orders)).tolist(), "mean_nm": h.mean_nm}
     return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table,

@@ -127,13 +127,34 @@ def _excitation_of(crank: Crank) -> Excitation:
     return crank.excitation
 
 
-def cylinder_torque(crank: Crank, rpm: float, theta=None, misfire: bool = False) -> dict[str, np.ndarray]:
+@dataclass(frozen=True)
+class CycleTorque:
+    """A torque over one working cycle on a grid of crank angles.
+
+    Attributes
+    ----------
+    theta : ndarray
+        Crank angle from cylinder 1's firing TDC, rad.
+    total : ndarray
+        The torque, N·m (gas and reciprocating inertia).
+    gas, inertia : ndarray or None
+        Its parts, N·m, where they are kept apart (one cylinder's).
+    """
+
+    theta: np.ndarray
+    total: np.ndarray
+    gas: np.ndarray | None = None
+    inertia: np.ndarray | None = None
+
+
+def cylinder_torque(crank: Crank, rpm: float, theta=None, misfire: bool = False) -> CycleTorque:
     """Torque of one cylinder on the crank over a cycle at constant ``rpm``, N·m.
 
-    Returns ``theta`` (rad from firing TDC), ``gas``, ``inertia`` and ``total`` torque: the
-    gas force A (p − p_intake) and the reciprocating inertia force m S̈ act together on the
-    pin through the exact rod geometry, T = r F sin(θ + β)/cos β. ``misfire``: the cylinder
-    does not fire (compression and expansion only, :func:`cylinder_pressure`).
+    Returns the angles ``theta`` (rad from firing TDC) and the ``gas``, ``inertia`` and
+    ``total`` torque: the gas force A (p − p_intake) and the reciprocating inertia force m S̈
+    act together on the pin through the exact rod geometry, T = r F sin(θ + β)/cos β.
+    ``misfire``: the cylinder does not fire (compression and expansion only,
+    :func:`cylinder_pressure`).
     """
     engine, ex = crank.engine, _excitation_of(crank)
     theta, p = cylinder_pressure(crank, rpm, theta, misfire)
@@ -141,13 +162,11 @@ def cylinder_torque(crank: Crank, rpm: float, theta=None, misfire: bool = False)
     omega = rpm * 2 * np.pi / 60
     gas_force = math.pi / 4 * engine.bore**2 * (p - ex.intake_pressure)
     inertia_force = ex.reciprocating_mass * piston_acceleration(theta, r, l, omega)
-    return {"theta": theta,
-            "gas": tangential_torque(theta, gas_force, r, l),
-            "inertia": tangential_torque(theta, inertia_force, r, l),
-            "total": tangential_torque(theta, gas_force + inertia_force, r, l)}
+    return CycleTorque(theta, tangential_torque(theta, gas_force + inertia_force, r, l),
+                       tangential_torque(theta, gas_force, r, l), tangential_torque(theta, inertia_force, r, l))
 
 
-def engine_torque(crank: Crank, rpm: float) -> dict[str, np.ndarray]:
+def engine_torque(crank: Crank, rpm: float) -> CycleTorque:
     """Sum of all cylinders' torques on a rigid crank over one cycle, N·m.
 
     Cylinder c's torque is cylinder 1's delayed by its firing angle; the shift is done on
@@ -155,12 +174,11 @@ def engine_torque(crank: Crank, rpm: float) -> dict[str, np.ndarray]:
     firing of up to 16 cylinders at 0.5° sampling).
     """
     one = cylinder_torque(crank, rpm)
-    step = one["theta"][1] - one["theta"][0]
+    step = one.theta[1] - one.theta[0]
     shifts = firing_angles(crank.engine) / step
     if np.any(np.abs(shifts - np.rint(shifts)) > 1e-6):
         raise FetorsionError("firing angles do not fall on the 0.5° sample grid")
-    total = sum(np.roll(one["total"], int(k)) for k in np.rint(shifts))
-    return {"theta": one["theta"], "total": total}
+    return CycleTorque(one.theta, sum(np.roll(one.total, int(k)) for k in np.rint(shifts)))
 
 
 @dataclass(frozen=True)

@@ -397,7 +397,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm
         res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
     period = cycle_angle(crank.engine)
-    Tq = np.array([harmonics(cylinder_torque(crank, n)["total"], period).at(orders) for n in rpm])  # (speeds, orders)
+    Tq = np.array([harmonics(cylinder_torque(crank, n).total, period).at(orders) for n in rpm])  # (speeds, orders)
     phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
     forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
     n = len(res.labels)
@@ -446,7 +446,7 @@ def motored_harmonics(crank, rpm, orders) -> np.ndarray:
     """(speeds, orders) torque harmonics of a cylinder that does not fire (compression and
     expansion only, plus its reciprocating inertia), N·m."""
     period = cycle_angle(crank.engine)
-    return np.array([harmonics(cylinder_torque(crank, n, misfire=True)["total"], period).at(orders) for n in rpm])
+    return np.array([harmonics(cylinder_torque(crank, n, misfire=True).total, period).at(orders) for n in rpm])
 
 
 def misfire_harmonics(crank, setup: ResponseSetup) -> np.ndarray:

@@ -157,7 +157,7 @@ def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPL
     grid = np.linspace(lo, hi, n) if hi > lo else np.array([lo, lo + 1.0])
     period = cycle_angle(crank.engine)
     theta = np.arange(samples) * (period / samples)
-    table = np.array([cylinder_torque(crank, r, theta)[part] for r in grid])
+    table = np.array([getattr(cylinder_torque(crank, r, theta), part) for r in grid])
     return grid, period / samples, table - table.mean(axis=1, keepdims=True)
 
 
