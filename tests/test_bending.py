@@ -146,15 +146,14 @@ def test_a_fatigue_method_comes_from_the_registry(monkeypatch, renault_raw, tmp_
         methods.described_method(crank, "shigley")
     assert methods.described_method(crank) == "iacs-m53"
     third = methods.FatigueMethod("half", "half of M53's safety", False, lambda loads: 1.0,
-                                  lambda r: {"safety": 0.5 * r, "required": 1.0, "location": "x", "where": "x",
-                                             "rpm": 0.0, "passes": False, "yielding": []})
+                                  lambda r: methods.MethodAnswer(0.5 * r, 1.0, "x", "x", 0.0, False))
     monkeypatch.setitem(methods.FATIGUE_METHODS, "half", third)
     raw = {**renault_raw, "limits": {"source": "a test", "fatigue_method": "half"}}
     path = tmp_path / "x.toml"
     path.write_text(toml_text(raw))
     assert methods.described_method(fetorsion.load(path)) == "half"
     c = VerdictConfig("t", (), {"iacs-m53": None, "half": 3.0})
-    assert c.answer("half")["safety"] == 1.5
+    assert c.answer("half").safety == 1.5
 
 
 def test_a_surface_treatment_states_its_factor_and_scales_the_local_strength(tmp_path, renault_raw):

@@ -139,18 +139,21 @@ def test_a_driveline_at_another_damping_ratio_is_built_anew_at_it(condensed_rena
 
 
 def test_the_other_commands_ask_for_the_lumped_driveline_by_name(tmp_path, capsys):
-    # campbell, damper and transient do not take the condensed crank in a network yet: each says so
-    # in one line and names the option that gives the lumped driveline, before any FE work.
+    # campbell and transient do not take the condensed crank in a network yet: each says so in one
+    # line and names the option that gives the lumped driveline, before any FE work; damper takes no
+    # network at all, and says that (issue 56: it sent the user to --source lumped17, which refused).
     from fetorsion.cli.commands import main
 
     text = (ROOT / "examples" / "networks" / "renault21_driveline.toml").read_text()
     text = text.replace("dof = 17", 'dof = "condensed"').replace("../../geometry/renault21.toml",
                                                                   str(ROOT / "geometry" / "renault21.toml"))
     (tmp_path / "n.toml").write_text(text)
-    for command in (["campbell"], ["damper"], ["transient", "--rpm", "2000"]):
+    for command in (["campbell"], ["transient", "--rpm", "2000"]):
         assert main([command[0], str(tmp_path / "n.toml"), *command[1:]]) == 2
         err = capsys.readouterr().err
         assert f"{command[0]}: " in err and "--source lumped17" in err
+    assert main(["damper", str(tmp_path / "n.toml")]) == 2
+    assert "'damper' does not take a network" in capsys.readouterr().err
 
 
 @pytest.mark.slow

@@ -275,8 +275,8 @@ def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
     v = fatigue.verdict
     described = [c for c in v.configs if c.as_described]
     answers = [c.answer(v.method) for c in described]
-    worst = min(answers, key=lambda a: a["safety"] / max(a["required"], required or 0.0))
-    need = max(float(worst["required"]), required or 0.0)
+    worst = min(answers, key=lambda a: a.safety / max(a.required, required or 0.0))
+    need = max(float(worst.required), required or 0.0)
     heat = max((c.damper_power_w for c in described if c.misfire is None), default=0.0)
-    return FEAnswer(float(worst["safety"]), need, outcome.bearings.bearings.first_carrying_torsion(), float(heat),
+    return FEAnswer(float(worst.safety), need, outcome.bearings.bearings.first_carrying_torsion(), float(heat),
                     bool(v.passes))

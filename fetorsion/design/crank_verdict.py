@@ -30,7 +30,8 @@ from .scfset import SCFSet
 from .dampers import DamperResult
 from .m53 import M53Result, m53_utilisation, run_m53_crank
 
-from .methods import DEFAULT_FATIGUE_METHOD, FATIGUE_METHODS, ConfigLoads, fatigue_method, fillet_torque_amplitude  # noqa: F401
+from .methods import (DEFAULT_FATIGUE_METHOD, FATIGUE_METHODS, ConfigLoads, MethodAnswer, answer_dict,  # noqa: F401
+                      fatigue_method, fillet_torque_amplitude)
 #: The places within this factor of the governing safety are the ones the damping searches of the
 #: ``fe`` path read.
 NEAR_GOVERNING = 1.5
@@ -125,16 +126,17 @@ class VerdictConfig:
         """The ``fe`` path's :class:`~fetorsion.design.recovered.RecoveredAssessment`, None where it did not run."""
         return self.results.get("fe")
 
-    def answer(self, method: str) -> dict:
-        """``safety``, ``required``, ``location``, ``rpm`` and ``passes`` of ``method`` ({} where it did not run)."""
+    def answer(self, method: str) -> MethodAnswer | None:
+        """``method``'s answer (governing place and speed, safety against the required; None where it
+        did not run)."""
         r = self.result(method)
-        return {} if r is None else fatigue_method(method).answer(r)
+        return None if r is None else fatigue_method(method).answer(r)
 
     def to_dict(self) -> dict:
         return {"name": self.name, "dampers": [d.name for d in self.dampers], "as_described": self.as_described,
                 "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
-                "iacs-m53": {**self.answer("iacs-m53"), "result": self.m53.to_dict()},
-                "fe": self.answer("fe"), "damper_power_w": self.damper_power_w,
+                "iacs-m53": {**self.answer("iacs-m53").to_dict(), "result": self.m53.to_dict()},
+                "fe": answer_dict(self.answer("fe")), "damper_power_w": self.damper_power_w,
                 "damper_allowed_power_w": self.allowed_power_w, "bending": list(self.bending)}
 
 
@@ -176,7 +178,7 @@ class CrankVerdict:
         """The crank as described passes, firing and in misfire: its own dampers (or none) decide,
         their heat within their ratings where they are rated; the other rows (no damper where it
         has one, the recommended damper) inform."""
-        return all(c.answer(self.method).get("passes", False) and c.heat_ok for c in self.configs if c.as_described)
+        return all(getattr(c.answer(self.method), "passes", False) and c.heat_ok for c in self.configs if c.as_described)
 
     def lines(self) -> list[str]:
         """One verdict line per configuration: method, damping and its source, governing place and
@@ -185,14 +187,14 @@ class CrankVerdict:
         for c in self.configs:
             a, b = c.answer(self.method), c.answer(self.other)
             text = (f"{c.name}: {self.method}, ζ = {self.damping_ratio:.4g} ({self.damping_source}), "
-                    f"{a['location']} ({a['where']}, {a['rpm']:.0f} rpm): safety {a['safety']:.2f} against "
-                    f"{a['required']:.2f}: {'pass' if a['passes'] else 'FAIL'}"
+                    f"{a.location} ({a.where}, {a.rpm:.0f} rpm): safety {a.safety:.2f} against "
+                    f"{a.required:.2f}: {'pass' if a.passes else 'FAIL'}"
                     + ("" if c.heat_ok else f"; the damper heat {c.damper_power_w:.0f} W is over its rating "
                        f"{c.allowed_power_w:.0f} W: FAIL")
-                    + (f" (YIELDING at {', '.join(a['yielding'])}: above R_e, beyond the linear assessment)"
-                       if a.get("yielding") else ""))
+                    + (f" (YIELDING at {', '.join(a.yielding)}: above R_e, beyond the linear assessment)"
+                       if a.yielding else ""))
             if b:
-                text += f"; {self.other} {b['safety']:.2f} against {b['required']:.2f} ({b['location']})"
+                text += f"; {self.other} {b.safety:.2f} against {b.required:.2f} ({b.location})"
             out.append(text)
         return out
 
@@ -202,10 +204,10 @@ class CrankVerdict:
         described = next(c for c in self.configs if c.as_described)
         mine, theirs = described.answer(method), described.answer(self.method)
         if method == self.method:
-            return f"{method} decides: safety {mine['safety']:.2f} against {mine['required']:.2f}"
-        gap = 100 * (mine["safety"] / theirs["safety"] - 1) if mine and theirs else float("nan")
-        return (f"shown beside; {self.method} decides ({theirs['safety']:.2f}); this method's least "
-                f"{mine.get('safety', float('nan')):.2f} is {gap:+.0f} % from it")
+            return f"{method} decides: safety {mine.safety:.2f} against {mine.required:.2f}"
+        gap = 100 * (mine.safety / theirs.safety - 1) if mine and theirs else float("nan")
+        return (f"shown beside; {self.method} decides ({theirs.safety:.2f}); this method's least "
+                f"{mine.safety if mine else float('nan'):.2f} is {gap:+.0f} % from it")
 
     def fatigue_figure(self, config: VerdictConfig | None = None):
         """The deciding method's figure beside the other's, for one configuration (default the
@@ -412,7 +414,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
         notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
     # the damping: the description's ratio decides; the flip ratio and the band are sensitivities
     described = crank.dampers
-    required = configs[0].answer(method)["required"]
+    required = configs[0].answer(method).required
     own = configs[1 if crank.dampers else 0]  # the crank as described, firing
 
     near = None
@@ -434,7 +436,7 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
 
         def at_bending(zb):
             if zb == bending["ratio"]:  # the crank as described: its configuration has them
-                return {"bending_damping_ratio": zb, **{m.name: own.answer(m.name)["safety"] for m in methods}}
+                return {"bending_damping_ratio": zb, **{m.name: own.answer(m.name).safety for m in methods}}
             s = with_damping_ratio(setup, cc, "bearings", ex.modal_damping_ratio, zb)
             return {"bending_damping_ratio": zb, **{m.name: safety_of(m.name, s, described, near) for m in methods}}
 

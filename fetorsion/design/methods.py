@@ -66,11 +66,50 @@ class ConfigLoads:
 
 
 @dataclass(frozen=True)
+class MethodAnswer:
+    """A fatigue method's answer for one configuration: its governing place and speed, and the
+    safety there against the required one.
+
+    Attributes
+    ----------
+    safety, required : float
+        The governing safety factor and the method's required one [-].
+    location : str
+        The governing place (``throws 1, 2: pin oil bore``, ``P4 fillet at x = 369.0 mm``).
+    where : str
+        The section it was read at (M53: the torque's section).
+    rpm : float
+        The governing speed [rpm].
+    passes : bool
+        Every place at or above the required safety, none yielding.
+    yielding : tuple of str
+        The places whose stress is above the yield strength (beyond a linear assessment).
+    """
+
+    safety: float
+    required: float
+    location: str
+    where: str
+    rpm: float
+    passes: bool
+    yielding: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        """The answer as JSON-ready numbers and strings."""
+        return {"safety": self.safety, "required": self.required, "location": self.location, "where": self.where,
+                "rpm": self.rpm, "passes": self.passes, "yielding": list(self.yielding)}
+
+
+def answer_dict(answer: MethodAnswer | None) -> dict:
+    """An answer as JSON ({} where the method did not run)."""
+    return {} if answer is None else answer.to_dict()
+
+
+@dataclass(frozen=True)
 class FatigueMethod:
     """A fatigue method: its ``name``, a one-line ``title``, whether it reads the recovered stress
     zones and the load cycle (``needs_recovery``), ``assess(loads) -> assessment`` and
-    ``answer(assessment) -> dict`` (``safety``, ``required``, ``location``, ``where``, ``rpm``,
-    ``passes``, ``yielding``)."""
+    ``answer(assessment) -> MethodAnswer``."""
 
     name: str
     title: str
@@ -84,7 +123,7 @@ class FatigueMethod:
 
     def governing_safety(self, loads: "ConfigLoads") -> float:
         """The governing safety of ``loads`` by this method (:attr:`safety`, else the whole assessment's)."""
-        return self.safety(loads) if self.safety is not None else self.answer(self.assess(loads))["safety"]
+        return self.safety(loads) if self.safety is not None else self.answer(self.assess(loads)).safety
 
 
 def fillet_torque_amplitude(setup, response, fillets) -> np.ndarray:
@@ -122,10 +161,10 @@ def safety_m53(loads: ConfigLoads) -> float:
     return 1.0 / float(utilisation(torque)[0])
 
 
-def answer_m53(result) -> dict:
+def answer_m53(result) -> MethodAnswer:
     g = result.governing
-    return {"safety": g.safety, "required": g.required, "location": g.name, "where": g.torque_section,
-            "rpm": g.torque_rpm, "passes": result.passes, "yielding": [a.name for a in result.locations if a.yielding]}
+    return MethodAnswer(g.safety, g.required, g.name, g.torque_section, g.torque_rpm, result.passes,
+                        tuple(a.name for a in result.locations if a.yielding))
 
 
 def assess_recovered(loads: ConfigLoads):
@@ -135,14 +174,13 @@ def assess_recovered(loads: ConfigLoads):
     return run_recovered_assessment(loads.crank, loads.cycle, loads.locations, check=loads.check)
 
 
-def answer_recovered(a) -> dict:
+def answer_recovered(a) -> MethodAnswer:
     j = a.governing
     loc = a.worst.locations[j]
-    yielding = [a.labels[k] for k, x in enumerate(a.worst.locations) if x.yield_safety is not None
-                and x.yield_safety < 1.0]
-    return {"safety": float(a.safety[:, j].min()), "required": loc.required, "location": a.labels[j],
-            "where": a.labels[j], "rpm": float(a.worst_rpm[j]), "yielding": yielding,
-            "passes": bool(a.safety.min() >= loc.required and not yielding)}
+    yielding = tuple(a.labels[k] for k, x in enumerate(a.worst.locations) if x.yield_safety is not None
+                     and x.yield_safety < 1.0)
+    return MethodAnswer(float(a.safety[:, j].min()), loc.required, a.labels[j], a.labels[j], float(a.worst_rpm[j]),
+                        bool(a.safety.min() >= loc.required and not yielding), yielding)
 
 
 FATIGUE_METHODS: dict[str, FatigueMethod] = {

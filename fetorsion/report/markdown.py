@@ -393,11 +393,11 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
              f"| required | its governing |", "|---|---|---|---|---|---|---|---|---|"]
     for c in v.configs:
         x, y = c.answer(v.method), c.answer(v.other)
-        lines.append(f"| {c.name} | **{x['safety']:.2f}** | {x['required']:.2f} | {x['location']} ({x['where']}) | "
-                     f"{x['rpm']:.0f} | **{'pass' if x['passes'] and c.heat_ok else 'FAIL'}**"
+        lines.append(f"| {c.name} | **{x.safety:.2f}** | {x.required:.2f} | {x.location} ({x.where}) | "
+                     f"{x.rpm:.0f} | **{'pass' if x.passes and c.heat_ok else 'FAIL'}**"
                      + ("" if c.heat_ok else f" (damper heat {c.damper_power_w:.0f} W over {c.allowed_power_w:.0f} W)")
                      + " | "
-                     + (f"{y['safety']:.2f} | {y['required']:.2f} | {y['location']} |" if y else "- | - | - |"))
+                     + (f"{y.safety:.2f} | {y.required:.2f} | {y.location} |" if y else "- | - | - |"))
     lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
               + f" ({crank.excitation.damping_source}).", ""] + bending_lines(v) + [""]
@@ -645,17 +645,17 @@ def verdict_table(v) -> list[str]:
             f"| {v.other} |", "|---|---|---|---:|---:|---:|---|---:|"]
     for c in v.configs:
         a, b = c.answer(v.method), c.answer(v.other)
-        result = "pass" if a["passes"] else "**FAIL**"
+        result = "pass" if a.passes else "**FAIL**"
         if not c.heat_ok:
             result = f"**FAIL** (damper heat {c.damper_power_w:.0f} W over {c.allowed_power_w:.0f} W)"
-        elif a.get("yielding"):
-            result += f" (YIELDING at {', '.join(a['yielding'])})"
-        other = f"{b['safety']:.2f}" if b else "—"
-        rows.append(f"| {c.name} | {'yes' if c.as_described else 'informs'} | {a['location']} ({a['where']}) "
-                    f"| {a['rpm']:.0f} | {a['safety']:.2f} | {a['required']:.2f} | {result} | {other} |")
+        elif a.yielding:
+            result += f" (YIELDING at {', '.join(a.yielding)})"
+        other = f"{b.safety:.2f}" if b else "—"
+        rows.append(f"| {c.name} | {'yes' if c.as_described else 'informs'} | {a.location} ({a.where}) "
+                    f"| {a.rpm:.0f} | {a.safety:.2f} | {a.required:.2f} | {result} | {other} |")
     return [f"Verdict by {v.method}, ζ = {v.damping_ratio:.4g} ({v.damping_source}); the rows marked 'yes' "
             f"decide, the others inform; {v.other} is shown beside, against its own required "
-            f"{v.configs[0].answer(v.other).get('required', float('nan')):.2f}:", "", *rows, ""]
+            f"{getattr(v.configs[0].answer(v.other), 'required', float('nan')):.2f}:", "", *rows, ""]
 
 
 def report_markdown(run: RunOutcome) -> str:
