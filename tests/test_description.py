@@ -87,6 +87,11 @@ CASES = [
     (lambda r: r.update(uncertainty={"webs.*.thicknes": [18.0, 25.0]}), "uncertainty.webs.*.thicknes",
      "does not name a numeric field"),
     (lambda r: r.update(uncertainty={"pins.*.length": [30.0, 20.0]}), "uncertainty.pins.*.length", "low < high"),
+    # issue 56: the reference values of [meta] are typed and checked when read
+    (lambda r: r.update(meta={"measured_first_torsional_hz": "530 Hz"}), "meta.measured_first_torsional_hz",
+     "must be a frequency in Hz > 0"),
+    (lambda r: r.update(meta={"paper_lumped_first_torsional_hz": {"17": -1.0}}), "meta.paper_lumped_first_torsional_hz",
+     "must be a table of partition = frequency"),
     # issue 56: a count cannot vary between its bounds (it was refused only by the bounds' firing orders)
     (lambda r: r.update(uncertainty={"engine.cylinders": [3, 5]}), "uncertainty.engine.cylinders",
      "'engine.cylinders' is a count (an integer field)"),

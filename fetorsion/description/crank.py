@@ -18,8 +18,8 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .fields import CRANK_SCHEMA
-from .model import (ATTACH_POINTS, Attachment, AttachPoint, Bearings, Crank, Cylinder, Fillets, Material, OilFilm,
-                    OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
+from .model import (ATTACH_POINTS, MEASURED_F1, PAPER_FE_F1, PAPER_LUMPED_F1, Attachment, AttachPoint, Bearings, Crank,
+                    Cylinder, Fillets, Material, OilFilm, OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
 from .reader import Table, finite_number, read_length_unit, read_toml
 from .tables import (read_engine, read_dampers, read_design, read_limits, read_excitation, read_uncertainty, read_distributions,
                      unique_problems, uncertainty_bound_problems)
@@ -248,6 +248,13 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     name = meta.text("name", default=Path(source).stem)
     notes = {k: v for k, v in meta.data.items() if k != "name"}
     meta.used.update(meta.data)
+    for key in (MEASURED_F1, PAPER_FE_F1):
+        if key in notes and not (finite_number(notes[key]) and notes[key] > 0):
+            problems.append(Problem(f"meta.{key}", notes[key], "must be a frequency in Hz > 0"))
+    lumped_refs = notes.get(PAPER_LUMPED_F1, {})
+    if not (isinstance(lumped_refs, dict) and all(finite_number(v) and v > 0 for v in lumped_refs.values())):
+        problems.append(Problem(f"meta.{PAPER_LUMPED_F1}", lumped_refs, "must be a table of partition = frequency "
+                                "in Hz > 0 ({ \"17\" = 535.35 })"))
 
     mt = root.table("material")
     material = Material(

@@ -472,6 +472,18 @@ class DesignSpace:
     resonance_margin: float = 0.0
 
 
+#: The reference values a description's ``[meta]`` may carry (checked when read; their meaning in
+#: docs/description-format.md)
+MEASURED_F1, PAPER_FE_F1, PAPER_LUMPED_F1 = ("measured_first_torsional_hz", "paper_fe_first_torsional_hz",
+                                             "paper_lumped_first_torsional_hz")
+
+
+def reference_value(notes: dict, key: str) -> float | None:
+    """A reference frequency of ``[meta]`` as a float, None where absent."""
+    value = notes.get(key)
+    return None if value is None else float(value)
+
+
 @dataclass(frozen=True)
 class Crank:
     """A complete crankshaft description in SI units.
@@ -498,6 +510,22 @@ class Crank:
     uncertainty: tuple[tuple[str, tuple[tuple[str, float, float], ...]], ...] = ()
     excitation: Excitation | None = None
     raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    @property
+    def measured_f1_hz(self) -> float | None:
+        """``[meta] measured_first_torsional_hz``: the crank's measured free-free first torsional
+        frequency, Hz (checked a positive number when read), or None."""
+        return reference_value(self.notes, MEASURED_F1)
+
+    @property
+    def paper_fe_f1_hz(self) -> float | None:
+        """``[meta] paper_fe_first_torsional_hz``: a published FE first torsional frequency, Hz, or None."""
+        return reference_value(self.notes, PAPER_FE_F1)
+
+    @property
+    def paper_lumped_f1_hz(self) -> dict[str, float]:
+        """``[meta] paper_lumped_first_torsional_hz``: published lumped f1 by partition (``"17"``), Hz."""
+        return dict(self.notes.get(PAPER_LUMPED_F1, {}))
     dampers: tuple[Damper, ...] = ()
     limits: Limits | None = None
     bearings: Bearings | None = None

@@ -44,8 +44,8 @@ def lumped_section(crank: Crank, outcome: LumpedOutcome | ChainOutcome) -> list[
                 f"{res.dof} inertias, free-free.", "", "```", res.table(), "```", "",
                 f"Mode shapes, unit twist at the first station: ![]({outcome.image})", ""]
     table, skipped = outcome.table, outcome.skipped
-    measured = crank.notes.get("measured_first_torsional_hz")
-    paper = crank.notes.get("paper_lumped_first_torsional_hz", {})
+    measured = crank.measured_f1_hz
+    paper = crank.paper_lumped_f1_hz
     lines = ["## Lumped models (BICERA-style equivalent lengths)", "",
              "First torsional frequency f1 (Hz), free-free; error against the measurement where there is one.", ""]
     lines += ["| model | " + " | ".join(table) + (" | paper |" if paper else " |"),
@@ -68,8 +68,8 @@ def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     sicn = f"{quality.min_sicn:.2g}" if quality else "n/a"
     if quality and quality.straightened:
         sicn += f" ({quality.straightened} folded elements straightened)"
-    measured = crank.notes.get("measured_first_torsional_hz")
-    paper_fe = crank.notes.get("paper_fe_first_torsional_hz")
+    measured = crank.measured_f1_hz
+    paper_fe = crank.paper_fe_f1_hz
     t = res.timings_s
     step = getattr(crank, "solid_step", None)
     solid = (f"Solid: the CAD solid `{Path(step).name}` ([solid] step; its header's unit, crank axis x, cut into "
@@ -139,7 +139,7 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
                     f"at {film.speed * 30 / math.pi:.0f} rpm, viscosity {film.viscosity:g} Pa s, "
                     "eccentricity ratios " + ", ".join(f"{e:.2f}" for e in film.eccentricity)
                     + ", damping " + ", ".join(f"{c:.3g}" for c in b.radial_damping) + " N s/m")
-    measured = crank.notes.get("measured_first_torsional_hz")
+    measured = crank.measured_f1_hz
     lines = ["## The crank in its bearings (condensed 3D FE, torsion and bending coupled)", "",
              f"The FE crank of the previous section condensed (Craig–Bampton, distributing couplings) to "
              f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced.size} DOF from {cc.full_dofs} "
@@ -540,7 +540,7 @@ def summary_lines(run: RunOutcome) -> list[str]:
     measurement with the reconstruction's band, f1 in the engine, the worst location and its
     margin, the recommended damper, the barred ranges."""
     crank, out = run.crank, []
-    measured = getattr(crank, "notes", {}).get("measured_first_torsional_hz")
+    measured = getattr(crank, "measured_f1_hz", None)  # a chain file has none
     fe, bearings, sens, ver = run.fe, run.bearings, run.sensitivity, run.verdict
     if fe is not None:
         f1 = fe.modal.first_torsional()

@@ -185,6 +185,6 @@ def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str =
         (lower if f_lo <= f_hi else upper).update(lows)
         (upper if f_lo <= f_hi else lower).update(highs)
     band = (f1(with_values(crank, lower)), f1(with_values(crank, upper)))
-    measured = crank.notes.get("measured_first_torsional_hz")
+    measured = getattr(crank, "measured_f1_hz", None)  # a chain file has none
     return SensitivityResult(crank.name, f"lumped {dof} DOF, {stiffness}", nominal, rows, band,
                              float(measured) if measured is not None else None)

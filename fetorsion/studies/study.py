@@ -319,7 +319,7 @@ def run_crank_study(crank, method: str = "montecarlo", samples: int | None = Non
     m = make_model(crank, model, tuple(outputs), **options)
     chosen, held = study_inputs(crank, inputs, FE_LEFT_OUT if model == "fe" else ())
     samples = DEFAULT_STUDY_SAMPLES[method] if samples is None else samples
-    measured = crank.notes.get("measured_first_torsional_hz")
+    measured = getattr(crank, "measured_f1_hz", None)
     common = dict(seed=seed, store=store, name=crank.name, measured_hz=float(measured) if measured else None,
                   held=held, **kwargs)
     if client is not None:  # False: here, serially

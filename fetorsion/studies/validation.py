@@ -104,7 +104,7 @@ def run_validation(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, details: 
     """
     from ..fe.crankfe import run_modal
 
-    measured = crank.notes.get("measured_first_torsional_hz")
+    measured = crank.measured_f1_hz
     if measured is None or not crank.uncertainty:
         raise FetorsionError(f"{crank.source or crank.name}: validation needs [meta] measured_first_torsional_hz "
                              "and an [uncertainty] table")
