@@ -284,7 +284,7 @@ def condensed_hammer_test(tmp_path):
     from test_condensed_store import _plain_renault
 
     from fetorsion.cli.fe import condensed
-    from fetorsion.studies.comparison import model_receptances
+    from fetorsion.studies.modelfrf import model_receptances
 
     src = _plain_renault(tmp_path)
     crank = fetorsion.load(src)

@@ -94,7 +94,7 @@ def test_the_overlays_are_the_models_frfs_at_the_measured_stations(compared):
     and the solve's round-off (rtol 1e-6 where |H| is not near an antiresonance's zero)."""
     import fetorsion
     from fetorsion.measured import read_uff58
-    from fetorsion.studies.comparison import frf_overlays
+    from fetorsion.studies.modelfrf import frf_overlays
 
     _, _, tmp, H = compared
     frfs = read_uff58(tmp / "chain_frf.uff")
@@ -110,7 +110,7 @@ def test_a_mobility_is_set_beside_the_models_mobility(tmp_path):
     """A file of mobilities (record 9: velocity, rad/s per N m): the model's receptance times iω."""
     import fetorsion
     from fetorsion.measured import read_uff58
-    from fetorsion.studies.comparison import frf_overlays
+    from fetorsion.studies.modelfrf import frf_overlays
 
     H, _ = modal_receptances()
     Y = H * 2j * np.pi * HZ

@@ -32,23 +32,13 @@ import numpy as np
 from ..description.defaults import LUMPED17
 from ..errors import FetorsionError
 from ..measured.dataset import MeasuredData
+from .modelfrf import frf_overlays, model_receptances
+from .ordermaps import Waterfall, is_steady, model_crossings
 
 #: The models a measurement is set beside (see the module docstring).
 SOURCES = ("condensed", LUMPED17, "fe")
 #: Free-free modes of the condensed crank paired with a modal test's: the lowest this many.
 CONDENSED_MODES = 20
-#: Crossings a waterfall's summary line quotes (those the measurement responds to most).
-WATERFALL_LINES = 4
-#: A record whose blocks' mean speeds lie within this fraction of each other is steady: one speed
-STEADY_SPREAD = 0.02
-
-
-def is_steady(rpm) -> bool:
-    """Whether a record's block speeds are one speed (within :data:`STEADY_SPREAD`)."""
-    rpm = np.asarray(rpm, float)
-    return rpm.size >= 2 and rpm.max() <= (1 + STEADY_SPREAD) * rpm.min()
-
-
 @dataclass
 class FrequencyComparison:
     """Measured natural frequencies, each with its nearest model frequency.
@@ -280,100 +270,6 @@ class OrderCutComparison:
 PHASE_REFERENCE = ("phases (deg): arg c_k of the cosine series psi(theta) = Re sum_k c_k exp(i k theta) of the "
                    "vibration angle, theta the shaft's angle from the record's tooth 0 (a 60-2 wheel: the first "
                    "tooth after its gap)")
-
-
-@dataclass
-class Waterfall:
-    """A torsiograph track's order map and the model's crossings on it.
-
-    Attributes
-    ----------
-    name : str
-        The file and channel.
-    track : OrderTrack
-        Every tracked order per block (:class:`~fetorsion.measured.torsiograph.OrderTrack`).
-    model_hz : ndarray
-        The model's natural frequencies, Hz.
-    crossings : list of (int, float, float)
-        (mode number from 1, order, rpm) of every crossing inside the track's speeds and orders.
-    """
-
-    name: str
-    track: object
-    model_hz: np.ndarray
-    crossings: list
-
-    def to_dict(self) -> dict:
-        return {"name": self.name, "track": self.track.to_dict(), "model_hz": self.model_hz.tolist(),
-                "crossings": [{"mode": m, "order": k, "rpm": n} for m, k, n in self.crossings]}
-
-    def lines(self, count: int = WATERFALL_LINES) -> list[str]:
-        """One line: how many crossings, and the ``count`` the measurement responds to most."""
-        near = []
-        for m, k, n in self.crossings:
-            b = int(np.argmin(np.abs(self.track.rpm - n)))
-            a = float(np.degrees(abs(self.track.at(k)[b])))
-            near.append((a, f"mode {m} x order {k:g} at {n:.0f} rpm (measured {a:.3g} deg at {self.track.rpm[b]:.0f} rpm)"))
-        near = [text for _, text in sorted(near, key=lambda x: -x[0])[:count]]
-        return [f"- waterfall {self.name}: {len(self.crossings)} model crossing(s) in the measured speeds and orders"
-                + ("; the strongest measured: " + "; ".join(near) if near else "")]
-
-    def plot(self, ax, steady_cuts=()):
-        """A run-up's speed-order colour map (amplitude in deg, logarithmic colours) with the
-        model's crossings marked; a steady record's order spectrum instead (there is no speed axis
-        to draw a map over), each order's mean amplitude over the blocks with its spread, and the
-        model's amplitude at that speed for the orders compared (``steady_cuts``)."""
-        if is_steady(self.track.rpm):
-            return self._spectrum(ax, steady_cuts)
-        from matplotlib.colors import LogNorm
-
-        order = np.argsort(self.track.rpm)
-        amp = np.degrees(np.abs(self.track.amplitudes[order]))
-        positive = amp[amp > 0]
-        low = max(positive.max() * 1e-4, positive.min()) if positive.size else 1e-12
-        mesh = ax.pcolormesh(self.track.rpm[order], self.track.orders, np.maximum(amp, low).T, shading="nearest",
-                             norm=LogNorm(vmin=low, vmax=max(low * 10, amp.max())), cmap="viridis")
-        ax.figure.colorbar(mesh, ax=ax, label="vibration [deg]")
-        for m, k, n in self.crossings:
-            ax.plot(n, k, "o", mfc="none", mec="w", ms=7)
-            ax.annotate(f"{m}", (n, k), color="w", fontsize=7, xytext=(4, 3), textcoords="offset points")
-        ax.set_xlabel("mean speed [rpm]")
-        ax.set_ylabel("order")
-        ax.set_title(f"{self.name}: speed-order map, model crossings (o: mode number)", fontsize=9, wrap=True)
-        return ax
-
-    def _spectrum(self, ax, steady_cuts):
-        amp = np.degrees(np.abs(self.track.amplitudes))
-        mean, low, high = amp.mean(axis=0), amp.min(axis=0), amp.max(axis=0)
-        floor = max(mean.max() * 1e-4, 1e-12)
-        orders = self.track.orders
-        ax.vlines(orders, floor, np.maximum(mean, floor), color="C0", lw=1.5, label="measured (mean over the blocks)")
-        ax.errorbar(orders, np.maximum(mean, floor), yerr=[mean - np.maximum(low, floor), high - mean], fmt="none",
-                    ecolor="0.4", lw=0.8, capsize=2, label="spread over the blocks")
-        for j, c in enumerate(steady_cuts):
-            ax.plot(c.order, c.steady()["model_deg"], "D", color="C3", ms=6, label="model at this speed" if j == 0
-                    else None)
-        ax.set_yscale("log")
-        ax.set_ylim(bottom=floor)
-        ax.set_xlabel("order")
-        ax.set_ylabel("vibration [deg]")
-        ax.set_title(f"{self.name}: order spectrum, steady at {self.track.rpm.mean():.0f} rpm over "
-                     f"{self.track.rpm.size} blocks", fontsize=9, wrap=True)
-        ax.legend(fontsize=7)
-        return ax
-
-
-def model_crossings(model_hz, orders, rpm) -> list:
-    """(mode from 1, order, rpm) where each natural frequency meets each order, 60 f / k rpm, kept
-    inside the span of ``rpm``."""
-    lo, hi = float(np.min(rpm)), float(np.max(rpm))
-    out = []
-    for m, f in enumerate(np.asarray(model_hz, float), start=1):
-        for k in np.asarray(orders, float):
-            n = 60.0 * f / k
-            if lo <= n <= hi:
-                out.append((m, float(k), float(n)))
-    return out
 
 
 def waterfall(name: str, track, crank, source: str = LUMPED17, condensed=None) -> Waterfall:
@@ -712,130 +608,6 @@ def gap_line(lumped_cut: OrderCutComparison, engine_cut: OrderCutComparison) -> 
     return (f"(lumped answer; the condensed crank in its bearings, stored, gives order {engine_cut.order:g} at "
             f"{engine_cut.station} a peak of {theirs['model_peak_deg']:.4g} deg at {theirs['model_peak_rpm']:.0f} rpm: "
             f"the lumped one is {100 * (mine['model_peak_deg'] / theirs['model_peak_deg'] - 1):+.1f} % from it)")
-
-
-def free_model(crank, damping_ratio: float | None = None, condensed=None):
-    """The free-free model's (K, M, C) and the matrix row of each of its stations (1-based
-    station n is row ``rows[n - 1]``: a chain's stations; the condensed crank's masters' θx),
-    with the description's modal damping ratio on every elastic mode (and a chain file's stated
-    dampers and loss factors, in a complex K)."""
-    from ..description.defaults import DEFAULT_DAMPING_RATIO
-
-    zeta = damping_ratio if damping_ratio is not None else getattr(getattr(crank, "excitation", None),
-                                                                   "modal_damping_ratio", DEFAULT_DAMPING_RATIO)
-    if condensed is not None:
-        from ..response.coupled import supported_damping
-
-        K, M, C, keep = supported_damping(condensed, "free", zeta)
-        rows = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in condensed.labels]
-        return K, M, C, rows
-    from ..description.model import Chain
-    from ..lumped_model.lumped import chain_matrices, lumped, stated_damping
-    from ..modes import modal_damping_matrix
-
-    res = lumped(crank, 17)
-    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
-    C = modal_damping_matrix(M, K, zeta)
-    if isinstance(crank, Chain):  # a chain file's own dampers and loss factors, as its forced response has them
-        C_stated, H_loss = stated_damping(crank, res)
-        C, K = C + C_stated, K + 1j * H_loss
-    return K, M, C, list(range(len(M)))
-
-
-def free_receptances(K, M, C, drive: int, read, frequency_hz) -> np.ndarray:
-    """(len(read), frequencies) complex: the rows ``read`` of (K − ω²M + iωC)⁻¹ e_drive, NaN at
-    0 Hz (a free body has no static receptance)."""
-    w = 2 * np.pi * np.asarray(frequency_hz, float)
-    w = np.where(w > 0, w, np.nan)
-    f = np.zeros(len(M))
-    f[drive] = 1.0
-    H = np.empty((len(w), len(M)), complex)
-    for a in range(0, len(w), 100):  # blocks: (100, n, n) complex stays small for a few hundred DOF
-        b = slice(a, a + 100)
-        Z = K[None] - w[b, None, None] ** 2 * M[None] + 1j * w[b, None, None] * C[None]
-        H[b] = np.linalg.solve(np.nan_to_num(Z), np.broadcast_to(f, (Z.shape[0], len(M)))[..., None])[..., 0]
-    H[~np.isfinite(w)] = np.nan
-    return H[:, list(read)].T
-
-
-def model_receptances(crank, frequency_hz, stations=(0, -1), damping_ratio: float | None = None,
-                      condensed=None) -> np.ndarray:
-    """The free-free model's receptances (rad/N·m) at the pulley and flywheel ends to a torque at
-    the pulley end, with the description's modal damping ratio on every elastic mode (and a chain
-    file's stated dampers and loss factors): (2, frequencies) complex. The lumped chain's
-    (``stations``: 0-based chain stations), or, given ``condensed``, the condensed crank's (its
-    front and rear masters' θx)."""
-    K, M, C, rows = free_model(crank, damping_ratio, condensed)
-    read = [rows[0], rows[-1]] if condensed is not None else [rows[s] for s in stations]
-    return free_receptances(K, M, C, rows[0], read, frequency_hz)
-
-
-#: An FRF's form -> the power of iω that takes a receptance to it
-FORM_POWERS = {"receptance": 0, "mobility": 1, "accelerance": 2}
-
-
-@dataclass
-class FrfOverlay:
-    """A measured FRF and the model's at the same station, to the same reference, in the same form.
-
-    Attributes
-    ----------
-    station : str
-        ``node:direction`` of the response (node n the model's n-th station).
-    frequency_hz : ndarray
-    measured, model : ndarray, complex
-        In SI, ``unit`` per ``reference_unit``.
-    form : str
-        ``'receptance'``, ``'mobility'`` or ``'accelerance'``.
-    """
-
-    station: str
-    frequency_hz: np.ndarray
-    measured: np.ndarray
-    model: np.ndarray
-    form: str
-    unit: str
-    reference_unit: str
-
-    def plot(self, magnitude_ax, phase_ax, modes_hz=()):
-        """Magnitude (log) and phase against frequency, measured as dots, the model as a line."""
-        for ax in (magnitude_ax, phase_ax):
-            for f in modes_hz:
-                ax.axvline(f, color="0.85", lw=0.8, zorder=0)
-        magnitude_ax.semilogy(self.frequency_hz, np.abs(self.measured), ".", ms=2, color="C0", label="measured")
-        magnitude_ax.semilogy(self.frequency_hz, np.abs(self.model), "-", lw=1.2, color="C3", label="model")
-        magnitude_ax.set_ylabel(f"|{self.form}| [{self.unit}/{self.reference_unit}]", fontsize=8)
-        magnitude_ax.set_title(f"FRF at {self.station}: magnitude", fontsize=9)
-        magnitude_ax.legend(fontsize=7)
-        phase_ax.plot(self.frequency_hz, np.degrees(np.angle(self.measured)), ".", ms=2, color="C0")
-        phase_ax.plot(self.frequency_hz, np.degrees(np.angle(self.model)), "-", lw=1.2, color="C3")
-        phase_ax.set_ylim(-190, 190)
-        phase_ax.set_yticks([-180, -90, 0, 90, 180])
-        phase_ax.set_ylabel("phase [deg]", fontsize=8)
-        phase_ax.set_title(f"FRF at {self.station}: phase", fontsize=9)
-        for ax in (magnitude_ax, phase_ax):
-            ax.set_xlabel("frequency [Hz]", fontsize=8)
-
-
-def frf_overlays(crank, frfs, source: str = LUMPED17, condensed=None) -> tuple[list, str]:
-    """Each measured FRF with the free-free model's at its station (node n the model's n-th
-    station, as :func:`paired_mac` reads them) to the measured reference, in the measured form
-    (the model's receptance times (iω)^p), and why any is left out."""
-    from ..measured.modal import frf_matrix
-
-    frequency, _, stations, form, _ = frf_matrix(frfs)
-    K, M, C, rows = free_model(crank, condensed=condensed if source != LUMPED17 else None)
-    reference = frfs[0].reference
-    if not 1 <= reference[0] <= len(rows):
-        return [], f"the FRFs' reference node {reference[0]} is not one of the model's {len(rows)} stations"
-    nodes = [n for n, _ in stations]
-    inside = [k for k, n in enumerate(nodes) if 1 <= n <= len(rows)]
-    H = free_receptances(K, M, C, rows[reference[0] - 1], [rows[nodes[k] - 1] for k in inside], frequency)
-    H = H * (1j * 2 * np.pi * np.asarray(frequency)) ** FORM_POWERS[form]
-    out = [FrfOverlay(f"{nodes[k]}:{stations[k][1]}", np.asarray(frequency), np.asarray(frfs[k].ordinate), h,
-                      form, frfs[k].unit, frfs[k].reference_unit) for k, h in zip(inside, H)]
-    left = [f"{n}:{d}" for k, (n, d) in enumerate(stations) if k not in inside]
-    return out, (f"no model station for {', '.join(left)}" if left else "")
 
 
 def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = LUMPED17,
