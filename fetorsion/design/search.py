@@ -31,7 +31,7 @@ import scipy.optimize
 from ..description.model import Crank, Damper
 from ..errors import FetorsionError
 from ..solid.outline import mass_properties
-from ..description.edit import field_values, with_values
+from ..description.edit import edit_toml_values, field_values, with_values
 from .scfset import SCFSet
 
 #: Differential evolution's generations by default.
@@ -541,7 +541,6 @@ def _solid_path_absolute(text: str, step: str) -> str:
 def designed_text(text: str, crank: Crank, best: Candidate) -> str:
     """The description ``text`` with the chosen design: each moved input set (every entry a ``*``
     path names) and commented, and the added damper as a ``[[dampers]]`` table."""
-    from ..studies.calibration import edit_toml_values
 
     changes = {}
     for path, value in best.values.items():

@@ -66,7 +66,7 @@ from ..errors import FetorsionError, ParameterError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..webs.methods import WEB_METHODS
 from .sampling import study_inputs
-from ..description.edit import field_values, with_values
+from ..description.edit import edit_toml_values, field_values, with_values
 
 METHODS = ("lsq", "bayes", "both")
 #: Web-stiffness methods a calibration can run: not the static FE of each throw (``fe``,
@@ -942,74 +942,6 @@ def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: flo
 
 # ---------------------------------------------------------------------------
 # The calibrated description: a new file, every change commented
-
-
-def _toml_float(x: float) -> str:
-    text = repr(float(x))
-    return text if any(c in text for c in ".eE") or text in ("inf", "nan") else text + ".0"
-
-
-def _table_path(header: str, counts: dict) -> str:
-    """The concrete path of a table header line (``[[webs]]`` -> ``webs.3`` for the third)."""
-    if header.startswith("[["):
-        name = header[2:header.index("]]")].strip()
-        counts[name] = counts.get(name, 0) + 1
-        return f"{name}.{counts[name]}"
-    return header[1:header.index("]")].strip()
-
-
-def edit_toml_values(text: str, changes: dict[str, float], note: str) -> str:
-    """``text`` (a TOML description) with each concrete field (``webs.3.thickness``) set to its
-    value, line by line, each changed line commented with its old value and ``note``.
-
-    Only plain ``key = value`` lines under ``[table]`` / ``[[array]]`` headers are edited; a field
-    the file does not spell that way is refused (one message naming it)."""
-    import tomllib
-
-    lines = text.splitlines(keepends=True)
-    counts: dict = {}
-    table = ""
-    found = set()
-    # a list's entries (``chain.inertias_kgm2.3``): the list's line is edited, entry by entry
-    entries: dict[str, dict[int, float]] = {}
-    for p, v in changes.items():
-        head, _, last = p.rpartition(".")
-        if last.isdigit():
-            entries.setdefault(head, {})[int(last) - 1] = v
-    for k, line in enumerate(lines):
-        stripped = line.strip()
-        if stripped.startswith("["):
-            table = _table_path(stripped, counts)
-            continue
-        if "=" not in stripped or stripped.startswith("#"):
-            continue
-        key, _, rest = stripped.partition("=")
-        key = key.strip().strip('"')
-        path = f"{table}.{key}" if table else key
-        if path not in changes and path not in entries:
-            continue
-        old, _, comment = rest.partition("#")
-        eol = "\n" if line.endswith("\n") else ""
-        indent = line[: len(line) - len(line.lstrip())]
-        was = f"; before: {comment.strip()}" if comment.strip() else ""
-        if path in entries:
-            try:
-                values = tomllib.loads(f"v = {old.strip()}")["v"]
-            except tomllib.TOMLDecodeError:
-                continue  # a list over several lines: refused below by name
-            for i, v in entries[path].items():
-                values[i] = v
-                found.add(f"{path}.{i + 1}")
-            new = "[" + ", ".join(_toml_float(v) if i in entries[path] else repr(v) for i, v in enumerate(values)) + "]"
-        else:
-            new = _toml_float(changes[path])
-            found.add(path)
-        lines[k] = f"{indent}{key} = {new}  # was {old.strip()}: {note}{was}{eol}"
-    missing = [p for p in changes if p not in found]
-    if missing:
-        raise FetorsionError(f"calibrate: {missing[0]} is not a plain 'key = value' line of the description; "
-                             "the calibrated file cannot be written by editing it")
-    return "".join(lines)
 
 
 def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str, float]]:
