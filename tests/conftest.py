@@ -103,3 +103,27 @@ def toml_text(data: dict) -> str:
         else:
             lines.insert(0, f'"{key}" = {value(v)}')
     return "\n".join(lines) + "\n"
+
+
+@pytest.fixture(scope="session")
+def site(tmp_path_factory):
+    """The documentation site built once for the session (every gallery example run in it, with
+    the arguments of docs/_ext/gallery_argv.py): ``html`` its folder, ``pictures`` where the
+    examples that write pictures wrote them. tests/test_docs.py reads the pages;
+    tests/test_examples.py what the examples printed (a run of its own would repeat the gallery's)."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+    from types import SimpleNamespace
+
+    # sphinx-gallery skips an example whose source it ran before: remove its output so that every
+    # example runs in this build, as on a clean clone
+    shutil.rmtree(ROOT / "docs/auto_examples", ignore_errors=True)
+    pictures = tmp_path_factory.mktemp("gallery")
+    env = dict(os.environ, FETORSION_DOCS_PYTHON=sys.executable, FETORSION_GALLERY_OUT=str(pictures))
+    # -W: any warning fails the build; -E: read every page again, so no warning hides in a cache
+    p = subprocess.run(["bash", "scripts/docs.sh", "-W", "-E"], cwd=ROOT, env=env, capture_output=True, text=True,
+                       timeout=1200)
+    assert p.returncode == 0, (p.stdout + p.stderr)[-4000:]
+    return SimpleNamespace(html=ROOT / "docs/_build/html", pictures=pictures, examples=ROOT / "docs/auto_examples")

@@ -528,7 +528,8 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameter
                           "full pin forces", f, orders, (lo, hi), zeta, crossings,
                           severity_unit="MPa: peak nominal equivalent stress sqrt(sigma_b^2 + 3 tau^2) at the worst "
                                         "section, resonant, one mode",
-                          major=tuple(float(q) for q in major_orders(crank.engine) if np.any(np.isclose(orders, q))))
+                          major=() if getattr(crank, "engine", None) is None else  # forces given without an engine
+                          tuple(float(q) for q in major_orders(crank.engine) if np.any(np.isclose(orders, q))))
 
 
 def _section_parts(cc: CondensedCrank):
