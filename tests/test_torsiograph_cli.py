@@ -328,3 +328,25 @@ def test_a_steady_record_is_drawn_as_an_order_spectrum_not_a_map(tmp_path, capsy
     diamonds = [line.get_xydata()[0] for line in ax.lines if line.get_marker() == "D"]
     assert sorted(x for x, _ in diamonds) == [1.5, 2.0, 4.0]
     plt.close(fig)
+
+
+@pytest.mark.parametrize("swap", [False, True])
+def test_the_issues_two_wheels_need_no_option_but_the_files_teeth_and_definition(tmp_path, capsys, engine, swap):
+    """Issue 54's done-when: one file per wheel and a calibration file per wheel (their wheels named
+    by '# channel' lines, their time unit by the column's name), given in either order, with no
+    option but the files, --teeth, --calibration and --order-definition time (and the model, the
+    lumped chain, to spare the FE): the default orders are the engine's major orders and the
+    record's largest others, so every order of both wheels (1.5, 2, 4 on the pulley) is compared,
+    each within 1 % and 1° of the truth."""
+    rec = [write_one(tmp_path / f"{w}.csv", engine["edges"][w], w) for w in TEETH]
+    cal = [write_one(tmp_path / f"{w}_calibration.csv", engine["calibration"][w], w) for w in TEETH]
+    path = tmp_path / "c.json"
+    assert main(["compare", str(GEOMETRY / "renault21.toml"), *rec, "--teeth", "pulley=60", "flywheel=132",
+                 "--calibration", *(cal[::-1] if swap else cal), "--order-definition", "time",
+                 "--source", "lumped17", "--json", str(path)]) == 0
+    out = json.loads(path.read_text())
+    for wheel, terms in (("pulley", PULLEY), ("flywheel", FLYWHEEL)):
+        compared = {c["order"] for c in out["order_cuts"] if f": {wheel}," in c["name"]}
+        for a, k, phi in terms:
+            assert k in compared, (wheel, k, sorted(compared))
+            assert_orders(track(out, wheel, k), expected(a, phi), f"{wheel} order {k}")

@@ -11,8 +11,8 @@ from pathlib import Path
 from ..description.defaults import LUMPED17
 from ..measured.dataset import MeasuredData
 from ..measured.uff import UnstatedUnit
-from ..measured.reading import (TRACKED_MAJOR_ORDERS, UFF_SUFFIXES, MeasuredOptions, measured_kind, read_measured,
-                                tracked_orders)
+from ..measured.reading import (LARGEST_FOUND, TRACKED_MAJOR_ORDERS, UFF_SUFFIXES, MeasuredOptions, measured_kind,
+                                read_measured, tracked_orders)
 from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
                      save_plot)
 from .options import integer, real
@@ -181,7 +181,8 @@ def add_measured_options(p) -> None:
                         "fall on its bins)")
     p.add_argument("--track-orders", type=real(0.0), nargs="+", metavar="K",
                    help=f"orders of a torsiograph's recording to compare (default: the engine's lowest "
-                        f"{TRACKED_MAJOR_ORDERS} major orders, an in-line four's 2, 4, 6; order 2 without an engine)")
+                        f"{TRACKED_MAJOR_ORDERS} major orders, an in-line four's 2, 4, 6, order 2 without an engine, "
+                        f"and the record's {LARGEST_FOUND} largest other orders)")
 
 
 def measured_of(args, paths, unit=None, order=None, crank=None) -> MeasuredData:
@@ -200,6 +201,7 @@ def measured_of(args, paths, unit=None, order=None, crank=None) -> MeasuredData:
     options = MeasuredOptions(
         band=None if args.band is None else tuple(args.band), unit=unit, order=order, teeth=teeth_of(args.teeth),
         revolutions=args.revolutions, track_orders=tuple(args.track_orders or tracked_orders(crank)),
+        largest_orders=0 if args.track_orders else LARGEST_FOUND,
         calibration=tuple(args.calibration), twist_of=None if args.twist is None else tuple(args.twist),
         stations=stations, time_unit=args.time_unit, frf_units=frf_units(args.frf_unit), frf_type=args.frf_type,
         definition=args.order_definition)

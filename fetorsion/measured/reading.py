@@ -26,6 +26,9 @@ UFF_SUFFIXES = (".uff", ".unv", ".uf")
 TRACKED_MAJOR_ORDERS = 3
 #: The order a recording is compared in when the description has no engine.
 FALLBACK_ORDER = 2.0
+#: A recording compared in its default orders is compared too in its this many largest orders
+#: (mean amplitude over its blocks) that are not among them: what the record says most of
+LARGEST_FOUND = 3
 
 
 @dataclass(frozen=True)
@@ -44,6 +47,9 @@ class MeasuredOptions:
         Revolutions per block of order tracking.
     track_orders : tuple of float
         Orders of a torsiograph's recording to compare.
+    largest_orders : int
+        How many of each recording's largest orders (mean amplitude over its blocks) to compare
+        besides ``track_orders`` (the default orders; 0 where the orders were asked for).
     calibration : tuple of str
         Tooth-edge files of calibration runs, matched to records by channel name.
     twist_of : (str, str), optional
@@ -67,6 +73,7 @@ class MeasuredOptions:
     teeth: str | dict[str, str] | None = None
     revolutions: int = 2
     track_orders: tuple[float, ...] = (FALLBACK_ORDER,)
+    largest_orders: int = 0
     calibration: tuple[str, ...] = ()
     twist_of: tuple[str, str] | None = None
     stations: dict[str, str] = field(default_factory=dict)
@@ -176,6 +183,17 @@ def _calibrations(options: MeasuredOptions) -> tuple[dict, dict]:
     return calibrated, calibrated_from
 
 
+def largest_orders(track, known, count: int) -> tuple[float, ...]:
+    """The ``count`` orders of ``track`` (an :class:`~fetorsion.measured.torsiograph.OrderTrack`) with
+    the largest mean amplitude over its blocks, ``known`` orders left out, largest first."""
+    if count <= 0:
+        return ()
+    mean = np.abs(np.asarray(track.amplitudes)).mean(axis=0)
+    fresh = [j for j in np.argsort(mean)[::-1]
+             if track.orders[j] > 0 and not np.any(np.isclose(track.orders[j], known, rtol=0, atol=1e-9))]
+    return tuple(float(track.orders[j]) for j in fresh[:count])
+
+
 def _tracked(path, edges: dict, calibrated: dict, options: MeasuredOptions):
     """A tooth-edge record's order cuts (each with where it was measured), its order maps and
     its reading's notes."""
@@ -209,7 +227,7 @@ def _tracked(path, edges: dict, calibrated: dict, options: MeasuredOptions):
             station = (tuple(x[0] for x in ends), any(x[1] for x in ends))
         else:
             station = channel_station(channel, stations)
-        for k in options.track_orders:
+        for k in options.track_orders + largest_orders(track, options.track_orders, options.largest_orders):
             cut = track_order_cut(track, k, name)
             cuts.append(cut)
             where[cut.label] = station
