@@ -514,7 +514,9 @@ def test_a_cad_cranks_design_objectives_are_its_solids(written, tmp_path):
 @pytest.mark.fe
 def test_an_oval_webbed_undercut_crank_runs_end_to_end(oval, tmp_path):
     """The oval-webbed, chamfered, lightened crank with an undercut of three tori at every end
-    (issue 44's test crank) through every step of `fetorsion run` at 20 mm: its report and
+    (issue 44's test crank) through every step of `fetorsion run` at 20 mm but the background
+    studies (they vary the described dimensions, whose variants are built, not cut from the
+    solid: nothing of the CAD path is in them; 440 s without them, quiet, 2 cores): its report and
     results.json list the 16 fillets (3 faces, 2 mm, flagged against the described 2.5 mm) and the
     fatigue verdict; its FE f1 at 20 and 14 mm agree within 0.5 % (the issue's convergence bound);
     its 17-DOF chain with `fe` web stiffness sits as far from its FE f1 in bearings as the built
@@ -530,7 +532,7 @@ def test_an_oval_webbed_undercut_crank_runs_end_to_end(oval, tmp_path):
     options = RunOptions(mesh_size=0.02, html=False)
     built = run(RENAULT, tmp_path / "built", steps=tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings")),
                 options=options)
-    out = run(src, tmp_path / "oval", options=options)
+    out = run(src, tmp_path / "oval", steps=tuple(s for s in DEFAULT_STEPS if s[1] != "sensitivity"), options=options)
     results = json.loads((tmp_path / "oval" / "results.json").read_text())
     assert [f["faces"] for f in results["solid"]["fillets"]] == [3] * 16
     assert all(f["radius"] == pytest.approx(2e-3, rel=1e-9) and f["differs"] for f in results["solid"]["fillets"])
