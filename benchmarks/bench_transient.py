@@ -43,7 +43,7 @@ import numpy as np  # noqa: E402
 
 import fetorsion  # noqa: E402
 
-from fetorsion.description.model import GearPair, Network, NonlinearSpring, Shaft  # noqa: E402
+from fetorsion.description.chain_model import GearPair, Network, NonlinearSpring, Shaft
 from fetorsion.response.transient import run_transient  # noqa: E402
 
 from bench_run import cpu_name as cpu_model  # noqa: E402  (this folder is on the path: one CPU reader)

@@ -8,7 +8,8 @@ True
 """
 
 from .description.files import load
-from .description.model import Chain, Crank, Network
+from .description.model import Crank
+from .description.chain_model import Chain, Network
 from .description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES
 from .errors import DescriptionError, FetorsionError
 
@@ -24,7 +25,7 @@ _LAZY = {
     "run_stress": "design.stress", "run_damper": "design.dampers", "run_verdict": "design.verdict",
     "run_condensed": "fe.condensed", "run_coupled_response": "response.coupled",
     "run_crank_verdict": "design.crank_verdict", "run_fatigue": "design.fatigue",
-    "run_comparison": "studies.comparison", "run_calibration": "studies.calibration",
+    "run_comparison": "studies.comparison", "run_calibration": "studies.calibration_fit",
     "run_torsiograph": "measured.torsiograph", "run_modal_fit": "measured.modal", "run": "app.run",
 }
 

@@ -71,8 +71,8 @@ def engine_answers(crank, scf, mesh_size):
 def main(argv=None):
     from fetorsion.design.crank_verdict import verdict_scfs
     from fetorsion.lumped_model.lumped import lumped
-    from fetorsion.studies.calibration import calibration_inputs, run_calibration
-    from fetorsion.studies.variants import with_values
+    from fetorsion.studies.calibration_fit import calibration_inputs, run_calibration
+    from fetorsion.description.edit import with_values
 
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("file", nargs="?", default="geometry/renault21.toml")
@@ -87,7 +87,7 @@ def main(argv=None):
         raise SystemExit(f"--inputs {moved[0]}: moves a fillet's or drilling's geometry, so each variant would need "
                          f"its own SCFs; choose among {', '.join(SCF_NEUTRAL)}")
     crank = fetorsion.load(args.file)
-    measured = args.measured_hz or [float(crank.notes["measured_first_torsional_hz"])]
+    measured = args.measured_hz or [crank.measured_f1_hz]
     t0 = time.perf_counter()
     cal = run_calibration(crank, measured, inputs=args.inputs, method="both")
     inputs = calibration_inputs(crank, args.inputs)

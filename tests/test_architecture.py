@@ -300,8 +300,8 @@ TOML_DOCUMENT = {("fetorsion.description.crank", "parse_crank", "data"),
                  ("fetorsion.description.reader", "resolve_field", "data"),
                  ("fetorsion.mechanics.input", "is_crank_description", "data"),
                  ("fetorsion.mechanics.input", "parse_mechanics", "data"),
-                 ("fetorsion.description.model", "Crank", "raw"), ("fetorsion.description.model", "Chain", "raw"),
-                 ("fetorsion.description.model", "Network", "raw"), ("fetorsion.description.model", "Crank", "notes")}
+                 ("fetorsion.description.model", "Crank", "raw"), ("fetorsion.description.chain_model", "Chain", "raw"),
+                 ("fetorsion.description.chain_model", "Network", "raw"), ("fetorsion.description.model", "Crank", "notes")}
 
 
 def untyped_names(annotation: str) -> list[str]:
@@ -358,3 +358,80 @@ def test_no_stage_reads_or_edits_the_parsed_document():
             if isinstance(node, ast.Attribute) and node.attr == "raw":
                 offences.append(f"{name}:{node.lineno}")
     assert not offences, offences
+
+
+# ---------------------------------------------------------------------------
+# Sizes a reader can hold (issue 56)
+
+#: Lines of a module at most (all its lines: code, docstrings, comments).
+MODULE_LINES = 600
+#: Lines of a function at most, its docstring not counted (numpydoc docstrings are the
+#: documentation and should not be cut short to fit).
+FUNCTION_LINES = 60
+#: Lines of a command-line module at most: it parses and prints, the stages compute.
+CLI_MODULE_LINES = 300
+#: Functions that are data tables (one entry a line), exempt from FUNCTION_LINES: none today.
+DATA_TABLES: frozenset[str] = frozenset()
+
+
+def function_lines(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    """Lines of ``node`` from its ``def`` to its last line, less its docstring's."""
+    n = node.end_lineno - node.lineno + 1
+    first = node.body[0] if node.body else None
+    if isinstance(first, ast.Expr) and isinstance(first.value, ast.Constant) and isinstance(first.value.value, str):
+        n -= first.end_lineno - first.lineno + 1
+    return n
+
+
+def oversized(sources: dict[str, str]) -> list[str]:
+    """Every module over its limit and every function over FUNCTION_LINES, as sentences."""
+    found = []
+    for name, text in sorted(sources.items()):
+        limit = CLI_MODULE_LINES if name.startswith("fetorsion.cli.") else MODULE_LINES
+        lines = text.count("\n")
+        if lines > limit:
+            found.append(f"{name}: {lines} lines (at most {limit})")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)) and f"{name}.{node.name}" not in DATA_TABLES:
+                n = function_lines(node)
+                if n > FUNCTION_LINES:
+                    found.append(f"{name}.{node.name}: {n} lines without its docstring (at most {FUNCTION_LINES})")
+    return found
+
+
+def test_the_size_finder_counts_code_not_docstrings():
+    body = "\n".join(f"    x{k} = {k}" for k in range(FUNCTION_LINES - 1))
+    doc = '    """' + "\n".join(["a docstring"] * 40) + '"""\n'
+    assert oversized({"fetorsion.x": f"def f():\n{doc}{body}\n"}) == []  # the def and 59 lines: at the limit
+    found = oversized({"fetorsion.x": f"def f():\n{doc}{body}\n    return 0\n"})
+    assert found == [f"fetorsion.x.f: {FUNCTION_LINES + 1} lines without its docstring (at most {FUNCTION_LINES})"]
+    assert oversized({"fetorsion.cli.x": "\n" * (CLI_MODULE_LINES + 1)}) == [
+        f"fetorsion.cli.x: {CLI_MODULE_LINES + 1} lines (at most {CLI_MODULE_LINES})"]
+
+
+def test_no_module_or_function_is_longer_than_a_reader_can_hold():
+    found = oversized({name: path.read_text() for name, path in modules().items()})
+    assert not found, "\n".join(found)
+
+
+def test_every_fetorsion_import_of_the_scripts_examples_and_tests_resolves():
+    """A module moved inside the package leaves no script, benchmark, example or test importing it
+    from where it was (``scripts/`` and ``benchmarks/`` run outside the suite, so nothing else would
+    notice): every ``from fetorsion... import name``, lazy ones included, names a module that exists
+    and a name it defines."""
+    import importlib
+
+    broken = []
+    for folder in ("scripts", "benchmarks", "examples", "tests", "docs/_ext"):
+        for path in (ROOT / folder).rglob("*.py"):
+            for node in ast.walk(ast.parse(path.read_text())):
+                if isinstance(node, ast.ImportFrom) and not node.level and (node.module or "").startswith("fetorsion"):
+                    try:
+                        module = importlib.import_module(node.module)
+                    except ImportError as e:
+                        broken.append(f"{path.relative_to(ROOT)}:{node.lineno}: {e}")
+                        continue
+                    broken += [f"{path.relative_to(ROOT)}:{node.lineno}: {node.module} has no {a.name}"
+                               for a in node.names if a.name != "*" and not hasattr(module, a.name)
+                               and importlib.util.find_spec(f"{node.module}.{a.name}") is None]
+    assert not broken, "\n".join(broken)

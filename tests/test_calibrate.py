@@ -15,7 +15,8 @@ import pytest
 import fetorsion
 from conftest import GEOMETRY
 from fetorsion.cli import main
-from fetorsion.studies.calibration import IDENTIFIED_RATIO, calibration_inputs, run_calibration
+from fetorsion.studies.calibration import IDENTIFIED_RATIO
+from fetorsion.studies.calibration_fit import calibration_inputs, run_calibration
 from fetorsion.description.edit import with_values
 
 # The Peugeot GLX crank alone, three inputs moved inside their ranges. They are the best-posed
@@ -313,7 +314,7 @@ def test_one_frequency_and_many_inputs_writes_every_input_it_moved(tmp_path, one
     and reads back with those values (6 digits). Before, `--out` exited 2 naming an option the
     user never gave (the command as written: the slow test below)."""
     from fetorsion.description.reader import resolve_field
-    from fetorsion.studies.calibration import write_calibrated
+    from fetorsion.studies.calibrated import write_calibrated
 
     src = tmp_path / "r21.toml"
     src.write_bytes((GEOMETRY / "renault21.toml").read_bytes())

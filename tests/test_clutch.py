@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import fetorsion
-from fetorsion.description.model import NonlinearSpring, Shaft
+from fetorsion.description.chain_model import NonlinearSpring, Shaft
 from fetorsion.response.nonlinear import Elements, element_work, integrate_compiled
 from fetorsion.response.transient import run_transient
 

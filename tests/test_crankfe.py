@@ -146,7 +146,7 @@ def test_straightening_untangles_folded_fillet_elements():
 
 
 def test_jacobian_check_sees_a_folded_element():
-    from fetorsion.solid.mesh import TET10_EDGES, jacobian_positive
+    from fetorsion.solid.tet10 import TET10_EDGES, jacobian_positive
 
     vertices = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], float)
     nodes = np.vstack([vertices, vertices[TET10_EDGES].mean(axis=1)])
@@ -157,16 +157,5 @@ def test_jacobian_check_sees_a_folded_element():
     assert not jacobian_positive(folded, straight).any()
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name", ["peugeot_glx.toml", "renault21.toml"])
-def test_modal_mesh_default_within_its_stated_f1_error(name):
-    from fetorsion.fe.crankfe import MODAL_F1_ERROR
-    from fetorsion.solid.mesh import default_fillet_size
-
-    crank = fetorsion.load(GEOMETRY / name)
-    modal_f1 = run_modal(crank).first_torsional()
-    # Independent, finer discretisation of the same crank where f1 is most sensitive (the
-    # fillet-size study of docs/modal-mesh.md): fillet and drilling elements × 0.8.
-    fine = 0.8 * default_fillet_size(crank, 0.010, "modal")
-    finer_f1 = run_modal(crank, fillet_size=fine, purpose="stress").first_torsional()
-    assert modal_f1 == pytest.approx(finer_f1, rel=MODAL_F1_ERROR)
+# The default modal mesh against a finer one: tests/test_validation.py, beside the other test of
+# the reference cranks at the default mesh (one FE of each for both).

@@ -204,7 +204,7 @@ def test_a_network_damper_on_the_condensed_driveline_is_its_ring_written_out(con
     damped = replace(driveline, dampers=(damper,))
     n = len(driveline.labels)
     written = replace(driveline, labels=driveline.labels + ("ring",), inertias=driveline.inertias + (0.004,),
-                      shafts=driveline.shafts + (fetorsion.description.model.Shaft(
+                      shafts=driveline.shafts + (fetorsion.description.chain_model.Shaft(
                           driveline.labels.index(station), n, 2.0e4, 3.0),),
                       absolute_damping=driveline.absolute_damping + (0.0,) if driveline.absolute_damping else ())
     a = solve_response(driveline_setup(damped, condensed_renault, rpm=RPM, damping_ratio=0.0), damped.dampers)

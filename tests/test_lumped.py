@@ -7,7 +7,7 @@ import pytest
 
 import fetorsion
 from fetorsion.description.crank import parse_crank
-from fetorsion.description.model import Chain
+from fetorsion.description.chain_model import Chain
 from fetorsion.lumped_model.lumped import chain_matrices, partition_matrices, solve_chain
 from fetorsion.lumped_model.parts import build_parts, oil_hole_inertia
 from fetorsion.webs.classical import carter, ker_wilson

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from fetorsion.design import m53
+from fetorsion.design import m53, m53_scfs
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -82,7 +82,7 @@ def test_one_throw_by_hand_equals_iacs_m53():
         assert a.safety == pytest.approx(q[a.kind], rel=1e-9), a.kind
     for k, v in {"alpha_B": aB, "alpha_T": aT, "beta_B": bB, "beta_Q": bQ, "beta_T": bT, "gamma_B": gB,
                  "gamma_T": gT}.items():
-        assert m53.FORMULAS[k](g) == pytest.approx(v, rel=1e-12), k
+        assert m53_scfs.FORMULAS[k](g) == pytest.approx(v, rel=1e-12), k
     assert m53.throw_spans is not None
 
 
@@ -107,7 +107,7 @@ def test_validity_ranges_and_the_fallback_to_fe():
     """A fillet radius of 0.02 D is outside the formulas' 0.03 ≤ r: α_B, α_T (and β's with R_G =
     R_H) are then the FE's, named as such; inside the ranges the formulas stand."""
     g = m53.M53Geometry(0.06, 0.07, 0.05, 0.025, 0.095, 0.0012, 0.0035, 0.0, 0.0, 0.006)
-    bad = m53.out_of_range(g)
+    bad = m53_scfs.out_of_range(g)
     assert set(bad) == {"alpha_B", "alpha_T"} and "r_H = 0.02" in bad["alpha_B"][0]
     from fetorsion.design.scfset import SCFSet
 
@@ -115,7 +115,7 @@ def test_validity_ranges_and_the_fallback_to_fe():
     scfs, source = m53.choose_scfs(g, fe)
     assert scfs["alpha_T"] == 2.5 and source["alpha_T"].startswith("FE per Appendix III")
     assert scfs["alpha_B"] == pytest.approx(6.0 * 32 * 0.06 / (math.pi * 0.06**4) * 0.095 * 0.025**2 / 6)
-    assert source["beta_B"] == "M53 §3 formula" and scfs["beta_B"] == m53.beta_B(g)
+    assert source["beta_B"] == "M53 §3 formula" and scfs["beta_B"] == m53_scfs.beta_B(g)
     with pytest.raises(Exception, match="outside the formula's range"):
         m53.choose_scfs(g, None)
 
@@ -144,7 +144,7 @@ def test_fe_scfs_in_m53s_convention_are_near_its_formulas(name):
     if "pin" in bores:
         scf = scf.with_oil_bores({"pin": bores["pin"]}, bores["source"])
     g = m53.m53_geometry(crank)
-    table = m53.scf_comparison(g, scf)
+    table = m53_scfs.scf_comparison(g, scf)
     checked = [k for k in ("alpha_B", "beta_B", "alpha_T", "beta_T", "gamma_B", "gamma_T")
                if k in table and table[k]["in_range"] and table[k]["fe"] is not None]
     assert {"alpha_B", "beta_B", "alpha_T", "beta_T"} <= set(checked)

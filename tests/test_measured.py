@@ -250,7 +250,8 @@ def test_torsiograph_twist_of_two_wheels(engine):
 
 
 def test_instantaneous_speed_and_the_edge_file(tmp_path, engine):
-    from fetorsion.measured.torsiograph import instantaneous_speed, read_edges_csv
+    from fetorsion.measured.edges import read_edges_csv
+    from fetorsion.measured.torsiograph import instantaneous_speed
 
     t = engine["edges"]["pulley"]
     mid, omega = instantaneous_speed(t, TEETH, engine["errors"]["pulley"])

@@ -173,7 +173,7 @@ def test_stages_set_the_resonance(method):
     # well inside the first stage (amplitude half its 5.5° width) rings at √(k1/J); with a preload that puts the operating point in the
     # second stage, at √(k2/J). The zero-crossing frequency over tens of periods of a linear
     # oscillation is exact to the integrator's rtol (1e-6): within 0.1 % (the issue asks 1 %).
-    from fetorsion.description.model import NonlinearSpring
+    from fetorsion.description.chain_model import NonlinearSpring
 
     k1, k2, J = 50 / math.radians(5.5), 3450 / math.radians(4.5), 0.5
     idle = NonlinearSpring(0, -1, (k1, k2), (math.radians(5.5),))
@@ -196,7 +196,7 @@ def test_friction_dissipates_its_loop_area(method):
     # (derived: elastic-perfectly-plastic loop), → 4 T_f A as k_s → ∞. Sampled at 4000 points a
     # cycle, the trapezoidal ∮ errs by O((2π/4000)²) and the slip switches are located to the
     # integrator's rtol: within 0.2 %.
-    from fetorsion.description.model import NonlinearSpring
+    from fetorsion.description.chain_model import NonlinearSpring
 
     k, J, Tf = 2.0e4, 0.2, 30.0
     spring = NonlinearSpring(0, -1, (k,), (), friction=Tf, stick_stiffness=20 * k)
@@ -234,7 +234,7 @@ def test_nonlinear_integrator_equals_the_exact_propagator_on_a_linear_element(si
     # the same equations: peak section torques within 0.5 %.
     from dataclasses import replace
 
-    from fetorsion.description.model import NonlinearSpring
+    from fetorsion.description.chain_model import NonlinearSpring
 
     shaft = single.shafts[0]
     nl = replace(single, shafts=(), nonlinear=(NonlinearSpring(shaft.i, shaft.j, (shaft.stiffness,)),))

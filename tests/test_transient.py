@@ -12,7 +12,7 @@ import pytest
 
 import fetorsion
 from conftest import ROOT
-from fetorsion.description.model import Chain
+from fetorsion.description.chain_model import Chain
 from fetorsion.lumped_model.lumped import lumped
 from fetorsion.response.forced import run_response
 from fetorsion.response.transient import integrate, propagator, run_transient
@@ -194,7 +194,7 @@ def test_network_steady_state_equals_order_synthesis(grounded):
     # The branched geared example (absolute dampers on the throws: the rigid-body mode is damped
     # and integrated in the full basis), its loss factors taken off so that both domains solve
     # the same viscous equations, and once with a ground spring on the propeller: within 1 %.
-    from fetorsion.description.model import Shaft
+    from fetorsion.description.chain_model import Shaft
 
     net = fetorsion.load(ROOT / "examples" / "networks" / "geared_engine.toml")
     shafts = tuple(replace(s, loss_factor=0.0) for s in net.shafts) + ((Shaft(8, -1, 5.0e3),) if grounded else ())

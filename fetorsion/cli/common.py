@@ -8,7 +8,7 @@ import sys
 
 from .options import MM
 from ..description.files import load
-from ..description.model import Chain, Network
+from ..description.chain_model import Chain, Network
 from ..description.plausibility import plausibility_warnings
 from ..design.methods import described_method
 from ..errors import FetorsionError

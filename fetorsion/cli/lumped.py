@@ -7,7 +7,7 @@ import argparse
 import sys
 
 from ..description.edit import document
-from ..description.model import Chain, Network
+from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..lumped_model.lumped import MODES_SHOWN, PARTITIONS, lumped
 from ..lumped_model.parts import build_parts

@@ -1,20 +1,21 @@
 """``fetorsion compare``: the model against measured files (modal-test FRFs, order cuts,
-torsiograph recordings), one table and one figure per quantity; ``fetorsion calibrate``: the
-description's ``[uncertainty]`` inputs fitted to measured natural frequencies."""
+torsiograph recordings), one table and one figure per quantity; the options of measured files
+(shared with ``run --measured``); and the parsers of ``compare`` and ``calibrate``
+(:mod:`.calibrate`: the description's ``[uncertainty]`` inputs fitted to measured natural
+frequencies)."""
 
 from __future__ import annotations
 
 import sys
 from dataclasses import replace
-from pathlib import Path
 
 from ..description.defaults import LUMPED17
 from ..measured.dataset import MeasuredData
 from ..measured.uff import UnstatedUnit
-from ..measured.reading import (LARGEST_FOUND, TRACKED_MAJOR_ORDERS, UFF_SUFFIXES, MeasuredOptions, measured_kind,
-                                read_measured, tracked_orders)
-from .common import (add_json_option, check_mesh_size, emit_json, load_description, refuse_network,
-                     save_plot)
+from ..measured.reading import (LARGEST_FOUND, TRACKED_MAJOR_ORDERS, MeasuredOptions, measured_kind, read_measured,
+                                tracked_orders)
+from .calibrate import add_calibrate_parser
+from .common import add_json_option, check_mesh_size, emit_json, load_description, refuse_network
 from .options import integer, real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -60,7 +61,7 @@ def check_measured(crank, measured: MeasuredData, station: str | None, source: s
     ``[excitation]`` and must be angles; the stations must exist. Returns the data with each
     torsiograph channel's station settled: the one the user gave, else the channel's name where
     the model has such a station, else (left out) ``station``."""
-    from ..studies.comparison import model_stations
+    from ..studies.modelstations import model_stations
 
     if measured.cuts and getattr(crank, "excitation", None) is None:
         raise FetorsionError(f"compare: {crank.name} has no [excitation] table: the model has no order cuts")
@@ -87,9 +88,9 @@ def check_measured(crank, measured: MeasuredData, station: str | None, source: s
 
 def check_station(crank, station: str | None, source: str = LUMPED17) -> None:
     """A station that is not the pulley or flywheel end must be one of the model's
-    (:func:`fetorsion.studies.comparison.model_stations`), checked before any model is built."""
+    (:func:`fetorsion.studies.modelstations.model_stations`), checked before any model is built."""
     if station is not None and station.lower() not in ("pulley", "flywheel"):
-        from ..studies.comparison import model_stations, station_place
+        from ..studies.modelstations import model_stations, station_place
 
         station_place(model_stations(crank, source), station)
 
@@ -97,7 +98,7 @@ def check_station(crank, station: str | None, source: str = LUMPED17) -> None:
 def compare_source(args, crank) -> str:
     """``--source``, or its default: the condensed crank for a crank description, the chain's own
     lumped model for a chain file."""
-    from ..description.model import Chain
+    from ..description.chain_model import Chain
 
     if args.source is not None:
         if args.source != LUMPED17 and isinstance(crank, Chain):
@@ -108,7 +109,8 @@ def compare_source(args, crank) -> str:
 
 
 def cmd_compare(args) -> int:
-    from ..studies.comparison import model_response, run_comparison
+    from ..studies.comparison import run_comparison
+    from ..studies.modelstations import model_response
 
     for m in args.measured:
         measured_kind(m, args.teeth)
@@ -132,9 +134,10 @@ def cmd_compare(args) -> int:
         cc = condensed(crank, args.mesh_size)
     reference = None
     if source == LUMPED17 and measured.cuts:
-        from .dynamics import stored_engine_model
+        from ..app.engine_answers import stored_engine_model
 
-        engine = stored_engine_model(crank, args)  # compare's running measurements: the crank in its bearings
+        # compare's running measurements: the crank in its bearings
+        engine = stored_engine_model(crank, mesh_size=args.mesh_size)
         if engine is not None:
             reference = model_response(crank, "condensed", engine[0])
     out = run_comparison(crank, measured, source, args.station, condensed=cc, mesh_size=args.mesh_size,
@@ -246,143 +249,3 @@ def add_parsers(sub) -> None:
     add_json_option(cp)
     cp.set_defaults(func=cmd_compare)
     add_calibrate_parser(sub)
-
-
-def _calibration_frequencies(args) -> list[float] | None:
-    """The measured frequencies: typed (``--measured-hz``), or None when they come from the FRFs
-    of ``--measured`` files (fitted after every other check)."""
-    if args.measured_hz is not None:
-        if args.band is not None:
-            raise FetorsionError("--band goes with --measured (the FRFs' modes are fitted in it), not with --measured-hz")
-        return list(args.measured_hz)
-    for m in args.measured:
-        if not Path(m).is_file():
-            raise FetorsionError(f"--measured {m}: no such file")
-        if Path(m).suffix.lower() not in UFF_SUFFIXES:
-            raise FetorsionError(f"--measured {m}: give a universal file of FRFs ({', '.join(UFF_SUFFIXES)}); "
-                                 "the modes fitted in --band (default the files' own) are the measured frequencies")
-    if args.band is not None and not 0 <= args.band[0] < args.band[1]:
-        raise FetorsionError(f"--band {args.band[0]:g} {args.band[1]:g}: give 0 <= LOW < HIGH (Hz)")
-    return None
-
-
-def check_calibrate_out(out: str, source: str, force: bool) -> None:
-    """``--out``: a new .toml file, never the description itself; an existing one only with --force."""
-    import os
-
-    from ..io import check_writable_location
-
-    p = Path(out)
-    if p.suffix.lower() != ".toml":
-        raise FetorsionError(f"--out {out}: the calibrated description is a .toml file")
-    if p.is_dir():
-        raise FetorsionError(f"--out {out}: is a folder; give a new file name")
-    if p.exists() and Path(source).exists() and os.path.samefile(p, source):
-        raise FetorsionError(f"--out {out}: is the description being calibrated; the calibrated one is written as "
-                             "a new file, never over the original")
-    if p.exists() and not force:
-        raise FetorsionError(f"--out {out}: exists; give a new file name, or --force to replace it")
-    check_writable_location(p, "--out")
-
-
-def cmd_calibrate(args) -> int:
-    from ..studies.calibration import (calibration_inputs, check_ensemble, check_measured_hz, run_calibration,
-                                       write_calibrated)
-
-    # Everything that needs no model run first: the options, the files, the description.
-    measured_hz = _calibration_frequencies(args)
-    if not Path(args.file).is_file():
-        raise FetorsionError(f"{args.file}: no such file")
-    if args.out:
-        check_calibrate_out(args.out, args.file, args.force)
-    elif args.force:
-        raise FetorsionError("--force replaces an existing --out file; give --out")
-    crank = load_description(args.file)  # a crank description, a chain or a network: each may carry [uncertainty]
-    inputs = calibration_inputs(crank, args.inputs)
-    if args.method != "lsq":
-        check_ensemble(len(inputs), args.walkers, args.steps, args.burn)
-    if measured_hz is not None:
-        check_measured_hz(measured_hz, args.sigma_hz, args.sigma_percent)
-    else:
-        from ..measured.modal import run_modal_fit
-
-        try:
-            measured = read_measured(args.measured, MeasuredOptions(band=None if args.band is None else tuple(args.band)))
-        except UnstatedUnit as exc:
-            raise FetorsionError(exc.stating("an FRF file whose records say their units")) from None
-        if not measured.frfs:
-            raise FetorsionError(f"--measured: {', '.join(args.measured)} hold no FRF to fit modes to")
-        for line in measured.notes:
-            print(f"fetorsion: warning: {line}", file=sys.stderr)
-        band = measured.band
-        measured_hz = sorted(run_modal_fit(measured.frfs, band).frequencies_hz)
-        print(f"measured (fitted in {band[0]:g}-{band[1]:g} Hz): "
-              f"{', '.join(f'{f:.2f}' for f in measured_hz)} Hz", file=sys.stderr)
-    res = run_calibration(crank, measured_hz, args.sigma_hz, args.sigma_percent, args.inputs, args.model,
-                          args.method, args.stiffness, args.walkers, args.steps, args.burn, args.seed, args.write_all)
-    print(res.table(), file=sys.stderr if args.json == "-" else sys.stdout)
-    emit_json(res.to_dict(), args.json)
-    if args.plot:
-        save_plot(res, args.plot)
-    if args.out:
-        changed = write_calibrated(res, args.out, force=args.force)
-        print(f"calibrated description ({len(changed)} values changed): {args.out}", file=sys.stderr)
-    return 0
-
-
-def add_calibrate_parser(sub) -> None:
-    from ..description.defaults import DEFAULT_WEB_METHOD
-    from ..studies.calibration import (CALIBRATION_MODELS, CALIBRATION_STIFFNESS, DEFAULT_BURN, DEFAULT_SIGMA_PERCENT,
-                                       DEFAULT_STEPS, DEFAULT_WALKERS, IDENTIFIED_RATIO, METHODS)
-
-    cp = sub.add_parser("calibrate", help="fit the description's [uncertainty] inputs to measured natural frequencies: "
-                        "regularised least squares and a Bayesian posterior (MCMC); the calibrated description "
-                        "as a new file")
-    cp.add_argument("file", help="crank description, chain or network file with an [uncertainty] table (.toml)")
-    what = cp.add_mutually_exclusive_group(required=True)
-    what.add_argument("--measured-hz", type=real(0.0, unit="Hz"), nargs="+", metavar="HZ",
-                      help="measured natural frequencies (Hz): the lowest elastic torsional modes of the free-free "
-                           "crank, ascending (matched by order to the model's)")
-    what.add_argument("--measured", nargs="+", metavar="FILE",
-                      help="universal files (.uff/.unv) of measured FRFs: their modes fitted in --band are the "
-                           "measured frequencies")
-    cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="with --measured: the frequency band (Hz) to fit the FRFs' modes in (default: the FRFs' own)")
-    sig = cp.add_mutually_exclusive_group()
-    sig.add_argument("--sigma-hz", type=real(0.0, unit="Hz"), nargs="+", metavar="HZ",
-                     help="standard deviation of the measured frequencies, measurement and model error (Hz): "
-                          "one for all, or one each")
-    sig.add_argument("--sigma-percent", type=real(0.0, 100.0, unit="%"), default=DEFAULT_SIGMA_PERCENT, metavar="P",
-                     help="... or in %% of each frequency (default %(default)s: the lumped chain's difference "
-                          "from the 3D FE)")
-    cp.add_argument("--inputs", nargs="+", metavar="NAME",
-                    help="[uncertainty] entries to calibrate (default all; the others stay as in the file)")
-    cp.add_argument("--method", choices=METHODS, default="both",
-                    help="lsq: regularised least squares; bayes: the MCMC posterior (emcee); both (default)")
-    cp.add_argument("--model", choices=CALIBRATION_MODELS, default=LUMPED17, help="lumped chain (default %(default)s)")
-    cp.add_argument("--stiffness", choices=CALIBRATION_STIFFNESS, default=DEFAULT_WEB_METHOD,
-                    help="web stiffness method of the lumped model (default %(default)s; not an FE method, which "
-                         "would mesh every variant)")
-    cp.add_argument("--walkers", type=integer(2), metavar="N",
-                    help=f"walkers of the ensemble (default {DEFAULT_WALKERS}, at least 2 per input plus 2)")
-    cp.add_argument("--steps", type=integer(1), default=DEFAULT_STEPS, metavar="N",
-                    help="steps of each walker kept (default %(default)s)")
-    cp.add_argument("--burn", type=integer(0), default=DEFAULT_BURN, metavar="N",
-                    help="steps of burn-in discarded first (default %(default)s)")
-    cp.add_argument("--seed", type=integer(0, 2**32 - 1), default=0, help="seed of the MCMC (default %(default)s)")
-    cp.add_argument("--out", metavar="NEW.toml", help="write the calibrated description to this NEW file (never over "
-                    "the original): every changed value commented with its source")
-    cp.add_argument("--force", action="store_true", help="replace an existing --out file (never the original)")
-    cp.add_argument("--write-all", action="store_true",
-                    help="--out changes every input the least squares moved, not only the identified ones "
-                         "(without it: the identified ones, or every one moved where none is identified on its own)")
-    cp.add_argument("--plot", metavar="PATH", help="figure of each input's prior, estimate and posterior "
-                    "(.png, .pdf, .svg)")
-    add_json_option(cp)
-    cp.set_defaults(func=cmd_calibrate)
-    cp.epilog = (f"An input is identified when the data's information at the least-squares estimate brings its "
-                 f"(Laplace) posterior standard deviation below {IDENTIFIED_RATIO:g} of its prior's: a deterministic "
-                 "rule, the same for every seed; the sampled posterior's width is reported beside it. --out writes "
-                 "the identified inputs (least squares); where none is identified on its own, every input the "
-                 "calibration moved, at its posterior median, each change commented; every input the least squares "
-                 "moved with --write-all.")

@@ -7,7 +7,7 @@ import sys
 from pathlib import Path
 
 from .options import MM, integer, millimetres, real
-from ..description.model import Chain, Network
+from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..io import check_report_folder
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE, LUMPED17

@@ -7,10 +7,11 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .fields import CHAIN_SCHEMA
-from .model import Chain
+from .chain_model import Chain
 from .reader import Table, read_length_unit
-from .tables import (per_spring, read_engine, read_dampers, read_limits, read_chain_excitation, read_variations,
-                     stated_damping_excitation, unique_problems, uncertainty_bound_problems)
+from .excitation_table import read_chain_excitation, stated_damping_excitation
+from .tables import (per_spring, read_engine, read_dampers, read_limits, read_variations, unique_problems,
+                     uncertainty_bound_problems)
 
 
 def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = True) -> Chain:
@@ -34,6 +35,35 @@ def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = T
     loss = per_spring(t, "loss_factors", len(stiffnesses))
     stations = t.get("cylinder_stations", [])
     t.finish()
+    n = len(inertias)
+    labels = _check_lists(inertias, stiffnesses, absolute, relative, loss, labels, problems)
+
+    engine = read_engine(root) if "engine" in data else None
+    stations = _check_cylinder_stations(stations, n, engine, problems)
+    dampers = read_dampers(root)
+    limits = read_limits(root, torque_only=True)
+    excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
+    if excitation is not None:
+        has_dampers = any(v > 0 for v in (*absolute, *relative, *loss))
+        excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "chain", problems)
+    uncertainty, distributions = read_variations(root, data, problems)
+    root.finish()
+    if problems:
+        raise DescriptionError(source, unique_problems(problems))
+    labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
+    chain = Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
+                  tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits,
+                  uncertainty, distributions)
+    if check_uncertainty:
+        bounds = uncertainty_bound_problems(chain, parse_chain)
+        if bounds:
+            raise DescriptionError(source, bounds)
+    return chain
+
+
+def _check_lists(inertias, stiffnesses, absolute, relative, loss, labels, problems: list[Problem]) -> list:
+    """Every rule of ``[chain]``'s lists (inertias, springs, dampers, labels) in turn, recorded in
+    ``problems``; the labels, or [] where they were refused."""
     n = len(inertias)
     if inertias and n < 2:
         problems.append(Problem("chain.inertias_kgm2", list(inertias), "needs at least 2 inertias"))
@@ -62,8 +92,11 @@ def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = T
     ):
         problems.append(Problem("chain.labels", labels, f"must be a list of {n} strings"))
         labels = []
+    return labels
 
-    engine = read_engine(root) if "engine" in data else None
+
+def _check_cylinder_stations(stations, n: int, engine, problems: list[Problem]) -> list:
+    """``chain.cylinder_stations`` checked against ``n`` stations and the ``engine``; [] where refused."""
     cylinders = engine.cylinders if engine else 0
     if not (isinstance(stations, list) and all(isinstance(c, int) and not isinstance(c, bool) and 1 <= c <= max(n, 1)
                                               for c in stations)):
@@ -75,22 +108,4 @@ def parse_chain(data: dict, source: str = "<chain>", check_uncertainty: bool = T
                                 f"must name one station (1..{n}) per cylinder ({cylinders})"))
     elif engine is None and stations:
         problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
-    dampers = read_dampers(root)
-    limits = read_limits(root, torque_only=True)
-    excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
-    if excitation is not None:
-        has_dampers = any(v > 0 for v in (*absolute, *relative, *loss))
-        excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "chain", problems)
-    uncertainty, distributions = read_variations(root, data, problems)
-    root.finish()
-    if problems:
-        raise DescriptionError(source, unique_problems(problems))
-    labels = tuple(labels) if labels else tuple(f"inertia {i + 1}" for i in range(n))
-    chain = Chain(name, inertias, stiffnesses, labels, absolute, relative, source, loss,
-                  tuple(c - 1 for c in stations), engine, excitation, unit, data, dampers, limits,
-                  uncertainty, distributions)
-    if check_uncertainty:
-        bounds = uncertainty_bound_problems(chain, parse_chain)
-        if bounds:
-            raise DescriptionError(source, bounds)
-    return chain
+    return stations

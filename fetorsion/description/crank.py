@@ -13,15 +13,15 @@ Validation collects every violated rule (field, value, rule) and raises one
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .fields import CRANK_SCHEMA
 from .model import (ATTACH_POINTS, MEASURED_F1, PAPER_FE_F1, PAPER_LUMPED_F1, Attachment, AttachPoint, Bearings, Crank,
-                    Cylinder, Fillets, Material, OilFilm, OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
+                    Cylinder, Engine, Fillets, Material, OilFilm, OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
 from .reader import Table, finite_number, read_length_unit, read_toml
-from .tables import (read_engine, read_dampers, read_design, read_limits, read_excitation, read_uncertainty, read_distributions,
+from .excitation_table import read_excitation
+from .tables import (read_engine, read_dampers, read_design, read_limits, read_uncertainty, read_distributions,
                      unique_problems, uncertainty_bound_problems)
 
 
@@ -243,44 +243,10 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     problems: list[Problem] = []
     root = Table(data, "", problems, schema=CRANK_SCHEMA)
     unit = read_length_unit(root, source)
-
-    meta = root.table("meta", required=False)
-    name = meta.text("name", default=Path(source).stem)
-    notes = {k: v for k, v in meta.data.items() if k != "name"}
-    meta.used.update(meta.data)
-    for key in (MEASURED_F1, PAPER_FE_F1):
-        if key in notes and not (finite_number(notes[key]) and notes[key] > 0):
-            problems.append(Problem(f"meta.{key}", notes[key], "must be a frequency in Hz > 0"))
-    lumped_refs = notes.get(PAPER_LUMPED_F1, {})
-    if not (isinstance(lumped_refs, dict) and all(finite_number(v) and v > 0 for v in lumped_refs.values())):
-        problems.append(Problem(f"meta.{PAPER_LUMPED_F1}", lumped_refs, "must be a table of partition = frequency "
-                                "in Hz > 0 ({ \"17\" = 535.35 })"))
-
-    mt = root.table("material")
-    material = Material(
-        youngs_modulus=mt.number("youngs_modulus_pa", positive=True),
-        poisson_ratio=mt.number("poisson_ratio", above=0.0, below=0.5),
-        density=mt.number("density_kgm3", positive=True),
-        name=mt.text("name"),
-        **_strength(mt),
-    )
-    mt.used.add("source")
-    mt.finish()
-
+    name, notes = _meta(root, source)
+    material = _material(root)
     engine = read_engine(root)
-    n = engine.cylinders // (2 if engine.layout == "vee" else 1)  # throws: as the layout has them, not as listed
-
-    journals = tuple(_cylinder(t) for t in root.tables("journals"))
-    pins = tuple(_cylinder(t) for t in root.tables("pins"))
-    webs = tuple(_web(t) for t in root.tables("webs"))
-    front = tuple(_cylinder(t) for t in root.tables("front", required=False))
-    rear = tuple(_cylinder(t) for t in root.tables("rear", required=False))
-    for key, items, want in (("journals", journals, n + 1), ("pins", pins, n), ("webs", webs, 2 * n)):
-        if n and len(items) != want:
-            what = (f"{n}-cylinder" if n == engine.cylinders else
-                    f"{n}-throw ({engine.cylinders} cylinders, {engine.layout})")
-            problems.append(Problem(key, f"{len(items)} entries", f"a {what} crank needs {want} [[{key}]]"))
-
+    journals, pins, webs, front, rear = _shaft_parts(root, engine)
     ft = root.table("fillets", required=False)
     fillets = Fillets(ft.number("journal", 0.0, length=True, nonnegative=True),
                       ft.number("pin", 0.0, length=True, nonnegative=True))
@@ -289,43 +255,8 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     oil = OilHoles(ot.number("diameter", 0.0, length=True, nonnegative=True),
                    ot.flag("in_journals"), ot.flag("in_pins"))
     ot.finish()
-    step = placement = None
-    if "solid" in data:
-        st = root.table("solid")
-        given = st.text("step")
-        st.text("source", default="")
-        axis = st.numbers("axis", required=False) or (1.0, 0.0, 0.0)
-        centre = st.numbers("front_centre", required=False) or (0.0, 0.0, 0.0)
-        if len(axis) != 3 or not math.hypot(*axis) > 0:
-            problems.append(Problem("solid.axis", st.data.get("axis"), "must be [x, y, z], a direction (not zero)"))
-        elif len(centre) != 3:
-            problems.append(Problem("solid.front_centre", st.data.get("front_centre"), "must be [x, y, z]"))
-        else:
-            n = math.hypot(*axis)
-            placement = (tuple(a / n for a in axis), tuple(v * st.scale for v in centre))
-            if placement == ((1.0, 0.0, 0.0), (0.0, 0.0, 0.0)):
-                placement = None  # already as fetorsion builds it
-        st.finish()
-        path = Path(source).parent / given
-        if not given.lower().endswith((".step", ".stp")):
-            problems.append(Problem("solid.step", given, "must be a STEP file (.step or .stp)"))
-        elif not path.is_file():
-            problems.append(Problem("solid.step", given, f"no such file ({path})"))
-        else:
-            step = str(path.resolve())
-
-    attachments = []
-    for t in root.tables("attachments", required=False):
-        attachments.append(Attachment(
-            name=t.text("name", default=""),
-            at=_attach_point(t.text("at", choices=ATTACH_POINTS)),
-            polar_inertia=t.number("polar_inertia_kgm2", positive=True),
-            mass=t.number("mass_kg", 0.0, nonnegative=True),
-            diametral_inertia=t.number("diametral_inertia_kgm2", 0.0, nonnegative=True),
-            offset=t.number("offset", 0.0, length=True),
-        ))
-        t.used.add("source")
-        t.finish()
+    step, placement = _solid(root, source) if "solid" in data else (None, None)
+    attachments = _attachments(root)
     ex = data.get("excitation")
     bearings = (_bearings(root.table("bearings"), journals, ex.get("speed_range_rpm") if isinstance(ex, dict) else None)
                 if "bearings" in data else None)
@@ -340,7 +271,7 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     root.finish()
 
     crank = Crank(name, material, engine, journals, pins, webs, front, rear, fillets, oil,
-                  tuple(attachments), unit, source, notes, uncertainty, excitation, data, bearings=bearings,
+                  attachments, unit, source, notes, uncertainty, excitation, data, bearings=bearings,
                   distributions=distributions, dampers=dampers, limits=limits, design=design, solid_step=step,
                   solid_placement=placement)
     problems.extend(_geometry_problems(crank, root.scale))
@@ -349,6 +280,104 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     if problems:
         raise DescriptionError(source, unique_problems(problems))
     return crank
+
+
+def _meta(root: Table, source: str) -> tuple[str, dict]:
+    """``[meta]``: the name (default: the file's stem) and the free notes, the reference
+    frequencies among them checked."""
+    problems = root.problems
+    meta = root.table("meta", required=False)
+    name = meta.text("name", default=Path(source).stem)
+    notes = {k: v for k, v in meta.data.items() if k != "name"}
+    meta.used.update(meta.data)
+    for key in (MEASURED_F1, PAPER_FE_F1):
+        if key in notes and not (finite_number(notes[key]) and notes[key] > 0):
+            problems.append(Problem(f"meta.{key}", notes[key], "must be a frequency in Hz > 0"))
+    lumped_refs = notes.get(PAPER_LUMPED_F1, {})
+    if not (isinstance(lumped_refs, dict) and all(finite_number(v) and v > 0 for v in lumped_refs.values())):
+        problems.append(Problem(f"meta.{PAPER_LUMPED_F1}", lumped_refs, "must be a table of partition = frequency "
+                                "in Hz > 0 ({ \"17\" = 535.35 })"))
+    return name, notes
+
+
+def _material(root: Table) -> Material:
+    """``[material]``: the elastic constants, density and the optional strength fields."""
+    mt = root.table("material")
+    material = Material(
+        youngs_modulus=mt.number("youngs_modulus_pa", positive=True),
+        poisson_ratio=mt.number("poisson_ratio", above=0.0, below=0.5),
+        density=mt.number("density_kgm3", positive=True),
+        name=mt.text("name"),
+        **_strength(mt),
+    )
+    mt.used.add("source")
+    mt.finish()
+    return material
+
+
+def _shaft_parts(root: Table, engine: Engine) -> tuple[tuple[Cylinder, ...], tuple[Cylinder, ...], tuple[Web, ...],
+                                                     tuple[Cylinder, ...], tuple[Cylinder, ...]]:
+    """(journals, pins, webs, front, rear): the shaft's pieces, as many journals, pins and webs as
+    the ``engine``'s layout has throws."""
+    n = engine.cylinders // (2 if engine.layout == "vee" else 1)  # throws: as the layout has them, not as listed
+    journals = tuple(_cylinder(t) for t in root.tables("journals"))
+    pins = tuple(_cylinder(t) for t in root.tables("pins"))
+    webs = tuple(_web(t) for t in root.tables("webs"))
+    front = tuple(_cylinder(t) for t in root.tables("front", required=False))
+    rear = tuple(_cylinder(t) for t in root.tables("rear", required=False))
+    for key, items, want in (("journals", journals, n + 1), ("pins", pins, n), ("webs", webs, 2 * n)):
+        if n and len(items) != want:
+            what = (f"{n}-cylinder" if n == engine.cylinders else
+                    f"{n}-throw ({engine.cylinders} cylinders, {engine.layout})")
+            root.problems.append(Problem(key, f"{len(items)} entries", f"a {what} crank needs {want} [[{key}]]"))
+    return journals, pins, webs, front, rear
+
+
+def _solid(root: Table, source: str) -> tuple[str | None, tuple | None]:
+    """``[solid]``: the STEP file (absolute path; None where refused) and its placement (None: as
+    fetorsion builds a crank)."""
+    problems = root.problems
+    step = placement = None
+    st = root.table("solid")
+    given = st.text("step")
+    st.text("source", default="")
+    axis = st.numbers("axis", required=False) or (1.0, 0.0, 0.0)
+    centre = st.numbers("front_centre", required=False) or (0.0, 0.0, 0.0)
+    if len(axis) != 3 or not math.hypot(*axis) > 0:
+        problems.append(Problem("solid.axis", st.data.get("axis"), "must be [x, y, z], a direction (not zero)"))
+    elif len(centre) != 3:
+        problems.append(Problem("solid.front_centre", st.data.get("front_centre"), "must be [x, y, z]"))
+    else:
+        n = math.hypot(*axis)
+        placement = (tuple(a / n for a in axis), tuple(v * st.scale for v in centre))
+        if placement == ((1.0, 0.0, 0.0), (0.0, 0.0, 0.0)):
+            placement = None  # already as fetorsion builds it
+    st.finish()
+    path = Path(source).parent / given
+    if not given.lower().endswith((".step", ".stp")):
+        problems.append(Problem("solid.step", given, "must be a STEP file (.step or .stp)"))
+    elif not path.is_file():
+        problems.append(Problem("solid.step", given, f"no such file ({path})"))
+    else:
+        step = str(path.resolve())
+    return step, placement
+
+
+def _attachments(root: Table) -> tuple[Attachment, ...]:
+    """``[[attachments]]``: the rigid bodies fixed to the crank, in the file's order."""
+    attachments = []
+    for t in root.tables("attachments", required=False):
+        attachments.append(Attachment(
+            name=t.text("name", default=""),
+            at=_attach_point(t.text("at", choices=ATTACH_POINTS)),
+            polar_inertia=t.number("polar_inertia_kgm2", positive=True),
+            mass=t.number("mass_kg", 0.0, nonnegative=True),
+            diametral_inertia=t.number("diametral_inertia_kgm2", 0.0, nonnegative=True),
+            offset=t.number("offset", 0.0, length=True),
+        ))
+        t.used.add("source")
+        t.finish()
+    return tuple(attachments)
 
 
 def _strength(mt: Table) -> dict:

@@ -413,7 +413,8 @@ CRANKS = Section("chain.cranks", "Network form: a crank description as one part 
 
 STATIONS = Section("chain.stations", "Network form: the stations, by name (docs/networks-and-transients.md).", (
     Field("name", "the station's name, used by shafts, gears and `cylinder_stations`", "unique; not `ground`"),
-    Field("inertia_kgm2", "its inertia, kg·m²", "> 0"),
+    Field("inertia_kgm2", "its inertia, kg·m²; 0 for a gear whose inertia the gear it meshes with carries",
+          ">= 0; > 0 somewhere in every group of stations joined by gears"),
     Field("damping_nms_per_rad", "a viscous damper to ground, N·m·s/rad; default 0", ">= 0"),
 ), array=True)
 SHAFTS = Section("chain.shafts", "Network form: springs between two stations, or a station and `ground`.", (

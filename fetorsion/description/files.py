@@ -6,7 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .model import Chain, Crank, Network
+from .model import Crank
+from .chain_model import Chain, Network
 from .reader import read_toml
 from .crank import extended, parse_crank
 from .chain import parse_chain

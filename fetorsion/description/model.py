@@ -1,7 +1,8 @@
 """The description's data types: frozen dataclasses in SI units (m, kg, Pa, rad).
 
-Every later stage reads a :class:`Crank` (or a :class:`Chain`); :mod:`.crank` builds them
-from a file and checks every rule.
+Every later stage reads a :class:`Crank` (or a chain file's :class:`~.chain_model.Chain` or
+:class:`~.chain_model.Network`, in :mod:`.chain_model`); :mod:`.crank` builds them from a file and
+checks every rule.
 """
 
 from __future__ import annotations
@@ -11,8 +12,9 @@ import math
 from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
-from .defaults import (DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED,
-                       DEFAULT_STICK_FACTOR)
+from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
+from .derived import firing_angles_from_lags, reference_value, table_at_temperature, temperature_groups
+
 
 class AttachPoint(StrEnum):
     """Where a rigid attachment sits: the pulley end face, the flywheel flange face, or one copy
@@ -165,23 +167,7 @@ class Engine:
             If some cylinder has no TDC left in the cycle after the one before it fired: the
             crank angles cannot produce this firing order.
         """
-        period = math.pi * self.strokes_per_cycle
-        turn = 2 * math.pi
-        lags = self.tdc_lags()
-        tdc = [(a - lags[0]) % turn for a in lags]
-        out = [0.0] * self.cylinders
-        order = list(self.firing_order)
-        start = order.index(1)
-        previous = 0.0
-        for c in order[start + 1:] + order[:start]:
-            t = tdc[c - 1]
-            if t <= previous + 1e-9:
-                t += turn * math.ceil((previous + 1e-9 - t) / turn)
-            if t >= period:
-                raise ValueError(f"cylinder {c} has no TDC left in the {math.degrees(period):.0f}° cycle after "
-                                 f"the cylinder before it fired at {math.degrees(previous):.1f}°")
-            out[c - 1] = previous = t
-        return tuple(out)
+        return firing_angles_from_lags(self.tdc_lags(), self.firing_order, self.strokes_per_cycle)
 
 
 @dataclass(frozen=True)
@@ -268,29 +254,6 @@ DAMPER_TYPES = ("viscous", "rubber", "tuned")
 DAMPER_STATIONS = ("front", "rear")
 
 
-def table_at_temperature(groups: dict, temperature: float) -> tuple[tuple[float, float, float], ...]:
-    """A frequency table (f, k, η) at ``temperature`` from tables at several temperatures
-    (``groups``: temperature -> rows [f, k, η], f ascending): linear in temperature between the two
-    nearest, each read linearly in frequency on the union of their frequencies; the end
-    temperature's table outside the range (no extrapolation of a measured property)."""
-    import numpy as np
-
-    temps = sorted(groups)
-    lo = max([T for T in temps if T <= temperature], default=temps[0])
-    hi = min([T for T in temps if T >= temperature], default=temps[-1])
-    w = 0.0 if hi == lo else (temperature - lo) / (hi - lo)
-    f = np.union1d([r[0] for r in groups[lo]], [r[0] for r in groups[hi]])
-
-    def at(T, col):
-        g = groups[T]
-        return np.interp(f, [r[0] for r in g], [r[col] for r in g])
-
-    k = (1 - w) * at(lo, 1) + w * at(hi, 1)
-    eta = (1 - w) * at(lo, 2) + w * at(hi, 2)
-    return tuple((float(a), float(b), float(c)) for a, b, c in zip(f, k, eta))
-
-
-
 @dataclass(frozen=True)
 class Damper:
     """A torsional damper: a seismic ring joined to the pulley-end (``front``) or flywheel-side
@@ -333,10 +296,7 @@ class Damper:
 
     def at_temperature(self, temperature: float) -> "Damper":
         """This damper with its rubber's frequency table read at ``temperature`` (°C)."""
-        groups: dict = {}
-        for T, f, k, e in self.temperature_table:
-            groups.setdefault(T, []).append((f, k, e))
-        table = table_at_temperature(groups, float(temperature))
+        table = table_at_temperature(temperature_groups(self.temperature_table), float(temperature))
         return replace(self, table=table, stiffness=table[0][1], loss_factor=table[0][2],
                        temperature_c=float(temperature))
 
@@ -478,12 +438,6 @@ MEASURED_F1, PAPER_FE_F1, PAPER_LUMPED_F1 = ("measured_first_torsional_hz", "pap
                                              "paper_lumped_first_torsional_hz")
 
 
-def reference_value(notes: dict, key: str) -> float | None:
-    """A reference frequency of ``[meta]`` as a float, None where absent."""
-    value = notes.get(key)
-    return None if value is None else float(value)
-
-
 @dataclass(frozen=True)
 class Crank:
     """A complete crankshaft description in SI units.
@@ -567,158 +521,6 @@ class Crank:
         return tuple(a for a in self.attachments if a.at == at)
 
 
-@dataclass(frozen=True)
-class Chain:
-    """A torsional chain given directly: inertias (kg·m²), springs (N·m/rad), dampers.
-
-    ``absolute_damping`` (N·m·s/rad, one per inertia, to ground), ``relative_damping``
-    (N·m·s/rad, one per spring) and ``loss_factors`` (hysteretic η, one per spring: the spring
-    is k (1 + iη) in a steady-state solve) are optional. With ``engine`` and ``excitation``
-    the chain can be excited like a crank: ``cylinder_stations[c]`` is the 0-based station that
-    carries cylinder c + 1 (its inertia must already hold that cylinder's rotating and mean
-    reciprocating inertia; the reciprocating mass that makes the inertia torque is
-    ``excitation.reciprocating_mass``).
-    """
-
-    name: str
-    inertias: tuple[float, ...]
-    stiffnesses: tuple[float, ...]
-    labels: tuple[str, ...]
-    absolute_damping: tuple[float, ...] = ()
-    relative_damping: tuple[float, ...] = ()
-    source: str = ""
-    loss_factors: tuple[float, ...] = ()
-    cylinder_stations: tuple[int, ...] = ()
-    engine: Engine | None = None
-    excitation: Excitation | None = None
-    length_unit: str = "m"
-    raw: dict = field(default_factory=dict, compare=False, repr=False)
-    dampers: tuple[Damper, ...] = ()
-    limits: Limits | None = None
-    #: ``[uncertainty]`` and ``[distributions]``, as a crank description's (paths such as
-    #: ``chain.inertias_kgm2.3`` or ``chain.stiffnesses_nm_per_rad.*``)
-    uncertainty: tuple = ()
-    distributions: tuple = ()
-
-    @property
-    def has_dampers(self) -> bool:
-        """Whether the file states any absolute, relative or hysteretic damping."""
-        return any(v > 0 for v in (*self.absolute_damping, *self.relative_damping, *self.loss_factors))
-
-
-#: The name a shaft's end takes in a network to be joined to ground (a ground spring).
-GROUND = "ground"
-
-
-@dataclass(frozen=True)
-class Shaft:
-    """A torsional spring of a network between two stations (0-based; ``j`` = -1: ground).
-
-    ``stiffness`` N·m/rad; ``damping`` a viscous damper across it, N·m·s/rad; ``loss_factor``
-    its hysteretic η (k (1 + iη) in a steady-state solve).
-    """
-
-    i: int
-    j: int
-    stiffness: float
-    damping: float = 0.0
-    loss_factor: float = 0.0
-
-
-@dataclass(frozen=True)
-class GearPair:
-    """A rigid gear mesh between stations ``i`` and ``j`` (0-based): θ_j = ``ratio`` θ_i, the
-    ratio being the speed of j over the speed of i (the pitch radius of i over that of j).
-    The rotation's sense is left out: a reversal flips the sign of one branch's angles and
-    changes no frequency, amplitude or torque magnitude."""
-
-    i: int
-    j: int
-    ratio: float
-
-
-@dataclass(frozen=True)
-class NonlinearSpring:
-    """A nonlinear element of a network between stations ``i`` and ``j`` (0-based; ``j`` = -1:
-    ground): a clutch (its damper's springs, its plates' slip) or a dual-mass flywheel's springs.
-
-    The elastic torque is piecewise linear in the twist x = θ_i − θ_j (rad): on the drive side
-    (x ≥ 0) ``stiffnesses[0]`` (N·m/rad) up to ``stage_angles[0]`` (rad), ``stiffnesses[1]`` beyond
-    it, …; on the coast side (x < 0) the same curve mirrored, or ``coast_stiffnesses`` from 0 to
-    −``coast_stage_angles[0]``, … where given. In parallel a Coulomb friction ``friction`` (N·m, the
-    hysteresis) that sticks through ``stick_stiffness`` (N·m/rad; an elastic-perfectly-plastic
-    element, its loop a parallelogram). ``preload`` (N·m) is the mean torque it carries: it sets the
-    operating point x0 on the elastic curve, and the steady-state analyses take the stage's stiffness
-    there (:meth:`tangent`). ``slip_torque`` (N·m; 0: it never slips) is a clutch's capacity: the
-    plates in series with the damper slip while the total torque it transmits (the mean ``preload``
-    plus the vibratory part) would exceed it either way.
-    """
-
-    i: int
-    j: int
-    stiffnesses: tuple[float, ...]
-    stage_angles: tuple[float, ...] = ()
-    friction: float = 0.0
-    stick_stiffness: float = 0.0
-    preload: float = 0.0
-    name: str = ""
-    source: str = ""
-    coast_stiffnesses: tuple[float, ...] = ()
-    coast_stage_angles: tuple[float, ...] = ()
-    slip_torque: float = 0.0
-
-    def __post_init__(self):
-        if not self.stick_stiffness > 0:  # the default: stiff against every stage
-            object.__setattr__(self, "stick_stiffness",
-                               DEFAULT_STICK_FACTOR * max(tuple(self.stiffnesses) + tuple(self.coast_stiffnesses)))
-
-    def curve(self, coast: bool) -> tuple[tuple[float, ...], tuple[float, ...]]:
-        """(stiffnesses N·m/rad, stage angles rad) of the drive side or, with ``coast``, the coast side."""
-        if coast and self.coast_stiffnesses:
-            return tuple(self.coast_stiffnesses), tuple(self.coast_stage_angles)
-        return tuple(self.stiffnesses), tuple(self.stage_angles)
-
-    def elastic(self, x):
-        """The elastic torque at twist ``x`` (rad, array), N·m: piecewise linear, continuous, of the
-        twist's sign."""
-        import numpy as np
-
-        x = np.asarray(x, dtype=float)
-        a = np.abs(x)
-        torque = np.zeros_like(a)
-        for coast in (False, True):
-            stiffnesses, angles = self.curve(coast)
-            edges = (0.0, *angles)
-            side = np.zeros_like(a)
-            for s, k in enumerate(stiffnesses):
-                hi = edges[s + 1] if s + 1 < len(edges) else np.inf
-                side += k * np.clip(a - edges[s], 0.0, hi - edges[s])
-            torque = np.where((x < 0) == coast, side, torque)
-        return np.sign(x) * torque
-
-    @property
-    def operating_twist(self) -> float:
-        """x0 with elastic(x0) = ``preload``, rad (the curve is increasing, so x0 is unique)."""
-        stiffnesses, angles = self.curve(self.preload < 0)
-        edges = (0.0, *angles)
-        target, x, torque = abs(self.preload), 0.0, 0.0
-        for s, k in enumerate(stiffnesses):
-            width = edges[s + 1] - edges[s] if s + 1 < len(edges) else math.inf
-            if torque + k * width >= target:
-                x += (target - torque) / k
-                break
-            x, torque = x + width, torque + k * width
-        return math.copysign(x, self.preload)
-
-    @property
-    def tangent(self) -> float:
-        """The stiffness of the stage at the operating point (the upper one on a boundary), N·m/rad."""
-        stiffnesses, angles = self.curve(self.preload < 0)
-        x0 = abs(self.operating_twist)
-        stage = sum(1 for a in angles if x0 >= a)
-        return stiffnesses[stage]
-
-
 #: The lumped partitions of a crank (:mod:`fetorsion.lumped_model.lumped`), named by their number of
 #: stations on an inline four.
 PARTITIONS = (5, 6, 17, 19, 21)
@@ -751,81 +553,3 @@ def partition_labels(cylinders: int, partition: int) -> tuple[str, ...]:
     raise ValueError(f"{partition!r} is not a partition; choose from {PARTITIONS}")
 
 
-@dataclass(frozen=True)
-class NetworkCrank:
-    """A crank description as one part of a network (``[[chain.cranks]]``): its lumped
-    ``partition`` with the web method ``web_method``, its stations named ``"<name>.<label>"``
-    (:func:`partition_labels`) from station ``first`` (0-based) of the network on. ``drives``:
-    its pins carry the network's cylinders (the chain file gives no ``[engine]`` of its own).
-    The stations' inertias and the shafts between them are the lumped model's
-    (:func:`fetorsion.lumped_model.network.resolved`)."""
-
-    name: str
-    crank: Crank
-    partition: int
-    web_method: str
-    first: int = 0
-    drives: bool = True
-    #: ``dof = "condensed"``: the condensed FE crank in its bearings (the engine model of
-    #: ``fetorsion run``) where the forced response is solved (:mod:`fetorsion.response.driveline`);
-    #: the lumped ``partition`` names its stations and stands in where an analysis takes no FE crank.
-    condensed: bool = False
-
-    @property
-    def labels(self) -> tuple[str, ...]:
-        return tuple(f"{self.name}.{lb}" for lb in partition_labels(self.crank.throws, self.partition))
-
-
-@dataclass(frozen=True)
-class Network:
-    """A torsional network: named stations joined by shafts and gear pairs, branches allowed.
-
-    The file form of a chain with ``[[chain.stations]]``, ``[[chain.shafts]]`` and
-    ``[[chain.gears]]`` (docs/networks-and-transients.md). Inertias kg·m² per station,
-    ``absolute_damping`` N·m·s/rad per station (to ground). With ``engine`` and ``excitation``
-    the cylinders act on ``cylinder_stations`` (0-based, as a :class:`Chain`'s). The first
-    station is the "pulley" of the tables: the reference of the speed (its speed is the
-    engine's).
-    """
-
-    name: str
-    labels: tuple[str, ...]
-    inertias: tuple[float, ...]
-    shafts: tuple[Shaft, ...]
-    gears: tuple[GearPair, ...] = ()
-    absolute_damping: tuple[float, ...] = ()
-    source: str = ""
-    cylinder_stations: tuple[int, ...] = ()
-    engine: Engine | None = None
-    excitation: Excitation | None = None
-    length_unit: str = "m"
-    raw: dict = field(default_factory=dict, compare=False, repr=False)
-    limits: Limits | None = None
-    dampers: tuple[Damper, ...] = ()  # at "front" (the first station) or "rear" (the last at the engine speed)
-    #: ``[uncertainty]`` and ``[distributions]``, as a crank description's (``chain.stations.2.inertia_kgm2``)
-    uncertainty: tuple = ()
-    distributions: tuple = ()
-    nonlinear: tuple[NonlinearSpring, ...] = ()
-    #: The crank descriptions that are parts of the network; until they are resolved
-    #: (:func:`fetorsion.lumped_model.network.resolved`) their stations' inertias are NaN and the
-    #: shafts between them absent, so an unresolved network cannot be analysed by mistake.
-    cranks: tuple[NetworkCrank, ...] = ()
-    #: (cylinders × stations) share of each cylinder's torque on each station, when it is not all on
-    #: one station (a crank's pins spread as its lumped model spreads them); empty: ``cylinder_stations``.
-    cylinder_weights: tuple[tuple[float, ...], ...] = ()
-
-    @property
-    def linear_shafts(self) -> tuple[Shaft, ...]:
-        """The shafts, then each nonlinear element as a shaft of its stage's stiffness at its
-        operating point: what the steady-state analyses (modes, Campbell, response) see."""
-        return self.shafts + tuple(Shaft(e.i, e.j, e.tangent) for e in self.nonlinear)
-
-    @property
-    def has_dampers(self) -> bool:
-        """Whether the file states any absolute, relative or hysteretic damping."""
-        return any(v > 0 for v in (*self.absolute_damping, *(s.damping for s in self.shafts),
-                                   *(s.loss_factor for s in self.shafts)))
-
-    @property
-    def loss_factors(self) -> tuple[float, ...]:
-        return tuple(s.loss_factor for s in self.shafts)

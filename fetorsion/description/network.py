@@ -11,12 +11,13 @@ from pathlib import Path
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .fields import CHAIN_SCHEMA
-from .model import (CONDENSED, CRANK_END_ALIASES, GROUND, PARTITIONS, WEB_METHOD_NAMES, GearPair, Network, NetworkCrank,
-                    NonlinearSpring, Shaft)
+from .model import CONDENSED, CRANK_END_ALIASES, PARTITIONS, WEB_METHOD_NAMES
+from .chain_model import GROUND, GearPair, Network, NetworkCrank, NonlinearSpring, Shaft
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
-from .tables import (read_dampers, read_engine, read_limits, read_chain_excitation, read_variations, stated_damping_excitation,
-                     unique_problems, uncertainty_bound_problems)
+from .excitation_table import read_chain_excitation, stated_damping_excitation
+from .tables import (read_dampers, read_engine, read_limits, read_variations, unique_problems,
+                     uncertainty_bound_problems)
 
 
 def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool = True) -> Network:
@@ -32,74 +33,17 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     t = root.table("chain")
     root.used.add("meta")
     name = t.text("name", default=Path(source).stem)
-    for key in ("inertias_kgm2", "stiffnesses_nm_per_rad", "labels", "absolute_damping_nms_per_rad",
-                "relative_damping_nms_per_rad", "loss_factors"):
-        if key in t.data:
-            t.used.add(key)
-            problems.append(Problem(f"chain.{key}", t.data[key], "a network ([[chain.stations]]) states this per "
-                                    "station or shaft, not as a list"))
-    cranks = _network_cranks(t, Path(source).parent, problems)
-    labels, inertias, absolute = [], [], []
-    index = {}
-    for k, c in enumerate(cranks):  # the crank's stations first: its pulley is station 1, the reference speed
-        first = len(labels)
-        cranks[k] = replace(c, first=first)
-        labels += c.labels
-        inertias += [math.nan] * len(c.labels)  # the lumped model's, when resolved
-        absolute += [0.0] * len(c.labels)
-        index.update({f"{c.name}.{CRANK_END_ALIASES[0]}": first, f"{c.name}.{CRANK_END_ALIASES[1]}": len(labels) - 1})
-    for st in t.tables("stations", required=not cranks):
-        label = st.text("name")
-        if label in labels or label == GROUND:
-            problems.append(Problem(f"{st.path}.name", label, "must be unique and not 'ground'"))
-        labels.append(label)
-        inertias.append(st.number("inertia_kgm2", positive=True))
-        absolute.append(st.number("damping_nms_per_rad", 0.0, nonnegative=True))
-        st.finish()
+    _refuse_chain_lists(t, problems)
+    cranks, labels, inertias, absolute, index = _crank_stations(_network_cranks(t, Path(source).parent, problems))
+    _read_stations(t, cranks, labels, inertias, absolute, problems)
     index.update({s: i for i, s in enumerate(labels)})
-
-    def ends(tt: Table, ground: bool):
-        raw = tt.raw("between")
-        ok = (isinstance(raw, list) and len(raw) == 2 and all(isinstance(s, str) for s in raw)
-              and all(s in index or (ground and s == GROUND) for s in raw) and raw[0] != raw[1])
-        unknown = [s for s in (raw if isinstance(raw, list) else []) if isinstance(s, str) and s not in index
-                   and any(s.startswith(f"{c.name}.") for c in cranks)]
-        if unknown:
-            c = next(c for c in cranks if unknown[0].startswith(f"{c.name}."))
-            problems.append(Problem(f"{tt.path}.between", raw, f"'{unknown[0]}' is not a station of the crank "
-                                    f"'{c.name}': its stations are {c.name}.pulley, {c.name}.flywheel and "
-                                    + ", ".join(c.labels)))
-        elif raw is not None and not ok:
-            problems.append(Problem(f"{tt.path}.between", raw, "must name two different stations"
-                                    + (" (or a station and 'ground')" if ground else "")))
-        if not ok:
-            return None
-        a, b = raw if raw[0] != GROUND else raw[::-1]
-        return index[a], index.get(b, -1)
-
-    shafts = []
-    for sh in t.tables("shafts", required=not cranks):
-        pair = ends(sh, ground=True)
-        k = sh.number("stiffness_nm_per_rad", positive=True)
-        c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
-        eta = sh.number("loss_factor", 0.0, nonnegative=True)
-        sh.finish()
-        if pair:
-            shafts.append(Shaft(pair[0], pair[1], k, c, eta))
-    gears = []
-    for g in t.tables("gears", required=False):
-        pair = ends(g, ground=False)
-        ratio = g.number("ratio", positive=True)
-        g.finish()
-        if pair:
-            gears.append(GearPair(pair[0], pair[1], ratio))
-    nonlinear = [e for e in (_nonlinear_spring(nl, ends(nl, ground=True), problems)
-                             for nl in t.tables("nonlinear", required=False)) if e is not None]
+    shafts, gears, nonlinear = _links(t, cranks, index, problems)
     stations = t.get("cylinder_stations", [])
     t.finish()
     if not problems:
         inside = [Shaft(c.first + s, c.first + s + 1, 1.0) for c in cranks for s in range(len(c.labels) - 1)]
         problems += _network_topology(labels, inside + shafts + [Shaft(e.i, e.j, 1.0) for e in nonlinear], gears)
+        problems += _massless_gear_groups(labels, inertias, gears)
     engine = read_engine(root) if "engine" in data else None
     driver = cranks[0] if cranks and engine is None else None  # the crank's own engine drives its pins
     if driver is not None:
@@ -109,32 +53,150 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
                                     "when the chain file gives no [engine]; give [engine] to place them yourself"))
             stations = []
     cranks = [replace(c, drives=c is driver) for c in cranks]
-    picked = []
-    if not isinstance(stations, list) or not all(
-            (isinstance(c, str) and c in index) or (isinstance(c, int) and not isinstance(c, bool)
-                                                    and 1 <= c <= len(labels)) for c in stations):
-        problems.append(Problem("chain.cylinder_stations", stations, "must name a station (its name or 1-based "
-                                "number) per cylinder"))
-    else:
-        picked = [index[c] if isinstance(c, str) else c - 1 for c in stations]
-        if driver is None and engine is not None and engine.cylinders and len(picked) != engine.cylinders:
-            problems.append(Problem("chain.cylinder_stations", stations,
-                                    f"must name one station per cylinder ({engine.cylinders})"))
-        elif "engine" not in data and picked:
-            problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    picked = _cylinder_stations(stations, index, len(labels), driver is None, engine, "engine" in data, problems)
     # at "front": the first station (the engine's speed reference); "rear": the last station that
     # turns at the engine's speed (a gear's far side is not the flywheel's); or a station's name
     dampers = read_dampers(root, tuple(labels))
     limits = read_limits(root, torque_only=True)
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
+    excitation = _network_excitation(root, data, source, engine, cranks, has_dampers, problems)
+    uncertainty, distributions = read_variations(root, data, problems)
+    root.finish()
+    problems += _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers)
+    if problems:
+        raise DescriptionError(source, unique_problems(problems))
+    network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
+                      tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
+                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers)
+    if check_uncertainty:
+        bounds = uncertainty_bound_problems(network, parse_network)
+        if bounds:
+            raise DescriptionError(source, bounds)
+    return network
+
+
+def _refuse_chain_lists(t: Table, problems: list[Problem]) -> None:
+    """A plain chain's lists (``inertias_kgm2``, ...) have no place in a network: each one refused."""
+    for key in ("inertias_kgm2", "stiffnesses_nm_per_rad", "labels", "absolute_damping_nms_per_rad",
+                "relative_damping_nms_per_rad", "loss_factors"):
+        if key in t.data:
+            t.used.add(key)
+            problems.append(Problem(f"chain.{key}", t.data[key], "a network ([[chain.stations]]) states this per "
+                                    "station or shaft, not as a list"))
+
+
+def _crank_stations(cranks: list[NetworkCrank]) -> tuple[list[NetworkCrank], list, list, list, dict]:
+    """The cranks' stations first, their pulley station 1, the reference speed: (the cranks placed,
+    labels, inertias (NaN: the lumped model's, when resolved), absolute dampings, index of each
+    label and of each crank's pulley and flywheel alias)."""
+    cranks = list(cranks)
+    labels, inertias, absolute = [], [], []
+    index = {}
+    for k, c in enumerate(cranks):
+        first = len(labels)
+        cranks[k] = replace(c, first=first)
+        labels += c.labels
+        inertias += [math.nan] * len(c.labels)
+        absolute += [0.0] * len(c.labels)
+        index.update({f"{c.name}.{CRANK_END_ALIASES[0]}": first, f"{c.name}.{CRANK_END_ALIASES[1]}": len(labels) - 1})
+    return cranks, labels, inertias, absolute, index
+
+
+def _read_stations(t: Table, cranks, labels: list, inertias: list, absolute: list, problems: list[Problem]) -> None:
+    """``[[chain.stations]]``, appended to ``labels``, ``inertias`` and ``absolute`` (after the cranks')."""
+    for st in t.tables("stations", required=not cranks):
+        label = st.text("name")
+        if label in labels or label == GROUND:
+            problems.append(Problem(f"{st.path}.name", label, "must be unique and not 'ground'"))
+        labels.append(label)
+        # 0: a pinion whose inertia the gear it meshes with carries (checked by _massless_gear_groups)
+        inertias.append(st.number("inertia_kgm2", nonnegative=True))
+        absolute.append(st.number("damping_nms_per_rad", 0.0, nonnegative=True))
+        st.finish()
+
+
+def _ends(tt: Table, ground: bool, index: dict, cranks, problems: list[Problem]) -> tuple[int, int] | None:
+    """The two stations (0-based; -1: ground) a shaft, gear or nonlinear element is ``between``;
+    None (the problem recorded) where they are not two different known stations."""
+    raw = tt.raw("between")
+    ok = (isinstance(raw, list) and len(raw) == 2 and all(isinstance(s, str) for s in raw)
+          and all(s in index or (ground and s == GROUND) for s in raw) and raw[0] != raw[1])
+    unknown = [s for s in (raw if isinstance(raw, list) else []) if isinstance(s, str) and s not in index
+               and any(s.startswith(f"{c.name}.") for c in cranks)]
+    if unknown:
+        c = next(c for c in cranks if unknown[0].startswith(f"{c.name}."))
+        problems.append(Problem(f"{tt.path}.between", raw, f"'{unknown[0]}' is not a station of the crank "
+                                f"'{c.name}': its stations are {c.name}.pulley, {c.name}.flywheel and "
+                                + ", ".join(c.labels)))
+    elif raw is not None and not ok:
+        problems.append(Problem(f"{tt.path}.between", raw, "must name two different stations"
+                                + (" (or a station and 'ground')" if ground else "")))
+    if not ok:
+        return None
+    a, b = raw if raw[0] != GROUND else raw[::-1]
+    return index[a], index.get(b, -1)
+
+
+def _links(t: Table, cranks, index: dict, problems: list[Problem]) -> tuple[list, list, list]:
+    """``[[chain.shafts]]``, ``[[chain.gears]]`` and ``[[chain.nonlinear]]``: (shafts, gear pairs,
+    nonlinear elements), each whose ends or fields were refused left out."""
+    shafts = []
+    for sh in t.tables("shafts", required=not cranks):
+        pair = _ends(sh, True, index, cranks, problems)
+        k = sh.number("stiffness_nm_per_rad", positive=True)
+        c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
+        eta = sh.number("loss_factor", 0.0, nonnegative=True)
+        sh.finish()
+        if pair:
+            shafts.append(Shaft(pair[0], pair[1], k, c, eta))
+    gears = []
+    for g in t.tables("gears", required=False):
+        pair = _ends(g, False, index, cranks, problems)
+        ratio = g.number("ratio", positive=True)
+        g.finish()
+        if pair:
+            gears.append(GearPair(pair[0], pair[1], ratio))
+    nonlinear = [e for e in (_nonlinear_spring(nl, _ends(nl, True, index, cranks, problems), problems)
+                             for nl in t.tables("nonlinear", required=False)) if e is not None]
+    return shafts, gears, nonlinear
+
+
+def _cylinder_stations(stations, index: dict, n: int, counted: bool, engine, has_engine_table: bool,
+                       problems: list[Problem]) -> list[int]:
+    """``chain.cylinder_stations`` (names or 1-based numbers of ``n`` stations) as 0-based stations;
+    ``counted``: one per cylinder of ``engine`` is required (the network's own engine)."""
+    picked = []
+    if not isinstance(stations, list) or not all(
+            (isinstance(c, str) and c in index) or (isinstance(c, int) and not isinstance(c, bool)
+                                                    and 1 <= c <= n) for c in stations):
+        problems.append(Problem("chain.cylinder_stations", stations, "must name a station (its name or 1-based "
+                                "number) per cylinder"))
+    else:
+        picked = [index[c] if isinstance(c, str) else c - 1 for c in stations]
+        if counted and engine is not None and engine.cylinders and len(picked) != engine.cylinders:
+            problems.append(Problem("chain.cylinder_stations", stations,
+                                    f"must name one station per cylinder ({engine.cylinders})"))
+        elif not has_engine_table and picked:
+            problems.append(Problem("chain.cylinder_stations", stations, "needs an [engine] table"))
+    return picked
+
+
+def _network_excitation(root: Table, data: dict, source: str, engine, cranks, has_dampers: bool,
+                        problems: list[Problem]):
+    """The network's own ``[excitation]``, or else its driving crank's, beside the damping it states."""
     excitation, ex_table = read_chain_excitation(root, data, source, engine, problems)
     if excitation is None and cranks and cranks[0].crank.excitation is not None and engine is cranks[0].crank.engine:
         # the crank's own [excitation] (its pressure file already read relative to the crank's folder)
         excitation, ex_table = cranks[0].crank.excitation, cranks[0].crank.raw.get("excitation", {})
     if excitation is not None:
         excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "network", problems)
-    uncertainty, distributions = read_variations(root, data, problems)
-    root.finish()
+    return excitation
+
+
+def _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers) -> list[Problem]:
+    """A condensed crank offers the network its pulley and flywheel only, and drives its own pins:
+    what joins or damps its inner stations, or a network ``[engine]`` beside it, is refused."""
+    problems = []
     for c in cranks:
         inner = [labels[s] for s in joined_inside(c, shafts, gears, nonlinear)] if c.condensed else []
         if inner:
@@ -148,16 +210,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         if c.condensed and not c.drives:
             problems.append(Problem("engine", "given", "a condensed crank's pins carry its own cylinders (its [engine] "
                                     "and [excitation]): leave the network's [engine] out"))
-    if problems:
-        raise DescriptionError(source, unique_problems(problems))
-    network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
-                      tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
-                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers)
-    if check_uncertainty:
-        bounds = uncertainty_bound_problems(network, parse_network)
-        if bounds:
-            raise DescriptionError(source, bounds)
-    return network
+    return problems
 
 
 def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[NetworkCrank]:
@@ -281,6 +334,28 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     if not out:
         out += _locked_loops(labels, shafts, gears)
     return out
+
+
+def _massless_gear_groups(labels, inertias, gears) -> list[Problem]:
+    """Stations moving together through gears (one angle for the group) must have some inertia
+    between them: a station of inertia 0 is a gear whose inertia its mate carries (a crank's
+    station, NaN until its lumped model is built, has its own)."""
+    groups: dict[int, list[int]] = {}
+    parent = list(range(len(labels)))
+
+    def root(a):
+        while parent[a] != a:
+            a = parent[a]
+        return a
+
+    for g in gears:
+        parent[root(g.i)] = root(g.j)
+    for i in range(len(labels)):
+        groups.setdefault(root(i), []).append(i)
+    return [Problem("chain.stations", [labels[i] for i in group],
+                    "have no inertia: a station of inertia 0 must be meshed ([[chain.gears]]) with one that has some"
+                    if len(group) > 1 else "has no inertia: only a gear meshed with one that has some may have 0")
+            for group in groups.values() if not any(inertias[i] > 0 or math.isnan(inertias[i]) for i in group)]
 
 
 def speed_walk(n: int, shafts, gears):

@@ -1,19 +1,16 @@
 """The tables every description kind shares, read the same way in a crank description, a chain
-and a network: ``[engine]``, ``[excitation]``, ``[[dampers]]``, ``[limits]``, ``[uncertainty]``
-and ``[distributions]``; and the problems list's helpers."""
+and a network: ``[engine]``, ``[[dampers]]``, ``[limits]``, ``[uncertainty]``, ``[distributions]``
+and ``[design]`` (``[excitation]``: :mod:`.excitation_table`); and the problems list's helpers."""
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
-from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .fields import is_count
-from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
-from .model import (table_at_temperature, DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, LAYOUTS, Damper, DesignSpace, Engine,
-                    Excitation, Limits)
-from .reader import field_keys, MAX_DESCRIPTION_BYTES, Table, finite_number, resolve_field
+from .derived import table_at_temperature
+from .model import DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, LAYOUTS, Damper, DesignSpace, Engine, Limits
+from .reader import field_keys, Table, finite_number, resolve_field
 
 
 def per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:
@@ -287,136 +284,6 @@ def read_limits(root: Table, torque_only: bool = False) -> Limits | None:
     return lim
 
 
-EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
-
-
-def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: bool = False) -> Excitation:
-    """The ``[excitation]`` table; a pressure CSV path is relative to the description file. A chain
-    that states its own dampers may set ``modal_damping_ratio = 0`` (``zero_damping_ok``).
-    The synthetic cycle is checked against the ``engine`` it drives (a bore, four strokes, a
-    peak pressure above the motored one)."""
-    strokes = engine.strokes_per_cycle if engine else 4
-    mass = t.number("reciprocating_mass_kg", nonnegative=True)
-    rotating = t.number("rotating_mass_kg", 0.0, nonnegative=True)
-    speeds = t.numbers("speed_range_rpm")
-    if speeds and not (len(speeds) == 2 and 0 < speeds[0] < speeds[1]):
-        t.problems.append(Problem(f"{t.path}.speed_range_rpm", list(speeds), "must be [low, high] rpm with 0 < low < high"))
-        speeds = (1.0, 2.0)
-    zeta = t.number("modal_damping_ratio", DEFAULT_DAMPING_RATIO, positive=not zero_damping_ok,
-                    nonnegative=zero_damping_ok, below=1.0)
-    overspeed = t.number("overspeed_factor", DEFAULT_OVERSPEED, above=0.0)
-    if overspeed < 1.0:
-        t.problems.append(Problem(f"{t.path}.overspeed_factor", overspeed, "must be >= 1 (a multiple of the top speed)"))
-    band = tuple(t.numbers("modal_damping_band", required=False) or DEFAULT_DAMPING_BAND)
-    if not (len(band) == 2 and 0 < band[0] <= band[1] < 1):
-        t.problems.append(Problem(f"{t.path}.modal_damping_band", list(band), "must be [low, high] with 0 < low <= high < 1"))
-        band = DEFAULT_DAMPING_BAND
-    source = t.text("modal_damping_source", "")
-    if "modal_damping_band" in t.data and not source.strip():
-        t.problems.append(Problem(f"{t.path}.modal_damping_source", source,
-                                  "is required with modal_damping_band: say where the band comes from"))
-    bending = t.number("bending_damping_ratio", 0.0, positive=True, below=1.0) if "bending_damping_ratio" in t.data \
-        else None
-    bending_source = t.text("bending_damping_ratio_source", "").strip()
-    if bending is not None and not bending_source:
-        t.problems.append(Problem(f"{t.path}.bending_damping_ratio_source", bending_source,
-                                  "is required with bending_damping_ratio: say where it comes from (a measurement, "
-                                  "a published value)"))
-    elif bending is None and bending_source:
-        t.problems.append(Problem(f"{t.path}.bending_damping_ratio_source", bending_source,
-                                  "names the source of a bending_damping_ratio the table does not give"))
-    common = dict(bending_damping_ratio=bending, bending_damping_ratio_source=bending_source,
-                  reciprocating_mass=mass, rotating_mass=rotating, speed_range=tuple(speeds), modal_damping_ratio=zeta, overspeed=overspeed,
-                  damping_band=(float(band[0]), float(band[1])),
-                  damping_source=source.strip() if "modal_damping_band" in t.data else DEFAULT_DAMPING_BAND_SOURCE,
-                  modal_damping_ratio_source=t.text("modal_damping_ratio_source", "").strip())
-    given = [k for k in EXCITATION_SOURCES if k in t.data]
-    if len(given) != 1:
-        t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))
-        t.used.update(EXCITATION_SOURCES)
-        t.used.update(_SYNTHETIC_CYCLE_KEYS)
-        t.finish()
-        return Excitation(**common)
-    if given[0] == "pressure_csv":
-        csv = t.text("pressure_csv")
-        t.finish()
-        curve = _pressure_csv(folder / csv, f"{t.path}.pressure_csv", t.problems, 180.0 * strokes) if csv else None
-        return Excitation(pressure_curve=curve, **common)
-    raw = t.get(given[0])
-    pairs = [(1.0, raw)] if finite_number(raw) else raw
-    if not (isinstance(pairs, list) and pairs and all(
-            isinstance(p, (list, tuple)) and len(p) == 2 and all(finite_number(v) for v in p) and p[1] > 0
-            for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
-        t.problems.append(Problem(f"{t.path}.{given[0]}", raw,
-                                  "must be a finite pressure > 0 (Pa) or a list of [rpm, Pa] pairs with rpm ascending"))
-        pairs = [(1.0, 1.0)]
-    ex = Excitation(
-        compression_ratio=t.number("compression_ratio", above=1.0),
-        load_kind="imep" if given[0] == "imep_pa" else "peak",
-        load=tuple((float(a), float(b)) for a, b in pairs),
-        intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
-        polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),
-        combustion_start=math.radians(t.number("combustion_start_deg", -15.0, above=-90.0, below=90.0)),
-        combustion_duration=math.radians(t.number("combustion_duration_deg", 50.0, positive=True, below=180.0)),
-        wiebe_a=t.number("wiebe_a", 5.0, positive=True),
-        wiebe_m=t.number("wiebe_m", 2.0, nonnegative=True),
-        **common,
-    )
-    t.finish()
-    if engine is not None and engine.strokes_per_cycle != 4:
-        t.problems.append(Problem(f"{t.path}.{given[0]}", raw, "the synthetic cycle is a 4-stroke cycle; give "
-                                  "pressure_csv for a 2-stroke engine"))
-    if engine is not None and not engine.bore > 0:
-        t.problems.append(Problem("engine.bore", engine.bore, f"must be > 0 for the gas force of {t.path}.{given[0]}"))
-    motored_peak = ex.intake_pressure * ex.compression_ratio ** ex.polytropic_exponent
-    if ex.load_kind == "peak" and ex.compression_ratio > 1 and min(p for _, p in ex.load) <= motored_peak:
-        # Polytropic compression from BDC at the intake pressure: the motored pressure at TDC.
-        t.problems.append(Problem(f"{t.path}.peak_pressure_pa", raw, f"must be above the motored peak "
-                                  f"p_intake·CR^n = {motored_peak:.4g} Pa at every speed"))
-    return ex
-
-
-_SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",
-                         "combustion_duration_deg", "wiebe_a", "wiebe_m")
-
-
-def _pressure_csv(path: Path, field_name: str, problems: list[Problem], cycle_deg: float):
-    """(angles rad, pressures Pa) from a CSV of crank angle (deg, 0 = firing TDC) and pressure (Pa)
-    that covers one whole cycle (``cycle_deg``: 720 for a 4-stroke, 360 for a 2-stroke)."""
-    import numpy as np
-
-    rows = "rows of 'angle_deg, pressure_pa'"
-    if not path.is_file():
-        problems.append(Problem(field_name, str(path), "is not a file"))
-        return None
-    if path.stat().st_size > MAX_DESCRIPTION_BYTES:
-        problems.append(Problem(field_name, str(path), f"is larger than {MAX_DESCRIPTION_BYTES >> 20} MiB"))
-        return None
-    try:
-        table = np.loadtxt(path, delimiter=",", comments="#", ndmin=2, encoding="utf-8")
-    except (OSError, ValueError) as exc:
-        problems.append(Problem(field_name, str(path), f"could not be read as {rows} ({exc})"))
-        return None
-    if table.ndim != 2 or table.shape[1] != 2 or len(table) < 8:
-        problems.append(Problem(field_name, str(path), f"needs >= 8 {rows}"))
-        return None
-    angle, pressure = table[:, 0], table[:, 1]
-    if not np.all(np.isfinite(table)):
-        bad = int(np.flatnonzero(~np.isfinite(table).all(axis=1))[0])
-        problems.append(Problem(field_name, str(path), f"row {bad + 1} holds a non-finite number"))
-    elif np.any(np.diff(angle) <= 0) or np.any(pressure <= 0):
-        problems.append(Problem(field_name, str(path), f"needs {rows} with angles ascending and pressures > 0"))
-    else:
-        span, step = angle[-1] - angle[0], np.diff(angle).max()
-        if not cycle_deg - step - 1e-9 <= span <= cycle_deg + 1e-9:
-            problems.append(Problem(field_name, str(path),
-                                    f"covers {angle[0]:g}..{angle[-1]:g} deg; it must cover one whole cycle "
-                                    f"({cycle_deg:g} deg, one step short at most)"))
-        else:
-            return tuple(np.radians(angle)), tuple(pressure)
-    return None
-
-
 def read_uncertainty(t: Table, data: dict, problems: list[Problem], table: str = "uncertainty", keys=None,
                      nominal_inside: bool = True):
     """Ranges of reconstructed inputs: ``"path" = [low, high]``, or a named group
@@ -551,37 +418,10 @@ def _as_file_value(nominal, bound: float):
     return bound
 
 
-def stated_damping_excitation(excitation: Excitation, ex_table: dict, has_dampers: bool, kind: str,
-                              problems: list[Problem]) -> Excitation:
-    """A chain's or network's ``[excitation]`` beside the damping it states: where it states
-    absolute, relative or hysteretic damping and no ``modal_damping_ratio``, no modal damping is
-    added (a default ratio on top would count it twice); where it states none, the modal ratio
-    must be > 0 (an undamped resonance has no finite response)."""
-    if "modal_damping_ratio" not in ex_table and has_dampers:
-        return replace(excitation, modal_damping_ratio=0.0)
-    if not excitation.modal_damping_ratio > 0 and not has_dampers:
-        problems.append(Problem("excitation.modal_damping_ratio", excitation.modal_damping_ratio,
-                                f"must be > 0 when the {kind} states no absolute, relative or hysteretic damping "
-                                "(an undamped resonance has no finite response)"))
-    return excitation
-
-
 def read_variations(root: Table, data: dict, problems: list[Problem]) -> tuple[tuple, tuple]:
     """(``[uncertainty]``, ``[distributions]``) of any description kind."""
     uncertainty = read_uncertainty(root.table("uncertainty", required=False), data, problems)
     return uncertainty, read_distributions(root.table("distributions", required=False), uncertainty, data, problems)
-
-
-def read_chain_excitation(root: Table, data: dict, source: str, engine: Engine | None,
-                          problems: list[Problem]) -> tuple[Excitation | None, dict]:
-    """A chain's or network's own ``[excitation]`` (it needs an ``[engine]``; a zero modal ratio
-    allowed, the file may state its damping) and its raw table; (None, {}) without one."""
-    if "excitation" not in data:
-        return None, {}
-    if engine is None:
-        problems.append(Problem("excitation", "[excitation]", "needs an [engine] table (and chain.cylinder_stations)"))
-    ex_table = data["excitation"] if isinstance(data["excitation"], dict) else {}
-    return read_excitation(root.table("excitation"), Path(source).parent, engine, zero_damping_ok=True), ex_table
 
 
 def read_design(root: Table, data: dict, problems: list[Problem]) -> DesignSpace | None:

@@ -18,7 +18,7 @@ whole history for the multiaxial cross-checks (Crossland, Findley).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -240,15 +240,30 @@ def run_assessment(crank, cycle, fillets, scf: SCFSet, method: str = "textbook",
         raise FetorsionError(f"assessment method must be one of {', '.join(ASSESSMENT_METHODS)}, got {method!r}"
                              + (" (UR M53 as written is fetorsion.design.m53.run_m53_crank)" if method == "iacs-m53" else ""))
     label, method = method, ASSESSMENT_METHODS[method]
-    sigma, tau = fillet_stress_histories(crank, cycle, fillets)
-    radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
-    kts = [scf.fillet(f.kind) for f in fillets]
-    labels, kinds, radii, diameters = [f.label for f in fillets], [f"{f.kind}-fillet" for f in fillets], \
-        [radius[f.kind] for f in fillets], [f.diameter for f in fillets]
-    cuts_read = list(range(len(fillets)))
     bores = oil_bore_sections(crank, fillets)
     missing = sorted({b.kind for b in bores if b.kind not in scf.oil_bore})
-    for b in [b for b in bores if b.kind not in missing]:
+    sigma, tau, where, cuts_read = _local_histories(crank, cycle, fillets, scf,
+                                                    [b for b in bores if b.kind not in missing])
+    # M53's σ_add loads the fillets only; the rule's oil-bore equivalent has no such term
+    add = [getattr(crank.limits, "additional_bending", 0.0) if kind != "oil-bore" else 0.0 for _, kind, *_ in where]
+    safety = _safety_over_speeds(crank, sigma, tau, where, add, method, required)
+    worst_speed = np.argmin(safety, axis=0)
+    worst = _worst_speed_fatigue(crank, sigma, tau, where, add, worst_speed, method, required)
+    notes = _assessment_notes(crank, method, where[0][4], scf, bores, missing, worst)
+    return CrankAssessment(crank.name, label, np.asarray(cycle.rpm), [w[0] for w in where], safety, worst,
+                           np.asarray(cycle.rpm)[worst_speed], scf.source, notes, np.array([w[2] for w in where]),
+                           tuple(cuts_read))
+
+
+def _local_histories(crank, cycle, fillets, scf: SCFSet, bores: list[OilBoreSection]):
+    """(σ, τ) of every place over the cycle, (speeds, places, angles) Pa; each place's (label, kind,
+    diameter, notch radius, (K_t bending, K_t torsion)); the cut each reads. The fillets' are
+    nominal (their SCFs applied by run_fatigue), the oil bores' ``bores`` already local."""
+    sigma, tau = fillet_stress_histories(crank, cycle, fillets)
+    radius = {"pin": crank.fillets.pin, "journal": crank.fillets.journal}
+    where = [(f.label, f"{f.kind}-fillet", f.diameter, radius[f.kind], scf.fillet(f.kind)) for f in fillets]
+    cuts_read = list(range(len(fillets)))
+    for b in bores:
         sb, tb = oil_bore_stress_histories(cycle, b)
         # At the bore's edge both loads give a normal stress along the edge (a free surface with no
         # shear): local σ = γ_B σ_b ± γ_T τ, the sign that makes the larger range, and no shear.
@@ -257,36 +272,40 @@ def run_assessment(crank, cycle, fillets, scf: SCFSet, method: str = "textbook",
         local = np.where((np.ptp(plus, axis=1) >= np.ptp(minus, axis=1))[:, None], plus, minus)
         sigma = np.concatenate([sigma, local[:, None]], axis=1)
         tau = np.concatenate([tau, np.zeros_like(tb)[:, None]], axis=1)
-        kts.append((1.0, 1.0))
-        labels.append(b.label)
-        kinds.append("oil-bore")
-        radii.append(0.5 * crank.oil_holes.diameter)
-        diameters.append(b.diameter)
+        where.append((b.label, "oil-bore", b.diameter, 0.5 * crank.oil_holes.diameter, (1.0, 1.0)))
         cuts_read.append(b.cuts[0])
+    return sigma, tau, where, cuts_read
+
+
+def _safety_over_speeds(crank, sigma, tau, where, add, method, required) -> np.ndarray:
+    """Each place's safety at every speed, (speeds, places): the method on its histories' mean and alternating parts."""
     s_mean, s_alt = 0.5 * (sigma.max(axis=2) + sigma.min(axis=2)), 0.5 * np.ptp(sigma, axis=2)
     t_mean, t_alt = 0.5 * (tau.max(axis=2) + tau.min(axis=2)), 0.5 * np.ptp(tau, axis=2)
-    where = list(zip(labels, kinds, diameters, radii, kts))
-    # M53's σ_add loads the fillets only; the rule's oil-bore equivalent has no such term
-    add = [getattr(crank.limits, "additional_bending", 0.0) if kind != "oil-bore" else 0.0 for kind in kinds]
     safety = np.empty(sigma.shape[:2])
     for s in range(sigma.shape[0]):
         locs = [LocationStress(lb, kind, d, r, s_alt[s, j], t_alt[s, j], s_mean[s, j], t_mean[s, j],
                                kt_bending=kb, kt_torsion=kt, additional_bending=add[j])
                 for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
         safety[s] = [a.safety for a in run_fatigue(locs, crank.material, method, required, limits=crank.limits).locations]
-    worst_speed = np.argmin(safety, axis=0)
+    return safety
+
+
+def _worst_speed_fatigue(crank, sigma, tau, where, add, worst_speed, method, required) -> FatigueResult:
+    """The method at each place's worst speed on its whole history, its local stresses in its factors."""
     locs = [LocationStress.from_history(lb, kind, d, r, sigma[worst_speed[j], j], tau[worst_speed[j], j],
                                         kt_bending=kb, kt_torsion=kt, additional_bending=add[j])
             for j, (lb, kind, d, r, (kb, kt)) in enumerate(where)]
     worst = run_fatigue(locs, crank.material, method, required, limits=crank.limits)
     stresses = [{"bending_alt": kb * loc.bending_alt, "bending_mean": kb * loc.bending_mean,
                  "torsion_alt": kt * loc.torsion_alt, "torsion_mean": kt * loc.torsion_mean}
-                for loc, (kb, kt) in zip(locs, kts)]
-    from dataclasses import replace
+                for loc, (_, _, _, _, (kb, kt)) in zip(locs, where)]
+    return replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
+                                          for a, st in zip(worst.locations, stresses)))
 
-    worst = replace(worst, locations=tuple(replace(a, factors={**a.factors, "stresses": st})
-                                           for a, st in zip(worst.locations, stresses)))
-    notes = [f"local stresses: nominal section stresses × SCF (bending {kts[0][0]:.2f} …, torsion {kts[0][1]:.2f} …)"]
+
+def _assessment_notes(crank, method, kt_first, scf: SCFSet, bores, missing, worst: FatigueResult) -> list[str]:
+    """The assessment's notes: its SCFs, σ_add, the oil bores assessed or not, the strengths' source."""
+    notes = [f"local stresses: nominal section stresses × SCF (bending {kt_first[0]:.2f} …, torsion {kt_first[1]:.2f} …)"]
     if method == "iacs-m53":
         sigma_add = getattr(crank.limits, "additional_bending", 0.0)
         notes.append(f"M53's additional bending σ_add {sigma_add / 1e6:g} MPa at the fillets ([limits] additional_bending_pa)"
@@ -304,6 +323,4 @@ def run_assessment(crank, cycle, fillets, scf: SCFSet, method: str = "textbook",
     if worst.defaulted:
         notes.append(f"material strengths not in the description ({', '.join(worst.defaulted)}): "
                      f"{worst.material.name} ({worst.material.source})")
-    return CrankAssessment(crank.name, label, np.asarray(cycle.rpm), labels, safety, worst,
-                           np.asarray(cycle.rpm)[worst_speed], scf.source, notes, np.array(diameters),
-                           tuple(cuts_read))
+    return notes

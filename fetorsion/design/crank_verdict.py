@@ -25,6 +25,7 @@ from dataclasses import asdict, dataclass, field, replace
 import numpy as np
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO
+from ..description.model import Crank
 from ..errors import FetorsionError
 from .scfset import SCFSet
 from .dampers import DamperResult
@@ -338,114 +339,177 @@ def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFA
     progress : callable, optional
         Called with a line of text as each configuration starts (the run's progress lines).
     """
-    from ..response.coupled import bending_damping, with_damping_ratio
-    from ..response.cycle import mean_cut_loads
-    from ..response.forced import misfire_harmonics
-    from .bridge import method_bridge
-    from .m53 import m53_geometry, scf_comparison
-    from .recovered import same_load, vibratory_bending
-    from .recovery import crank_locations, crank_zones
-    from .verdict import allowed_power
+    from ..response.coupled import bending_damping
+    from .m53 import m53_geometry
+    from .m53_scfs import scf_comparison
+    from .recovered import same_load
 
     fatigue_method(method, "the fatigue method")
     say = progress or (lambda m: None)
     ex = crank.excitation
-    mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
-    zones = crank_zones(crank, progress=say) if fe_path else None
-    locations = crank_locations(crank, fillets, cc.cut_centres, zones=zones) if fe_path else None
-
-    methods = [m for m in FATIGUE_METHODS.values() if fe_path or not m.needs_recovery]
-
-    def loads_of(s, dampers, places=None, check=True):
-        return ConfigLoads(crank, cc, s, tuple(dampers), fillets, scf, locations if places is None else places,
-                           mean, check)
-
-    def safety_of(name, s, dampers, places=None):
-        """The governing safety of method ``name`` alone (the damping searches)."""
-        return FATIGUE_METHODS[name].governing_safety(loads_of(s, dampers, places, check=False))
-
-    def config(name, s, dampers, cylinder=None, results=None):
-        loads = loads_of(s, dampers)
-        results = dict(results or {})
-        results.update({m.name: m.assess(loads) for m in methods if m.name not in results})
-        described = tuple(dampers) == tuple(crank.dampers)
-        c = VerdictConfig(name, tuple(dampers), results, cylinder, as_described=described)
-        if fe_path and described:  # the rule's bending against the crank's own, where the verdict is
-            c.bending = vibratory_bending(crank, loads.cycle, fillets, cc.cut_centres, c.m53.rated_rpm)
-        loads.release()
-        if fe_path:
-            c.bridge = method_bridge(crank, c.fe, c.m53, locations, fillets, zones)
-        if dampers:  # one solve: M53's torques and the dampers' heat
-            p = loads.response.damper_power_w.sum(axis=(1, 2))
-            c.damper_power_w, c.allowed_power_w = float(p.max()), allowed_power(dampers)
-        return c
-
-    say("fatigue verdict: without a damper ...")
-    configs = [config("without a damper", setup, ())]
-    if crank.dampers:
-        configs.append(config("with the description's damper(s)", setup, crank.dampers))
-    # the recommended damper: designed for M53's governing safety (its bending does not move with
-    # the damper, so the torques decide), on at most 100 speeds, then checked on all
-    say("fatigue verdict: designing the recommended damper for it ...")
-    design = run_fatigue_damper(crank, setup, fillets, scf, kind, mu, undamped=configs[0].m53)
-    best = design.optimised
-    configs.append(config(f"with the recommended {kind} damper", setup, (best,)))
-    notes = []
-    if method != "iacs-m53":
-        # the fe path's safety needs a load cycle per trial damper (about a second each): the
-        # optimiser's objective stays M53's, whose torsional part is what a damper moves
-        notes.append(f"the recommended damper is designed for M53's governing safety and the worst misfire "
-                     f"cylinder chosen by M53; the deciding {method} method checks both")
-    if misfire and ex.pressure_curve is None:
-        say("fatigue verdict: misfire of each cylinder ...")
-        motored = misfire_harmonics(crank, setup)
-        # one setup per cylinder: its undamped response is solved once and serves every damper row
-        # (a damper's response is that one and the shared unit responses, with_dampers)
-        misfired = setup.with_misfires(motored)
-        rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
-        for name, dampers in rows + [(f"with the recommended {kind} damper", (best,))]:
-            # the worst cylinder by M53 (its governing safety alone), then its configuration in full
-            worst_c = int(np.argmin([FATIGUE_METHODS["iacs-m53"].governing_safety(loads_of(ms, dampers, check=False))
-                                     for ms in misfired]))
-            configs.append(config(f"misfire of cylinder {worst_c + 1}, {name}", misfired[worst_c], dampers, worst_c))
-        notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
-                      "M53's bending keeps the firing rod forces (the larger)")
-    elif misfire:
-        notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    inputs = _verdict_inputs(crank, cc, setup, fillets, scf, fe_path, say)
+    configs, design, notes = _configurations(inputs, setup, method, mu, kind, misfire, say)
     # the damping: the description's ratio decides; the flip ratio and the band are sensitivities
-    described = crank.dampers
     required = configs[0].answer(method).required
     own = configs[1 if crank.dampers else 0]  # the crank as described, firing
-
-    near = None
-    if fe_path:
-        # the damping searches read the places within 1.5x of the governing one (the others cannot
-        # govern across the band): a load cycle each, not 25 places' Findley sweeps
-        least = own.fe.safety.min(axis=0)
-        near = [loc for loc, q in zip(locations, least) if q <= NEAR_GOVERNING * least.min()]
-
-    def safety_at(zeta):
-        return safety_of(method, with_damping_ratio(setup, cc, "bearings", zeta), described, near)
-
-    say("fatigue verdict: the damping band and the damping ratio at which it flips ...")
-    band = [{"damping_ratio": z, "safety": safety_at(z)} for z in sorted(set(ex.damping_band))]
-    flip = _flip(safety_at, required, {b["damping_ratio"]: b["safety"] for b in band})
+    near = _near_governing(inputs, own)
+    band, flip = _damping_band_and_flip(inputs, setup, method, required, near, say)
     bending = bending_damping(crank)
     if fe_path and bending["assumed"]:
         say("fatigue verdict: the fe path at two bending damping ratios ...")
-
-        def at_bending(zb):
-            if zb == bending["ratio"]:  # the crank as described: its configuration has them
-                return {"bending_damping_ratio": zb, **{m.name: own.answer(m.name).safety for m in methods}}
-            s = with_damping_ratio(setup, cc, "bearings", ex.modal_damping_ratio, zb)
-            return {"bending_damping_ratio": zb, **{m.name: safety_of(m.name, s, described, near) for m in methods}}
-
-        bending["sensitivity"] = [at_bending(zb) for zb in BENDING_SENSITIVITY]
+        bending["sensitivity"] = [_at_bending_damping(inputs, setup, own, near, zb, bending["ratio"])
+                                  for zb in BENDING_SENSITIVITY]
     given = ex.modal_damping_ratio_source if hasattr(ex, "modal_damping_ratio_source") else ""
     assumed = not given
     source = given or "assumed: the description states no source"
     comparison = scf_comparison(m53_geometry(crank), scf)
     return CrankVerdict(crank.name, method, configs, ex.modal_damping_ratio, source, assumed, flip, band, design,
                         comparison, notes,
-                        same_load(crank, own.m53, zones, fe_factors={k: row["fe"] for k, row in comparison.items()})
+                        same_load(crank, own.m53, inputs.zones, fe_factors={k: row["fe"] for k, row in comparison.items()})
                         if fe_path else {}, bending)
+
+
+@dataclass(frozen=True)
+class _VerdictInputs:
+    """What every configuration of one verdict reads: the crank, its condensed model, fillets and SCFs,
+    the methods that run, and the ``fe`` path's mean cut loads, zones and places (None without it)."""
+
+    crank: Crank
+    cc: object  # the CondensedCrank (fetorsion.fe.condensed), not imported for its name alone
+    fillets: list
+    scf: SCFSet
+    methods: list
+    fe_path: bool
+    mean: np.ndarray | None = None
+    zones: dict | None = None
+    locations: list | None = None
+
+
+def _verdict_inputs(crank, cc, setup, fillets, scf: SCFSet, fe_path: bool, say) -> _VerdictInputs:
+    """The verdict's shared inputs; the ``fe`` path's places recovered where it runs."""
+    from ..response.cycle import mean_cut_loads
+    from .recovery import crank_locations, crank_zones
+
+    mean = mean_cut_loads(cc, setup.rpm) if fe_path else None
+    zones = crank_zones(crank, progress=say) if fe_path else None
+    locations = crank_locations(crank, fillets, cc.cut_centres, zones=zones) if fe_path else None
+    methods = [m for m in FATIGUE_METHODS.values() if fe_path or not m.needs_recovery]
+    return _VerdictInputs(crank, cc, fillets, scf, methods, fe_path, mean, zones, locations)
+
+
+def _loads(inputs: _VerdictInputs, s, dampers, places=None, check: bool = True) -> ConfigLoads:
+    """The loads of setup ``s`` with ``dampers`` at ``places`` (default every place of the verdict)."""
+    return ConfigLoads(inputs.crank, inputs.cc, s, tuple(dampers), inputs.fillets, inputs.scf,
+                       inputs.locations if places is None else places, inputs.mean, check)
+
+
+def _safety(inputs: _VerdictInputs, name: str, s, dampers, places=None) -> float:
+    """The governing safety of method ``name`` alone (the damping searches)."""
+    return FATIGUE_METHODS[name].governing_safety(_loads(inputs, s, dampers, places, check=False))
+
+
+def _config(inputs: _VerdictInputs, name: str, s, dampers, cylinder: int | None = None) -> VerdictConfig:
+    """One configuration assessed by every method, with its vibratory bending (as described), the
+    methods' bridge and its dampers' heat."""
+    from .bridge import method_bridge
+    from .recovered import vibratory_bending
+    from .verdict import allowed_power
+
+    crank = inputs.crank
+    loads = _loads(inputs, s, dampers)
+    results = {m.name: m.assess(loads) for m in inputs.methods}
+    described = tuple(dampers) == tuple(crank.dampers)
+    c = VerdictConfig(name, tuple(dampers), results, cylinder, as_described=described)
+    if inputs.fe_path and described:  # the rule's bending against the crank's own, where the verdict is
+        c.bending = vibratory_bending(crank, loads.cycle, inputs.fillets, inputs.cc.cut_centres, c.m53.rated_rpm)
+    loads.release()
+    if inputs.fe_path:
+        c.bridge = method_bridge(crank, c.fe, c.m53, inputs.locations, inputs.fillets, inputs.zones)
+    if dampers:  # one solve: M53's torques and the dampers' heat
+        p = loads.response.damper_power_w.sum(axis=(1, 2))
+        c.damper_power_w, c.allowed_power_w = float(p.max()), allowed_power(dampers)
+    return c
+
+
+def _configurations(inputs: _VerdictInputs, setup, method: str, mu: float, kind: str, misfire: bool,
+                    say) -> tuple[list[VerdictConfig], DamperResult, list[str]]:
+    """(configurations, the recommended damper's design, notes): without a damper, with the
+    description's, with the recommended one, and the worst misfire of each."""
+    crank = inputs.crank
+    rows = [("without a damper", ())] + ([("with the description's damper(s)", crank.dampers)] if crank.dampers else [])
+    say("fatigue verdict: without a damper ...")
+    configs = [_config(inputs, name, setup, dampers) for name, dampers in rows]
+    # the recommended damper: designed for M53's governing safety (its bending does not move with
+    # the damper, so the torques decide), on at most 100 speeds, then checked on all
+    say("fatigue verdict: designing the recommended damper for it ...")
+    design = run_fatigue_damper(crank, setup, inputs.fillets, inputs.scf, kind, mu, undamped=configs[0].m53)
+    best = design.optimised
+    rows.append((f"with the recommended {kind} damper", (best,)))
+    configs.append(_config(inputs, rows[-1][0], setup, (best,)))
+    notes = []
+    if method != "iacs-m53":
+        # the fe path's safety needs a load cycle per trial damper (about a second each): the
+        # optimiser's objective stays M53's, whose torsional part is what a damper moves
+        notes.append(f"the recommended damper is designed for M53's governing safety and the worst misfire "
+                     f"cylinder chosen by M53; the deciding {method} method checks both")
+    if misfire and crank.excitation.pressure_curve is None:
+        say("fatigue verdict: misfire of each cylinder ...")
+        configs += _misfire_configs(inputs, setup, rows)
+        notes.append("misfire: the cylinder's pressure is the motored cycle; the worst cylinder by M53 is shown; "
+                     "M53's bending keeps the firing rod forces (the larger)")
+    elif misfire:
+        notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    return configs, design, notes
+
+
+def _misfire_configs(inputs: _VerdictInputs, setup, rows) -> list[VerdictConfig]:
+    """For each (name, dampers) of ``rows``, the misfire of the cylinder that M53 finds worst."""
+    from ..response.forced import misfire_harmonics
+
+    motored = misfire_harmonics(inputs.crank, setup)
+    # one setup per cylinder: its undamped response is solved once and serves every damper row
+    # (a damper's response is that one and the shared unit responses, with_dampers)
+    misfired = setup.with_misfires(motored)
+    out = []
+    for name, dampers in rows:
+        # the worst cylinder by M53 (its governing safety alone), then its configuration in full
+        worst_c = int(np.argmin([_safety(inputs, "iacs-m53", ms, dampers) for ms in misfired]))
+        out.append(_config(inputs, f"misfire of cylinder {worst_c + 1}, {name}", misfired[worst_c], dampers, worst_c))
+    return out
+
+
+def _near_governing(inputs: _VerdictInputs, own: VerdictConfig) -> list | None:
+    """The places whose ``fe`` safety comes within :data:`NEAR_GOVERNING` of the governing one in
+    ``own`` (None without the ``fe`` path: every place)."""
+    if not inputs.fe_path:
+        return None
+    # the damping searches read the places within 1.5x of the governing one (the others cannot
+    # govern across the band): a load cycle each, not 25 places' Findley sweeps
+    least = own.fe.safety.min(axis=0)
+    return [loc for loc, q in zip(inputs.locations, least) if q <= NEAR_GOVERNING * least.min()]
+
+
+def _damping_band_and_flip(inputs: _VerdictInputs, setup, method: str, required: float, near,
+                           say) -> tuple[list[dict], DampingFlip]:
+    """The deciding method's governing safety over the description's damping band, and the damping
+    ratio at which the verdict flips (the crank as described, firing)."""
+    from ..response.coupled import with_damping_ratio
+
+    def safety_at(zeta):
+        return _safety(inputs, method, with_damping_ratio(setup, inputs.cc, "bearings", zeta), inputs.crank.dampers, near)
+
+    say("fatigue verdict: the damping band and the damping ratio at which it flips ...")
+    band = [{"damping_ratio": z, "safety": safety_at(z)} for z in sorted(set(inputs.crank.excitation.damping_band))]
+    flip = _flip(safety_at, required, {b["damping_ratio"]: b["safety"] for b in band})
+    return band, flip
+
+
+def _at_bending_damping(inputs: _VerdictInputs, setup, own: VerdictConfig, near, zb: float, own_ratio: float) -> dict:
+    """Every method's governing safety at bending damping ratio ``zb`` (the crank as described,
+    firing); at its own ratio ``own_ratio``, its configuration's."""
+    from ..response.coupled import with_damping_ratio
+
+    if zb == own_ratio:  # the crank as described: its configuration has them
+        return {"bending_damping_ratio": zb, **{m.name: own.answer(m.name).safety for m in inputs.methods}}
+    s = with_damping_ratio(setup, inputs.cc, "bearings", inputs.crank.excitation.modal_damping_ratio, zb)
+    return {"bending_damping_ratio": zb, **{m.name: _safety(inputs, m.name, s, inputs.crank.dampers, near) for m in inputs.methods}}

@@ -32,7 +32,8 @@ import scipy.linalg
 import scipy.optimize
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_PARTITION
-from ..description.model import DAMPER_STATIONS, Chain, Crank, Damper
+from ..description.model import DAMPER_STATIONS, Crank, Damper
+from ..description.chain_model import Chain
 from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
 from ..response.synthesis import group_maxima, half_peak_to_peak, largest_half_peak_to_peak

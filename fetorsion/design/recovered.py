@@ -281,26 +281,44 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
 
     for j, (loc, (strength, loads, static, res)) in enumerate(zip(locations, threaded_map(assessed, locations))):
         safety[:, j] = res["safety"]
-        s = int(np.argmin(res["safety"]))
-        node = int(res["node"][s])
-        hist = loc.stresses(loads[s], [node])[0]  # (3, angles)
-        st = loc.stresses(static[s][:, None], [node])[0, :, 0]
-        f = findley_surface(st, hist - st[:, None], res["k"], res["limit"])
-        peak = float(von_mises_plane(hist.T).max())
-        # the same node and speed with the mean taken away: the bridge's mean factor
-        free = findley_surface(np.zeros(3), hist - st[:, None], res["k"], res["limit"])
-        crit = {"findley": {"value": float(f["value"]), "limit": res["limit"], "k": res["k"],
-                            "plane_rad": float(f["plane"]), "tau_a_pa": float(f["tau_a"]),
-                            "sigma_n_max_pa": float(f["sigma_n_max"]), "safety": float(res["safety"][s]),
-                            "safety_without_mean": float(free["safety"])}}
-        factors = {**strength.factors, "node_m": loc.zone.xyz[node].tolist(), "zone": loc.zone.name,
-                   "peak_von_mises_pa": peak, "surface_traction_residual": loc.zone.normal_residual}
-        worst_locs.append(FatigueAssessment(loc.label, loc.kind, METHOD, strength.bending, von_mises_amplitude(hist),
-                                            signed_von_mises(st), float(res["safety"][s]), required,
-                                            yield_safety=mat.yield_strength / peak if peak > 0 else math.inf,
-                                            factors=factors, criteria=crit))
+        assessment, node = _at_worst_speed(loc, strength, loads, static, res, mat, required)
+        worst_locs.append(assessment)
         nodes_m.append(loc.zone.xyz[node].tolist())
     worst_speed = np.argmin(safety, axis=0)
+    result = FatigueResult(METHOD, mat, tuple(defaulted), tuple(worst_locs))
+    return RecoveredAssessment(crank.name, METHOD, rpm, [loc.label for loc in locations], safety, result,
+                               rpm[worst_speed], "stress recovery (six unit end loads)",
+                               _recovered_notes(mat, defaulted, reliability),
+                               np.array([loc.diameter for loc in locations]),
+                               tuple(loc.cuts[0] for loc in locations), nodes_m)
+
+
+def _at_worst_speed(loc, strength: LocalStrength, loads, static, res: dict, mat: FatigueMaterial,
+                    required: float) -> tuple[FatigueAssessment, int]:
+    """(the location's assessment at its worst speed, its least safe node there): Findley's terms, the
+    peak von Mises stress and the safety without the mean at that node."""
+    s = int(np.argmin(res["safety"]))
+    node = int(res["node"][s])
+    hist = loc.stresses(loads[s], [node])[0]  # (3, angles)
+    st = loc.stresses(static[s][:, None], [node])[0, :, 0]
+    f = findley_surface(st, hist - st[:, None], res["k"], res["limit"])
+    peak = float(von_mises_plane(hist.T).max())
+    # the same node and speed with the mean taken away: the bridge's mean factor
+    free = findley_surface(np.zeros(3), hist - st[:, None], res["k"], res["limit"])
+    crit = {"findley": {"value": float(f["value"]), "limit": res["limit"], "k": res["k"],
+                        "plane_rad": float(f["plane"]), "tau_a_pa": float(f["tau_a"]),
+                        "sigma_n_max_pa": float(f["sigma_n_max"]), "safety": float(res["safety"][s]),
+                        "safety_without_mean": float(free["safety"])}}
+    factors = {**strength.factors, "node_m": loc.zone.xyz[node].tolist(), "zone": loc.zone.name,
+               "peak_von_mises_pa": peak, "surface_traction_residual": loc.zone.normal_residual}
+    return FatigueAssessment(loc.label, loc.kind, METHOD, strength.bending, von_mises_amplitude(hist),
+                             signed_von_mises(st), float(res["safety"][s]), required,
+                             yield_safety=mat.yield_strength / peak if peak > 0 else math.inf,
+                             factors=factors, criteria=crit), node
+
+
+def _recovered_notes(mat: FatigueMaterial, defaulted, reliability: float) -> list[str]:
+    """The recovered assessment's notes: the method, the local strength and its source."""
     notes = ["local stresses recovered from six unit end loads on each throw (fillets) and on a bar with the "
              "drilling (oil bores), superposed with the cut loads over the cycle; Findley's critical plane on "
              "planes through the surface, the static part with its sign, the safety a factor on the vibratory part"]
@@ -323,12 +341,7 @@ def run_recovered_assessment(crank, cycle, locations, required: float | None = N
                          "[material] surface_treatment with its factor and source)")
     if defaulted:
         notes.append(f"material strengths not in the description ({', '.join(defaulted)}): {mat.name} ({mat.source})")
-    result = FatigueResult(METHOD, mat, tuple(defaulted), tuple(worst_locs))
-    return RecoveredAssessment(crank.name, METHOD, rpm, [loc.label for loc in locations], safety, result,
-                               rpm[worst_speed], "stress recovery (six unit end loads)", notes,
-                               np.array([loc.diameter for loc in locations]),
-                               tuple(loc.cuts[0] for loc in locations), nodes_m)
-
+    return notes
 
 def determinate_cut(force: np.ndarray, at: np.ndarray, cut: np.ndarray, span: float) -> np.ndarray:
     """The resultant (F, M about ``cut``) that the right part exerts on the left at the plane
@@ -458,7 +471,7 @@ def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None =
         :func:`fetorsion.design.recovery.crank_zones` of the crank.
 
     fe_factors : dict, optional
-        fetorsion's FE SCFs in M53's convention ({name: value}, :func:`fetorsion.design.m53.scf_comparison`'s
+        fetorsion's FE SCFs in M53's convention ({name: value}, :func:`fetorsion.design.m53_scfs.scf_comparison`'s
         ``fe``): M53's σ_V with them (:func:`m53_with_factors`) is given beside, ``m53_fe_scf_sigma_v_pa``
         and ``ratio_fe_scf`` (the recovery against the rule's combination on the same FE's factors).
 

@@ -30,8 +30,8 @@ import scipy.optimize
 
 from ..description.model import Crank, Damper
 from ..errors import FetorsionError
-from ..solid.outline import mass_properties
 from ..description.edit import edit_toml_values, field_values, with_values
+from .measures import crank_mass, first_elastic_hz, resonance_clearance
 from .scfset import SCFSet
 
 #: Differential evolution's generations by default.
@@ -41,22 +41,6 @@ OBJECTIVE_UNITS = {"mass": "kg", "inertia": "kg m^2", "change": "-"}
 #: The penalty per unit shortfall of safety (relative): large against the objective's own
 #: relative changes (order 0.1), so any feasible candidate beats an infeasible one.
 PENALTY = 10.0
-
-
-def crank_mass(crank: Crank) -> float:
-    """The crank's steel mass, kg: its cylinders (journals, pins, front and rear sections, bores
-    taken out) and its webs (their outlines with counterweights, uniform thickness); fillets and
-    drillings left out (a fraction of a percent). A CAD crank's (``[solid]``): its solid's, by
-    OpenCASCADE, fillets and drillings in."""
-    if crank.solid_step:
-        from ..solid.geometry import cad_mass_properties
-
-        return float(cad_mass_properties(crank)[0].mass)
-    rho = crank.material.density
-    cylinders = (*crank.journals, *crank.pins, *crank.front, *crank.rear)
-    shafts = sum(rho * math.pi / 4 * (c.diameter**2 - c.bore**2) * c.length for c in cylinders)
-    radius = crank.engine.stroke / 2
-    return float(shafts + sum(mass_properties(w, radius, rho)["mass"] for w in crank.webs))
 
 
 @dataclass(frozen=True)
@@ -294,25 +278,6 @@ class ExplorerModel:
         return out
 
 
-def first_elastic_hz(setup) -> float:
-    """The first elastic (torsional) mode of ``setup``'s undamped model, Hz: of a free chain its
-    second eigenvalue (the first is the rigid rotation), else the first of its torsional modes."""
-    import scipy.linalg
-
-    w2 = np.sort(scipy.linalg.eigh(setup.K, setup.M, eigvals_only=True))
-    k = 1 if setup.torsional_modes is None else int(setup.torsional_modes[0])
-    return float(math.sqrt(max(w2[k], 0.0)) / (2 * math.pi))
-
-
-def resonance_clearance(f1_hz: float, orders, speed_range_rpm) -> float:
-    """How far the resonance speeds n_q = 60 f1 / q of ``orders`` lie outside the running range
-    [low, high] rpm, as a share of the range's nearer end: min over q of
-    max(1 − n_q / low, n_q / high − 1); negative when one lies inside (its depth in)."""
-    low, high = speed_range_rpm
-    n = 60.0 * f1_hz / np.asarray(orders, float)
-    return float(np.min(np.maximum(1.0 - n / low, n / high - 1.0)))
-
-
 def candidate_of(crank: Crank, values: dict, outputs: dict) -> Candidate:
     """The :class:`Candidate` of one explorer sample (its values and outputs)."""
     mu = values.get(INERTIA_RATIO)
@@ -371,6 +336,33 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     from .crank_verdict import verdict_scfs
     from .m53 import m53_required
 
+    _check_searchable(crank)
+    from ..studies.runner import open_store
+
+    space = crank.design
+    start = time.perf_counter()
+    model = ExplorerModel(crank, verdict_scfs(crank) if scf is None else scf)
+    store = open_store() if store is None else store
+    bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
+    pool = _Evaluations(crank, model, store, client, bounds)
+    given = pool.evaluate([{}])[0]
+    if given is None:
+        raise FetorsionError(f"design: the explorer fails on the given design of {crank.name}")
+    required = target or space.required_safety or m53_required(crank.limits)
+    targets = DesignTargets(required, heat_limit or space.damper_heat_rating or 0.0, space.resonance_orders,
+                            space.resonance_margin, tuple(crank.excitation.speed_range), frequency_factor)
+    res = _global_search(pool, given, targets, seed, popsize, maxiter, progress, start)
+    _walk_onto_constraints(pool, given, targets, progress)
+    feasible = [c for c in pool.seen if targets.shortfall(c) == 0.0]
+    best = min(feasible, key=lambda c: c.objective) if feasible else None
+    notes = _search_notes(space, targets, len(bounds), seed, res.nit)
+    return DesignResult(crank.name, space.objective, required, given, pool.seen, best, time.perf_counter() - start,
+                        notes, targets, list(pool.failures))
+
+
+def _check_searchable(crank: Crank) -> None:
+    """Raise where ``crank``'s description gives the search nothing to move or to drive, or a
+    damper twice."""
     space = crank.design
     if space is None:
         raise FetorsionError(f"design: {crank.source or crank.name} has no [design] table (what may change)")
@@ -382,105 +374,124 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
     if crank.dampers and space.damper:
         raise FetorsionError("design: the description has [[dampers]] already; [design] damper adds one: "
                              "remove one of them")
-    from ..studies.runner import open_store, run_samples
 
-    start = time.perf_counter()
-    model = ExplorerModel(crank, verdict_scfs(crank) if scf is None else scf)
-    store = open_store() if store is None else store
 
-    failures: dict[str, None] = {}
+@dataclass
+class _Evaluations:
+    """The search's explorer calls: each point of the unit cube of ``bounds`` evaluated once
+    (``cache``), every candidate in the order evaluated (``seen``), and why samples failed."""
 
-    def evaluate_all(samples: list[dict]) -> list[Candidate | None]:
-        records, _ = run_samples(model, samples, store, client, progress=False, label=f"{crank.name}: design")
-        failures.update((r["error"], None) for r in records if "error" in r)
-        return [candidate_of(crank, s, r["outputs"]) if "outputs" in r else None for s, r in zip(samples, records)]
+    crank: Crank
+    model: ExplorerModel
+    store: object
+    client: object
+    bounds: list
+    seen: list[Candidate] = field(default_factory=list)
+    cache: dict[tuple, Candidate | None] = field(default_factory=dict)
+    failures: dict[str, None] = field(default_factory=dict)  # the reasons, each once, in order
 
-    given = evaluate_all([{}])[0]
-    if given is None:
-        raise FetorsionError(f"design: the explorer fails on the given design of {crank.name}")
-    required = target or space.required_safety or m53_required(crank.limits)
-    targets = DesignTargets(required, heat_limit or space.damper_heat_rating or 0.0, space.resonance_orders,
-                            space.resonance_margin, tuple(crank.excitation.speed_range), frequency_factor)
-    bounds = [(lo, hi) for _, lo, hi in space.inputs] + ([space.damper_inertia_ratio] if space.damper else [])
-    seen: list[Candidate] = []
+    def evaluate(self, samples: list[dict]) -> list[Candidate | None]:
+        """The candidates of explorer ``samples`` (None where one failed, its reason kept)."""
+        from ..studies.runner import run_samples
 
-    def sample_of(u) -> dict:
-        x = [lo + ui * (hi - lo) for ui, (lo, hi) in zip(u, bounds)]
+        records, _ = run_samples(self.model, samples, self.store, self.client, progress=False,
+                                 label=f"{self.crank.name}: design")
+        self.failures.update((r["error"], None) for r in records if "error" in r)
+        return [candidate_of(self.crank, s, r["outputs"]) if "outputs" in r else None for s, r in zip(samples, records)]
+
+    def sample_of(self, u) -> dict:
+        """The explorer sample at point ``u`` of the unit cube."""
+        space = self.crank.design
+        x = [lo + ui * (hi - lo) for ui, (lo, hi) in zip(u, self.bounds)]
         values = {p: float(xi) for (p, _, _), xi in zip(space.inputs, x)}
         if space.damper:
             values[INERTIA_RATIO] = float(x[-1])
         return values
 
-    cache: dict[tuple, Candidate | None] = {}
-
-    def candidates(us) -> list[Candidate | None]:
+    def candidates(self, us) -> list[Candidate | None]:
+        """The candidates at points ``us`` of the unit cube, those not evaluated yet at once."""
         keys = [tuple(np.round(np.clip(u, 0.0, 1.0), 12)) for u in us]
-        todo = list(dict.fromkeys(k for k in keys if k not in cache))
-        for k, c in zip(todo, evaluate_all([sample_of(k) for k in todo])):
-            cache[k] = c
+        todo = list(dict.fromkeys(k for k in keys if k not in self.cache))
+        for k, c in zip(todo, self.evaluate([self.sample_of(k) for k in todo])):
+            self.cache[k] = c
             if c is not None:  # None: a geometry that breaks a description rule (an overlap, a web too thin)
-                seen.append(c)
-        return [cache[k] for k in keys]
+                self.seen.append(c)
+        return [self.cache[k] for k in keys]
 
-    def cost_of(c: Candidate | None) -> float:
-        if c is None:
-            return 1e3
-        return c.objective / given.objective + PENALTY * targets.shortfall(c)
 
-    def cost(u):
-        return cost_of(candidates([u])[0])
+def _cost(c: Candidate | None, given: Candidate, targets: DesignTargets) -> float:
+    """The global search's cost: the objective over the given design's plus the penalty on the shortfalls."""
+    if c is None:
+        return 1e3
+    return c.objective / given.objective + PENALTY * targets.shortfall(c)
 
-    def population(func, us):  # a generation at once: its samples spread over the cluster's workers
-        return [cost_of(c) for c in candidates(list(us))]
 
+def _global_search(pool: _Evaluations, given: Candidate, targets: DesignTargets, seed: int, popsize: int,
+                   maxiter: int, progress, start: float) -> scipy.optimize.OptimizeResult:
+    """Differential evolution on the unit cube from the given design, each generation's samples at once."""
+    space, bounds = pool.crank.design, pool.bounds
     done = [0]
 
-    def generation(intermediate_result):
+    def generation(intermediate_result):  # scipy passes the result by this parameter's name
         done[0] += 1
         if progress is not None:
             spent = time.perf_counter() - start
-            progress(f"design: generation {done[0]} of at most {maxiter}, {len(seen)} candidates, best cost "
+            progress(f"design: generation {done[0]} of at most {maxiter}, {len(pool.seen)} candidates, best cost "
                      f"{intermediate_result.fun:.4f} (its objective over the given design's, 1 = as given, plus "
                      f"{PENALTY:g} per unit of relative shortfall of a constraint); {spent:.0f} s, at most "
                      f"{spent / done[0] * (maxiter - done[0]):.0f} s left at this pace (the search may end sooner), "
                      "then the constraint walk")
 
+    def cost(u):
+        return _cost(pool.candidates([u])[0], given, targets)
+
+    def population(func, us):  # a generation at once: its samples spread over the cluster's workers
+        return [_cost(c, given, targets) for c in pool.candidates(list(us))]
+
     unit = [(0.0, 1.0)] * len(bounds)
-    x0 = [min(max((_nominal(crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]
+    x0 = [min(max((_nominal(pool.crank, p) - lo) / (hi - lo), 0.0), 1.0) for p, lo, hi in space.inputs]
     x0 += [0.5] if space.damper else []
-    res = scipy.optimize.differential_evolution(cost, unit, seed=seed, popsize=popsize, maxiter=maxiter, polish=False,
-                                                init="sobol", x0=x0, callback=generation, tol=1e-3,
-                                                updating="deferred", workers=population)
+    return scipy.optimize.differential_evolution(cost, unit, seed=seed, popsize=popsize, maxiter=maxiter, polish=False,
+                                                 init="sobol", x0=x0, callback=generation, tol=1e-3,
+                                                 updating="deferred", workers=population)
+
+
+def _walk_onto_constraints(pool: _Evaluations, given: Candidate, targets: DesignTargets, progress) -> None:
+    """COBYQA from the best feasible candidate so far, its candidates added to ``pool``; none without one."""
     # The global search ends near the optimum, which lies on the safety constraint; COBYQA (a
     # derivative-free trust-region method with the constraint as such, [Ragonneau]) walks onto it.
-    feasible = [c for c in seen if targets.shortfall(c) == 0.0]
-    if feasible:
-        start_at = min(feasible, key=lambda c: c.objective)
-        u0 = [(start_at.values[p] - lo) / (hi - lo) for p, lo, hi in space.inputs]
-        u0 += [(start_at.inertia_ratio - bounds[-1][0]) / (bounds[-1][1] - bounds[-1][0])] if space.damper else []
+    feasible = [c for c in pool.seen if targets.shortfall(c) == 0.0]
+    if not feasible:
+        return
+    space, bounds = pool.crank.design, pool.bounds
+    start_at = min(feasible, key=lambda c: c.objective)
+    u0 = [(start_at.values[p] - lo) / (hi - lo) for p, lo, hi in space.inputs]
+    u0 += [(start_at.inertia_ratio - bounds[-1][0]) / (bounds[-1][1] - bounds[-1][0])] if space.damper else []
 
-        def objective(u):
-            c = candidates([u])[0]
-            return 1e3 if c is None else c.objective / given.objective
+    def objective(u):
+        c = pool.candidates([u])[0]
+        return 1e3 if c is None else c.objective / given.objective
 
-        def margins(u):  # each constraint as a relative margin, >= 0 where it holds
-            c = candidates([u])[0]
-            if c is None:
-                return -np.ones(3)
-            heat = 1.0 - c.damper_power_w / targets.heat_limit_w if targets.heat_limit_w and c.damper else 0.0
-            return np.array([c.safety / required - 1.0, heat,
-                             targets.clearance(c) - targets.margin if targets.orders else 0.0])
+    def margins(u):  # each constraint as a relative margin, >= 0 where it holds
+        c = pool.candidates([u])[0]
+        if c is None:
+            return -np.ones(3)
+        heat = 1.0 - c.damper_power_w / targets.heat_limit_w if targets.heat_limit_w and c.damper else 0.0
+        return np.array([c.safety / targets.safety - 1.0, heat,
+                         targets.clearance(c) - targets.margin if targets.orders else 0.0])
 
-        if progress is not None:
-            progress(f"design: {len(seen)} candidates; walking onto the constraints (COBYQA)")
-        scipy.optimize.minimize(objective, u0, method="COBYQA", bounds=unit,
-                                constraints=[scipy.optimize.NonlinearConstraint(margins, 0.0, np.inf)],
-                                options={"maxfev": 40 * len(bounds), "initial_tr_radius": 0.05,
-                                         "final_tr_radius": 1e-3})
-    feasible = [c for c in seen if targets.shortfall(c) == 0.0]
-    best = min(feasible, key=lambda c: c.objective) if feasible else None
+    if progress is not None:
+        progress(f"design: {len(pool.seen)} candidates; walking onto the constraints (COBYQA)")
+    scipy.optimize.minimize(objective, u0, method="COBYQA", bounds=[(0.0, 1.0)] * len(bounds),
+                            constraints=[scipy.optimize.NonlinearConstraint(margins, 0.0, np.inf)],
+                            options={"maxfev": 40 * len(bounds), "initial_tr_radius": 0.05,
+                                     "final_tr_radius": 1e-3})
+
+
+def _search_notes(space, targets: DesignTargets, variables: int, seed: int, generations: int) -> list[str]:
+    """The search's notes: the explorer and its method, and the constraints besides the safety."""
     notes = [f"explorer: the lumped chain (default partition) with M53 at every k-th speed "
-             f"(at most 100); differential evolution, {len(bounds)} variables, seed {seed}, {res.nit} generations, "
+             f"(at most 100); differential evolution, {variables} variables, seed {seed}, {generations} generations, "
              "then COBYQA onto the constraints",
              "the explorer decides nothing: `fetorsion run` of the written description (the condensed FE crank) "
              "confirms the chosen design"]
@@ -488,16 +499,14 @@ def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, po
         notes.append(f"resonance: orders {', '.join(f'{q:g}' for q in targets.orders)} kept out of "
                      f"{targets.speed_range_rpm[0]:.0f}-{targets.speed_range_rpm[1]:.0f} rpm by {100 * targets.margin:.0f} % "
                      f"on the lumped chain's f1 times {targets.frequency_factor:.4f} (the FE crank's in-bearing f1 "
-                     "over the lumped chain's" + (", measured by the condensed FE crank)" if frequency_factor != 1.0
+                     "over the lumped chain's" + (", measured by the condensed FE crank)" if targets.frequency_factor != 1.0
                                                   else "; 1: not measured)"))
     if targets.heat_limit_w:
         notes.append(f"the added damper's heat (its largest mean dissipation over the speeds) at most "
                      f"{targets.heat_limit_w:.1f} W on the explorer" + (
                          f" (its rating {space.damper_heat_rating:.1f} W re-aimed by the FE verdict)"
                          if targets.heat_limit_w != space.damper_heat_rating else ""))
-    return DesignResult(crank.name, space.objective, required, given, seen, best, time.perf_counter() - start, notes,
-                        targets, list(failures))
-
+    return notes
 
 def _ranges_left_behind(text: str, crank: Crank, changes: dict[str, float]) -> str:
     """``text`` with each ``[uncertainty]`` entry whose range no longer holds a designed value

@@ -15,7 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..description.defaults import DEFAULT_INERTIA_RATIO
-from ..description.model import Chain, Crank, Damper, Limits
+from ..description.model import Crank, Damper, Limits
+from ..description.chain_model import Chain
 from ..errors import FetorsionError
 from .scfset import SCFSet
 

@@ -22,7 +22,8 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ..description.model import Chain, Crank, Network
+from ..description.model import Crank
+from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
 from ..lumped_model.damped import DampedSystem, damped_modes

@@ -451,23 +451,14 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int |
     T = np.zeros((cap + b, cap + b))
     m = 0  # basis columns whose image under A is in T
     if known is not None:
-        X0, theta0 = known
-        X0 = np.asarray(X0, dtype=float).reshape(n, -1)
-        X0, MX0, _ = m_orthonormalize(X0, M @ X0)
+        X0, MX0, theta0 = _known_block(M, known, k)
         m = X0.shape[1]
-        if m >= k:
-            raise FetorsionError(f"block Lanczos: {k} eigenpairs asked, {m} already known")
         Q[:, :m], MQ[:, :m] = X0, MX0
         T[np.arange(m), np.arange(m)] = theta0
     if start is None:
         V, MV, _ = _random_block(M, rng, b, Q[:, :m], MQ[:, :m], project)
     else:
-        V = np.array(start, dtype=float).reshape(n, -1)
-        if project is not None:
-            V = np.asarray(project(V))
-        for _ in range(2):
-            V -= Q[:, :m] @ (MQ[:, :m].T @ V)
-        V, MV, _ = m_orthonormalize(V, M @ V)
+        V, MV = _start_block(M, start, Q[:, :m], MQ[:, :m], project)
     for _ in range(max_restarts + 1):
         while True:
             p = V.shape[1]
@@ -502,6 +493,27 @@ def block_lanczos(solve, M, k: int, rng, *, tol: float = EIGEN_TOL, width: int |
         T[keep:keep + V.shape[1], :keep] = R @ S[m - p:m, :keep]
         m = keep
     raise FetorsionError(f"block Lanczos did not converge to tol {tol:g} in {max_restarts} restarts")
+
+
+def _known_block(M, known, k: int):
+    """The known invariant subspace (X, θ) M-orthonormalised: (X, M X, θ); refused when it holds all ``k`` pairs."""
+    X0, theta0 = known
+    X0 = np.asarray(X0, dtype=float).reshape(M.shape[0], -1)
+    X0, MX0, _ = m_orthonormalize(X0, M @ X0)
+    if X0.shape[1] >= k:
+        raise FetorsionError(f"block Lanczos: {k} eigenpairs asked, {X0.shape[1]} already known")
+    return X0, MX0, theta0
+
+
+def _start_block(M, start, Q: np.ndarray, MQ: np.ndarray, project):
+    """The given first block, projected, M-orthogonalised twice against the basis Q and M-orthonormalised: (V, M V)."""
+    V = np.array(start, dtype=float).reshape(M.shape[0], -1)
+    if project is not None:
+        V = np.asarray(project(V))
+    for _ in range(2):
+        V -= Q @ (MQ.T @ V)
+    V, MV, _ = m_orthonormalize(V, M @ V)
+    return V, MV
 
 
 def drop_zeros(M):

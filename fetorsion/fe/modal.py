@@ -268,18 +268,37 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
     res = eigen.lowest_modes(None, M, modes + 6, sigma, backend=backend, method=method, groups=groups,
                              null_space=rigid_motions, S=S)
     timings.update(res.timings_s)
-    omega2 = res.omega2.copy()
-    # The rigid-body roots as Rayleigh quotients of the six lowest vectors, vᵀKv = vᵀSv + σ vᵀMv:
-    # zero in exact arithmetic, so their size shows the round-off of the assembly and the solve.
-    V6 = res.vectors[:, :6]
-    omega2[:6] = np.einsum("ij,ij->j", V6, S @ V6) / np.einsum("ij,ij->j", V6, M @ V6) + sigma
-    rigid, elastic = split_rigid(omega2, sigma)
+    rigid, elastic = split_rigid(_with_rigid_rayleigh_quotients(res.omega2, res.vectors, S, M, sigma), sigma)
 
     t = time.perf_counter()
     q = res.vectors[:, 6:]
     full = red.T @ q if red is not None else q
     U = full.T.reshape(len(elastic), -1, 3)  # (modes, dof-nodes, 3)
     body_motion = {b.name: q[red.n_free + 6 * i: red.n_free + 6 * i + 6].T for i, b in enumerate(bodies)}
+    fractions, kinds, fit = _identify(U, xyz, w, dof_of_node, slabs, n_slabs, bodies, body_motion)
+    timings["identify"] = time.perf_counter() - t
+    timings["total"] = time.perf_counter() - t_start
+
+    shapes = _shapes_at_nodes(U, dof_of_node, len(mesh.nodes)) if keep_shapes else None
+    hz = lambda w2: np.sqrt(np.abs(w2)) / (2 * np.pi)  # noqa: E731
+    return ModalResult(hz(elastic), kinds, fractions, fit, hz(rigid), int(m.nvertices + m.nedges),
+                       mesh.n_elements, S.shape[0], material, timings, shapes, body_motion,
+                       res.backend, res.method)
+
+
+def _with_rigid_rayleigh_quotients(omega2: np.ndarray, vectors: np.ndarray, S, M, sigma: float) -> np.ndarray:
+    """ω² (rad²/s²) with its six lowest replaced by the Rayleigh quotients of their vectors."""
+    omega2 = omega2.copy()
+    # vᵀKv = vᵀSv + σ vᵀMv: zero in exact arithmetic, so their size shows the round-off of the
+    # assembly and the solve.
+    V6 = vectors[:, :6]
+    omega2[:6] = np.einsum("ij,ij->j", V6, S @ V6) / np.einsum("ij,ij->j", V6, M @ V6) + sigma
+    return omega2
+
+
+def _identify(U: np.ndarray, xyz: np.ndarray, w: np.ndarray, dof_of_node: np.ndarray, slabs, n_slabs: int,
+              bodies: list[RigidBody], body_motion: dict[str, np.ndarray]):
+    """(fractions, kinds, rigid fit) of the mode shapes U on the slabs, bodies on the x axis as extra slabs."""
     if slabs is None:
         slab_idx = modeshape.axial_slabs(xyz, n_slabs)
     else:
@@ -287,19 +306,15 @@ def modal(mesh: TetMesh, material: Material, *, modes: int = DEFAULT_MODES, atta
         slab_idx = [_map_nodes(dof_of_node, v, f"slab {k}") for k, v in items]
     on_axis = [(body_motion[b.name], b.mass, b.inertia) for b in bodies
                if np.hypot(b.centre[1], b.centre[2]) <= 1e-9 + 1e-6 * np.abs(xyz).max()]
-    fractions, kinds, fit = modeshape.identify(U, xyz, w, slab_idx, on_axis)
-    timings["identify"] = time.perf_counter() - t
-    timings["total"] = time.perf_counter() - t_start
+    return modeshape.identify(U, xyz, w, slab_idx, on_axis)
 
-    shapes = None
-    if keep_shapes:
-        used = dof_of_node >= 0
-        shapes = np.zeros((len(elastic), len(mesh.nodes), 3))
-        shapes[:, used] = U[:, dof_of_node[used]]
-    hz = lambda w2: np.sqrt(np.abs(w2)) / (2 * np.pi)  # noqa: E731
-    return ModalResult(hz(elastic), kinds, fractions, fit, hz(rigid), int(m.nvertices + m.nedges),
-                       mesh.n_elements, S.shape[0], material, timings, shapes, body_motion,
-                       res.backend, res.method)
+
+def _shapes_at_nodes(U: np.ndarray, dof_of_node: np.ndarray, n_nodes: int) -> np.ndarray:
+    """Mode shapes U (modes, DOF nodes, 3) at the mesh's ``n_nodes`` nodes, zero where no tetrahedron is."""
+    used = dof_of_node >= 0
+    shapes = np.zeros((len(U), n_nodes, 3))
+    shapes[:, used] = U[:, dof_of_node[used]]
+    return shapes
 
 
 def node_masses(basis, density: float) -> np.ndarray:

@@ -292,15 +292,8 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     stream = recover is not None and bool(ritz_blocks) and psi_iterations == 1
     basis = np.empty((n, width))
     forces = None if stream else np.empty((n, width))
-    if ritz_blocks and psi_iterations == 1:
-        # Ψ_1 = Ψ_σ − σ W₁ with W₁ = A_c M Ψ_σ, the first Krylov block: one block solve gives both
-        Kpsi = np.empty((n, m)) if stream else forces[:, :m]
-        Mpsi, first = _constraint_modes_shared(itf, basis[:, :m], Kpsi)
-        its = 1
-    else:
-        psi, its, Mpsi, Kpsi = _constraint_modes(itf, PSI_TOL, psi_iterations)
-        basis[:, :m], forces[:, :m] = psi, Kpsi
-        Kpsi, first = forces[:, :m], None
+    Mpsi, Kpsi, first, its = _constraint_block(itf, basis, forces, psi_iterations,
+                                               bool(ritz_blocks) and psi_iterations == 1, stream)
     psi = basis[:, :m]
     Kpp, Mpp = psi.T @ Kpsi, psi.T @ Mpsi
     parts, cross = [], []  # with streaming: the recovered rows and Φᵀ K Ψ = (K Φ)ᵀ Ψ, block by block
@@ -333,16 +326,7 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
         forces = forces[:, :r]
     phi = basis[:, m:]
     t2 = time.perf_counter()
-    Kr, Mr = np.zeros((r, r)), np.zeros((r, r))
-    Kr[:m, :m] = Kpp
-    Kr[m:, :m] = np.vstack(cross) if stream else phi.T @ forces[:, :m]
-    Kr[:m, m:] = Kr[m:, :m].T
-    Kr[m:, m:] = Kq
-    Mr[:m, :m] = Mpp
-    Mr[m:, :m] = Mqp
-    Mr[:m, m:] = Mr[m:, :m].T
-    Mr[m:, m:] = np.eye(r - m)
-    Kr, Mr = 0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T)
+    Kr, Mr = _reduced_matrices(Kpp, Mpp, np.vstack(cross) if stream else phi.T @ forces[:, :m], Kq, Mqp)
     t3 = time.perf_counter()
     hz = np.sqrt(np.abs(w2)) / (2 * np.pi)
     recovered = None
@@ -352,6 +336,36 @@ def craig_bampton(itf: Interface, ritz_blocks: int = RITZ_BLOCKS, modes: int = 0
     return ReducedModel(Kr, Mr, m, hz, basis if keep_basis else None,
                         {"constraint_modes": t1 - t0, "interior_vectors": t2 - t1, "projection": t3 - t2}, its,
                         forces if keep_basis else None, recovered)
+
+
+def _constraint_block(itf: Interface, basis: np.ndarray, forces: np.ndarray | None, psi_iterations: int | None,
+                      shared: bool, stream: bool):
+    """Ψ written into basis[:, :m] (K Ψ into forces[:, :m] unless ``stream``): (M Ψ, K Ψ, the
+    first Ritz block [W, M W, K W] when ``shared`` solved it too else None, fixed-point steps)."""
+    m = itf.n_master_dofs
+    if shared:
+        # Ψ_1 = Ψ_σ − σ W₁ with W₁ = A_c M Ψ_σ, the first Krylov block: one block solve gives both
+        Kpsi = np.empty((basis.shape[0], m)) if stream else forces[:, :m]
+        Mpsi, first = _constraint_modes_shared(itf, basis[:, :m], Kpsi)
+        return Mpsi, Kpsi, first, 1
+    psi, its, Mpsi, Kpsi = _constraint_modes(itf, PSI_TOL, psi_iterations)
+    basis[:, :m], forces[:, :m] = psi, Kpsi
+    return Mpsi, forces[:, :m], None, its
+
+
+def _reduced_matrices(Kpp: np.ndarray, Mpp: np.ndarray, Kqp: np.ndarray, Kq: np.ndarray, Mqp: np.ndarray):
+    """The reduced (K, M) on [Ψ Φ] from their blocks, symmetrised; the η–η mass block is the identity."""
+    m, r = Kpp.shape[0], Kpp.shape[0] + Kq.shape[0]
+    Kr, Mr = np.zeros((r, r)), np.zeros((r, r))
+    Kr[:m, :m] = Kpp
+    Kr[m:, :m] = Kqp
+    Kr[:m, m:] = Kr[m:, :m].T
+    Kr[m:, m:] = Kq
+    Mr[:m, :m] = Mpp
+    Mr[m:, :m] = Mqp
+    Mr[:m, m:] = Mr[m:, :m].T
+    Mr[m:, m:] = np.eye(r - m)
+    return 0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T)
 
 
 class _MassWithMasters:

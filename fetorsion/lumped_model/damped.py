@@ -269,12 +269,7 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     if not block:
         forces = forces[..., None, :]
     Mn, Kn, _, _ = system.nominal(float(om.max()) / 2)
-    L = np.linalg.cholesky(Mn)
-    Linv = np.linalg.inv(L)
-    lam, Y = np.linalg.eigh(Linv @ Kn @ Linv.T)
-    Phi = Linv.T @ Y  # M-orthonormal undamped modes
-    count = max(MIN_MODES, int((np.sqrt(np.clip(lam, 0, None)) < DAMPED_CUTOFF * om.max()).sum()))
-    count = min(count, len(lam))
+    lam, Phi, count = _undamped_basis(Mn, Kn, om.max())
     low, high = Phi[:, :count], Phi[:, count:]
     F = np.zeros(forces.shape[:-1] + (len(Mn),), complex)
     F[..., :system.stations] = forces
@@ -286,16 +281,7 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     U = [low[s] - low[r] for s, r in system.joints]
     nominal = system._spring_terms(np.asarray(float(om.max()) / 2))
     if gyroscopic is not None:
-        # Coriolis coupling i ω Ω G: among the kept modes in full; with the others condensed out
-        # statically (η = Λ_h⁻¹ (F_h − i ω Ω G_hl ξ)), which adds (ω Ω)² G_lh Λ_h⁻¹ G_hl to the kept
-        # modes' matrix and − i ω Ω G_lh Λ_h⁻¹ F_h to their load: the high modes carry a good part
-        # of the pins' and journals' Coriolis forces (without them the truncation misses 20 % of
-        # the Coriolis effect on the Renault's fillet torques)
-        n = system.stations
-        Gn = np.zeros((len(Mn), len(Mn)))
-        Gn[:n, :n] = gyroscopic
-        Gll, Glh, Ghl = low.T @ Gn @ low, low.T @ Gn @ high, high.T @ Gn @ low
-        H = (Glh / lam[count:]) @ Ghl if count < len(lam) else None
+        Gll, Glh, Ghl, H = _coriolis_on_modes(gyroscopic, system.stations, low, high, lam[count:])
         spin_all = np.broadcast_to(np.asarray(spin, float), om.shape)
     # the frequencies in chunks: each chunk's kept-mode matrices (chunk × count² complex) stay a
     # few tens of MB, not the whole sweep's (a condensed crank's 300 speeds × 48 orders × 80² is
@@ -322,9 +308,7 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
                 rhs = rhs - (1j * wO)[:, None, None] * complex_times(Fh, np.ascontiguousarray(Glh.T))
         diag = np.einsum("...ii->...i", A)
         diag += lam[:count] - w[:, None] ** 2
-        for d, u, (s_, r_) in zip(system.dampers, U, system.joints):
-            k = damper_spring(d, w) - np.real(nominal[s_, s_])
-            A += k[:, None, None] * np.outer(u, u)
+        _add_damper_departures(A, system, U, nominal, w)
         xi = np.swapaxes(np.linalg.solve(A, np.swapaxes(rhs, -1, -2)), -1, -2)
         xc = complex_times(xi, np.ascontiguousarray(low.T))
         if Fh is not None:
@@ -337,6 +321,38 @@ def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray
     threaded_map(chunk, range(0, len(flat_om), step), PROJECTED_THREADS)
     x = x.reshape(F.shape)
     return x if block else x[..., 0, :]
+
+
+def _undamped_basis(Mn, Kn, highest):
+    """(λ, M-orthonormal undamped modes Φ, how many lowest are kept dynamic up to ``highest`` rad/s)."""
+    L = np.linalg.cholesky(Mn)
+    Linv = np.linalg.inv(L)
+    lam, Y = np.linalg.eigh(Linv @ Kn @ Linv.T)
+    Phi = Linv.T @ Y
+    count = max(MIN_MODES, int((np.sqrt(np.clip(lam, 0, None)) < DAMPED_CUTOFF * highest).sum()))
+    return lam, Phi, min(count, len(lam))
+
+
+def _coriolis_on_modes(gyroscopic, stations: int, low, high, lam_high):
+    """(G_ll, G_lh, G_hl, G_lh Λ_h⁻¹ G_hl or None) of the Coriolis matrix on the kept (l) and condensed (h) modes."""
+    # Coriolis coupling i ω Ω G: among the kept modes in full; with the others condensed out
+    # statically (η = Λ_h⁻¹ (F_h − i ω Ω G_hl ξ)), which adds (ω Ω)² G_lh Λ_h⁻¹ G_hl to the kept
+    # modes' matrix and − i ω Ω G_lh Λ_h⁻¹ F_h to their load: the high modes carry a good part
+    # of the pins' and journals' Coriolis forces (without them the truncation misses 20 % of
+    # the Coriolis effect on the Renault's fillet torques)
+    size = low.shape[0]
+    Gn = np.zeros((size, size))
+    Gn[:stations, :stations] = gyroscopic
+    Gll, Glh, Ghl = low.T @ Gn @ low, low.T @ Gn @ high, high.T @ Gn @ low
+    H = (Glh / lam_high) @ Ghl if lam_high.size else None
+    return Gll, Glh, Ghl, H
+
+
+def _add_damper_departures(A, system: DampedSystem, U, nominal, w) -> None:
+    """Add to the kept modes' matrices ``A`` (in place) each damper's spring at ``w`` less its nominal one."""
+    for d, u, (s, _) in zip(system.dampers, U, system.joints):
+        k = damper_spring(d, w) - np.real(nominal[s, s])
+        A += k[:, None, None] * np.outer(u, u)
 
 
 def threaded_map(fn, items, threads: int | None = None) -> list:

@@ -36,7 +36,8 @@ import numpy as np
 import scipy.linalg
 
 from ..description.cylinders import per_cylinder
-from ..description.model import Chain, Crank, Network
+from ..description.model import Crank
+from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
 from .network import NetworkMatrices, network_matrices, network_modes, resolved

@@ -1,7 +1,7 @@
 """Geared and branched torsional networks: matrices in the stations' own angles, the gear
 constraint that removes the driven gear of every mesh, and the same network referred to one speed.
 
-A network (:class:`~fetorsion.description.model.Network`) has n stations with angles θ (rad,
+A network (:class:`~fetorsion.description.chain_model.Network`) has n stations with angles θ (rad,
 each in its own shaft's rotation), shafts (springs, optionally to ground) and rigid gear pairs
 θ_j = n_g θ_i. Assembled without the gears, M = diag(J), K = Σ k (e_i − e_j)(e_i − e_j)ᵀ, C
 likewise (absolute dampers on the diagonal), H = Σ η k (…) the hysteretic part. The gears are
@@ -26,7 +26,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.linalg
 
-from ..description.model import Network, Shaft
+from ..description.chain_model import Network, Shaft
 from ..description.network import speed_walk
 from ..errors import FetorsionError
 from .parts import build_parts, partition_matrices, pin_weights

@@ -95,11 +95,31 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
         ``web_method``: the same method evaluated on a model the caller already has (the ``fe-held``
         throws of a run's own condensed crank).
     """
-    rho = crank.material.density
     G = crank.material.shear_modulus
-    R = crank.engine.crank_radius
     d_e = crank.journals[0].diameter
     j_e = math.pi * d_e**4 / 32
+    pieces = _pieces(crank, web_method, web_length, d_e)
+
+    ends = np.concatenate([[0.0], np.cumsum([p[2] for p in pieces])])
+    parts = tuple(
+        Part(kind, idx, float(ends[n]), float(ends[n + 1]), le, le / (G * j_e), inertia, attached)
+        for n, (kind, idx, _, le, inertia, attached) in enumerate(pieces)
+    )
+    return PartChain(
+        parts,
+        front_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.FRONT)),
+        rear_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.REAR)),
+        equivalent_diameter=d_e,
+        shear_modulus=G,
+        web_method=web_method,
+    )
+
+
+def _pieces(crank: Crank, web_method: str, web_length, d_e: float) -> list[tuple[str, int, float, float, float, float]]:
+    """The crank's axial pieces front to rear: (kind, index, length m, equivalent length m at the
+    equivalent diameter ``d_e``, inertia kg·m², attached inertia kg·m²)."""
+    rho = crank.material.density
+    R = crank.engine.crank_radius
     oil = crank.oil_holes
     piston = sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.PINS))  # per cylinder
     rods = cylinders_per_throw(crank.engine)
@@ -141,20 +161,7 @@ def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=N
     for i, c in enumerate(crank.rear):
         pieces.append(("rear", i, c.length, cylinder_equivalent_length(c, d_e), own("rear", i, cylinder_inertia(c, rho)),
                        0.0))
-
-    ends = np.concatenate([[0.0], np.cumsum([p[2] for p in pieces])])
-    parts = tuple(
-        Part(kind, idx, float(ends[n]), float(ends[n + 1]), le, le / (G * j_e), inertia, attached)
-        for n, (kind, idx, _, le, inertia, attached) in enumerate(pieces)
-    )
-    return PartChain(
-        parts,
-        front_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.FRONT)),
-        rear_inertia=sum(a.polar_inertia for a in crank.attachments_at(AttachPoint.REAR)),
-        equivalent_diameter=d_e,
-        shear_modulus=G,
-        web_method=web_method,
-    )
+    return pieces
 
 
 @dataclass(frozen=True)

@@ -1,8 +1,8 @@
 """Measured data in: what test systems export, read and turned into quantities a model is
 compared with. Universal-file dataset 58 functions (FRFs, spectra, order functions) in and
 out (:mod:`.uff`), order cuts from CSV (:mod:`.ordercut`), a torsiograph's tooth-edge
-timestamps to angular speed, order amplitudes against speed and the twist between two
-wheels (:mod:`.torsiograph`), and natural frequencies, damping ratios and mode shapes fitted
+timestamps (read by :mod:`.edges`) to angular speed, order amplitudes against speed and the
+twist between two wheels (:mod:`.torsiograph`), and natural frequencies, damping ratios and mode shapes fitted
 to measured FRFs (:mod:`.modal`); every file of a comparison read together, its channels matched
 by name (:mod:`.reading`). Units are read from the files and checked (:mod:`.units`);
 everything handed on is SI.
@@ -14,8 +14,9 @@ results.
 from .modal import ModalEstimate, estimate_modes, frf_matrix, mac, run_modal_fit
 from .ordercut import read_curve_csv, read_order_cut_csv
 from .reading import MeasuredOptions, read_measured
-from .torsiograph import (OrderTrack, TorsiographResult, instantaneous_speed, order_track, read_edges_csv,
-                          run_torsiograph, tooth_errors, twist)
+from .edges import read_edges_csv
+from .torsiograph import (OrderTrack, TorsiographResult, instantaneous_speed, order_track, run_torsiograph,
+                          tooth_errors, twist)
 from .uff import MeasuredFunction, read_uff58, write_uff58
 
 __all__ = ["MeasuredFunction", "read_uff58", "write_uff58", "read_curve_csv", "read_order_cut_csv",

@@ -124,12 +124,10 @@ def channel_station(channel: str, stations: dict | None) -> tuple[str, bool]:
     return channel, False
 
 
-def file_stations(path, channels) -> dict[str, str]:
-    """A tooth-edge file's ``# station = NAME`` line: where its one channel's wheel sits (a file
-    of several channels says each one's station by option instead, refused naming the line)."""
-    from .torsiograph import edges_header
-
-    header = edges_header(path)
+def file_stations(path, channels, header: dict[str, str]) -> dict[str, str]:
+    """A tooth-edge file's ``# station = NAME`` line (``header``: its ``# key = value`` lines, as
+    read with its times): where its one channel's wheel sits (a file of several channels says
+    each one's station by option instead, refused naming the line)."""
     if "station" not in header:
         return {}
     if len(channels) != 1:
@@ -170,7 +168,7 @@ def frf_band(frfs) -> tuple[float, float]:
 
 def _calibrations(options: MeasuredOptions) -> tuple[dict, dict]:
     """Channel -> tooth-edge times of the calibration runs, and channel -> the file each came from."""
-    from .torsiograph import read_edges_csv
+    from .edges import read_edges_csv
 
     calibrated, calibrated_from = {}, {}
     for c in options.calibration:
@@ -194,9 +192,9 @@ def largest_orders(track, known, count: int) -> tuple[float, ...]:
     return tuple(float(track.orders[j]) for j in fresh[:count])
 
 
-def _tracked(path, edges: dict, calibrated: dict, options: MeasuredOptions):
+def _tracked(path, edges: dict, header: dict, calibrated: dict, options: MeasuredOptions):
     """A tooth-edge record's order cuts (each with where it was measured), its order maps and
-    its reading's notes."""
+    its reading's notes (``header``: the file's ``# key = value`` lines)."""
     from .torsiograph import TWIST, run_torsiograph, track_order_cut
 
     teeth = options.teeth
@@ -216,7 +214,7 @@ def _tracked(path, edges: dict, calibrated: dict, options: MeasuredOptions):
         if c not in edges and c != TWIST:
             raise ParameterError("stations", f"{c}=...: {Path(path).name} has no channel {c!r} "
                                  f"(it has {', '.join(edges)})")
-    stations = {**file_stations(path, list(edges)), **options.stations}
+    stations = {**file_stations(path, list(edges), header), **options.stations}
     res = run_torsiograph(edges, wheels, options.revolutions, {c: t for c, t in calibrated.items() if c in edges},
                           pair, options.definition)
     cuts, where, tracks = [], {}, []
@@ -251,8 +249,8 @@ def read_measured(paths, options: MeasuredOptions = MeasuredOptions()) -> Measur
     MeasuredData
         With the notes of the reading (labels that contradict their data type, edges repaired).
     """
+    from .edges import read_edges_and_header
     from .ordercut import read_order_cut_csv
-    from .torsiograph import read_edges_csv
     from .uff import read_uff58
 
     kinds = [measured_kind(m, options.teeth) for m in paths]
@@ -266,7 +264,9 @@ def read_measured(paths, options: MeasuredOptions = MeasuredOptions()) -> Measur
     if band is not None and not 0 <= band[0] < band[1]:
         raise ParameterError("band", f"{band[0]:g} {band[1]:g}: give 0 <= LOW < HIGH (Hz)")
     calibrated, calibrated_from = _calibrations(options)
-    records = {path: read_edges_csv(path, options.time_unit) for path, kind in zip(paths, kinds) if kind == "edges"}
+    # each tooth-edge file read once: its times, and its header lines for its station
+    read = {path: read_edges_and_header(path, options.time_unit) for path, kind in zip(paths, kinds) if kind == "edges"}
+    records = {path: edges for path, (edges, _) in read.items()}
     check_calibration_channels(records, calibrated_from)
     frfs, cuts, tracks, where, notes = [], [], [], {}, []
     for path, kind in zip(paths, kinds):
@@ -278,7 +278,7 @@ def read_measured(paths, options: MeasuredOptions = MeasuredOptions()) -> Measur
         elif kind == "order-cut":
             cuts.append(read_order_cut_csv(path, options.unit, options.order))
         else:
-            found, stations, maps, said = _tracked(path, records[path], calibrated, options)
+            found, stations, maps, said = _tracked(path, *read[path], calibrated, options)
             cuts += found
             where.update(stations)
             tracks += maps

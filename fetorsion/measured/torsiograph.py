@@ -25,155 +25,14 @@ estimate over an even number of revolutions.
 
 from __future__ import annotations
 
-import re
-
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import FetorsionError
-from .units import unit as unit_of
-from .ordercut import checked_text
+from .edges import check_edges
 
 TWIST = "twist"  # the name of the twist's track in a TorsiographResult
-MAX_EDGE_FILE_BYTES = 1 << 30  # a tooth-edge record is large (tens of MB), but not this large
-
-
-# ---------------------------------------------------------------------------
-# Reading and checking edges
-
-
-def check_edges(times, teeth: int, where: str = "edges", revolutions: int = 1) -> np.ndarray:
-    """``times`` as a float array, or one message naming ``where`` if they are unusable.
-
-    Parameters
-    ----------
-    times : array_like
-        Edge timestamps [s].
-    teeth : int
-        Teeth (edges) per revolution.
-    where : str
-        The file and channel, for the message.
-    revolutions : int
-        The whole revolutions the caller needs.
-    """
-    if isinstance(teeth, bool) or not isinstance(teeth, (int, np.integer)) or teeth < 1:
-        raise FetorsionError(f"{where}: teeth = {teeth!r}: give the teeth per revolution, a whole number >= 1")
-    t = np.asarray(times, dtype=float)
-    if t.ndim != 1 or t.size == 0:
-        raise FetorsionError(f"{where}: has no pulses")
-    if not np.all(np.isfinite(t)):
-        raise FetorsionError(f"{where}: edge {int(np.flatnonzero(~np.isfinite(t))[0]) + 1} is not a finite time")
-    back = np.flatnonzero(np.diff(t) <= 0)
-    if back.size:
-        i = int(back[0]) + 1
-        raise FetorsionError(f"{where}: timestamps are not increasing: edge {i + 1} ({t[i]:.9g} s) "
-                             f"is not after edge {i} ({t[i - 1]:.9g} s)")
-    needed = revolutions * teeth + 1
-    if t.size < needed:
-        raise FetorsionError(f"{where}: has {t.size} pulses, too few for {revolutions} revolution(s) "
-                             f"of {teeth} teeth ({needed} edges)")
-    return t
-
-
-def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None = None) -> dict[str, np.ndarray]:
-    """Tooth-edge timestamps per channel from a CSV file, in seconds.
-
-    Parameters
-    ----------
-    path : str or Path
-        Text: ``#`` comment lines (``# unit = s``, ``ms`` or ``us`` says the timestamps' unit),
-        a header row naming the channels (``pulley, flywheel``), then one row per edge; a
-        channel with fewer edges leaves its cells empty at the end.
-    unit : str, optional
-        The timestamps' unit, if the file has no ``# unit = ...`` line.
-    teeth : dict[str, int], optional
-        Channel -> teeth per revolution: each such channel must hold one revolution at least.
-
-    Returns
-    -------
-    dict
-        Channel name -> increasing timestamps [s], each checked for pulses and their order.
-    """
-    path = Path(path)
-
-    def fail(rule):
-        raise FetorsionError(f"{path}: {rule}")
-
-    lines = checked_text(path, MAX_EDGE_FILE_BYTES).splitlines()
-    header = header_lines(lines)
-    rows = [(n + 1, line) for n, line in enumerate(lines) if line.strip() and not line.startswith("#")]
-    if not rows:
-        fail("has no header row naming the channels")
-    names = [c.strip() for c in rows[0][1].split(",")]
-    numeric = [n for n in names if _is_number(n)]
-    if numeric:
-        fail(f"line {rows[0][0]}: the first row must name the channels (pulley, flywheel), not hold "
-             f"timestamps ({numeric[0]})")
-    if not all(names) or len(set(names)) != len(names):
-        fail(f"line {rows[0][0]}: the header row needs distinct channel names, got {rows[0][1]!r}")
-    # a column headed by a time and its unit (t_s, time [ms]) is a timestamp column, not a channel's
-    # name: the unit is read from it, and the channel is the file's '# channel = NAME' line
-    column_units = {TIME_COLUMN.fullmatch(n).group(1) for n in names if TIME_COLUMN.fullmatch(n)}
-    if "channel" in header:
-        if len(names) != 1:
-            fail(f"'# channel = {header['channel']}' names one channel, but the file has {len(names)} columns "
-                 f"({', '.join(names)}): name each in the header row instead")
-        names = [header["channel"]]
-    if len(column_units) > 1:
-        fail(f"its columns' names give different time units ({', '.join(sorted(column_units))})")
-    written = header.get("unit")
-    if column_units:
-        (named,) = column_units
-        if written is not None and unit_of(written, f"{path}: '# unit'", ("time",)).factor != \
-                unit_of(named, f"{path}: the column's unit", ("time",)).factor:
-            fail(f"says '# unit = {written}', but its column's name says {named}")
-        written = named
-    if written is None and unit is None:
-        fail("the timestamps have no unit: give one (unit=...) or a '# unit = s' line")
-    found = unit_of(written, f"{path}: '# unit'", ("time",)) if written is not None else None
-    given = unit_of(unit, f"{path}: stated unit", ("time",)) if unit is not None else None
-    if found and given and found.factor != given.factor:
-        fail(f"says '# unit = {written}', but {unit!r} was stated")
-    factor = (found or given).factor
-    table = np.full((len(rows) - 1, len(names)), np.nan)
-    for r, (number, line) in enumerate(rows[1:]):
-        cells = [c.strip() for c in line.split(",")]
-        if len(cells) > len(names):
-            fail(f"line {number}: {len(cells)} cells for {len(names)} channels")
-        for c, cell in enumerate(cells):
-            if cell:
-                try:
-                    table[r, c] = float(cell)
-                except ValueError:
-                    fail(f"line {number}: {cell!r} is not a number")
-    out = {}
-    for c, name in enumerate(names):
-        column = table[:, c]
-        present = np.flatnonzero(~np.isnan(column))
-        if present.size and present[-1] + 1 != present.size:
-            gap = int(np.flatnonzero(np.isnan(column[: present[-1]]))[0])
-            fail(f"channel {name!r}: an empty cell before its last edge (line {rows[1 + gap][0]})")
-        z = (teeth or {}).get(name)
-        out[name] = check_edges(column[: present.size] * factor, z or 1, f"{path}: channel {name!r}",
-                                revolutions=1 if z else 0)
-    return out
-
-
-def header_lines(lines) -> dict[str, str]:
-    """The ``# key = value`` lines of a tooth-edge file (``unit``, ``channel``, ``station``)."""
-    header = {}
-    for line in lines:
-        key, eq, value = line.lstrip("#").partition("=")
-        if line.startswith("#") and eq:
-            header[key.strip()] = value.strip()
-    return header
-
-
-def edges_header(path) -> dict[str, str]:
-    """The ``# key = value`` lines of a tooth-edge CSV (:func:`read_edges_csv` checks the file)."""
-    return header_lines(checked_text(Path(path), MAX_EDGE_FILE_BYTES).splitlines())
 
 
 def track_order_cut(track, order: float, name: str):
@@ -186,18 +45,6 @@ def track_order_cut(track, order: float, name: str):
     keep = np.argsort(rpm)
     return MeasuredFunction("order function", rpm[keep], "speed", amp[keep], "rad", (0, 4),
                             label=f"{name}, torsiograph", order=float(order))
-
-
-#: A timestamp column's header: a time and its unit (``t_s``, ``time_ms``, ``t [us]``, ``time (s)``).
-TIME_COLUMN = re.compile(r"(?i)(?:t|time)\s*(?:_|\[|\()\s*(s|ms|us|µs)\s*[\])]?")
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 # ---------------------------------------------------------------------------
@@ -695,7 +542,7 @@ def run_torsiograph(edges: dict[str, np.ndarray], teeth: dict[str, int | str | W
     Parameters
     ----------
     edges : dict[str, ndarray]
-        Channel -> edge timestamps [s] (:func:`read_edges_csv`).
+        Channel -> edge timestamps [s] (:func:`~fetorsion.measured.edges.read_edges_csv`).
     teeth : dict[str, int or str or Wheel]
         Channel -> teeth per revolution, or a reference-gap wheel (``"60-2"``; :func:`wheel_of`).
     revolutions : int

@@ -145,79 +145,99 @@ def parse_mechanics(data: dict, source: str = "<mechanics>") -> MechanicsInput:
     meta = root.table("meta", required=False)
     name = meta.text("name", default=Path(source).stem)
     meta.used.update(meta.data)
-    out = {}
-
-    if "slider_crank" in data:
-        t = root.table("slider_crank")
-        out["slider_crank"] = SliderCrank(t.number("crank_radius", length=True, positive=True),
-                                          t.number("rod_length", length=True, positive=True),
-                                          t.number("speed_rpm", positive=True))
-        t.finish()
-        sc = out["slider_crank"]
-        if sc.rod_length <= sc.crank_radius:
-            problems.append(Problem("slider_crank.rod_length", sc.rod_length / root.scale,
-                                    f"must be longer than crank_radius ({sc.crank_radius / root.scale:g})"))
-    if "masses" in data:
-        t = root.table("masses")
-        out["masses"] = Masses(t.number("rod_kg", positive=True),
-                               t.number("rod_centroid_to_big_end", length=True, nonnegative=True),
-                               t.number("rod_centroid_to_small_end", length=True, nonnegative=True),
-                               t.number("piston_kg", nonnegative=True), t.number("crank_kg", nonnegative=True),
-                               t.number("crank_centroid_radius", length=True, nonnegative=True))
-        t.finish()
-        m = out["masses"]
-        if m.rod_centroid_to_big_end + m.rod_centroid_to_small_end <= 0:
-            problems.append(Problem("masses.rod_centroid_to_small_end", 0.0, "the two rod distances cannot both be 0"))
-    if "balance" in data:
-        t = root.table("balance")
-        out["balance"] = BalanceSpec(t.number("share_c", nonnegative=True, below=1.0),
-                                     t.number("counterweight_radius", length=True, positive=True),
-                                     _optional(t, "shaft_radius", length=True, positive=True),
-                                     _optional(t, "overbalance_k", nonnegative=True),
-                                     _optional(t, "overbalance_alpha_deg"))
-        t.finish()
-        b = out["balance"]
-        if (b.overbalance_k is None) != (b.overbalance_alpha_deg is None):
-            problems.append(Problem("balance.overbalance_k", b.overbalance_k,
-                                    "give overbalance_k and overbalance_alpha_deg together"))
-    if "flywheel" in data:
-        t = root.table("flywheel")
-        strokes = t.choice("cycle_strokes", (2, 4), 4)
-        material = t.text("material", default="", choices=tuple(RIM_SPEED_LIMITS)) if "material" in t.data else None
-        t.used.add("material")
-        out["flywheel"] = FlywheelSpec(t.number("power_w", positive=True), t.number("speed_rpm", positive=True),
-                                       t.number("speed_fluctuation", positive=True, below=1.0),
-                                       _optional(t, "outer_diameter", length=True, positive=True),
-                                       _optional(t, "inner_diameter", length=True, nonnegative=True),
-                                       material, _optional(t, "stroke", length=True, positive=True),
-                                       _optional(t, "other_inertia_kgm2", positive=True),
-                                       strokes)
-        t.finish()
-        f = out["flywheel"]
-        if (f.outer_diameter is None) != (f.inner_diameter is None):
-            problems.append(Problem("flywheel.inner_diameter", f.inner_diameter, "give outer_diameter and inner_diameter together"))
-        elif f.outer_diameter is not None and not f.inner_diameter < f.outer_diameter:
-            problems.append(Problem("flywheel.inner_diameter", f.inner_diameter / root.scale,
-                                    f"must be smaller than outer_diameter ({f.outer_diameter / root.scale:g})"))
-    if "planetary" in data:
-        t = root.table("planetary")
-        kind = t.text("kind", choices=("epicycloid", "hypocycloid"))
-        fixed = t.number("fixed_diameter", length=True, positive=True)
-        planets = tuple(v * root.scale for v in t.numbers("planet_diameters"))
-        out["planetary"] = PlanetarySpec(kind, fixed, planets, t.number("rod_length", length=True, positive=True),
-                                         _optional(t, "eccentricity", length=True, nonnegative=True),
-                                         t.number("pin_phase_deg", 0.0))
-        t.finish()
-        for i, d in enumerate(planets):
-            if not d > 0 or (kind == "hypocycloid" and not d < fixed):
-                problems.append(Problem(f"planetary.planet_diameters[{i + 1}]", d / root.scale,
-                                        "must be > 0" + (" and smaller than fixed_diameter" if kind == "hypocycloid" else "")))
+    readers = {"slider_crank": _slider_crank, "masses": _masses, "balance": _balance, "flywheel": _flywheel,
+               "planetary": _planetary}
+    out = {key: read(root) for key, read in readers.items() if key in data}
     for key in TABLES[2:]:
         root.used.add(key)
     root.finish()
     if problems:
         raise DescriptionError(source, problems)
     return MechanicsInput(name, source, **out)
+
+
+def _slider_crank(root: Table) -> SliderCrank:
+    """``[slider_crank]``: crank radius, rod length (eye to eye) and speed."""
+    t = root.table("slider_crank")
+    sc = SliderCrank(t.number("crank_radius", length=True, positive=True),
+                     t.number("rod_length", length=True, positive=True),
+                     t.number("speed_rpm", positive=True))
+    t.finish()
+    if sc.rod_length <= sc.crank_radius:
+        root.problems.append(Problem("slider_crank.rod_length", sc.rod_length / root.scale,
+                                     f"must be longer than crank_radius ({sc.crank_radius / root.scale:g})"))
+    return sc
+
+
+def _masses(root: Table) -> Masses:
+    """``[masses]``: the rod, piston and crank masses and the rod's centroid distances ([Asgari] §2)."""
+    t = root.table("masses")
+    m = Masses(t.number("rod_kg", positive=True),
+               t.number("rod_centroid_to_big_end", length=True, nonnegative=True),
+               t.number("rod_centroid_to_small_end", length=True, nonnegative=True),
+               t.number("piston_kg", nonnegative=True), t.number("crank_kg", nonnegative=True),
+               t.number("crank_centroid_radius", length=True, nonnegative=True))
+    t.finish()
+    if m.rod_centroid_to_big_end + m.rod_centroid_to_small_end <= 0:
+        root.problems.append(Problem("masses.rod_centroid_to_small_end", 0.0, "the two rod distances cannot both be 0"))
+    return m
+
+
+def _balance(root: Table) -> BalanceSpec:
+    """``[balance]``: the counterweight's share and radius, a balance shaft's radius and an
+    over-balancing counterweight (k and its advance, given together)."""
+    t = root.table("balance")
+    b = BalanceSpec(t.number("share_c", nonnegative=True, below=1.0),
+                    t.number("counterweight_radius", length=True, positive=True),
+                    _optional(t, "shaft_radius", length=True, positive=True),
+                    _optional(t, "overbalance_k", nonnegative=True),
+                    _optional(t, "overbalance_alpha_deg"))
+    t.finish()
+    if (b.overbalance_k is None) != (b.overbalance_alpha_deg is None):
+        root.problems.append(Problem("balance.overbalance_k", b.overbalance_k,
+                                     "give overbalance_k and overbalance_alpha_deg together"))
+    return b
+
+
+def _flywheel(root: Table) -> FlywheelSpec:
+    """``[flywheel]``: power, speed and fluctuation, and the optional rim (diameters, material), stroke
+    and other inertia of the checks."""
+    t = root.table("flywheel")
+    strokes = t.choice("cycle_strokes", (2, 4), 4)
+    material = t.text("material", default="", choices=tuple(RIM_SPEED_LIMITS)) if "material" in t.data else None
+    t.used.add("material")
+    f = FlywheelSpec(t.number("power_w", positive=True), t.number("speed_rpm", positive=True),
+                     t.number("speed_fluctuation", positive=True, below=1.0),
+                     _optional(t, "outer_diameter", length=True, positive=True),
+                     _optional(t, "inner_diameter", length=True, nonnegative=True),
+                     material, _optional(t, "stroke", length=True, positive=True),
+                     _optional(t, "other_inertia_kgm2", positive=True),
+                     strokes)
+    t.finish()
+    if (f.outer_diameter is None) != (f.inner_diameter is None):
+        root.problems.append(Problem("flywheel.inner_diameter", f.inner_diameter,
+                                     "give outer_diameter and inner_diameter together"))
+    elif f.outer_diameter is not None and not f.inner_diameter < f.outer_diameter:
+        root.problems.append(Problem("flywheel.inner_diameter", f.inner_diameter / root.scale,
+                                     f"must be smaller than outer_diameter ({f.outer_diameter / root.scale:g})"))
+    return f
+
+
+def _planetary(root: Table) -> PlanetarySpec:
+    """``[planetary]``: the gear kind, fixed and planet diameters, rod length, eccentricity and pin phase."""
+    t = root.table("planetary")
+    kind = t.text("kind", choices=("epicycloid", "hypocycloid"))
+    fixed = t.number("fixed_diameter", length=True, positive=True)
+    planets = tuple(v * root.scale for v in t.numbers("planet_diameters"))
+    spec = PlanetarySpec(kind, fixed, planets, t.number("rod_length", length=True, positive=True),
+                         _optional(t, "eccentricity", length=True, nonnegative=True),
+                         t.number("pin_phase_deg", 0.0))
+    t.finish()
+    for i, d in enumerate(planets):
+        if not d > 0 or (kind == "hypocycloid" and not d < fixed):
+            root.problems.append(Problem(f"planetary.planet_diameters[{i + 1}]", d / root.scale,
+                                         "must be > 0" + (" and smaller than fixed_diameter" if kind == "hypocycloid" else "")))
+    return spec
 
 
 def load_mechanics(path) -> MechanicsInput:

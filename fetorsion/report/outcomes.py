@@ -13,7 +13,8 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the results each outcome holds, named for the reader and the checks, not imported at run time
-    from ..description.model import Chain, Crank, Network
+    from ..description.model import Crank
+    from ..description.chain_model import Chain, Network
     from ..design.assessment import CrankAssessment
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet

@@ -19,7 +19,7 @@ The load F, the mean angle φ and speed Ω are given on the uniform sample grid 
 between samples: the same first-order hold the exact linear propagator uses (F's error
 (qΔθ)²/8 at order q; φ's α h²/8, below 10⁻⁸ rad at the shipped steps). The acceleration α is the
 speed's slope in each sample interval (exact for the piecewise-linear schedules of
-:func:`fetorsion.response.transient.speed_schedule` and its held start).
+:func:`fetorsion.response.transient_load.speed_schedule` and its held start).
 
 The kernel is compiled once per machine (numba's on-disk cache, ``cache=True``) and takes about 2 s to
 compile the first time.
@@ -126,12 +126,36 @@ def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
     xn, zn, sn: the elements' twists, friction states and slips at the step's start).
     Loops, not BLAS calls: at a few tens of coordinates a call's overhead is most of its cost; ``f``
     (r) and ``wc`` (5, cylinders), ``A`` (cylinders, cylinders) are scratch."""
+    _linear_forces(f, s, q, v, F, K, C)
+    _element_forces(f, q, D, x0, preload, tf, ks, kst, edges, nst, cap, xn, zn, sn)
+    c = fire.size
+    if c:
+        _crank_forces(f, s, q, v, phi, omega, alpha, W, fire, crank_r, crank_l, crank_m, mean, wc)
+    r = q.size
+    for i in range(r):
+        acc = 0.0
+        for j in range(r):
+            acc += Minv[i, j] * f[j]
+        out[i] = acc
+    if c:
+        _variable_inertia_correction(out, W, B, P, wc, A)
+
+
+@njit(cache=True, inline="always")
+def _linear_forces(f, s, q, v, F, K, C):
+    """f = F(s) − C q̇ − K q, the load read linearly at fraction s of the interval."""
     r = q.size
     for i in range(r):
         acc = (1.0 - s) * F[0, i] + s * F[1, i]
         for j in range(r):
             acc -= C[i, j] * v[j] + K[i, j] * q[j]
         f[i] = acc
+
+
+@njit(cache=True, inline="always")
+def _element_forces(f, q, D, x0, preload, tf, ks, kst, edges, nst, cap, xn, zn, sn):
+    """f −= Dᵀ T_e: each nonlinear element's torque, its plates' capacity capping it."""
+    r = q.size
     for e in range(x0.size):
         x = 0.0
         for j in range(r):
@@ -142,51 +166,56 @@ def _acceleration(out, s, q, v, F, phi, omega, alpha, Minv, K, C,
             te = min(max(preload[e] + te, -cap[e]), cap[e]) - preload[e]
         for j in range(r):
             f[j] -= D[e, j] * te
+
+
+@njit(cache=True, inline="always")
+def _crank_forces(f, s, q, v, phi, omega, alpha, W, fire, crank_r, crank_l, crank_m, mean, wc):
+    """f −= Wᵀ (½ δJ' θ̇² + δJ α) of the slider-cranks, with δJ of each cylinder into ``wc[0]``."""
+    r = q.size
     c = fire.size
-    if c:
-        th0 = (1.0 - s) * phi[0] + s * phi[1]
-        w0 = (1.0 - s) * omega[0] + s * omega[1]
-        lam = crank_r / crank_l
-        for i in range(c):
-            th = th0 - fire[i]
-            thd = w0
-            for j in range(r):
-                th += W[i, j] * q[j]
-                thd += W[i, j] * v[j]
-            sn, cs = np.sin(th), np.cos(th)
-            Dd = 1.0 - (lam * sn) ** 2
-            rD = np.sqrt(Dd)
-            s1 = -crank_r * (sn + lam * sn * cs / rD)
-            s2 = -crank_r * (cs + lam * (cs * cs - sn * sn + lam * lam * sn ** 4) / (Dd * rD))
-            wc[0, i] = crank_m * (s1 * s1 - mean)  # δJ
-            wc[1, i] = crank_m * s1 * s2 * thd * thd + wc[0, i] * alpha  # ½ δJ' θ̇² + δJ α
+    th0 = (1.0 - s) * phi[0] + s * phi[1]
+    w0 = (1.0 - s) * omega[0] + s * omega[1]
+    lam = crank_r / crank_l
+    for i in range(c):
+        th = th0 - fire[i]
+        thd = w0
         for j in range(r):
-            acc = 0.0
-            for i in range(c):
-                acc += W[i, j] * wc[1, i]
-            f[j] -= acc
-    for i in range(r):
+            th += W[i, j] * q[j]
+            thd += W[i, j] * v[j]
+        sn, cs = np.sin(th), np.cos(th)
+        Dd = 1.0 - (lam * sn) ** 2
+        rD = np.sqrt(Dd)
+        s1 = -crank_r * (sn + lam * sn * cs / rD)
+        s2 = -crank_r * (cs + lam * (cs * cs - sn * sn + lam * lam * sn ** 4) / (Dd * rD))
+        wc[0, i] = crank_m * (s1 * s1 - mean)  # δJ
+        wc[1, i] = crank_m * s1 * s2 * thd * thd + wc[0, i] * alpha  # ½ δJ' θ̇² + δJ α
+    for j in range(r):
+        acc = 0.0
+        for i in range(c):
+            acc += W[i, j] * wc[1, i]
+        f[j] -= acc
+
+
+@njit(cache=True, inline="always")
+def _variable_inertia_correction(out, W, B, P, wc, A):
+    """``out`` = M⁻¹ f turned into (M + Wᵀ diag(δJ) W)⁻¹ f, δJ in ``wc[0]``."""
+    # by Woodbury, B = M⁻¹Wᵀ, P = W M⁻¹ Wᵀ: a = u − B (I + diag(δJ) P)⁻¹ diag(δJ) W u, u = M⁻¹ f
+    r = out.size
+    c = wc.shape[1]
+    for i in range(c):
         acc = 0.0
         for j in range(r):
-            acc += Minv[i, j] * f[j]
-        out[i] = acc
-    if c:
-        # (M + Wᵀ diag(δJ) W)⁻¹ by Woodbury, B = M⁻¹Wᵀ, P = W M⁻¹ Wᵀ:
-        # a = u − B (I + diag(δJ) P)⁻¹ diag(δJ) W u, u = M⁻¹ f
+            acc += W[i, j] * out[j]
+        wc[2, i] = wc[0, i] * acc
+        for k in range(c):
+            A[i, k] = wc[0, i] * P[i, k]
+        A[i, i] += 1.0
+    y = _solve_small(A, wc[2])
+    for j in range(r):
+        acc = 0.0
         for i in range(c):
-            acc = 0.0
-            for j in range(r):
-                acc += W[i, j] * out[j]
-            wc[2, i] = wc[0, i] * acc
-            for k in range(c):
-                A[i, k] = wc[0, i] * P[i, k]
-            A[i, i] += 1.0
-        y = _solve_small(A, wc[2])
-        for j in range(r):
-            acc = 0.0
-            for i in range(c):
-                acc += B[j, i] * y[i]
-            out[j] -= acc
+            acc += B[j, i] * y[i]
+        out[j] -= acc
 
 
 @njit(cache=True)
@@ -198,52 +227,25 @@ def run_kernel(y, zstate, slip, h, F, phi, omega, Minv, K, Cs, fidx, W, fire, cr
     friction elements ``fidx`` that stick at its start (bit b: element fidx[b]).
     Returns (evaluations, the next step to try, status: 0 done, 1 the step control failed)."""
     r = y.size // 2
-    N = F.shape[0]
-    ne = x0.size
     q = y[:r].copy()
     v = y[r:].copy()
     z = zstate.copy()
     sl = slip.copy()
-    kq = np.empty((7, r))
-    kv = np.empty((7, r))
-    qi = np.empty(r)
-    vi = np.empty(r)
-    xn = np.zeros(ne)
-    f = np.empty(r)
-    c = fire.size
-    wc = np.empty((5, c))
-    A = np.empty((c, c))
+    kq, kv, qi, vi, a_first, f, xn, wc, A = _scratch(r, x0.size, fire.size)
     nfev = 0
-    for e in range(ne):
-        z_out[e, 0] = z[e]
-        s_out[e, 0] = sl[e]
-    q_out[:, 0] = q
+    _record(0, q, z, sl, q_out, z_out, s_out)
     have_first = False
-    a_first = np.empty(r)
     state = -1
-    C = Cs[0]
-    for k in range(N - 1):
-        Fk = F[k:k + 2]
-        ph = phi[k:k + 2]
-        om = omega[k:k + 2]
+    for k in range(F.shape[0] - 1):
+        Fk, ph, om = F[k:k + 2], phi[k:k + 2], omega[k:k + 2]
         alpha = (omega[k + 1] - omega[k]) / h
         s = 0.0  # the fraction of the interval done
         substeps = 0
         while s < 1.0:
-            ds = min(h_try / h, 1.0 - s)
-            if 1.0 - s - ds < 1e-9:
-                ds = 1.0 - s
+            ds = _fraction_to_try(h_try / h, s)
             dt = ds * h
-            for e in range(ne):
-                acc = 0.0
-                for j in range(r):
-                    acc += D[e, j] * q[j]
-                xn[e] = acc
-            mask = 0
-            for b in range(fidx.size):
-                e = fidx[b]
-                if abs(z[e]) < tf[e] / ks[e] * (1.0 - 1e-12):
-                    mask += 1 << b
+            _twists(xn, D, q)
+            mask = _stick_mask(fidx, z, tf, ks)
             if mask != state:  # the damping of another stick state: the FSAL acceleration is not it
                 state = mask
                 have_first = False
@@ -256,65 +258,136 @@ def run_kernel(y, zstate, slip, h, F, phi, omega, Minv, K, Cs, fidx, W, fire, cr
             kq[0] = v
             kv[0] = a_first
             for i in range(1, 7):
-                for m in range(r):
-                    accq = q[m]
-                    accv = v[m]
-                    for j in range(i):
-                        accq += dt * _A[i, j] * kq[j, m]
-                        accv += dt * _A[i, j] * kv[j, m]
-                    qi[m] = accq
-                    vi[m] = accv
+                _stage_state(qi, vi, q, v, kq, kv, i, dt)
                 kq[i] = vi
                 _acceleration(kv[i], s + _C[i] * ds, qi, vi, Fk, ph, om, alpha, Minv, K, C, W, fire, crank_r,
                               crank_l, crank_m, mean, B, P, D, x0, preload, tf, ks, kst, edges, nst, cap, xn, z, sl, f, wc, A)
                 nfev += 1
             # stage 7 sits at the step's end with the 5th-order solution (FSAL): qi, vi are it
-            err = 0.0
-            for i in range(r):
-                eq = 0.0
-                ev = 0.0
-                for j in range(7):
-                    eq += _E[j] * kq[j, i]
-                    ev += _E[j] * kv[j, i]
-                sq = atol_q + rtol * max(abs(q[i]), abs(qi[i]))
-                sv = atol_v + rtol * max(abs(v[i]), abs(vi[i]))
-                err += (dt * eq / sq) ** 2 + (dt * ev / sv) ** 2
-            err = np.sqrt(err / (2 * r))
+            err = _error_norm(kq, kv, q, v, qi, vi, dt, rtol, atol_q, atol_v)
             substeps += 1
             if substeps > MAX_SUBSTEPS:
                 return nfev, h_try, 1
             if err <= 1.0:
-                for e in range(ne):
-                    x1 = 0.0
-                    for j in range(r):
-                        x1 += D[e, j] * qi[j]
-                    xs, xsn = x1 - sl[e], xn[e] - sl[e]
-                    if cap[e] > 0:
-                        total = preload[e] + _element_torque(e, xs, xsn, z[e], x0, preload, tf, ks, kst, edges, nst)
-                        if abs(total) > cap[e]:
-                            # the plates slipped: the spring stops where the torque met the capacity
-                            stop = _slip_point(e, xsn, xs, z[e], cap[e] if total > 0 else -cap[e], x0, preload,
-                                               tf, ks, kst, edges, nst)
-                            sl[e] = x1 - stop
-                            xs = stop
-                    if tf[e] > 0:
-                        zs = tf[e] / ks[e]
-                        z[e] = min(max(z[e] + xs - xsn, -zs), zs)
+                _advance_elements(z, sl, xn, qi, D, x0, preload, tf, ks, kst, edges, nst, cap)
                 q[:] = qi
                 v[:] = vi
                 a_first[:] = kv[6]
                 s += ds
-                grow = _GROW if err == 0.0 else min(_GROW, _SAFETY * err ** _EXPONENT)
-                if ds * h >= h_try * (1 - 1e-12):  # a full step (not one cut short by the interval's end)
-                    h_try = dt * grow
-            else:
-                h_try = dt * max(_SHRINK, _SAFETY * err ** _EXPONENT)
-        q_out[:, k + 1] = q
-        for e in range(ne):
-            z_out[e, k + 1] = z[e]
-            s_out[e, k + 1] = sl[e]
+            h_try = _next_step(err, ds, dt, h, h_try)
+        _record(k + 1, q, z, sl, q_out, z_out, s_out)
     y[:r] = q
     y[r:] = v
     zstate[:] = z
     slip[:] = sl
     return nfev, h_try, 0
+
+
+@njit(cache=True, inline="always")
+def _scratch(r, ne, c):
+    """The kernel's work arrays: the stages kq, kv (7, r); the stage state qi, vi, the step's first
+    acceleration and the forces (r); the elements' twists (ne); the slider-cranks' wc (5, c) and A (c, c)."""
+    return (np.empty((7, r)), np.empty((7, r)), np.empty(r), np.empty(r), np.empty(r), np.empty(r), np.zeros(ne),
+            np.empty((5, c)), np.empty((c, c)))
+
+
+@njit(cache=True, inline="always")
+def _record(k, q, z, sl, q_out, z_out, s_out):
+    """Sample k of the output: the angles, friction states and slips."""
+    q_out[:, k] = q
+    for e in range(z.size):
+        z_out[e, k] = z[e]
+        s_out[e, k] = sl[e]
+
+
+@njit(cache=True, inline="always")
+def _fraction_to_try(ds, s):
+    """The fraction of the interval the next step covers: ``ds``, cut at the interval's end (a
+    sliver of it taken along)."""
+    ds = min(ds, 1.0 - s)
+    if 1.0 - s - ds < 1e-9:
+        ds = 1.0 - s
+    return ds
+
+
+@njit(cache=True, inline="always")
+def _twists(xn, D, q):
+    """Each element's twist D q into ``xn``."""
+    for e in range(xn.size):
+        acc = 0.0
+        for j in range(q.size):
+            acc += D[e, j] * q[j]
+        xn[e] = acc
+
+
+@njit(cache=True, inline="always")
+def _stick_mask(fidx, z, tf, ks):
+    """The bits of the friction elements ``fidx`` that stick (their state inside its limit)."""
+    mask = 0
+    for b in range(fidx.size):
+        e = fidx[b]
+        if abs(z[e]) < tf[e] / ks[e] * (1.0 - 1e-12):
+            mask += 1 << b
+    return mask
+
+
+@njit(cache=True, inline="always")
+def _stage_state(qi, vi, q, v, kq, kv, i, dt):
+    """The state (qi, vi) at which Dormand–Prince stage i is evaluated, from the stages before it."""
+    for m in range(q.size):
+        accq = q[m]
+        accv = v[m]
+        for j in range(i):
+            accq += dt * _A[i, j] * kq[j, m]
+            accv += dt * _A[i, j] * kv[j, m]
+        qi[m] = accq
+        vi[m] = accv
+
+
+@njit(cache=True, inline="always")
+def _error_norm(kq, kv, q, v, qi, vi, dt, rtol, atol_q, atol_v):
+    """The step's error (5th minus embedded 4th order) in the RMS norm of the tolerances: ≤ 1 passes."""
+    r = q.size
+    err = 0.0
+    for i in range(r):
+        eq = 0.0
+        ev = 0.0
+        for j in range(7):
+            eq += _E[j] * kq[j, i]
+            ev += _E[j] * kv[j, i]
+        sq = atol_q + rtol * max(abs(q[i]), abs(qi[i]))
+        sv = atol_v + rtol * max(abs(v[i]), abs(vi[i]))
+        err += (dt * eq / sq) ** 2 + (dt * ev / sv) ** 2
+    return np.sqrt(err / (2 * r))
+
+
+@njit(cache=True, inline="always")
+def _advance_elements(z, sl, xn, qi, D, x0, preload, tf, ks, kst, edges, nst, cap):
+    """The elements' friction states and slips over an accepted step from twists ``xn`` to D ``qi``."""
+    for e in range(x0.size):
+        x1 = 0.0
+        for j in range(qi.size):
+            x1 += D[e, j] * qi[j]
+        xs, xsn = x1 - sl[e], xn[e] - sl[e]
+        if cap[e] > 0:
+            total = preload[e] + _element_torque(e, xs, xsn, z[e], x0, preload, tf, ks, kst, edges, nst)
+            if abs(total) > cap[e]:
+                # the plates slipped: the spring stops where the torque met the capacity
+                stop = _slip_point(e, xsn, xs, z[e], cap[e] if total > 0 else -cap[e], x0, preload,
+                                   tf, ks, kst, edges, nst)
+                sl[e] = x1 - stop
+                xs = stop
+        if tf[e] > 0:
+            zs = tf[e] / ks[e]
+            z[e] = min(max(z[e] + xs - xsn, -zs), zs)
+
+
+@njit(cache=True, inline="always")
+def _next_step(err, ds, dt, h, h_try):
+    """The step to try after one of ``dt`` (``ds`` of the interval ``h``) with error ``err``."""
+    if err <= 1.0:
+        grow = _GROW if err == 0.0 else min(_GROW, _SAFETY * err ** _EXPONENT)
+        if ds * h >= h_try * (1 - 1e-12):  # a full step (not one cut short by the interval's end)
+            return dt * grow
+        return h_try
+    return dt * max(_SHRINK, _SAFETY * err ** _EXPONENT)

@@ -22,7 +22,6 @@ forces (spring forces, or the reactions of rigid bearings), each as the vibrator
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -35,35 +34,8 @@ from ..fe.condensed import CondensedCrank
 from ..fe.couplings import DOF_NAMES
 from ..fe.substructure import reduced_modes, supported_matrices
 from ..modes import modal_damping
+from .pin_loads import journal_mean_loads, master_loads, pin_load_map
 from .synthesis import half_peak_to_peak, waveform
-
-
-def pin_load_map(cc: CondensedCrank) -> np.ndarray:
-    """(cylinders, 2, 6·masters): master forces of a unit tangential and radial rod force of each
-    cylinder on its throw's pin.
-
-    Pin t at angle a_t: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a) (a
-    positive tangential force turns the crank in +θx). A big end at ``rod_offset`` d along the
-    pin from its master (the pin's mid-length) adds the force's moment d e_x × e at the master."""
-    crank = cc.crank
-    engine = crank.engine
-    out = np.zeros((engine.cylinders, 2, cc.n_master_dofs))
-    for c in range(engine.cylinders):
-        t = engine.throw_of_cylinder(c)
-        a, d = engine.crank_angles[t], engine.rod_offset(c)
-        pin = f"P{t + 1}"
-        for k, e in enumerate(((0.0, -math.sin(a), math.cos(a)), (0.0, math.cos(a), math.sin(a)))):
-            out[c, k, [cc.dof(pin, "ty"), cc.dof(pin, "tz")]] = e[1], e[2]
-            if d:  # d e_x × (0, e_y, e_z) = d (0, −e_z, e_y)
-                out[c, k, [cc.dof(pin, "ry"), cc.dof(pin, "rz")]] = -d * e[2], d * e[1]
-    return out
-
-
-def master_loads(cc: CondensedCrank, rpm: np.ndarray, orders: np.ndarray) -> np.ndarray:
-    """Complex master-force amplitudes of each order: (speeds, orders, 6·masters), N; each
-    cylinder's forces lag cylinder 1's by its firing angle φ_c (order q: the factor e^{−i q φ_c})."""
-    phasors = np.exp(-1j * np.outer(orders, firing_angles(cc.crank.engine)))  # (orders, cylinders)
-    return np.einsum("sok,oc,ckd->sod", pin_force_harmonics(cc.crank, rpm, orders), phasors, pin_load_map(cc))
 
 
 def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray,
@@ -538,54 +510,14 @@ def _section_parts(cc: CondensedCrank):
     return [(crank.journals if lb[0] == "J" else crank.pins)[int(lb[1:]) - 1] for lb in cc.labels[1:-1]]
 
 
-def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
-    """Each main journal's mean load over the cycle at ``rpm``, in the bearing shell's (fixed)
-    frame: (journals, 2) N, the force the crank puts on the bearing.
-
-    The journals are held radially (and the flywheel master in twist, which takes the mean
-    torque; the thrust journal, or the first, axially), and the static reactions to a unit
-    tangential and radial force on each pin are solved once on the reduced model (static master
-    loads are exact in a Craig–Bampton model). Over the cycle, cylinder c's pin forces are
-    cylinder 1's delayed by its firing angle φ_c; the reactions in the crank's frame are turned
-    into the fixed frame, in which the cylinder reaches its top dead centre at θ = φ_c (pin c,
-    at crank-frame angle a_c ≡ φ_c, turned back by θ), and averaged.
-    """
-    from ..excitation.torque import cylinder_pin_forces
-
-    crank = cc.crank
-    m = cc.n_master_dofs
-    journals = [cc.labels.index(f"J{j + 1}") for j in range(len(crank.journals))]
-    axial = 6 * journals[crank.main_bearings.thrust_journal] if crank.main_bearings.axial_stiffness > 0 else 6 * journals[0]
-    held = np.array(sorted([6 * k + d for k in journals for d in (1, 2)] + [axial, cc.dof("rear", "rx")]))
-    keep = np.setdiff1d(np.arange(cc.reduced.size), held)
-    K = cc.reduced.K
-    unit = np.zeros((cc.reduced.size, crank.engine.cylinders * 2))
-    unit[:m] = pin_load_map(cc).reshape(-1, m).T  # columns: cylinder c tangential, radial
-    z = np.zeros_like(unit)
-    z[keep] = np.linalg.solve(K[np.ix_(keep, keep)], unit[keep])
-    react = K[held] @ z - unit[held]  # (held, cylinders·2): the bearings' forces on the crank
-    rows = [[list(held).index(6 * k + d) for d in (1, 2)] for k in journals]
-    A = np.stack([react[r] for r in rows])  # (journals, 2 (y, z), cylinders·2)
-    f = cylinder_pin_forces(crank, rpm)
-    theta, period = f["theta"], cycle_angle(crank.engine)
-    phi = firing_angles(crank.engine)
-    forces = np.empty((len(theta), crank.engine.cylinders * 2))
-    for c in range(crank.engine.cylinders):  # cylinder c's force at θ is cylinder 1's at θ − φ_c
-        for k, name in enumerate(("tangential", "radial")):
-            forces[:, 2 * c + k] = np.interp(theta - phi[c], theta, f[name], period=period)
-    on_crank = np.einsum("jdk,tk->tjd", A, forces)  # (angles, journals, y z), crank frame
-    c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
-    fixed = np.stack([c * on_crank[..., 0] + s * on_crank[..., 1], -s * on_crank[..., 0] + c * on_crank[..., 1]], -1)
-    return -fixed.mean(axis=0)
-
-
 def with_film_bearings(cc: CondensedCrank) -> CondensedCrank:
     """The condensed crank with its oil-film main bearings at each journal's mean load.
 
     For a ``[bearings]`` oil film given without ``load_n``: the mean load magnitudes of
-    :func:`journal_mean_loads` at the film's speed give the short-bearing coefficients
-    (:mod:`fetorsion.description.oilfilm`, isotropic equivalents), which replace the rigid placeholders;
-    the crank it carries records the loads and eccentricities. Any other crank comes back as is.
+    :func:`fetorsion.response.pin_loads.journal_mean_loads` at the film's speed give the
+    short-bearing coefficients (:mod:`fetorsion.description.oilfilm`, isotropic equivalents), which
+    replace the rigid placeholders; the crank it carries records the loads and eccentricities. Any
+    other crank comes back as is.
     """
     import dataclasses
 

@@ -24,7 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..description.model import CRANK_END_ALIASES, Network
+from ..description.model import CRANK_END_ALIASES
+from ..description.chain_model import Network
 from ..description.network import joined_inside, speed_walk
 from ..errors import FetorsionError
 from ..fe.condensed import CondensedCrank
@@ -90,16 +91,7 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
 
     from .coupled import assembly_modes, condensed_setup, supported_damping
 
-    part = condensed_part(net)
-    if part is None:
-        raise FetorsionError(f"{net.source or net.name}: no [[chain.cranks]] with dof = \"condensed\"")
-    if part.crank.name != cc.crank.name:
-        raise FetorsionError(f"{net.source or net.name}: the condensed crank given is {cc.crank.name!r}, the "
-                             f"network's part is {part.crank.name!r}")
-    bad = [net.labels[s] for s in joined_inside(part, net.shafts, net.gears, net.nonlinear)]
-    if bad:
-        raise FetorsionError(f"{net.source or net.name}: {', '.join(bad)}: a condensed crank offers only its "
-                             f"{' and '.join(f'{part.name}.{a}' for a in CRANK_END_ALIASES)} to the network")
+    part = _checked_part(net, cc)
     base = condensed_setup(cc, "bearings", rpm, orders, damping_ratio, section_labels)
     zeta = base.zeta
     R = len(base.labels)
@@ -116,14 +108,7 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     S_cols[others, R + np.arange(len(others))] = 1.0
     S = T @ S_cols  # (stations, z)
     J = np.array([0.0 if s in inside else v for s, v in enumerate(net.inertias)])
-    shafts = net.linear_shafts
-    i, j = [s.i for s in shafts], [s.j for s in shafts]
-    k = np.array([s.stiffness for s in shafts], float)
-    Ks = spring_matrix(n, i, j, k)
-    Hs = spring_matrix(n, i, j, k * np.array([s.loss_factor for s in shafts]))
-    Cs = spring_matrix(n, i, j, [s.damping for s in shafts])
-    if net.absolute_damping:
-        Cs += np.diag([0.0 if s in inside else c for s, c in enumerate(net.absolute_damping)])
+    Ks, Hs, Cs = _shaft_matrices(net, inside)
 
     def pad(A):
         out = np.zeros((R + len(others),) * 2, A.dtype)
@@ -138,18 +123,70 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
     C = modal_damping(M, Phi, np.sqrt(np.clip(lam, 0.0, None)), zeta) + pad(C_bearings) + S.T @ Cs @ S
     torsional = crank_torsional_modes(cc, keep, base.K, lam, Phi[:R])
     Kc = K + 1j * (S.T @ Hs @ S) if np.any(Hs) else K
-    rows = np.zeros((len(shafts), n))
+    rows, names = _shaft_sections(net)
+    section_rows = np.vstack([np.pad(base.section_rows, ((0, 0), (0, len(others)))), rows @ S])
+    extra = lambda A: np.pad(A, [(0, 0)] * (A.ndim - 1) + [(0, len(others))])  # noqa: E731
+    G = None if base.gyroscopic is None else pad(base.gyroscopic)
+    places, scale = _damper_places(net, base, T, S_cols, front, rear, inside)
+    return dataclasses.replace(
+        base, name=net.name, labels=list(base.labels) + [net.labels[masters[c]] for c in others], M=M, K=Kc, C=C,
+        forces=extra(base.forces), load_map=extra(base.load_map), section_rows=section_rows,
+        section_labels=list(base.section_labels) + names,
+        section_x=None if base.section_x is None else np.concatenate([base.section_x, np.full(len(names), np.nan)]),
+        stated="stated dampers of the network" if np.any(Cs) or np.any(Hs) else "",
+        torsional_modes=torsional, gyroscopic=G, crank_dofs=R, damper_dof=places, damper_scale=scale or None,
+        model=f"network of {n - len(inside) + 2} stations on the {base.model}")
+
+
+def _checked_part(net: Network, cc: CondensedCrank):
+    """The network's condensed crank part, checked against ``cc`` and for joints inside it."""
+    part = condensed_part(net)
+    if part is None:
+        raise FetorsionError(f"{net.source or net.name}: no [[chain.cranks]] with dof = \"condensed\"")
+    if part.crank.name != cc.crank.name:
+        raise FetorsionError(f"{net.source or net.name}: the condensed crank given is {cc.crank.name!r}, the "
+                             f"network's part is {part.crank.name!r}")
+    bad = [net.labels[s] for s in joined_inside(part, net.shafts, net.gears, net.nonlinear)]
+    if bad:
+        raise FetorsionError(f"{net.source or net.name}: {', '.join(bad)}: a condensed crank offers only its "
+                             f"{' and '.join(f'{part.name}.{a}' for a in CRANK_END_ALIASES)} to the network")
+    return part
+
+
+def _shaft_matrices(net: Network, inside) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(K_s, H_s, C_s) of the network's linear shafts on its stations, the absolute dampers outside the crank."""
+    n = len(net.labels)
+    shafts = net.linear_shafts
+    i, j = [s.i for s in shafts], [s.j for s in shafts]
+    k = np.array([s.stiffness for s in shafts], float)
+    Ks = spring_matrix(n, i, j, k)
+    Hs = spring_matrix(n, i, j, k * np.array([s.loss_factor for s in shafts]))
+    Cs = spring_matrix(n, i, j, [s.damping for s in shafts])
+    if net.absolute_damping:
+        Cs += np.diag([0.0 if s in inside else c for s, c in enumerate(net.absolute_damping)])
+    return Ks, Hs, Cs
+
+
+def _shaft_sections(net: Network) -> tuple[np.ndarray, list]:
+    """(torque per unit station angle (shafts, stations), names) of the network's linear shafts."""
+    shafts = net.linear_shafts
+    i, j = [s.i for s in shafts], [s.j for s in shafts]
+    k = np.array([s.stiffness for s in shafts], float)
+    rows = np.zeros((len(shafts), len(net.labels)))
     rows[np.arange(len(shafts)), i] = k
     free = np.flatnonzero(np.array(j, int) >= 0)
     rows[free, np.array(j, int)[free]] = -k[free]
     names = [f"{net.labels[s.i]}-{net.labels[s.j] if s.j >= 0 else 'ground'}" for s in shafts]
     names = names[:len(net.shafts)] + [e.name or m for e, m in zip(net.nonlinear, names[len(net.shafts):])]
-    section_rows = np.vstack([np.pad(base.section_rows, ((0, 0), (0, len(others)))), rows @ S])
-    extra = lambda A: np.pad(A, [(0, 0)] * (A.ndim - 1) + [(0, len(others))])  # noqa: E731
-    G = None if base.gyroscopic is None else pad(base.gyroscopic)
-    # the network's [[dampers]]: front and rear on the crank's masters, a named station on its
-    # coordinate in z, referred by f² where it turns f times as fast (as in a lumped network)
+    return rows, names
+
+
+def _damper_places(net: Network, base, T, S_cols, front: int, rear: int, inside) -> tuple[dict, dict]:
+    """({at: coordinate in z}, {at: f²}) of the network's [[dampers]]."""
+    # front and rear on the crank's masters, a named station on its coordinate in z, referred by
+    # f² where it turns f times as fast (as in a lumped network)
     places, scale = dict(base.damper_dof), {}
+    n = len(net.labels)
     speed = speed_walk(n, net.linear_shafts, net.gears)[0]
     outer = [s for s in range(n) if s not in inside or s in (front, rear)]
     for d in net.dampers:
@@ -159,11 +196,4 @@ def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, dam
         s = max(x for x in outer if np.isclose(speed[x], 1.0)) if d.at == "rear" else net.labels.index(d.at)
         col, scale[d.at] = group_place(T, s)
         places[d.at] = int(np.flatnonzero(S_cols[col])[0])
-    return dataclasses.replace(
-        base, name=net.name, labels=list(base.labels) + [net.labels[masters[c]] for c in others], M=M, K=Kc, C=C,
-        forces=extra(base.forces), load_map=extra(base.load_map), section_rows=section_rows,
-        section_labels=list(base.section_labels) + names,
-        section_x=None if base.section_x is None else np.concatenate([base.section_x, np.full(len(names), np.nan)]),
-        stated="stated dampers of the network" if np.any(Cs) or np.any(Hs) else "",
-        torsional_modes=torsional, gyroscopic=G, crank_dofs=R, damper_dof=places, damper_scale=scale or None,
-        model=f"network of {n - len(inside) + 2} stations on the {base.model}")
+    return places, scale

@@ -23,13 +23,15 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..excitation.campbell import response_orders
-from ..description.model import Chain, Crank, Network
+from ..description.model import Crank
+from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
 from ..lumped_model.network import group_place, speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
+from .forced_plots import plot_response
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
@@ -164,39 +166,7 @@ class ResponseResult:
         On a given ``ax`` only the angles are drawn; without one, a figure with both panels.
         Returns the Axes of the angles.
         """
-        import matplotlib.pyplot as plt
-
-        if ax is None:
-            fig = plt.figure(figsize=(9, 7))
-            a1, a2 = fig.subplots(2, 1, sharex=True)
-        else:
-            fig, a1, a2 = ax.figure, ax, None
-        a1.plot(self.rpm, self.pulley_angle_deg, label="pulley angle (absolute)")
-        a1.plot(self.rpm, self.pulley_twist_deg, label="pulley twist against flywheel end")
-        a1.set_ylabel("vibratory angle [deg]")
-        a1.legend(fontsize=8)
-        a1.set_title(f"{self.name}\nforced response, {self.damping_text().replace('zeta', 'ζ')}", fontsize=10, wrap=True)
-        c = self.compare
-        if c and c["quantity"] == "pulley_angle_deg":
-            a1.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
-            a1.legend(fontsize=8)
-        if a2 is None:
-            a1.set_xlabel("engine speed [rpm]")
-            return a1
-        worst = np.argmax(self.section_torque_nm.max(axis=0))
-        if c and c["quantity"] == "section_torque_nm":
-            worst = c["section"]
-            a2.plot(c["rpm"], np.asarray(c["value"]) * c["to_si"], "k--", label=f"{c['name']} (compared)")
-        a2.plot(self.rpm, self.section_torque_nm[:, worst], color="C3",
-                label=f"section {self.section_labels[worst]}: amplitude (½ peak-to-peak)")
-        if self.section_torque_peak_nm is not None:
-            a2.plot(self.rpm, self.section_torque_peak_nm[:, worst], color="C3", ls=":",
-                    label="largest |torque| over the cycle (orders summed with phases)")
-        a2.set_ylabel("vibratory torque [N m]")
-        a2.set_xlabel("engine speed [rpm]")
-        a2.legend(fontsize=8)
-        fig.tight_layout()
-        return a1
+        return plot_response(self, ax)
 
 
 def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,

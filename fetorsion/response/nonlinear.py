@@ -16,7 +16,7 @@ comes out of the equation, evaluated at the crank's actual angle θ = φ(t) − 
 The gas torque is still read at the mean angle (as the linear time domain reads it: the gas
 torque's dependence on the vibration angle, Draminsky's "impulse distortion", is left out).
 
-**Nonlinear elements** (:class:`~fetorsion.description.model.NonlinearSpring`): torque
+**Nonlinear elements** (:class:`~fetorsion.description.chain_model.NonlinearSpring`): torque
 g(x0 + x) − P + T_f(z) across the twist x, with g the piecewise-linear elastic curve, P the preload
 (g(x0) = P) and an elastic-perfectly-plastic (Jenkins) friction element: a spring k_s in series with
 a Coulomb slider of limit T_f, its state z (the spring's twist) following ż = ẋ while
@@ -36,13 +36,16 @@ linear scheme so that the same envelope and order-tracking code reads it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.integrate
 
 from ..description.defaults import NONLINEAR_METHODS
+from ..errors import FetorsionError
 from ..excitation.kinematics import piston_velocity
+from .transient_load import read_table, table_load, torque_table
 
 #: Relative tolerance of the error-controlled integration: the slider-crank's inertia terms and the
 #: element torques are resolved to this fraction of themselves per step.
@@ -154,7 +157,7 @@ def element_work(springs, x, z, slip, h: float) -> list:
 @dataclass(frozen=True)
 class Elements:
     """A network's nonlinear elements on its coordinates: ``rows`` (elements × coordinates, the
-    twist per unit q), the :class:`~fetorsion.description.model.NonlinearSpring` of each."""
+    twist per unit q), the :class:`~fetorsion.description.chain_model.NonlinearSpring` of each."""
 
     rows: np.ndarray
     springs: tuple
@@ -284,15 +287,7 @@ def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: Sli
     ne = 0 if elements is None else elements.rows.shape[0]
     D = np.zeros((0, r)) if elements is None else elements.rows
     Minv = np.linalg.inv(M)
-    sticking = np.zeros(ne) if elements is None else np.where(elements.friction > 0, elements.stick, 0.0)
-    K_t = K + (0 if elements is None else D.T @ ((elements.tangent + sticking)[:, None] * D))
-    jac = np.zeros((2 * r + ne, 2 * r + ne))
-    jac[:r, r:2 * r] = np.eye(r)
-    jac[r:2 * r, :r] = -Minv @ K_t
-    jac[r:2 * r, r:2 * r] = -Minv @ C
-    if ne:
-        jac[2 * r:, r:2 * r] = np.where(elements.friction[:, None] > 0, D, 0.0)
-
+    jac = _linear_jacobian(Minv, K, C, D, elements)
     fidx = np.flatnonzero(elements.friction > 0) if ne else np.zeros(0, int)
     zlim = elements.friction[fidx] / elements.stick[fidx] if ne else np.zeros(0)
     bits = 1 << np.arange(fidx.size)
@@ -340,6 +335,20 @@ def integrate_nonlinear(M, K, C, t, phi, omega, alpha: float, force, cranks: Sli
         nfev += sol.nfev
         start = stop
     return q, zs, nfev
+
+
+def _linear_jacobian(Minv, K, C, D, elements: Elements | None) -> np.ndarray:
+    """d(q̇, q̈, ż)/d(q, q̇, z) with the elements at their tangent stiffness and their friction stuck."""
+    r, ne = Minv.shape[0], D.shape[0]
+    sticking = np.zeros(ne) if elements is None else np.where(elements.friction > 0, elements.stick, 0.0)
+    K_t = K + (0 if elements is None else D.T @ ((elements.tangent + sticking)[:, None] * D))
+    jac = np.zeros((2 * r + ne, 2 * r + ne))
+    jac[:r, r:2 * r] = np.eye(r)
+    jac[r:2 * r, :r] = -Minv @ K_t
+    jac[r:2 * r, r:2 * r] = -Minv @ C
+    if ne:
+        jac[2 * r:, r:2 * r] = np.where(elements.friction[:, None] > 0, D, 0.0)
+    return jac
 
 
 def _atol(r: int, ne: int) -> np.ndarray:
@@ -443,3 +452,105 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
         q[:, start:stop + 1], zs[:, start:stop + 1], ss[:, start:stop + 1] = qo, zo, so
         start = stop
     return q, zs, ss, nfev
+
+
+def nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, phi_of_t, run, rate, lo, top,
+                  elements, variable_inertia, method, setup):
+    """A time-domain run (:func:`fetorsion.response.transient.run_transient`) with variable inertia or
+    nonlinear elements, by :func:`integrate_compiled` or :func:`integrate_nonlinear`.
+
+    Parameters
+    ----------
+    model : Chain or Network
+        The model run (its engine and excitation).
+    M, K, C : ndarray (r, r)
+        Inertia (kg·m²), the stiffness with the elements at their operating stage (N·m/rad) and
+        damping (N·m·s/rad) of the model's coordinates.
+    rows : ndarray (sections, r)
+        Each section's torque per unit coordinate, N·m/rad (the elements' sections last).
+    W : ndarray (cylinders, r)
+        Where each cylinder acts on the coordinates.
+    fire : ndarray (cylinders,)
+        The firing angles, rad.
+    prop : Propagator
+        The linear model's propagator (:func:`fetorsion.response.transient.propagator`): its rigid-body mode.
+    rigid_speed : float
+        The rigid-body mode's start speed, rad/s of η₀.
+    t : ndarray (N,)
+        Sample times, s, uniform.
+    n_of_t, phi_of_t : callable
+        The mean motion: speed (rpm) and angle (rad) at times t (s).
+    run : (float, float) or None
+        A run's start and end speed, rpm; None: steady running.
+    rate : float or None
+        The run's |dn/dt|, rpm/s.
+    lo, top : float
+        The lowest and highest speed of the torque table, rpm.
+    elements : tuple of NonlinearSpring
+        The network's nonlinear elements.
+    variable_inertia : bool
+        The slider-cranks' crank-angle-dependent inertia on their stations.
+    method : str
+        One of :data:`METHODS`.
+    setup : ResponseSetup
+        The model's response setup: the modal damping of each stick state is set on its M and K.
+
+    Returns
+    -------
+    q : ndarray (r, N)
+        The vibration angles, rad.
+    torque : ndarray (sections, N)
+        The section torques, N·m.
+    scheme : str
+        The integrator, its tolerance and evaluations, and what was nonlinear.
+    work : list of ElementWork
+        Each element's slip and friction heat over the run.
+    """
+    ne = len(elements)
+    tangent = np.array([e.tangent for e in elements])
+    D = rows[rows.shape[0] - ne:] / tangent[:, None] if ne else np.zeros((0, M.shape[0]))
+    K_lin = K - D.T @ (tangent[:, None] * D)  # the elements' operating stiffness out: they act as they are
+    cranks = None
+    if variable_inertia:
+        if np.any(np.abs(W.sum(axis=1) - 1) > 1e-9):
+            raise FetorsionError(f"{model.name}: variable inertia needs every cylinder on a station that turns at "
+                                 "the engine's speed (its weights summing to 1)")
+        e, ex = model.engine, model.excitation
+        cranks = SliderCranks(W, fire, e.crank_radius, e.rod_length, ex.reciprocating_mass)
+    grid, step, table = torque_table(model, lo, top, part="gas" if variable_inertia else "total")
+    alpha = 0.0 if run is None else math.copysign(rate, run[1] - run[0]) * math.pi / 30
+    # the modal damping on the modes of each stick state of the friction elements
+    rubbing = [i for i, e in enumerate(elements) if e.friction > 0]
+    stuck = None
+    if rubbing and setup.zeta > 0:
+        stuck = C[None] + stick_damping_changes(np.real(setup.M), np.real(setup.K), setup.zeta, D[rubbing],
+                                                Elements(D, elements).stick[rubbing], M.shape[0])
+
+    v0 = None if prop.rigid is None else rigid_speed * prop.rigid
+    parts = Elements(D, elements) if ne else None
+    slip = np.zeros((ne, t.size))
+    if method == "compiled":
+        phi, n_t = phi_of_t(t), n_of_t(t)
+
+        load = table_load(W, fire, grid, step, table, phi, n_t)
+        q, z, slip, nfev = integrate_compiled(M, K_lin, C, t, phi, n_t * (math.pi / 30), load, cranks, parts, v0,
+                                              stuck_damping=stuck)
+    else:
+        def force(tt):
+            return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
+
+        q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha,
+                                         force, cranks, parts, v0, method, stuck_damping=stuck)
+    torque = rows @ q
+    work = []
+    if ne:
+        x = D @ q
+        torque[rows.shape[0] - ne:] = parts.torque(x - slip, z)
+        work = element_work(elements, x, z, slip, float(t[1] - t[0]))
+    what = " and ".join(w for w, on in (("variable inertia", variable_inertia),
+                                        (f"{ne} nonlinear element{'s' * (ne > 1)}", ne)) if on)
+    how = ("compiled Dormand-Prince 5(4), friction as exact Jenkins elements" if method == "compiled"
+           else f"{method} (scipy solve_ivp)")
+    if stuck is not None:
+        what += ", modal damping on each stick state's modes"
+    return q, torque, f"{how}, rtol {RTOL:g}, {nfev} evaluations: {what}", work

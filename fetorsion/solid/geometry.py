@@ -40,9 +40,11 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from ..description.model import Crank, Cylinder, Web
+from ..description.model import Crank, Cylinder
 from ..errors import GeometryError
-from .recognise import SolidFeatures, first_pin_turn, recognise, unit_slip
+from .recognise import SolidFeatures
+from .stepimport import imported_solid, quiet_stdout
+from .webvolume import web_volume
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
@@ -179,77 +181,6 @@ def _hollow_cylinder(occ, x0: float, length: float, c: Cylinder, centre, s: floa
     inner = occ.addCylinder(x0, y, z, length, 0, 0, 0.5 * c.bore * s)
     out, _ = occ.cut([(3, outer)], [(3, inner)])
     return out
-
-
-def _web_face(occ, web: Web, R: float, angle: float, x0: float, s: float) -> int:
-    """The exact web outline as one plane surface at x = x0 (model units); returns its tag.
-
-    Built from its true pieces: the arc of the journal-end circle (radius r1 on the axis),
-    the two common tangents, the arc of the pin-end circle (radius r2 at the pin), then
-    united with the counterweight sector. Same construction as
-    :func:`fetorsion.solid.outline.radial_function`.
-    """
-    r1, r2 = 0.5 * web.width_journal * s, 0.5 * web.width_pin * s
-    u = np.array([math.cos(angle), math.sin(angle)])  # towards the pin
-    v = np.array([-math.sin(angle), math.cos(angle)])
-
-    def point(a: float, b: float) -> int:
-        y, z = a * u + b * v
-        return occ.addPoint(x0, y, z)
-
-    beta = math.acos((r1 - r2) / R)  # direction of the tangents' normals
-    cb, sb = math.cos(beta), math.sin(beta)
-    axis, pin = point(0, 0), point(R, 0)
-    t1a, t1b = point(r1 * cb, r1 * sb), point(r1 * cb, -r1 * sb)
-    t2a, t2b = point(R + r2 * cb, r2 * sb), point(R + r2 * cb, -r2 * sb)
-    back, tip = point(-r1, 0), point(R + r2, 0)
-    # Each arc is split at its midpoint: OCC arcs through 3 points must span less than π.
-    loop = occ.addCurveLoop([
-        occ.addCircleArc(t2b, pin, tip), occ.addCircleArc(tip, pin, t2a), occ.addLine(t2a, t1a),
-        occ.addCircleArc(t1a, axis, back), occ.addCircleArc(back, axis, t1b), occ.addLine(t1b, t2b),
-    ])
-    face = occ.addPlaneSurface([loop])
-    rc = web.counterweight_radius * s
-    if rc <= r1:  # the sector lies inside the journal-end disc: the outline is the hull
-        return face
-    half = 0.5 * web.counterweight_angle
-    if half >= math.pi - 1e-9:
-        sector = occ.addDisk(x0, 0, 0, rc, rc, zAxis=[1, 0, 0], xAxis=[0, *u])
-    else:
-        ends = [point(rc * math.cos(math.pi + a), rc * math.sin(math.pi + a)) for a in (-half, 0.0, half)]
-        sector = occ.addPlaneSurface([occ.addCurveLoop([
-            occ.addLine(axis, ends[0]), occ.addCircleArc(ends[0], axis, ends[1]),
-            occ.addCircleArc(ends[1], axis, ends[2]), occ.addLine(ends[2], axis),
-        ])])
-    out, _ = occ.fuse([(2, face)], [(2, sector)])
-    if len(out) != 1:
-        raise GeometryError(f"web outline with counterweight did not give one face ({len(out)})")
-    return out[0][1]
-
-
-def _uncovered_area(occ, face: int, x: float, centre, diameter: float) -> float:
-    """Area (model units²) of a disc at ``centre`` on plane x that lies outside ``face``."""
-    disc = occ.addDisk(x, centre[0], centre[1], 0.5 * diameter, 0.5 * diameter, zAxis=[1, 0, 0], xAxis=[0, 1, 0])
-    rest, _ = occ.cut([(2, disc)], [(2, face)], removeObject=True, removeTool=False)
-    area = sum(occ.getMass(d, t) for d, t in rest)
-    occ.remove(rest, recursive=True)
-    return area
-
-
-def _web_volume(occ, piece: _Piece, journal: _Piece, pin: _Piece, R: float, s: float) -> list[tuple[int, int]]:
-    """Extruded web, after checking that it carries its pin and its journal (model units)."""
-    web: Web = piece.spec
-    face = _web_face(occ, web, R, piece.angle, piece.x0, s)
-    for other in (pin, journal):
-        d = other.spec.diameter * s
-        lost = _uncovered_area(occ, face, piece.x0, other.centre, d)
-        if lost > 1e-6 * d * d:
-            raise GeometryError(
-                f"{piece.name} does not cover {other.name}: {lost:.3g} mm² of the {other.kind} section "
-                f"(diameter {d:g} mm) lies outside the web outline; widen the web "
-                f"(width_{'pin' if other.kind == 'pin' else 'journal'}) or shrink the {other.kind}")
-    out = occ.extrude([(2, face)], piece.x1 - piece.x0, 0, 0)
-    return [dt for dt in out if dt[0] == 3]
 
 
 # ---------------------------------------------------------------------------
@@ -408,7 +339,7 @@ def _built_solid(crank: Crank, pieces) -> int:
         if p.kind == "web":
             journal = pieces[i - 1] if pieces[i - 1].kind == "journal" else pieces[i + 1]
             pin = pieces[i + 1] if pieces[i + 1].kind == "pin" else pieces[i - 1]
-            volumes.append(_web_volume(occ, p, journal, pin, R, s))
+            volumes.append(web_volume(occ, p, journal, pin, R, s))
         else:
             volumes.append(_hollow_cylinder(occ, p.x0, p.x1 - p.x0, p.spec, p.centre, s))
     _check_fillet_room(crank, pieces)  # after the webs: a web that misses its pin says so first
@@ -441,92 +372,6 @@ def _built_solid(crank: Crank, pieces) -> int:
     return solid
 
 
-def _imported_solid(crank: Crank, pieces) -> tuple[int, SolidFeatures | None]:
-    """The crank's ``[solid]`` STEP file as one OCC volume: its tag, and what was found on it
-    (:func:`fetorsion.solid.recognise.recognise`; None for a throw's slab, whose whole crank was
-    checked). Refused, naming the file, when it holds no closed volume, several bodies, a solid
-    whose length disagrees with the description's layout (a wrong unit: :func:`~fetorsion.solid.recognise.unit_slip`), or
-    journals and pins that are not the described ones."""
-    occ = gmsh.model.occ
-    name = Path(crank.solid_step).name
-    gmsh.option.setString("Geometry.OCCTargetUnit", "MM")  # OCC converts from the file header's unit
-    try:
-        with _quiet_stdout():
-            occ.importShapes(crank.solid_step)
-    except Exception as exc:
-        raise GeometryError(f"{name}: not a STEP file OpenCASCADE can read ({exc})") from None
-    occ.synchronize()
-    volumes = gmsh.model.getEntities(3)
-    if not volumes:
-        raise GeometryError(f"{name}: no closed volume in the file (open surfaces only?): give one solid crank")
-    if len(volumes) > 1:
-        out, _ = occ.fuse(volumes[:1], volumes[1:])
-        occ.synchronize()
-        if len(out) != 1:
-            raise GeometryError(f"{name}: {len(out)} separate bodies, not one solid crank")
-    (_, solid), = gmsh.model.getEntities(3)
-    _place(crank, solid, pieces)
-    features = None
-    if crank.solid_window is None:
-        _check_length(name, solid, pieces)
-        features = recognise(crank, pieces, solid, name, MODEL_UNIT)
-    else:  # a throw: its slab, moved to x = 0 and turned to put its pin at angle 0
-        lo, hi, turn = crank.solid_window
-        a, b = lo / MODEL_UNIT, hi / MODEL_UNIT
-        box = occ.addBox(a, -1e4, -1e4, b - a, 2e4, 2e4)
-        out, _ = occ.intersect([(3, solid)], [(3, box)])
-        if len(out) != 1:
-            raise GeometryError(f"{name}: the throw's slab x = {a:.6g}-{b:.6g} mm is {len(out)} pieces, not one")
-        occ.translate(out, -a, 0, 0)
-        occ.synchronize()
-        solid = out[0][1]
-        found = first_pin_turn(crank, pieces, solid, MODEL_UNIT)  # its pin to angle 0, as found on it
-        occ.rotate(out, 0, 0, 0, 1, 0, 0, turn if found is None else found)
-        occ.synchronize()
-        _check_length(name, solid, pieces)
-    return solid, features
-
-
-def _place(crank: Crank, solid: int, pieces) -> None:
-    """Move the imported ``solid`` where fetorsion builds a crank: ``[solid] front_centre`` to the
-    origin, ``axis`` onto +x (one rotation about axis × x), then about x so that its first pin
-    lies at the described angle (:func:`fetorsion.solid.recognise.first_pin_turn`; a CAD model's
-    angular origin is its own)."""
-    occ = gmsh.model.occ
-    if crank.solid_placement is not None:
-        axis, front = (np.asarray(v, float) for v in crank.solid_placement)
-        occ.translate([(3, solid)], *(-front / MODEL_UNIT))
-        cos = float(axis[0])
-        if cos < 1.0 - 1e-15:
-            about = np.cross(axis, [1.0, 0.0, 0.0])
-            if np.linalg.norm(about) < 1e-12:  # the axis is -x: half a turn about y
-                about = np.array([0.0, 1.0, 0.0])
-            occ.rotate([(3, solid)], 0, 0, 0, *about, math.acos(max(-1.0, cos)))
-        occ.synchronize()
-    if crank.solid_window is not None:
-        return  # a throw's slab is turned once it is cut (its own pin found there)
-    turn = first_pin_turn(crank, pieces, solid, MODEL_UNIT)
-    if turn is not None and abs(turn) > 1e-9:
-        occ.rotate([(3, solid)], 0, 0, 0, 1, 0, 0, turn)
-        occ.synchronize()
-
-
-def _check_length(name: str, solid: int, pieces) -> None:
-    """Refuse, naming the file, a solid whose length along x is not the layout's (a unit slip is
-    named) or whose front end is not at x = 0."""
-    x0, y0, z0, x1, y1, z1 = gmsh.model.getBoundingBox(3, solid)
-    length = pieces[-1].x1
-    ratio = (x1 - x0) / length
-    if abs(ratio - 1.0) > 0.02:
-        slip = unit_slip(ratio)
-        why = f"; {slip}" if slip else ""
-        raise GeometryError(f"{name}: the solid is {x1 - x0:.6g} mm long along x, the description's crank "
-                            f"{length:.6g} mm{why}")
-    if abs(x0) > 0.02 * length:
-        raise GeometryError(f"{name}: the solid starts at x = {x0:.6g} mm; its front (pulley) end must be at x = 0 "
-                            "with the crank axis along x")
-
-
 def write_step(crank: Crank, path) -> Path:
     """Write ``crank`` built from its dimensions (one solid: fused, filleted, drilled) as a STEP
     file, in mm; the crank axis is x, the front end at x = 0 (what ``[solid]`` reads back)."""
@@ -534,26 +379,9 @@ def write_step(crank: Crank, path) -> Path:
     with gmsh_session("step"):
         _built_solid(crank, layout(crank))
         gmsh.model.occ.synchronize()
-        with _quiet_stdout():  # OpenCASCADE's STEP writer prints to the process's stdout
+        with quiet_stdout():  # OpenCASCADE's STEP writer prints to the process's stdout
             gmsh.write(str(path))
     return path
-
-
-@contextmanager
-def _quiet_stdout():
-    """File descriptor 1 sent to /dev/null for the duration (C++ writers ignore sys.stdout)."""
-    import os
-    import sys
-
-    sys.stdout.flush()
-    saved = os.dup(1)
-    try:
-        with open(os.devnull, "w") as null:
-            os.dup2(null.fileno(), 1)
-            yield
-    finally:
-        os.dup2(saved, 1)
-        os.close(saved)
 
 
 def build_solid(crank: Crank) -> CrankSolid:
@@ -583,7 +411,7 @@ def build_solid(crank: Crank) -> CrankSolid:
     occ = gmsh.model.occ
     s = 1.0 / MODEL_UNIT
     pieces = layout(crank)
-    solid, features = _imported_solid(crank, pieces) if crank.solid_step else (_built_solid(crank, pieces), None)
+    solid, features = imported_solid(crank, pieces, MODEL_UNIT) if crank.solid_step else (_built_solid(crank, pieces), None)
     occ.synchronize()
     n = len(gmsh.model.getEntities(3))
     if n != 1:
@@ -691,7 +519,7 @@ def solid_features(crank: Crank) -> SolidFeatures:
            crank.fillets.journal, crank.fillets.pin, crank.oil_holes.diameter)
     if key not in _SOLID_FEATURES:
         with gmsh_session("features"):
-            _SOLID_FEATURES[key] = _imported_solid(crank, layout(crank))[1]
+            _SOLID_FEATURES[key] = imported_solid(crank, layout(crank), MODEL_UNIT)[1]
     return _SOLID_FEATURES[key]
 
 

@@ -44,6 +44,7 @@ from ..errors import FetorsionError, ParameterError
 from .geometry import MODEL_UNIT, CrankSolid, build_solid, gmsh_session
 from ..io import atomic_output
 from .isolate import call_isolated
+from .tet10 import jacobian_positive, straighten_folded
 
 GMSH_TET10 = 11
 # Gmsh numbers the last two midside nodes of a 10-node tet on edges 2-3 and 1-3; VTK,
@@ -153,7 +154,7 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
         whose radius is below the element size): ``"optimize"`` runs Gmsh's high-order
         optimiser, which keeps every boundary node on the CAD surface (under a second when a
         few elements fold, tens of seconds for hundreds); ``"straighten"`` gives just those
-        elements straight edges (:func:`straighten_folded`), in milliseconds, at the cost of a
+        elements straight edges (:func:`~fetorsion.solid.tet10.straighten_folded`), in milliseconds, at the cost of a
         chord instead of an arc on a few fillet edges.
     growth : float
         Element size gained per length travelled away from ``fine_surfaces`` (1: the stress
@@ -190,19 +191,8 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
     lookup[tags.astype(np.int64)] = np.arange(tags.size)
     coords = coords.reshape(-1, 3)
 
-    conn, part, elem_tags = [], [], []
-    for k, vols in enumerate(volumes_by_part.values()):
-        for v in vols:
-            types, etags, enodes = gmsh.model.mesh.getElements(3, v)
-            for t, et, en in zip(types, etags, enodes):
-                if t != GMSH_TET10:
-                    raise FetorsionError(f"{name}: unexpected Gmsh element type {t} in volume {v}")
-                conn.append(lookup[en.astype(np.int64)].reshape(-1, 10))
-                part.append(np.full(et.size, k, dtype=np.int32))
-                elem_tags.append(et)
-    elem_tags = np.concatenate(elem_tags)
+    conn, part, elem_tags = _part_tets(volumes_by_part, lookup, name)
     sicn = gmsh.model.mesh.getElementQualities(elem_tags, "minSICN")
-    conn = np.concatenate(conn)[:, GMSH_TO_VTK_TET10]
     straightened = 0
     if untangle == "straighten" and sicn.min() <= 0:
         coords, changed = straighten_folded(coords, conn, sicn <= 0)
@@ -216,114 +206,41 @@ def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[
     used, inverse = np.unique(conn, return_inverse=True)
     renumber = np.full(coords.shape[0], -1, dtype=np.int64)
     renumber[used] = np.arange(used.size)
-    sets = {}
-    for set_name, surfaces in node_sets.items():
-        ids = [gmsh.model.mesh.getNodes(2, s, includeBoundary=True)[0] for s in surfaces]
-        ids = lookup[np.concatenate(ids).astype(np.int64)] if ids else np.zeros(0, np.int64)
-        sets[set_name] = np.unique(renumber[ids])
+    sets = _surface_node_sets(node_sets, lookup, renumber)
     quality = MeshQuality(float(sicn.min()), int(used.size), int(conn.shape[0]), size * MODEL_UNIT,
                           (fine if 0 < fine < size else size) * MODEL_UNIT, time.perf_counter() - t0,
                           straightened)
     mesh = CrankMesh(name, coords[used] * MODEL_UNIT, inverse.reshape(conn.shape).astype(np.int64),
-                     np.concatenate(part), tuple(volumes_by_part), sets, material, quality)
+                     part, tuple(volumes_by_part), sets, material, quality)
     if quality.min_sicn <= 0:
         raise FetorsionError(f"{name}: the curved mesh at size {size:g} mm has inverted elements "
                              f"(minimum SICN {quality.min_sicn:.3f}); try another mesh size")
     return mesh
 
 
-#: Rounds of straightening: a straightened element can fold a neighbour, which the next round takes.
-STRAIGHTEN_ROUNDS = 4
-#: Order of the barycentric lattice at which a curved tet's Jacobian is checked (35 points).
-JACOBIAN_LATTICE = 4
-#: VTK tet10 midside node k lies on the edge between vertices TET10_EDGES[k].
-TET10_EDGES = np.array([[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]])
+def _part_tets(volumes_by_part: dict[str, list[int]], lookup: np.ndarray, name: str):
+    """(connectivity in VTK order, part index, Gmsh element tags) of the meshed volumes' tets, part by part."""
+    conn, part, elem_tags = [], [], []
+    for k, vols in enumerate(volumes_by_part.values()):
+        for v in vols:
+            types, etags, enodes = gmsh.model.mesh.getElements(3, v)
+            for t, et, en in zip(types, etags, enodes):
+                if t != GMSH_TET10:
+                    raise FetorsionError(f"{name}: unexpected Gmsh element type {t} in volume {v}")
+                conn.append(lookup[en.astype(np.int64)].reshape(-1, 10))
+                part.append(np.full(et.size, k, dtype=np.int32))
+                elem_tags.append(et)
+    return np.concatenate(conn)[:, GMSH_TO_VTK_TET10], np.concatenate(part), np.concatenate(elem_tags)
 
 
-def _p2_gradients(xi: np.ndarray) -> np.ndarray:
-    """Reference gradients of the ten VTK-ordered P2 shape functions at points ``xi`` (P, 3).
-
-    Returns (P, 10, 3).
-    """
-    lam = np.column_stack([1.0 - xi.sum(axis=1), xi])  # barycentric (P, 4)
-    dlam = np.vstack([-np.ones(3), np.eye(3)])  # ∂λ_a/∂ξ (4, 3)
-    vert = (4.0 * lam - 1.0)[:, :, None] * dlam[None]
-    i, j = TET10_EDGES.T
-    edge = 4.0 * (lam[:, i, None] * dlam[None, j] + lam[:, j, None] * dlam[None, i])
-    return np.concatenate([vert, edge], axis=1)
-
-
-def _sample_points(order: int = JACOBIAN_LATTICE) -> np.ndarray:
-    """Barycentric lattice of the given order on the reference tet (vertices, edges, faces, inside)."""
-    g = np.arange(order + 1)
-    a, b, c = np.meshgrid(g, g, g, indexing="ij")
-    keep = a + b + c <= order
-    return np.column_stack([a[keep], b[keep], c[keep]]) / order
-
-
-def jacobian_positive(coords: np.ndarray, tets: np.ndarray, order: int = JACOBIAN_LATTICE) -> np.ndarray:
-    """Whether each curved ten-node tet's Jacobian determinant is positive at a lattice of points.
-
-    det J of a quadratic tet is a cubic polynomial; the order-4 lattice (35 points, vertices,
-    edges, faces and inside) catches the folds that snapping midside nodes onto small
-    fillets makes (where det J turns negative over a whole corner of the element).
-
-    Parameters
-    ----------
-    coords : ndarray (N, 3)
-    tets : ndarray of int (E, 10), VTK order.
-
-    Returns
-    -------
-    ndarray of bool (E,)
-    """
-    dN = _p2_gradients(_sample_points(order))  # (P, 10, 3)
-    J = np.einsum("eai,paj->epij", coords[tets], dN)
-    return (np.linalg.det(J) > 0).all(axis=1)
-
-
-def straighten_folded(coords: np.ndarray, tets: np.ndarray, folded: np.ndarray, rounds: int = STRAIGHTEN_ROUNDS):
-    """Move the midside nodes of folded elements to their edge midpoints.
-
-    A straight-edged tet with positive vertex orientation is valid, so each folded element
-    becomes valid; a neighbour sharing a moved node gets one straight edge and is checked
-    (and straightened too if it folds), for a few rounds.
-
-    Parameters
-    ----------
-    coords : ndarray (N, 3)
-        Node coordinates (any unit).
-    tets : ndarray of int (E, 10)
-        VTK order.
-    folded : ndarray of bool (E,)
-        Elements to straighten.
-    rounds : int
-        Neighbour passes.
-
-    Returns
-    -------
-    coords : ndarray (N, 3)
-        A new array.
-    changed : ndarray of bool (E,)
-        Every element with a moved node.
-    """
-    coords = coords.copy()
-    todo = folded.copy()
-    changed = np.zeros(len(tets), dtype=bool)
-    for _ in range(rounds):
-        mid = tets[todo, 4:]
-        coords[mid.ravel()] = 0.5 * (coords[tets[todo][:, TET10_EDGES[:, 0]]]
-                                     + coords[tets[todo][:, TET10_EDGES[:, 1]]]).reshape(-1, 3)
-        moved = np.zeros(len(coords), dtype=bool)
-        moved[mid.ravel()] = True
-        touched = moved[tets].any(axis=1)
-        changed |= touched
-        todo = np.zeros(len(tets), dtype=bool)
-        idx = np.flatnonzero(touched)
-        todo[idx[~jacobian_positive(coords, tets[idx])]] = True
-        if not todo.any():
-            break
-    return coords, changed
+def _surface_node_sets(node_sets: dict[str, list[int]], lookup: np.ndarray, renumber: np.ndarray) -> dict[str, np.ndarray]:
+    """Set name -> sorted mesh node indices on its Gmsh surfaces (their boundaries included)."""
+    sets = {}
+    for set_name, surfaces in node_sets.items():
+        ids = [gmsh.model.mesh.getNodes(2, s, includeBoundary=True)[0] for s in surfaces]
+        ids = lookup[np.concatenate(ids).astype(np.int64)] if ids else np.zeros(0, np.int64)
+        sets[set_name] = np.unique(renumber[ids])
+    return sets
 
 
 #: What a mesh is for: ``"modal"`` (frequencies) or ``"stress"`` (fillet stress concentration).

@@ -368,13 +368,20 @@ def recognise(crank, pieces, volume: int, name: str, unit: float) -> SolidFeatur
                             f"{DIAMETER_TOL:.0%}: " + "; ".join(off))
 
     fillets, other = _group_fillets(crank, pieces, tori, u)
+    drillings = _drillings(crank, pieces, drills, u)
+    return SolidFeatures(name, tuple(journals), tuple(pins), fillets, drillings, other + convex_tori)
+
+
+def _drillings(crank, pieces, drills, u: float) -> tuple[FoundDrilling, ...]:
+    """The drilling candidates (tag, radius, axis point; model units) no wider than the described
+    oil holes, each with the part of the layout its axis point lies in."""
     hole_r = 0.5 * crank.oil_holes.diameter / u
     drillings = []
     for _, r, point in drills:
         if hole_r > 0 and r < 1.01 * hole_r:
             part = next((p.name for p in pieces if p.x0 <= point[0] <= p.x1), "outside")
             drillings.append(FoundDrilling(part, 2 * r * u, float(point[0]) * u))
-    return SolidFeatures(name, tuple(journals), tuple(pins), fillets, tuple(drillings), other + convex_tori)
+    return tuple(drillings)
 
 
 def _degrees(centre) -> str:

@@ -8,7 +8,7 @@
   finishes in a bounded SQLite store, keyed by a hash of the sample.
 - :mod:`.study`: ``run_study`` / ``run_crank_study``: bands, SALib's indices, the report folder.
 - :mod:`.variants`: ``with_values``, a description with some fields changed.
-- :mod:`.calibration`: ``run_calibration``, the ``[uncertainty]`` inputs fitted to measured
-  natural frequencies (regularised least squares, an MCMC posterior); the calibrated description
-  written as a new file.
+- :mod:`.calibration`, :mod:`.calibration_fit`: ``run_calibration``, the ``[uncertainty]`` inputs
+  fitted to measured natural frequencies (regularised least squares, an MCMC posterior);
+  :mod:`.calibrated`: the calibrated description written as a new file.
 """

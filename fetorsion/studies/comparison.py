@@ -33,6 +33,8 @@ from ..description.defaults import LUMPED17
 from ..errors import FetorsionError
 from ..measured.dataset import MeasuredData
 from .modelfrf import frf_overlays, model_receptances
+from .modelstations import (fe_station_twists, model_order_cut, model_response, need_condensed, order_index,
+                            response_stations, station_index)
 from .ordermaps import Waterfall, is_steady, model_crossings
 
 #: The models a measurement is set beside (see the module docstring).
@@ -198,7 +200,8 @@ class OrderCutComparison:
     measured_deg: np.ndarray
     model_rpm: np.ndarray
     model_deg: np.ndarray
-    #: The station's 1-based number among the model's stations (:func:`response_stations`; 0 a twist)
+    #: The station's 1-based number among the model's stations
+    #: (:func:`~fetorsion.studies.modelstations.response_stations`; 0 a twist)
     node: int = 0
     #: The measured phase at each speed, degrees (its own convention: a torsiograph's from its
     #: tooth 0), where the cut has one
@@ -287,14 +290,8 @@ def running_frequencies(crank, source: str = LUMPED17, condensed=None) -> np.nda
         from ..lumped_model.lumped import lumped
 
         return np.asarray(lumped(crank, 17).frequencies_hz, float)
-    md = _need(condensed, source).modes("bearings", CONDENSED_MODES)
+    md = need_condensed(condensed, source).modes("bearings", CONDENSED_MODES)
     return np.array([f for f, k in zip(md.frequencies_hz, md.kinds) if k == "torsional"])
-
-
-def _need(condensed, source: str):
-    if condensed is None:
-        raise FetorsionError(f"compare: source {source!r} needs the condensed crank")
-    return condensed
 
 
 @dataclass
@@ -379,7 +376,7 @@ class ComparisonResult:
 def model_modes(crank, source: str = LUMPED17, condensed=None, mesh_size: float | None = None):
     """(frequencies Hz, kinds, shapes at the model's stations (modes, stations)) of the free-free
     ``source`` model: the chain's stations; the condensed crank's masters' θx; the full FE's
-    twist of each master's part (:func:`fe_station_twists`)."""
+    twist of each master's part (:func:`~fetorsion.studies.modelstations.fe_station_twists`)."""
     if source not in SOURCES:
         raise FetorsionError(f"compare: source {source!r}: choose one of {', '.join(SOURCES)}")
     if source == LUMPED17:
@@ -389,7 +386,7 @@ def model_modes(crank, source: str = LUMPED17, condensed=None, mesh_size: float 
         f = np.asarray(res.frequencies_hz, float)
         return f, ["torsional"] * f.size, np.asarray(res.mode_shapes)
     if source == "condensed":
-        cc = _need(condensed, source)
+        cc = need_condensed(condensed, source)
         md = cc.modes("free", CONDENSED_MODES)
         rx = [cc.dof(lb, "rx") for lb in cc.labels]  # node n the n-th master, as the UFF is written
         return np.asarray(md.frequencies_hz, float), list(md.kinds), md.vectors[rx].T
@@ -398,25 +395,6 @@ def model_modes(crank, source: str = LUMPED17, condensed=None, mesh_size: float 
 
     res = run_modal(crank, DEFAULT_MESH_SIZE if mesh_size is None else mesh_size)
     return np.asarray(res.frequencies_hz, float), list(res.kinds), fe_station_twists(res)
-
-
-def fe_station_twists(res) -> np.ndarray:
-    """(modes, stations) the full FE modes' twist at the condensed crank's stations (front, J1,
-    P1, …, rear): the mass-uniform rigid fit's θx of the front face's nodes, each journal's and
-    pin's part, the rear face's (``res``: a :class:`~fetorsion.fe.crankfe.CrankModal`)."""
-    from ..fe.cranksystem import master_labels
-    from ..fe.crankfe import part_nodes
-    from ..fe.modeshape import slab_fit
-
-    mesh = res.mesh
-    out = []
-    for label in master_labels(res.crank):
-        if label in ("front", "rear"):
-            nodes = np.asarray(mesh.node_sets[f"{label}_face"])
-        else:
-            nodes = part_nodes(mesh, f"{'journal' if label[0] == 'J' else 'pin'}_{label[1:]}")
-        out.append(slab_fit(res.shapes[:, nodes], mesh.nodes[nodes], np.ones(len(nodes)))[0][:, 3])
-    return np.stack(out, axis=1)
 
 
 def compare_frequencies(estimate, crank, source: str = LUMPED17, condensed=None,
@@ -432,71 +410,6 @@ def compare_frequencies(estimate, crank, source: str = LUMPED17, condensed=None,
                                np.asarray(estimate.damping_ratios, float), model_hz, model_kinds, values, note)
 
 
-def response_stations(response) -> list[tuple[str, int]]:
-    """(name, DOF) of every station of a response a sensor can sit on, in the model's order:
-    a chain's stations; the condensed crank's masters (front, journals, pins, rear), their θx.
-    A station's 1-based place in this list is its number (``--station``, a UFF node)."""
-    labels = list(response.labels)
-    twists = [(lb[:-3], j) for j, lb in enumerate(labels) if lb.endswith(" rx")]
-    if twists:
-        return twists
-    rings = set(getattr(response, "damper_names", ()))
-    return [(lb, j) for j, lb in enumerate(labels) if lb not in rings]
-
-
-def model_stations(crank, source: str = LUMPED17) -> list[str]:
-    """The names of the stations a sensor can sit on in the ``source`` model of ``crank``, before
-    it is built, in :func:`response_stations`'s order."""
-    if source == LUMPED17 or not hasattr(crank, "journals"):
-        from ..lumped_model.lumped import lumped
-
-        return list(lumped(crank, 17).labels)
-    from ..fe.cranksystem import master_labels
-
-    return master_labels(crank)
-
-
-def station_index(response, station: str | None) -> tuple[int, str]:
-    """The response's DOF for a sensor: ``None`` or ``pulley`` the pulley end, ``flywheel`` the
-    flywheel end, else a station's name (case-insensitive) or its 1-based number
-    (:func:`response_stations`)."""
-    stations = response_stations(response)
-    names = {j: name for name, j in stations}
-    p, f = response.pulley, response.flywheel % len(response.labels)
-    if station is None or station.lower() == "pulley":
-        return p, f"{names.get(p, response.labels[p])} (pulley end)"
-    if station.lower() == "flywheel":
-        return f, f"{names.get(f, response.labels[f])} (flywheel end)"
-    name, j = stations[station_place([name for name, _ in stations], station)]
-    return j, name
-
-
-def station_place(names, station: str) -> int:
-    """The 0-based place among the model's station ``names`` of a station given by its name
-    (case-insensitive) or its 1-based number; one message naming it otherwise."""
-    if station.isdigit() and 1 <= int(station) <= len(names):
-        return int(station) - 1
-    low = [name.lower() for name in names]
-    if station.lower() in low:
-        return low.index(station.lower())
-    raise FetorsionError(f"compare: station {station!r} is not in the model; give pulley, flywheel or one of "
-                         f"{', '.join(names)}")
-
-
-def model_order_cut(response, order: float, station: int) -> np.ndarray:
-    """The model's order-``order`` angle amplitude (zero to peak, degrees) at ``station`` against
-    the response's speeds."""
-    return np.degrees(np.abs(response.theta[:, _order_index(response, order), station]))
-
-
-def _order_index(response, order: float) -> int:
-    k = np.flatnonzero(np.isclose(response.orders, order, rtol=0, atol=1e-9))
-    if not k.size:
-        raise FetorsionError(f"compare: order {order:g} is not among the model's orders "
-                             f"({response.orders.min():g}-{response.orders.max():g})")
-    return int(k[0])
-
-
 def compare_order_cut(function, response, station: str | None = None) -> OrderCutComparison:
     """Set a measured order cut (a :class:`~fetorsion.measured.uff.MeasuredFunction` of kind
     ``order function`` against speed, angle in rad) beside the model's."""
@@ -510,7 +423,7 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
     phase = np.degrees(np.angle(measured)) if np.iscomplexobj(measured) else None
     if isinstance(station, tuple):  # a twist: the first station's angle less the second's
         (ja, na), (jb, nb) = (station_index(response, x) for x in station)
-        k = _order_index(response, function.order)
+        k = order_index(response, function.order)
         model = np.degrees(np.abs(response.theta[:, k, ja] - response.theta[:, k, jb]))
         return OrderCutComparison(function.label or f"order {function.order:g}", float(function.order),
                                   f"{na} - {nb} twist", np.asarray(function.abscissa, float),
@@ -521,18 +434,6 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
                               np.asarray(function.abscissa, float), np.degrees(np.abs(measured)),
                               np.asarray(response.rpm, float), model_order_cut(response, function.order, j), node,
                               phase)
-
-
-def model_response(crank, source: str = LUMPED17, condensed=None):
-    """The forced response of the running model: the lumped chain's, or the condensed crank's in
-    its bearings with the description's dampers (:class:`~fetorsion.response.forced.ResponseResult`)."""
-    from ..response.forced import run_response, solve_response
-
-    if source == LUMPED17:
-        return run_response(crank)
-    from ..response.coupled import condensed_setup
-
-    return solve_response(condensed_setup(_need(condensed, source), "bearings"), getattr(crank, "dampers", ()))
 
 
 def run_comparison(crank, measured: MeasuredData, source: str = LUMPED17, station: str | None = None,
@@ -551,11 +452,12 @@ def run_comparison(crank, measured: MeasuredData, source: str = LUMPED17, statio
         The model (see the module docstring).
     station : str, optional
         Where the order cuts were measured: ``pulley`` (default), ``flywheel``, or a station's
-        name or number (:func:`response_stations`).
+        name or number (:func:`~fetorsion.studies.modelstations.response_stations`).
     condensed : CondensedCrank, optional
         The condensed crank, with its bearings; needed unless ``source`` is ``lumped17``.
     response : ResponseResult, optional
-        The running model's forced response, if already solved (:func:`model_response`).
+        The running model's forced response, if already solved
+        (:func:`~fetorsion.studies.modelstations.model_response`).
     mesh_size : float, optional
         The full FE's mesh size (``source`` ``fe``), m; default the modal default.
     reference : ResponseResult, optional
@@ -633,8 +535,9 @@ def model_predictions(crank, comparison: ComparisonResult, response=None, source
         Its order cut (complex, rad, against rpm) at the station of each compared cut, and, where
         modes were compared, its free-free receptances at the pulley and flywheel ends to a
         torque at the pulley end over the measured band ±20 % (rad/N·m). Nodes: the stations'
-        1-based numbers (:func:`response_stations`: a chain's stations, the condensed crank's
-        masters), direction 4 (rotation about x); read back, each is the station it came from.
+        1-based numbers (:func:`~fetorsion.studies.modelstations.response_stations`: a chain's
+        stations, the condensed crank's masters), direction 4 (rotation about x); read back, each
+        is the station it came from.
     """
     from ..measured.uff import MeasuredFunction
 
@@ -657,7 +560,7 @@ def model_predictions(crank, comparison: ComparisonResult, response=None, source
             last = len(lumped(crank, 17).inertias_kgm2)
             H = model_receptances(crank, hz)
         else:
-            last = len(_need(condensed, source).labels)
+            last = len(need_condensed(condensed, source).labels)
             H = model_receptances(crank, hz, condensed=condensed)
         for row, node in zip(H, (1, last)):
             out.append(MeasuredFunction("frf", hz, "frequency", row, "rad", (node, 4), reference=(1, 4),

@@ -27,7 +27,7 @@ def free_model(crank, damping_ratio: float | None = None, condensed=None):
         K, M, C, keep = supported_damping(condensed, "free", zeta)
         rows = [int(np.flatnonzero(keep == condensed.dof(lb, "rx"))[0]) for lb in condensed.labels]
         return K, M, C, rows
-    from ..description.model import Chain
+    from ..description.chain_model import Chain
     from ..lumped_model.lumped import chain_matrices, lumped, stated_damping
     from ..modes import modal_damping_matrix
 
