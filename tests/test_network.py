@@ -5,6 +5,7 @@ response of a network against its referred chain."""
 from __future__ import annotations
 
 import math
+import tomllib
 
 import numpy as np
 import pytest
@@ -13,7 +14,7 @@ import fetorsion
 from conftest import ROOT
 from fetorsion.description.chain import parse_chain
 from fetorsion.description.network import parse_network
-from fetorsion.description.model import Chain, GearPair, Network, Shaft
+from fetorsion.description.chain_model import Chain, GearPair, Network, Shaft
 from fetorsion.errors import DescriptionError
 from fetorsion.lumped_model.network import gear_constraint, network_matrices, referred, speed_factors
 from fetorsion.response.forced import run_response
@@ -32,6 +33,36 @@ def test_friswell_example_9_6_3_to_its_printed_digits():
     res = fetorsion.lumped(fetorsion.load(NETWORKS / "friswell_9_6_3.toml"))
     assert np.round(res.frequencies_hz, 3).tolist() == [10.304, 20.479, 24.423]
     assert abs(res.rigid_body_hz) < 1e-3
+
+
+def test_gunter_chen_marine_propulsion_line_to_its_printed_digits():
+    # Issue 57's published propulsion line: Gunter & Chen 2001 example 8.1 as openTorsion's
+    # example transcribes it (examples/networks/gunter_chen_8_1_marine_turbine.toml): a propeller, a
+    # bull gear and two turbine branches of two reductions each, its pinions of no inertia of their
+    # own; printed 177.7, 220.2 and 1282.6 cycles per minute, to the printed digit (the file's
+    # 7-digit SI values move them by about 1e-7).
+    net = fetorsion.load(NETWORKS / "gunter_chen_8_1_marine_turbine.toml")
+    res = fetorsion.lumped(net)
+    assert np.round(60 * res.frequencies_hz[:3], 1).tolist() == [177.7, 220.2, 1282.6]
+    assert abs(res.rigid_body_hz) < 1e-3 and len(res.frequencies_hz) == 5  # 10 stations, 4 meshes: 6 masters
+
+
+def test_a_station_without_inertia_needs_a_gear_mate_with_some():
+    # A pinion whose inertia its mate carries is a station of inertia 0; a group of gears with no
+    # inertia at all has no mass to move and is refused, naming its stations.
+    def without(text, *names):
+        for name in names:
+            text = text.replace(f'name = "{name}"\ninertia_kgm2 = 1.0', f'name = "{name}"\ninertia_kgm2 = 0.0')
+        return text
+
+    geared = NET + '[[chain.gears]]\nbetween = ["b", "c"]\nratio = 3.0\n'  # a -k- b =gear= c
+    assert len(fetorsion.lumped(read(without(geared, "c"))).frequencies_hz) == 1  # b and c: one coordinate
+    with pytest.raises(DescriptionError, match=r"'b'.*'c'.*no inertia"):
+        read(without(geared, "b", "c"))
+    with pytest.raises(DescriptionError, match=r"'a'.*no inertia"):
+        read(without(geared, "a"))
+
+
 
 
 def test_friswell_gear_branch_example_to_its_printed_digits():
