@@ -188,19 +188,24 @@ def test_transient_on_the_condensed_crank_equals_the_response_at_that_speed(tmp_
     """Issue 40: `transient --rpm N` on a crank is the condensed crank in its bearings, steady, in
     the time domain (exact propagation of the crank and its order oscillators), and equals
     `response` at N — the frequency domain's projected modal solve — within 0.5 % on every fillet's
-    alternating torque (the peaks are sampled at 200 steps per period of order 12: ~1e-4)."""
+    alternating torque (the peaks are sampled at 200 steps per period of order 12: ~1e-4). One
+    cycle is enough (it once ended in an empty maximum) and gives the same range."""
     from fetorsion.cli.commands import main
 
     src = _plain_renault(tmp_path)
     rpm = 5000.0
-    assert main(["transient", str(src), "--rpm", f"{rpm:g}", "--mesh-size", "30", "--cycles", "2",
-                 "--json", str(tmp_path / "t.json")]) == 0
-    out = capsys.readouterr().out
-    assert "condensed crank, bearings" in out and "exact propagation" in out
-    tr = json.loads((tmp_path / "t.json").read_text())
-    assert tr["signals"]["every"] == 1
-    T = np.array(tr["signals"]["section_torque_nm"])
-    time_domain = 0.5 * (T.max(axis=1) - T.min(axis=1))
+    ranges = []
+    for cycles in (1, 2):
+        assert main(["transient", str(src), "--rpm", f"{rpm:g}", "--mesh-size", "30", "--cycles", str(cycles),
+                     "--json", str(tmp_path / "t.json")]) == 0
+        out = capsys.readouterr().out
+        assert "condensed crank, bearings" in out and "exact propagation" in out
+        tr = json.loads((tmp_path / "t.json").read_text())
+        assert tr["signals"]["every"] == 1
+        T = np.array(tr["signals"]["section_torque_nm"])
+        ranges.append(0.5 * (T.max(axis=1) - T.min(axis=1)))
+    np.testing.assert_allclose(ranges[0], ranges[1], rtol=1e-3)  # settled: every cycle alike
+    time_domain = ranges[1]
     assert main(["response", str(src), "--speed-range", f"{rpm:g}", f"{rpm + 1:g}", "--steps", "2", "--mesh-size", "30",
                  "--json", str(tmp_path / "r.json")]) == 0
     capsys.readouterr()

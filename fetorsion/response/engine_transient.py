@@ -8,7 +8,8 @@ the crank and its forcing together are one autonomous linear system Ẋ = 𝒜 X
 X(t + h) = e^{𝒜h} X(t) (one matrix exponential, no integration error). The crank starts at rest;
 the run first jumps to the settling time in one step, e^{𝒜 t_s} X₀ (t_s: the slowest elastic
 transient decayed to :data:`fetorsion.response.transient.SETTLED`), then samples ``cycles``
-working cycles at :data:`STEPS_PER_PERIOD` steps per period of the highest order.
+working cycles (and two teeth more, for the order track) at :data:`STEPS_PER_PERIOD` steps per
+period of the highest order.
 
 It is a second solver of the same question the forced response answers in the frequency domain
 (:func:`fetorsion.response.forced.solve_response`: the projected modal solve with a static
@@ -90,7 +91,9 @@ def run_engine_steady(setup, cycles: int, teeth: int, track: int | None = None) 
     X = np.concatenate([np.zeros(2 * r), w0])
     X = scipy.linalg.expm(full * settle) @ X
     h = 2 * math.pi / (float(setup.orders.max()) * spin) / STEPS_PER_PERIOD
-    N = int(round(cycles * setup.period / spin / h)) + 1
+    # two teeth beyond the last cycle: the order track reads one edge past its revolutions, which a
+    # record of exactly one cycle would not hold
+    N = int(round(cycles * setup.period / spin / h)) + 1 + math.ceil(2 * (2 * math.pi / teeth) / spin / h)
     step = scipy.linalg.expm(full * h)
     states = np.empty((N, 2 * r + m))
     for k in range(N):
@@ -103,9 +106,9 @@ def run_engine_steady(setup, cycles: int, teeth: int, track: int | None = None) 
     track = setup.pulley if track is None else track
     revs = int(round(setup.period / (2 * math.pi)))
     tracked = order_track(edge_times(t, phi + q[track], teeth), teeth, revs, name=setup.labels[track])
-    block = np.floor((phi - phi[0]) / setup.period).astype(int)
-    full_cycles = block < block[-1]
-    peak = np.array([np.abs(torque[:, block == b]).max(axis=1) for b in range(int(block[full_cycles].max()) + 1)])
+    # the samples past the last cycle's end (its closing sample, the two teeth) count with it
+    block = np.minimum(np.floor((phi - phi[0]) / setup.period).astype(int), cycles - 1)
+    peak = np.array([np.abs(torque[:, block == b]).max(axis=1) for b in range(cycles)])
     return TransientResult(setup.name, f"steady running at {rpm:g} rpm", list(setup.labels), list(setup.section_labels),
                            t, np.full(N, rpm), phi, torque, q, np.full(len(peak), rpm), peak, tracked, h, settle,
                            f"exact propagation of the crank and its order oscillators (matrix exponential), "
