@@ -321,7 +321,7 @@ def test_untyped_annotation_finder():
 
 def test_no_untyped_hand_off_crosses_a_stage():
     """Issue 41: every function parameter and public class field that a module of another stage
-    imports is typed: no bare ``dict``, ``object`` or ``Any`` (a record is a dataclass; a mapping
+    imports is typed (issue 56: annotated at all): no bare ``dict``, ``object`` or ``Any`` (a record is a dataclass; a mapping
     says its keys and values), the TOML document as read aside (:data:`TOML_DOCUMENT`)."""
     order, known = stage_order(), modules()
 
@@ -337,7 +337,9 @@ def test_no_untyped_hand_off_crosses_a_stage():
         node = next((x for x in ast.parse(known[target].read_text()).body if getattr(x, "name", None) == n), None)
         typed = []
         if isinstance(node, ast.FunctionDef):
-            typed = [(a.arg, a.annotation) for a in node.args.args + node.args.kwonlyargs if a.annotation is not None]
+            args = node.args.posonlyargs + node.args.args + node.args.kwonlyargs
+            bad += [f"{target}.{n}: {a.arg}: no annotation" for a in args if a.annotation is None]
+            typed = [(a.arg, a.annotation) for a in args if a.annotation is not None]
         elif isinstance(node, ast.ClassDef):
             typed = [(a.target.id, a.annotation) for a in node.body
                      if isinstance(a, ast.AnnAssign) and not a.target.id.startswith("_")]

@@ -17,14 +17,19 @@ import contextlib
 import json
 import math
 import sys
+from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..design.search import (DESIGN_GENERATIONS, Candidate, DesignResult, DesignTargets, designed_text,
                              resonance_clearance, run_design_search)
 from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_report_manifest, write_text_atomic
 from .run import DEFAULT_STEPS, RunOptions, run
+
+if TYPE_CHECKING:
+    from .run import RunStep
 
 #: Searches at most.
 ROUNDS = 4
@@ -104,9 +109,9 @@ def _say(message: str) -> None:
     print(f"[fetorsion] {message}", file=sys.stderr, flush=True)
 
 
-def run_design(path, out, seed: int = 0, generations: int = DESIGN_GENERATIONS, verify: bool = True,
-               options: RunOptions | None = None, steps=DEFAULT_STEPS, force: bool = False,
-               workers: int | None = None, scheduler: str | None = None) -> DesignOutcome:
+def run_design(path: str | Path, out: str | Path, seed: int = 0, generations: int = DESIGN_GENERATIONS,
+               verify: bool = True, options: RunOptions | None = None, steps: Sequence[RunStep] = DEFAULT_STEPS,
+               force: bool = False, workers: int | None = None, scheduler: str | None = None) -> DesignOutcome:
     """Search ``path``'s ``[design]`` space, write the design into ``out`` and confirm it.
 
     Parameters

@@ -4,10 +4,17 @@ their oil films at the journals' mean loads when the description states none."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from ..description.defaults import DEFAULT_WEB_METHOD
 
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
-def engine_fillets(crank):
+    from ..description.model import Crank
+
+
+def engine_fillets(crank: Crank):
     """The crank's fillets (and oil bores) as the run finds them: their cuts are part of the
     condensed crank, and the verdict reads them in this order.
 
@@ -22,7 +29,8 @@ def engine_fillets(crank):
     return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
 
 
-def engine_condensed(crank, mesh_size: float, progress=None, stage=None):
+def engine_condensed(crank: Crank, mesh_size: float, progress: Callable[[str], None] | None = None,
+                     stage: Callable[[str], None] | None = None):
     """The run's condensed crank (:class:`~fetorsion.fe.condensed.CondensedCrank`): from the
     store, else built (said through ``progress``) and kept; with its oil films.
 

@@ -5,13 +5,23 @@ lumped answer is measured against, when the store holds it (no rebuild)."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..description.defaults import DEFAULT_MESH_SIZE
 from ..description.chain_model import Chain, Network
 
+if TYPE_CHECKING:
+    from ..description.model import Crank
+    from ..design.stress import Fillet
+    from ..fe.condensed import CondensedCrank
+    from ..response.forced import ResponseResult
 
-def stored_engine_model(crank, support: str = "bearings", mesh_size: float = DEFAULT_MESH_SIZE):
+
+def stored_engine_model(crank: Crank | Chain | Network, support: str = "bearings",
+                        mesh_size: float = DEFAULT_MESH_SIZE):
     """(the condensed crank with its oil films, the crank's fillets) when the store has this crank
     condensed already, else None: a lumped answer then says how far it is from the engine
     model's, at no rebuild.
@@ -37,7 +47,9 @@ def stored_engine_model(crank, support: str = "bearings", mesh_size: float = DEF
     return None if cc is None else (with_film_bearings(cc), fillets)
 
 
-def engine_campbell(cc, fillets, support: str, orders=None, speed_range=None, damping_ratio=None):
+def engine_campbell(cc: CondensedCrank, fillets: Sequence[Fillet], support: str,
+                    orders: Sequence[float] | np.ndarray | None = None, speed_range: Sequence[float] | None = None,
+                    damping_ratio: float | None = None):
     """The condensed crank's Campbell diagram as the run draws it: severity the nominal stress at
     the worst fillet, named.
 
@@ -64,7 +76,8 @@ def engine_campbell(cc, fillets, support: str, orders=None, speed_range=None, da
                                 section_names=[f.label for f in fillets] if named else None)
 
 
-def engine_setup(cc, fillets, support: str, rpm, orders=None, damping_ratio=None):
+def engine_setup(cc: CondensedCrank, fillets: Sequence[Fillet], support: str, rpm: Sequence[float] | np.ndarray,
+                 orders: Sequence[float] | np.ndarray | None = None, damping_ratio: float | None = None):
     """The condensed crank as a response setup, its sections the fillets: the run's.
 
     Parameters
@@ -88,7 +101,7 @@ def engine_setup(cc, fillets, support: str, rpm, orders=None, damping_ratio=None
                            section_labels=[f.label for f in fillets])
 
 
-def worst_torque(res) -> float:
+def worst_torque(res: ResponseResult) -> float:
     """The largest section torque of a forced response (a
     :class:`~fetorsion.response.forced.ResponseResult`) over its speeds and sections, N m."""
     return float(np.max(res.section_torque_nm))

@@ -16,8 +16,9 @@ import functools
 import json
 import time
 from dataclasses import dataclass, field
+from collections.abc import Sequence
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
@@ -36,6 +37,17 @@ from ..report.outcomes import RunOutcome
 from .background import background_executor, needs_throw_fe, sensitivity_studies, throw_fe_results
 from .steps import (progress, step_bearings, step_campbell, step_fatigue, step_fe, step_lumped, step_measured,
                     step_sensitivity, step_transient, step_verdict)
+
+if TYPE_CHECKING:
+    from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome,
+                                   LumpedOutcome, MeasuredOutcome, SensitivityOutcome, Skipped, TransientOutcome,
+                                   VerdictOutcome)
+
+    #: What a step returns: the outcome of the RunOutcome field it fills
+    StepOutcome = (LumpedOutcome | ChainOutcome | FEOutcome | BearingsOutcome | CampbellOutcome | SensitivityOutcome
+                   | VerdictOutcome | FatigueOutcome | MeasuredOutcome | TransientOutcome | Skipped | None)
+    #: A step of the run: (what the progress line says, the RunOutcome field its outcome fills, the step)
+    RunStep = tuple[str, str, Callable[["RunContext"], StepOutcome]]
 
 
 #: Figures a run keeps open, drawn later (:meth:`RunContext.save`), before it draws them at once.
@@ -259,7 +271,8 @@ DEFAULT_STEPS: tuple[tuple[str, str, Callable[[RunContext], object]], ...] = (
 FAST_STEPS = tuple(s for s in DEFAULT_STEPS if s[2] not in (step_fe, step_bearings))
 
 
-def run(path, out, steps=DEFAULT_STEPS, options: RunOptions | None = None, force: bool = False) -> RunOutcome:
+def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_STEPS, options: RunOptions | None = None,
+        force: bool = False) -> RunOutcome:
     """Run every step on the crank in ``path`` and write the report folder ``out``.
 
     Parameters

@@ -15,7 +15,7 @@ def cylinder_throws(engine: Engine) -> np.ndarray:
     return np.array([engine.throw_of_cylinder(c) for c in range(engine.cylinders)], dtype=int)
 
 
-def per_cylinder(engine: Engine, per_throw, axis: int = 0) -> np.ndarray:
+def per_cylinder(engine: Engine, per_throw: np.ndarray, axis: int = 0) -> np.ndarray:
     """``per_throw`` (one entry per throw along ``axis``) with one entry per cylinder: its throw's."""
     return np.take(np.asarray(per_throw), cylinder_throws(engine), axis=axis)
 

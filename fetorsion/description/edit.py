@@ -16,10 +16,16 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Collection
+from typing import TYPE_CHECKING
+
 from ..errors import FetorsionError
 from .files import parse_description
 from .model import Crank
 from .reader import field_keys, resolve_field
+
+if TYPE_CHECKING:
+    from .chain_model import Chain, Network
 
 
 def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -> Crank:
@@ -86,13 +92,13 @@ def _copied_along(tree: dict, path: str) -> list[dict]:
     return found
 
 
-def field_values(description, path: str) -> list[tuple[str, object]]:
+def field_values(description: Crank | Chain | Network, path: str) -> list[tuple[str, object]]:
     """(concrete path, value) of every field ``path`` names in ``description`` (a crank, chain or
     network), in file units: ``"webs.*.thickness"`` gives one pair per web, 1-based."""
     return resolve_field(description.raw, path)
 
 
-def document(description, without=()) -> dict:
+def document(description: Crank | Chain | Network, without: Collection[str] = ()) -> dict:
     """The document ``description`` was read from (file units), its top-level tables named in
     ``without`` left out: what a store keys on or a result records. A shallow copy: read it, do
     not edit it (:func:`with_values` makes an edited description)."""

@@ -18,7 +18,7 @@ from .network import parse_network
 MECHANICS_TABLES = {"slider_crank", "masses", "balance", "flywheel", "planetary"}
 
 
-def load(path) -> Crank | Chain | Network:
+def load(path: str | Path) -> Crank | Chain | Network:
     """Read a crank description or a chain file (``[chain]`` table) from TOML; a chain file
     with ``[[chain.stations]]`` is a :class:`Network` (shafts and gear pairs between named stations).
 

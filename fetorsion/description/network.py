@@ -5,6 +5,7 @@ description as a part (``[[chain.stations]]``, ``[[chain.shafts]]``, ``[[chain.g
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
 
@@ -258,7 +259,8 @@ def _network_cranks(t: Table, folder: Path, problems: list[Problem]) -> list[Net
     return out
 
 
-def joined_inside(part: NetworkCrank, shafts, gears, nonlinear) -> list[int]:
+def joined_inside(part: NetworkCrank, shafts: Sequence[Shaft], gears: Sequence[GearPair],
+                  nonlinear: Sequence[NonlinearSpring]) -> list[int]:
     """The inner stations of crank ``part`` (neither its first nor its last) that a shaft, gear
     or nonlinear element joins, ascending: a condensed crank has no such stations to offer."""
     inner = set(range(part.first + 1, part.first + len(part.labels) - 1))
@@ -358,7 +360,7 @@ def _massless_gear_groups(labels, inertias, gears) -> list[Problem]:
             for group in groups.values() if not any(inertias[i] > 0 or math.isnan(inertias[i]) for i in group)]
 
 
-def speed_walk(n: int, shafts, gears):
+def speed_walk(n: int, shafts: Sequence[Shaft], gears: Sequence[GearPair]):
     """Each station's speed over station 1's, walked breadth-first from it (a shaft keeps the
     speed, a gear multiplies it by its ratio): (factors (n,) with NaN where the walk does not
     reach, each station's parent on the walk, [(a, b, ratio)] the links a → b whose speed

@@ -174,7 +174,7 @@ def finite_number(v) -> bool:
 MAX_DESCRIPTION_BYTES = 16 * 2**20  # a description is a few kB; anything this big is not one
 
 
-def read_toml(path) -> dict:
+def read_toml(path: str | Path) -> dict:
     """Read a TOML file defensively: a missing, unreadable, oversized, binary or non-TOML
     file gives a :class:`DescriptionError` naming it, never a traceback."""
     path = Path(path)

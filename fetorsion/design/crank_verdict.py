@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -33,6 +34,14 @@ from .m53 import M53Result, m53_utilisation, run_m53_crank
 
 from .methods import (DEFAULT_FATIGUE_METHOD, FATIGUE_METHODS, ConfigLoads, MethodAnswer, answer_dict,  # noqa: F401
                       fatigue_method, fillet_torque_amplitude)
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
+    from ..fe.condensed import CondensedCrank
+    from ..response.forced import ResponseSetup
+    from .stress import Fillet
+
 #: The places within this factor of the governing safety are the ones the damping searches of the
 #: ``fe`` path read.
 NEAR_GOVERNING = 1.5
@@ -48,7 +57,7 @@ BENDING_SENSITIVITY = (0.02, 0.10)
 DAMPER_DESIGN_SPEEDS = 100
 
 
-def verdict_scfs(crank, fillet: SCFSet | None = None) -> SCFSet:
+def verdict_scfs(crank: Crank, fillet: SCFSet | None = None) -> SCFSet:
     """The SCFs the verdict reads: the fillets' (``fillet``, else
     :func:`fetorsion.design.scf.fillet_scfs`: the shipped table or one throw FE) and the oil
     bores' (:func:`fetorsion.design.oilbore.oil_bore_scfs`)."""
@@ -62,14 +71,15 @@ def verdict_scfs(crank, fillet: SCFSet | None = None) -> SCFSet:
     return out.with_oil_bores({k: v for k, v in bores.items() if k != "source"}, bores["source"])
 
 
-def design_speeds(setup):
+def design_speeds(setup: ResponseSetup) -> ResponseSetup:
     """``setup`` at every k-th speed, at most :data:`DAMPER_DESIGN_SPEEDS` of them: the speeds a
     damper optimiser reads (each of its ~80 trials solves them all)."""
     return setup.at_speeds(slice(None, None, -(-len(setup.rpm) // DAMPER_DESIGN_SPEEDS)))
 
 
-def run_fatigue_damper(crank, setup, fillets, scf: SCFSet, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO,
-                       optimise: bool = True, at: str = "front", hub_inertia: float = 0.0, undamped: M53Result | None = None):
+def run_fatigue_damper(crank: Crank, setup: ResponseSetup, fillets: list[Fillet], scf: SCFSet, kind: str = "rubber",
+                       mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True, at: str = "front",
+                       hub_inertia: float = 0.0, undamped: M53Result | None = None):
     """The damper designed for the verdict: Den Hartog's start, then (``optimise``) its stiffness
     and loss optimised to make M53's governing safety over the speeds as large as it can be
     (:func:`fetorsion.design.dampers.run_damper` objective ``fatigue``), on at most
@@ -309,9 +319,10 @@ def _flip(safety_at, required: float, known: dict | None = None) -> DampingFlip:
     return DampingFlip(z, f"passes down to ζ = {z:.4g}")
 
 
-def run_crank_verdict(crank, cc, setup, fillets, scf: SCFSet, method: str = DEFAULT_FATIGUE_METHOD,
-                      mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", misfire: bool = True, fe_path: bool = True,
-                      progress=None) -> CrankVerdict:
+def run_crank_verdict(crank: Crank, cc: CondensedCrank, setup: ResponseSetup, fillets: list[Fillet], scf: SCFSet,
+                      method: str = DEFAULT_FATIGUE_METHOD, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber",
+                      misfire: bool = True, fe_path: bool = True,
+                      progress: Callable[[str], None] | None = None) -> CrankVerdict:
     """The crank's fatigue verdict in every configuration (module docstring).
 
     Parameters

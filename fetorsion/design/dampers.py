@@ -26,6 +26,7 @@ cylinders' forces (:func:`fetorsion.response.forced.response_setup`).
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -38,6 +39,11 @@ from ..errors import FetorsionError, ParameterError
 from ..response.forced import response_setup, section_torques, solve_theta
 from ..response.synthesis import group_maxima, half_peak_to_peak, largest_half_peak_to_peak
 from .scfset import SCFSet
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Sequence
+    from ..response.forced import ResponseSetup
+    from .stress import Fillet
 
 OBJECTIVES = ("stress", "twist", "fatigue")
 
@@ -232,8 +238,10 @@ class DamperResult:
 
 def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,
                objective: str = "stress", at: str = "front", hub_inertia: float = 0.0, mode: int = 0,
-               scf: SCFSet | None = None, rpm=None, partition: int = DEFAULT_PARTITION, setup=None, fillets=None,
-               utilisation=None, **setup_options) -> DamperResult:
+               scf: SCFSet | None = None, rpm: Sequence[float] | np.ndarray | None = None,
+               partition: int = DEFAULT_PARTITION, setup: ResponseSetup | None = None,
+               fillets: list[Fillet] | None = None, utilisation: Callable[[np.ndarray], np.ndarray] | None = None,
+               **setup_options) -> DamperResult:
     """Den Hartog start and numeric optimum of a damper on the whole crank.
 
     Parameters

@@ -14,11 +14,14 @@ Add a method by writing a module with its ``assess`` and ``answer`` and naming i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 import numpy as np
 
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from ..description.model import Crank
 
 
 @dataclass
@@ -199,7 +202,7 @@ def fatigue_method(name: str, where: str = "the fatigue method") -> FatigueMetho
         raise FetorsionError(f"{where} = {name!r}: must be one of {', '.join(FATIGUE_METHODS)}") from None
 
 
-def described_method(crank, option: str | None = None) -> str:
+def described_method(crank: Crank, option: str | None = None) -> str:
     """The method that decides: ``option`` (the run's), else the description's ``[limits]
     fatigue_method``, else :data:`DEFAULT_FATIGUE_METHOD`; each checked against the registry."""
     if option:

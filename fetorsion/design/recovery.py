@@ -37,10 +37,15 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from ..description.model import Crank
 
 #: The six unit end loads (Fx, Fy, Fz, Mx, My, Mz) at the loaded face's centre, N and N·m.
 UNIT_LOADS = tuple(tuple(float(i == j) for i in range(6)) for j in range(6))
@@ -395,7 +400,7 @@ def _bar_sections(crank):
     return out
 
 
-def crank_zones(crank, store=None, progress=None) -> dict:
+def crank_zones(crank: Crank, store: str | Path | None = None, progress: Callable[[str], None] | None = None) -> dict:
     """Every distinct throw's fillet zones and every drilled kind of section's bar zone of ``crank``,
     from the store or computed once each (and stored): ``{("throw", i): [4 zones], ("bar", kind):
     zone}``. The run computes them in its background process, first, beside the FE steps."""
@@ -418,7 +423,7 @@ def crank_zones(crank, store=None, progress=None) -> dict:
     return out
 
 
-def zones_stored(crank, store=None) -> bool:
+def zones_stored(crank: Crank, store: str | Path | None = None) -> bool:
     """True when every zone :func:`crank_zones` needs is in the store."""
     keys = {throw_zone_key(crank, i) for i in range(crank.throws)}
     keys |= {bore_zone_key(D, d, b, crank.material) for D, d, b in _bar_sections(crank).values()}

@@ -24,6 +24,7 @@ import math
 import time
 from dataclasses import asdict, dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.optimize
@@ -33,6 +34,11 @@ from ..errors import FetorsionError
 from ..description.edit import edit_toml_values, field_values, with_values
 from .measures import crank_mass, first_elastic_hz, resonance_clearance
 from .scfset import SCFSet
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from distributed import Client
+    from ..studies.runner import ClusterOnDemand, SampleStore
 
 #: Differential evolution's generations by default.
 DESIGN_GENERATIONS = 12
@@ -297,7 +303,8 @@ def _nominal(crank: Crank, path: str) -> float:
 
 def run_design_search(crank: Crank, scf: SCFSet | None = None, seed: int = 0, popsize: int = 6,
                       maxiter: int = DESIGN_GENERATIONS, target: float | None = None, frequency_factor: float = 1.0,
-                      heat_limit: float | None = None, client=None, store=None, progress=None) -> DesignResult:
+                      heat_limit: float | None = None, client: Client | ClusterOnDemand | None = None,
+                      store: SampleStore | None = None, progress: Callable[[str], None] | None = None) -> DesignResult:
     """Search the description's ``[design]`` space for the least objective that passes M53 on the
     lumped explorer (module docstring).
 

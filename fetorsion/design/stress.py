@@ -14,6 +14,7 @@ with the fillet's torsional SCF from fetorsion's static 3D FE of the throw
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,6 +22,10 @@ from ..description.model import Crank
 from ..errors import FetorsionError
 from .scfset import SCFSet
 from .scf import nominal_shear
+
+if TYPE_CHECKING:
+    from ..lumped_model.parts import PartChain
+    from ..response.forced import ResponseResult
 
 
 @dataclass(frozen=True)
@@ -39,7 +44,7 @@ class Fillet:
         return f"{'J' if self.kind == 'journal' else 'P'}{self.index + 1} fillet at x = {self.x * 1e3:.1f} mm"
 
 
-def fillets_of(crank: Crank, parts=None) -> list[Fillet]:
+def fillets_of(crank: Crank, parts: PartChain | None = None) -> list[Fillet]:
     """Every journal–web and pin–web junction of ``crank``, front to rear (``parts``: its
     :class:`~fetorsion.lumped_model.parts.PartChain` by any web method, when the caller has it:
     the positions do not depend on the method)."""
@@ -155,7 +160,8 @@ class StressResult:
         return ax
 
 
-def fillet_stress(crank: Crank, response, scf: SCFSet, fillets: list[Fillet] | None = None) -> StressResult:
+def fillet_stress(crank: Crank, response: ResponseResult, scf: SCFSet,
+                  fillets: list[Fillet] | None = None) -> StressResult:
     """Fillet stresses of ``response`` (a :class:`~fetorsion.response.forced.ResponseResult` of a
     lumped crank model or of the condensed crank) with the SCFs ``scf`` (``pin``, ``journal``, ``source``); ``fillets``:
     :func:`fillets_of` the crank, when the caller has them."""

@@ -11,6 +11,7 @@ interpolated curve crosses the limit. The margin is 1 − value / limit.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,6 +20,11 @@ from ..description.model import Crank, Damper, Limits
 from ..description.chain_model import Chain
 from ..errors import FetorsionError
 from .scfset import SCFSet
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from ..response.forced import ResponseSetup
+    from .stress import Fillet
 
 
 def barred_ranges(rpm, value, limit: float) -> list[dict]:
@@ -176,7 +182,8 @@ def rated(case: VerdictCase, dampers) -> VerdictCase:
 
 
 def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: str = "rubber", optimise: bool = True,
-                misfire: bool = True, scf: SCFSet | None = None, rpm=None, setup=None, fillets=None) -> VerdictResult:
+                misfire: bool = True, scf: SCFSet | None = None, rpm: Sequence[float] | np.ndarray | None = None,
+                setup: ResponseSetup | None = None, fillets: list[Fillet] | None = None) -> VerdictResult:
     """The verdict table of a crank (or chain file) with ``[limits]``.
 
     Cases: without damper; with the description's ``[[dampers]]`` if it has any; with Den

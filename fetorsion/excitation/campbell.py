@@ -19,6 +19,7 @@ says how well the cylinders add (1 = all in phase, 0 = cancelled).
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -31,6 +32,11 @@ from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped
                                    stated_damping)
 from ..modes import TorsionalModes, modal_damping_matrix
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
+
+if TYPE_CHECKING:
+    from collections.abc import Iterable, Sequence
+    from ..description.model import Engine
+    from ..lumped_model.parts import PartChain
 
 
 def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.ndarray, phasors: np.ndarray):
@@ -54,7 +60,7 @@ def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.nd
 
 
 def lumped_modes(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
-                 web_method: str = DEFAULT_WEB_METHOD, parts=None) -> TorsionalModes:
+                 web_method: str = DEFAULT_WEB_METHOD, parts: PartChain | None = None) -> TorsionalModes:
     """Torsional modes of a lumped partition (or of a chain file) in the form the Campbell analysis
     uses (``parts``: the crank's PartChain for ``web_method``, when the caller has it)."""
     return lumped(crank, partition, web_method, parts=parts).torsional_modes()
@@ -111,7 +117,7 @@ class Crossing:
         return {k: v for k, v in asdict(self).items() if v is not None and v != ""}
 
 
-def most_severe(crossings, count: int | None = None) -> list[Crossing]:
+def most_severe(crossings: Iterable[Crossing], count: int | None = None) -> list[Crossing]:
     """The crossings inside the speed range, most severe first (the first ``count`` of them)."""
     return sorted((c for c in crossings if c.in_range), key=lambda c: -c.severity)[:count]
 
@@ -216,7 +222,7 @@ def size_key(largest: float) -> list[float]:
     return [float(f"{v:.3g}") for v in (top, top / 2, top / 5)]
 
 
-def zeta_text(zeta) -> str:
+def zeta_text(zeta: float | tuple[float, ...]) -> str:
     """A damping ratio, or one per mode, as text."""
     return ", ".join(f"{z:.3g}" for z in zeta) if isinstance(zeta, tuple) else f"{zeta:g}"
 
@@ -256,7 +262,7 @@ def order_sums(engine, pin_amplitudes, orders) -> np.ndarray:
     return np.abs(a @ phasors.T) / np.abs(a).sum(axis=1, keepdims=True)
 
 
-def major_orders(engine, highest: float = CAMPBELL_HIGHEST_ORDER) -> np.ndarray:
+def major_orders(engine: Engine, highest: float = CAMPBELL_HIGHEST_ORDER) -> np.ndarray:
     """The orders up to ``highest`` in which every cylinder's torque adds in phase on a rigid crank
     (:func:`order_sums` of 1 to 1e-9): the engine's major orders (a V8's 4, 8, 12)."""
     step = 2 * np.pi / cycle_angle(engine)  # 0.5 for a 4-stroke, 1 for a 2-stroke
@@ -264,9 +270,10 @@ def major_orders(engine, highest: float = CAMPBELL_HIGHEST_ORDER) -> np.ndarray:
     return orders[order_sums(engine, np.ones(engine.cylinders), orders)[0] > 1 - 1e-9]
 
 
-def run_campbell(crank: Crank, modes: TorsionalModes | None = None, orders=None, speed_range=None,
+def run_campbell(crank: Crank | Chain | Network, modes: TorsionalModes | None = None,
+                 orders: Sequence[float] | np.ndarray | None = None, speed_range: Sequence[float] | None = None,
                  n_modes: int = DEFAULT_TORSIONAL_MODES, damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
-                 web_method: str = DEFAULT_WEB_METHOD, parts=None) -> CampbellResult:
+                 web_method: str = DEFAULT_WEB_METHOD, parts: PartChain | None = None) -> CampbellResult:
     """Crossings of the first ``n_modes`` torsional modes with each order, and their severity.
 
     Parameters

@@ -14,12 +14,17 @@ is one row), and a throw's load is the sum of its rows with their phases (:func:
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..description.cylinders import cylinder_throws
 
+if TYPE_CHECKING:
+    from ..description.model import Crank
 
-def throw_rods(crank, force: dict[str, np.ndarray], throw: int) -> dict[str, np.ndarray]:
+
+def throw_rods(crank: Crank, force: dict[str, np.ndarray], throw: int) -> dict[str, np.ndarray]:
     """The rods on 0-based ``throw`` over one working cycle, each at its own phase.
 
     Parameters

@@ -135,7 +135,7 @@ def piston_displacement_series(theta, r, l):
     return r * ((1.0 - np.cos(theta)) + lam / 4 * (1.0 - np.cos(2 * theta)))
 
 
-def piston_velocity(theta, r, l, omega):
+def piston_velocity(theta: float | np.ndarray, r: float, l: float, omega: float):
     """Exact piston velocity dS/dt, m/s (positive towards the head).
 
     Parameters

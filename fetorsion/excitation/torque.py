@@ -15,12 +15,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..description.model import Crank, Engine, Excitation
 from ..errors import FetorsionError
 from .kinematics import pin_forces, piston_acceleration, piston_position, tangential_torque
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 SAMPLES_PER_CYCLE = 1440  # 0.5° for a 4-stroke: resolves orders up to 360 (Nyquist)
 
@@ -147,7 +151,7 @@ class CycleTorque:
     inertia: np.ndarray | None = None
 
 
-def cylinder_torque(crank: Crank, rpm: float, theta=None, misfire: bool = False) -> CycleTorque:
+def cylinder_torque(crank: Crank, rpm: float, theta: np.ndarray | None = None, misfire: bool = False) -> CycleTorque:
     """Torque of one cylinder on the crank over a cycle at constant ``rpm``, N·m.
 
     Returns the angles ``theta`` (rad from firing TDC) and the ``gas``, ``inertia`` and
@@ -208,7 +212,7 @@ class Harmonics:
         return np.where(ok, self.complex_nm[np.clip(idx, 0, len(self.orders) - 1)], 0.0)
 
 
-def harmonics(torque, period: float) -> Harmonics:
+def harmonics(torque: np.ndarray, period: float) -> Harmonics:
     """Orders of a torque sampled uniformly over one ``period`` (rad), any last-axis length.
 
     Order q means q oscillations per crank revolution; the lowest present is 2π/period.
@@ -223,7 +227,7 @@ def harmonics(torque, period: float) -> Harmonics:
     return Harmonics(base * np.arange(1, amps.shape[-1] + 1), amps, float(np.real(c[..., 0]).mean()))
 
 
-def cylinder_pin_forces(crank, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
+def cylinder_pin_forces(crank: Crank, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
     """Tangential and radial force on cylinder 1's pin over a cycle at ``rpm`` (N), from its gas
     force and reciprocating inertia, and the centrifugal force of the rod's rotating big end
     (``rotating_mass``: a constant outwards, so only the mean has it); ``theta`` rad from firing
@@ -239,7 +243,8 @@ def cylinder_pin_forces(crank, rpm: float, misfire: bool = False) -> dict[str, n
     return {"theta": theta, "tangential": f["tangential"], "radial": radial}
 
 
-def pin_force_harmonics(crank, rpm, orders, misfire: bool = False) -> np.ndarray:
+def pin_force_harmonics(crank: Crank, rpm: Sequence[float] | np.ndarray, orders: Sequence[float] | np.ndarray,
+                        misfire: bool = False) -> np.ndarray:
     """(speeds, orders, 2) complex harmonics of cylinder 1's tangential and radial pin force, N."""
     period = cycle_angle(crank.engine)
     out = np.empty((len(rpm), len(orders), 2), complex)

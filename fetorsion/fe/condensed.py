@@ -15,6 +15,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -30,6 +31,10 @@ from .couplings import DOF_NAMES
 from .cranksystem import SYSTEM_STAGES, CrankSystem, build_system
 from .substructure import RITZ_BLOCKS, Interface, ReducedModel, craig_bampton, reduced_modes, supported_modes
 from .tetmesh import TetMesh
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from pathlib import Path
 
 SUPPORTS = ("free", "bearings")
 #: Elastic modes the reduction is checked on (the first 10 within 0.1 %, docs/condensed-crank.md).
@@ -387,7 +392,8 @@ CONDENSE_STAGES = {**SYSTEM_STAGES, "condensing": 10.1}
 def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_blocks: int = RITZ_BLOCKS,
                   fixed_interface_modes: int = 0, mesh: CrankMesh | None = None, keep_full: bool = False,
                   keep_basis: bool = False, backend: str = "auto", end_ties: str = "rigid",
-                  system: CrankSystem | None = None, cuts=None, start_modes: int = 0, stage=None) -> CondensedCrank:
+                  system: CrankSystem | None = None, cuts: np.ndarray | None = None, start_modes: int = 0,
+                  stage: Callable[[str], None] | None = None) -> CondensedCrank:
     """Condense the crank's FE system (:func:`fetorsion.fe.cranksystem.build_system`) to its masters.
 
     Parameters
@@ -473,7 +479,7 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
 NPZ_FORMAT = "fetorsion-condensed-1"
 
 
-def save_condensed(cc: CondensedCrank, path, shapes: bool = True) -> None:
+def save_condensed(cc: CondensedCrank, path: str | Path, shapes: bool = True) -> None:
     """Write ``cc`` to an ``.npz`` file atomically (layout in docs/condensed-crank.md).
 
     Arrays: ``K``, ``M`` (r × r, bare crank, SI), ``n_master_dofs``, ``labels``, ``positions``

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +28,9 @@ from .modal import ModalResult, split_rigid
 from .modeshape import slab_fit
 from .rigid import rigid_rows
 from .substructure import ritz_error_bounds, supported_modes
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 #: Stated error of the default modal mesh (10 mm global, fillet elements of the fillet
 #: radius) on the first torsional frequency, relative: against each crank's finest (4 mm)
@@ -83,7 +87,8 @@ MODAL_STAGES = {**SYSTEM_STAGES, "eigensolving": 2.0}
 
 def run_modal(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_MODES, fillet_size: float | None = None,
               mesh: CrankMesh | None = None, purpose: str = "modal", backend: str = "auto",
-              system: CrankSystem | None = None, ritz=None, stage=None) -> CrankModal:
+              system: CrankSystem | None = None, ritz: tuple[np.ndarray, np.ndarray] | None = None,
+              stage: Callable[[str], None] | None = None) -> CrankModal:
     """Free-free FE modes of a crank with its attachments.
 
     Parameters

@@ -28,6 +28,7 @@ from __future__ import annotations
 import math
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -42,6 +43,9 @@ from .modal import default_shift, node_masses
 from .rigid import RigidBody, reduction
 from .substructure import Interface, interface
 from .tetmesh import TetMesh
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 #: Tolerance on a journal or pin surface: nodes within this share of the diameter of the
 #: nominal cylinder belong to the bearing surface.
@@ -211,7 +215,8 @@ SYSTEM_STAGES = {"meshing": 3.1, "assembling": 9.3, "factorising": 7.7}
 
 def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: CrankMesh | None = None,
                  backend: str = "auto", end_ties: str = "rigid", fillet_size: float | None = None,
-                 purpose: str = "modal", keep_mesh_stiffness: bool = False, stage=None) -> CrankSystem:
+                 purpose: str = "modal", keep_mesh_stiffness: bool = False,
+                 stage: Callable[[str], None] | None = None) -> CrankSystem:
     """Mesh (unless ``mesh`` is given), assemble, tie, couple and factorise a crank.
 
     Parameters

@@ -28,12 +28,17 @@ import json
 import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..description.edit import document
 from ..io import code_hash, default_store, store_max_bytes
 from .condensed import NPZ_FORMAT, CondensedCrank, load_condensed, run_condensed, save_condensed
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from ..description.model import Crank
 
 #: Description tables that no FE stage reads: left out of the key.
 NOT_READ_BY_FE = ("meta", "excitation", "dampers", "limits", "uncertainty")
@@ -67,7 +72,8 @@ def _files(folder: Path) -> list[Path]:
     return sorted(p for p in folder.glob("*.npz") if len(p.stem) == 64 and all(c in "0123456789abcdef" for c in p.stem))
 
 
-def stored_condensed(crank, mesh_size: float, cuts=None, store=None) -> CondensedCrank | None:
+def stored_condensed(crank: Crank, mesh_size: float, cuts: np.ndarray | None = None,
+                     store: str | Path | None = None) -> CondensedCrank | None:
     """The cached condensed crank, or None; its ``crank`` is the one given (the tables the key
     leaves out are the caller's)."""
     path = condensed_folder(store) / f"{condensed_key(crank, mesh_size, cuts)}.npz"
@@ -83,7 +89,8 @@ def stored_condensed(crank, mesh_size: float, cuts=None, store=None) -> Condense
     return cc
 
 
-def remember_condensed(cc: CondensedCrank, mesh_size: float, cuts=None, store=None) -> Path:
+def remember_condensed(cc: CondensedCrank, mesh_size: float, cuts: np.ndarray | None = None,
+                       store: str | Path | None = None) -> Path:
     """Keep ``cc`` (built at ``mesh_size`` with ``cuts``) for the next command; then trim."""
     folder = condensed_folder(store)
     folder.mkdir(parents=True, exist_ok=True)
@@ -110,7 +117,7 @@ def trim(folder: Path, max_bytes: int | None = None, keep: Path | None = None) -
     return removed
 
 
-def condensed_store_info(store=None, name: str = FOLDER) -> dict:
+def condensed_store_info(store: str | Path | None = None, name: str = FOLDER) -> dict:
     """``folder``, ``cranks`` (count), ``bytes`` and ``max_bytes`` of the condensed cranks kept (or,
     ``name``, of another folder of the store kept the same way: the stress-recovery fields')."""
     folder = Path(store if store is not None else default_store()) / name
@@ -119,7 +126,7 @@ def condensed_store_info(store=None, name: str = FOLDER) -> dict:
             "max_bytes": int(BOUND_SHARE * store_max_bytes())}
 
 
-def clear_condensed(store=None, name: str = FOLDER) -> int:
+def clear_condensed(store: str | Path | None = None, name: str = FOLDER) -> int:
     """Remove every condensed crank kept (only the ``.npz`` files fetorsion wrote there; ``name``:
     another folder of the store kept the same way); the count."""
     files = _files(Path(store if store is not None else default_store()) / name)
@@ -128,8 +135,9 @@ def clear_condensed(store=None, name: str = FOLDER) -> int:
     return len(files)
 
 
-def condensed_crank(crank, mesh_size: float, cuts=None, store=None, progress=None,
-                    stage=None) -> tuple[CondensedCrank, bool]:
+def condensed_crank(crank: Crank, mesh_size: float, cuts: np.ndarray | None = None, store: str | Path | None = None,
+                    progress: Callable[[str], None] | None = None,
+                    stage: Callable[[str], None] | None = None) -> tuple[CondensedCrank, bool]:
     """(the condensed crank, whether it came from the cache): from the cache, else built
     (:func:`~fetorsion.fe.condensed.run_condensed`, saying so through ``progress``) and kept."""
     cc = stored_condensed(crank, mesh_size, cuts, store)

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -35,6 +36,9 @@ import scipy.sparse as sp
 
 from ..errors import FetorsionError
 from .eigen import EIGEN_TOL, ORTHO_DROP, block_lanczos, drop_zeros, factorize, numpy_blas_threads, shifted, svqb_coefficients
+
+if TYPE_CHECKING:
+    from collections.abc import Sequence
 
 #: Constraint-mode iteration: stop when the update is below this share of Ψ (max norm).
 PSI_TOL = 1e-11
@@ -450,7 +454,7 @@ def ritz_error_bounds(itf: Interface, w2: np.ndarray, X: np.ndarray, Dk=None, Dm
     return bound, rho / theta
 
 
-def supported_matrices(red: ReducedModel, Dk=None, Dm=None):
+def supported_matrices(red: ReducedModel, Dk: np.ndarray | None = None, Dm: np.ndarray | None = None):
     """(K, M) of the reduced model with springs ``Dk`` and masses ``Dm`` added on the masters' DOF."""
     m = red.n_master_dofs
     K, M = red.K.copy(), red.M.copy()
@@ -461,7 +465,8 @@ def supported_matrices(red: ReducedModel, Dk=None, Dm=None):
     return K, M
 
 
-def reduced_modes(red: ReducedModel, Dk=None, Dm=None, held=()):
+def reduced_modes(red: ReducedModel, Dk: np.ndarray | None = None, Dm: np.ndarray | None = None,
+                  held: np.ndarray | Sequence[int] = ()):
     """All modes of the reduced model with the same supports: (ω² ascending, vectors r × k over the kept DOF, kept)."""
     K, M = supported_matrices(red, Dk, Dm)
     keep = np.setdiff1d(np.arange(red.size), np.asarray(held, dtype=np.int64))

@@ -8,10 +8,20 @@ from __future__ import annotations
 
 import os
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable, Iterable, Sequence
+    from typing import TypeVar
+
+    from ..description.model import Damper
+
+    _T = TypeVar("_T")
+    _R = TypeVar("_R")
 
 
 def attach(M, K, C, station: int, ring_inertia: float, stiffness: float = 0.0, damping: float = 0.0,
@@ -59,7 +69,7 @@ def attach(M, K, C, station: int, ring_inertia: float, stiffness: float = 0.0, d
     return M2, grow(K) + spring * joint, grow(C) + damping * joint
 
 
-def damper_station(damper, n: int) -> int:
+def damper_station(damper: Damper, n: int) -> int:
     """0-based station carrying ``damper`` on a chain of ``n`` stations: the first (pulley end,
     ``at = "front"``) or the last (flywheel side, ``"rear"``)."""
     return 0 if damper.at == "front" else n - 1
@@ -167,7 +177,8 @@ def viscous_impedance(damper, omega) -> complex:
     return -(omega**2) * damper.ring_inertia * ring_transmission(damper, omega)
 
 
-def damped_modes(inertias, stiffnesses, pin_weights, dampers, source: str = "chain"):
+def damped_modes(inertias: Sequence[float] | np.ndarray, stiffnesses: Sequence[float] | np.ndarray,
+                 pin_weights: np.ndarray, dampers: Sequence[Damper], source: str = "chain"):
     """Undamped modes of a chain with its dampers, and the damping ratio each mode gains from them.
 
     A rubber or tuned damper's ring is a degree of freedom on its spring (stiffness at 0 Hz,
@@ -244,8 +255,8 @@ PROJECTED_CHUNK_ENTRIES = 2**21
 PROJECTED_THREADS = None
 
 
-def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray, gyroscopic=None,
-                    spin=None) -> np.ndarray:
+def projected_solve(system: DampedSystem, forces: np.ndarray, omegas: np.ndarray, gyroscopic: np.ndarray | None = None,
+                    spin: float | np.ndarray | None = None) -> np.ndarray:
     """Complex amplitudes x (..., N) of ``system`` under ``forces`` (..., stations) at ``omegas`` (...)
     rad/s, for a large reduced model (a condensed crank: ~200 DOF) at thousands of frequencies.
 
@@ -355,7 +366,7 @@ def _add_damper_departures(A, system: DampedSystem, U, nominal, w) -> None:
         A += k[:, None, None] * np.outer(u, u)
 
 
-def threaded_map(fn, items, threads: int | None = None) -> list:
+def threaded_map(fn: Callable[[_T], _R], items: Iterable[_T], threads: int | None = None) -> list[_R]:
     """``[fn(x) for x in items]`` on ``threads`` threads (None: one per core this process may
     use), each thread's BLAS on one thread: for independent pieces of numpy work that release
     the interpreter (a projected solve's frequency chunks, the ``fe`` path's places)."""
@@ -372,7 +383,7 @@ def threaded_map(fn, items, threads: int | None = None) -> list:
         return list(pool.map(fn, items))
 
 
-def unit_torques(shape: tuple, stations: int, places) -> np.ndarray:
+def unit_torques(shape: tuple, stations: int, places: Sequence[int]) -> np.ndarray:
     """A unit torque at each DOF of ``places``, as a block of right-hand sides of
     :func:`projected_solve`: shape ``shape + (len(places), stations)``, the unit responses
     :func:`with_dampers` reads."""
@@ -381,7 +392,8 @@ def unit_torques(shape: tuple, stations: int, places) -> np.ndarray:
     return out
 
 
-def with_dampers(x0: np.ndarray, unit: np.ndarray, places: list, system: DampedSystem, omegas) -> np.ndarray:
+def with_dampers(x0: np.ndarray, unit: np.ndarray, places: list, system: DampedSystem,
+                 omegas: np.ndarray) -> np.ndarray:
     """θ (..., N) of ``system`` — a model with its dampers' rings appended — from the model's own
     response without them: ``x0`` (..., stations) under the loads and ``unit`` (..., places,
     stations) under a unit torque at each DOF of ``places`` (those that carry a damper among them).
@@ -452,7 +464,7 @@ class MaxwellFit:
         return self.k_inf + np.sum(self.stiffness * iwt / (1 + iwt), axis=-1)
 
 
-def maxwell_fit(damper) -> MaxwellFit:
+def maxwell_fit(damper: Damper) -> MaxwellFit:
     """Fit a rubber damper's dynamic table (:func:`damper_spring`: linear between its rows) over
     the table's frequencies by a generalised Maxwell model with relaxation frequencies fixed
     log-uniformly and non-negative weights by least squares [ParkSchapery]: each point's real and

@@ -31,6 +31,7 @@ name      inline-4   stations
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -45,12 +46,15 @@ from .parts import PartChain, build_parts, partition_matrices, pin_weights
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from ..description.model import PARTITIONS
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+
 #: Elastic modes a lumped model's table and mode-shape plot show.
 MODES_SHOWN = 4
 
 
 
-def chain_matrices(inertias, stiffnesses):
+def chain_matrices(inertias: Sequence[float] | np.ndarray, stiffnesses: Sequence[float] | np.ndarray):
     """Diagonal mass and tridiagonal stiffness matrices of a free-free torsional chain."""
     k = np.asarray(stiffnesses, dtype=float)
     K = np.diag(np.concatenate([k, [0.0]]) + np.concatenate([[0.0], k])) - np.diag(k, 1) - np.diag(k, -1)
@@ -270,7 +274,7 @@ def network_lumped(net: Network) -> LumpedResult:
                         weights, mats)
 
 
-def stated_damping(model, res: LumpedResult):
+def stated_damping(model: Crank | Chain | Network, res: LumpedResult):
     """(C, H) of the dampers a chain or network file states, in the model's coordinates
     (zeros for a crank): viscous N·m·s/rad and hysteretic N·m/rad."""
     if res.network is not None:
@@ -281,7 +285,8 @@ def stated_damping(model, res: LumpedResult):
     return np.zeros((res.dof, res.dof)), np.zeros((res.dof, res.dof))
 
 
-def chain_damping(n: int, stiffnesses, absolute=(), relative=(), loss_factors=()):
+def chain_damping(n: int, stiffnesses: Sequence[float] | np.ndarray, absolute: Sequence[float] | np.ndarray = (),
+                  relative: Sequence[float] | np.ndarray = (), loss_factors: Sequence[float] | np.ndarray = ()):
     """Damping matrices of a chain of ``n`` inertias as engineers state it.
 
     Parameters
@@ -313,7 +318,8 @@ def chain_damping(n: int, stiffnesses, absolute=(), relative=(), loss_factors=()
     return C, H
 
 
-def modal_damping_ratios(frequencies_hz, shapes, inertias, C, H) -> np.ndarray:
+def modal_damping_ratios(frequencies_hz: np.ndarray, shapes: np.ndarray, inertias: np.ndarray, C: np.ndarray,
+                         H: np.ndarray) -> np.ndarray:
     """Equivalent damping ratio of each mode from stated dampers (modal diagonal, coupling ignored).
 
     At resonance ω_j the mode dissipates as 2 ζ_j ω_j m_j = φ_jᵀ C φ_j + φ_jᵀ H φ_j / ω_j, so

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -31,8 +32,13 @@ from ..description.network import speed_walk
 from ..errors import FetorsionError
 from .parts import build_parts, partition_matrices, pin_weights
 
+if TYPE_CHECKING:
+    from collections.abc import Sequence
+    from ..description.chain_model import GearPair
 
-def spring_matrix(n: int, i, j, values) -> np.ndarray:
+
+def spring_matrix(n: int, i: Sequence[int] | np.ndarray, j: Sequence[int] | np.ndarray,
+                  values: Sequence[float] | np.ndarray) -> np.ndarray:
     """Σ v (e_i − e_j)(e_i − e_j)ᵀ over springs i–j (j = -1: to ground), shape (n, n).
 
     Parameters
@@ -54,7 +60,7 @@ def spring_matrix(n: int, i, j, values) -> np.ndarray:
     return A
 
 
-def gear_constraint(n: int, gears) -> tuple[np.ndarray, np.ndarray]:
+def gear_constraint(n: int, gears: Sequence[GearPair]) -> tuple[np.ndarray, np.ndarray]:
     """The constraint matrix T (n × r) of the gear pairs and the master station of each column.
 
     Parameters

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -19,6 +20,9 @@ from ..description.defaults import DEFAULT_WEB_METHOD
 from ..webs.methods import web_equivalent_length
 from ..webs.sections import cylinder_equivalent_length
 from ..solid.outline import mass_properties
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
 
 
 @dataclass(frozen=True)
@@ -81,7 +85,8 @@ def oil_hole_inertia(c: Cylinder, hole_diameter: float, density: float, radius: 
     return mass * (hole_diameter**2 / 16 + piece**2 / 12 + centre**2 + radius**2)
 
 
-def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD, web_length=None) -> PartChain:
+def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD,
+                web_length: Callable[[Crank, int, float], float] | None = None) -> PartChain:
     """Cut ``crank`` into its axial parts with compliances and inertias.
 
     Parameters

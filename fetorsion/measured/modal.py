@@ -14,11 +14,16 @@ the pole of the cluster's median frequency.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from .uff import MeasuredFunction
 
 FORMS = {"angle": "receptance", "length": "receptance", "angular velocity": "mobility", "velocity": "mobility",
          "angular acceleration": "accelerance", "acceleration": "accelerance"}
@@ -92,7 +97,7 @@ class ModalEstimate:
         return ax
 
 
-def mac(a, b) -> np.ndarray:
+def mac(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Modal assurance criterion: |a_i^H b_j|^2 / ((a_i^H a_i)(b_j^H b_j)), 1 for shapes alike.
 
     Parameters
@@ -114,7 +119,7 @@ def mac(a, b) -> np.ndarray:
     return float(m[0, 0]) if single else m
 
 
-def frf_matrix(functions):
+def frf_matrix(functions: Sequence[MeasuredFunction]):
     """The FRFs of one reference as a matrix, with what the fit needs to know of them.
 
     Parameters
@@ -328,7 +333,8 @@ def estimate_modes(frequency_hz, frf, band_hz, form: str = "receptance", station
                          mass_normalised=driving_point is not None, chart=chart)
 
 
-def run_modal_fit(functions, band_hz, max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:
+def run_modal_fit(functions: Sequence[MeasuredFunction], band_hz: tuple[float, float],
+                  max_order: int = MAX_MODEL_ORDER) -> ModalEstimate:
     """Modes of measured FRFs (:func:`~fetorsion.measured.uff.read_uff58`) in a band.
 
     Parameters

@@ -34,7 +34,7 @@ def checked_text(path, limit: int) -> str:
         raise FetorsionError(f"{path}: could not be read as UTF-8 text ({exc})") from None
 
 
-def read_curve_csv(path, columns=("rpm", "value"), optional=()):
+def read_curve_csv(path: str | Path, columns: tuple[str, ...] = ("rpm", "value"), optional: tuple[str, ...] = ()):
     """The rows and header of a curve against rpm, or one message naming the file.
 
     Parameters

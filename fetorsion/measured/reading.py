@@ -11,14 +11,20 @@ record has, or that two records share, is refused naming the files.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FetorsionError, ParameterError
 from .dataset import MeasuredData
 from .uff import MeasuredFunction
+
+if TYPE_CHECKING:
+    from ..description.chain_model import Chain, Network
+    from ..description.model import Crank
 
 #: Suffixes read as Universal File Format.
 UFF_SUFFIXES = (".uff", ".unv", ".uf")
@@ -83,7 +89,7 @@ class MeasuredOptions:
     definition: str = "angle"
 
 
-def measured_kind(path: str, teeth) -> str:
+def measured_kind(path: str, teeth: str | list[str] | dict[str, str] | None) -> str:
     """What a measured file is, by its suffix (and ``teeth`` for edge recordings): ``'uff'``,
     ``'edges'`` or ``'order-cut'``, checked before any work."""
     p = Path(path)
@@ -98,7 +104,7 @@ def measured_kind(path: str, teeth) -> str:
                          "(an order cut; tooth-edge times when their wheels' teeth are given)")
 
 
-def tracked_orders(crank) -> tuple[float, ...]:
+def tracked_orders(crank: Crank | Chain | Network | None) -> tuple[float, ...]:
     """The orders a torsiograph's recording is compared in by default: the engine's lowest
     :data:`TRACKED_MAJOR_ORDERS` major orders (:func:`fetorsion.excitation.campbell.major_orders`:
     an in-line four's 2, 4, 6, an in-line six's 3, 6, 9, a V8's 4, 8, 12), where the torque of
@@ -233,7 +239,7 @@ def _tracked(path, edges: dict, header: dict, calibrated: dict, options: Measure
     return cuts, where, tracks, [f"{Path(path).name}: {line}" for line in res.warnings()]
 
 
-def read_measured(paths, options: MeasuredOptions = MeasuredOptions()) -> MeasuredData:
+def read_measured(paths: Sequence[str], options: MeasuredOptions = MeasuredOptions()) -> MeasuredData:
     """Every measured file read and checked, before any model is solved.
 
     Parameters

@@ -71,7 +71,7 @@ class Wheel:
         return f"{self.positions}-{self.gap}" if self.gap else f"{self.positions}"
 
 
-def wheel_of(spec, where: str = "teeth") -> Wheel:
+def wheel_of(spec: Wheel | int | str, where: str = "teeth") -> Wheel:
     """A :class:`Wheel` from teeth per revolution (``60``) or a reference-gap wheel (``"60-2"``),
     or one message naming ``where``."""
     if isinstance(spec, Wheel):
@@ -372,7 +372,7 @@ def _grid(times, teeth: int, revolutions: int, errors, name: str, definition: st
     return t_grid, nominal
 
 
-def order_track(times, teeth: int, revolutions: int, errors=None, name: str = "wheel",
+def order_track(times: np.ndarray, teeth: int, revolutions: int, errors: np.ndarray | None = None, name: str = "wheel",
                 accelerating: bool = False, definition: str = "angle", alpha: float | None = None) -> OrderTrack:
     """The angle's vibration by order per block of ``revolutions`` whole revolutions.
 

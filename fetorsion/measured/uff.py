@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import re
 import tempfile
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -387,7 +388,7 @@ def _set_function_type(block: bytes, code: int) -> bytes:
     return b"\n".join(lines)
 
 
-def write_uff58(path, functions, binary: bool = True) -> Path:
+def write_uff58(path: str | Path, functions: Iterable[MeasuredFunction], binary: bool = True) -> Path:
     """Write measured functions to a universal file as dataset 58 (58b when ``binary``).
 
     The file is written beside its destination under a temporary name and renamed over it, so

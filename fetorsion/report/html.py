@@ -16,10 +16,14 @@ import html
 import json
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .outcomes import CampbellOutcome, RunOutcome, SensitivityOutcome, TransientOutcome
+
+if TYPE_CHECKING:
+    from ..excitation.campbell import CampbellResult
 
 # The faces of a tetrahedron by its corner indices (VTK order: corners 0-3).
 _TET_FACES = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
@@ -121,7 +125,7 @@ function fetorsionModeView(div, data) {
 """
 
 
-def campbell_figure(camp, div: str) -> str:
+def campbell_figure(camp: CampbellResult, div: str) -> str:
     """The Campbell diagram: mode lines, order lines, crossings sized by severity (hover: mode,
     order, rpm, severity)."""
     import plotly.graph_objects as go

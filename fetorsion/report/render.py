@@ -8,12 +8,17 @@ selected before VTK is imported so it never looks for a display.
 from __future__ import annotations
 
 import os
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..description.defaults import DEFAULT_MESH_SIZE
 from ..io import atomic_output
+
+if TYPE_CHECKING:
+    from ..description.model import Crank
 
 os.environ.setdefault("VTK_DEFAULT_OPENGL_WINDOW", "vtkEGLRenderWindow")
 # One rasteriser thread (Mesa's llvmpipe takes one per core otherwise): ``fetorsion run`` draws its
@@ -55,8 +60,9 @@ def mode_scale(nodes: np.ndarray, displacement: np.ndarray, fraction: float = MO
     return fraction * size / peak if peak > 0 else 0.0
 
 
-def render_mode(nodes, tets, displacement, path, title: str = "", window_size=(1400, 600),
-                fraction: float = MODE_SCALE_FRACTION, places=()):
+def render_mode(nodes: np.ndarray, tets: np.ndarray, displacement: np.ndarray, path: str | Path, title: str = "",
+                window_size: tuple[int, int] = (1400, 600), fraction: float = MODE_SCALE_FRACTION,
+                places: Sequence[tuple[np.ndarray | Sequence[float], str]] = ()):
     """Write a PNG of one mode: deformed shape coloured by |u|, undeformed outline, two views,
     the places named (``places``: (point (3,) m, name), the pulley and flywheel ends, say) and
     the deformation's scale stated under the title.
@@ -165,7 +171,8 @@ _COLOURS = {"front": "#7f7f7f", "journal": "#4c72b0", "web": "#c8c8c8", "pin": "
             "fillet": "#d62728", "drilling": "#2ca02c"}
 
 
-def render_solid(crank, path, size: float = DEFAULT_MESH_SIZE, window: tuple[int, int] = (1600, 900)) -> Path:
+def render_solid(crank: Crank, path: str | Path, size: float = DEFAULT_MESH_SIZE,
+                 window: tuple[int, int] = (1600, 900)) -> Path:
     """Render ``crank``'s solid to a PNG file, off-screen and atomically.
 
     Parameters

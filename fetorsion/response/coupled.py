@@ -22,7 +22,9 @@ forces (spring forces, or the reactions of rigid bearings), each as the vibrator
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -36,6 +38,10 @@ from ..fe.substructure import reduced_modes, supported_matrices
 from ..modes import modal_damping
 from .pin_loads import journal_mean_loads, master_loads, pin_load_map
 from .synthesis import half_peak_to_peak, waveform
+
+if TYPE_CHECKING:
+    from ..description.model import Crank
+    from .forced import ResponseSetup
 
 
 def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omegas: np.ndarray,
@@ -59,7 +65,7 @@ def harmonic_solution(cc: CondensedCrank, support: str, loads: np.ndarray, omega
     return np.divide(P, den, out=np.zeros_like(P), where=~free) @ Vfull.T
 
 
-def bending_damping(crank, damping_ratio: float | None = None) -> dict:
+def bending_damping(crank: Crank, damping_ratio: float | None = None) -> dict:
     """The condensed crank's bending damping and where it comes from: ``ratio`` (ζ_b of its
     bending modes), ``source`` (a phrase) and ``assumed`` (True where nothing in the description
     gives it: the torsional ζ is then carried onto the bending, which the oil film or the
@@ -252,7 +258,9 @@ class CoupledResponse:
         return ax
 
 
-def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None, orders=None,
+def run_coupled_response(cc: CondensedCrank, support: str = "bearings",
+                         rpm: Sequence[float] | np.ndarray | None = None,
+                         orders: Sequence[float] | np.ndarray | None = None,
                          damping_ratio: float | None = None) -> CoupledResponse:
     """Forced response of a condensed crank over speed (see the module docstring).
 
@@ -315,8 +323,9 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings", rpm=None
     return out
 
 
-def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm=None, orders=None,
-                    damping_ratio: float | None = None, section_labels=None, rotating: bool = True):
+def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm: Sequence[float] | np.ndarray | None = None,
+                    orders: Sequence[float] | np.ndarray | None = None, damping_ratio: float | None = None,
+                    section_labels: Sequence[str] | None = None, rotating: bool = True):
     """The condensed crank as a :class:`~fetorsion.response.forced.ResponseSetup`: the engine
     model that the forced response, the fillet stress, the damper design and the verdict run on.
 
@@ -395,7 +404,7 @@ def redamped(setup, damping_ratio: float):
     return dataclasses.replace(setup, C=setup.C + change, zeta=damping_ratio)
 
 
-def with_damping_ratio(setup, cc: CondensedCrank, support: str, damping_ratio: float,
+def with_damping_ratio(setup: ResponseSetup, cc: CondensedCrank, support: str, damping_ratio: float,
                        bending_ratio: float | None = None):
     """``setup`` (:func:`condensed_setup` of ``cc`` in ``support``) at another modal damping
     ratio (and ``bending_ratio`` on the bending modes, default as :func:`supported_damping`): its
@@ -414,9 +423,12 @@ def peak_of_phasor(v: np.ndarray) -> np.ndarray:
     return np.sqrt(0.5 * ((np.abs(v) ** 2).sum(axis=-1) + np.abs((v * v).sum(axis=-1))))
 
 
-def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings", diameters=None, orders=None,
-                         speed_range=None, damping_ratio: float | None = None, max_modes: int = 20, forces=None,
-                         section_names=None):
+def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings",
+                         diameters: Sequence[Sequence[float]] | np.ndarray | None = None,
+                         orders: Sequence[float] | np.ndarray | None = None, speed_range: Sequence[float] | None = None,
+                         damping_ratio: float | None = None, max_modes: int = 20,
+                         forces: Callable[[float, float], tuple[np.ndarray, float]] | None = None,
+                         section_names: Sequence[str] | None = None):
     """Campbell diagram of the condensed crank: every mode (torsional, bending, axial, coupled)
     that an order can meet in the speed range, each crossing's severity the peak nominal
     equivalent stress √(σ_b² + 3τ²) it drives at the worst fillet cut, MPa.

@@ -26,12 +26,18 @@ gives the vibration its inertia, not its force).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..excitation.torque import cycle_angle, cylinder_pin_forces
 from ..fe.condensed import CondensedCrank
+
+if TYPE_CHECKING:
+    from ..description.model import Damper
+    from .forced import ResponseSetup
 
 #: The six resultants of a cut, in the order of ``CondensedCrank.cut_rows``.
 COMPONENTS = ("axial force", "shear y", "shear z", "torque", "moment y", "moment z")
@@ -159,7 +165,7 @@ def cut_throw_angles(cc: CondensedCrank) -> np.ndarray:
     return out
 
 
-def mean_cut_loads(cc: CondensedCrank, rpm) -> np.ndarray:
+def mean_cut_loads(cc: CondensedCrank, rpm: Sequence[float] | np.ndarray) -> np.ndarray:
     """(speeds, cuts, 6) cycle means of the fillet cuts' resultants at ``rpm``: the gas and inertia
     pin forces' means and the crank's own centrifugal load, solved statically in the bearings
     (the flywheel end reacting the load torque). Independent of damping and dampers."""
@@ -172,7 +178,8 @@ def mean_cut_loads(cc: CondensedCrank, rpm) -> np.ndarray:
     return np.einsum("cjr,sr->scj", cc.cut_rows, static_solution(cc, loads), optimize=True)
 
 
-def run_load_cycle(cc: CondensedCrank, setup, dampers=(), samples: int = CYCLE_SAMPLES, mean=None) -> LoadCycle:
+def run_load_cycle(cc: CondensedCrank, setup: ResponseSetup, dampers: Sequence[Damper] = (),
+                   samples: int = CYCLE_SAMPLES, mean: np.ndarray | None = None) -> LoadCycle:
     """The fillet cuts' load histories of the condensed crank in its bearings at every speed of
     ``setup`` (:func:`fetorsion.response.coupled.condensed_setup`, with ``dampers``).
 

@@ -22,6 +22,8 @@ of the crank alone has exactly the crank's own damping and response.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from ..description.model import CRANK_END_ALIASES
@@ -62,8 +64,9 @@ def crank_torsional_modes(cc: CondensedCrank, keep, K_crank, lam, Phi_crank) -> 
     return np.array([j for j, k in enumerate(kinds) if k == "torsional" and share[j] >= CRANK_STRAIN_SHARE], int)
 
 
-def driveline_setup(net: Network, cc: CondensedCrank, rpm=None, orders=None, damping_ratio: float | None = None,
-                    section_labels=None):
+def driveline_setup(net: Network, cc: CondensedCrank, rpm: Sequence[float] | np.ndarray | None = None,
+                    orders: Sequence[float] | np.ndarray | None = None, damping_ratio: float | None = None,
+                    section_labels: Sequence[str] | None = None):
     """The network with its crank as the condensed FE crank ``cc`` in its bearings, as a
     :class:`~fetorsion.response.forced.ResponseSetup` (module docs).
 

@@ -20,6 +20,7 @@ run-ups (the pin forces and the Coriolis term change with speed), dampers, the n
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.linalg
@@ -27,6 +28,9 @@ import scipy.linalg
 from ..errors import FetorsionError
 from ..measured.torsiograph import order_track
 from .transient import SETTLED, TransientResult, edge_times
+
+if TYPE_CHECKING:
+    from .forced import ResponseSetup
 
 #: Samples per period of the highest order.
 STEPS_PER_PERIOD = 200
@@ -52,7 +56,7 @@ def forcing_system(setup, spin: float):
     return S, B, w0
 
 
-def run_engine_steady(setup, cycles: int, teeth: int, track: int | None = None) -> TransientResult:
+def run_engine_steady(setup: ResponseSetup, cycles: int, teeth: int, track: int | None = None) -> TransientResult:
     """Steady running of ``setup`` (a :func:`~fetorsion.response.coupled.condensed_setup` at one
     speed) in the time domain (module docstring).
 

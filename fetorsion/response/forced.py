@@ -17,8 +17,9 @@ section torque is the elastic torque k Δθ of each spring (what a strain gauge 
 from __future__ import annotations
 
 import functools
-
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -34,6 +35,10 @@ from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .forced_plots import plot_response
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
+
+if TYPE_CHECKING:
+    from ..description.model import Damper
+    from ..lumped_model.parts import PartChain
 
 
 @dataclass
@@ -169,9 +174,10 @@ class ResponseResult:
         return plot_response(self, ax)
 
 
-def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
+def run_response(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
+                 rpm: Sequence[float] | np.ndarray | None = None, orders: Sequence[float] | np.ndarray | None = None,
                  damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
-                 dampers=None, misfire: int | None = None) -> ResponseResult:
+                 dampers: Sequence[Damper] | None = None, misfire: int | None = None) -> ResponseResult:
     """Forced torsional response of a lumped crank model, or of a chain file, over the operating range.
 
     Parameters
@@ -246,9 +252,9 @@ class ResponseSetup:
     section_x: np.ndarray | None = None
     pulley: int = 0
     flywheel: int = -1
-    damper_dof: dict | None = None  # {"front": DOF, "rear": DOF}; None: the chain's end stations
+    damper_dof: dict[str, int] | None = None  # {"front": DOF, "rear": DOF}; None: the chain's end stations
     #: {at: f²} for a damper on a network's station turning f times its DOF's speed; None: all 1
-    damper_scale: dict | None = None
+    damper_scale: dict[str, float] | None = None
     #: How many leading DOF are the condensed crank's (a driveline's other coordinates follow); None: all
     crank_dofs: int | None = None
     #: Indices (in ascending order of the undamped modes) of the modes a damper is tuned on;
@@ -338,9 +344,10 @@ class ResponseSetup:
                                self.gyroscopic, spin)
 
 
-def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION, rpm=None, orders=None,
+def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
+                   rpm: Sequence[float] | np.ndarray | None = None, orders: Sequence[float] | np.ndarray | None = None,
                    damping_ratio: float | None = None, web_method: str = DEFAULT_WEB_METHOD,
-                   misfire: int | None = None, parts=None) -> ResponseSetup:
+                   misfire: int | None = None, parts: PartChain | None = None) -> ResponseSetup:
     """The chain, its damping and the cylinders' forces for :func:`run_response` (arguments as there;
     ``parts``: the crank's :class:`~fetorsion.lumped_model.parts.PartChain` for ``web_method``
     when the caller has it)."""
@@ -419,7 +426,7 @@ def motored_harmonics(crank, rpm, orders) -> np.ndarray:
     return np.array([harmonics(cylinder_torque(crank, n, misfire=True).total, period).at(orders) for n in rpm])
 
 
-def misfire_harmonics(crank, setup: ResponseSetup) -> np.ndarray:
+def misfire_harmonics(crank: Crank | Chain | Network, setup: ResponseSetup) -> np.ndarray:
     """(speeds, orders, components) force harmonics of a cylinder that does not fire, in the
     form of ``setup.cylinder_harmonics`` (its torque, or its tangential and radial pin force)."""
     if setup.load_kind == "torque":
@@ -434,7 +441,7 @@ HEAT_ITERATIONS = 60
 HEAT_RELAXATION = 0.5
 
 
-def solve_theta(setup: ResponseSetup, dampers=()):
+def solve_theta(setup: ResponseSetup, dampers: Sequence[Damper] = ()):
     """(theta (speeds, orders, DOF) complex, ω (speeds, orders) rad/s, the DampedSystem) of a
     setup with ``dampers``: the solve without the synthesis. A chain is solved directly; a large
     reduced model in the basis of its modes (:func:`fetorsion.lumped_model.damped.projected_solve`).
@@ -486,7 +493,7 @@ def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:
     return np.moveaxis(complex_times(theta[:, :, :n], np.ascontiguousarray(setup.section_rows.T)), 2, 1)
 
 
-def solve_response(setup: ResponseSetup, dampers=()) -> ResponseResult:
+def solve_response(setup: ResponseSetup, dampers: Sequence[Damper] = ()) -> ResponseResult:
     """The forced response of a setup (:func:`response_setup`, or the condensed crank's) with ``dampers``."""
     stated = setup.stated
     if dampers:
@@ -525,7 +532,8 @@ COMPARE_UNITS = {"N m": ("section_torque_nm", 1.0), "Nm": ("section_torque_nm", 
                  "rad": ("pulley_angle_deg", np.degrees(1.0))}
 
 
-def compare_curve(result: ResponseResult, rpm, value, name: str, unit: str, section: int | None = None) -> dict:
+def compare_curve(result: ResponseResult, rpm: Sequence[float] | np.ndarray, value: Sequence[float] | np.ndarray,
+                  name: str, unit: str, section: int | None = None) -> dict:
     """Set a published or measured curve beside a response and measure the difference at the peaks.
 
     Parameters

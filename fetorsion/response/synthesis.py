@@ -9,6 +9,8 @@ polish it, so one order gives back |z_q| to round-off and two orders their analy
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 SAMPLES_PER_PERIOD = 24
@@ -69,7 +71,8 @@ def half_peak_to_peak(z: np.ndarray, orders: np.ndarray, cycle: float) -> np.nda
 BATCH = 256
 
 
-def largest_half_peak_to_peak(z: np.ndarray, orders: np.ndarray, cycle: float, scale=None) -> float:
+def largest_half_peak_to_peak(z: np.ndarray, orders: np.ndarray, cycle: float,
+                              scale: np.ndarray | float | None = None) -> float:
     """max over signals of ``scale`` · :func:`half_peak_to_peak` (z: (..., orders); ``scale``
     broadcast against z's leading axes, non-negative; default 1), synthesising only the signals
     that could reach it: half the peak-to-peak of Re Σ z_q e^{iqθ} is at most Σ |z_q| (each
@@ -92,7 +95,7 @@ def largest_half_peak_to_peak(z: np.ndarray, orders: np.ndarray, cycle: float, s
     return best
 
 
-def group_maxima(z: np.ndarray, orders: np.ndarray, cycle: float, groups) -> np.ndarray:
+def group_maxima(z: np.ndarray, orders: np.ndarray, cycle: float, groups: Sequence[np.ndarray]) -> np.ndarray:
     """(1, columns): in each group of columns (index arrays) of ``z`` (speeds, columns, orders),
     the largest half peak-to-peak over the speeds and the group's columns
     (:func:`largest_half_peak_to_peak`), zero elsewhere. A function of the (speeds, columns)

@@ -50,23 +50,27 @@ tooth-edge times a toothed wheel of ``teeth`` teeth would give, and these go thr
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.linalg
 import scipy.signal
 
+from ..description.chain_model import Chain, Network
+from ..description.model import Crank
 from ..errors import FetorsionError, ParameterError
 from ..excitation.torque import cycle_angle, firing_angles
 from ..lumped_model.lumped import lumped
 from ..lumped_model.network import speed_factors
 from ..measured.torsiograph import OrderTrack, order_track
+from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
 from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load, torque_table
 from .transient_model import hold_coefficients, rigid_and_elastic_modes, transient_matrices
 # plot_order_cuts: the run's steps import it from here
 from .transient_plots import plot_order_cuts, plot_transient, plot_waterfall  # noqa: F401
-from ..excitation.campbell import RESPONSE_HIGHEST_ORDER
+from ..excitation.campbell import RESPONSE_HIGHEST_ORDER, Crossing
 from ..description.defaults import (DEFAULT_PARTITION, DEFAULT_STEP_DEG, DEFAULT_TEETH, DEFAULT_TRANSIENT_CYCLES,
                                     DEFAULT_WEB_METHOD)
 
@@ -354,7 +358,8 @@ class OrderCut:
                 "runup_peak_rpm": self.runup_rpm, "difference": self.difference}
 
 
-def order_cuts(result: TransientResult, response, crossings, damping_ratio, rate_rpm_per_s: float,
+def order_cuts(result: TransientResult, response: ResponseResult, crossings: Sequence[Crossing],
+               damping_ratio: float | Sequence[float], rate_rpm_per_s: float,
                window: float = CROSSING_WINDOW) -> tuple[OrderCut, ...]:
     """The run-up's order cuts against the steady-state response at each crossing.
 
@@ -408,11 +413,10 @@ def edge_times(t, angle, teeth: int) -> np.ndarray:
     return np.interp(edges, angle, t)
 
 
-def run_transient(model, rpm: float | None = None, run: tuple[float, float] | None = None,
+def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run: tuple[float, float] | None = None,
                   rate_rpm_per_s: float | None = None, cycles: int = DEFAULT_TRANSIENT_CYCLES,
-                  damping_ratio: float | None = None,
-                  partition: int = DEFAULT_PARTITION, web_method: str = DEFAULT_WEB_METHOD,
-                  step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
+                  damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
+                  web_method: str = DEFAULT_WEB_METHOD, step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
                   track_station: int = 0, variable_inertia: bool = False, method: str = METHODS[0],
                   settled_start: bool = False) -> TransientResult:
     """Simulate a model with an engine in the time domain (module docs): linear by the exact

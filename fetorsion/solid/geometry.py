@@ -221,7 +221,7 @@ def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, t
     return out
 
 
-def circle_curves(occ, x: float, centre, radius: float) -> list[int]:
+def circle_curves(occ: type[gmsh.model.occ], x: float, centre: tuple[float, float], radius: float) -> list[int]:
     """Curves of the (synchronised) model that lie on the circle of ``radius`` about
     ``centre`` in the plane x; the bore circle in the same plane is smaller and is left out."""
     y, z = centre
@@ -372,7 +372,7 @@ def _built_solid(crank: Crank, pieces) -> int:
     return solid
 
 
-def write_step(crank: Crank, path) -> Path:
+def write_step(crank: Crank, path: str | Path) -> Path:
     """Write ``crank`` built from its dimensions (one solid: fused, filleted, drilled) as a STEP
     file, in mm; the crank axis is x, the front end at x = 0 (what ``[solid]`` reads back)."""
     path = Path(path)

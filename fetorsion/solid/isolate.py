@@ -20,13 +20,20 @@ import signal
 import subprocess
 import sys
 import tempfile
+from typing import TYPE_CHECKING
 
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import TypeVar
+
+    _T = TypeVar("_T")
 
 _PARENT_ENV = "FETORSION_ISOLATE_PARENT"
 
 
-def call_isolated(fn, *args, what: str = "the call", **kwargs):
+def call_isolated(fn: Callable[..., _T], *args, what: str = "the call", **kwargs) -> _T:
     """``fn(*args, **kwargs)`` computed in a child process; its result is returned.
 
     An exception in the child is raised again here (a :class:`FetorsionError` with its

@@ -32,6 +32,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -130,7 +131,7 @@ def _size_fields(size: float, groups, growth: float = 1.0, expression: str = "")
 def mesh_model(volumes_by_part: dict[str, list[int]], node_sets: dict[str, list[int]], size: float,
                fine: float = 0.0, fine_surfaces: list[int] = (), name: str = "model",
                material: Material | None = None, untangle: str = "optimize", growth: float = 1.0,
-               refine=(), size_expression: str = "") -> CrankMesh:
+               refine: Sequence[tuple[float, Sequence[int]]] = (), size_expression: str = "") -> CrankMesh:
     """Mesh the solid in the current (synchronised) Gmsh model with curved 10-node tets.
 
     Parameters
@@ -514,7 +515,7 @@ def inp_text(mesh: CrankMesh, modes: int = DEFAULT_MODES) -> str:
     return "\n".join(out)
 
 
-def write_mesh(mesh: CrankMesh, path, modes: int = DEFAULT_MODES) -> Path:
+def write_mesh(mesh: CrankMesh, path: str | Path, modes: int = DEFAULT_MODES) -> Path:
     """Write ``mesh`` to ``path`` by extension (.msh, .vtu, .inp), atomically.
 
     Parameters
@@ -543,7 +544,7 @@ def write_mesh(mesh: CrankMesh, path, modes: int = DEFAULT_MODES) -> Path:
     return path
 
 
-def read_mesh(path, crank: Crank) -> CrankMesh:
+def read_mesh(path: str | Path, crank: Crank) -> CrankMesh:
     """Read back a ``.msh`` written by :func:`write_mesh` (part names ride as physical groups).
 
     The front and rear face node sets are found again as the nodes at x = min and x = max.

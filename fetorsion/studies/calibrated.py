@@ -4,10 +4,15 @@ read back by every rule of a description before it is written."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from ..description.edit import edit_toml_values
 from ..description.reader import resolve_field
 from ..errors import FetorsionError, ParameterError
 from .calibration import WRITTEN_DIGITS, CalibrationResult
+
+if TYPE_CHECKING:
+    from pathlib import Path
 
 
 def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str, float]]:
@@ -47,7 +52,7 @@ def calibrated_text(result: CalibrationResult, text: str) -> tuple[str, dict[str
     return "\n".join(header) + "\n#\n" + body, fields
 
 
-def write_calibrated(result: CalibrationResult, out, force: bool = False):
+def write_calibrated(result: CalibrationResult, out: str | Path, force: bool = False):
     """Write the calibrated description as a new file beside the original, never over it.
 
     Parameters

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -53,7 +54,7 @@ def elastic_modes(crank, dof: int) -> int:
     return len(crank.inertias) - 1 if isinstance(crank, Chain) else dof - 1
 
 
-def calibration_inputs(crank: Crank | Chain | Network, names=None) -> list[CalibrationInput]:
+def calibration_inputs(crank: Crank | Chain | Network, names: Sequence[str] | None = None) -> list[CalibrationInput]:
     """The ``[uncertainty]`` entries of ``crank`` as calibration inputs: all, or those in ``names``
     (a chain file without the table: :func:`default_chain_priors`).
 
@@ -118,7 +119,8 @@ def _partition(model: str) -> int:
     return int(model.removeprefix("lumped"))
 
 
-def check_measured_hz(measured_hz, sigma_hz=None, sigma_percent: float = DEFAULT_SIGMA_PERCENT):
+def check_measured_hz(measured_hz: Sequence[float], sigma_hz: float | Sequence[float] | None = None,
+                      sigma_percent: float = DEFAULT_SIGMA_PERCENT):
     """The measured frequencies and their standard deviations (Hz), checked.
 
     Parameters
@@ -290,8 +292,9 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
                      float(np.nanmax(tau)), walkers, steps, burn, seed)
 
 
-def run_calibration(crank: Crank, measured_hz, sigma_hz=None, sigma_percent: float = DEFAULT_SIGMA_PERCENT,
-                    inputs=None, model: str = LUMPED17, method: str = "lsq", stiffness: str = DEFAULT_WEB_METHOD,
+def run_calibration(crank: Crank, measured_hz: Sequence[float], sigma_hz: float | Sequence[float] | None = None,
+                    sigma_percent: float = DEFAULT_SIGMA_PERCENT, inputs: Sequence[str] | None = None,
+                    model: str = LUMPED17, method: str = "lsq", stiffness: str = DEFAULT_WEB_METHOD,
                     walkers: int | None = None, steps: int = DEFAULT_STEPS, burn: int = DEFAULT_BURN,
                     seed: int = 0, write_all: bool = False) -> CalibrationResult:
     """Fit a description's ``[uncertainty]`` inputs to measured natural frequencies.

@@ -26,6 +26,7 @@ diagram, as an order map), with the model's crossings on it: torsional mode n me
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -36,6 +37,12 @@ from .modelfrf import frf_overlays, model_receptances
 from .modelstations import (fe_station_twists, model_order_cut, model_response, need_condensed, order_index,
                             response_stations, station_index)
 from .ordermaps import Waterfall, is_steady, model_crossings
+
+if TYPE_CHECKING:
+    from ..description.chain_model import Chain, Network
+    from ..description.model import Crank
+    from ..fe.condensed import CondensedCrank
+    from ..response.forced import ResponseResult
 
 #: The models a measurement is set beside (see the module docstring).
 SOURCES = ("condensed", LUMPED17, "fe")
@@ -436,9 +443,10 @@ def compare_order_cut(function, response, station: str | None = None) -> OrderCu
                               phase)
 
 
-def run_comparison(crank, measured: MeasuredData, source: str = LUMPED17, station: str | None = None,
-                   condensed=None, response=None, mesh_size: float | None = None,
-                   reference=None) -> ComparisonResult:
+def run_comparison(crank: Crank | Chain | Network, measured: MeasuredData, source: str = LUMPED17,
+                   station: str | None = None, condensed: CondensedCrank | None = None,
+                   response: ResponseResult | None = None, mesh_size: float | None = None,
+                   reference: ResponseResult | None = None) -> ComparisonResult:
     """The model of a crank against measured data.
 
     Parameters
@@ -512,8 +520,9 @@ def gap_line(lumped_cut: OrderCutComparison, engine_cut: OrderCutComparison) -> 
             f"the lumped one is {100 * (mine['model_peak_deg'] / theirs['model_peak_deg'] - 1):+.1f} % from it)")
 
 
-def model_predictions(crank, comparison: ComparisonResult, response=None, source: str = LUMPED17,
-                      condensed=None, band=None) -> list:
+def model_predictions(crank: Crank | Chain | Network, comparison: ComparisonResult,
+                      response: ResponseResult | None = None, source: str = LUMPED17,
+                      condensed: CondensedCrank | None = None, band: tuple[float, float] | None = None) -> list:
     """The model's side of a comparison as measured functions, for a universal file (UFF 58).
 
     Parameters

@@ -12,6 +12,7 @@ import hashlib
 import json
 import math
 import pickle
+from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -125,7 +126,7 @@ class FEModel:
         return {k: out[k] for k in self.outputs}
 
 
-def make_model(crank: Crank, model: str, outputs=("f1",), stiffness: str = DEFAULT_WEB_METHOD,
+def make_model(crank: Crank, model: str, outputs: Sequence[str] = ("f1",), stiffness: str = DEFAULT_WEB_METHOD,
                mesh_size: float = CHECK_MESH_SIZE, details: bool | None = None):
     """``lumpedN`` or ``fe`` as a model object (``details``: None keeps each model's default)."""
     if model == "fe":

@@ -5,10 +5,18 @@ FE's twist at the condensed crank's stations, for the mode shapes a modal test i
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..description.defaults import LUMPED17
 from ..errors import FetorsionError
+
+if TYPE_CHECKING:
+    from ..description.chain_model import Chain, Network
+    from ..description.model import Crank
+    from ..fe.condensed import CondensedCrank
 
 
 def response_stations(response) -> list[tuple[str, int]]:
@@ -23,7 +31,7 @@ def response_stations(response) -> list[tuple[str, int]]:
     return [(lb, j) for j, lb in enumerate(labels) if lb not in rings]
 
 
-def model_stations(crank, source: str = LUMPED17) -> list[str]:
+def model_stations(crank: Crank | Chain | Network, source: str = LUMPED17) -> list[str]:
     """The names of the stations a sensor can sit on in the ``source`` model of ``crank``, before
     it is built, in :func:`response_stations`'s order."""
     if source == LUMPED17 or not hasattr(crank, "journals"):
@@ -50,7 +58,7 @@ def station_index(response, station: str | None) -> tuple[int, str]:
     return j, name
 
 
-def station_place(names, station: str) -> int:
+def station_place(names: Sequence[str], station: str) -> int:
     """The 0-based place among the model's station ``names`` of a station given by its name
     (case-insensitive) or its 1-based number; one message naming it otherwise."""
     if station.isdigit() and 1 <= int(station) <= len(names):
@@ -77,7 +85,7 @@ def model_order_cut(response, order: float, station: int) -> np.ndarray:
     return np.degrees(np.abs(response.theta[:, order_index(response, order), station]))
 
 
-def model_response(crank, source: str = LUMPED17, condensed=None):
+def model_response(crank: Crank | Chain | Network, source: str = LUMPED17, condensed: CondensedCrank | None = None):
     """The forced response of the running model: the lumped chain's, or the condensed crank's in
     its bearings with the description's dampers (:class:`~fetorsion.response.forced.ResponseResult`)."""
     from ..response.forced import run_response, solve_response

@@ -31,12 +31,15 @@ import traceback
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterable
+from typing import TYPE_CHECKING, Callable, Iterable
 
 from ..errors import FetorsionError, ParameterError
 # the store's folder, bound and code hash live in io (the condensed cranks' cache shares them)
 from ..io import (STORE_ENV, STORE_MAX_BYTES, STORE_MAX_ENV, code_hash, default_store,  # noqa: F401
                   store_max_bytes)
+
+if TYPE_CHECKING:
+    from distributed import Client
 
 #: Environment of each local worker process: one BLAS/OpenMP thread, the worker's one core.
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
@@ -218,7 +221,7 @@ def remove_legacy_store(folder) -> int:
     return removed
 
 
-def open_store(folder=None, max_bytes: int | None = None) -> SampleStore:
+def open_store(folder: str | Path | None = None, max_bytes: int | None = None) -> SampleStore:
     """The sample store in ``folder`` (default :func:`default_store`), after removing the
     per-file store an earlier fetorsion left there (said on stderr)."""
     folder = Path(folder) if folder is not None else default_store()
@@ -229,7 +232,7 @@ def open_store(folder=None, max_bytes: int | None = None) -> SampleStore:
     return SampleStore(folder, max_bytes)
 
 
-def check_store(folder, option: str = "store") -> None:
+def check_store(folder: str | Path, option: str = "store") -> None:
     """Refuse, before any work, a store that is a file or cannot be written."""
     from ..io import check_writable_location
 
@@ -450,7 +453,8 @@ SERIAL_BATCH = 32
 SampleRecord = dict[str, float | str | dict[str, float | str]]
 
 
-def run_samples(model, samples: list[dict[str, float]], store: SampleStore, client=None, batch_size: int | None = None,
+def run_samples(model: Callable[[dict[str, float]], dict[str, float | str]], samples: list[dict[str, float]],
+                store: SampleStore, client: Client | ClusterOnDemand | None = None, batch_size: int | None = None,
                 retry_failed: bool = False, label: str = "study",
                 on_record: Callable[[str, SampleRecord], None] | None = None,
                 progress: bool = True) -> tuple[list[SampleRecord], RunSummary]:

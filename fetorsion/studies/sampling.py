@@ -11,11 +11,17 @@ takes.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..errors import FetorsionError, ParameterError
+
+if TYPE_CHECKING:
+    from ..description.chain_model import Chain, Network
+    from ..description.model import Crank
 
 METHODS = ("sobol", "morris", "montecarlo", "grid")
 #: Levels of the Morris grid (SALib's default; the trajectories' step is 2/3 of each range).
@@ -57,7 +63,8 @@ class StudyInput:
         return {path: low + t * (high - low) for path, low, high in self.members}
 
 
-def study_inputs(crank, names=None, exclude_prefixes=()) -> tuple[list[StudyInput], list[str]]:
+def study_inputs(crank: Crank | Chain | Network, names: Sequence[str] | None = None,
+                 exclude_prefixes: tuple[str, ...] = ()) -> tuple[list[StudyInput], list[str]]:
     """The ``[uncertainty]`` entries as inputs: all, or those in ``names``; entries whose
     paths start with one of ``exclude_prefixes`` (details a model leaves out) are returned
     apart, as the second list, held at their nominal values."""

@@ -12,6 +12,7 @@ once more, so the band's ends are real model results, interactions included.
 from __future__ import annotations
 
 from dataclasses import asdict, dataclass
+from typing import TYPE_CHECKING
 
 from ..description.model import Crank
 
@@ -19,6 +20,12 @@ from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
 from ..description.edit import field_values, with_values
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+
+if TYPE_CHECKING:
+    from distributed import Client
+
+    from ..lumped_model.parts import PartChain
+    from .runner import ClusterOnDemand, SampleStore
 
 
 @dataclass(frozen=True)
@@ -104,7 +111,7 @@ class SensitivityResult:
 
 
 def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size: float = CHECK_MESH_SIZE,
-             client=None, store=None) -> list[dict]:
+             client: Client | ClusterOnDemand | None = None, store: SampleStore | None = None) -> list[dict]:
     """FE first torsional frequency at the bounds of the ``count`` most influential inputs.
 
     Runs on the crank without fillets and drillings at a coarse mesh (a few seconds per
@@ -139,7 +146,7 @@ def fe_check(crank: Crank, result: SensitivityResult, count: int = 3, mesh_size:
 
 
 def run_sensitivity(crank: Crank, dof: int = DEFAULT_PARTITION, stiffness: str = DEFAULT_WEB_METHOD,
-                    parts=None) -> SensitivityResult:
+                    parts: PartChain | None = None) -> SensitivityResult:
     """Sensitivity of the lumped f1 to each ``[uncertainty]`` input, and the f1 band.
 
     Parameters

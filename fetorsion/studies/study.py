@@ -11,8 +11,10 @@ from __future__ import annotations
 import csv
 import json
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING, Callable, Literal
 
 import numpy as np
 
@@ -21,6 +23,12 @@ from ..errors import FetorsionError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from .runner import RunSummary, SampleStore, open_store, run_samples
 from .sampling import MORRIS_LEVELS, StudyInput, salib_problem, sample_matrix, samples_of
+
+if TYPE_CHECKING:
+    from distributed import Client
+
+    from ..description.model import Crank
+    from .runner import ClusterOnDemand, SampleRecord
 
 PERCENTILES = (5.0, 50.0, 95.0)
 CONF_LEVEL = 0.95
@@ -221,10 +229,11 @@ def sensitivity_indices(method: str, inputs: list[StudyInput], X: np.ndarray, y:
     return {k: [float(v) for v in np.asarray(s[k])] for k in keys}
 
 
-def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, seed: int = 0, client=None,
+def run_study(model: Callable[[dict[str, float]], dict[str, float | str]], inputs: list[StudyInput], method: str,
+              samples: int, *, seed: int = 0, client: Client | ClusterOnDemand | None = None,
               store: SampleStore | None = None, batch_size: int | None = None, name: str = "",
-              measured_hz: float | None = None, held=(), retry_failed: bool = False, on_record=None,
-              progress: bool = True) -> StudyResult:
+              measured_hz: float | None = None, held: Sequence[str] = (), retry_failed: bool = False,
+              on_record: Callable[[str, SampleRecord], None] | None = None, progress: bool = True) -> StudyResult:
     """Sample ``inputs``, run ``model`` on every sample and summarise.
 
     Parameters
@@ -266,10 +275,11 @@ def run_study(model, inputs: list[StudyInput], method: str, samples: int, *, see
                        list(held), X, Y, errors, percentile_bands(Y), indices, measured_hz, summary, values)
 
 
-def run_crank_study(crank, method: str = "montecarlo", samples: int | None = None, model: str = LUMPED17,
-                    outputs=("f1",), inputs=None, *, seed: int = 0, stiffness: str | None = None,
-                    mesh_size: float | None = None, scheduler: str | None = None, workers: int | None = None,
-                    client=None, store: SampleStore | None = None, **kwargs) -> StudyResult:
+def run_crank_study(crank: Crank, method: str = "montecarlo", samples: int | None = None, model: str = LUMPED17,
+                    outputs: Sequence[str] = ("f1",), inputs: Sequence[str] | None = None, *, seed: int = 0,
+                    stiffness: str | None = None, mesh_size: float | None = None, scheduler: str | None = None,
+                    workers: int | None = None, client: Client | Literal[False] | None = None,
+                    store: SampleStore | None = None, **kwargs) -> StudyResult:
     """A study of a crank's ``[uncertainty]`` inputs: the composition ``fetorsion study`` runs.
 
     Parameters
@@ -335,7 +345,8 @@ def _output_names(records: list[dict]) -> list[str]:
     return []
 
 
-def write_study_folder(res: StudyResult, out, force: bool = False, inputs=()) -> Path:
+def write_study_folder(res: StudyResult, out: str | Path, force: bool = False,
+                       inputs: Sequence[str | Path] = ()) -> Path:
     """The study's report folder, written atomically: ``samples.csv`` (every run's inputs,
     outputs and error), ``study.json``, ``study.txt``, the histogram of each output and the
     index chart of each output that has indices."""

@@ -29,8 +29,10 @@ import json
 import math
 import os
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -41,6 +43,10 @@ from ..errors import FetorsionError
 from ..fe.rigid import RigidBody, reduction
 from .sections import cylinder_equivalent_length
 from ..fe.tetmesh import TetMesh
+
+if TYPE_CHECKING:
+    from ..description.model import Material
+    from ..fe.condensed import CondensedCrank
 
 #: Default global element size for a throw, as a share of the main-journal diameter.
 #: Sized by the convergence study in docs/web-chart.md: at D_t/6 the throw stiffness is
@@ -204,8 +210,8 @@ def torsion_solution(mesh: TetMesh, material, fixed: str = "front_face", loaded:
 TORSION_LOAD = (0.0, 0.0, 0.0, TORQUE, 0.0, 0.0)
 
 
-def end_load_solutions(mesh: TetMesh, material, loads, fixed: str = "front_face", loaded: str = "rear_face",
-                       backend: str = "auto") -> list[TorsionSolution]:
+def end_load_solutions(mesh: TetMesh, material: Material, loads: Sequence[Sequence[float]], fixed: str = "front_face",
+                       loaded: str = "rear_face", backend: str = "auto") -> list[TorsionSolution]:
     """Static fields of a solid held at one rigidly coupled end face and loaded at the other, one
     per load in ``loads`` ((Fx, Fy, Fz, Mx, My, Mz) at the loaded face's point on the x axis, N
     and N·m), from one factorisation. A pure couple at the end loads every section by that
@@ -518,7 +524,8 @@ def held_stiffnesses_stored(crank: Crank, mesh_size: float | None = None) -> boo
     return key in _CACHE or key in _load_disk(SHIPPED_CACHE) or key in _load_disk()
 
 
-def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None, condensed=None) -> np.ndarray:
+def held_throw_stiffnesses(crank: Crank, mesh_size: float | None = None,
+                           condensed: CondensedCrank | None = None) -> np.ndarray:
     """Torsional stiffness (N·m/rad) of each throw (journal centre to journal centre) inside the
     whole crank with every main journal held radially by a rigid bearing (distributing
     couplings over the bearing surfaces, tilt free), from one static FE solve: the front end's
@@ -564,7 +571,8 @@ def static_throw_stiffnesses(cc) -> np.ndarray:
     return TORQUE / np.diff(twist)
 
 
-def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float, stiffnesses=None) -> float:
+def web_equivalent_length_held(crank: Crank, web_index: int, d_e: float,
+                               stiffnesses: np.ndarray | None = None) -> float:
     """Web method ``fe-held``: L_eb (m, at D_e) of web ``web_index`` from its throw's stiffness
     inside the whole crank in rigid bearings (``stiffnesses``, N·m/rad per throw; default
     :func:`held_throw_stiffnesses` at the default mesh size)."""
