@@ -316,10 +316,7 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     parent = list(range(n))
 
     def root(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
+        return _root(parent, a)
 
     out = []
     for g in gears:
@@ -338,22 +335,24 @@ def _network_topology(labels, shafts, gears) -> list[Problem]:
     return out
 
 
+def _root(parent: list[int], a: int) -> int:
+    """The representative of station ``a``'s group in the union-find ``parent`` (paths halved)."""
+    while parent[a] != a:
+        parent[a] = parent[parent[a]]
+        a = parent[a]
+    return a
+
+
 def _massless_gear_groups(labels, inertias, gears) -> list[Problem]:
     """Stations moving together through gears (one angle for the group) must have some inertia
     between them: a station of inertia 0 is a gear whose inertia its mate carries (a crank's
     station, NaN until its lumped model is built, has its own)."""
     groups: dict[int, list[int]] = {}
     parent = list(range(len(labels)))
-
-    def root(a):
-        while parent[a] != a:
-            a = parent[a]
-        return a
-
     for g in gears:
-        parent[root(g.i)] = root(g.j)
+        parent[_root(parent, g.i)] = _root(parent, g.j)
     for i in range(len(labels)):
-        groups.setdefault(root(i), []).append(i)
+        groups.setdefault(_root(parent, i), []).append(i)
     return [Problem("chain.stations", [labels[i] for i in group],
                     "have no inertia: a station of inertia 0 must be meshed ([[chain.gears]]) with one that has some"
                     if len(group) > 1 else "has no inertia: only a gear meshed with one that has some may have 0")
