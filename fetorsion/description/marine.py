@@ -14,6 +14,9 @@ they are commonly restated, not confirmed from a readable text here.
 
 from __future__ import annotations
 
+import math
+from collections.abc import Callable, Sequence
+
 #: C_K of each shaft feature (a name a network file's ``[[chain.shafts]]`` may give as
 #: ``feature``): intermediate shafts, thrust shafts outside the engine, propeller shafts.
 CK_FACTORS: dict[str, float] = {
@@ -29,3 +32,109 @@ CK_FACTORS: dict[str, float] = {
     "propeller_keyed": 0.55,       # propeller shaft, key-fitted propeller (unconfirmed)
     "propeller_forward": 0.80,     # propeller shaft, aft-most bearing's forward end to the forward stern-tube seal
 }
+
+
+# ---------------------------------------------------------------------------
+# The propeller
+
+
+def propeller_law_damping(torque_nm: float, speed_rad_s: float, exponent: float = 2.0) -> float:
+    """The propeller law's damping, linearised at one speed: c = ∂Q/∂ω = n Q / ω (N·m·s/rad).
+
+    A fixed-pitch propeller's torque follows Q = Q_r (ω/ω_r)^n (n = 2: the propeller law, the
+    power going as the cube of the speed). A small vibration ω + δω changes it by (∂Q/∂ω) δω, a
+    torque against the velocity: a viscous damper to ground of c = n Q(ω)/ω at the running
+    speed ω. It rises with the speed (c ∝ ω^(n−1)), so a frequency-domain response with one
+    constant damping takes it at one speed (docs/propulsion-tvc.md).
+
+    Parameters
+    ----------
+    torque_nm : float
+        The propeller's mean torque at the speed, N·m (> 0).
+    speed_rad_s : float
+        The shaft speed at which it is linearised, rad/s (> 0).
+    exponent : float
+        n of Q ∝ ω^n; 2 for the propeller law.
+    """
+    return exponent * torque_nm / speed_rad_s
+
+
+def law_torque(rated_torque_nm: float, rated_speed_rad_s: float, speed_rad_s: float, exponent: float = 2.0) -> float:
+    """Q(ω) = Q_r (ω/ω_r)^n, N·m: the propeller's mean torque at a speed, from its rated point."""
+    return rated_torque_nm * (speed_rad_s / rated_speed_rad_s) ** exponent
+
+
+#: The propeller damping models a network file may name, each a function of (rated torque N·m,
+#: rated speed rad/s, speed rad/s, exponent) → N·m·s/rad. Archer's, Frahm's and Schwanecke's
+#: are not offered: no formula with a published worked value was found to test them against.
+PROPELLER_DAMPING: dict[str, Callable[[float, float, float, float], float]] = {
+    "propeller_law": lambda q_r, w_r, w, n: propeller_law_damping(law_torque(q_r, w_r, w, n), w, n),
+}
+
+
+def with_entrained_water(dry_inertia_kgm2: float, entrained_share: float) -> float:
+    """The propeller's inertia in water, kg·m²: its dry inertia times (1 + the entrained share).
+
+    The share (the water that turns with the blades over the dry inertia) is a property of the
+    propeller stated by its maker or a regression such as [Parsons1983]'s for the Wageningen
+    B-series; no default is assumed.
+    """
+    return dry_inertia_kgm2 * (1.0 + entrained_share)
+
+
+def blade_orders(blades: int, multiples: int) -> tuple[int, ...]:
+    """The orders a propeller excites, per shaft revolution: blades × k for k = 1 … ``multiples``."""
+    return tuple(blades * k for k in range(1, multiples + 1))
+
+
+def blade_excitation(mean_torque_nm: float, shares: tuple[float, ...]) -> tuple[float, ...]:
+    """The blade-order torque amplitudes, N·m: each a share of the propeller's mean torque at that
+    speed (the first share for order z, the next for 2z, …)."""
+    return tuple(s * mean_torque_nm for s in shares)
+
+
+# ---------------------------------------------------------------------------
+# A flexible coupling from its maker's data sheet
+
+
+def sheet_value(temperature_c: float, t_nominal_c: float, nominal: float, t_warm_c: float, warm: float) -> float:
+    """A data-sheet property at a temperature: linear between its nominal and warm values, held at
+    the nearer one outside them (a sheet says nothing beyond its two temperatures)."""
+    if t_warm_c == t_nominal_c:
+        return nominal
+    s = min(max((temperature_c - t_nominal_c) / (t_warm_c - t_nominal_c), 0.0), 1.0)
+    return nominal + s * (warm - nominal)
+
+
+def loss_factor_of(relative_damping: float) -> float:
+    """η = ψ / 2π: the hysteretic loss factor (k (1 + iη)) of a relative damping ψ.
+
+    ψ, the makers' relative damping, is the energy a cycle dissipates over the elastic energy at
+    its amplitude [CentaxSheet] [RenoldSheet]; the hysteretic spring dissipates π η k θ² a cycle
+    against the elastic ½ k θ², so ψ = 2π η (the dynamic magnifier M = 2π/ψ [RenoldSheet]).
+    """
+    return relative_damping / (2.0 * math.pi)
+
+
+def coupling_heat(amplitudes_nm: Sequence[float], frequencies_hz: Sequence[float], stiffness_nm_per_rad: float,
+                  relative_damping: float) -> float:
+    """The heat a coupling's rubber dissipates, W: Σ_q f_q ψ T_q² / (2 C).
+
+    Each order q twists the coupling with an elastic torque amplitude T_q (N·m, the spring's
+    C × twist, not the total with the damping's) at f_q (Hz); a cycle dissipates ψ times the elastic
+    energy T_q²/(2C), f_q cycles a second. The orders' heats add (their cross terms average out
+    over the cycle: different frequencies). Compared with the sheet's permissible P_KV.
+
+    Parameters
+    ----------
+    amplitudes_nm : sequence of float
+        T_q of each order, N·m.
+    frequencies_hz : sequence of float
+        f_q of each order, Hz.
+    stiffness_nm_per_rad : float
+        C_Tdyn at the coupling's temperature, N·m/rad.
+    relative_damping : float
+        ψ at that temperature.
+    """
+    return sum(f * relative_damping * t**2 / (2.0 * stiffness_nm_per_rad)
+               for t, f in zip(amplitudes_nm, frequencies_hz, strict=True))
