@@ -181,14 +181,6 @@ API_ONLY = {
     "rotating_harmonic": "harmonic response in the rotating frame",
     "prestress": "the centrifugal prestress at the quadrature points, for geometric_stiffness",
     "geometric_stiffness": "the stress stiffening that goes with spin softening",
-    # a propulsion line's components (description/marine.py), tested against hand calculations and
-    # a published case (tests/test_propulsion.py); the TVC verdict and report take them next
-    "with_entrained_water": "a propeller's inertia in water, for a network file's propeller",
-    "blade_orders": "the orders a propeller excites, for the TVC's excitation",
-    "blade_excitation": "the blade-order torques as shares of the mean torque, for the TVC's excitation",
-    "sheet_value": "a coupling data sheet's property at a temperature, for the warm-stiffness iteration",
-    "loss_factor_of": "a data sheet's relative damping ψ as the hysteretic loss factor η",
-    "coupling_heat": "a coupling's heat over the orders against its permissible P_KV, for the TVC verdict",
 }
 
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 from .defaults import DEFAULT_STICK_FACTOR
 from .derived import piecewise_torque, twist_at_torque
+from .marine import Coupling, Propeller, ShaftSection
 from .model import Crank, Damper, Engine, Excitation, Limits, partition_labels
 
 
@@ -64,7 +65,8 @@ class Shaft:
     """A torsional spring of a network between two stations (0-based; ``j`` = -1: ground).
 
     ``stiffness`` N·m/rad; ``damping`` a viscous damper across it, N·m·s/rad; ``loss_factor``
-    its hysteretic η (k (1 + iη) in a steady-state solve).
+    its hysteretic η (k (1 + iη) in a steady-state solve); ``section``: its cross-section and
+    material where a class rule's stress limit is to judge it.
     """
 
     i: int
@@ -72,6 +74,7 @@ class Shaft:
     stiffness: float
     damping: float = 0.0
     loss_factor: float = 0.0
+    section: ShaftSection | None = None
 
 
 @dataclass(frozen=True)
@@ -209,6 +212,12 @@ class Network:
     #: (cylinders × stations) share of each cylinder's torque on each station, when it is not all on
     #: one station (a crank's pins spread as its lumped model spreads them); empty: ``cylinder_stations``.
     cylinder_weights: tuple[tuple[float, ...], ...] = ()
+    #: ``[[chain.propellers]]``: each propeller's station already holds its inertia in water and
+    #: its damping linearised at its ``damping_speed`` (in ``inertias`` and ``absolute_damping``).
+    propellers: tuple[Propeller, ...] = ()
+    #: ``[[chain.couplings]]``: each is also a shaft (its data sheet's stiffness and η = ψ/2π at
+    #: its operating temperature), after the ``[[chain.shafts]]`` in ``shafts``.
+    couplings: tuple[Coupling, ...] = ()
 
     @property
     def linear_shafts(self) -> tuple[Shaft, ...]:

@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .defaults import DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from .marine import CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA
 from .model import ATTACH_POINTS, DAMPER_STATIONS, DAMPER_TYPES, PARTITIONS, PROCESSES, SURFACES, TREATMENTS, WEB_METHOD_NAMES
 from .units import LENGTH_UNITS
 
@@ -392,6 +393,8 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
     Field("nonlinear", "network form: `[[chain.nonlinear]]` (below); optional", "—"),
     Field("cranks", "network form: `[[chain.cranks]]` (below), a crank description as a part of the network; "
           "optional", "at most one"),
+    Field("propellers", "network form: `[[chain.propellers]]` (below); optional", "—"),
+    Field("couplings", "network form: `[[chain.couplings]]` (below); optional", "—"),
 ), required=True)
 
 CRANKS = Section("chain.cranks", "Network form: a crank description as one part of the network, by its lumped "
@@ -422,6 +425,59 @@ SHAFTS = Section("chain.shafts", "Network form: springs between two stations, or
     Field("stiffness_nm_per_rad", "N·m/rad", "> 0"),
     Field("damping_nms_per_rad", "viscous damper across it, N·m·s/rad; default 0", ">= 0"),
     Field("loss_factor", "hysteretic loss factor η; default 0", ">= 0"),
+    Field("diameter_m", "the shaft section's outer diameter, m, where IACS UR M68's stress limits are to judge "
+          "it (docs/propulsion-tvc.md)", "> 0; with `tensile_strength_pa` and `feature`"),
+    Field("bore_m", "its bore, m; default 0", ">= 0, < `diameter_m`"),
+    Field("tensile_strength_pa", "the specified minimum tensile strength σ_B of its material, Pa (the rule caps it: "
+          "carbon steel 760 N/mm², alloy 800)", "> 0; with `diameter_m`"),
+    Field("feature", "its design feature, which sets the rule's factor C_K",
+          _one_of(tuple(CK_FACTORS)) + "; with `diameter_m`"),
+    Field("material", "`carbon` (carbon and carbon-manganese steel) or `alloy`: which cap σ_B takes; default carbon",
+          _one_of(tuple(SIGMA_B_CAP_PA))),
+), array=True)
+PROPELLERS = Section("chain.propellers", "Network form: a propeller at a station. The station's `inertia_kgm2` is "
+                     "its dry inertia; the network takes it times (1 + `entrained_water_share`) and adds its damping "
+                     "to ground, linearised at `damping_speed_rpm` (docs/propulsion-tvc.md).", (
+    Field("station", "the station it sits at", "a station of the network (not a crank's), inertia > 0"),
+    Field("blades", "number of blades z: it excites orders z, 2z, …", "integer >= 2"),
+    Field("entrained_water_share", "the water turning with it, as a share of its dry inertia (its maker's figure "
+          "or a regression such as Parsons 1983's)", ">= 0, required: no default is assumed"),
+    Field("rated_torque_nm", "its mean torque at the rated speed, N·m", "> 0"),
+    Field("rated_speed_rpm", "the rated (maximum continuous) shaft speed, rpm", "> 0"),
+    Field("torque_exponent", "n of the law Q = Q_r (n/n_r)^n; default 2 (the propeller law)", "> 0"),
+    Field("damping_model", "the damping model: `propeller_law`, c = n Q/ω (Archer's, Frahm's and Schwanecke's are "
+          "not offered: no published worked value was found to test them); default propeller_law",
+          _one_of(tuple(PROPELLER_DAMPING))),
+    Field("damping_speed_rpm", "the speed at which the damping is linearised, rpm: the response takes this one "
+          "constant damping at every speed; default the rated speed", "> 0"),
+    Field("blade_order_shares", "the blade-order torque amplitudes as shares of the mean torque (orders z, 2z, …)",
+          "a list, each >= 0; optional"),
+    Field("name", "label; default the station's name", "a string"),
+    Field("source", "where the numbers come from", "a string"),
+), array=True)
+COUPLINGS = Section("chain.couplings", "Network form: a flexible coupling from its maker's data sheet, between two "
+                    "stations. It joins them as a spring of the sheet's dynamic stiffness with the loss factor "
+                    "η = ψ/2π, both at `operating_temperature_c` (linear between the sheet's two temperatures, the "
+                    "nearer one held outside them).", (
+    Field("between", "the two stations it joins", "two different stations"),
+    Field("stiffness_nm_per_rad", "dynamic torsional stiffness C_Tdyn at the sheet's nominal temperature, N·m/rad",
+          "> 0"),
+    Field("relative_damping", "relative damping ψ at the nominal temperature (energy dissipated a cycle over the "
+          "elastic energy at its amplitude)", ">= 0"),
+    Field("temperature_c", "the sheet's nominal temperature, °C", "a finite number"),
+    Field("warm_stiffness_nm_per_rad", "C_Tdyn at `warm_temperature_c`, N·m/rad; optional",
+          "> 0; with the other two warm fields"),
+    Field("warm_relative_damping", "ψ at `warm_temperature_c`", ">= 0; with the other two warm fields"),
+    Field("warm_temperature_c", "the sheet's warm temperature, °C", "> `temperature_c`"),
+    Field("operating_temperature_c", "the temperature the network takes the coupling at, °C; default "
+          "`temperature_c`", "a finite number"),
+    Field("permissible_vibratory_torque_nm", "the sheet's permissible vibratory torque amplitude, N·m; optional",
+          ">= 0"),
+    Field("permissible_power_w", "the sheet's permissible heat (power loss) P_KV, W; optional", ">= 0"),
+    Field("ambient_c", "the ambient temperature at which P_KV holds, °C", "a finite number; needs "
+          "`permissible_power_w`"),
+    Field("name", "label; default `coupling`", "a string"),
+    Field("source", "the data sheet", "a string"),
 ), array=True)
 GEARS = Section("chain.gears", "Network form: rigid gear meshes; a branch is solved with the gear constraint "
                 "(K_r = TᵀKT) at the reference speed of the first station.", (
@@ -461,8 +517,8 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, SOLID, ATTACHMENTS,
                   BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS, DESIGN)
 #: The tables of a chain file.
-CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, GEARS, NONLINEAR, ENGINE, EXCITATION, DAMPERS, LIMITS,
-                  UNCERTAINTY, DISTRIBUTIONS)
+CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, PROPELLERS, COUPLINGS, GEARS, NONLINEAR, ENGINE,
+                  EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 
 
 def schema(sections) -> dict[str, frozenset[str] | None]:

@@ -16,6 +16,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+#: The largest σ_B (Pa) the rule's formulas take, by material [LRShipsShafts]: carbon and
+#: carbon-manganese steel 760 N/mm², alloy steel 800 N/mm²; a stronger steel gives no higher
+#: limit without the fatigue approval the rules ask for.
+SIGMA_B_CAP_PA: dict[str, float] = {"carbon": 760e6, "alloy": 800e6}
 
 #: C_K of each shaft feature (a name a network file's ``[[chain.shafts]]`` may give as
 #: ``feature``): intermediate shafts, thrust shafts outside the engine, propeller shafts.
@@ -138,3 +144,107 @@ def coupling_heat(amplitudes_nm: Sequence[float], frequencies_hz: Sequence[float
     """
     return sum(f * relative_damping * t**2 / (2.0 * stiffness_nm_per_rad)
                for t, f in zip(amplitudes_nm, frequencies_hz, strict=True))
+
+
+# ---------------------------------------------------------------------------
+# The components as a network file states them (read by :mod:`.network`)
+
+
+@dataclass(frozen=True)
+class ShaftSection:
+    """A shaft section a class rule judges: outer ``diameter`` and ``bore`` (m), the material's
+    specified minimum ``tensile_strength`` (Pa) and kind (``material``: a key of
+    :data:`SIGMA_B_CAP_PA`), the design ``feature`` (a key of :data:`CK_FACTORS`)."""
+
+    diameter: float
+    tensile_strength: float
+    feature: str
+    bore: float = 0.0
+    material: str = "carbon"
+
+    @property
+    def ck(self) -> float:
+        return CK_FACTORS[self.feature]
+
+    def stress(self, torque_nm: float) -> float:
+        """The nominal torsional stress of a torque on the plain section, Pa: 16 T d / (π (d⁴ − d_i⁴))."""
+        return 16.0 * torque_nm * self.diameter / (math.pi * (self.diameter**4 - self.bore**4))
+
+
+@dataclass(frozen=True)
+class Propeller:
+    """A propeller at ``station`` (0-based) of a network: its ``blades``, the water that turns
+    with it (``entrained_share`` of its ``dry_inertia``, kg·m²), its torque law Q = ``rated_torque``
+    (N·m) × (ω / ``rated_speed`` (rad/s))^``exponent``, the damping model by name
+    (:data:`PROPELLER_DAMPING`) linearised at ``damping_speed`` (rad/s), and the blade-order
+    torques as ``order_shares`` of the mean torque (orders z, 2z, …)."""
+
+    station: int
+    blades: int
+    dry_inertia: float
+    entrained_share: float
+    rated_torque: float
+    rated_speed: float
+    damping_speed: float
+    damping_model: str = "propeller_law"
+    exponent: float = 2.0
+    order_shares: tuple[float, ...] = ()
+    name: str = ""
+    source: str = ""
+
+    @property
+    def inertia(self) -> float:
+        """The inertia in water, kg·m²."""
+        return with_entrained_water(self.dry_inertia, self.entrained_share)
+
+    def damping(self, speed_rad_s: float) -> float:
+        """The damping to ground at a shaft speed, N·m·s/rad, by the named model."""
+        return PROPELLER_DAMPING[self.damping_model](self.rated_torque, self.rated_speed, speed_rad_s, self.exponent)
+
+    def excitation(self, speed_rad_s: float) -> tuple[tuple[int, ...], tuple[float, ...]]:
+        """(orders, torque amplitudes N·m) of the blade orders at a shaft speed."""
+        q = law_torque(self.rated_torque, self.rated_speed, speed_rad_s, self.exponent)
+        return blade_orders(self.blades, len(self.order_shares)), blade_excitation(q, self.order_shares)
+
+
+@dataclass(frozen=True)
+class Coupling:
+    """A flexible coupling from its maker's data sheet, between stations ``i`` and ``j``: dynamic
+    stiffness (N·m/rad) and relative damping ψ at the sheet's nominal ``temperature_c`` and, where
+    given, at ``warm_temperature_c`` (linear between them, :func:`sheet_value`); the network takes
+    them at ``operating_temperature_c``. Its permissible vibratory torque (N·m) and permissible heat
+    P_KV (W, at the ambient ``ambient_c``); 0 where the sheet gives none."""
+
+    i: int
+    j: int
+    stiffness: float
+    relative_damping: float
+    temperature_c: float
+    operating_temperature_c: float
+    warm_stiffness: float = 0.0
+    warm_relative_damping: float = 0.0
+    warm_temperature_c: float = math.nan
+    permissible_torque: float = 0.0
+    permissible_power: float = 0.0
+    ambient_c: float = math.nan
+    name: str = ""
+    source: str = ""
+
+    def stiffness_at(self, temperature_c: float) -> float:
+        """C_Tdyn at a temperature, N·m/rad."""
+        if not self.warm_stiffness:
+            return self.stiffness
+        return sheet_value(temperature_c, self.temperature_c, self.stiffness, self.warm_temperature_c,
+                           self.warm_stiffness)
+
+    def relative_damping_at(self, temperature_c: float) -> float:
+        """ψ at a temperature."""
+        if math.isnan(self.warm_temperature_c):
+            return self.relative_damping
+        return sheet_value(temperature_c, self.temperature_c, self.relative_damping, self.warm_temperature_c,
+                           self.warm_relative_damping)
+
+    def heat(self, amplitudes_nm: Sequence[float], frequencies_hz: Sequence[float], temperature_c: float) -> float:
+        """The heat of the orders' elastic torque amplitudes at a temperature, W (:func:`coupling_heat`)."""
+        return coupling_heat(amplitudes_nm, frequencies_hz, self.stiffness_at(temperature_c),
+                             self.relative_damping_at(temperature_c))

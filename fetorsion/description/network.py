@@ -14,6 +14,8 @@ from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .fields import CHAIN_SCHEMA
 from .model import CONDENSED, CRANK_END_ALIASES, PARTITIONS, WEB_METHOD_NAMES
 from .chain_model import GROUND, GearPair, Network, NetworkCrank, NonlinearSpring, Shaft
+from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection,
+                     loss_factor_of)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
 from .excitation_table import read_chain_excitation, stated_damping_excitation
@@ -39,6 +41,10 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     _read_stations(t, cranks, labels, inertias, absolute, problems)
     index.update({s: i for i, s in enumerate(labels)})
     shafts, gears, nonlinear = _links(t, cranks, index, problems)
+    couplings = _couplings(t, cranks, index, problems)
+    shafts += [Shaft(c.i, c.j, c.stiffness_at(c.operating_temperature_c), 0.0,
+                     loss_factor_of(c.relative_damping_at(c.operating_temperature_c))) for c in couplings]
+    propellers = _propellers(t, index, inertias, absolute, problems)
     stations = t.get("cylinder_stations", [])
     t.finish()
     if not problems:
@@ -68,7 +74,8 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
         raise DescriptionError(source, unique_problems(problems))
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
                       tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
-                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers)
+                      cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers,
+                      propellers=tuple(propellers), couplings=tuple(couplings))
     if check_uncertainty:
         bounds = uncertainty_bound_problems(network, parse_network)
         if bounds:
@@ -147,9 +154,10 @@ def _links(t: Table, cranks, index: dict, problems: list[Problem]) -> tuple[list
         k = sh.number("stiffness_nm_per_rad", positive=True)
         c = sh.number("damping_nms_per_rad", 0.0, nonnegative=True)
         eta = sh.number("loss_factor", 0.0, nonnegative=True)
+        section = _shaft_section(sh, problems)
         sh.finish()
         if pair:
-            shafts.append(Shaft(pair[0], pair[1], k, c, eta))
+            shafts.append(Shaft(pair[0], pair[1], k, c, eta, section))
     gears = []
     for g in t.tables("gears", required=False):
         pair = _ends(g, False, index, cranks, problems)
@@ -419,4 +427,81 @@ def _locked_loops(labels, shafts, gears) -> list[Problem]:
         loop = pa[:pa.index(common) + 1] + pb[:pb.index(common)][::-1]
         out.append(Problem("chain", [labels[k] for k in loop], f"these stations' shafts and gears form a loop whose "
                            f"speed ratios multiply to {ratio:.6g}, not 1: it cannot turn as one"))
+    return out
+
+
+def _shaft_section(sh: Table, problems: list[Problem]) -> ShaftSection | None:
+    """A shaft's section for the class rule's stress limit (``diameter_m``, ``bore_m``,
+    ``tensile_strength_pa``, ``feature``, ``material``): None where none of them is given; the
+    diameter, strength and feature are required together."""
+    keys = ("diameter_m", "tensile_strength_pa", "feature", "bore_m", "material")
+    if not any(k in sh.data for k in keys):
+        return None
+    d = sh.number("diameter_m", positive=True)
+    bore = sh.number("bore_m", 0.0, nonnegative=True)
+    strength = sh.number("tensile_strength_pa", positive=True)
+    feature = sh.choice("feature", tuple(CK_FACTORS), "")
+    material = sh.choice("material", tuple(SIGMA_B_CAP_PA), "carbon")
+    if bore >= d:
+        problems.append(Problem(f"{sh.path}.bore_m", bore, f"must be smaller than diameter_m ({d})"))
+    if problems and any(p.field.startswith(f"{sh.path}.") for p in problems):
+        return None
+    return ShaftSection(d, strength, feature, bore, material)
+
+
+def _propellers(t: Table, index: dict, inertias: list, absolute: list, problems: list[Problem]) -> list[Propeller]:
+    """``[[chain.propellers]]``: each propeller's station takes its inertia in water (its stated
+    inertia the dry one) and its damping to ground linearised at ``damping_speed_rpm``."""
+    out = []
+    for pt in t.tables("propellers", required=False):
+        station = pt.text("station")
+        blades = pt.integer("blades", minimum=2)
+        share = pt.number("entrained_water_share", nonnegative=True)
+        model = pt.choice("damping_model", tuple(PROPELLER_DAMPING), "propeller_law")
+        torque = pt.number("rated_torque_nm", positive=True)
+        rated = pt.number("rated_speed_rpm", positive=True) * math.pi / 30.0
+        speed = pt.number("damping_speed_rpm", rated * 30.0 / math.pi, positive=True) * math.pi / 30.0
+        exponent = pt.number("torque_exponent", 2.0, positive=True)
+        shares = pt.numbers("blade_order_shares", required=False)
+        if any(v < 0 for v in shares):
+            problems.append(Problem(f"{pt.path}.blade_order_shares", list(shares), "each must be >= 0"))
+        name, source = pt.text("name", station), pt.text("source")
+        pt.finish()
+        s = index.get(station)
+        if s is None or not inertias[s] > 0:
+            problems.append(Problem(f"{pt.path}.station", station, "must name a station of the network with an "
+                                    "inertia > 0 (its dry inertia), not a crank's"))
+            continue
+        if any(p.field.startswith(f"{pt.path}.") for p in problems):
+            continue
+        p = Propeller(s, blades, inertias[s], share, torque, rated, speed, model, exponent, shares, name, source)
+        inertias[s], absolute[s] = p.inertia, absolute[s] + p.damping(speed)
+        out.append(p)
+    return out
+
+
+def _couplings(t: Table, cranks, index: dict, problems: list[Problem]) -> list[Coupling]:
+    """``[[chain.couplings]]``: flexible couplings from their data sheets (nominal and, optionally,
+    warm stiffness and relative damping), each taken at its operating temperature."""
+    out = []
+    for ct in t.tables("couplings", required=False):
+        pair = _ends(ct, False, index, cranks, problems)
+        k, psi = ct.number("stiffness_nm_per_rad", positive=True), ct.number("relative_damping", nonnegative=True)
+        t0 = ct.number("temperature_c")
+        warm = [k_ in ct.data for k_ in ("warm_stiffness_nm_per_rad", "warm_relative_damping", "warm_temperature_c")]
+        k1 = ct.number("warm_stiffness_nm_per_rad", positive=True) if any(warm) else 0.0
+        psi1 = ct.number("warm_relative_damping", nonnegative=True) if any(warm) else 0.0
+        t1 = ct.number("warm_temperature_c", above=t0 if math.isfinite(t0) else None) if any(warm) else math.nan
+        t_op = ct.number("operating_temperature_c", t0 if math.isfinite(t0) else 0.0)
+        torque = ct.number("permissible_vibratory_torque_nm", 0.0, nonnegative=True)
+        power = ct.number("permissible_power_w", 0.0, nonnegative=True)
+        ambient = ct.number("ambient_c", math.nan) if "ambient_c" in ct.data else math.nan
+        if "ambient_c" in ct.data and not power > 0:
+            problems.append(Problem(f"{ct.path}.ambient_c", ct.data["ambient_c"], "needs permissible_power_w "
+                                    "(the ambient temperature at which the sheet's P_KV holds)"))
+        name, source = ct.text("name", "coupling"), ct.text("source")
+        ct.finish()
+        if pair and not any(p.field.startswith(f"{ct.path}.") for p in problems):
+            out.append(Coupling(pair[0], pair[1], k, psi, t0, t_op, k1, psi1, t1, torque, power, ambient, name,
+                                source))
     return out

@@ -29,12 +29,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
-from ..description.marine import CK_FACTORS
+from ..description.marine import CK_FACTORS, SIGMA_B_CAP_PA
 from ..errors import ParameterError
 
-#: The largest σ_B (Pa) the formulas take, by material [LRShipsShafts]: a stronger steel
-#: gives no higher limit without the fatigue approval the rules ask for.
-SIGMA_B_CAP_PA: dict[str, float] = {"carbon": 760e6, "alloy": 800e6}
 #: λ up to which τ_C falls as (3 − 2λ²); above it, up to :data:`LAMBDA_MAX`, the factor is 1.38.
 LAMBDA_KNEE = 0.9
 #: The largest speed ratio the rule gives τ_C for.
