@@ -20,13 +20,9 @@ RPM = np.linspace(1000.0, 6000.0, 21)
 
 
 @pytest.fixture(scope="module")
-def condensed_renault():
+def condensed_renault(condensed_plain_renault):
     """The Renault 21 (no fillets or drillings) condensed at 30 mm with a cut at every fillet."""
-    from fetorsion.design.stress import fillet_cuts, fillets_of
-    from fetorsion.fe.condensed import run_condensed
-
-    crank = plain("renault21.toml")
-    return run_condensed(crank, 0.03, cuts=fillet_cuts(crank, fillets_of(crank)))
+    return condensed_plain_renault[2]
 
 
 @pytest.fixture(scope="module")
