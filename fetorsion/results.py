@@ -14,9 +14,9 @@ tuples, ``dict[str, X]``, ``X | None``), told only where a key differs from its 
 ...     rpm: np.ndarray
 ...     label: str
 ...     width: tuple[float, float] | None = None
->>> p = from_fields(Peak, {"rpm": [1000, 2000], "label": "P1", "width": [1, 2]})
+>>> p = from_fields(Peak, {"rpm": [1000, 2000], "label": "P1", "width": [1.5, 2.0]})
 >>> p.rpm.dtype, p.width
-(dtype('float64'), (1.0, 2.0))
+(dtype('float64'), (1.5, 2.0))
 """
 
 from __future__ import annotations
@@ -31,12 +31,17 @@ from typing import Protocol, runtime_checkable
 import numpy as np
 
 
+#: What a result's ``to_dict()`` returns and its ``from_dict`` reads: JSON's object, its values
+#: plain numbers, strings, booleans, None, lists and such objects (SI units in the key names).
+JSONObject = dict[str, typing.Any]
+
+
 @runtime_checkable
 class Result(Protocol):
     """What every result of a run has: its figures as JSON, the result back from them, a table
     and a plot."""
 
-    def to_dict(self) -> dict[str, object]:
+    def to_dict(self) -> JSONObject:
         """Every figure as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
 
     @classmethod

@@ -94,7 +94,9 @@ class StudyResult:
                 "measured_percentile": self.measured_percentile(), "errors": self.errors[:100],
                 "computed": self.summary.computed, "stored_before": self.summary.stored_before,
                 "wall_s": self.summary.wall_s, "frequency_unit": "Hz", "severity_unit": "deg",
-                "X": self.X.tolist(), "Y": {k: [None if math.isnan(v) else v for v in y.tolist()] for k, y in self.Y.items()}}
+                # the runs' inputs and outputs (the histogram's); none for a study read back without them
+                **({} if not self.Y else {"X": self.X.tolist(), "Y": {
+                    k: [None if math.isnan(v) else v for v in y.tolist()] for k, y in self.Y.items()}})}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "StudyResult":
@@ -158,7 +160,7 @@ class StudyResult:
         the index bar chart with confidence intervals."""
         import matplotlib.pyplot as plt
 
-        output = output or next(iter(self.Y or self.indices))
+        output = output or next(iter(self.Y or self.bands))
         idx = self.indices.get(output, {})
         if kind is None:
             kind = "indices" if idx and "not_computed" not in idx else "histogram"
