@@ -27,6 +27,7 @@ _LAZY = {
     "run_crank_verdict": "design.crank_verdict", "run_fatigue": "design.fatigue",
     "run_comparison": "studies.comparison", "run_calibration": "studies.calibration_fit",
     "run_torsiograph": "measured.torsiograph", "run_modal_fit": "measured.modal", "run": "app.run",
+    "load_results": "report.load",
 }
 
 
@@ -65,7 +66,7 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
     return _run(crank, mesh_size, modes, **kwargs)
 
 
-__all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "Network", "PARTITIONS", "load",
+__all__ = ["Chain", "Crank", "DescriptionError", "FetorsionError", "LumpedResult", "Network", "PARTITIONS", "load", "load_results",
            "lumped", "run", "run_calibration", "run_campbell", "run_comparison", "run_condensed", "run_coupled_response",
            "run_crank_study", "run_crank_verdict", "run_damper", "run_fatigue", "run_modal", "run_modal_fit",
            "run_response", "run_sensitivity", "run_stress", "run_torsiograph", "run_transient", "run_verdict",

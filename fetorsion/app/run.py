@@ -33,14 +33,14 @@ from ..studies.runner import machine_workers
 from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE,
                                     DEFAULT_WEB_METHOD)
 from ..report.markdown import report_markdown
-from ..report.outcomes import RunOutcome
+from ..report.outcomes import RunOutcome, Skipped
 from .background import background_executor, needs_throw_fe, sensitivity_studies, throw_fe_results
 from .steps import (progress, step_bearings, step_campbell, step_fatigue, step_fe, step_lumped, step_measured,
                     step_sensitivity, step_transient, step_verdict)
 
 if TYPE_CHECKING:
     from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome,
-                                   LumpedOutcome, MeasuredOutcome, SensitivityOutcome, Skipped, TransientOutcome,
+                                   LumpedOutcome, MeasuredOutcome, SensitivityOutcome, TransientOutcome,
                                    VerdictOutcome)
 
     #: What a step returns: the outcome of the RunOutcome field it fills
@@ -318,6 +318,8 @@ def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_ST
                              driveline="" if network is None else network.name)
         no_fe = options.no_fe or not any(s[2] is step_fe for s in steps)
         ctx = RunContext(crank, work, dataclasses.replace(options, no_fe=no_fe), outcome, network=network)
+        # the description as read (load_results reads it again, wherever the file has gone since)
+        ctx.results["description"] = {"path": str(path), "text": Path(path).read_text(encoding="utf-8")}
         if network is not None:
             ctx.results["driveline"] = _driveline_results(network, path)
         if features is not None:
@@ -382,6 +384,8 @@ def _run_steps(ctx: RunContext, steps) -> None:
         progress(f"{name} ...")
         t0 = time.perf_counter()
         setattr(outcome, key, fn(ctx))
+        if isinstance(getattr(outcome, key), Skipped):  # the report says why; so does results.json
+            ctx.results.setdefault("skipped", {})[key] = getattr(outcome, key).reason
         outcome.timings_s[name] = time.perf_counter() - t0
         progress(f"{name}: done in {outcome.timings_s[name]:.1f} s")
 

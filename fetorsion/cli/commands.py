@@ -20,6 +20,7 @@ from . import fe as cli_fe
 from . import lumped as cli_lumped
 from . import measured as cli_measured
 from . import mechanics as cli_mechanics
+from . import report as cli_report
 from . import run as cli_run
 from . import study as cli_study
 from .common import PLOT_FORMATS
@@ -36,6 +37,7 @@ def build_parser() -> argparse.ArgumentParser:
     cli_mechanics.add_parsers(sub)
     cli_study.add_parser(sub)
     cli_run.add_parser(sub)
+    cli_report.add_parser(sub)
     cli_fe.add_parsers(sub)
     cli_measured.add_parsers(sub)
     cli_design.add_parser(sub)

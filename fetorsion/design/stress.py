@@ -13,13 +13,15 @@ with the fillet's torsional SCF from fetorsion's static 3D FE of the throw
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from ..description.model import Crank
 from ..errors import FetorsionError
+from ..results import from_fields
 from .scfset import SCFSet
 from .scf import nominal_shear
 
@@ -42,6 +44,14 @@ class Fillet:
     @property
     def label(self) -> str:
         return f"{'J' if self.kind == 'journal' else 'P'}{self.index + 1} fillet at x = {self.x * 1e3:.1f} mm"
+
+
+def fillet_of_label(label: str) -> Fillet:
+    """The fillet a :attr:`Fillet.label` names ("J2 fillet at x = 85.0 mm"), its diameter and bore
+    unknown (NaN)."""
+    head, x = label.split(" fillet at x = ")
+    kind = "journal" if head[0] == "J" else "pin"
+    return Fillet(kind, int(head[1:]) - 1, float(x.removesuffix(" mm")) / 1e3, float("nan"), float("nan"))
 
 
 def fillets_of(crank: Crank, parts: PartChain | None = None) -> list[Fillet]:
@@ -131,7 +141,17 @@ class StressResult:
                 "springs": self.springs.tolist(), "scf": self.scf.tolist(), "scf_source": self.scf_source,
                 "nominal_shear_pa": self.nominal_pa.tolist(), "shear_pa": self.stress_pa.tolist(),
                 "worst": {"rpm": float(self.rpm[s]), "fillet": self.fillets[f].label,
-                          "shear_pa": float(self.stress_pa[s, f])}}
+                          "shear_pa": float(self.stress_pa[s, f])},
+                "fillet_geometry": [asdict(x) for x in self.fillets]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "StressResult":
+        """The result back from its :meth:`to_dict`. Where the fillets' geometry was not kept (a
+        result written before it was), each fillet is read from its label: kind, index and place,
+        its diameter and bore unknown (NaN)."""
+        fillets = [from_fields(Fillet, f) for f in d["fillet_geometry"]] if "fillet_geometry" in d else [
+            fillet_of_label(label) for label in d["fillets"]]
+        return from_fields(cls, d, {"nominal_pa": "nominal_shear_pa", "stress_pa": "shear_pa"}, fillets=fillets)
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""

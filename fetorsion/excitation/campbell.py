@@ -18,6 +18,7 @@ says how well the cylinders add (1 = all in phase, 0 = cancelled).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field
 from typing import TYPE_CHECKING
 
@@ -31,6 +32,7 @@ from ..lumped_model.damped import DampedSystem, damped_modes
 from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_ratios,
                                    stated_damping)
 from ..modes import TorsionalModes, modal_damping_matrix
+from ..results import from_fields
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
 
 if TYPE_CHECKING:
@@ -152,7 +154,13 @@ class CampbellResult:
                 "modal_damping_ratio": (list(self.damping_ratio) if isinstance(self.damping_ratio, tuple)
                                         else self.damping_ratio),
                 "severity_unit": self.severity_unit, "crossings": [c.to_dict() for c in self.crossings],
-                "torque_harmonics": self.harmonics_table}
+                "torque_harmonics": self.harmonics_table, "major_orders": list(self.major)}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "CampbellResult":
+        """The result back from its :meth:`to_dict`."""
+        return from_fields(cls, d, {"damping_ratio": "modal_damping_ratio", "harmonics_table": "torque_harmonics",
+                                    "major": "major_orders"})
 
     def table(self, only_in_range: bool = True) -> str:
         """The result as plain text: the table the command line prints."""

@@ -11,7 +11,8 @@ The main journals are the slabs whose rigid twist identifies torsional modes.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field, fields
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field, fields
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -20,8 +21,9 @@ from ..modes import TorsionalModes
 from ..description.model import Crank
 from ..description.defaults import DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_TORSIONAL_MODES
 from ..errors import FetorsionError
+from ..results import from_fields
 from ..extrapolation import richardson
-from ..solid.mesh import CrankMesh
+from ..solid.mesh import CrankMesh, MeshQuality
 from . import modeshape
 from .cranksystem import ENDS, SYSTEM_STAGES, CrankSystem, build_system, end_body
 from .modal import ModalResult, split_rigid
@@ -60,6 +62,32 @@ class CrankModal(ModalResult):
     crank: Crank | None = field(default=None, repr=False)
     mesh: CrankMesh | None = field(default=None, repr=False)
     system: CrankSystem | None = field(default=None, repr=False)
+    #: The mesh's quality where the mesh itself is not kept (a result read back, :meth:`from_dict`).
+    quality_read: MeshQuality | None = field(default=None, repr=False)
+
+    @property
+    def quality(self) -> MeshQuality | None:
+        """The quality of the mesh the modes were computed on (None: not known)."""
+        return self.mesh.quality if self.mesh is not None else self.quality_read
+
+    def to_dict(self) -> dict:
+        """:meth:`ModalResult.to_dict` and the mesh's quality (``mesh_quality``: minimum SICN, folded
+        elements straightened, sizes)."""
+        q = self.quality
+        return {**super().to_dict(), **({} if q is None else {"mesh_quality": asdict(q)})}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "CrankModal":
+        """The result back from its :meth:`to_dict` (without the crank, mesh and FE system it
+        held). A result written before the mesh's quality was kept gives only its minimum SICN."""
+        q = d.get("mesh_quality")
+        if q is None and d.get("min_sicn") is not None:  # a run's entry: its minimum SICN alone
+            q = {"min_sicn": d["min_sicn"], "n_nodes": d["mesh"]["nodes"], "n_tets": d["mesh"]["elements"],
+                 "size": d.get("mesh_size_m", float("nan")), "fillet_size": float("nan"), "seconds": float("nan")}
+        modal = ModalResult.from_dict.__func__(cls, d)
+        modal.mesh = None  # the key "mesh" holds its sizes, not a CrankMesh
+        modal.quality_read = None if q is None else from_fields(MeshQuality, q)
+        return modal
 
     def torsional_modes(self, n: int = DEFAULT_TORSIONAL_MODES) -> TorsionalModes:
         """The first ``n`` torsional modes in the form the Campbell analysis uses.

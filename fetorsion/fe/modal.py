@@ -16,6 +16,7 @@ Pipeline (SI units throughout):
 from __future__ import annotations
 
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -28,6 +29,7 @@ from . import modeshape
 from ..description.model import Material
 from ..description.defaults import DEFAULT_MODES
 from ..errors import FetorsionError
+from ..results import from_fields
 from .rigid import RigidBody, reduction, rigid_rows
 from .tetmesh import TetMesh
 
@@ -124,10 +126,25 @@ class ModalResult:
             "material": {"E": float(self.material.youngs_modulus), "nu": float(self.material.poisson_ratio),
                          "rho": float(self.material.density)},
             "timings_s": {k: float(v) for k, v in self.timings_s.items()},
-            "method": self.method,
+            "method": self.method, "backend": self.backend,
             **({} if self.error_bound is None else
                {"frequency_error_bound": [float(b) for b in self.error_bound]}),
         }
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "ModalResult":
+        """The result back from its :meth:`to_dict`: frequencies, labels, shares, mesh sizes and
+        timings (the mode shapes, rigid fits and bodies' motion are not kept)."""
+        modes = d["modes"]
+        m = d["material"]
+        fractions = np.array([[x["torsional_fraction"], x["bending_fraction"], x["axial_fraction"]] for x in modes],
+                             dtype=float).reshape(-1, 3)
+        bound = d.get("frequency_error_bound")
+        return from_fields(cls, d, frequencies_hz=np.array([x["frequency_hz"] for x in modes], dtype=float),
+                           kinds=[x["kind"] for x in modes], fractions=fractions, rigid_fit=np.full(len(modes), np.nan),
+                           nodes=d["mesh"]["nodes"], elements=d["mesh"]["elements"], dofs=d["mesh"]["dofs"],
+                           material=Material(m["E"], m["nu"], m["rho"]),
+                           error_bound=None if bound is None else np.array(bound, dtype=float))
 
     def table(self) -> str:
         """Each elastic mode: frequency, label and the torsion/bending/axial shares."""

@@ -30,7 +30,8 @@ name      inline-4   stations
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -41,6 +42,7 @@ from ..description.model import Crank
 from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
+from ..results import from_fields
 from .network import NetworkMatrices, network_matrices, network_modes, resolved
 from .parts import PartChain, build_parts, partition_matrices, pin_weights
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
@@ -132,6 +134,16 @@ class LumpedResult:
                 "network": self.network.to_dict(),
                 "station_mode_shapes": (self.mode_shapes @ self.network.T.T).tolist()}),
         }
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "LumpedResult":
+        """The result back from its :meth:`to_dict` (a network's, whose matrices it does not keep, is refused)."""
+        if "network" in d:
+            raise FetorsionError(f"{d.get('name')}: a network's lumped result is not read back: its reduced "
+                                 "matrices are not in its to_dict()")
+        known = {f.name for f in fields(cls)} | {"dof", "station_mode_shapes"}
+        inputs = {k: v for k, v in d.items() if k not in known}
+        return from_fields(cls, d, inputs=inputs)
 
     def table(self) -> str:
         """Every elastic mode: frequency and the station of largest twist."""

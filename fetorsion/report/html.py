@@ -325,12 +325,12 @@ def report_html(run: RunOutcome, folder: Path) -> str:
     if isinstance(sens, SensitivityOutcome):
         figures[sens.image] = sensitivity_figure(sens.sensitivity, "sensitivity")
         studies, images = sens.studies, sens.study_images
-        if studies:
+        if studies and "f1" in studies["montecarlo"].Y:  # a study read back without its runs: its picture
             figures[images["montecarlo"]] = montecarlo_figure(studies["montecarlo"], "f1_montecarlo")
             if "not_computed" not in studies["sobol"].indices["f1"]:
                 figures[images["sobol"]] = sobol_figure(studies["sobol"], "f1_sobol")
     fe = run.fe
-    if fe is not None and fe.images:
+    if fe is not None and fe.images and fe.modal.mesh is not None:  # read back, the mesh is not kept: the pictures
         res = fe.modal
         picks = [img.mode for img in fe.images]
         view = mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],

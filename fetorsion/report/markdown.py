@@ -61,7 +61,7 @@ def lumped_section(crank: Crank, outcome: LumpedOutcome | ChainOutcome) -> list[
 def fe_section(crank: Crank, outcome: FEOutcome) -> list[str]:
     """Mesh, solver and timings, f1 against the measurement, every mode with its label."""
     res, size = outcome.modal, outcome.mesh_size_m
-    quality = res.mesh.quality if res.mesh is not None else None
+    quality = res.quality
     # two significant digits: a valid but poor element (SICN 1e-4) must not read as 0.000
     sicn = f"{quality.min_sicn:.2g}" if quality else "n/a"
     if quality and quality.straightened:

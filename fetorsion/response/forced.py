@@ -17,7 +17,7 @@ section torque is the elastic torque k Δθ of each spring (what a strain gauge 
 from __future__ import annotations
 
 import functools
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -32,7 +32,8 @@ from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
 from ..lumped_model.network import group_place, speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
-from .forced_plots import plot_response
+from .forced_plots import compare_lines, plot_response
+from ..results import from_fields
 from .synthesis import extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
@@ -121,6 +122,16 @@ class ResponseResult:
                        damper_power_per_order_w=self.damper_power_w.tolist(),
                        damper_temperatures_c=[None if t != t else t for t in self.damper_temperatures_c])
         return out
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "ResponseResult":
+        """The result back from its :meth:`to_dict` (not ``theta`` nor the rows behind :meth:`waveform`)."""
+        modal, misfire, power = f"zeta = {d['modal_damping_ratio']:g}", d.get("misfire_cylinder"), d.get("damper_power_per_order_w")
+        return from_fields(cls, d, {"damping_ratio": "modal_damping_ratio", "section_labels": "sections",
+                                    "damper_names": "dampers"}, misfire=None if misfire is None else misfire - 1,
+                           damping="" if d["damping"] == modal else d["damping"].removesuffix(f", {modal}"),
+                           damper_power_w=None if power is None else np.array(power, dtype=float),
+                           damper_temperatures_c=[np.nan if t is None else t for t in d.get("damper_temperatures_c", [])])
 
     def waveform(self, speed: int, samples: int = 720) -> dict:
         """The synthesised signals over one cycle at ``rpm[speed]``: ``angle_deg`` (crank angle),
@@ -581,15 +592,3 @@ def compare_curve(result: ResponseResult, rpm: Sequence[float] | np.ndarray, val
            "model_at_curve_peak_rpm": float(np.interp(rpm[c], result.rpm, model))}
     result.compare = out
     return out
-
-
-def compare_lines(c: dict | None) -> list[str]:
-    """Table lines of a comparison (none without one)."""
-    if not c:
-        return []
-    unit = "N m" if c["quantity"] == "section_torque_nm" else "deg"
-    return [f"  compared with {c['name']} ({c['where']}):",
-            f"    curve peak {c['curve_peak']:.4g} {unit} at {c['curve_peak_rpm']:.0f} rpm; model peak "
-            f"{c['model_peak']:.4g} {unit} at {c['model_peak_rpm']:.0f} rpm: {c['peak_difference_percent']:+.1f} % "
-            f"and {c['model_peak_rpm'] - c['curve_peak_rpm']:+.0f} rpm; model at the curve's peak speed "
-            f"{c['model_at_curve_peak_rpm']:.4g} {unit}"]

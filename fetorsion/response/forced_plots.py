@@ -50,3 +50,15 @@ def plot_response(result, ax):
     a2.legend(fontsize=8)
     fig.tight_layout()
     return a1
+
+
+def compare_lines(c: dict | None) -> list[str]:
+    """Table lines of a comparison (none without one)."""
+    if not c:
+        return []
+    unit = "N m" if c["quantity"] == "section_torque_nm" else "deg"
+    return [f"  compared with {c['name']} ({c['where']}):",
+            f"    curve peak {c['curve_peak']:.4g} {unit} at {c['curve_peak_rpm']:.0f} rpm; model peak "
+            f"{c['model_peak']:.4g} {unit} at {c['model_peak_rpm']:.0f} rpm: {c['peak_difference_percent']:+.1f} % "
+            f"and {c['model_peak_rpm'] - c['curve_peak_rpm']:+.0f} rpm; model at the curve's peak speed "
+            f"{c['model_at_curve_peak_rpm']:.4g} {unit}"]

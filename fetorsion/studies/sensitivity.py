@@ -11,12 +11,14 @@ once more, so the band's ends are real model results, interactions included.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from typing import TYPE_CHECKING
 
 from ..description.model import Crank
 
 from ..errors import FetorsionError
+from ..results import from_fields
 from ..lumped_model.lumped import lumped
 from ..description.edit import field_values, with_values
 from ..description.defaults import CHECK_MESH_SIZE, DEFAULT_PARTITION, DEFAULT_WEB_METHOD
@@ -73,6 +75,11 @@ class SensitivityResult:
         return {"name": self.name, "model": self.model, "f1_hz": self.f1_hz, "rows": [asdict(r) for r in self.rows],
                 "band_hz": list(self.band_hz), "measured_hz": self.measured_hz,
                 "measured_inside_band": self.measured_inside}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "SensitivityResult":
+        """The result back from its :meth:`to_dict`."""
+        return from_fields(cls, d)
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""

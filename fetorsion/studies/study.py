@@ -11,7 +11,7 @@ from __future__ import annotations
 import csv
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Literal
@@ -20,6 +20,7 @@ import numpy as np
 
 from ..description.defaults import DEFAULT_STUDY_SAMPLES, LUMPED17
 from ..errors import FetorsionError
+from ..results import from_fields
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from .runner import RunSummary, SampleStore, open_store, run_samples
 from .sampling import MORRIS_LEVELS, StudyInput, salib_problem, sample_matrix, samples_of
@@ -64,6 +65,9 @@ class StudyResult:
     measured_hz: float | None
     summary: RunSummary
     values: list[dict[str, float]] = field(default_factory=list, repr=False)
+    #: The measured value's percentile as a results.json written before it kept the runs' outputs
+    #: said it (:meth:`from_dict`); None when ``Y`` has them.
+    percentile_read: float | None = field(default=None, repr=False)
 
     @property
     def input_names(self) -> list[str]:
@@ -72,6 +76,8 @@ class StudyResult:
     def measured_percentile(self, output: str = "f1") -> float | None:
         """Where the measured first torsional frequency falls: the share (%) of runs below it."""
         y = self.Y.get(output)
+        if y is None and output == "f1" and self.percentile_read is not None:  # read back without the runs
+            return self.percentile_read
         if self.measured_hz is None or y is None or not np.isfinite(y).any():
             return None
         y = y[np.isfinite(y)]
@@ -87,7 +93,23 @@ class StudyResult:
                 "confidence_level": CONF_LEVEL, "measured_hz": self.measured_hz,
                 "measured_percentile": self.measured_percentile(), "errors": self.errors[:100],
                 "computed": self.summary.computed, "stored_before": self.summary.stored_before,
-                "wall_s": self.summary.wall_s, "frequency_unit": "Hz", "severity_unit": "deg"}
+                "wall_s": self.summary.wall_s, "frequency_unit": "Hz", "severity_unit": "deg",
+                # the runs' inputs and outputs (the histogram's); none for a study read back without them
+                **({} if not self.Y else {"X": self.X.tolist(), "Y": {
+                    k: [None if math.isnan(v) else v for v in y.tolist()] for k, y in self.Y.items()}})}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "StudyResult":
+        """The study back from its :meth:`to_dict`. One written before the runs' inputs and outputs
+        were kept (no ``X``, ``Y``) comes back with its runs' count, NaN inputs, no outputs (its
+        histogram cannot be drawn again) and the measured percentile it stated."""
+        inputs = [from_fields(StudyInput, i) for i in d["inputs"]]
+        X = np.array(d["X"], dtype=float) if "X" in d else np.full((d["runs"], len(inputs)), np.nan)
+        Y = {k: np.array(y, dtype=float) for k, y in d.get("Y", {}).items()}
+        summary = RunSummary(total=d["runs"], stored_before=d["stored_before"], computed=d["computed"],
+                             failed=d["failed"], wall_s=d["wall_s"])
+        return from_fields(cls, d, {"held": "held_at_nominal"}, inputs=inputs, X=X, Y=Y, summary=summary,
+                           percentile_read=None if "Y" in d else d.get("measured_percentile"))
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""
@@ -138,10 +160,13 @@ class StudyResult:
         the index bar chart with confidence intervals."""
         import matplotlib.pyplot as plt
 
-        output = output or next(iter(self.Y))
+        output = output or next(iter(self.Y or self.bands))
         idx = self.indices.get(output, {})
         if kind is None:
             kind = "indices" if idx and "not_computed" not in idx else "histogram"
+        if kind == "histogram" and output not in self.Y:
+            raise FetorsionError(f"{self.name}: the runs' {output} are not kept (a study read back from a "
+                                 "results.json written before they were): no histogram")
         if ax is None:
             _, ax = plt.subplots(figsize=(8, 4.5 if kind == "histogram" else 0.3 * len(self.inputs) + 1.8))
         if kind == "indices":

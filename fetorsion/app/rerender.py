@@ -1,0 +1,91 @@
+"""``fetorsion report DIR``: a run's report folder drawn again from its ``results.json`` alone,
+with no FE and nothing recomputed (:func:`fetorsion.report.load.load_run`).
+
+Every matplotlib figure of a section read back is drawn again and written atomically in place;
+report.md and report.html are written again when every section of the run was read back (a
+report is never replaced by one that lacks a section). The FE mode images (drawn from the
+mesh, which the folder does not keep) are kept as they are.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from ..errors import FetorsionError
+from ..io import save_figure_atomic, write_text_atomic
+from ..lumped_model.lumped import PARTITIONS
+from ..report.load import LoadedRun, load_run
+from ..report.outcomes import CampbellOutcome, LumpedOutcome, RunOutcome, SensitivityOutcome
+
+
+@dataclass(frozen=True)
+class Rerendered:
+    """What ``fetorsion report`` wrote (file names), what it kept as it was and why (name -> why),
+    and the sections of the run it could not read back (section -> why)."""
+
+    written: tuple[str, ...]
+    kept: dict[str, str]
+    unread: dict[str, str]
+
+
+def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
+    """Each matplotlib figure of the sections read back: file name -> a function drawing it (an Axes)."""
+    out = {}
+    if isinstance(run.lumped, LumpedOutcome):
+        main = run.lumped.table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
+        out[run.lumped.image] = main.plot
+    if isinstance(run.campbell, CampbellOutcome):
+        out[run.campbell.campbell_image] = run.campbell.campbell.plot
+        out[run.campbell.response_image] = run.campbell.response.plot
+    sens = run.sensitivity
+    if isinstance(sens, SensitivityOutcome):
+        out[sens.image] = sens.sensitivity.plot
+        if sens.studies:
+            out[sens.study_images["montecarlo"]] = lambda: sens.studies["montecarlo"].plot(kind="histogram")
+            out[sens.study_images["sobol"]] = lambda: sens.studies["sobol"].plot(kind="indices")
+    return out
+
+
+def rerender(folder: str | Path) -> Rerendered:
+    """Draw the report folder ``folder`` again from its results.json (see the module docstring).
+
+    Parameters
+    ----------
+    folder : str or Path
+        A folder written by ``fetorsion run``.
+
+    Returns
+    -------
+    Rerendered
+        The files written, those kept and why, the sections not read back.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    folder = Path(folder)
+    loaded: LoadedRun = load_run(folder)
+    written, kept = [], {}
+    for name, draw in figures(loaded.outcome).items():
+        try:
+            ax = draw()
+        except FetorsionError as exc:  # a result read back without what its figure needs
+            kept[name] = str(exc)
+            continue
+        save_figure_atomic(ax.figure, folder / name, close=True, dpi=120)
+        written.append(name)
+    if loaded.unread:
+        for name in ("report.md", "report.html"):
+            kept[name] = "sections not read back: " + ", ".join(loaded.unread)
+        return Rerendered(tuple(written), kept, dict(loaded.unread))
+    from ..report.html import report_html
+    from ..report.markdown import report_markdown
+
+    write_text_atomic(folder / "report.md", report_markdown(loaded.outcome))
+    written.append("report.md")
+    if (folder / "report.html").exists():
+        write_text_atomic(folder / "report.html", report_html(loaded.outcome, folder))
+        written.append("report.html")
+    return Rerendered(tuple(written), kept, {})

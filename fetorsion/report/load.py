@@ -1,0 +1,220 @@
+"""A run's report folder read back: ``results.json`` into the typed :class:`~.outcomes.RunOutcome`
+that the Markdown and the web page present, with no FE and nothing recomputed.
+
+Each section's results come back through their own ``from_dict``
+(:class:`fetorsion.results.Result`); the pictures are the file names the run gave them, found
+in the folder. The description is the one ``results.json`` recorded (its text, read again as
+it was; a folder written before the text was kept: the path its report names).
+
+Read back today: the lumped models, the FE modes, the Campbell diagram and forced response,
+the fillet stress and the sensitivity studies. Not yet: the condensed crank in its bearings
+(its reduced matrices are not in ``results.json``; the report's figures of it come from them),
+the crank's fatigue verdict (its configurations keep each method's answer, not the results the
+answers are computed from), a chain's verdict, the measured comparison and the run-up; such a
+section is named in :attr:`LoadedRun.unread` with the reason.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..description.chain_model import Chain, Network
+from ..description.files import load
+from ..description.model import Crank
+from ..errors import FetorsionError
+from ..results import JSONObject
+from .outcomes import CampbellOutcome, FEOutcome, LumpedOutcome, ModeImage, RunOutcome, SensitivityOutcome, Skipped
+
+#: The file a run writes its figures into.
+RESULTS_FILE = "results.json"
+#: Sections of results.json not read back yet, and why (see the module docstring).
+UNREAD = {"bearings": "the condensed crank's reduced matrices, which its section and figure are drawn from, "
+                      "are not in results.json",
+          "fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them",
+          "verdict": "a chain's verdict cases are not read back yet",
+          "measured": "the measured files' comparison is not read back yet",
+          "transient": "the run-up keeps a decimated signal only"}
+
+
+@dataclass
+class LoadedRun:
+    """A report folder read back: the run's typed outcome, the JSON it was read from, and the
+    sections it holds that were not read back (section -> why)."""
+
+    outcome: RunOutcome
+    results: JSONObject
+    unread: dict[str, str] = field(default_factory=dict)
+
+
+def read_results_json(folder: Path) -> dict[str, object]:
+    """``folder``'s results.json as a dict; a missing folder or file, or one that is not a run's
+    JSON, is refused with one message naming it."""
+    path = Path(folder) / RESULTS_FILE
+    if not Path(folder).is_dir():
+        raise FetorsionError(f"{folder}: no such report folder")
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise FetorsionError(f"{folder}: no {RESULTS_FILE} (not a folder written by fetorsion run)") from None
+    except (OSError, ValueError) as exc:
+        raise FetorsionError(f"{path}: cannot be read as a run's results ({exc})") from None
+    if not isinstance(data, dict) or "timings_s" not in data:
+        raise FetorsionError(f"{path}: not a run's results (no timings_s)")
+    return data
+
+
+def described_path(folder: Path, data: dict[str, object]) -> str:
+    """The description's path as the run named it: recorded in results.json, else (a folder
+    written before it was) the ``Description:`` line of its report.md."""
+    entry = data.get("description")
+    if isinstance(entry, dict):
+        return str(entry["path"])
+    try:
+        found = re.search(r"^Description: `(.+)`$", (Path(folder) / "report.md").read_text(encoding="utf-8"), re.M)
+    except OSError:
+        found = None
+    if found is None:
+        raise FetorsionError(f"{folder}: {RESULTS_FILE} records no description and report.md names none")
+    return found.group(1)
+
+
+def read_description(path: str, text: str | None) -> Crank | Chain | Network:
+    """The description the run read: the file at ``path`` when it still holds the recorded
+    ``text`` (or no text was recorded: a folder written before it was), else ``text`` itself,
+    read from a temporary file (a file it names by a relative path is then not found)."""
+    here = Path(path).is_file()
+    if here and (text is None or Path(path).read_text(encoding="utf-8") == text):
+        return load(path)
+    if text is None:
+        raise FetorsionError(f"{path}: the run's description is no longer there, and results.json does not "
+                             "keep its text (a folder written before it did)")
+    with tempfile.TemporaryDirectory(prefix="fetorsion-description-") as tmp:
+        copy = Path(tmp) / Path(path).name
+        copy.write_text(text, encoding="utf-8")
+        return load(copy)
+
+
+def skipped(crank, data: dict[str, object], key: str) -> Skipped | None:
+    """The reason the run gave for skipping section ``key`` (results.json's ``skipped``); in a
+    folder written before the reasons were kept, the reason the run gives when the description
+    lacks the table the section needs, else None."""
+    if key in data.get("skipped", {}):
+        return Skipped(data["skipped"][key])
+    if "skipped" in data:
+        return None
+    missing = {"campbell": getattr(crank, "excitation", None) is None and "the description has no `[excitation]` table",
+               "sensitivity": not getattr(crank, "uncertainty", ()) and "the description has no `[uncertainty]` table",
+               "fatigue": isinstance(crank, Crank) and crank.excitation is None
+               and "the description has no [excitation] table"}
+    return Skipped(missing[key]) if missing.get(key) else None
+
+
+def _lumped(data: dict[str, object]) -> LumpedOutcome | None:
+    from ..lumped_model.lumped import LumpedResult
+
+    if "lumped" not in data or "chain" in data["lumped"]:
+        return None
+    table = {m: [LumpedResult.from_dict(r) for r in rs] for m, rs in data["lumped"].items()}
+    return LumpedOutcome(table, dict(data.get("lumped_skipped", {})), "lumped_modes_17dof.png")
+
+
+def _fe(data: dict[str, object], pictures: list[str]) -> FEOutcome | None:
+    from ..fe.crankfe import CrankModal
+
+    if "fe" not in data:
+        return None
+    images = tuple(ModeImage(int(m.group(1)) - 1, name) for name in pictures
+                   if (m := re.fullmatch(r"mode_(\d+)_[a-z]+\.png", name)))
+    solid = "solid_recognised.png" if "solid_recognised.png" in pictures else ""
+    return FEOutcome(CrankModal.from_dict(data["fe"]), data["fe"]["mesh_size_m"], images, solid)
+
+
+def _campbell(crank, data: dict[str, object]) -> CampbellOutcome | Skipped | None:
+    import numpy as np
+
+    from ..excitation.campbell import CampbellResult, major_orders
+    from ..response.forced import ResponseResult
+
+    if "campbell" not in data:
+        return skipped(crank, data, "campbell")
+    camp = CampbellResult.from_dict(data["campbell"])
+    if "major_orders" not in data["campbell"] and getattr(crank, "engine", None) is not None:
+        # written before the major orders were kept: the engine's, among the diagram's orders
+        camp.major = tuple(float(q) for q in major_orders(crank.engine) if np.any(np.isclose(camp.orders, q)))
+    return CampbellOutcome(camp, ResponseResult.from_dict(data["response"]), "campbell.png", "response.png")
+
+
+def _sensitivity(crank, data: dict[str, object]) -> SensitivityOutcome | Skipped | None:
+    from ..studies.sensitivity import SensitivityResult
+    from ..studies.study import StudyResult
+
+    if "sensitivity" not in data:
+        return skipped(crank, data, "sensitivity")
+    sens = SensitivityResult.from_dict(data["sensitivity"])
+    studies = {m: StudyResult.from_dict(s) for m, s in data.get("studies", {}).items()}
+    return SensitivityOutcome(sens, list(data["sensitivity"].get("fe_check", [])), "sensitivity.png", studies,
+                              {"montecarlo": "f1_montecarlo.png", "sobol": "f1_sobol.png"})
+
+
+def load_run(folder: str | Path) -> LoadedRun:
+    """Read the report folder ``folder`` back (see the module docstring).
+
+    Parameters
+    ----------
+    folder : str or Path
+        A folder written by ``fetorsion run``.
+
+    Returns
+    -------
+    LoadedRun
+        The typed outcome, the JSON, and the sections not read back with the reason.
+    """
+    folder = Path(folder)
+    data = read_results_json(folder)
+    path = described_path(folder, data)
+    entry = data.get("description")
+    crank = read_description(path, entry.get("text") if isinstance(entry, dict) else None)
+    pictures = sorted(p.name for p in folder.glob("*.png"))
+    driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
+    outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline)
+    outcome.lumped, outcome.fe = _lumped(data), _fe(data, pictures)
+    outcome.campbell = _campbell(crank, data)
+    outcome.sensitivity = _sensitivity(crank, data)
+    for key in ("fatigue", "verdict", "measured", "transient"):
+        if key not in data:
+            setattr(outcome, key, skipped(crank, data, key))
+    unread = {k: why for k, why in UNREAD.items() if k in data}
+    if "lumped" in data and outcome.lumped is None:
+        unread["lumped"] = "a chain's or network's modes are not read back yet"
+    return LoadedRun(outcome, data, unread)
+
+
+def load_results(folder: str | Path) -> RunOutcome:
+    """A run's report folder read back as its typed :class:`~.outcomes.RunOutcome`.
+
+    The sections :func:`load_run` cannot read back yet (the condensed crank in its bearings, a
+    crank's fatigue verdict: see this module's docstring) are left ``None``; :func:`load_run`
+    names them.
+
+    Parameters
+    ----------
+    folder : str or Path
+        A folder written by ``fetorsion run``.
+
+    Returns
+    -------
+    RunOutcome
+        Every section read back, typed, with the pictures' file names.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> run = fetorsion.load_results("results/renault21")
+    >>> round(float(run.campbell.campbell.frequencies_hz[0]), 1)
+    532.9
+    """
+    return load_run(folder).outcome

@@ -1,0 +1,174 @@
+"""Issue 56: a run's results.json read back into its typed outcome, and ``fetorsion report DIR``
+drawing the report folder again from it, with no FE."""
+
+import json
+import math
+import shutil
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import pytest
+
+from conftest import ROOT
+
+from fetorsion.cli.commands import main
+from fetorsion.errors import FetorsionError
+from fetorsion.report import markdown
+from fetorsion.report.load import load_run
+from fetorsion.report.outcomes import CampbellOutcome, FEOutcome, LumpedOutcome, SensitivityOutcome
+from fetorsion.results import Result, from_fields, jsonable
+
+#: Committed run folders (fetorsion run on the reference cranks; results/ is written by scripts/results.sh)
+FOLDERS = ("renault21", "peugeot_glx")
+#: The report's sections read back today, with the function that renders each.
+READ_BACK = (("lumped", markdown.lumped_section), ("fe", markdown.fe_section),
+             ("campbell", markdown.campbell_section), ("sensitivity", markdown.sensitivity_section))
+
+
+def same_json(a, b) -> bool:
+    """JSON equality with NaN equal to NaN."""
+    if isinstance(a, dict):
+        return isinstance(b, dict) and a.keys() == b.keys() and all(same_json(a[k], b[k]) for k in a)
+    if isinstance(a, list):
+        return isinstance(b, list) and len(a) == len(b) and all(same_json(x, y) for x, y in zip(a, b))
+    return a == b or (isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b))
+
+
+def section_results(outcome):
+    """Each section's results objects as (name, result)."""
+    if isinstance(outcome, LumpedOutcome):
+        return [(f"{m}[{k}]", r) for m, rs in outcome.table.items() for k, r in enumerate(rs)]
+    if isinstance(outcome, FEOutcome):
+        return [("modal", outcome.modal)]
+    if isinstance(outcome, CampbellOutcome):
+        return [("campbell", outcome.campbell), ("response", outcome.response)]
+    if isinstance(outcome, SensitivityOutcome):
+        return [("sensitivity", outcome.sensitivity)] + list(outcome.studies.items())
+    return []
+
+
+def twice(result):
+    """``result`` through its own to_dict and from_dict, via JSON text."""
+    return type(result).from_dict(json.loads(json.dumps(jsonable(result.to_dict()))))
+
+
+@pytest.fixture(scope="module", params=FOLDERS)
+def loaded(request):
+    return load_run(ROOT / "results" / request.param)
+
+
+def test_every_section_read_back_renders_the_same_after_a_second_round_trip(loaded):
+    """load -> render is byte-identical to load -> to_dict -> from_dict -> render, section by section."""
+    run = loaded.outcome
+    for key, render in READ_BACK:
+        outcome = getattr(run, key)
+        if outcome is None:
+            continue
+        first = render(run.crank, outcome)
+        again = outcome
+        for name, result in section_results(outcome):
+            assert isinstance(result, Result), name
+            copy = twice(result)
+            assert same_json(jsonable(copy.to_dict()), jsonable(result.to_dict())), name
+            again = _replaced(again, result, copy)
+        assert render(run.crank, again) == first, key
+
+
+def _replaced(outcome, old, new):
+    """``outcome`` with the result ``old`` swapped for ``new`` wherever it holds it."""
+    import dataclasses
+
+    changes = {}
+    for f in dataclasses.fields(outcome):
+        value = getattr(outcome, f.name)
+        if value is old:
+            changes[f.name] = new
+        elif isinstance(value, dict):
+            changes[f.name] = {k: (new if v is old else [new if x is old else x for x in v] if isinstance(v, list)
+                                   else v) for k, v in value.items()}
+    return dataclasses.replace(outcome, **changes)
+
+
+def test_the_json_read_back_is_the_files(loaded):
+    """Each result read back writes the entry it was read from (keys it adds aside: the file
+    predates them)."""
+    data, run = loaded.results, loaded.outcome
+    pairs = [(data["fe"], run.fe.modal)] + [(data["lumped"][m][k], r) for m, rs in run.lumped.table.items()
+                                           for k, r in enumerate(rs)]
+    if isinstance(run.campbell, CampbellOutcome):
+        pairs += [(data["campbell"], run.campbell.campbell), (data["response"], run.campbell.response)]
+    pairs += [(data["sensitivity"], run.sensitivity.sensitivity)]
+    pairs += [(data["studies"][m], s) for m, s in run.sensitivity.studies.items()]
+    for stored, result in pairs:
+        written = jsonable(result.to_dict())
+        assert same_json({k: v for k, v in written.items() if k in stored},
+                         {k: v for k, v in stored.items() if k in written})
+
+
+def test_the_sections_read_back_render_as_the_committed_report():
+    """The committed Renault 21 report's sections that are read back, rendered from its results.json."""
+    run = load_run(ROOT / "results/renault21").outcome
+    text = (ROOT / "results/renault21/report.md").read_text()
+    for key, render in (("lumped", markdown.lumped_section), ("campbell", markdown.campbell_section),
+                        ("sensitivity", markdown.sensitivity_section)):
+        assert "\n".join(render(run.crank, getattr(run, key))) in text, key
+
+
+def test_fetorsion_report_redraws_a_copy_of_the_folder(tmp_path, capsys):
+    folder = tmp_path / "renault21"
+    shutil.copytree(ROOT / "results/renault21", folder)
+    before = (folder / "report.md").read_bytes()
+    t0 = time.perf_counter()
+    assert main(["report", str(folder)]) == 0
+    seconds = time.perf_counter() - t0
+    out = capsys.readouterr().out
+    assert "campbell.png" in out and "not read back: bearings" in out
+    # the condensed crank and the verdict are not read back: the report is kept as the run wrote it
+    assert (folder / "report.md").read_bytes() == before
+    assert (folder / "campbell.png").read_bytes() == (ROOT / "results/renault21/campbell.png").read_bytes()
+    assert seconds < 60, seconds  # about 4 s on a shared 2-core machine; no FE, no solve
+
+
+@pytest.mark.parametrize("make, message", [(lambda p: None, "no such report folder"),
+                                           (lambda p: p.mkdir(), "no results.json"),
+                                           (lambda p: (p.mkdir(), (p / "results.json").write_text("{")),
+                                            "cannot be read")])
+def test_a_bad_folder_is_named(tmp_path, capsys, make, message):
+    folder = tmp_path / "out"
+    make(folder)
+    assert main(["report", str(folder)]) == 2
+    err = capsys.readouterr().err
+    assert str(folder) in err and message in err
+
+
+def test_from_fields_reads_annotations():
+    @dataclass
+    class Inner:
+        x: float
+
+    @dataclass
+    class Outer:
+        a: np.ndarray
+        b: tuple[float, ...]
+        c: dict[str, Inner]
+        d: Inner | None = None
+        e: float = 0.0
+
+    o = from_fields(Outer, {"a": [1, None], "b": [1.5, 2.5], "c": {"k": {"x": 1.5}}, "E": None}, {"e": "E"})
+    assert np.isnan(o.a[1]) and o.b == (1.5, 2.5) and o.c["k"] == Inner(1.5) and o.d is None and np.isnan(o.e)
+
+
+def test_a_network_result_is_refused_by_name():
+    from fetorsion.lumped_model.lumped import LumpedResult
+
+    with pytest.raises(FetorsionError, match="network"):
+        LumpedResult.from_dict({"name": "n", "network": {}})
+
+
+def test_a_study_with_its_runs_round_trips_its_histogram_and_percentile():
+    mc = load_run(ROOT / "results/peugeot_glx").outcome.sensitivity.studies["montecarlo"]
+    rng = np.random.default_rng(1)
+    mc.X, mc.Y, mc.percentile_read = rng.random((len(mc.X), len(mc.inputs))), {"f1": 850 + 100 * rng.random(len(mc.X))}, None
+    copy = twice(mc)
+    assert np.array_equal(copy.Y["f1"], mc.Y["f1"]) and copy.measured_percentile() == mc.measured_percentile()
