@@ -1,5 +1,6 @@
 """Every validation rule names its field, value and rule; good files parse."""
 
+import re
 import copy
 
 import pytest
@@ -159,3 +160,14 @@ def test_a_variant_is_its_base_with_its_own_tables_replaced_whole(tmp_path):
     (tmp_path / "w.toml").write_text('extends = "v.toml"\n[uncertainty]\n"fillets.pin" = [2.0, 4.0]\n')
     w = fetorsion.load(tmp_path / "w.toml")  # a variant of a variant
     assert w.fillets.pin == pytest.approx(3.0e-3) and w.fillets.journal == 0.0 and len(w.uncertainty) == 1
+
+
+@pytest.mark.parametrize("path", ["webs.0.thickness", "webs.9.thickness", "webs.x.thickness", "bearings.1.length"])
+def test_a_change_that_names_no_field_is_refused_by_its_path(path):
+    """with_values (the studies', the calibration's and the design search's one way to a variant):
+    a path whose table is not there (web 0 or 9 of eight, an index that is no number, a table the
+    file lacks) was applied to nothing, so the variant came back equal to its base without a word."""
+    crank = fetorsion.load(GEOMETRY / "peugeot_glx.toml")
+    with pytest.raises(DescriptionError, match=re.escape(path) + ".*names no table"):
+        fetorsion.with_values(crank, {path: 25.0})
+    assert fetorsion.with_values(crank, {"webs.8.thickness": 25.0}).webs[7].thickness == pytest.approx(0.025)

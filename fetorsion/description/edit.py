@@ -19,7 +19,7 @@ from __future__ import annotations
 from collections.abc import Collection
 from typing import TYPE_CHECKING
 
-from ..errors import FetorsionError
+from ..errors import DescriptionError, FetorsionError, Problem
 from .files import parse_description
 from .model import Crank
 from .reader import field_keys, resolve_field
@@ -50,7 +50,21 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     Returns
     -------
     Crank
-        The variant, checked by every rule of the description.
+        The variant, checked by every rule of the description; a path that names no field (an
+        index out of range, a table the description lacks) is refused by name.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")
+    >>> thicker = fetorsion.with_values(crank, {"webs.*.thickness": 25.0})  # mm: the file's unit
+    >>> [round(w.thickness, 4) for w in thicker.webs][:2], crank.webs[0].thickness
+    ([0.025, 0.025], 0.023)
+    >>> fetorsion.with_values(crank, {"webs.0.thickness": 25.0})
+    Traceback (most recent call last):
+    ...
+    fetorsion.errors.DescriptionError: geometry/peugeot_glx.toml: 1 problem(s) in the description
+      - webs.0.thickness = 25.0: names no table of this description (indices are 1-based and within the table's count; `*` is every entry)
     """
     raw = dict(crank.raw)
     for key in ("uncertainty", "distributions", "design"):
@@ -60,11 +74,18 @@ def with_values(crank: Crank, changes: dict[str, float], details: bool = True) -
     if not details:
         for key in ("fillets", "oil_holes"):
             raw.pop(key, None)
+    nowhere = []
     for path, value in changes.items():
         parent_path, _, key = path.rpartition(".")
-        for parent in _copied_along(raw, parent_path):
+        parents = _copied_along(raw, parent_path)
+        if not parents and (details or path.split(".")[0] not in ("fillets", "oil_holes")):
+            nowhere.append(Problem(path, value, "names no table of this description (indices are 1-based and "
+                                   "within the table's count; `*` is every entry)"))
+        for parent in parents:
             for k in field_keys(parent, key):
                 parent[k] = value
+    if nowhere:  # else the change would be lost without a word (webs.0 or webs.9 of eight webs)
+        raise DescriptionError(crank.source, nowhere)
     return parse_description(raw, source=crank.source)
 
 
