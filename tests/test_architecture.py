@@ -173,9 +173,6 @@ API_ONLY = {
     "chart_point": "one point of the computed web chart (scripts/web_chart.py builds the chart from it)",
     "render_gif": "an animated mode shape for slides, beside the report's still images",
     "peak_amplification": "a damped chain's peak amplification: the check of the optimiser on Den Hartog's system",
-    # issue 57: wired into fetorsion run's TVC step next
-    "shaft_verdict": "the shaft sections of a network against UR M68 over the speed range",
-    "coupling_heat": "a network's couplings at the temperature their heat holds",
     # the rotating-frame terms of the condensed crank (fe/rotating.py), tested on a spinning shaft
     # and on point-mass bodies; wired into run_condensed and the coupled response next
     "rotating_frame_matrices": "Coriolis and spin-softening matrices on the Craig–Bampton basis",

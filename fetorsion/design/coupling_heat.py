@@ -23,7 +23,7 @@ heat is the largest over the speed range: the steady temperature of the hottest 
 from __future__ import annotations
 
 from dataclasses import dataclass, field, replace
-from typing import Callable
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -117,7 +117,7 @@ def held_temperature(coupling: Coupling, heat_w: float) -> float:
     return coupling.ambient_c + (coupling.max_temperature_c - coupling.ambient_c) * heat_w / coupling.permissible_power
 
 
-def at_temperatures(net: Network, temperatures_c) -> Network:
+def at_temperatures(net: Network, temperatures_c: Sequence[float] | np.ndarray) -> Network:
     """The network with each coupling's spring at a temperature: C(T) and η = ψ(T)/2π. The
     couplings' springs are the last of ``net.shafts``, in the couplings' order (as read)."""
     first = len(net.shafts) - len(net.couplings)
@@ -128,7 +128,8 @@ def at_temperatures(net: Network, temperatures_c) -> Network:
     return replace(net, shafts=tuple(shafts))
 
 
-def coupling_loads(net: Network, setup: ResponseSetup, temperatures_c) -> tuple[np.ndarray, np.ndarray, ResponseResult]:
+def coupling_loads(net: Network, setup: ResponseSetup,
+                   temperatures_c: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.ndarray, ResponseResult]:
     """(heat W (speeds, couplings), half-range torque N·m (speeds, couplings), the response) of the
     network's couplings at ``temperatures_c``, from the forced response of ``setup``."""
     response = solve_response(setup)

@@ -42,7 +42,7 @@ class SectionStress:
     stress_pa: np.ndarray
     tau_c_pa: np.ndarray
     tau_t_pa: np.ndarray
-    barred: list[dict] = field(default_factory=list)
+    barred: list[dict[str, float | str | bool]] = field(default_factory=list)
 
     @property
     def utilisation(self) -> np.ndarray:
@@ -65,7 +65,7 @@ class ShaftVerdict:
     rpm: np.ndarray
     rated_rpm: float
     sections: list[SectionStress]
-    barred: list[dict]
+    barred: list[dict[str, float | str | bool]]
     propeller_line: bool = True
     notes: list[str] = field(default_factory=list)
 
