@@ -34,6 +34,7 @@ from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DE
                                     DEFAULT_WEB_METHOD)
 from ..report.markdown import report_markdown
 from ..report.outcomes import RunOutcome, Skipped
+from .tvc import is_propulsion_line, step_tvc
 from .background import background_executor, needs_throw_fe, sensitivity_studies, throw_fe_results
 from .steps import (progress, step_bearings, step_campbell, step_fatigue, step_fe, step_lumped, step_measured,
                     step_sensitivity, step_transient, step_verdict)
@@ -41,11 +42,12 @@ from .steps import (progress, step_bearings, step_campbell, step_fatigue, step_f
 if TYPE_CHECKING:
     from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome,
                                    LumpedOutcome, MeasuredOutcome, SensitivityOutcome, TransientOutcome,
-                                   VerdictOutcome)
+                                   TVCOutcome, VerdictOutcome)
 
     #: What a step returns: the outcome of the RunOutcome field it fills
     StepOutcome = (LumpedOutcome | ChainOutcome | FEOutcome | BearingsOutcome | CampbellOutcome | SensitivityOutcome
-                   | VerdictOutcome | FatigueOutcome | MeasuredOutcome | TransientOutcome | Skipped | None)
+                   | VerdictOutcome | FatigueOutcome | MeasuredOutcome | TransientOutcome | TVCOutcome | Skipped
+                   | None)
     #: A step of the run: (what the progress line says, the RunOutcome field its outcome fills, the step)
     RunStep = tuple[str, str, Callable[["RunContext"], StepOutcome]]
 
@@ -313,6 +315,7 @@ def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_ST
         features = solid_features(crank)
     if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
+    steps = _with_tvc(tuple(steps), crank)
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out),
                              driveline="" if network is None else network.name)
@@ -328,6 +331,19 @@ def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_ST
         _run_steps(ctx, steps)
         _write_report(ctx)
     return outcome
+
+
+#: The propulsion TVC step, added after the verdict for a network with a propeller or shaft sections
+#: (other runs keep their steps and timings as they were).
+TVC_STEP = ("propulsion TVC: shaft sections, barred ranges, coupling heat", "tvc", step_tvc)
+
+
+def _with_tvc(steps: tuple, crank) -> tuple:
+    """``steps`` with :data:`TVC_STEP` after the verdict's (or last) when ``crank`` is a propulsion line."""
+    if not is_propulsion_line(crank) or any(s[2] is step_tvc for s in steps):
+        return steps
+    at = next((k + 1 for k, s in enumerate(steps) if s[2] is step_verdict), len(steps))
+    return steps[:at] + (TVC_STEP,) + steps[at:]
 
 
 def _crank_in_driveline(crank, path, options: RunOptions, steps) -> tuple[Network | None, Crank | Chain | Network]:

@@ -476,6 +476,9 @@ COUPLINGS = Section("chain.couplings", "Network form: a flexible coupling from i
     Field("permissible_power_w", "the sheet's permissible heat (power loss) P_KV, W; optional", ">= 0"),
     Field("ambient_c", "the ambient temperature at which P_KV holds, °C", "a finite number; needs "
           "`permissible_power_w`"),
+    Field("max_temperature_c", "the rubber's permissible continuous temperature, °C, which P_KV reaches from "
+          "`ambient_c` (the heat balance, docs/propulsion-tvc.md); default `warm_temperature_c`",
+          "> `ambient_c`; needs `permissible_power_w`"),
     Field("name", "label; default `coupling`", "a string"),
     Field("source", "the data sheet", "a string"),
 ), array=True)

@@ -213,7 +213,8 @@ class Coupling:
     stiffness (N·m/rad) and relative damping ψ at the sheet's nominal ``temperature_c`` and, where
     given, at ``warm_temperature_c`` (linear between them, :func:`sheet_value`); the network takes
     them at ``operating_temperature_c``. Its permissible vibratory torque (N·m) and permissible heat
-    P_KV (W, at the ambient ``ambient_c``); 0 where the sheet gives none."""
+    P_KV (W, at the ambient ``ambient_c``, bringing the rubber to ``max_temperature_c``); 0 where
+    the sheet gives none."""
 
     i: int
     j: int
@@ -229,6 +230,8 @@ class Coupling:
     ambient_c: float = math.nan
     name: str = ""
     source: str = ""
+    #: The rubber's permissible continuous temperature, °C: where P_KV brings it from ``ambient_c``.
+    max_temperature_c: float = math.nan
 
     def stiffness_at(self, temperature_c: float) -> float:
         """C_Tdyn at a temperature, N·m/rad."""

@@ -496,12 +496,23 @@ def _couplings(t: Table, cranks, index: dict, problems: list[Problem]) -> list[C
         torque = ct.number("permissible_vibratory_torque_nm", 0.0, nonnegative=True)
         power = ct.number("permissible_power_w", 0.0, nonnegative=True)
         ambient = ct.number("ambient_c", math.nan) if "ambient_c" in ct.data else math.nan
-        if "ambient_c" in ct.data and not power > 0:
-            problems.append(Problem(f"{ct.path}.ambient_c", ct.data["ambient_c"], "needs permissible_power_w "
-                                    "(the ambient temperature at which the sheet's P_KV holds)"))
+        t_max = _max_temperature(ct, power, ambient, t1, problems)
         name, source = ct.text("name", "coupling"), ct.text("source")
         ct.finish()
         if pair and not any(p.field.startswith(f"{ct.path}.") for p in problems):
             out.append(Coupling(pair[0], pair[1], k, psi, t0, t_op, k1, psi1, t1, torque, power, ambient, name,
-                                source))
+                                source, t_max))
     return out
+
+
+def _max_temperature(ct: Table, power: float, ambient: float, warm: float, problems: list[Problem]) -> float:
+    """A coupling's ``max_temperature_c`` (default its warm temperature), with ``ambient_c`` checked:
+    both belong to the sheet's P_KV, and the maximum must lie above the ambient."""
+    for key in ("ambient_c", "max_temperature_c"):
+        if key in ct.data and not power > 0:
+            problems.append(Problem(f"{ct.path}.{key}", ct.data[key], "needs permissible_power_w (the heat balance "
+                                    "of the sheet's P_KV)"))
+    t_max = ct.number("max_temperature_c", warm) if "max_temperature_c" in ct.data else warm
+    if math.isfinite(t_max) and math.isfinite(ambient) and not t_max > ambient:
+        problems.append(Problem(f"{ct.path}.max_temperature_c", t_max, f"must be above ambient_c ({ambient:g})"))
+    return t_max

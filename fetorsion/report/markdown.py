@@ -15,6 +15,7 @@ from ..description.model import Crank
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
 from .fatigue import fatigue_section
+from .tvc import tvc_section
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 from .summary import summary_lines
@@ -343,7 +344,8 @@ def transient_section(crank, outcome: TransientOutcome | Skipped) -> list[str]:
 
 
 SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearings_section), ("campbell", campbell_section),
-            ("sensitivity", sensitivity_section), ("verdict", verdict_section), ("fatigue", fatigue_section),
+            ("sensitivity", sensitivity_section), ("verdict", verdict_section), ("tvc", tvc_section),
+            ("fatigue", fatigue_section),
             ("measured", measured_section), ("transient", transient_section))
 
 

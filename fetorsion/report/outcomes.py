@@ -16,6 +16,8 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..description.model import Crank
     from ..description.chain_model import Chain, Network
     from ..design.assessment import CrankAssessment
+    from ..design.coupling_heat import CouplingHeat
+    from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
     from ..design.stress import StressResult
@@ -38,6 +40,24 @@ class Skipped:
     """An analysis of the run that had nothing to work on, and why (a sentence)."""
 
     reason: str
+
+
+@dataclass(frozen=True)
+class TVCOutcome:
+    """A propulsion line's torsional vibration calculation (docs/propulsion-tvc.md): the network at
+    its couplings' settled temperatures (``network``: the mass-elastic data; ``modes``: its natural
+    frequencies), the forced response with the propellers' and engine's excitation, the shaft
+    sections against UR M68 (None: no section stated), the couplings' heat (None: no coupling), the
+    pictures' file names ("" where none) and what is assumed, one sentence each."""
+
+    network: Network
+    modes: LumpedResult
+    response: ResponseResult
+    shafts: ShaftVerdict | None
+    couplings: CouplingHeat | None
+    shaft_image: str
+    heat_image: str
+    assumptions: tuple[str, ...]
 
 
 @dataclass(frozen=True)
@@ -190,6 +210,8 @@ class RunOutcome:
     fatigue: FatigueOutcome | Skipped | None = None
     measured: MeasuredOutcome | Skipped | None = None
     transient: TransientOutcome | Skipped | None = None
+    #: A network with a propeller or shaft sections: its TVC (None otherwise: no section)
+    tvc: TVCOutcome | Skipped | None = None
     timings_s: dict[str, float] | None = None
     #: The report folder the run wrote
     folder: str = ""

@@ -34,7 +34,7 @@ from ..lumped_model.network import group_place, speed_factors
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .forced_plots import compare_lines, plot_response
 from ..results import from_fields
-from .synthesis import extremes, waveform
+from .synthesis import grouped_extremes, waveform
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_SPEED_STEPS, DEFAULT_WEB_METHOD
 
 if TYPE_CHECKING:
@@ -278,6 +278,8 @@ class ResponseSetup:
     #: Coriolis matrix per unit spin speed (DOF × DOF, skew): a model in the crank's rotating
     #: frame (the condensed crank); None for a chain (torsion about the spin axis has none).
     gyroscopic: np.ndarray | None = None
+    #: [(order indices, period rad)] of sources whose periods differ (:mod:`.propulsion`); None: one
+    order_groups: tuple | None = None
 
     def at_speeds(self, index) -> "ResponseSetup":
         """The same setup at a subset of its speeds (``index`` into ``rpm``: a slice or indices),
@@ -513,7 +515,7 @@ def solve_response(setup: ResponseSetup, dampers: Sequence[Damper] = ()) -> Resp
     theta, omegas, system = solve_theta(setup, dampers)
 
     def synth(z):  # z: (..., orders) complex -> (half peak-to-peak, largest |value|) over a cycle
-        top, bottom = extremes(z, orders, period)
+        top, bottom = grouped_extremes(z, orders, period, setup.order_groups)
         return 0.5 * (top - bottom), np.maximum(top, -bottom)
 
     p, f = setup.pulley, setup.flywheel

@@ -61,6 +61,23 @@ def extremes(z: np.ndarray, orders: np.ndarray, cycle: float) -> tuple[np.ndarra
     return out[0], out[1]
 
 
+def grouped_extremes(z: np.ndarray, orders: np.ndarray, cycle: float,
+                     groups: Sequence[tuple[np.ndarray, float]] | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(max, min) of x(θ) = Re Σ z_q e^{iqθ} whose orders fall in ``groups`` of incommensurate
+    periods ([(indices into ``orders``, the group's period rad)]; None: one group of period
+    ``cycle``, :func:`extremes`). The groups' relative phase takes every value in a long run
+    (Kronecker's theorem for rationally independent frequencies), so the supremum of the sum is
+    the sum of the groups' maxima and its infimum the sum of their minima."""
+    if groups is None:
+        return extremes(z, orders, cycle)
+    z = np.asarray(z)
+    top = bottom = np.zeros(z.shape[:-1])
+    for index, period in groups:
+        t, b = extremes(z[..., index], orders[index], period)
+        top, bottom = top + t, bottom + b
+    return top, bottom
+
+
 def half_peak_to_peak(z: np.ndarray, orders: np.ndarray, cycle: float) -> np.ndarray:
     """Half the peak-to-peak of the synthesised signal: the vibratory amplitude."""
     top, bottom = extremes(z, orders, cycle)

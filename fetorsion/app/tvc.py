@@ -1,0 +1,79 @@
+"""The run's propulsion TVC step (docs/propulsion-tvc.md): for a network with a propeller or shaft
+sections, the forced response with the propellers' blade orders (and the engine's), the couplings
+at the temperature their heat holds, every shaft section against UR M68 and the barred ranges.
+
+``ctx`` is the run's :class:`fetorsion.app.run.RunContext` (named, not imported: :mod:`.run`
+imports this module to list its steps).
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..description.chain_model import Network
+from ..design.coupling_heat import CouplingHeat, at_temperatures, coupling_heat
+from ..design.shaft_verdict import shaft_verdict
+from ..lumped_model.lumped import lumped
+from ..report.outcomes import Skipped, TVCOutcome
+from ..response.forced import ResponseSetup, response_setup, solve_response
+from ..response.propulsion import DEFAULT_SPEED_RATIOS, propeller_setup
+
+
+def is_propulsion_line(model) -> bool:
+    """A network with a propeller or a shaft section: the run adds its TVC step."""
+    return isinstance(model, Network) and bool(model.propellers or any(s.section for s in model.shafts))
+
+
+def tvc_setup(net: Network) -> ResponseSetup:
+    """The network's forced-response setup: its propellers' blade orders with its engine's where it
+    has both, its engine's alone without a propeller's shares."""
+    if any(p.order_shares for p in net.propellers):
+        return propeller_setup(net)
+    return response_setup(net)
+
+
+def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
+    """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges."""
+    net = ctx.crank
+    if not is_propulsion_line(net):
+        return None
+    if not any(p.order_shares for p in net.propellers) and net.excitation is None:
+        return Skipped("no excitation: the network has neither propeller blade_order_shares nor [engine] and "
+                       "[excitation] tables")
+    heat: CouplingHeat | None = coupling_heat(net, tvc_setup) if net.couplings else None
+    settled = at_temperatures(net, heat.temperature_c) if heat else net
+    response = heat.response if heat else solve_response(tvc_setup(net))
+    shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
+    ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
+                                       "section_torque_nm": response.section_torque_nm.tolist(),
+                                       "sections": list(response.section_labels)},
+                          "shafts": shafts.to_dict() if shafts else None,
+                          "couplings": heat.to_dict() if heat else None}
+    return TVCOutcome(settled, lumped(settled), response, shafts, heat,
+                      ctx.save(shafts.plot().figure, "tvc_shafts.png") if shafts else "",
+                      ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
+                      tuple(assumptions(net, response)))
+
+
+def assumptions(net: Network, response) -> list[str]:
+    """What the TVC assumes, one sentence each (the report's list)."""
+    out = [f"Damping: {response.damping_text()} (the modal ratio on every elastic mode"
+           + ("; no [excitation] table states it: fetorsion's default)" if net.excitation is None else ")")]
+    for p in net.propellers:
+        out.append(f"Propeller '{p.name}': damping by the {p.damping_model.replace('_', ' ')} linearised at "
+                   f"{p.damping_speed * 30 / math.pi:.1f} rpm, held at every speed; inertia with "
+                   f"{100 * p.entrained_share:g} % entrained water; blade orders {p.blades} × k at "
+                   f"{', '.join(f'{100 * s:g} %' for s in p.order_shares) or 'no'} of the law's mean torque")
+    if net.propellers and net.excitation is not None:
+        out.append("Blade orders in phase with the engine's reference (blade 1 at its reference angle at cylinder 1's "
+                   "firing TDC): the propeller's keying is not known; incommensurate sources are summed at their "
+                   "worst relative phase")
+    if net.excitation is None:
+        out.append(f"Speed range: {DEFAULT_SPEED_RATIOS[0]:g} to {DEFAULT_SPEED_RATIOS[1]:g} of the propeller's rated "
+                   "speed (no [excitation] range stated)")
+    out.append("Shaft stresses nominal on the plain section (stress raisers in C_K); UR M68's formula lines as "
+               "commonly restated, not read in the rule's text (docs/propulsion-tvc.md)")
+    if net.couplings:
+        out.append("Coupling temperature: T = T_amb + (T_max − T_amb) P/P_KV with P the largest heat over the speeds; "
+                   "the sheet's C and ψ linear between its two temperatures")
+    return out

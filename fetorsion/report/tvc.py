@@ -1,0 +1,49 @@
+"""The report's propulsion TVC section (:class:`~fetorsion.report.outcomes.TVCOutcome`), in the
+order a class reviewer reads a torsional vibration calculation: the mass-elastic data, the natural
+frequencies, the shaft stresses against UR M68 with the barred ranges, the couplings' heat at
+their settled temperature, and what is assumed (docs/propulsion-tvc.md)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from .outcomes import Skipped, TVCOutcome
+
+if TYPE_CHECKING:
+    from ..description.chain_model import Network
+
+
+def mass_elastic_lines(net: Network) -> list[str]:
+    """The mass-elastic table: each station's inertia (in water for a propeller) and absolute
+    damping, each shaft's and coupling's stiffness and section."""
+    lines = ["| station | inertia [kg m²] | damping to ground [N m s/rad] |", "|---|---|---|"]
+    damping = net.absolute_damping or (0.0,) * len(net.labels)
+    lines += [f"| {s} | {j:.6g} | {c:.4g} |" for s, j, c in zip(net.labels, net.inertias, damping)]
+    lines += ["", "| between | stiffness [N m/rad] | loss factor | section |", "|---|---|---|---|"]
+    for sh in net.shafts:
+        b = net.labels[sh.j] if sh.j >= 0 else "ground"
+        sec = sh.section
+        what = "" if sec is None else (f"d {sec.diameter * 1e3:.0f} mm, bore {sec.bore * 1e3:.0f} mm, σ_B "
+                                       f"{sec.tensile_strength / 1e6:.0f} N/mm², {sec.feature} (C_K {sec.ck:g})")
+        lines.append(f"| {net.labels[sh.i]} – {b} | {sh.stiffness:.6g} | {sh.loss_factor:.4g} | {what} |")
+    lines += [f"| {net.labels[g.i]} – {net.labels[g.j]} | gear, ratio {g.ratio:g} | | |" for g in net.gears]
+    return lines
+
+
+def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
+    """The TVC section of the report (module docs)."""
+    lines = ["## Propulsion line: torsional vibration calculation", ""]
+    if isinstance(outcome, Skipped):
+        return lines + [f"Not computed: {outcome.reason}.", ""]
+    res = outcome.modes
+    lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures.", ""]
+    lines += mass_elastic_lines(outcome.network) + ["", "### Natural frequencies", ""]
+    lines += [", ".join(f"{f:.4g} Hz ({60 * f:.1f} cpm)" for f in res.frequencies_hz), ""]
+    if outcome.shafts is not None:
+        lines += ["### Shaft stresses against IACS UR M68, barred speed ranges", "", "```", outcome.shafts.table(),
+                  "```", "", f"![]({outcome.shaft_image})", ""]
+    if outcome.couplings is not None:
+        lines += ["### Flexible couplings: vibratory torque and heat", "", "```", outcome.couplings.table(), "```",
+                  "", f"![]({outcome.heat_image})", ""]
+    lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
+    return lines

@@ -1,0 +1,81 @@
+"""``fetorsion run`` on a network with a propeller, a data-sheet coupling and a shaft section: the
+report's TVC section (mass-elastic data, natural frequencies, shaft stresses against UR M68, the
+coupling's heat at its settled temperature, what is assumed), and nothing of it for a network
+without these fields."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+from conftest import ROOT
+from fetorsion.app.run import FAST_STEPS, RunOptions, run
+
+# an illustrative line (the numbers of tests/test_coupling_heat.py, a 60 mm keyed shaft)
+LINE = '''[chain]
+name = "illustrative propulsion line"
+
+[[chain.stations]]
+name = "engine"
+inertia_kgm2 = 50.0
+
+[[chain.stations]]
+name = "flange"
+inertia_kgm2 = 10.0
+
+[[chain.stations]]
+name = "propeller"
+inertia_kgm2 = 200.0
+
+[[chain.couplings]]
+between = ["engine", "flange"]
+stiffness_nm_per_rad = 262.5e3
+relative_damping = 1.13
+temperature_c = 20.0
+warm_stiffness_nm_per_rad = 183.75e3
+warm_relative_damping = 0.79
+warm_temperature_c = 80.0
+permissible_power_w = 50.0
+ambient_c = 40.0
+permissible_vibratory_torque_nm = 1500.0
+
+[[chain.shafts]]
+between = ["flange", "propeller"]
+stiffness_nm_per_rad = 5.0e6
+diameter_m = 0.06
+tensile_strength_pa = 600e6
+feature = "keyway_tapered"
+
+[[chain.propellers]]
+station = "propeller"
+blades = 4
+entrained_water_share = 0.0
+rated_torque_nm = 60e3
+rated_speed_rpm = 300.0
+damping_speed_rpm = 200.0
+blade_order_shares = [0.05]
+'''
+
+
+def test_a_propulsion_line_gets_the_tvc_section(tmp_path):
+    (tmp_path / "line.toml").write_text(LINE)
+    out = Path(run(tmp_path / "line.toml", tmp_path / "r", steps=FAST_STEPS, options=RunOptions(html=False)).folder)
+    text = (out / "report.md").read_text()
+    for heading in ("## Propulsion line: torsional vibration calculation", "### Mass-elastic data",
+                    "### Natural frequencies", "### Shaft stresses against IACS UR M68",
+                    "### Flexible couplings: vibratory torque and heat", "### What is assumed"):
+        assert heading in text
+    for image in ("tvc_shafts.png", "tvc_coupling_heat.png"):
+        assert f"![]({image})" in text and (out / image).stat().st_size > 10_000
+    res = json.loads((out / "results.json").read_text())["tvc"]
+    row = res["couplings"]["rows"][0]
+    assert 40.0 < row["temperature_c"] < 80.0 and res["couplings"]["iterations"] >= 1
+    assert res["shafts"]["sections"][0]["label"] == "flange-propeller" and res["shafts"]["verdict"] == "pass"
+
+
+def test_a_network_without_propulsion_fields_has_no_tvc_section(tmp_path):
+    out = Path(run(ROOT / "examples/networks/friswell_9_6_3.toml", tmp_path / "r", steps=FAST_STEPS,
+                   options=RunOptions(html=False)).folder)
+    text = (out / "report.md").read_text()
+    assert "Propulsion line" not in text and "propulsion TVC" not in text
+    assert "tvc" not in json.loads((out / "results.json").read_text())
