@@ -60,6 +60,12 @@ def run_modal(crank, mesh_size: float = DEFAULT_MESH_SIZE, modes: int = DEFAULT_
     CrankModal
         A :class:`fetorsion.fe.modal.ModalResult` (frequencies in Hz, labelled mode shapes) that
         also holds the crank and its mesh.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> modal = fetorsion.run_modal(fetorsion.load("geometry/peugeot_glx.toml"), mesh_size=0.02)  # doctest: +SKIP
+    >>> modal.first_torsional()  # Hz, free-free; measured 905.9 Hz  # doctest: +SKIP
     """
     from .fe.crankfe import run_modal as _run
 

@@ -18,7 +18,17 @@ class Problem:
 
 
 class FetorsionError(Exception):
-    """A mistake in what the user asked for (input file, option); never a bug."""
+    """A mistake in what the user asked for (input file, option); never a bug.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> try:
+    ...     fetorsion.load("geometry/no_such_crank.toml")
+    ... except fetorsion.FetorsionError as e:  # the CLI prints it without a traceback
+    ...     print(type(e).__name__)
+    DescriptionError
+    """
 
 
 class GeometryError(FetorsionError):
@@ -46,6 +56,16 @@ class DescriptionError(FetorsionError, ValueError):
     """A crank or chain description breaks one or more rules.
 
     Every problem is collected before raising, so the user fixes them in one go.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")
+    >>> try:
+    ...     fetorsion.with_values(crank, {"webs.*.thickness": -1.0, "journals.1.diameter": 0.0})
+    ... except fetorsion.DescriptionError as e:  # every broken rule at once, each by its field
+    ...     print(len(e.problems), e.problems[0])
+    9 journals.1.diameter = 0.0: must be > 0
     """
 
     def __init__(self, source: str, problems: list[Problem]):

@@ -437,3 +437,17 @@ def test_every_fetorsion_import_of_the_scripts_examples_and_tests_resolves():
                                for a in node.names if a.name != "*" and not hasattr(module, a.name)
                                and importlib.util.find_spec(f"{node.module}.{a.name}") is None]
     assert not broken, "\n".join(broken)
+
+
+def test_every_public_function_and_class_shows_an_example():
+    """Issue 56, examples first: every function and class ``fetorsion`` exports has a ``>>>``
+    example in its docstring (run as a doctest by the default suite; the FE ones are marked to
+    skip, their lines still the way to call them). Constants (``PARTITIONS``) hold no docstring."""
+    import inspect
+
+    import fetorsion
+
+    exported = [(n, getattr(fetorsion, n)) for n in fetorsion.__all__]
+    without = [n for n, o in exported if (inspect.isfunction(o) or inspect.isclass(o))
+               and ">>>" not in (inspect.getdoc(o) or "")]
+    assert not without, without

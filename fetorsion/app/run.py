@@ -296,6 +296,16 @@ def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_ST
     -------
     RunOutcome
         Every section's typed outcome, each step's time, and the report folder (``folder``).
+
+    Examples
+    --------
+    The main job (3D FE, the crank in its bearings, Campbell, the verdict; about a minute on two
+    cores for the Renault 21); a chain or network file takes seconds:
+
+    >>> import fetorsion
+    >>> outcome = fetorsion.run("examples/networks/friswell_9_6_3.toml", "out/friswell")  # doctest: +SKIP
+    >>> sorted(p.name for p in Path("out/friswell").iterdir())[:3]  # doctest: +SKIP
+    >>> fetorsion.load_results("out/friswell").lumped.chain.frequencies_hz  # doctest: +SKIP
     """
     import dataclasses
 

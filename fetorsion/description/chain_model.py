@@ -28,6 +28,14 @@ class Chain:
     carries cylinder c + 1 (its inertia must already hold that cylinder's rotating and mean
     reciprocating inertia; the reciprocating mass that makes the inertia torque is
     ``excitation.reciprocating_mass``).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> chain = fetorsion.load("examples/mendes2008/mwm6_chain.toml")
+    >>> res = fetorsion.lumped(chain)  # its own stations: no partition of a crank
+    >>> res.dof, len(res.frequencies_hz) == res.dof - 1
+    (9, True)
     """
 
     name: str
@@ -185,6 +193,14 @@ class Network:
     the cylinders act on ``cylinder_stations`` (0-based, as a :class:`Chain`'s). The first
     station is the "pulley" of the tables: the reference of the speed (its speed is the
     engine's).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> line = fetorsion.load("examples/networks/gunter_chen_8_1_marine_turbine.toml")
+    >>> res = fetorsion.lumped(line)  # one coordinate per gear group's station after the gears
+    >>> print(", ".join(f"{60 * f:.1f}" for f in res.frequencies_hz[:3]))  # cycles per minute, as Gunter & Chen print them
+    177.7, 220.2, 1282.6
     """
 
     name: str

@@ -445,6 +445,13 @@ class Crank:
     The shaft is stacked along +x from the front (pulley) end: ``front`` sections,
     then journal 1, web 1, pin 1, web 2, journal 2, ... journal N+1, then ``rear``
     sections. Webs 2i-1 and 2i belong to throw i.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/peugeot_glx.toml")  # lengths in the file's unit, SI here
+    >>> crank.engine.cylinders, len(crank.journals), crank.journals[0].diameter
+    (4, 5, 0.06)
     """
 
     name: str

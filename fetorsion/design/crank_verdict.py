@@ -349,6 +349,16 @@ def run_crank_verdict(crank: Crank, cc: CondensedCrank, setup: ResponseSetup, fi
         Assess the ``fe`` path too (its load cycles cost about a second a configuration).
     progress : callable, optional
         Called with a line of text as each configuration starts (the run's progress lines).
+
+    Examples
+    --------
+    The run's own verdict step builds every argument; ``fetorsion run`` (:func:`fetorsion.run`)
+    is the way to it for a description, and a second run finds the FE parts stored:
+
+    >>> import fetorsion
+    >>> outcome = fetorsion.run("geometry/renault21.toml", "out/renault21")  # doctest: +SKIP
+    >>> v = outcome.fatigue.verdict  # doctest: +SKIP
+    >>> v.method, v.passes  # doctest: +SKIP
     """
     from ..response.coupled import bending_damping
     from .m53 import m53_geometry

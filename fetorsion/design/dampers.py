@@ -286,6 +286,13 @@ def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_I
     DamperResult
         The Den Hartog and optimised dampers (inertia kg·m², stiffness N·m/rad, damping
         N·m·s/rad) and the response with each.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> res = fetorsion.run_damper(fetorsion.load("geometry/peugeot_glx_engine.toml"), optimise=False)
+    >>> res.kind, res.mu, res.den_hartog is not None
+    ('rubber', 0.25, True)
     """
     if objective not in OBJECTIVES:
         raise ParameterError("objective", f"{objective!r}: choose {' or '.join(OBJECTIVES)}")

@@ -518,6 +518,16 @@ def run_fatigue(locations, material: Material | FatigueMaterial | None = None, m
     Where a location carries histories, its ``criteria`` hold the Crossland and Findley safety
     factors with f₋₁ = S_e (the location's fully corrected endurance limit) and t₋₁ = S_e/√3
     (von Mises), on the local stresses (K_t times the histories).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> from fetorsion.design.fatigue import LocationStress
+    >>> pin = LocationStress("P1 fillet", "pin-fillet", diameter=0.045, notch_radius=0.0025, bending_alt=30e6,
+    ...                      torsion_alt=40e6, kt_bending=2.5, kt_torsion=1.8)  # nominal stresses, Pa
+    >>> res = fetorsion.run_fatigue([pin])  # IACS UR M53: sigma_V = sqrt((2.5 x 30)^2 + 3 (1.8 x 40)^2) MPa
+    >>> print(f"{res.governing.equivalent_alternating / 1e6:.2f} MPa")
+    145.52 MPa
     """
     if method not in METHODS:
         raise FetorsionError(f"method must be one of {', '.join(METHODS)}, got {method!r}")

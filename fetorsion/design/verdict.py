@@ -223,6 +223,17 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     VerdictResult
         One row per case: worst stress (Pa) or section torque (N·m) against the limit, barred
         speed ranges (rpm), damper heat (W).
+
+    Examples
+    --------
+    >>> from dataclasses import replace
+    >>> import fetorsion
+    >>> from fetorsion.description.model import Limits
+    >>> chain = fetorsion.load("examples/mendes2008/mwm6_chain.toml")  # its file states no [limits]: give some
+    >>> chain = replace(chain, limits=Limits(continuous_torque=3000.0, transient_torque=6000.0, source="example"))
+    >>> v = fetorsion.run_verdict(chain, optimise=False)
+    >>> [r["case"] for r in v.rows()][:2]
+    ['without damper', 'Den Hartog rubber damper (mu = 0.25)']
     """
     from ..response.forced import misfire_harmonics, response_setup, solve_response
     from .dampers import run_damper

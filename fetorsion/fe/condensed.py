@@ -429,6 +429,15 @@ def run_condensed(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, ritz_block
         :func:`fetorsion.fe.crankfe.run_modal` ``ritz``).
     stage : callable, optional
         Called with each stage's name as it starts (:data:`CONDENSE_STAGES`).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> crank = fetorsion.load("geometry/renault21.toml")
+    >>> cc = fetorsion.run_condensed(crank, mesh_size=0.02)  # doctest: +SKIP
+    >>> cc.labels[:3], cc.reduced.size < cc.full_dofs  # doctest: +SKIP
+    (('front', 'J1', 'P1'), True)
+    >>> cc.modes("bearings").first_torsional()  # doctest: +SKIP
     """
     t0 = time.perf_counter()
     sys_ = system or build_system(crank, mesh_size, mesh, backend, end_ties, stage=stage)

@@ -89,6 +89,15 @@ class LumpedResult:
     pin_weights : ndarray, shape (cylinders, stations), or None
         Share of each crank pin in each station (None for a chain file): where the
         cylinder torques act.
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> res = fetorsion.lumped(fetorsion.load("geometry/renault21.toml"), dof=17)
+    >>> res.labels[0], len(res.inertias_kgm2), len(res.stiffnesses_nm_per_rad)
+    ('J1', 17, 16)
+    >>> print(res.table().splitlines()[0])
+    Renault 21 (F-type 1.7 L) crank + flywheel + pulley + pistons + rods: 17-DOF (carter webs) free-free torsional modes
     """
 
     name: str

@@ -349,6 +349,20 @@ def run_modal_fit(functions: Sequence[MeasuredFunction], band_hz: tuple[float, f
     Returns
     -------
     ModalEstimate
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import fetorsion
+    >>> from fetorsion.measured.uff import MeasuredFunction
+    >>> f = np.linspace(50.0, 150.0, 2001)
+    >>> wn, w = 2 * np.pi * 100.0, 2 * np.pi * f
+    >>> h = 1 / (wn**2 - w**2 + 2j * 0.02 * wn * w)  # one mode: 100 Hz, 2 % damping
+    >>> frf = MeasuredFunction("frf", f, "frequency", h, "rad", response=(1, 4), reference=(1, 4),
+    ...                        reference_unit="N m", label="drive point")
+    >>> fit = fetorsion.run_modal_fit([frf], (80.0, 120.0))
+    >>> print(f"{fit.frequencies_hz[0]:.1f} Hz, {fit.damping_ratios[0]:.3f}")
+    100.0 Hz, 0.020
     """
     frequency, frf, stations, form, driving = frf_matrix(functions)
     return estimate_modes(frequency, frf, band_hz, form, stations, driving, max_order)

@@ -554,6 +554,18 @@ def run_torsiograph(edges: dict[str, np.ndarray], teeth: dict[str, int | str | W
         The two channels whose twist (first less second) is tracked.
     definition : {"angle", "time"}
         What an order is taken against (:func:`order_track`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import fetorsion
+    >>> teeth, omega, a = 60, 3000 * np.pi / 30, 2e-3
+    >>> phi = 2 * np.pi * np.arange(8 * teeth + 1) / teeth  # eight revolutions of tooth angles
+    >>> edges = (phi - a * np.sin(2 * phi)) / omega  # a wheel vibrating a sin(2 theta) at 3000 rpm (to first order in a)
+    >>> track = fetorsion.run_torsiograph({"pulley": edges}, {"pulley": teeth}, revolutions=4).tracks["pulley"]
+    >>> k = list(track.orders).index(2.0)
+    >>> np.round(np.abs(track.amplitudes[:, k]) / a, 3)  # order 2 in each block of four revolutions
+    array([1., 1.])
     """
     calibration = calibration or {}
     missing = [c for c in list(edges) + list(calibration) + list(twist_of or ()) if c not in teeth]

@@ -276,6 +276,13 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings",
         Orders (default 0.5 … 24 for a four-stroke: :func:`fetorsion.excitation.campbell.response_orders`).
     damping_ratio : float, optional
         Modal damping ratio of every mode (default the description's).
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> cc = fetorsion.run_condensed(fetorsion.load("geometry/renault21.toml"), mesh_size=0.02)  # doctest: +SKIP
+    >>> res = fetorsion.run_coupled_response(cc, support="bearings")  # doctest: +SKIP
+    >>> print(res.table())  # doctest: +SKIP
     """
     import time
 

@@ -469,6 +469,14 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     Returns
     -------
     TransientResult
+
+    Examples
+    --------
+    >>> import fetorsion
+    >>> line = fetorsion.load("examples/networks/conventional_flywheel.toml")
+    >>> res = fetorsion.run_transient(line, rpm=2000.0, cycles=2)  # steady running, two engine cycles
+    >>> res.mode, bool(res.time_s[-1] > 2 * 60 / 1000)  # a four-stroke cycle is two revolutions: 0.06 s each
+    ('steady running at 2000 rpm', True)
     """
     _check_arguments(model, rpm, run, teeth, step_rad, method)
     top = rpm if run is None else max(run)

@@ -476,6 +476,23 @@ def run_comparison(crank: Crank | Chain | Network, measured: MeasuredData, sourc
     Returns
     -------
     ComparisonResult
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> import fetorsion
+    >>> from fetorsion.measured.dataset import MeasuredData
+    >>> from fetorsion.measured.uff import MeasuredFunction
+    >>> chain = fetorsion.load("examples/mendes2008/mwm6_chain.toml")
+    >>> f1 = fetorsion.lumped(chain).frequencies_hz[0]
+    >>> f = np.linspace(0.7 * f1, 1.3 * f1, 1501)
+    >>> wn, w = 2 * np.pi * f1, 2 * np.pi * f
+    >>> frf = MeasuredFunction("frf", f, "frequency", 1 / (wn**2 - w**2 + 0.02j * wn * w), "rad", response=(1, 4),
+    ...                        reference=(1, 4), reference_unit="N m", label="station 1")  # a "modal test" at f1, 1 %
+    >>> res = fetorsion.run_comparison(chain, MeasuredData(frfs=(frf,), band=(0.85 * f1, 1.15 * f1)))
+    >>> pair = res.frequencies[0]
+    >>> pair.source, pair.model_kinds, bool(abs(pair.difference_percent[0]) < 0.1)  # the fit's tested bound
+    ('chain', ['torsional'], True)
     """
     from ..measured.modal import run_modal_fit
 
