@@ -162,21 +162,15 @@ class Elements:
     rows: np.ndarray
     springs: tuple
 
-    @property
-    def x0(self) -> np.ndarray:
-        return np.array([e.operating_twist for e in self.springs])
+    def _each(name: str) -> property:  # one array over the elements of a NonlinearSpring field
+        return property(lambda self: np.array([getattr(e, name) for e in self.springs]),
+                        doc=f"Each element's ``{name}``.")
 
-    @property
-    def friction(self) -> np.ndarray:
-        return np.array([e.friction for e in self.springs])
-
-    @property
-    def stick(self) -> np.ndarray:
-        return np.array([e.stick_stiffness for e in self.springs])
-
-    @property
-    def tangent(self) -> np.ndarray:
-        return np.array([e.tangent for e in self.springs])
+    x0 = _each("operating_twist")
+    friction = _each("friction")
+    stick = _each("stick_stiffness")
+    tangent = _each("tangent")
+    del _each
 
     def torque(self, x, z) -> np.ndarray:
         """Each element's vibratory torque (its preload taken off), N·m, at twists ``x`` and friction
