@@ -84,7 +84,7 @@ def read_compare_csv(path, name: str | None, unit: str | None):
 
 
 #: Parameters of the API whose command-line option is not ``--`` + the parameter's name.
-OPTION_OF = {"kind": "--type", "mu": "--inertia-ratio", "rate_rpm_per_s": "--rate", "damping_ratio": "--damping",
+OPTION_OF = {"step_rad": "--step-deg", "kind": "--type", "mu": "--inertia-ratio", "rate_rpm_per_s": "--rate", "damping_ratio": "--damping",
              "twist_of": "--twist", "stations": "--channel-station"}
 
 

@@ -66,8 +66,10 @@ from ..lumped_model.network import speed_factors
 from ..measured.torsiograph import OrderTrack, order_track
 from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
-from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load, torque_table
+from .transient_load import (block_envelope, held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load,
+                             torque_table)
 from .transient_model import hold_coefficients, rigid_and_elastic_modes, transient_matrices
+from .time_budget import check_run_fits
 # plot_order_cuts: the run's steps import it from here
 from .transient_plots import plot_order_cuts, plot_transient, plot_waterfall  # noqa: F401
 from ..excitation.campbell import RESPONSE_HIGHEST_ORDER, Crossing
@@ -490,7 +492,7 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     period = cycle_angle(model.engine)
     settle, duration, n_of_t, phi_of_t, mode = _schedule(model, prop, rpm, run, rate_rpm_per_s, cycles, period,
                                                          settled_start, variable_inertia, branches)
-    N = int(duration / h) + 1
+    N = check_run_fits(duration, step_rad, top, len(M), len(setup.section_labels), run)  # or refused, by name
     t = np.arange(N) * h
     n_t, phi = n_of_t(t), phi_of_t(t)
     grid, step, table = torque_table(model, lo, top)
@@ -526,7 +528,7 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     factor = 1.0 if res.network is None else float(speed_factors(model)[res.network.masters[track_station]])
     track = _order_track(t, factor * phi + q[track_station], settle, run, rate_rpm_per_s, factor, period, teeth,
                          setup.labels[track_station])
-    block_rpm, peak = _block_envelope(t, n_t, phi, torque, period, settle)
+    block_rpm, peak = block_envelope(t, n_t, phi, torque, period, settle)
     return TransientResult(model.name, mode, list(setup.labels) + ring_labels, list(setup.section_labels), t, n_t,
                            phi, torque, q, block_rpm, peak, track, h, settle, scheme, notes,
                            setup.labels[track_station], work)
@@ -592,17 +594,3 @@ def _order_track(t, angle, settle: float, run, rate_rpm_per_s, factor: float, pe
     return order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=name, accelerating=run is not None,
                        alpha=alpha)
 
-
-def _block_envelope(t, n_t, phi, torque, period: float, settle: float):
-    """(mean speed rpm, largest |torque| of each section N·m) of each whole working cycle of the
-    crank's mean motion ``phi``: the envelope of the run."""
-    block = np.floor(phi / period).astype(int)
-    # the last, unfinished cycle left out, and in a steady run the cycles before it settled
-    full = (block < max(block[-1], 1)) & (t >= settle)
-    nb = int(block[full].max()) + 1 if full.any() else 0
-    peak = np.zeros((nb, torque.shape[0]))
-    for s in range(torque.shape[0]):
-        np.maximum.at(peak[:, s], block[full], np.abs(torque[s, full]))
-    count = np.bincount(block[full], None, nb)
-    block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
-    return block_rpm[count > 0], peak[count > 0]
