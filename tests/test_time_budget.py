@@ -70,3 +70,13 @@ def test_the_command_refuses_before_any_work(capsys):
         assert main(["transient", src, *argv]) == 2
         err = capsys.readouterr().err
         assert err.startswith(f"fetorsion: error: {option}") and "fits" in err and "Traceback" not in err
+
+
+def test_a_steady_state_space_run_names_the_cycles_that_fit():
+    from fetorsion.response.time_budget import check_cycles_fit
+
+    with pytest.raises(ParameterError) as err:
+        check_cycles_fit(5_000_000, 500, 10_000, available=GIB)  # 20 GB of states
+    # 0.8 GiB / (5e6 x 4000 B) of 10 000 cycles
+    assert err.value.parameter == "cycles" and f"at most {int(10_000 * 0.8 * GIB / 2e10)} cycles fit" in str(err.value)
+    check_cycles_fit(50_000, 500, 100, available=GIB)  # 0.2 GB: fits, says nothing

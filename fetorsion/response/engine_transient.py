@@ -27,6 +27,7 @@ import scipy.linalg
 
 from ..errors import FetorsionError
 from ..measured.torsiograph import order_track
+from .time_budget import check_cycles_fit
 from .transient import SETTLED, TransientResult, edge_times
 
 if TYPE_CHECKING:
@@ -98,6 +99,7 @@ def run_engine_steady(setup: ResponseSetup, cycles: int, teeth: int, track: int 
     # two teeth beyond the last cycle: the order track reads one edge past its revolutions, which a
     # record of exactly one cycle would not hold
     N = int(round(cycles * setup.period / spin / h)) + 1 + math.ceil(2 * (2 * math.pi / teeth) / spin / h)
+    check_cycles_fit(N, 2 * r + m + 8, cycles)  # the states, and the time, angle and torque rows beside them
     step = scipy.linalg.expm(full * h)
     states = np.empty((N, 2 * r + m))
     for k in range(N):

@@ -90,3 +90,17 @@ def check_run_fits(duration_s: float, step_rad: float, top_rpm: float, coordinat
     smallest = step_rad * samples / fit
     raise ParameterError("step_rad", f"{step_rad:.3g} rad ({math.degrees(step_rad):.3g}°): the run would hold {need}; "
                          f"the smallest step that fits is {smallest:.3g} rad ({math.degrees(smallest):.3g}°)")
+
+
+def check_cycles_fit(samples: int, values_per_sample: int, cycles: int, available: int | None = None) -> None:
+    """Refuse (:class:`ParameterError` on ``cycles``, with the most that fit) a steady run of
+    ``cycles`` working cycles whose ``samples`` of ``values_per_sample`` doubles each would not fit
+    in :data:`MEMORY_SHARE` of the available memory (the condensed crank's state-space run)."""
+    each = 8 * values_per_sample
+    room = MEMORY_SHARE * (available_memory_bytes() if available is None else available)
+    if samples * each > room:
+        most = int(cycles * room / (samples * each))
+        raise ParameterError("cycles", f"{cycles}: the run would hold {samples:.3g} samples of {each} bytes "
+                             f"({samples * each / 2**30:.3g} GiB) where {room / 2**30:.3g} GiB is free; at most "
+                             f"{most} cycles fit")
+
