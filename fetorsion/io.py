@@ -353,3 +353,15 @@ class Stages:
         left = f", about {elapsed * (1 - done) / done:.0f} s left" if done > 0 and elapsed > 0.5 else ""
         self.say(f"{self.what}: {stage} (stage {k + 1} of {len(names)}, {100 * done:.0f} % done, "
                  f"{elapsed:.0f} s{left})")
+
+
+def available_memory() -> float:
+    """Bytes of memory available to a new job (Linux MemAvailable; total RAM elsewhere)."""
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024.0
+    except OSError:
+        pass
+    return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))

@@ -100,7 +100,8 @@ def check_mesh_size(crank, mesh_size: float, job: str, purpose: str = "modal", f
                     option: str = "--mesh-size") -> None:
     """Refuse a mesh size whose mesh (``job`` 'mesh') or FE modal job ('modal') would not fit in
     memory, naming the option and the estimate; print the estimate when the job is long."""
-    from ..solid.mesh import available_memory, estimate_mesh
+    from ..io import available_memory
+    from ..solid.mesh import estimate_mesh
 
     est = estimate_mesh(crank, mesh_size, fillet_size, purpose)
     mesh_size_mm = mesh_size / MM

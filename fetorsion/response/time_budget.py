@@ -15,9 +15,9 @@ this rule 168).
 from __future__ import annotations
 
 import math
-import os
 
 from ..errors import ParameterError
+from ..io import available_memory
 
 #: Doubles a sample holds besides one per coordinate and one per section (time, speed, crank
 #: angle, tooth edges, the load's interpolation): the measurement in the module docstring.
@@ -25,19 +25,6 @@ SCALARS_PER_SAMPLE = 16
 #: The share of the machine's available memory a run may plan to fill: the rest is the
 #: interpreter's, the model's and the figures'.
 MEMORY_SHARE = 0.8
-
-
-def available_memory_bytes() -> int:
-    """Memory the machine can give now without swapping (Linux ``MemAvailable``; elsewhere the
-    free physical pages), bytes."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:
-        pass
-    return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
 
 
 def sample_bytes(coordinates: int, sections: int) -> int:
@@ -78,7 +65,7 @@ def check_run_fits(duration_s: float, step_rad: float, top_rpm: float, coordinat
     h = step_rad / (top_rpm * math.pi / 30)
     samples = int(duration_s / h) + 1
     each = sample_bytes(coordinates, sections)
-    room = MEMORY_SHARE * (available_memory_bytes() if available is None else available)
+    room = MEMORY_SHARE * (available_memory() if available is None else available)
     if samples * each <= room:
         return samples
     fit = room / each  # samples that fit
@@ -97,7 +84,7 @@ def check_cycles_fit(samples: int, values_per_sample: int, cycles: int, availabl
     ``cycles`` working cycles whose ``samples`` of ``values_per_sample`` doubles each would not fit
     in :data:`MEMORY_SHARE` of the available memory (the condensed crank's state-space run)."""
     each = 8 * values_per_sample
-    room = MEMORY_SHARE * (available_memory_bytes() if available is None else available)
+    room = MEMORY_SHARE * (available_memory() if available is None else available)
     if samples * each > room:
         most = int(cycles * room / (samples * each))
         raise ParameterError("cycles", f"{cycles}: the run would hold {samples:.3g} samples of {each} bytes "

@@ -29,7 +29,6 @@ cylinder check against CalculiX).
 
 from __future__ import annotations
 
-import os
 import sys
 import time
 from collections.abc import Sequence
@@ -424,17 +423,6 @@ def estimate_mesh(crank: Crank, size: float, fillet_size: float | None = None, p
     return MeshEstimate(int(tets), _MESH_BASE_BYTES + _MESH_BYTES_PER_TET * tets,
                         _MODAL_BYTES_PER_TET * tets, tets / _TETS_PER_SECOND)
 
-
-def available_memory() -> float:
-    """Bytes of memory available to a new job (Linux MemAvailable; total RAM elsewhere)."""
-    try:
-        with open("/proc/meminfo") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return float(line.split()[1]) * 1024.0
-    except OSError:
-        pass
-    return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
 
 
 # ---------------------------------------------------------------------------

@@ -18,7 +18,8 @@ def try_crank(raw: dict, source: str, mesh_size: float | None = None) -> dict:
 
     from ..errors import DescriptionError, FetorsionError
     from ..fe.crankfe import run_modal
-    from ..solid.mesh import available_memory, estimate_mesh
+    from ..io import available_memory
+    from ..solid.mesh import estimate_mesh
     from ..lumped_model.lumped import lumped
     from ..description.crank import parse_crank
     from ..description.defaults import DEFAULT_MESH_SIZE
