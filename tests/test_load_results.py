@@ -6,17 +6,20 @@ import math
 import shutil
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+import fetorsion
 from conftest import ROOT
 
 from fetorsion.cli.commands import main
 from fetorsion.errors import FetorsionError
 from fetorsion.report import markdown
 from fetorsion.report.load import load_run
-from fetorsion.report.outcomes import CampbellOutcome, FEOutcome, LumpedOutcome, SensitivityOutcome
+from fetorsion.report.outcomes import (CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome,
+                                      SensitivityOutcome, TransientOutcome, VerdictOutcome)
 from fetorsion.results import Result, from_fields, jsonable
 
 #: Committed run folders (fetorsion run on the reference cranks; results/ is written by scripts/results.sh)
@@ -26,13 +29,16 @@ READ_BACK = (("lumped", markdown.lumped_section), ("fe", markdown.fe_section),
              ("campbell", markdown.campbell_section), ("sensitivity", markdown.sensitivity_section))
 
 
-def same_json(a, b) -> bool:
-    """JSON equality with NaN equal to NaN."""
+def same_json(a, b, rel: float = 0.0) -> bool:
+    """JSON equality with NaN equal to NaN (numbers within ``rel``: an order track's amplitudes go
+    through degrees and back)."""
     if isinstance(a, dict):
-        return isinstance(b, dict) and a.keys() == b.keys() and all(same_json(a[k], b[k]) for k in a)
+        return isinstance(b, dict) and a.keys() == b.keys() and all(same_json(a[k], b[k], rel) for k in a)
     if isinstance(a, list):
-        return isinstance(b, list) and len(a) == len(b) and all(same_json(x, y) for x, y in zip(a, b))
-    return a == b or (isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b))
+        return isinstance(b, list) and len(a) == len(b) and all(same_json(x, y, rel) for x, y in zip(a, b))
+    if isinstance(a, float) and isinstance(b, float):
+        return a == b or math.isnan(a) and math.isnan(b) or math.isclose(a, b, rel_tol=rel, abs_tol=1e-300 if rel else 0)
+    return a == b
 
 
 def section_results(outcome):
@@ -159,11 +165,109 @@ def test_from_fields_reads_annotations():
     assert np.isnan(o.a[1]) and o.b == (1.5, 2.5) and o.c["k"] == Inner(1.5) and o.d is None and np.isnan(o.e)
 
 
-def test_a_network_result_is_refused_by_name():
-    from fetorsion.lumped_model.lumped import LumpedResult
+def test_a_network_result_reads_back_its_layout_not_its_matrices():
+    from fetorsion.lumped_model.lumped import LumpedResult, lumped
 
-    with pytest.raises(FetorsionError, match="network"):
-        LumpedResult.from_dict({"name": "n", "network": {}})
+    res = lumped(fetorsion.load(ROOT / "examples/networks/geared_engine.toml"))
+    copy = twice(res)
+    assert copy.table() == res.table() and same_json(jsonable(copy.to_dict()), jsonable(res.to_dict()))
+    with pytest.raises(FetorsionError, match="not its matrices"):
+        copy.matrices()
+
+
+# ---------------------------------------------------------------------------
+# Chain and network runs (no FE: seconds): run -> fetorsion report -> the same report.md and figures
+
+def _chain_runs(tmp: Path) -> dict[str, Path]:
+    """A chain set against a measured order cut (the measured comparison) and a network with torque
+    limits (the verdict), both with their run-up: each run's report folder."""
+    from fetorsion.response.forced import run_response
+
+    chain = ROOT / "examples/mendes2008/mwm6_chain.toml"
+    r = run_response(fetorsion.load(chain))
+    k = int(np.flatnonzero(np.isclose(r.orders, 6.0))[0])
+    rows = "\n".join(f"{s:.12g}, {0.9 * np.degrees(a):.12g}" for s, a in zip(r.rpm[::5], np.abs(r.theta[::5, k, 0])))
+    (tmp / "cut.csv").write_text(f"# unit = deg\n# order = 6\n{rows}\n")
+    (tmp / "net.toml").write_text((ROOT / "examples/networks/geared_engine.toml").read_text() + (
+        '\n[limits]\ncontinuous_torque_nm = 2000.0\ntransient_torque_nm = 4000.0\nsource = "test"\n'))
+    assert main(["run", str(chain), "--out", str(tmp / "chain"), "--measured", str(tmp / "cut.csv")]) == 0
+    assert main(["run", str(tmp / "net.toml"), "--out", str(tmp / "network")]) == 0
+    return {"chain": tmp / "chain", "network": tmp / "network"}
+
+
+@pytest.fixture(scope="module")
+def chain_runs(tmp_path_factory):
+    return _chain_runs(tmp_path_factory.mktemp("runs"))
+
+
+CHAIN_SECTIONS = (("lumped", ChainOutcome, markdown.lumped_section), ("verdict", VerdictOutcome, markdown.verdict_section),
+                  ("measured", MeasuredOutcome, markdown.measured_section),
+                  ("transient", TransientOutcome, markdown.transient_section),
+                  ("campbell", CampbellOutcome, markdown.campbell_section))
+
+
+def chain_results(outcome) -> list:
+    """A chain's or network's section's results objects."""
+    if isinstance(outcome, ChainOutcome):
+        return [outcome.chain]
+    if isinstance(outcome, VerdictOutcome):
+        return [outcome.verdict]
+    if isinstance(outcome, MeasuredOutcome):
+        return [outcome.comparison]
+    if isinstance(outcome, TransientOutcome):
+        assert all(twice(c) == c for c in outcome.cuts)  # a part of the section, not a result of its own
+        return [outcome.transient]
+    return section_results(outcome) and [r for _, r in section_results(outcome)]
+
+
+def test_fetorsion_report_of_a_chain_and_a_network_writes_the_same_report(chain_runs, tmp_path, capsys):
+    """run -> fetorsion report: report.md byte-identical, every figure drawn again (the same PNG)."""
+    for kind, folder in chain_runs.items():
+        copy = tmp_path / kind
+        shutil.copytree(folder, copy)
+        for png in copy.glob("*.png"):
+            png.unlink()
+        t0 = time.perf_counter()
+        assert main(["report", str(copy)]) == 0
+        assert time.perf_counter() - t0 < 60  # about 4 s on a shared 2-core machine
+        assert "not read back" not in capsys.readouterr().out
+        assert (copy / "report.md").read_bytes() == (folder / "report.md").read_bytes(), kind
+        pictures = sorted(p.name for p in folder.glob("*.png"))
+        assert sorted(p.name for p in copy.glob("*.png")) == pictures, kind
+        for name in pictures:
+            assert (copy / name).read_bytes() == (folder / name).read_bytes(), (kind, name)
+
+
+def test_a_chains_and_networks_sections_round_trip(chain_runs):
+    """Each section read back renders the same after a second round trip; its JSON is the file's."""
+    seen = set()
+    for folder in chain_runs.values():
+        loaded = load_run(folder)
+        run, data = loaded.outcome, loaded.results
+        assert not loaded.unread
+        for key, kind, render in CHAIN_SECTIONS:
+            outcome = getattr(run, key)
+            if not isinstance(outcome, kind):
+                continue
+            seen.add(key)
+            first = render(run.crank, outcome)
+            again = outcome
+            for result in chain_results(outcome):
+                assert isinstance(result, Result), key
+                copy = twice(result)
+                assert same_json(jsonable(copy.to_dict()), jsonable(result.to_dict()), rel=1e-12), key
+                again = _replaced(again, result, copy)
+            assert render(run.crank, again) == first, key
+        stored = {"lumped": data["lumped"]["chain"], "verdict": data.get("verdict"),
+                  "measured": data.get("measured"), "transient": data.get("transient")}
+        results = {"lumped": run.lumped.chain, "verdict": getattr(run.verdict, "verdict", None),
+                   "measured": getattr(run.measured, "comparison", None),
+                   "transient": getattr(run.transient, "transient", None)}
+        for key, result in results.items():
+            if result is not None:
+                written = jsonable(result.to_dict())
+                assert same_json({k: v for k, v in stored[key].items() if k in written}, written, rel=1e-12), key
+    assert seen == {k for k, _, _ in CHAIN_SECTIONS}
 
 
 def test_a_study_with_its_runs_round_trips_its_histogram_and_percentile():

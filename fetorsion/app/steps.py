@@ -221,7 +221,7 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
         stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets)
         ctx.results["stress"] = stress.to_dict()
     setup = ctx.setup()  # a chain's or network's own model: the only one it has
-    ctx.results["verdict"]["model"] = setup.model
+    ctx.results["verdict"].update(model=setup.model, mu=mu, scf=None if scf is None else scf.to_dict())
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model)
 
 

@@ -320,7 +320,7 @@ def transient_section(crank, outcome: TransientOutcome | Skipped) -> list[str]:
     res = outcome.transient
     lines = ["## Time domain: run-up", "",
              f"A {res.mode} over the checked range, after {res.settle_s:.2f} s at its start speed (the start's "
-             f"transient settled), {res.time_s.size:,} steps of {res.step_s * 1e6:.1f} µs "
+             f"transient settled), {res.samples:,} steps of {res.step_s * 1e6:.1f} µs "
              f"({res.scheme}): {outcome.seconds:.1f} s of computation. Only the alternating torque drives it, as in "
              f"the steady state; the order track reads the simulated tooth edges of `{res.track_station}` "
              "with the code that processes measured torsiograph records.",
