@@ -19,7 +19,7 @@ from fetorsion.errors import FetorsionError
 from fetorsion.report import markdown
 from fetorsion.report.load import load_run
 from fetorsion.report.outcomes import (CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome,
-                                      SensitivityOutcome, TransientOutcome, VerdictOutcome)
+                                      RunOutcome, SensitivityOutcome, TransientOutcome, VerdictOutcome)
 from fetorsion.results import Result, from_fields, jsonable
 
 #: Committed run folders (fetorsion run on the reference cranks; results/ is written by scripts/results.sh)
@@ -119,6 +119,46 @@ def test_the_sections_read_back_render_as_the_committed_report():
     for key, render in (("lumped", markdown.lumped_section), ("campbell", markdown.campbell_section),
                         ("sensitivity", markdown.sensitivity_section)):
         assert "\n".join(render(run.crank, getattr(run, key))) in text, key
+
+
+@pytest.mark.parametrize("name", ["renault21", "peugeot_glx", "peugeot_glx_engine", "inline6_diesel", "v8_petrol"])
+def test_the_bearings_section_read_back_is_the_committed_reports(name):
+    """The condensed crank in its bearings from what results.json keeps (its facts and modes): its
+    section (up to the coupled response, which these folders were written without the pins'
+    torque and journals' bending of) and its summary line, as the committed report has them."""
+    from fetorsion.fe.condensed import CondensedModes
+    from fetorsion.report.outcomes import BearingsOutcome, CondensedFacts
+    from fetorsion.report.summary import summary_lines
+
+    folder = ROOT / "results" / name
+    loaded, text = load_run(folder), (folder / "report.md").read_text()
+    d = loaded.results["bearings"]
+    outcome = BearingsOutcome(CondensedFacts.from_dict(d), CondensedModes.from_rows("free", d["free"]),
+                              CondensedModes.from_rows("bearings", d["bearings"]), d["lumped_17dof"],
+                              d["f1_free_hz"], d["f1_bearings_hz"], ("modes_free_and_bearings.png",))
+    if "coupled_response" not in d:  # read back whole: the same outcome
+        assert "bearings" not in loaded.unread
+        assert markdown.bearings_section(loaded.outcome.crank, loaded.outcome.bearings) == markdown.bearings_section(
+            loaded.outcome.crank, outcome)
+    section = "\n".join(markdown.bearings_section(loaded.outcome.crank, outcome))
+    head = section.split("\n\n![](modes_free_and_bearings.png)")[0]
+    assert head in text
+    run = RunOutcome(loaded.outcome.crank, "", bearings=outcome)
+    assert summary_lines(run)[2] in text
+
+
+def test_a_coupled_response_round_trips():
+    from fetorsion.response.coupled import CoupledResponse
+
+    d = dict(load_run(ROOT / "results/renault21").results["bearings"]["coupled_response"])
+    with pytest.raises(FetorsionError, match="written before"):
+        CoupledResponse.from_dict(d)
+    rng = np.random.default_rng(2)
+    d["pin_torque_nm"], d["journal_bending_nm"] = (rng.random(np.shape(d["journal_torque_nm"])) for _ in range(2))
+    res = CoupledResponse.from_dict(json.loads(json.dumps(jsonable(d))))
+    copy = twice(res)
+    assert copy.table() == res.table() and same_json(jsonable(copy.to_dict()), jsonable(res.to_dict()))
+    assert copy.plot().get_title() == res.plot().get_title()
 
 
 def test_fetorsion_report_redraws_a_copy_of_the_folder(tmp_path, capsys):

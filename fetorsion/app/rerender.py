@@ -20,7 +20,7 @@ from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
 from ..report.load import LoadedRun, load_run
-from ..report.outcomes import (CampbellOutcome, ChainOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
                                SensitivityOutcome, TransientOutcome, VerdictOutcome)
 
 
@@ -45,6 +45,8 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     if isinstance(run.campbell, CampbellOutcome):
         out[run.campbell.campbell_image] = run.campbell.campbell.plot
         out[run.campbell.response_image] = run.campbell.response.plot
+    if isinstance(run.bearings, BearingsOutcome):
+        out.update(_bearings_figures(run.bearings))
     out.update(_chain_figures(run))
     sens = run.sensitivity
     if isinstance(sens, SensitivityOutcome):
@@ -52,6 +54,17 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
         if sens.studies:
             out[sens.study_images["montecarlo"]] = lambda: sens.studies["montecarlo"].plot(kind="histogram")
             out[sens.study_images["sobol"]] = lambda: sens.studies["sobol"].plot(kind="indices")
+    return out
+
+
+def _bearings_figures(bearings: BearingsOutcome) -> dict[str, Callable[[], object]]:
+    """The condensed crank's modes free and in bearings, and its coupled response."""
+    from ..fe.condensed import CHECKED_MODES, plot_support_modes
+
+    out = {bearings.images[0]: lambda: plot_support_modes(bearings.free.first(CHECKED_MODES),
+                                                          bearings.bearings.first(CHECKED_MODES))}
+    if bearings.coupled is not None:
+        out[bearings.images[1]] = bearings.coupled.plot
     return out
 
 

@@ -10,9 +10,10 @@ Read back today: the lumped models (a chain's and a network's too: a network's l
 not its matrices), the FE modes, the Campbell diagram and forced response, the fillet stress, the
 sensitivity studies, a chain's or network's verdict, the measured comparison (its figure only
 where no FRF was measured: the FRFs and stability chart are not kept) and the run-up (its
-envelope, order track and order cuts; its time signals thinned as stored). Not yet: the
-condensed crank in its bearings (its reduced matrices are not in ``results.json``; the report's
-figures of it come from them) and the crank's fatigue verdict (its configurations keep each
+envelope, order track and order cuts; its time signals thinned as stored). The condensed crank in its bearings is read
+back from the modes, facts and coupled response its entry keeps (a folder written before it kept
+the coupled response's pin torque and journal bending, or an oil film's operating point: not read
+back). Not yet: the crank's fatigue verdict (its configurations keep each
 method's answer, not the results the answers are computed from); such a
 section is named in :attr:`LoadedRun.unread` with the reason.
 """
@@ -30,15 +31,13 @@ from ..description.files import load
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..results import JSONObject
-from .outcomes import (CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
+from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 #: The file a run writes its figures into.
 RESULTS_FILE = "results.json"
 #: Sections of results.json not read back yet, and why (see the module docstring).
-UNREAD = {"bearings": "the condensed crank's reduced matrices, which its section and figure are drawn from, "
-                      "are not in results.json",
-          "fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them"}
+UNREAD = {"fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them"}
 
 
 @dataclass
@@ -163,6 +162,22 @@ def _sensitivity(crank, data: dict[str, object]) -> SensitivityOutcome | Skipped
                               {"montecarlo": "f1_montecarlo.png", "sobol": "f1_sobol.png"})
 
 
+def _bearings(data: dict[str, object]) -> BearingsOutcome | None:
+    """The condensed crank in its bearings (None: not in the run); one of a folder written before
+    results.json kept what its section reads is refused by name (FetorsionError)."""
+    from ..fe.condensed import CondensedModes
+    from ..response.coupled import CoupledResponse
+
+    d = data.get("bearings")
+    if d is None:
+        return None
+    coupled = CoupledResponse.from_dict(d["coupled_response"]) if "coupled_response" in d else None
+    images = ("modes_free_and_bearings.png",) + (("coupled_response.png",) if coupled is not None else ())
+    return BearingsOutcome(CondensedFacts.from_dict(d), CondensedModes.from_rows("free", d["free"]),
+                           CondensedModes.from_rows("bearings", d["bearings"]), dict(d["lumped_17dof"]),
+                           d["f1_free_hz"], d["f1_bearings_hz"], images, coupled)
+
+
 def _verdict(crank, data: dict[str, object]) -> VerdictOutcome | Skipped | None:
     from ..design.scfset import SCFSet
     from ..design.stress import StressResult
@@ -217,6 +232,13 @@ def load_run(folder: str | Path) -> LoadedRun:
     driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
     outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline)
     outcome.lumped, outcome.fe = _lumped(data), _fe(data, pictures)
+    unread = {k: why for k, why in UNREAD.items() if k in data}
+    if "fe" in data and not {"backend", "mesh_quality"} <= set(data["fe"]):
+        unread["fe"] = "written before results.json kept the solver's backend and the mesh's quality, which it prints"
+    try:
+        outcome.bearings = _bearings(data)
+    except FetorsionError as exc:
+        unread["bearings"] = str(exc)
     outcome.campbell = _campbell(crank, data)
     outcome.sensitivity = _sensitivity(crank, data)
     outcome.verdict, outcome.measured = _verdict(crank, data), _measured(crank, data)
@@ -224,7 +246,6 @@ def load_run(folder: str | Path) -> LoadedRun:
     for key in ("fatigue",):
         if key not in data:
             setattr(outcome, key, skipped(crank, data, key))
-    unread = {k: why for k, why in UNREAD.items() if k in data}
     return LoadedRun(outcome, data, unread)
 
 

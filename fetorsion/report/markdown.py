@@ -127,7 +127,7 @@ def solid_features_lines(found) -> list[str]:
 def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     """The condensed crank free and in its bearings; the lumped chain against both; the coupled response."""
     cc, free, held = outcome.condensed, outcome.free, outcome.bearings
-    b = cc.crank.main_bearings  # with an oil film's loads found from the crank's forces
+    b = cc.main_bearings  # with an oil film's loads found from the crank's forces
     support = ("rigid main bearings (no `[bearings]` table: the default)" if not b.given else
                "main bearings of the `[bearings]` table: " + ", ".join("rigid" if k == float("inf") else f"{k:.3g} N/m"
                                                                         for k in b.radial_stiffness))
@@ -140,7 +140,7 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     measured = crank.measured_f1_hz
     lines = ["## The crank in its bearings (condensed 3D FE, torsion and bending coupled)", "",
              f"The FE crank of the previous section condensed (Craig–Bampton, distributing couplings) to "
-             f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced.size} DOF from {cc.full_dofs} "
+             f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced_dofs} DOF from {cc.full_dofs} "
              f"({sum(v for k, v in cc.timings_s.items() if k not in ('total', 'meshing')):.1f} s). "
              f"In the engine: {support}. Free-free is what a modal test measures"
              + (f" (measured {measured:g} Hz)" if measured else "") + "; the Campbell diagram below uses the "
