@@ -13,12 +13,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
 from ..report.load import LoadedRun, load_run
-from ..report.outcomes import CampbellOutcome, LumpedOutcome, RunOutcome, SensitivityOutcome
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
+                               SensitivityOutcome, TransientOutcome, VerdictOutcome)
 
 
 @dataclass(frozen=True)
@@ -37,15 +40,48 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     if isinstance(run.lumped, LumpedOutcome):
         main = run.lumped.table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
         out[run.lumped.image] = main.plot
+    if isinstance(run.lumped, ChainOutcome):
+        out[run.lumped.image] = run.lumped.chain.plot
     if isinstance(run.campbell, CampbellOutcome):
         out[run.campbell.campbell_image] = run.campbell.campbell.plot
         out[run.campbell.response_image] = run.campbell.response.plot
+    if isinstance(run.bearings, BearingsOutcome):
+        out.update(_bearings_figures(run.bearings))
+    out.update(_chain_figures(run))
     sens = run.sensitivity
     if isinstance(sens, SensitivityOutcome):
         out[sens.image] = sens.sensitivity.plot
         if sens.studies:
             out[sens.study_images["montecarlo"]] = lambda: sens.studies["montecarlo"].plot(kind="histogram")
             out[sens.study_images["sobol"]] = lambda: sens.studies["sobol"].plot(kind="indices")
+    return out
+
+
+def _bearings_figures(bearings: BearingsOutcome) -> dict[str, Callable[[], object]]:
+    """The condensed crank's modes free and in bearings, and its coupled response."""
+    from ..fe.condensed import CHECKED_MODES, plot_support_modes
+
+    out = {bearings.images[0]: lambda: plot_support_modes(bearings.free.first(CHECKED_MODES),
+                                                          bearings.bearings.first(CHECKED_MODES))}
+    if bearings.coupled is not None:
+        out[bearings.images[1]] = bearings.coupled.plot
+    return out
+
+
+def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
+    """The verdict's, the measured comparison's and the run-up's figures (as the run's steps draw them)."""
+    from ..response.transient import plot_order_cuts
+
+    out = {}
+    if isinstance(run.verdict, VerdictOutcome):
+        out[run.verdict.image] = run.verdict.verdict.plot
+    if isinstance(run.measured, MeasuredOutcome):
+        out[run.measured.image] = lambda: run.measured.comparison.plot().axes[0]
+    tra, camp = run.transient, run.campbell
+    if isinstance(tra, TransientOutcome) and isinstance(camp, CampbellOutcome):
+        top = float(np.max(camp.response.orders))
+        out[tra.waterfall_image] = lambda: tra.transient.waterfall(max_order=top)
+        out[tra.cuts_image] = lambda: plot_order_cuts(tra.transient, camp.response, tra.cuts)
     return out
 
 

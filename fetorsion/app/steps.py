@@ -8,6 +8,7 @@ importing it, since :mod:`fetorsion.app.run` imports this module to list its ste
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import sys
 import time
@@ -21,7 +22,7 @@ from ..errors import FetorsionError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD, LUMPED17
 from ..webs.methods import WEB_METHODS
-from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, FEOutcome, LumpedOutcome,
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome, LumpedOutcome,
                                MeasuredOutcome, ModeImage, SensitivityOutcome, Skipped, TransientOutcome,
                                VerdictOutcome)
 from .background import sensitivity_studies
@@ -143,13 +144,16 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     cc = ctx.built["condensed"] = with_film_bearings(ctx.built["condensed"])
     free, held = cc.modes("free"), cc.modes("bearings")
     f_free, f_held = free.first_torsional(), held.first_torsional()
+    free, held = reported_modes(free), reported_modes(held)  # what the report reads, kept in results.json
     chain = {}
     for method in ("carter", "fe", "fe-held"):
         f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method, parts=ctx.parts(method)).frequencies_hz[0])
         chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
     images = [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]
     coupled = None
-    ctx.results["bearings"] = {**cc.to_dict(), "f1_free_hz": f_free, "f1_bearings_hz": f_held, "lumped_17dof": chain,
+    ctx.results["bearings"] = {**cc.to_dict(), "free": free.rows(), "bearings": held.rows(),
+                               "f1_free_hz": f_free, "f1_bearings_hz": f_held, "lumped_17dof": chain,
+                               "main_bearings": dataclasses.asdict(cc.crank.main_bearings),
                                "support": {"radial_stiffness_n_per_m": list(cc.crank.main_bearings.radial_stiffness),
                                            "radial_damping_ns_per_m": list(cc.crank.main_bearings.radial_damping),
                                            "from_description": cc.crank.main_bearings.given,
@@ -159,7 +163,21 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
         coupled = run_coupled_response(cc, "bearings")
         images.append(ctx.save(coupled.plot().figure, "coupled_response.png"))
         ctx.results["bearings"]["coupled_response"] = coupled.to_dict()
-    return BearingsOutcome(cc, free, held, chain, f_free, f_held, tuple(images), coupled)
+    return BearingsOutcome(CondensedFacts.of(cc), free, held, chain, f_free, f_held, tuple(images), coupled)
+
+
+def reported_modes(md):
+    """The lowest of the condensed modes ``md`` that the report and the design loop read: the
+    first :data:`~fetorsion.fe.condensed.CHECKED_MODES`, and every one up to the first torsional
+    and the first with :data:`~fetorsion.modes.TORSION_SHARE_NOTED` or
+    :data:`~fetorsion.modes.F1_TORSION_SHARE` of its energy in torsion."""
+    from ..fe.condensed import CHECKED_MODES
+    from ..modes import F1_TORSION_SHARE, TORSION_SHARE_NOTED
+
+    torsional = [j for j, k in enumerate(md.kinds) if k == "torsional"][:1]
+    carrying = [int(np.argmax(md.fractions[:, 0] >= s)) for s in (TORSION_SHARE_NOTED, F1_TORSION_SHARE)
+                if np.any(md.fractions[:, 0] >= s)]
+    return md.first(max([CHECKED_MODES - 1, *torsional, *carrying]) + 1)
 
 
 def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
@@ -176,7 +194,7 @@ def step_campbell(ctx: RunContext) -> CampbellOutcome | Skipped:
         from ..response.coupled import run_coupled_campbell
 
         fillets = ctx.fillets()
-        camp = run_coupled_campbell(bearings.condensed, "bearings", diameters=[(f.diameter, f.bore) for f in fillets],
+        camp = run_coupled_campbell(ctx.built["condensed"], "bearings", diameters=[(f.diameter, f.bore) for f in fillets],
                                     section_names=[f.label for f in fillets])
     else:
         camp = run_campbell(ctx.crank, fe.modal.torsional_modes() if fe is not None else None,
@@ -221,7 +239,7 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
         stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets)
         ctx.results["stress"] = stress.to_dict()
     setup = ctx.setup()  # a chain's or network's own model: the only one it has
-    ctx.results["verdict"]["model"] = setup.model
+    ctx.results["verdict"].update(model=setup.model, mu=mu, scf=None if scf is None else scf.to_dict())
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model)
 
 

@@ -10,6 +10,7 @@ interpolated curve crosses the limit. The margin is 1 − value / limit.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -25,6 +26,11 @@ if TYPE_CHECKING:
     from collections.abc import Sequence
     from ..response.forced import ResponseSetup
     from .stress import Fillet
+
+
+def _number(x):
+    """``x``, a NaN as None (JSON has no NaN; read back as a float field, None is NaN again)."""
+    return None if isinstance(x, float) and math.isnan(x) else x
 
 
 def barred_ranges(rpm, value, limit: float) -> list[dict]:
@@ -104,11 +110,31 @@ class VerdictResult:
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
+        import dataclasses
+
         unit = "pa" if self.limits.kind == "stress" else "nm"
         return {"name": self.name, "limit_kind": self.limits.kind, "unit": unit,
                 "continuous_limit": self.limits.continuous, "transient_limit": self.limits.transient,
                 "limits_source": self.limits.source, "rows": self.rows(), "notes": self.notes,
-                "curves": {c.name: {"rpm": c.rpm.tolist(), "value": c.value.tolist()} for c in self.cases}}
+                "curves": {c.name: {"rpm": c.rpm.tolist(), "value": c.value.tolist(), "where": list(c.where),
+                                    "damper_power_w": c.damper_power_w,
+                                    "damper_power_by_order_w": dict(c.damper_power_by_order_w),
+                                    "allowed_power_w": c.allowed_power_w,
+                                    "damper_temperatures_c": [_number(t) for t in c.damper_temperatures_c]}
+                           for c in self.cases},
+                "limits": dataclasses.asdict(self.limits),
+                "designs": {k: {f: _number(v) for f, v in dataclasses.asdict(d).items()}
+                            for k, d in self.designs.items()}}
+
+    @classmethod
+    def from_dict(cls, d) -> "VerdictResult":
+        """The result back from its :meth:`to_dict` (its cases from ``curves``, in order)."""
+        from ..results import from_fields
+
+        cases = [from_fields(VerdictCase, c, name=name, damper_temperatures_c=tuple(
+            math.nan if t is None else t for t in c["damper_temperatures_c"])) for name, c in d["curves"].items()]
+        return from_fields(cls, d, cases=cases, limits=from_fields(Limits, d["limits"]),
+                           designs={k: from_fields(Damper, v) for k, v in d["designs"].items()})
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""

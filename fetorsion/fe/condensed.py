@@ -36,6 +36,8 @@ if TYPE_CHECKING:
     from collections.abc import Callable
     from pathlib import Path
 
+    from matplotlib.axes import Axes
+
 SUPPORTS = ("free", "bearings")
 #: Elastic modes the reduction is checked on (the first 10 within 0.1 %, docs/condensed-crank.md).
 CHECKED_MODES = 10
@@ -183,6 +185,26 @@ class CondensedModes:
     fractions: np.ndarray
     kinds: list[str]
     free_motions: int
+
+    def rows(self) -> list[dict]:
+        """Each mode as JSON: its frequency, kind and kinetic-energy shares (what ``to_dict`` keeps)."""
+        return [{"frequency_hz": float(f), "kind": k, "torsional_fraction": float(fr[0]),
+                 "bending_fraction": float(fr[1]), "axial_fraction": float(fr[2])}
+                for f, k, fr in zip(self.frequencies_hz, self.kinds, self.fractions)]
+
+    @classmethod
+    def from_rows(cls, support: str, rows: list[dict]) -> "CondensedModes":
+        """The modes back from their :meth:`rows` (the vectors and the count of zero-frequency
+        motions are not kept: ``vectors`` is empty, ``free_motions`` -1)."""
+        fractions = np.array([[r["torsional_fraction"], r["bending_fraction"], r["axial_fraction"]] for r in rows],
+                             dtype=float).reshape(-1, 3)
+        return cls(support, np.array([r["frequency_hz"] for r in rows], dtype=float), np.empty((0, len(rows))),
+                   fractions, [r["kind"] for r in rows], -1)
+
+    def first(self, count: int) -> "CondensedModes":
+        """The lowest ``count`` modes."""
+        return CondensedModes(self.support, self.frequencies_hz[:count], self.vectors[:, :count],
+                              self.fractions[:count], list(self.kinds[:count]), self.free_motions)
 
     def first_torsional(self) -> float:
         idx = [i for i, k in enumerate(self.kinds) if k == "torsional"]
@@ -349,10 +371,7 @@ class CondensedCrank:
                "interior_max_hz": float(self.reduced.fixed_interface_hz.max(initial=0.0)),
                "full_dofs": int(self.full_dofs), "timings_s": {k: float(v) for k, v in self.timings_s.items()}}
         for s in SUPPORTS:
-            md = self.modes(s, CHECKED_MODES)
-            out[s] = [{"frequency_hz": float(f), "kind": k, "torsional_fraction": float(fr[0]),
-                       "bending_fraction": float(fr[1]), "axial_fraction": float(fr[2])}
-                      for f, k, fr in zip(md.frequencies_hz, md.kinds, md.fractions)]
+            out[s] = self.modes(s, CHECKED_MODES).rows()
         return out
 
     def table(self) -> str:
@@ -369,19 +388,24 @@ class CondensedCrank:
 
     def plot(self, ax=None):
         """Torsion share of each mode against frequency, free and in bearings."""
-        import matplotlib.pyplot as plt
+        return plot_support_modes(self.modes("free", CHECKED_MODES), self.modes("bearings", CHECKED_MODES), ax)
 
-        if ax is None:
-            _, ax = plt.subplots(figsize=(8, 4))
-        for s, mk in (("free", "o"), ("bearings", "s")):
-            md = self.modes(s, CHECKED_MODES)
-            ax.plot(md.frequencies_hz, md.fractions[:, 0], mk, label=f"{s}")
-        ax.set_xlabel("frequency (Hz)")
-        ax.set_ylabel("torsion share of journal kinetic energy")
-        ax.set_ylim(-0.02, 1.02)
-        ax.legend()
-        ax.figure.tight_layout()
-        return ax
+
+def plot_support_modes(free: CondensedModes, held: CondensedModes, ax: Axes | None = None) -> Axes:
+    """Torsion share of each mode against frequency, free (``free``) and in bearings (``held``);
+    returns the Axes."""
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 4))
+    for md, mk in ((free, "o"), (held, "s")):
+        ax.plot(md.frequencies_hz, md.fractions[:, 0], mk, label=f"{md.support}")
+    ax.set_xlabel("frequency (Hz)")
+    ax.set_ylabel("torsion share of journal kinetic energy")
+    ax.set_ylim(-0.02, 1.02)
+    ax.legend()
+    ax.figure.tight_layout()
+    return ax
 
 
 #: :func:`run_condensed`'s stages and their times (the system's, then the condensation: 10.1 s on

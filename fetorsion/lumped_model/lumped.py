@@ -43,7 +43,7 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..modes import TorsionalModes
 from ..results import from_fields
-from .network import NetworkMatrices, network_matrices, network_modes, resolved
+from .network import NetworkLayout, NetworkMatrices, network_matrices, network_modes, resolved
 from .parts import PartChain, build_parts, partition_matrices, pin_weights
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from ..description.model import PARTITIONS
@@ -113,10 +113,12 @@ class LumpedResult:
     pin_weights: np.ndarray | None = None
     #: A network's matrices (its labels, inertias and shapes are then in its reduced
     #: coordinates, one per gear group; its stiffnesses are its shafts'); None for a chain or crank.
-    network: NetworkMatrices | None = None
+    network: NetworkMatrices | NetworkLayout | None = None
 
     def matrices(self):
         """(M, K): the model's mass and stiffness matrices (a chain's tridiagonal, a network's reduced)."""
+        if isinstance(self.network, NetworkLayout):
+            return self.network.matrices()
         if self.network is not None:
             return self.network.M, self.network.K
         return chain_matrices(self.inertias_kgm2, self.stiffnesses_nm_per_rad)
@@ -141,18 +143,18 @@ class LumpedResult:
             **self.inputs,
             **({} if self.network is None else {
                 "network": self.network.to_dict(),
-                "station_mode_shapes": (self.mode_shapes @ self.network.T.T).tolist()}),
+                "station_mode_shapes": (self.network.station_mode_shapes if isinstance(self.network, NetworkLayout)
+                                        else self.mode_shapes @ self.network.T.T).tolist()}),
         }
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "LumpedResult":
-        """The result back from its :meth:`to_dict` (a network's, whose matrices it does not keep, is refused)."""
-        if "network" in d:
-            raise FetorsionError(f"{d.get('name')}: a network's lumped result is not read back: its reduced "
-                                 "matrices are not in its to_dict()")
+        """The result back from its :meth:`to_dict` (a network's with its
+        :class:`~.network.NetworkLayout`: its matrices are not kept)."""
         known = {f.name for f in fields(cls)} | {"dof", "station_mode_shapes"}
         inputs = {k: v for k, v in d.items() if k not in known}
-        return from_fields(cls, d, inputs=inputs)
+        network = NetworkLayout.from_dict(d["network"], d["station_mode_shapes"]) if "network" in d else None
+        return from_fields(cls, d, inputs=inputs, network=network)
 
     def table(self) -> str:
         """Every elastic mode: frequency and the station of largest twist."""

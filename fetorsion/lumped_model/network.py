@@ -135,6 +135,39 @@ class NetworkMatrices:
                 "grounded": self.grounded}
 
 
+@dataclass(frozen=True)
+class NetworkLayout:
+    """A network's :meth:`NetworkMatrices.to_dict` read back: its stations, the station of each
+    coordinate, each station's speed against its coordinate's, its shafts, whether it is grounded,
+    and the mode shapes at the stations (``station_mode_shapes``, modes × stations). What a
+    report presents of a network; the matrices are not kept (:meth:`matrices` refuses)."""
+
+    labels: tuple
+    coordinates: tuple
+    speed_factors: np.ndarray
+    section_labels: tuple
+    grounded: bool
+    station_mode_shapes: np.ndarray
+
+    @classmethod
+    def from_dict(cls, d: dict, station_mode_shapes) -> "NetworkLayout":
+        """The layout of a network's lumped result's ``to_dict()``: its ``network`` entry ``d``
+        and its ``station_mode_shapes``."""
+        return cls(tuple(d["stations"]), tuple(d["coordinates"]), np.asarray(d["speed_factors"], dtype=float),
+                   tuple(d["sections"]), bool(d["grounded"]), np.asarray(station_mode_shapes, dtype=float))
+
+    def to_dict(self) -> dict:
+        return {"stations": list(self.labels), "coordinates": list(self.coordinates),
+                "speed_factors": self.speed_factors.tolist(), "sections": list(self.section_labels),
+                "grounded": self.grounded}
+
+    def matrices(self):
+        from ..errors import FetorsionError
+
+        raise FetorsionError("a network's lumped result read back keeps its layout and modes, not its matrices "
+                             "(lumped() on the description gives them)")
+
+
 @functools.lru_cache(maxsize=16)
 def resolved(net: Network) -> Network:
     """The network with each of its ``[[chain.cranks]]`` replaced by the crank's lumped model: the

@@ -326,6 +326,13 @@ class OrderTrack:
                                  f"(multiples of {self.orders[0]:g} up to {self.orders[-1]:g})")
         return self.amplitudes[:, int(k[0])]
 
+    @classmethod
+    def from_dict(cls, d) -> "OrderTrack":
+        """The track back from its :meth:`to_dict` (each amplitude from its magnitude and phase in degrees)."""
+        amplitude, phase = (np.radians(np.asarray(d[k], dtype=float)) for k in ("amplitude_deg", "phase_deg"))
+        return cls(d["name"], np.asarray(d["rpm"], dtype=float), np.asarray(d["orders"], dtype=float),
+                   amplitude * np.exp(1j * phase), d.get("order_definition", "angle"))
+
     def to_dict(self) -> dict:
         return {"name": self.name, "order_definition": self.definition, "rpm": self.rpm.tolist(),
                 "orders": self.orders.tolist(),

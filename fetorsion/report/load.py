@@ -6,11 +6,15 @@ Each section's results come back through their own ``from_dict``
 in the folder. The description is the one ``results.json`` recorded (its text, read again as
 it was; a folder written before the text was kept: the path its report names).
 
-Read back today: the lumped models, the FE modes, the Campbell diagram and forced response,
-the fillet stress and the sensitivity studies. Not yet: the condensed crank in its bearings
-(its reduced matrices are not in ``results.json``; the report's figures of it come from them),
-the crank's fatigue verdict (its configurations keep each method's answer, not the results the
-answers are computed from), a chain's verdict, the measured comparison and the run-up; such a
+Read back today: the lumped models (a chain's and a network's too: a network's layout and modes,
+not its matrices), the FE modes, the Campbell diagram and forced response, the fillet stress, the
+sensitivity studies, a chain's or network's verdict, the measured comparison (its figure only
+where no FRF was measured: the FRFs and stability chart are not kept) and the run-up (its
+envelope, order track and order cuts; its time signals thinned as stored). The condensed crank in its bearings is read
+back from the modes, facts and coupled response its entry keeps (a folder written before it kept
+the coupled response's pin torque and journal bending, or an oil film's operating point: not read
+back). Not yet: the crank's fatigue verdict (its configurations keep each
+method's answer, not the results the answers are computed from); such a
 section is named in :attr:`LoadedRun.unread` with the reason.
 """
 
@@ -27,17 +31,13 @@ from ..description.files import load
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..results import JSONObject
-from .outcomes import CampbellOutcome, FEOutcome, LumpedOutcome, ModeImage, RunOutcome, SensitivityOutcome, Skipped
+from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
+                       SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 #: The file a run writes its figures into.
 RESULTS_FILE = "results.json"
 #: Sections of results.json not read back yet, and why (see the module docstring).
-UNREAD = {"bearings": "the condensed crank's reduced matrices, which its section and figure are drawn from, "
-                      "are not in results.json",
-          "fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them",
-          "verdict": "a chain's verdict cases are not read back yet",
-          "measured": "the measured files' comparison is not read back yet",
-          "transient": "the run-up keeps a decimated signal only"}
+UNREAD = {"fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them"}
 
 
 @dataclass
@@ -113,11 +113,13 @@ def skipped(crank, data: dict[str, object], key: str) -> Skipped | None:
     return Skipped(missing[key]) if missing.get(key) else None
 
 
-def _lumped(data: dict[str, object]) -> LumpedOutcome | None:
+def _lumped(data: dict[str, object]) -> LumpedOutcome | ChainOutcome | None:
     from ..lumped_model.lumped import LumpedResult
 
-    if "lumped" not in data or "chain" in data["lumped"]:
+    if "lumped" not in data:
         return None
+    if "chain" in data["lumped"]:  # a chain's or network's modes
+        return ChainOutcome(LumpedResult.from_dict(data["lumped"]["chain"]), "chain_modes.png")
     table = {m: [LumpedResult.from_dict(r) for r in rs] for m, rs in data["lumped"].items()}
     return LumpedOutcome(table, dict(data.get("lumped_skipped", {})), "lumped_modes_17dof.png")
 
@@ -160,6 +162,54 @@ def _sensitivity(crank, data: dict[str, object]) -> SensitivityOutcome | Skipped
                               {"montecarlo": "f1_montecarlo.png", "sobol": "f1_sobol.png"})
 
 
+def _bearings(data: dict[str, object]) -> BearingsOutcome | None:
+    """The condensed crank in its bearings (None: not in the run); one of a folder written before
+    results.json kept what its section reads is refused by name (FetorsionError)."""
+    from ..fe.condensed import CondensedModes
+    from ..response.coupled import CoupledResponse
+
+    d = data.get("bearings")
+    if d is None:
+        return None
+    coupled = CoupledResponse.from_dict(d["coupled_response"]) if "coupled_response" in d else None
+    images = ("modes_free_and_bearings.png",) + (("coupled_response.png",) if coupled is not None else ())
+    return BearingsOutcome(CondensedFacts.from_dict(d), CondensedModes.from_rows("free", d["free"]),
+                           CondensedModes.from_rows("bearings", d["bearings"]), dict(d["lumped_17dof"]),
+                           d["f1_free_hz"], d["f1_bearings_hz"], images, coupled)
+
+
+def _verdict(crank, data: dict[str, object]) -> VerdictOutcome | Skipped | None:
+    from ..design.scfset import SCFSet
+    from ..design.stress import StressResult
+    from ..design.verdict import VerdictResult
+
+    d = data.get("verdict")
+    if d is None:
+        return skipped(crank, data, "verdict")
+    scf = SCFSet.from_dict(d["scf"]) if d.get("scf") else None
+    stress = StressResult.from_dict(data["stress"]) if scf is not None and "stress" in data else None
+    return VerdictOutcome(VerdictResult.from_dict(d), d["mu"], scf, "verdict.png", stress, d.get("model", ""))
+
+
+def _measured(crank, data: dict[str, object]) -> MeasuredOutcome | Skipped | None:
+    from ..studies.comparison import ComparisonResult
+
+    if "measured" not in data:
+        return skipped(crank, data, "measured")
+    return MeasuredOutcome(ComparisonResult.from_dict(data["measured"]), "measured.png")
+
+
+def _transient(crank, data: dict[str, object]) -> TransientOutcome | Skipped | None:
+    from ..response.transient import OrderCut, TransientResult
+
+    d = data.get("transient")
+    if d is None:
+        return skipped(crank, data, "transient")
+    cuts = tuple(OrderCut.from_dict(c) for c in d["order_cuts"])
+    return TransientOutcome(TransientResult.from_dict(d), d["rate_rpm_per_s"], cuts, d["seconds"],
+                            "runup_waterfall.png", "runup_order_cuts.png")
+
+
 def load_run(folder: str | Path) -> LoadedRun:
     """Read the report folder ``folder`` back (see the module docstring).
 
@@ -182,14 +232,20 @@ def load_run(folder: str | Path) -> LoadedRun:
     driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
     outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline)
     outcome.lumped, outcome.fe = _lumped(data), _fe(data, pictures)
+    unread = {k: why for k, why in UNREAD.items() if k in data}
+    if "fe" in data and not {"backend", "mesh_quality"} <= set(data["fe"]):
+        unread["fe"] = "written before results.json kept the solver's backend and the mesh's quality, which it prints"
+    try:
+        outcome.bearings = _bearings(data)
+    except FetorsionError as exc:
+        unread["bearings"] = str(exc)
     outcome.campbell = _campbell(crank, data)
     outcome.sensitivity = _sensitivity(crank, data)
-    for key in ("fatigue", "verdict", "measured", "transient"):
+    outcome.verdict, outcome.measured = _verdict(crank, data), _measured(crank, data)
+    outcome.transient = _transient(crank, data)
+    for key in ("fatigue",):
         if key not in data:
             setattr(outcome, key, skipped(crank, data, key))
-    unread = {k: why for k, why in UNREAD.items() if k in data}
-    if "lumped" in data and outcome.lumped is None:
-        unread["lumped"] = "a chain's or network's modes are not read back yet"
     return LoadedRun(outcome, data, unread)
 
 

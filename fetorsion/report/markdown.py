@@ -128,7 +128,7 @@ def solid_features_lines(found) -> list[str]:
 def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     """The condensed crank free and in its bearings; the lumped chain against both; the coupled response."""
     cc, free, held = outcome.condensed, outcome.free, outcome.bearings
-    b = cc.crank.main_bearings  # with an oil film's loads found from the crank's forces
+    b = cc.main_bearings  # with an oil film's loads found from the crank's forces
     support = ("rigid main bearings (no `[bearings]` table: the default)" if not b.given else
                "main bearings of the `[bearings]` table: " + ", ".join("rigid" if k == float("inf") else f"{k:.3g} N/m"
                                                                         for k in b.radial_stiffness))
@@ -141,7 +141,7 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     measured = crank.measured_f1_hz
     lines = ["## The crank in its bearings (condensed 3D FE, torsion and bending coupled)", "",
              f"The FE crank of the previous section condensed (Craig–Bampton, distributing couplings) to "
-             f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced.size} DOF from {cc.full_dofs} "
+             f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced_dofs} DOF from {cc.full_dofs} "
              f"({sum(v for k, v in cc.timings_s.items() if k not in ('total', 'meshing')):.1f} s). "
              f"In the engine: {support}. Free-free is what a modal test measures"
              + (f" (measured {measured:g} Hz)" if measured else "") + "; the Campbell diagram below uses the "
@@ -321,7 +321,7 @@ def transient_section(crank, outcome: TransientOutcome | Skipped) -> list[str]:
     res = outcome.transient
     lines = ["## Time domain: run-up", "",
              f"A {res.mode} over the checked range, after {res.settle_s:.2f} s at its start speed (the start's "
-             f"transient settled), {res.time_s.size:,} steps of {res.step_s * 1e6:.1f} µs "
+             f"transient settled), {res.samples:,} steps of {res.step_s * 1e6:.1f} µs "
              f"({res.scheme}): {outcome.seconds:.1f} s of computation. Only the alternating torque drives it, as in "
              f"the steady state; the order track reads the simulated tooth edges of `{res.track_station}` "
              "with the code that processes measured torsiograph records.",

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the results each outcome holds, named for the reader and the checks, not imported at run time
-    from ..description.model import Crank
+    from ..description.model import Bearings, Crank
     from ..description.chain_model import Chain, Network
     from ..design.assessment import CrankAssessment
     from ..design.coupling_heat import CouplingHeat
@@ -102,12 +102,54 @@ class FEOutcome:
 
 
 @dataclass(frozen=True)
-class BearingsOutcome:
-    """The condensed crank free-free and in its bearings (``free``, ``bearings``: its modes),
-    the 17-DOF chain against both (``chain[web method]``: ``f1_hz``, ``vs_free``,
-    ``vs_bearings``), the coupled forced response when the crank is excited, the pictures."""
+class CondensedFacts:
+    """What the report says of the condensed crank: its masters' labels, its reduced and full
+    DOF, its condensation's timings (s) and the main bearings it is held in (an oil film's loads
+    found from the crank's forces). Made from the live crank by :meth:`of`, read back from its
+    entry of ``results.json`` by :meth:`from_dict`."""
 
-    condensed: CondensedCrank
+    labels: tuple[str, ...]
+    reduced_dofs: int
+    full_dofs: int
+    timings_s: dict[str, float]
+    main_bearings: Bearings
+
+    @classmethod
+    def of(cls, cc: CondensedCrank) -> "CondensedFacts":
+        """The facts of the condensed crank ``cc``."""
+        return cls(tuple(cc.labels), int(cc.reduced.size), int(cc.full_dofs), dict(cc.timings_s),
+                   cc.crank.main_bearings)
+
+    @classmethod
+    def from_dict(cls, d: dict[str, object]) -> "CondensedFacts":
+        """The facts back from ``results.json``'s ``bearings`` entry (its ``main_bearings``; a
+        folder written before it was kept: rigid or stated bearings from its ``support``, an oil
+        film refused)."""
+        from ..description.model import Bearings
+        from ..errors import FetorsionError
+        from ..results import from_fields
+
+        if "main_bearings" in d:
+            bearings = from_fields(Bearings, d["main_bearings"])
+        elif d["support"]["oil_film_load_n"] is None:
+            s = d["support"]
+            bearings = Bearings(tuple(s["radial_stiffness_n_per_m"]), tuple(s["radial_damping_ns_per_m"]), (),
+                                given=bool(s["from_description"]))
+        else:
+            raise FetorsionError("the oil film's operating point is not in results.json (written before it was kept)")
+        return cls(tuple(m["label"] for m in d["masters"]), int(d["reduced_dofs"]), int(d["full_dofs"]),
+                   dict(d["timings_s"]), bearings)
+
+
+@dataclass(frozen=True)
+class BearingsOutcome:
+    """The condensed crank free-free and in its bearings (``condensed``: what the report says of
+    it; ``free``, ``bearings``: its modes, the lowest :data:`~fetorsion.fe.condensed.CHECKED_MODES`
+    and every one up to the first carrying torsion), the 17-DOF chain against both
+    (``chain[web method]``: ``f1_hz``, ``vs_free``, ``vs_bearings``), the coupled forced response
+    when the crank is excited, the pictures."""
+
+    condensed: CondensedFacts
     free: CondensedModes
     bearings: CondensedModes
     chain: dict[str, dict[str, float]]

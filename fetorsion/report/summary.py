@@ -66,7 +66,7 @@ def _fe_summary(fe, measured: float | None, sens) -> list[str]:
 
 def _bearings_summary(bearings) -> list[str]:
     """f1 in the engine (the condensed crank in its bearings) and every mode below it."""
-    b = bearings.condensed.crank.main_bearings
+    b = bearings.condensed.main_bearings
     support = ("rigid main bearings" if b.rigid else "oil-film main bearings" if b.oil_film is not None
                else "the [bearings] stiffness")
     held = bearings.bearings
@@ -75,7 +75,7 @@ def _bearings_summary(bearings) -> list[str]:
     f1 = held.first_carrying_torsion(F1_TORSION_SHARE)
     below = [(f, k, t) for f, k, t in zip(held.frequencies_hz, held.kinds, held.fractions[:, 0]) if f < f1]
     line = (f"- **f1 in the engine: {f1:.1f} Hz** (condensed crank in {support}, "
-            f"{bearings.condensed.reduced.size} DOF; {100 * (f1 / bearings.f1_free_hz - 1):+.1f} % on free-free; "
+            f"{bearings.condensed.reduced_dofs} DOF; {100 * (f1 / bearings.f1_free_hz - 1):+.1f} % on free-free; "
             f"the first mode with at least {100 * F1_TORSION_SHARE:.0f} % of its kinetic energy in torsion")
     if abs(f1 - bearings.f1_bearings_hz) > 1e-6 * f1:
         line += f"; the first mostly torsional one is at {bearings.f1_bearings_hz:.1f} Hz"

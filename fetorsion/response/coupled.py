@@ -216,12 +216,25 @@ class CoupledResponse:
         return {"name": self.name, "support": self.support, "damping_ratio": self.damping_ratio,
                 "rpm": self.rpm.tolist(), "orders": self.orders.tolist(),
                 "pulley_angle_deg": self.pulley_angle_deg.tolist(), "pulley_twist_deg": self.pulley_twist_deg.tolist(),
-                "journal_torque_nm": self.journal_torque_nm.tolist(), "pin_bending_nm": self.pin_bending_nm.tolist(),
+                "journal_torque_nm": self.journal_torque_nm.tolist(), "pin_torque_nm": self.pin_torque_nm.tolist(),
+                "pin_bending_nm": self.pin_bending_nm.tolist(), "journal_bending_nm": self.journal_bending_nm.tolist(),
+                "timings_s": dict(self.timings_s),
                 "bearing_force_n": self.bearing_force_n.tolist(), "dampers": self.dampers,
                 "damper_heat_w": None if self.damper_heat_w is None else self.damper_heat_w.tolist(),
                 "worst": {"journal_torque_nm": worst(self.journal_torque_nm), "pin_bending_nm": worst(self.pin_bending_nm),
                           "journal_bending_nm": worst(self.journal_bending_nm), "bearing_force_n": worst(self.bearing_force_n),
                           "pulley_twist_deg": worst(self.pulley_twist_deg)}}
+
+    @classmethod
+    def from_dict(cls, d) -> "CoupledResponse":
+        """The response back from its :meth:`to_dict` (one written before it kept the pins' torque
+        and the journals' bending is refused by name)."""
+        from ..results import from_fields
+
+        if "journal_bending_nm" not in d:
+            raise FetorsionError(f"{d['name']}: the coupled response was written before results.json kept its pin "
+                                 "torque and journal bending")
+        return from_fields(cls, d)
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""

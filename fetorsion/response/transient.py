@@ -66,8 +66,9 @@ from ..lumped_model.network import speed_factors
 from ..measured.torsiograph import OrderTrack, order_track
 from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
-from .transient_load import (block_envelope, held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load,
-                             torque_table)
+from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load, torque_table
+from ..results import from_fields
+from .transient_record import ORDER_CUT_KEYS, StoredRecord, block_envelope, thinned_signals, transient_from_dict
 from .transient_model import hold_coefficients, rigid_and_elastic_modes, transient_matrices
 from .time_budget import check_run_fits
 # plot_order_cuts: the run's steps import it from here
@@ -260,6 +261,19 @@ class TransientResult:
     notes: list = field(default_factory=list)
     track_station: str = ""
     elements: list = field(default_factory=list)
+    #: Read back (:meth:`from_dict`): the run's sample count ``samples``, its last time ``end_s``
+    #: and its ``signals`` as stored; ``time_s``, ``rpm`` and the torques then hold the thinned record
+    stored: StoredRecord | None = None
+
+    @property
+    def samples(self) -> int:
+        """The run's time steps (counted when it ran, where a thinned record was read back)."""
+        return self.time_s.size if self.stored is None else self.stored.samples
+
+    @classmethod
+    def from_dict(cls, d) -> "TransientResult":
+        """The result back from its :meth:`to_dict` (:func:`~.transient_record.transient_from_dict`)."""
+        return transient_from_dict(cls, d)
 
     def steady_peak_nm(self) -> np.ndarray:
         """Largest ``|torque|`` of each section after the settling time (a steady run), N·m."""
@@ -272,29 +286,21 @@ class TransientResult:
         sample where the largest absolute section torque peaks (so the record's peak is in it, not
         up to 1 % lower between kept samples), and each section's least and largest torque in each block
         (``section_torque_min_nm``, ``section_torque_max_nm``: every section's peak, exactly)."""
-        every = every or max(1, self.time_s.size // 20000)
-        T = self.section_torque_nm
-        n = T.shape[1]
-        starts = np.arange(0, n, every)
-        worst = np.abs(T).max(axis=0) if T.size else np.zeros(n)
-        keep = np.array([a + int(np.argmax(worst[a:a + every])) for a in starts], dtype=int) if n else starts
-        lo = np.minimum.reduceat(T, starts, axis=1) if T.size else T
-        hi = np.maximum.reduceat(T, starts, axis=1) if T.size else T
+        kept = thinned_signals(self, every) if self.stored is None else {"end_s": self.stored.end_s,
+                                                                         "signals": self.stored.signals}
         return {"name": self.name, "mode": self.mode, "scheme": self.scheme, "step_s": self.step_s,
                 "settle_s": self.settle_s, "labels": self.labels, "sections": self.section_labels,
                 "notes": self.notes,
                 "block_rpm": self.block_rpm.tolist(), "block_peak_torque_nm": self.block_peak_nm.tolist(),
                 "order_track": {"station": self.track_station, **self.track.to_dict()},
                 "elements": [w.to_dict() for w in self.elements],
-                "signals": {"every": every, "time_s": self.time_s[keep].tolist(), "rpm": self.rpm[keep].tolist(),
-                            "section_torque_nm": T[:, keep].tolist(), "section_torque_min_nm": lo.tolist(),
-                            "section_torque_max_nm": hi.tolist()}}
+                "samples": self.samples, **kept}
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""
         k = int(np.argmax(self.block_peak_nm.max(axis=0)))
         b = int(np.argmax(self.block_peak_nm[:, k]))
-        lines = [f"{self.name}: {self.mode}, {self.time_s[-1]:.2f} s in steps of {self.step_s * 1e6:.1f} us "
+        lines = [f"{self.name}: {self.mode}, {self.time_s[-1] if self.stored is None else self.stored.end_s:.2f} s in steps of {self.step_s * 1e6:.1f} us "
                  f"({self.scheme})",
                  f"  largest section torque {self.block_peak_nm[b, k]:.1f} N m in {self.section_labels[k]} "
                  f"at {self.block_rpm[b]:.0f} rpm"]
@@ -347,6 +353,11 @@ class OrderCut:
     steady_rpm: float
     runup_deg: float
     runup_rpm: float
+
+    @classmethod
+    def from_dict(cls, d) -> "OrderCut":
+        """The cut back from its :meth:`to_dict` (:data:`~.transient_record.ORDER_CUT_KEYS`)."""
+        return from_fields(cls, d, ORDER_CUT_KEYS)
 
     @property
     def difference(self) -> float:
@@ -593,4 +604,3 @@ def _order_track(t, angle, settle: float, run, rate_rpm_per_s, factor: float, pe
     alpha = None if run is None else factor * math.copysign(rate_rpm_per_s, run[1] - run[0]) * math.pi / 30
     return order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=name, accelerating=run is not None,
                        alpha=alpha)
-

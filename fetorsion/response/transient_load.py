@@ -146,19 +146,3 @@ def rigid_start_speed(rigid, load, phi, period: float, h: float) -> float:
     g0 = rigid @ load(0, n1)
     v = np.concatenate([[0.0], np.cumsum(0.5 * h * (g0[:-1] + g0[1:]))])
     return -float(np.trapezoid(v, dx=h) / (h * (n1 - 1)))
-
-
-def block_envelope(t: np.ndarray, n_t: np.ndarray, phi: np.ndarray, torque: np.ndarray, period: float,
-                   settle: float) -> tuple[np.ndarray, np.ndarray]:
-    """(mean speed rpm, largest |torque| of each section N·m) of each whole working cycle of the
-    crank's mean motion ``phi``: the envelope of the run."""
-    block = np.floor(phi / period).astype(int)
-    # the last, unfinished cycle left out, and in a steady run the cycles before it settled
-    full = (block < max(block[-1], 1)) & (t >= settle)
-    nb = int(block[full].max()) + 1 if full.any() else 0
-    peak = np.zeros((nb, torque.shape[0]))
-    for s in range(torque.shape[0]):
-        np.maximum.at(peak[:, s], block[full], np.abs(torque[s, full]))
-    count = np.bincount(block[full], None, nb)
-    block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
-    return block_rpm[count > 0], peak[count > 0]

@@ -321,6 +321,24 @@ class ComparisonResult:
     gaps: list = field(default_factory=list)
     #: What reading the measurement found and mended (lost or spurious tooth edges)
     notes: list = field(default_factory=list)
+    #: Why :meth:`plot` cannot draw the figure again ("": it can): a result read back whose FRF
+    #: overlays and stability chart ``to_dict`` does not keep
+    unplotted: str = ""
+
+    @classmethod
+    def from_dict(cls, d) -> "ComparisonResult":
+        """The result back from its :meth:`to_dict`: the frequencies (without the measured FRFs
+        and stability chart, which only the figure draws), the order cuts and the waterfalls."""
+        from ..measured.torsiograph import OrderTrack
+        from ..results import from_fields
+
+        freqs = [from_fields(FrequencyComparison, f) for f in d["frequencies"]]
+        cuts = [from_fields(OrderCutComparison, c) for c in d["order_cuts"]]
+        falls = [Waterfall(w["name"], OrderTrack.from_dict(w["track"]), np.asarray(w["model_hz"], dtype=float),
+                           [(c["mode"], c["order"], c["rpm"]) for c in w["crossings"]]) for w in d["waterfalls"]]
+        lost = any(f["frf_overlays"] or f["stabilisation"] is not None for f in d["frequencies"])
+        return from_fields(cls, d, frequencies=freqs, order_cuts=cuts, waterfalls=falls,
+                           unplotted="the measured FRFs and stability chart are not in results.json" if lost else "")
 
     def to_dict(self) -> dict:
         """Every figure of the result as plain JSON-ready numbers, lists and strings (SI, or the unit in its key)."""
@@ -350,6 +368,8 @@ class ComparisonResult:
         each waterfall. Returns the Figure."""
         import matplotlib.pyplot as plt
 
+        if self.unplotted:
+            raise FetorsionError(f"compare: the figure is not drawn again: {self.unplotted}")
         # a steady record's cuts are points at one speed: drawn on its order spectrum, not as cuts
         steady = {id(c) for c in self.order_cuts if c.steady() is not None
                   and any(c.name == f"{w.name}, torsiograph" for w in self.waterfalls)}
