@@ -16,7 +16,8 @@ from fetorsion.app.run import FAST_STEPS, run
 from fetorsion.excitation.campbell import run_campbell
 from fetorsion.measured.torsiograph import order_track
 from fetorsion.response.forced import run_response
-from fetorsion.response.transient import CROSSING_WINDOW, edge_times, order_cuts, run_transient
+from fetorsion.response.transient import CROSSING_WINDOW, order_cuts, run_transient
+from fetorsion.response.transient_record import edge_times
 
 NETWORKS = ROOT / "examples" / "networks"
 

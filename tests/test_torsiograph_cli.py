@@ -197,7 +197,7 @@ def test_a_reference_wheel_record_that_never_passes_its_gap_is_refused():
     """A 60-2 record of less than a revolution from the gap on: no tooth 0 to start from, one
     message naming the record (not a wrong phase)."""
     from fetorsion.errors import FetorsionError
-    from fetorsion.measured.torsiograph import repaired_edges
+    from fetorsion.measured.wheels import repaired_edges
 
     rng = np.random.default_rng(5)
     t = record(*sines(SPEED, PULLEY), 60, 3, np.zeros(60), SPEED, rng, np.arange(58))

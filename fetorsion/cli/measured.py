@@ -22,8 +22,8 @@ from ..io import save_figure_atomic
 
 def teeth_of(values) -> dict | str | None:
     """``--teeth``: one wheel for every channel (``60``, ``60-2``), or ``CHANNEL=WHEEL`` each;
-    every wheel checked now (:func:`fetorsion.measured.torsiograph.wheel_of`)."""
-    from ..measured.torsiograph import wheel_of
+    every wheel checked now (:func:`fetorsion.measured.wheels.wheel_of`)."""
+    from ..measured.wheels import wheel_of
 
     if not values:
         return None

@@ -28,7 +28,8 @@ import scipy.linalg
 from ..errors import FetorsionError
 from ..measured.torsiograph import order_track
 from .time_budget import check_cycles_fit
-from .transient import SETTLED, TransientResult, edge_times
+from .transient import SETTLED, TransientResult
+from .transient_record import edge_times
 
 if TYPE_CHECKING:
     from .forced import ResponseSetup

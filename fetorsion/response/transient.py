@@ -68,7 +68,8 @@ from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
 from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load, torque_table
 from ..results import from_fields
-from .transient_record import ORDER_CUT_KEYS, StoredRecord, block_envelope, thinned_signals, transient_from_dict
+from .transient_record import (ORDER_CUT_KEYS, StoredRecord, block_envelope, station_order_track, thinned_signals,
+                                transient_from_dict)
 from .transient_model import hold_coefficients, rigid_and_elastic_modes, transient_matrices
 from .time_budget import check_run_fits
 # plot_order_cuts: the run's steps import it from here
@@ -417,14 +418,6 @@ def order_cuts(result: TransientResult, response: ResponseResult, crossings: Seq
     return tuple(out)
 
 
-def edge_times(t, angle, teeth: int) -> np.ndarray:
-    """The times a wheel of ``teeth`` teeth turning through ``angle`` (rad, increasing, sampled
-    at ``t``) passes each tooth edge, the first at the record's first angle: linear between
-    samples (the angle is smooth on the scale of a step)."""
-    pitch = 2 * np.pi / teeth
-    edges = angle[0] + pitch * np.arange(int((angle[-1] - angle[0]) / pitch) + 1)
-    return np.interp(edges, angle, t)
-
 
 def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run: tuple[float, float] | None = None,
                   rate_rpm_per_s: float | None = None, cycles: int = DEFAULT_TRANSIENT_CYCLES,
@@ -537,7 +530,7 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
         scheme = "exact modal propagator, first-order hold, lfilter"
     # the tracked station turns at its speed factor times the crank: its angle for the wheel
     factor = 1.0 if res.network is None else float(speed_factors(model)[res.network.masters[track_station]])
-    track = _order_track(t, factor * phi + q[track_station], settle, run, rate_rpm_per_s, factor, period, teeth,
+    track = station_order_track(t, factor * phi + q[track_station], settle, run, rate_rpm_per_s, factor, period, teeth,
                          setup.labels[track_station])
     block_rpm, peak = block_envelope(t, n_t, phi, torque, period, settle)
     return TransientResult(model.name, mode, list(setup.labels) + ring_labels, list(setup.section_labels), t, n_t,
@@ -591,16 +584,3 @@ def _schedule(model, prop: Propagator, rpm, run, rate_rpm_per_s, cycles: int, pe
             settle = prop.settling_s * math.log(1 / START_SETTLED) / math.log(1 / SETTLED)
             duration, n_of_t, phi_of_t = held_schedule(settle, duration, n_of_t, phi_of_t)
     return settle, duration, n_of_t, phi_of_t, mode
-
-
-def _order_track(t, angle, settle: float, run, rate_rpm_per_s, factor: float, period: float, teeth: int,
-                 name: str) -> OrderTrack:
-    """The order track of a station's simulated ``angle`` (rad at ``t``) from its wheel's tooth edges,
-    a held start left out; ``factor``: the station's speed over the crank's."""
-    revs = int(round(period / (2 * np.pi)))
-    k0 = int(np.searchsorted(t, settle)) if run is not None else 0  # a held start is not tracked
-    # the schedule's acceleration is known: the bow of the mean rotation comes off exactly, a
-    # one-block record included
-    alpha = None if run is None else factor * math.copysign(rate_rpm_per_s, run[1] - run[0]) * math.pi / 30
-    return order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=name, accelerating=run is not None,
-                       alpha=alpha)

@@ -3,11 +3,12 @@ and a :class:`~.transient.TransientResult` read back from its ``to_dict()``."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..measured.torsiograph import OrderTrack
+from ..measured.torsiograph import OrderTrack, order_track
 from ..results import from_fields
 from .nonlinear import ElementWork
 
@@ -71,3 +72,26 @@ def block_envelope(t, n_t, phi, torque, period: float, settle: float):
     count = np.bincount(block[full], None, nb)
     block_rpm = np.bincount(block[full], n_t[full], nb) / np.maximum(count, 1)
     return block_rpm[count > 0], peak[count > 0]
+
+
+def edge_times(t, angle, teeth: int) -> np.ndarray:
+    """The times a wheel of ``teeth`` teeth turning through ``angle`` (rad, increasing, sampled
+    at ``t``) passes each tooth edge, the first at the record's first angle: linear between
+    samples (the angle is smooth on the scale of a step)."""
+    pitch = 2 * np.pi / teeth
+    edges = angle[0] + pitch * np.arange(int((angle[-1] - angle[0]) / pitch) + 1)
+    return np.interp(edges, angle, t)
+
+
+def station_order_track(t: np.ndarray, angle: np.ndarray, settle: float, run: tuple[float, float] | None,
+                        rate_rpm_per_s: float | None, factor: float, period: float, teeth: int,
+                        name: str) -> OrderTrack:
+    """The order track of a station's simulated ``angle`` (rad at ``t``) from its wheel's tooth edges,
+    a held start left out; ``factor``: the station's speed over the crank's."""
+    revs = int(round(period / (2 * np.pi)))
+    k0 = int(np.searchsorted(t, settle)) if run is not None else 0  # a held start is not tracked
+    # the schedule's acceleration is known: the bow of the mean rotation comes off exactly, a
+    # one-block record included
+    alpha = None if run is None else factor * math.copysign(rate_rpm_per_s, run[1] - run[0]) * math.pi / 30
+    return order_track(edge_times(t[k0:], angle[k0:], teeth), teeth, revs, name=name, accelerating=run is not None,
+                       alpha=alpha)

@@ -117,7 +117,7 @@ class FrfOverlay:
 
 def frf_overlays(crank, frfs, source: str = LUMPED17, condensed=None) -> tuple[list, str]:
     """Each measured FRF with the free-free model's at its station (node n the model's n-th
-    station, as :func:`paired_mac` reads them) to the measured reference, in the measured form
+    station, as :func:`fetorsion.studies.pairing.paired_mac` reads them) to the measured reference, in the measured form
     (the model's receptance times (iω)^p), and why any is left out."""
     from ..measured.modal import frf_matrix
 
