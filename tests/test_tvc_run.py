@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from conftest import ROOT
 from fetorsion.app.run import FAST_STEPS, RunOptions, run
 
@@ -79,3 +80,30 @@ def test_a_network_without_propulsion_fields_has_no_tvc_section(tmp_path):
     text = (out / "report.md").read_text()
     assert "Propulsion line" not in text and "propulsion TVC" not in text
     assert "tvc" not in json.loads((out / "results.json").read_text())
+
+
+GEARED = LINE.replace('''[[chain.shafts]]
+between = ["flange", "propeller"]''', '''[[chain.stations]]
+name = "wheel"
+inertia_kgm2 = 30.0
+
+[[chain.gears]]
+between = ["flange", "wheel"]
+ratio = 0.25
+
+[[chain.shafts]]
+between = ["wheel", "propeller"]''').replace('rated_speed_rpm = 300.0', 'rated_speed_rpm = 150.0').replace(
+    'damping_speed_rpm = 200.0', 'damping_speed_rpm = 100.0')
+
+
+def test_a_geared_line_gets_the_hammering_check(tmp_path):
+    (tmp_path / "line.toml").write_text(GEARED)
+    out = Path(run(tmp_path / "line.toml", tmp_path / "r", steps=FAST_STEPS, options=RunOptions(html=False)).folder)
+    text = (out / "report.md").read_text()
+    assert "### Gear hammering: vibratory against mean mesh torque" in text and "![](tvc_hammering.png)" in text
+    ham = json.loads((out / "results.json").read_text())["tvc"]["hammering"]
+    mesh = ham["meshes"][0]
+    assert mesh["label"] == "flange-wheel" and mesh["station"] == "wheel"
+    # the mean is the propeller law at the wheel (no other load on that side): Q_r (n f / n_r)²
+    rpm = json.loads((out / "results.json").read_text())["tvc"]["hammering"]["rpm"]
+    assert mesh["mean_nm"][-1] == pytest.approx(60e3 * (rpm[-1] * 0.25 / 150.0) ** 2, rel=1e-12)

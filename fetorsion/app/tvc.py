@@ -12,6 +12,7 @@ import math
 
 from ..description.chain_model import Network
 from ..design.coupling_heat import CouplingHeat, at_temperatures, coupling_heat
+from ..design.gear_hammering import gear_hammering
 from ..design.shaft_verdict import shaft_verdict
 from ..lumped_model.lumped import lumped
 from ..report.outcomes import Skipped, TVCOutcome
@@ -44,15 +45,18 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     settled = at_temperatures(net, heat.temperature_c) if heat else net
     response = heat.response if heat else solve_response(tvc_setup(net))
     shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
+    hammer = gear_hammering(settled, tvc_setup(settled), response.theta) if net.gears and net.propellers else None
     ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
                                        "section_torque_nm": response.section_torque_nm.tolist(),
                                        "sections": list(response.section_labels)},
                           "shafts": shafts.to_dict() if shafts else None,
-                          "couplings": heat.to_dict() if heat else None}
+                          "couplings": heat.to_dict() if heat else None,
+                          "hammering": hammer.to_dict() if hammer else None}
     return TVCOutcome(settled, lumped(settled), response, shafts, heat,
                       ctx.save(shafts.plot().figure, "tvc_shafts.png") if shafts else "",
                       ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
-                      tuple(assumptions(net, response)))
+                      tuple(assumptions(net, response)), hammer,
+                      ctx.save(hammer.plot().figure, "tvc_hammering.png") if hammer else "")
 
 
 def assumptions(net: Network, response) -> list[str]:
@@ -76,4 +80,7 @@ def assumptions(net: Network, response) -> list[str]:
     if net.couplings:
         out.append("Coupling temperature: T = T_amb + (T_max − T_amb) P/P_KV with P the largest heat over the speeds; "
                    "the sheet's C and ψ linear between its two temperatures")
+    if net.gears and net.propellers:
+        out.append("Gear hammering: mesh torque from the gear's own equilibrium (the modal damping left out), against "
+                   "the propeller law's mean torque referred by power, no gear losses")
     return out

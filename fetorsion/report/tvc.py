@@ -1,7 +1,7 @@
 """The report's propulsion TVC section (:class:`~fetorsion.report.outcomes.TVCOutcome`), in the
 order a class reviewer reads a torsional vibration calculation: the mass-elastic data, the natural
 frequencies, the shaft stresses against UR M68 with the barred ranges, the couplings' heat at
-their settled temperature, and what is assumed (docs/propulsion-tvc.md)."""
+their settled temperature, the gear meshes against hammering, and what is assumed (docs/propulsion-tvc.md)."""
 
 from __future__ import annotations
 
@@ -45,5 +45,8 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.couplings is not None:
         lines += ["### Flexible couplings: vibratory torque and heat", "", "```", outcome.couplings.table(), "```",
                   "", f"![]({outcome.heat_image})", ""]
+    if outcome.hammering is not None:
+        lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
+                  "", f"![]({outcome.hammering_image})", ""]
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
