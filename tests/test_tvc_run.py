@@ -107,3 +107,20 @@ def test_a_geared_line_gets_the_hammering_check(tmp_path):
     # the mean is the propeller law at the wheel (no other load on that side): Q_r (n f / n_r)²
     rpm = json.loads((out / "results.json").read_text())["tvc"]["hammering"]["rpm"]
     assert mesh["mean_nm"][-1] == pytest.approx(60e3 * (rpm[-1] * 0.25 / 150.0) ** 2, rel=1e-12)
+
+
+def test_an_engine_line_gets_normal_running_and_each_misfire(tmp_path):
+    text = (ROOT / "examples/networks/geared_engine.toml").read_text().replace(
+        'between = ["wheel", "propeller"]     # propeller shaft',
+        'between = ["wheel", "propeller"]\ndiameter_m = 0.012\ntensile_strength_pa = 600e6\nfeature = "integral_flange"')
+    text += ('\n[[chain.propellers]]\nstation = "propeller"\nblades = 3\nentrained_water_share = 0.0\n'
+             'rated_torque_nm = 100.0\nrated_speed_rpm = 1000.0\nblade_order_shares = [0.1]\n')
+    (tmp_path / "line.toml").write_text(text)
+    out = Path(run(tmp_path / "line.toml", tmp_path / "r", steps=FAST_STEPS, options=RunOptions(html=False)).folder)
+    report = (out / "report.md").read_text()
+    assert "### Normal running and misfire" in report and "Worst misfire: misfire of cylinder" in report
+    res = json.loads((out / "results.json").read_text())["tvc"]
+    assert [m["misfire_cylinder"] for m in res["misfires"]] == [1, 2, 3, 4]
+    worst = res["worst_misfire_cylinder"]
+    u = [m["largest_tau_over_tau_c"] for m in res["misfires"]]
+    assert u[worst - 1] == max(u) and (out / "tvc_shafts_misfire.png").stat().st_size > 10_000

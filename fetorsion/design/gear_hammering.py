@@ -56,8 +56,8 @@ class MeshHammering:
 
     @property
     def ratio(self) -> np.ndarray:
-        """Vibratory over mean torque at each speed."""
-        return self.vibratory_nm / self.mean_nm
+        """Vibratory over mean torque at each speed (NaN where no mean torque is known)."""
+        return np.divide(self.vibratory_nm, self.mean_nm, out=np.full(len(self.mean_nm), np.nan), where=self.mean_nm > 0)
 
 
 @dataclass
@@ -84,7 +84,10 @@ class GearHammering:
         """Each mesh's largest vibratory/mean ratio and its hammering ranges."""
         lines = [f"{self.name}: gear hammering (vibratory against mean mesh torque)"]
         for m in self.meshes:
-            k = int(np.argmax(m.ratio))
+            if not np.isfinite(m.ratio).any():
+                lines.append(f"  {m.label} (at {m.station}): no propeller on its load side, no mean torque: not judged")
+                continue
+            k = int(np.nanargmax(m.ratio))
             lines.append(f"  {m.label} (at {m.station}): largest vibratory/mean {m.ratio[k]:.3f} at {self.rpm[k]:.1f} "
                          f"rpm ({m.vibratory_nm[k]:.4g} against {m.mean_nm[k]:.4g} N m)")
             lines += [f"  hammering possible {r['from_rpm']:.1f}-{r['to_rpm']:.1f} rpm (peak {r['peak']:.2f} × mean at "
@@ -210,8 +213,9 @@ def gear_hammering(net: Network, setup: ResponseSetup, theta: np.ndarray) -> Gea
         top, bottom = grouped_extremes(mesh_torque(net, x, stations_theta, omegas), setup.orders, setup.period,
                                        setup.order_groups)
         vib, mean = 0.5 * (top - bottom), mean_mesh_torque(net, k, x, setup.rpm)
-        ranges = barred_ranges(setup.rpm, vib / np.where(mean > 0, mean, np.nan), 1.0) if mean.any() else []
-        meshes.append(MeshHammering(f"{net.labels[g.i]}-{net.labels[g.j]}", net.labels[x], vib, mean, ranges))
+        mesh = MeshHammering(f"{net.labels[g.i]}-{net.labels[g.j]}", net.labels[x], vib, mean)
+        mesh.ranges = barred_ranges(setup.rpm, mesh.ratio, 1.0) if mean.any() else []
+        meshes.append(mesh)
     notes = ["mesh torque from the gear's equilibrium (inertia, its shafts' springs and stated damping); the modal "
              "damping ratio is not a station's and is left out", "mean torque: the propeller law on the mesh's load "
              "side, referred by power without gear losses"]

@@ -18,6 +18,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.assessment import CrankAssessment
     from ..design.coupling_heat import CouplingHeat
     from ..design.gear_hammering import GearHammering
+    from ..design.tvc_cases import TVCCase
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
@@ -62,6 +63,12 @@ class TVCOutcome:
     #: Every gear mesh's vibratory against mean torque (None: no gear, or no propeller to give the mean).
     hammering: GearHammering | None = None
     hammering_image: str = ""
+    #: Normal running as a case, the misfire of each cylinder and the worst of them (None: no engine).
+    normal: TVCCase | None = None
+    misfires: tuple[TVCCase, ...] = ()
+    worst_misfire: TVCCase | None = None
+    misfire_note: str = ""
+    misfire_shaft_image: str = ""
 
 
 @dataclass(frozen=True)
