@@ -88,6 +88,9 @@ def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) ->
         return []
     if net.excitation.pressure_curve is not None:
         raise FetorsionError("misfire not computed: the motored pressure of a measured pressure curve is not known")
+    if net.excitation.tangential_harmonics:
+        raise FetorsionError("misfire not computed: a tangential-pressure harmonic table gives no motored cycle (the "
+                             "maker's misfire table is not read)")
     motored = misfire_harmonics(net, setup_of(net))
     return [evaluate_case(net, lambda n, c=c: setup_of(n).with_misfire(c, motored), f"misfire of cylinder {c + 1}", c)
             for c in range(net.engine.cylinders)]
