@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import pytest
 from conftest import ROOT
 from fetorsion.app.run import FAST_STEPS, RunOptions, run
 
@@ -79,3 +80,47 @@ def test_a_network_without_propulsion_fields_has_no_tvc_section(tmp_path):
     text = (out / "report.md").read_text()
     assert "Propulsion line" not in text and "propulsion TVC" not in text
     assert "tvc" not in json.loads((out / "results.json").read_text())
+
+
+GEARED = LINE.replace('''[[chain.shafts]]
+between = ["flange", "propeller"]''', '''[[chain.stations]]
+name = "wheel"
+inertia_kgm2 = 30.0
+
+[[chain.gears]]
+between = ["flange", "wheel"]
+ratio = 0.25
+
+[[chain.shafts]]
+between = ["wheel", "propeller"]''').replace('rated_speed_rpm = 300.0', 'rated_speed_rpm = 150.0').replace(
+    'damping_speed_rpm = 200.0', 'damping_speed_rpm = 100.0')
+
+
+def test_a_geared_line_gets_the_hammering_check(tmp_path):
+    (tmp_path / "line.toml").write_text(GEARED)
+    out = Path(run(tmp_path / "line.toml", tmp_path / "r", steps=FAST_STEPS, options=RunOptions(html=False)).folder)
+    text = (out / "report.md").read_text()
+    assert "### Gear hammering: vibratory against mean mesh torque" in text and "![](tvc_hammering.png)" in text
+    ham = json.loads((out / "results.json").read_text())["tvc"]["hammering"]
+    mesh = ham["meshes"][0]
+    assert mesh["label"] == "flange-wheel" and mesh["station"] == "wheel"
+    # the mean is the propeller law at the wheel (no other load on that side): Q_r (n f / n_r)²
+    rpm = json.loads((out / "results.json").read_text())["tvc"]["hammering"]["rpm"]
+    assert mesh["mean_nm"][-1] == pytest.approx(60e3 * (rpm[-1] * 0.25 / 150.0) ** 2, rel=1e-12)
+
+
+def test_an_engine_line_gets_normal_running_and_each_misfire(tmp_path):
+    text = (ROOT / "examples/networks/geared_engine.toml").read_text().replace(
+        'between = ["wheel", "propeller"]     # propeller shaft',
+        'between = ["wheel", "propeller"]\ndiameter_m = 0.012\ntensile_strength_pa = 600e6\nfeature = "integral_flange"')
+    text += ('\n[[chain.propellers]]\nstation = "propeller"\nblades = 3\nentrained_water_share = 0.0\n'
+             'rated_torque_nm = 100.0\nrated_speed_rpm = 1000.0\nblade_order_shares = [0.1]\n')
+    (tmp_path / "line.toml").write_text(text)
+    out = Path(run(tmp_path / "line.toml", tmp_path / "r", steps=FAST_STEPS, options=RunOptions(html=False)).folder)
+    report = (out / "report.md").read_text()
+    assert "### Normal running and misfire" in report and "Worst misfire: misfire of cylinder" in report
+    res = json.loads((out / "results.json").read_text())["tvc"]
+    assert [m["misfire_cylinder"] for m in res["misfires"]] == [1, 2, 3, 4]
+    worst = res["worst_misfire_cylinder"]
+    u = [m["largest_tau_over_tau_c"] for m in res["misfires"]]
+    assert u[worst - 1] == max(u) and (out / "tvc_shafts_misfire.png").stat().st_size > 10_000

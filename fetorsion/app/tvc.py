@@ -11,12 +11,11 @@ from __future__ import annotations
 import math
 
 from ..description.chain_model import Network
-from ..design.coupling_heat import CouplingHeat, at_temperatures, coupling_heat
-from ..design.shaft_verdict import shaft_verdict
+from ..design.tvc_cases import TVCCase, evaluate_case, misfire_cases, worst_case
+from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
 from ..report.outcomes import Skipped, TVCOutcome
-from ..response.forced import ResponseSetup, response_setup, solve_response
-from ..response.propulsion import DEFAULT_SPEED_RATIOS, propeller_setup
+from ..response.propulsion import DEFAULT_SPEED_RATIOS, tvc_setup
 
 
 def is_propulsion_line(model) -> bool:
@@ -24,35 +23,44 @@ def is_propulsion_line(model) -> bool:
     return isinstance(model, Network) and bool(model.propellers or any(s.section for s in model.shafts))
 
 
-def tvc_setup(net: Network) -> ResponseSetup:
-    """The network's forced-response setup: its propellers' blade orders with its engine's where it
-    has both, its engine's alone without a propeller's shares."""
-    if any(p.order_shares for p in net.propellers):
-        return propeller_setup(net)
-    return response_setup(net)
+def misfires_of(net: Network) -> tuple[list[TVCCase], str]:
+    """(the misfire of each cylinder, a note: why none was computed, or "")."""
+    if net.engine is None or net.excitation is None:
+        return [], ""
+    try:
+        return misfire_cases(net, tvc_setup), ""
+    except FetorsionError as e:
+        return [], str(e)
 
 
 def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
-    """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges."""
+    """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges, gear
+    hammering, in normal running and in the misfire of each cylinder."""
     net = ctx.crank
     if not is_propulsion_line(net):
         return None
     if not any(p.order_shares for p in net.propellers) and net.excitation is None:
         return Skipped("no excitation: the network has neither propeller blade_order_shares nor [engine] and "
                        "[excitation] tables")
-    heat: CouplingHeat | None = coupling_heat(net, tvc_setup) if net.couplings else None
-    settled = at_temperatures(net, heat.temperature_c) if heat else net
-    response = heat.response if heat else solve_response(tvc_setup(net))
-    shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
+    normal = evaluate_case(net, tvc_setup, "normal running")
+    misfires, why = misfires_of(net)
+    worst = worst_case(misfires)
+    response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
     ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
                                        "section_torque_nm": response.section_torque_nm.tolist(),
                                        "sections": list(response.section_labels)},
                           "shafts": shafts.to_dict() if shafts else None,
-                          "couplings": heat.to_dict() if heat else None}
-    return TVCOutcome(settled, lumped(settled), response, shafts, heat,
+                          "couplings": heat.to_dict() if heat else None,
+                          "hammering": hammer.to_dict() if hammer else None,
+                          "misfires": [c.to_dict() for c in misfires], "misfire_note": why,
+                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1}
+    return TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
                       ctx.save(shafts.plot().figure, "tvc_shafts.png") if shafts else "",
                       ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
-                      tuple(assumptions(net, response)))
+                      tuple(assumptions(net, response)), hammer,
+                      ctx.save(hammer.plot().figure, "tvc_hammering.png") if hammer else "",
+                      normal, tuple(misfires), worst, why,
+                      ctx.save(worst.shafts.plot().figure, "tvc_shafts_misfire.png") if worst and worst.shafts else "")
 
 
 def assumptions(net: Network, response) -> list[str]:
@@ -76,4 +84,7 @@ def assumptions(net: Network, response) -> list[str]:
     if net.couplings:
         out.append("Coupling temperature: T = T_amb + (T_max − T_amb) P/P_KV with P the largest heat over the speeds; "
                    "the sheet's C and ψ linear between its two temperatures")
+    if net.gears and net.propellers:
+        out.append("Gear hammering: mesh torque from the gear's own equilibrium (the modal damping left out), against "
+                   "the propeller law's mean torque referred by power, no gear losses")
     return out

@@ -132,3 +132,13 @@ def reference_value(notes: dict, key: str) -> float | None:
     """A reference frequency of ``[meta]`` as a float, None where absent."""
     value = notes.get(key)
     return None if value is None else float(value)
+
+
+def piecewise_linear(x: float, rows: list[tuple[float, float]]) -> float:
+    """y at ``x`` on the polyline of ``rows`` ((x, y), x ascending): linear between rows, held outside."""
+    if x <= rows[0][0]:
+        return float(rows[0][1])
+    for (x0, y0), (x1, y1) in zip(rows, rows[1:]):
+        if x <= x1:
+            return float(y0 + (y1 - y0) * (x - x0) / (x1 - x0))
+    return float(rows[-1][1])

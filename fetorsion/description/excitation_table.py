@@ -14,7 +14,7 @@ from .model import Engine, Excitation
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number
 
 
-EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")
+EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")  # or tangential_harmonics
 
 
 def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: bool = False) -> Excitation:
@@ -24,6 +24,8 @@ def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_
     peak pressure above the motored one)."""
     strokes = engine.strokes_per_cycle if engine else 4
     common = _operating_fields(t, zero_damping_ok)
+    if "tangential_harmonics" in t.data:
+        return _harmonic_table(t, common)
     given = [k for k in EXCITATION_SOURCES if k in t.data]
     if len(given) != 1:
         t.problems.append(Problem(t.path, given or None, f"give exactly one of {', '.join(EXCITATION_SOURCES)}"))
@@ -112,6 +114,53 @@ def _synthetic_cycle(t: Table, key: str, engine: Engine | None, common: dict) ->
         t.problems.append(Problem(f"{t.path}.peak_pressure_pa", raw, f"must be above the motored peak "
                                   f"p_intake·CR^n = {motored_peak:.4g} Pa at every speed"))
     return ex
+
+
+#: The units a tangential-pressure harmonic table may be written in, to Pa.
+PRESSURE_UNITS = {"Pa": 1.0, "bar": 1.0e5, "MPa": 1.0e6}
+
+
+def _harmonic_table(t: Table, common: dict) -> Excitation:
+    """The engine maker's tangential-pressure harmonics (``[[excitation.tangential_harmonics]]``: each
+    ``order`` with ``sine`` and ``cosine``, or ``amplitude`` and ``phase_deg`` (p_q sin(qθ + φ)), one
+    value per ``harmonic_imep_pa`` column, in ``tangential_pressure_unit``) and the load's mean
+    indicated pressure: ``imep_pa`` (a value or [rpm, Pa] pairs) or ``propeller_law_imep_pa`` (at the
+    top of the speed range, ∝ n² below it)."""
+    unit = PRESSURE_UNITS[t.choice("tangential_pressure_unit", tuple(PRESSURE_UNITS), "Pa")]
+    columns = t.numbers("harmonic_imep_pa")
+    if not (columns and all(c > 0 for c in columns) and all(a < b for a, b in zip(columns, columns[1:]))):
+        t.problems.append(Problem(f"{t.path}.harmonic_imep_pa", list(columns), "must be mean indicated pressures > 0 "
+                                  "(Pa), ascending: the table's columns"))
+    rows = []
+    for h in t.tables("tangential_harmonics"):
+        order = h.number("order", positive=True)
+        if "amplitude" in h.data:
+            amp, phase = h.numbers("amplitude"), [math.radians(v) for v in h.numbers("phase_deg")]
+            sine, cosine = [a * math.cos(f) for a, f in zip(amp, phase)], [a * math.sin(f) for a, f in zip(amp, phase)]
+        else:
+            sine, cosine = h.numbers("sine"), h.numbers("cosine")
+        h.finish()
+        if not len(sine) == len(cosine) == len(columns):
+            h.problems.append(Problem(h.path, dict(h.data), f"needs one value per harmonic_imep_pa column "
+                                      f"({len(columns)}) in sine and cosine (or amplitude and phase_deg)"))
+        rows.append((order, tuple(v * unit for v in sine), tuple(v * unit for v in cosine)))
+    load = [k for k in ("imep_pa", "propeller_law_imep_pa") if k in t.data]
+    if len(load) != 1:
+        t.problems.append(Problem(t.path, load or None, "with tangential_harmonics give exactly one of imep_pa, "
+                                  "propeller_law_imep_pa (the load's mean indicated pressure)"))
+        load, pairs, kind = [], [(1.0, 1.0)], "imep"
+    elif load[0] == "propeller_law_imep_pa":
+        pairs, kind = [(common["speed_range"][1], t.number("propeller_law_imep_pa", positive=True))], "propeller_imep"
+    else:
+        raw = t.get("imep_pa")
+        pairs, kind = ([(1.0, raw)] if finite_number(raw) else raw), "imep"
+        if not (isinstance(pairs, list) and pairs and all(isinstance(p, (list, tuple)) and len(p) == 2 and all(
+                finite_number(v) for v in p) and p[1] > 0 for p in pairs)):
+            t.problems.append(Problem(f"{t.path}.imep_pa", raw, "must be a pressure > 0 (Pa) or [rpm, Pa] pairs"))
+            pairs = [(1.0, 1.0)]
+    t.finish()
+    return Excitation(tangential_harmonics=tuple(rows), harmonic_imep=tuple(columns), load_kind=kind,
+                      load=tuple((float(a), float(b)) for a, b in pairs), **common)
 
 
 _SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",

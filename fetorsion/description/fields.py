@@ -299,7 +299,24 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
           "an oil film in `[bearings]` damps the bending", "0 < ζ_b < 1"),
     Field("bending_damping_ratio_source", "where `bending_damping_ratio` comes from",
           "required with `bending_damping_ratio`"),
+    Field("tangential_harmonics", "instead of a pressure: the engine maker's tangential-pressure harmonic table "
+          "(`[[excitation.tangential_harmonics]]`), read at the load's `imep_pa` or `propeller_law_imep_pa`",
+          "with `harmonic_imep_pa`"),
+    Field("harmonic_imep_pa", "the harmonic table's columns: mean indicated pressures, Pa", "> 0, ascending"),
+    Field("tangential_pressure_unit", "the harmonic table's unit: `Pa` (default), `bar` or `MPa`", "one of these"),
+    Field("propeller_law_imep_pa", "with the harmonic table: p_mi at the top of `speed_range_rpm`, Pa, the load's "
+          "p_mi ∝ n² below it (the propeller law)", "> 0; or `imep_pa`"),
 ))
+
+TANGENTIAL_HARMONICS = Section("excitation.tangential_harmonics", "One order q of the tangential-pressure table: "
+                               "p_t(θ) = a_q sin qθ + b_q cos qθ = P_q sin(qθ + φ_q), θ from the cylinder's firing "
+                               "TDC; the gas torque is p_t × piston area × crank radius (docs/propulsion-tvc.md).", (
+    Field("order", "q, per crank revolution", "> 0"),
+    Field("sine", "a_q, one per `harmonic_imep_pa` column", "or `amplitude` and `phase_deg`"),
+    Field("cosine", "b_q, one per column", "with `sine`"),
+    Field("amplitude", "P_q, one per column", "with `phase_deg`"),
+    Field("phase_deg", "φ_q, deg, one per column", "with `amplitude`"),
+), array=True)
 
 DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain files. A damper's ring is one more "
                   "degree of freedom joined to the pulley-end (or flywheel-end) station; its hub or housing adds "
@@ -518,10 +535,10 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 
 #: The tables of a crank description, in the order the documentation shows them.
 CRANK_SECTIONS = (META, UNITS, MATERIAL, ENGINE, JOURNALS, PINS, WEBS, FRONT, REAR, FILLETS, OIL_HOLES, SOLID, ATTACHMENTS,
-                  BEARINGS, EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS, DESIGN)
+                  BEARINGS, EXCITATION, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS, DESIGN)
 #: The tables of a chain file.
 CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, PROPELLERS, COUPLINGS, GEARS, NONLINEAR, ENGINE,
-                  EXCITATION, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
+                  EXCITATION, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 
 
 def schema(sections) -> dict[str, frozenset[str] | None]:

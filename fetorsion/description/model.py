@@ -13,7 +13,7 @@ from dataclasses import dataclass, field, replace
 from enum import StrEnum
 
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
-from .derived import firing_angles_from_lags, reference_value, table_at_temperature, temperature_groups
+from .derived import firing_angles_from_lags, piecewise_linear, reference_value, table_at_temperature, temperature_groups
 
 
 class AttachPoint(StrEnum):
@@ -243,6 +243,21 @@ class Excitation:
     #: mode, the bending's damping then assumed unless an oil film gives it) and its source.
     bending_damping_ratio: float | None = None
     bending_damping_ratio_source: str = ""
+    #: The engine maker's tangential-pressure harmonics, per order: (order, sine Pa, cosine Pa), the
+    #: sine and cosine coefficients one per column of ``harmonic_imep`` (Pa, ascending): the gas
+    #: pressure's tangential share p_t(θ) = Σ_q a_q sin qθ + b_q cos qθ (θ from the cylinder's firing
+    #: TDC), read at the load's mean indicated pressure (``load``; ``load_kind`` "imep", or
+    #: "propeller_imep": p_mi = load's value × (n / its rpm)²). Empty: a pressure curve or the cycle.
+    tangential_harmonics: tuple[tuple[float, tuple[float, ...], tuple[float, ...]], ...] = ()
+    harmonic_imep: tuple[float, ...] = ()
+
+    def running_imep(self, rpm: float) -> float:
+        """The mean indicated pressure at ``rpm``, Pa: the ``load`` table's (linear between its rows,
+        held outside), or the propeller law's p_rated (n / n_rated)² (``load_kind`` "propeller_imep")."""
+        if self.load_kind == "propeller_imep":
+            (n_rated, p_rated), = self.load
+            return p_rated * (rpm / n_rated) ** 2
+        return piecewise_linear(rpm, sorted(self.load))
 
     @property
     def checked_range(self) -> tuple[float, float]:

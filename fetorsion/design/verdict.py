@@ -294,6 +294,8 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
              f"{tuned.equivalent_inertia_kgm2:.4g} kg m^2, ring {tuned.den_hartog.ring_inertia:.4g} kg m^2"]
     if misfire and crank.excitation.pressure_curve is not None:
         notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    elif misfire and crank.excitation.tangential_harmonics:
+        notes.append("misfire not computed: a tangential-pressure harmonic table gives no motored cycle")
     elif misfire:
         best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
         worst = {"without damper": None, best_name: None}

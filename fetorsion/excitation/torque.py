@@ -97,6 +97,9 @@ def cylinder_pressure(crank: Crank, rpm: float, theta=None, misfire: bool = Fals
     """
     engine, ex = crank.engine, _excitation_of(crank)
     theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
+    if ex.tangential_harmonics:
+        raise FetorsionError("the excitation is given by tangential-pressure harmonics: no cylinder pressure curve "
+                             "(nor a motored cycle for a misfire, nor a radial pin force) is known")
     if misfire:
         if not (ex.compression_ratio > 1 and engine.bore > 0):
             raise FetorsionError("a misfire needs the synthetic cycle (excitation.compression_ratio and engine.bore): "
@@ -161,13 +164,38 @@ def cylinder_torque(crank: Crank, rpm: float, theta: np.ndarray | None = None, m
     :func:`cylinder_pressure`).
     """
     engine, ex = crank.engine, _excitation_of(crank)
-    theta, p = cylinder_pressure(crank, rpm, theta, misfire)
     r, l = engine.crank_radius, engine.rod_length
     omega = rpm * 2 * np.pi / 60
+    if ex.tangential_harmonics and not misfire:
+        theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
+        gas = math.pi / 4 * engine.bore**2 * r * tangential_pressure(ex, engine, rpm, theta)
+        inertia = tangential_torque(theta, ex.reciprocating_mass * piston_acceleration(theta, r, l, omega), r, l)
+        return CycleTorque(theta, gas + inertia, gas, inertia)
+    theta, p = cylinder_pressure(crank, rpm, theta, misfire)
     gas_force = math.pi / 4 * engine.bore**2 * (p - ex.intake_pressure)
     inertia_force = ex.reciprocating_mass * piston_acceleration(theta, r, l, omega)
     return CycleTorque(theta, tangential_torque(theta, gas_force + inertia_force, r, l),
                        tangential_torque(theta, gas_force, r, l), tangential_torque(theta, inertia_force, r, l))
+
+
+def harmonic_coefficients(ex: Excitation, imep_pa: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(orders, sine a_q Pa, cosine b_q Pa) of a tangential-pressure harmonic table read at a mean
+    indicated pressure: linear between the table's p_mi columns, held outside them."""
+    orders = np.array([q for q, _, _ in ex.tangential_harmonics])
+    sine = np.array([np.interp(imep_pa, ex.harmonic_imep, a) for _, a, _ in ex.tangential_harmonics])
+    cosine = np.array([np.interp(imep_pa, ex.harmonic_imep, b) for _, _, b in ex.tangential_harmonics])
+    return orders, sine, cosine
+
+
+def tangential_pressure(ex: Excitation, engine: Engine, rpm: float, theta: np.ndarray) -> np.ndarray:
+    """p_t(θ), Pa: the gas force's tangential share per unit piston area, referred to the crank
+    radius (the gas torque is p_t A r), from the harmonic table at the load's p_mi at ``rpm``
+    (:meth:`~fetorsion.description.model.Excitation.running_imep`): its mean p_mi V_s / (A r Φ) = 2 p_mi / Φ
+    (the indicated work p_mi V_s over the cycle Φ rad, V_s = 2 r A), and Σ_q a_q sin qθ + b_q cos qθ."""
+    imep = ex.running_imep(rpm)
+    orders, sine, cosine = harmonic_coefficients(ex, imep)
+    q = orders[:, None] * np.asarray(theta, dtype=float)[None, :]
+    return 2.0 * imep / cycle_angle(engine) + (sine[:, None] * np.sin(q) + cosine[:, None] * np.cos(q)).sum(axis=0)
 
 
 def engine_torque(crank: Crank, rpm: float) -> CycleTorque:

@@ -17,6 +17,8 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..description.chain_model import Chain, Network
     from ..design.assessment import CrankAssessment
     from ..design.coupling_heat import CouplingHeat
+    from ..design.gear_hammering import GearHammering
+    from ..design.tvc_cases import TVCCase
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
@@ -48,7 +50,7 @@ class TVCOutcome:
     its couplings' settled temperatures (``network``: the mass-elastic data; ``modes``: its natural
     frequencies), the forced response with the propellers' and engine's excitation, the shaft
     sections against UR M68 (None: no section stated), the couplings' heat (None: no coupling), the
-    pictures' file names ("" where none) and what is assumed, one sentence each."""
+    gear meshes against hammering (None: no gear), the pictures' file names ("" where none) and what is assumed, one sentence each."""
 
     network: Network
     modes: LumpedResult
@@ -58,6 +60,15 @@ class TVCOutcome:
     shaft_image: str
     heat_image: str
     assumptions: tuple[str, ...]
+    #: Every gear mesh's vibratory against mean torque (None: no gear, or no propeller to give the mean).
+    hammering: GearHammering | None = None
+    hammering_image: str = ""
+    #: Normal running as a case, the misfire of each cylinder and the worst of them (None: no engine).
+    normal: TVCCase | None = None
+    misfires: tuple[TVCCase, ...] = ()
+    worst_misfire: TVCCase | None = None
+    misfire_note: str = ""
+    misfire_shaft_image: str = ""
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,7 @@
 """The report's propulsion TVC section (:class:`~fetorsion.report.outcomes.TVCOutcome`), in the
 order a class reviewer reads a torsional vibration calculation: the mass-elastic data, the natural
 frequencies, the shaft stresses against UR M68 with the barred ranges, the couplings' heat at
-their settled temperature, and what is assumed (docs/propulsion-tvc.md)."""
+their settled temperature, the gear meshes against hammering, and what is assumed (docs/propulsion-tvc.md)."""
 
 from __future__ import annotations
 
@@ -30,6 +30,33 @@ def mass_elastic_lines(net: Network) -> list[str]:
     return lines
 
 
+def _cell(v, fmt: str) -> str:
+    return "–" if v is None else format(v, fmt)
+
+
+def misfire_lines(outcome: TVCOutcome) -> list[str]:
+    """Normal running and each cylinder's misfire, one row each, and the worst misfire's shaft table."""
+    if outcome.misfire_note:
+        return ["### Misfire", "", f"Not computed: {outcome.misfire_note}.", ""]
+    if not outcome.misfires:
+        return []
+    lines = ["### Normal running and misfire", "",
+             "| configuration | largest τ/τ_C | barred ranges | shafts | coupling °C | coupling heat [W] | "
+             "coupling torque [N m] | gears |", "|---|---|---|---|---|---|---|---|"]
+    for case in (outcome.normal, *outcome.misfires):
+        r = case.summary()
+        lines.append(f"| {r['case']} | {_cell(r['largest_tau_over_tau_c'], '.3f')} | {r['barred'] or '–'} | "
+                     f"{r['shaft_verdict'] or '–'} | {_cell(r['coupling_temperature_c'], '.1f')} | "
+                     f"{_cell(r['coupling_heat_w'], '.1f')} | {_cell(r['coupling_torque_nm'], '.0f')} | "
+                     f"{r['hammering'] or '–'} |")
+    worst = outcome.worst_misfire
+    lines += ["", f"Worst misfire: {worst.name} (each misfiring cylinder runs its motored cycle; the couplings "
+              "at the temperature their heat holds in that configuration).", ""]
+    if worst.shafts is not None:
+        lines += ["```", worst.shafts.table(), "```", "", f"![]({outcome.misfire_shaft_image})", ""]
+    return lines
+
+
 def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     """The TVC section of the report (module docs)."""
     lines = ["## Propulsion line: torsional vibration calculation", ""]
@@ -45,5 +72,9 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.couplings is not None:
         lines += ["### Flexible couplings: vibratory torque and heat", "", "```", outcome.couplings.table(), "```",
                   "", f"![]({outcome.heat_image})", ""]
+    if outcome.hammering is not None:
+        lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
+                  "", f"![]({outcome.hammering_image})", ""]
+    lines += misfire_lines(outcome)
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines

@@ -225,3 +225,11 @@ def _bare_setup(net: Network, rpm, damping_ratio: float | None) -> ResponseSetup
                          model=f"network of {len(res.network.labels)} stations", stiffnesses=res.stiffnesses_nm_per_rad,
                          damper_dof=network_damper_dof(net, res, flywheel)[0],
                          damper_scale=network_damper_dof(net, res, flywheel)[1])
+
+
+def tvc_setup(net: Network) -> ResponseSetup:
+    """The network's forced-response setup for a TVC: its propellers' blade orders with its engine's
+    where it has both (:func:`propeller_setup`), its engine's alone without a propeller's shares."""
+    if any(p.order_shares for p in net.propellers):
+        return propeller_setup(net)
+    return response_setup(net)

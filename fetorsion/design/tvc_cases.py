@@ -1,0 +1,101 @@
+"""The configurations of a propulsion line's TVC: normal running and the misfire of each cylinder,
+each with its couplings at the temperature their heat holds, its shaft sections against UR M68 with
+the barred ranges, and its gear meshes against hammering (docs/propulsion-tvc.md).
+
+A misfiring cylinder runs its motored cycle (compression and expansion, no combustion: the
+engine's synthetic cycle, :func:`fetorsion.response.forced.misfire_harmonics`), the others fire as
+before (:meth:`fetorsion.response.forced.ResponseSetup.with_misfire`); the propeller's blade orders
+are unchanged. The worst misfire is the one with the largest τ/τ_C of any shaft section (without
+sections, the largest coupling torque against its permissible, else the largest section torque).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..description.chain_model import Network
+from ..errors import FetorsionError
+from ..response.forced import ResponseResult, ResponseSetup, misfire_harmonics, solve_response
+from .coupling_heat import CouplingHeat, at_temperatures, coupling_heat
+from .gear_hammering import GearHammering, gear_hammering
+from .shaft_verdict import ShaftVerdict, shaft_verdict
+
+
+@dataclass
+class TVCCase:
+    """One configuration: ``name``, ``misfire`` (0-based cylinder, None: normal running), the
+    ``network`` at its couplings' settled temperatures, its ``response`` and verdicts (None where the
+    line has no shaft section, coupling, or gear and propeller)."""
+
+    name: str
+    misfire: int | None
+    network: Network
+    response: ResponseResult
+    shafts: ShaftVerdict | None
+    couplings: CouplingHeat | None
+    hammering: GearHammering | None
+
+    @property
+    def severity(self) -> float:
+        """How close the case comes to a limit (module docs: the worst misfire's measure)."""
+        if self.shafts is not None:
+            return float(max(np.nanmax(np.where(np.isfinite(s.utilisation), s.utilisation, np.nan))
+                             for s in self.shafts.sections))
+        if self.couplings is not None and any(c.permissible_torque for c in self.couplings.couplings):
+            return float(max(r["torque_nm"] / r["permissible_torque_nm"] for r in self.couplings.rows()
+                             if r["permissible_torque_nm"]))
+        return float(self.response.section_torque_nm.max())
+
+    def summary(self) -> dict[str, str | float | int | None]:
+        """One row of the configurations' table: τ/τ_C, barred ranges, coupling, hammering."""
+        rows = self.couplings.rows() if self.couplings else []
+        return {"case": self.name, "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
+                "largest_tau_over_tau_c": self.severity if self.shafts else None,
+                "barred": "; ".join(f"{b['from_rpm']:.1f}-{b['to_rpm']:.1f} rpm" for b in self.shafts.barred)
+                if self.shafts else None, "shaft_verdict": self.shafts.verdict if self.shafts else None,
+                "coupling_temperature_c": max((r["temperature_c"] for r in rows), default=None),
+                "coupling_heat_w": max((r["heat_w"] for r in rows), default=None),
+                "coupling_torque_nm": max((r["torque_nm"] for r in rows), default=None),
+                "hammering": self.hammering.verdict if self.hammering else None}
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the summary, and the verdicts' own dicts."""
+        return {**self.summary(), "shafts": self.shafts.to_dict() if self.shafts else None,
+                "couplings": self.couplings.to_dict() if self.couplings else None,
+                "hammering": self.hammering.to_dict() if self.hammering else None}
+
+
+def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], name: str,
+                  misfire: int | None = None) -> TVCCase:
+    """One configuration of ``net`` (module docs), its response from ``setup_of`` (network → setup)."""
+    heat = coupling_heat(net, setup_of) if net.couplings else None
+    settled = at_temperatures(net, heat.temperature_c) if heat else net
+    setup = setup_of(settled)
+    response = heat.response if heat else solve_response(setup)
+    shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
+    hammer = gear_hammering(settled, setup, response.theta) if net.gears and net.propellers else None
+    return TVCCase(name, misfire, settled, response, shafts, heat, hammer)
+
+
+def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:
+    """The misfire of each cylinder of ``net``'s engine, in order (module docs); none without an engine.
+
+    Raises FetorsionError where the motored cycle is not known (a measured pressure curve)."""
+    if net.engine is None or net.excitation is None:
+        return []
+    if net.excitation.pressure_curve is not None:
+        raise FetorsionError("misfire not computed: the motored pressure of a measured pressure curve is not known")
+    if net.excitation.tangential_harmonics:
+        raise FetorsionError("misfire not computed: a tangential-pressure harmonic table gives no motored cycle (the "
+                             "maker's misfire table is not read)")
+    motored = misfire_harmonics(net, setup_of(net))
+    return [evaluate_case(net, lambda n, c=c: setup_of(n).with_misfire(c, motored), f"misfire of cylinder {c + 1}", c)
+            for c in range(net.engine.cylinders)]
+
+
+def worst_case(cases: list[TVCCase]) -> TVCCase | None:
+    """The case of the largest :attr:`TVCCase.severity` (None: no case)."""
+    return max(cases, key=lambda c: c.severity, default=None)
