@@ -164,7 +164,8 @@ def test_m53_throw_loads_superpose_two_rods_by_hand():
     assert one["M_BRO"][0] == pytest.approx(1000.0 * 0.5 * 0.10)
 
 
-@pytest.mark.parametrize("name, interval", [("v8_petrol", 90.0), ("v12_diesel", 60.0), ("flat4_boxer", 180.0)])
+@pytest.mark.parametrize("name, interval", [("v8_petrol", 90.0), ("v12_diesel", 60.0), ("flat4_boxer", 180.0),
+                                            ("v6_split_pin", 120.0)])
 def test_shipped_vee_and_opposed_cranks_fire_evenly(name, interval):
     """The example files fire every 720°/z, and their major orders are the multiples of z/2 up to
     12 (turn5-leads: an even-firing four-stroke of z cylinders)."""

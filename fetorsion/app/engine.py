@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ..description.defaults import DEFAULT_WEB_METHOD
+from ..webs.methods import crank_web_method
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -26,7 +26,7 @@ def engine_fillets(crank: Crank):
     from ..design.stress import fillets_of
     from ..lumped_model.parts import build_parts
 
-    return fillets_of(crank, build_parts(crank, DEFAULT_WEB_METHOD))
+    return fillets_of(crank, build_parts(crank, crank_web_method(crank)))
 
 
 def engine_condensed(crank: Crank, mesh_size: float, progress: Callable[[str], None] | None = None,

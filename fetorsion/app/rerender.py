@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
+from ..webs.methods import SPLIT_PIN_METHODS
 from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
@@ -38,7 +39,8 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     """Each matplotlib figure of the sections read back: file name -> a function drawing it (an Axes)."""
     out = {}
     if isinstance(run.lumped, LumpedOutcome):
-        main = run.lumped.table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
+        main = run.lumped.table.get(DEFAULT_WEB_METHOD) or run.lumped.table[SPLIT_PIN_METHODS[0]]  # split pins: fe
+        main = main[PARTITIONS.index(DEFAULT_PARTITION)]
         out[run.lumped.image] = main.plot
     if isinstance(run.lumped, ChainOutcome):
         out[run.lumped.image] = run.lumped.chain.plot

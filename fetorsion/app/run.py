@@ -30,8 +30,7 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError, ParameterError
 from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
 from ..studies.runner import machine_workers
-from ..description.defaults import (DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE,
-                                    DEFAULT_WEB_METHOD)
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE
 from ..report.markdown import report_markdown
 from ..report.outcomes import RunOutcome, Skipped
 from .tvc import is_propulsion_line, step_tvc
@@ -163,14 +162,18 @@ class RunContext:
             self.built["fillet_scf"] = scf
         return self.built.get("fillet_scf")
 
-    def parts(self, method: str = DEFAULT_WEB_METHOD):
-        """The crank cut into its parts with ``method``'s web stiffness (built once). With the
+    def parts(self, method: str | None = None):
+        """The crank cut into its parts with ``method``'s web stiffness (built once; None: the
+        crank's own, :func:`~fetorsion.webs.methods.crank_web_method`). With the
         run's condensed crank built, ``fe-held`` takes its throws' stiffness from it, at the
         run's mesh size, instead of condensing the crank once more."""
         import functools
 
         from ..lumped_model.parts import build_parts
+        from ..webs.methods import crank_web_method
         from ..webs.throwfe import held_throw_stiffnesses, web_equivalent_length_held
+
+        method = method or crank_web_method(self.crank)
 
         def build():
             if method == "fe":

@@ -20,8 +20,8 @@ from ..description.model import Crank
 from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..lumped_model.lumped import PARTITIONS, lumped
-from ..description.defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD, LUMPED17
-from ..webs.methods import WEB_METHODS
+from ..description.defaults import DEFAULT_PARTITION, LUMPED17
+from ..webs.methods import SPLIT_PIN_METHODS, WEB_METHODS, crank_web_method
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome, LumpedOutcome,
                                MeasuredOutcome, ModeImage, SensitivityOutcome, Skipped, TransientOutcome,
                                VerdictOutcome)
@@ -73,7 +73,7 @@ def step_lumped(ctx: RunContext) -> LumpedOutcome | ChainOutcome:
             skipped[method] = str(exc)
     ctx.results["lumped"] = {m: [r.to_dict() for r in rs] for m, rs in table.items()}
     ctx.results["lumped_skipped"] = skipped
-    main = table[DEFAULT_WEB_METHOD][PARTITIONS.index(DEFAULT_PARTITION)]
+    main = table[crank_web_method(ctx.crank)][PARTITIONS.index(DEFAULT_PARTITION)]
     return LumpedOutcome(table, skipped, ctx.save(main.plot().figure, "lumped_modes_17dof.png"))
 
 
@@ -146,7 +146,8 @@ def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
     f_free, f_held = free.first_torsional(), held.first_torsional()
     free, held = reported_modes(free), reported_modes(held)  # what the report reads, kept in results.json
     chain = {}
-    for method in ("carter", "fe", "fe-held"):
+    split = any(p.split for p in ctx.crank.pins)
+    for method in (m for m in ("carter", "fe", "fe-held") if not split or m in SPLIT_PIN_METHODS):  # no formula splits
         f17 = float(lumped(ctx.crank, DEFAULT_PARTITION, method, parts=ctx.parts(method)).frequencies_hz[0])
         chain[method] = {"f1_hz": f17, "vs_free": f17 / f_free - 1, "vs_bearings": f17 / f_held - 1}
     images = [ctx.save(cc.plot().figure, "modes_free_and_bearings.png")]
@@ -250,6 +251,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     ``options.fatigue_method`` (else the description's ``[limits] fatigue_method``, else
     ``iacs-m53``) decides (:func:`fetorsion.design.crank_verdict.run_crank_verdict`)."""
     from ..design.crank_verdict import run_crank_verdict
+    from ..design.m53 import split_pin_refusal
     from ..design.methods import described_method
     from ..design.stress import fillet_stress
 
@@ -260,6 +262,9 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
         return Skipped("the description has no [excitation] table")
     if not (crank.fillets.journal > 0 and crank.fillets.pin > 0):
         return Skipped("fillet fatigue needs fillet radii (a sharp corner has no finite SCF)")
+    if split_pin_refusal(crank):  # and the fe path's pin cuts and SCFs sit on one pin axis per throw
+        return Skipped(split_pin_refusal(crank) + "; the fe path's pin-fillet cuts and SCFs take one pin axis per "
+                       "throw and do not model a split pin either")
     scf = ctx.scf()
     missing = scf.missing_bending()
     if missing:

@@ -21,8 +21,9 @@ from .model import (ATTACH_POINTS, MEASURED_F1, PAPER_FE_F1, PAPER_LUMPED_F1, At
                     Cylinder, Engine, Fillets, Material, OilFilm, OilHoles, PROCESSES, SURFACES, TREATMENTS, Web)
 from .reader import Table, finite_number, read_length_unit, read_toml
 from .excitation_table import read_excitation
-from .tables import (read_engine, read_dampers, read_design, read_limits, read_uncertainty, read_distributions,
-                     unique_problems, uncertainty_bound_problems)
+from .splitpin import every_or_none, read_split, split_engine, split_problems
+from .tables import (firing_problems, read_engine, read_dampers, read_design, read_limits, read_uncertainty,
+                     read_distributions, unique_problems, uncertainty_bound_problems)
 
 
 #: How many descriptions deep ``extends`` may go (a variant of a variant of ...): far beyond any real
@@ -209,14 +210,19 @@ def _oil_film(t: Table, journals, width: tuple[float, ...], speed_range) -> tupl
     return tuple(stiffness), tuple(damping), film
 
 
-def _cylinder(t: Table) -> Cylinder:
+def _cylinder(t: Table, split: tuple[float, float] = (0.0, 0.0)) -> Cylinder:
+    """A round part; ``split``: a pin's split angle (rad) and flying web (m), read by the caller."""
     d = t.number("diameter", length=True, positive=True)
     length = t.number("length", length=True, positive=True)
     bore = t.number("bore", 0.0, length=True, nonnegative=True)
     t.finish()
     if d > 0 and bore >= d:
         t.problems.append(Problem(f"{t.path}.bore", bore / t.scale, f"must be smaller than diameter ({d / t.scale:g})"))
-    return Cylinder(d, length, bore)
+    if split[0] and length > 0 and not split[1] < length:
+        t.problems.append(Problem(f"{t.path}.flying_web_thickness", split[1] / t.scale,
+                                  f"the flying web and the two half pins must fit the pin: must be less than its "
+                                  f"length ({length / t.scale:g})"))
+    return Cylinder(d, length, bore, *split)
 
 
 def _web(t: Table) -> Web:
@@ -245,8 +251,15 @@ def parse_crank(data: dict, source: str = "<crank>", check_uncertainty: bool = T
     unit = read_length_unit(root, source)
     name, notes = _meta(root, source)
     material = _material(root)
-    engine = read_engine(root)
+    raw_pins = data.get("pins")
+    split = isinstance(raw_pins, list) and any(isinstance(p, dict) and "split_angle_deg" in p for p in raw_pins)
+    engine = read_engine(root, split)
     journals, pins, webs, front, rear = _shaft_parts(root, engine)
+    if split:
+        problems.extend(every_or_none(pins))
+        engine = split_engine(engine, pins)
+        if engine.half_pin_angles and engine.firing_order:
+            problems.extend(firing_problems(engine, "crank_angles_deg and the pins' split_angle_deg, throw angles"))
     ft = root.table("fillets", required=False)
     fillets = Fillets(ft.number("journal", 0.0, length=True, nonnegative=True),
                       ft.number("pin", 0.0, length=True, nonnegative=True))
@@ -321,7 +334,8 @@ def _shaft_parts(root: Table, engine: Engine) -> tuple[tuple[Cylinder, ...], tup
     the ``engine``'s layout has throws."""
     n = engine.cylinders // (2 if engine.layout == "vee" else 1)  # throws: as the layout has them, not as listed
     journals = tuple(_cylinder(t) for t in root.tables("journals"))
-    pins = tuple(_cylinder(t) for t in root.tables("pins"))
+    raw_engine = root.data.get("engine") if isinstance(root.data.get("engine"), dict) else {}
+    pins = tuple(_cylinder(t, read_split(t, raw_engine)) for t in root.tables("pins"))
     webs = tuple(_web(t) for t in root.tables("webs"))
     front = tuple(_cylinder(t) for t in root.tables("front", required=False))
     rear = tuple(_cylinder(t) for t in root.tables("rear", required=False))
@@ -462,8 +476,9 @@ def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
                 out.append(Problem(f"fillets.{part}", show(radius),
                                    f"must be smaller than half the thickness of the thinnest web "
                                    f"(webs.{thinnest + 1}: {show(min(thickness))} {u})"))
+    out.extend(split_problems(crank, show, u))
     spacing = max((abs(2 * o) for o in crank.engine.rod_offsets), default=0.0)
-    short = [i for i, p in enumerate(crank.pins) if spacing >= p.length]
+    short = [i for i, p in enumerate(crank.pins) if spacing >= p.length and not p.split]
     if short:
         out.append(Problem("engine.rod_spacing", show(spacing), f"the two big ends must sit on the pin: must be less "
                            f"than the length of pins.{short[0] + 1} ({show(crank.pins[short[0]].length)} {u})"))
@@ -471,13 +486,13 @@ def _geometry_problems(crank: Crank, scale: float) -> list[Problem]:
     if oh.diameter > 0 and not (oh.in_journals or oh.in_pins):
         out.append(Problem("oil_holes.diameter", show(oh.diameter), "set in_journals and/or in_pins to place the holes"))
     for kind, parts, used in (("journals", crank.journals, oh.in_journals), ("pins", crank.pins, oh.in_pins)):
-        small = [i for i, c in enumerate(parts) if used and oh.diameter >= min(c.length, c.diameter - c.bore)]
+        small = [i for i, c in enumerate(parts) if used and oh.diameter >= min(c.half_length, c.diameter - c.bore)]
         if small:
             out.append(Problem("oil_holes.diameter", show(oh.diameter),
                                f"must be smaller than the length and wall of {kind}.{small[0] + 1}"))
         radius = crank.fillets.journal if kind == "journals" else crank.fillets.pin
         for i, c in enumerate(parts):
-            if used and i not in small and _drilling_gap(c.length, oh.diameter, radius) <= _TOUCH_M:
+            if used and i not in small and not c.split and _drilling_gap(c.length, oh.diameter, radius) <= _TOUCH_M:
                 out.append(Problem(f"{kind}.{i + 1}.length", show(c.length), _drilling_meets_fillet(
                     kind[:-1], c.length, radius, oh.diameter, show, u)))
     return out

@@ -125,12 +125,25 @@ ENGINE = Section("engine", "The slider-crank data; read the same way in a crank 
           "`fork-and-blade` (both at mid-pin), `articulated` (master and articulated rod: refused, not modelled)",
           "one of `side-by-side`, `fork-and-blade`, `articulated`; vee only"),
     Field("rod_spacing", "vee, side by side: the distance between the two big ends' centres along the pin "
-          "(file length unit)", "> 0, less than the pin's length; required with side-by-side rods"),
+          "(file length unit)", "> 0, less than the pin's length; required with side-by-side rods on unsplit "
+          "pins; not taken with split pins (each rod at its half pin's mid-length)"),
 ), required=True)
 
 JOURNALS = _round("journals", "Main journals, front to rear: T + 1 of them (T throws: N in-line and opposed, N/2 vee).",
                   True)
-PINS = _round("pins", "Crank pins, front to rear: one per throw, T of them.", True)
+PINS = Section("pins", "Crank pins, front to rear: one per throw, T of them. A vee's pin may be split (docs/vee-engines.md, "
+               "*split pins*): two half pins of (`length` − `flying_web_thickness`)/2 each, the front one at the "
+               "throw's angle carrying the first bank's rod, the rear one at the throw's angle plus "
+               "`split_angle_deg` carrying the second bank's, joined by a flying web whose outline is the convex "
+               "hull of the two half pins' circles.", _ROUND + (
+    Field("split_angle_deg", "split pin: how far after the front half's rod the rear half's reaches TDC, through "
+          "the split alone, deg (negative: before; an even-firing 90° V6 is ±30)",
+          "in (−180, 180), not 0; vee with side-by-side rods only; on every pin or none; the half pins must "
+          "overlap: stroke × sin(|split|/2) < `diameter`"),
+    Field("flying_web_thickness", "split pin: the axial thickness of the flying web between the two half pins "
+          "(file length unit)", "> 0, less than `length`; required with `split_angle_deg`; each half pin longer "
+          "than the pin fillet (and with room for a pin drilling at its mid-length)"),
+), array=True, required=True)
 WEBS = Section("webs", "Crank webs, front to rear: 2T of them; webs 2i−1 and 2i belong to throw i. The outline "
                "is the convex hull of the circle of diameter `width_journal` around the crank axis and the "
                "circle of diameter `width_pin` around the pin centre, united with the counterweight sector.", (

@@ -74,11 +74,27 @@ class Material:
 
 @dataclass(frozen=True)
 class Cylinder:
-    """A round shaft piece (journal, pin, nose or flange step), lengths in m."""
+    """A round shaft piece (journal, pin, nose or flange step), lengths in m.
+
+    A split pin (vee only) is two half pins of ``half_length`` each with a flying web of
+    ``flying_web`` (m) between them: the front half at its throw's angle, the rear half
+    ``split_angle`` (rad) later to TDC (docs/vee-engines.md, *split pins*); 0: an ordinary pin.
+    """
 
     diameter: float
     length: float
     bore: float = 0.0
+    split_angle: float = 0.0
+    flying_web: float = 0.0
+
+    @property
+    def split(self) -> bool:
+        return self.split_angle != 0.0
+
+    @property
+    def half_length(self) -> float:
+        """A split pin's half-pin length (length − flying web)/2, m; the whole length unsplit."""
+        return 0.5 * (self.length - self.flying_web) if self.split else self.length
 
 
 @dataclass(frozen=True)
@@ -115,7 +131,9 @@ class Engine:
     empty: all 0) adds to a cylinder's TDC lag the angle between its bank's axis and the first
     bank's (a vee's bank angle, an opposed engine's 180°). ``rod_offsets`` (m, one per cylinder;
     empty: all 0) places each big end along its pin, from the pin's mid-length, rearwards
-    positive (two rods side by side).
+    positive (two rods side by side). ``half_pin_angles`` (rad, one per cylinder; empty: all 0)
+    adds the angle of the cylinder's half of a split pin from its throw's angle (0 for the front
+    half).
     """
 
     cylinders: int
@@ -129,6 +147,7 @@ class Engine:
     cylinder_throws: tuple[int, ...] = ()
     bank_angles: tuple[float, ...] = ()
     rod_offsets: tuple[float, ...] = ()
+    half_pin_angles: tuple[float, ...] = ()
 
     @property
     def crank_radius(self) -> float:
@@ -148,11 +167,20 @@ class Engine:
         """Axial position (m) of 0-based ``cylinder``'s big end from its pin's mid-length."""
         return self.rod_offsets[cylinder] if self.rod_offsets else 0.0
 
+    def half_pin_angle(self, cylinder: int) -> float:
+        """Angle (rad) of 0-based ``cylinder``'s half pin from its throw's angle (0 unsplit)."""
+        return self.half_pin_angles[cylinder] if self.half_pin_angles else 0.0
+
+    def pin_angle(self, cylinder: int) -> float:
+        """Angle (rad) of the pin (or half pin) 0-based ``cylinder``'s rod runs on: a_t + s_c."""
+        return self.crank_angles[self.throw_of_cylinder(cylinder)] + self.half_pin_angle(cylinder)
+
     def tdc_lags(self) -> tuple[float, ...]:
-        """How far each cylinder's TDC lags cylinder 1's throw's first cylinder, rad: its throw's
-        crank angle plus its bank angle (mod nothing: :meth:`firing_angles` wraps)."""
+        """How far each cylinder's TDC lags cylinder 1's throw's first cylinder, rad: λ_c = a_t +
+        s_c + ψ_c, its throw's crank angle, its half pin's split and its bank angle (mod nothing:
+        :meth:`firing_angles` wraps)."""
         bank = self.bank_angles or (0.0,) * self.cylinders
-        return tuple(self.crank_angles[self.throw_of_cylinder(c)] + bank[c] for c in range(self.cylinders))
+        return tuple(self.pin_angle(c) + bank[c] for c in range(self.cylinders))
 
     def firing_angles(self) -> tuple[float, ...]:
         """Crank angle (rad) at which each cylinder (index 0..N-1) fires, cylinder 1 at 0.

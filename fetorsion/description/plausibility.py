@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import math
+
 from .model import Crank
 from .units import LENGTH_UNITS
 
@@ -53,4 +55,27 @@ def plausibility_warnings(crank: Crank) -> list[str]:
     if bore > 0 and not 0.3 <= bore / stroke <= 3.0:
         out.append(f"engine.bore = {bore / scale:g} {u} is {bore / stroke:.3g} × the stroke; engines have 0.3-3: "
                    "check the value")
+    return out + _split_warnings(crank, u, scale)
+
+
+#: Split pins of real engines: 15-30° on 90° V6s (semi-even and even firing), 60° on 60° V6s [R];
+#: a flying web is a few millimetres to a third of the pin diameter thick.
+_SPLIT_RANGE_DEG = (10.0, 75.0)
+_FLYING_WEB_RATIO = (0.04, 0.5)
+
+
+def _split_warnings(crank: Crank, u: str, scale: float) -> list[str]:
+    """Split pins far from any engine's: the split angle, the flying web against the pin."""
+    out = []
+    for i, p in enumerate(crank.pins):
+        if not p.split:
+            continue
+        deg = abs(math.degrees(p.split_angle))
+        if not _SPLIT_RANGE_DEG[0] <= deg <= _SPLIT_RANGE_DEG[1]:
+            out.append(f"pins.{i + 1}.split_angle_deg = {math.degrees(p.split_angle):g} is outside the splits of "
+                       f"split-pin engines ({_SPLIT_RANGE_DEG[0]:g}-{_SPLIT_RANGE_DEG[1]:g} deg): check the value")
+        ratio = p.flying_web / p.diameter
+        if not _FLYING_WEB_RATIO[0] <= ratio <= _FLYING_WEB_RATIO[1]:
+            out.append(f"pins.{i + 1}.flying_web_thickness = {p.flying_web / scale:g} {u} is {ratio:.3g} x the pin "
+                       f"diameter; flying webs have {_FLYING_WEB_RATIO[0]:g}-{_FLYING_WEB_RATIO[1]:g}: check the value")
     return out

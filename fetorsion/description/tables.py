@@ -27,9 +27,12 @@ def per_spring(t: Table, key: str, springs: int) -> tuple[float, ...]:
     return values
 
 
-def read_engine(root: Table) -> Engine:
+def read_engine(root: Table, split: bool = False) -> Engine:
     """The ``[engine]`` table (cylinders, cycle, stroke, rod, bore, crank angles, firing order), lengths
-    in the file's unit converted to m; shared by crank descriptions and chain files."""
+    in the file's unit converted to m; shared by crank descriptions and chain files. ``split``: the
+    crank's pins are split (its ``[[pins]]`` say so), so the rods' places come from the half pins,
+    not ``rod_spacing``, and the firing order is checked once the pins are read
+    (:func:`firing_problems`)."""
     problems = root.problems
     et = root.table("engine")
     n = et.integer("cylinders")
@@ -39,7 +42,7 @@ def read_engine(root: Table) -> Engine:
     bore = et.number("bore", 0.0, length=True, nonnegative=True)
     angles = et.numbers("crank_angles_deg")
     firing = et.raw("firing_order")
-    banks = _banks(et, n)
+    banks = _banks(et, n, split)
     et.finish()
     if firing is None:
         firing = []
@@ -57,13 +60,19 @@ def read_engine(root: Table) -> Engine:
                                 f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
     engine = Engine(n, strokes, stroke, rod, tuple(math.radians(a) for a in angles), tuple(firing), bore,
                     banks["layout"], banks["cylinder_throws"], banks["bank_angles"], banks["rod_offsets"])
-    if n and firing and angles and len(angles) == throws:
-        try:
-            engine.firing_angles()
-        except ValueError as exc:
-            problems.append(Problem("engine.firing_order", list(firing),
-                                    f"cannot be fired by crank_angles_deg {list(angles)}: {exc}"))
+    if n and firing and angles and len(angles) == throws and not split:
+        problems.extend(firing_problems(engine))
     return engine
+
+
+def firing_problems(engine: Engine, by: str = "crank_angles_deg") -> list[Problem]:
+    """The firing order refused when the TDC lags (throw, split and bank angles) cannot fire it."""
+    try:
+        engine.firing_angles()
+    except ValueError as exc:
+        degrees = [round(math.degrees(a), 6) for a in engine.crank_angles]
+        return [Problem("engine.firing_order", list(engine.firing_order), f"cannot be fired by {by} {degrees}: {exc}")]
+    return []
 
 
 #: How a vee's cylinders are numbered: "by-bank", the first bank's 1..T front to rear, then the
@@ -74,12 +83,14 @@ NUMBERINGS = ("by-bank", "alternate")
 RODS = ("side-by-side", "fork-and-blade", "articulated")
 
 
-def _banks(et, n: int) -> dict:
+def _banks(et, n: int, split: bool = False) -> dict:
     """``[engine]``'s layout fields: which throw each cylinder drives, the angle of its bank
     (added to its throw's TDC lag) and its rod's place along the pin. In-line: cylinder c on
     throw c; opposed: the same, the cylinders alternating between two banks 180° apart (the
     second, fourth ... in the second); vee: two cylinders per throw, numbered by
-    ``numbering``, the second bank's ``bank_angle_deg`` later to TDC (negative: earlier)."""
+    ``numbering``, the second bank's ``bank_angle_deg`` later to TDC (negative: earlier). With
+    ``split`` pins each rod runs at its half pin's mid-length (set with the pins), so
+    ``rod_spacing`` is neither needed nor taken."""
     problems = et.problems
     layout = et.text("layout", "in-line", choices=LAYOUTS)
     out = {"layout": layout if layout in LAYOUTS else "in-line", "throws": n, "cylinder_throws": (),
@@ -96,8 +107,12 @@ def _banks(et, n: int) -> dict:
     bank = et.number("bank_angle_deg", above=-180.0, below=180.0 + 1e-9)
     numbering = et.text("numbering", "by-bank", choices=NUMBERINGS)
     rods = et.text("rods", "side-by-side", choices=RODS)
-    spacing = et.number("rod_spacing", 0.0 if rods != "side-by-side" else None, length=True, positive=True) \
-        if rods == "side-by-side" or "rod_spacing" in et.data else 0.0
+    spacing = et.number("rod_spacing", 0.0 if rods != "side-by-side" or split else None, length=True,
+                        positive=True) if (rods == "side-by-side" and not split) or "rod_spacing" in et.data else 0.0
+    if split and "rod_spacing" in et.data:
+        problems.append(Problem("engine.rod_spacing", et.data["rod_spacing"], "split pins carry each rod at its half "
+                                "pin's mid-length: leave rod_spacing out"))
+        spacing = 0.0
     if bank == 0:
         problems.append(Problem("engine.bank_angle_deg", bank, "must not be 0: two banks at 0° are an in-line engine"))
     if rods == "articulated":

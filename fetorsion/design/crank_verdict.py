@@ -361,9 +361,12 @@ def run_crank_verdict(crank: Crank, cc: CondensedCrank, setup: ResponseSetup, fi
     >>> v.method, v.passes  # doctest: +SKIP
     """
     from ..response.coupled import bending_damping
-    from .m53 import m53_geometry
+    from .m53 import m53_geometry, split_pin_refusal
     from .m53_scfs import scf_comparison
     from .recovered import same_load
+
+    if split_pin_refusal(crank):  # neither M53 nor the fe path's one-axis pin cuts model a split pin
+        raise FetorsionError(split_pin_refusal(crank))
 
     fatigue_method(method, "the fatigue method")
     say = progress or (lambda m: None)

@@ -40,6 +40,7 @@ from dataclasses import replace as dataclasses_replace
 
 import numpy as np
 
+from ..description.model import Crank
 from ..errors import FetorsionError
 from .scfset import SCFSet
 from .fatigue import HAIGH_LOCATIONS, M53_REQUIRED_Q, MPA, m53_equivalent_fillet, m53_equivalent_oil_bore, m53_fatigue_strength
@@ -393,6 +394,20 @@ def m53_required(limits) -> float:
     return getattr(limits, "fatigue_required_safety", 0.0) or M53_REQUIRED_Q
 
 
+def split_pin_refusal(crank: Crank) -> str | None:
+    """Why a crank with split pins is outside the rule (None: it is not split). [IACSM53] §1.2 applies to
+    crankshafts with one crankthrow between main bearings, and its throw (§2, Fig 1) and stress
+    concentration factors (§3) are those of one straight pin between two webs; a split pin's two
+    half pins on their own axes and the flying web between them are neither, so no M53 figure of
+    it is given rather than an in-line one."""
+    split = [i + 1 for i, p in enumerate(crank.pins) if p.split]
+    if not split:
+        return None
+    return (f"IACS UR M53 does not cover split pins (pins {', '.join(map(str, split))}): its throw (§2, Fig 1) and "
+            "stress concentration factors (§3) are those of one straight pin between two webs, not two half pins "
+            "with a flying web between them; fetorsion gives no M53 figure for this crank")
+
+
 def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None = None, rated_rpm: float | None = None,
                   material=None, limits=None) -> M53Result:
     """UR M53 on a crank description in one configuration.
@@ -424,6 +439,8 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
     from ..excitation.torque import cylinder_pin_forces
     from .fatigue import fatigue_material
 
+    if split_pin_refusal(crank):
+        raise FetorsionError(split_pin_refusal(crank))
     mat = material or fatigue_material(crank.material)[0]
     limits = crank.limits if limits is None else limits
     rated = float(crank.excitation.speed_range[1] if rated_rpm is None else rated_rpm)

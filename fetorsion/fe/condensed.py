@@ -319,14 +319,19 @@ class CondensedCrank:
         (the work of a tangential pin force), the pulley's the front master's θx; unit modal mass.
         Each mode carries its torsion/bending share as its label, so a coupled mode shows."""
         md = self.modes(support, n)
-        R = self.crank.engine.crank_radius
-        pins = np.empty((len(md.frequencies_hz), self.crank.throws))
-        for t, a in enumerate(self.crank.engine.crank_angles):
-            ty, tz = md.vectors[self.dof(f"P{t + 1}", "ty")], md.vectors[self.dof(f"P{t + 1}", "tz")]
-            pins[:, t] = (-math.sin(a) * ty + math.cos(a) * tz) / R
-        from ..description.cylinders import per_cylinder
+        engine = self.crank.engine
+        R = engine.crank_radius
+        from ..description.cylinders import pin_master_centre, rod_centre
 
-        pins = per_cylinder(self.crank.engine, pins, axis=1)  # each cylinder twists with its throw
+        pins = np.empty((len(md.frequencies_hz), engine.cylinders))
+        for c in range(engine.cylinders):  # each cylinder twists with its throw's pin (or half pin)
+            t, a = engine.throw_of_cylinder(c), engine.pin_angle(c)
+            P = f"P{t + 1}"
+            # a split pin's master lies off each half's axis: its turn θx moves the half's centre too
+            dy, dz = rod_centre(engine, c) - pin_master_centre(engine, t, self.crank.pins[t].split_angle)
+            rx = md.vectors[self.dof(P, "rx")]
+            ty, tz = md.vectors[self.dof(P, "ty")] - dz * rx, md.vectors[self.dof(P, "tz")] + dy * rx
+            pins[:, c] = (-math.sin(a) * ty + math.cos(a) * tz) / R
         labels = tuple(f"{k} ({f[0]:.2f}/{f[1]:.2f})" for k, f in zip(md.kinds, md.fractions))
         return TorsionalModes(f"condensed FE crank, {support} ({self.reduced.size} DOF)", md.frequencies_hz, pins,
                               md.vectors[self.dof("front", "rx")], np.ones(len(md.frequencies_hz)), labels)

@@ -34,6 +34,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from ..description.defaults import DEFAULT_MESH_SIZE
+from ..description.cylinders import pin_master_centre
 from ..description.model import AttachPoint, Crank
 from ..errors import FetorsionError
 from ..solid.mesh import CrankMesh, mesh_crank
@@ -81,7 +82,6 @@ def master_labels(crank: Crank) -> list[str]:
 def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
     """The masters of a crank mesh, in axial order: ``front``, ``J1``, ``P1``, ``J2``, …, ``rear``."""
     bearings = crank.main_bearings
-    R = crank.engine.crank_radius
     face = lambda name: cm.node_sets[f"{name}_face"]  # noqa: E731
     masters = [Master("front", np.array([cm.nodes[face("front"), 0].mean(), 0.0, 0.0]), face("front"))]
     for j, journal in enumerate(crank.journals):
@@ -89,13 +89,25 @@ def crank_masters(crank: Crank, cm: CrankMesh) -> list[Master]:
         masters.append(Master(f"J{j + 1}", np.array([xm, 0.0, 0.0]),
                               _surface(cm, f"journal_{j + 1}", (0.0, 0.0), journal.diameter, xm, bearings.width[j])))
         if j < crank.throws:
-            pin, a = crank.pins[j], crank.engine.crank_angles[j]
-            yz = (R * math.cos(a), R * math.sin(a))
-            xp = _part_mid(cm, f"pin_{j + 1}")
-            masters.append(Master(f"P{j + 1}", np.array([xp, *yz]),
-                                  _surface(cm, f"pin_{j + 1}", yz, pin.diameter, xp, pin.length)))
+            masters.append(_pin_master(crank, cm, j))
     masters.append(Master("rear", np.array([cm.nodes[face("rear"), 0].mean(), 0.0, 0.0]), face("rear")))
     return masters
+
+
+def _pin_master(crank: Crank, cm: CrankMesh, t: int) -> Master:
+    """Pin ``t``'s master at its mid-length on its axis, tied to its bearing surface. A split pin
+    keeps one master, midway between its half pins' axes (:func:`pin_master_centre`), tied to
+    both halves' bearing surfaces (a distributing coupling adds no stiffness: the flying web keeps
+    its own); each rod's force reaches it with its moment about it (docs/vee-engines.md)."""
+    pin, name = crank.pins[t], f"pin_{t + 1}"
+    yz = pin_master_centre(crank.engine, t, pin.split_angle)
+    xp = _part_mid(cm, name)
+    if not pin.split:
+        return Master(f"P{t + 1}", np.array([xp, *yz]), _surface(cm, name, yz, pin.diameter, xp, pin.length))
+    a, R, h = crank.engine.crank_angles[t], crank.engine.crank_radius, pin.half_length
+    halves = [(a, xp - 0.5 * (pin.length - h)), (a + pin.split_angle, xp + 0.5 * (pin.length - h))]
+    nodes = [_surface(cm, name, (R * math.cos(b), R * math.sin(b)), pin.diameter, x, h) for b, x in halves]
+    return Master(f"P{t + 1}", np.array([xp, *yz]), np.union1d(*nodes))
 
 
 def end_body(crank: Crank, at: str):

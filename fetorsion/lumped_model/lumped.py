@@ -275,7 +275,7 @@ def lumped(model: Crank | Chain | Network, dof: int = DEFAULT_PARTITION, stiffne
     inertias, springs, labels, anchors = partition_matrices(chain, dof)
     rigid, hz, shapes = solve_chain(inertias, springs)
     return LumpedResult(model.name, dof, labels, anchors, inertias, springs, hz, shapes, rigid,
-                        {"stiffness_method": stiffness, "source": model.source},
+                        {"stiffness_method": chain.web_method, "source": model.source},
                         per_cylinder(model.engine, pin_weights(chain, dof)))
 
 

@@ -8,7 +8,7 @@ removed, oil drillings eq. (15)/(17) removed, webs from the exact analytic outli
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -85,6 +85,29 @@ def oil_hole_inertia(c: Cylinder, hole_diameter: float, density: float, radius: 
     return mass * (hole_diameter**2 / 16 + piece**2 / 12 + centre**2 + radius**2)
 
 
+def flying_web_inertia(pin: Cylinder, density: float, radius: float) -> float:
+    """Polar inertia (kg·m²) about the crank axis of a split pin's flying web: a stadium, the convex
+    hull of the two half pins' circles (radius r = D/2, centres c = 2R sin(|δ|/2) apart), ``flying_web``
+    thick, its centre R cos(δ/2) off the axis. About its centre: the rectangle 2r × c,
+    2rc (c² + 4r²)/12, and the two half discs, πr⁴/2 + πr²c²/4 + 4r³c/3 (each half disc by the
+    parallel-axis theorem from its centroid, 4r/3π off its flat edge)."""
+    r, d = 0.5 * pin.diameter, pin.split_angle
+    c = 2.0 * radius * abs(math.sin(0.5 * d))
+    own = 2 * r * c * (c**2 + 4 * r**2) / 12 + math.pi * r**4 / 2 + math.pi * r**2 * c**2 / 4 + 4 * r**3 * c / 3
+    area = math.pi * r**2 + 2 * r * c
+    return density * pin.flying_web * (own + area * (radius * math.cos(0.5 * d)) ** 2)
+
+
+def pin_inertia(pin: Cylinder, density: float, radius: float, hole: float = 0.0) -> float:
+    """Polar inertia (kg·m²) of a pin at ``radius`` from the crank axis less its drilling of diameter
+    ``hole`` (0: none): eq. (14); a split pin is its two half pins (each drilled at its mid-length)
+    and its flying web (:func:`flying_web_inertia`)."""
+    if not pin.split:
+        return cylinder_inertia(pin, density, radius) - (oil_hole_inertia(pin, hole, density, radius) if hole else 0.0)
+    half = replace(pin, length=pin.half_length, split_angle=0.0, flying_web=0.0)
+    return 2 * pin_inertia(half, density, radius, hole) + flying_web_inertia(pin, density, radius)
+
+
 def build_parts(crank: Crank, web_method: str = DEFAULT_WEB_METHOD,
                 web_length: Callable[[Crank, int, float], float] | None = None) -> PartChain:
     """Cut ``crank`` into its axial parts with compliances and inertias.
@@ -155,9 +178,7 @@ def _pieces(crank: Crank, web_method: str, web_length, d_e: float) -> list[tuple
             web = crank.webs[w]
             if side == 1:
                 p = crank.pins[t]
-                inertia = cylinder_inertia(p, rho, R)
-                if oil.in_pins:
-                    inertia -= oil_hole_inertia(p, oil.diameter, rho, R)
+                inertia = pin_inertia(p, rho, R, oil.diameter if oil.in_pins else 0.0)
                 pieces.append(("pin", t, p.length, cylinder_equivalent_length(p, d_e), own("pin", t, inertia),
                                float(piston * rods[t])))
             length = web_equivalent_length(crank, w, d_e, web_method) if web_length is None else web_length(crank, w, d_e)

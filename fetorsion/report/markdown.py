@@ -54,8 +54,9 @@ def lumped_section(crank: Crank, outcome: LumpedOutcome | ChainOutcome) -> list[
         lines.append(f"| {d} DOF | " + " | ".join(cells) + (f" | {paper.get(str(d), '')} |" if paper else " |"))
     if measured:
         lines += ["", f"Measured (free-free modal test): **{measured:g} Hz**."]
-    lines += [f"Web method `{m}` not used: {why}" for m, why in skipped.items()]
-    lines += ["", f"17-DOF mode shapes (Carter webs), unit twist at the pulley end: ![]({outcome.image})", ""]
+    lines += [""] * bool(skipped) + [f"Web method `{m}` not used: {why}" for m, why in skipped.items()]
+    shown = "Carter" if "carter" in table else next(iter(table), "")  # a split-pin crank's plot is its fe chain's
+    lines += ["", f"17-DOF mode shapes ({shown} webs), unit twist at the pulley end: ![]({outcome.image})", ""]
     return lines
 
 

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 
+from ..description.cylinders import pin_master_centre, rod_centre
 from ..excitation.torque import cycle_angle, cylinder_pin_forces, firing_angles, pin_force_harmonics
 from ..fe.condensed import CondensedCrank
 
@@ -19,18 +20,23 @@ def pin_load_map(cc: CondensedCrank) -> np.ndarray:
 
     Pin t at angle a_t: radial e_r = (0, cos a, sin a), tangential e_t = (0, −sin a, cos a) (a
     positive tangential force turns the crank in +θx). A big end at ``rod_offset`` d along the
-    pin from its master (the pin's mid-length) adds the force's moment d e_x × e at the master."""
+    pin from its master (the pin's mid-length) adds the force's moment d e_x × e at the master.
+    On a split pin each rod acts on its own half, at a_c = a_t + s_c, whose axis lies (Δy, Δz)
+    off the throw's one master (:func:`~fetorsion.description.cylinders.pin_master_centre`): the
+    force's moment about the master is (d, Δy, Δz) × e."""
     crank = cc.crank
     engine = crank.engine
     out = np.zeros((engine.cylinders, 2, cc.n_master_dofs))
     for c in range(engine.cylinders):
         t = engine.throw_of_cylinder(c)
-        a, d = engine.crank_angles[t], engine.rod_offset(c)
+        a, d = engine.pin_angle(c), engine.rod_offset(c)
         pin = f"P{t + 1}"
+        dy, dz = rod_centre(engine, c) - pin_master_centre(engine, t, crank.pins[t].split_angle)
         for k, e in enumerate(((0.0, -math.sin(a), math.cos(a)), (0.0, math.cos(a), math.sin(a)))):
             out[c, k, [cc.dof(pin, "ty"), cc.dof(pin, "tz")]] = e[1], e[2]
             if d:  # d e_x × (0, e_y, e_z) = d (0, −e_z, e_y)
                 out[c, k, [cc.dof(pin, "ry"), cc.dof(pin, "rz")]] = -d * e[2], d * e[1]
+            out[c, k, cc.dof(pin, "rx")] = dy * e[2] - dz * e[1]  # (0, Δy, Δz) × e: 0 on an unsplit pin
     return out
 
 

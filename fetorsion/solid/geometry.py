@@ -40,11 +40,11 @@ from pathlib import Path
 import gmsh
 import numpy as np
 
-from ..description.model import Crank, Cylinder
+from ..description.model import Crank
 from ..errors import GeometryError
 from .recognise import SolidFeatures
 from .stepimport import imported_solid, quiet_stdout
-from .webvolume import web_volume
+from .webvolume import hollow_cylinder as _hollow_cylinder, split_pin_volumes, web_volume
 
 MODEL_UNIT = 1e-3  # metres per Gmsh model length unit (the model is built in mm)
 
@@ -139,10 +139,18 @@ class _Piece:
     spec: object  # Cylinder or Web
     centre: tuple[float, float]  # (y, z) of a cylinder's axis; (0, 0) for webs
     angle: float  # crank angle of the throw (rad), webs and pins
+    #: a split pin's rear half's axis (y, z); None: the pin is not split (docs/vee-engines.md)
+    rear_centre: tuple[float, float] | None = None
 
     @property
     def name(self) -> str:
         return f"{self.kind}_{self.index + 1}"
+
+    def side(self, rear: bool) -> "_Piece":
+        """The piece as the web behind it (``rear``) sees it: a split pin's rear half's axis."""
+        if self.rear_centre is None or not rear:
+            return self
+        return _Piece(self.kind, self.index, self.x0, self.x1, self.spec, self.rear_centre, self.angle)
 
 
 def layout(crank: Crank) -> list[_Piece]:
@@ -156,30 +164,20 @@ def layout(crank: Crank) -> list[_Piece]:
         if t == crank.throws:
             break
         a = crank.engine.crank_angles[t]
+        split = crank.pins[t].split_angle  # the rear web carries a split pin's rear half
         seq += [("web", 2 * t, crank.webs[2 * t], a), ("pin", t, crank.pins[t], a),
-                ("web", 2 * t + 1, crank.webs[2 * t + 1], a)]
+                ("web", 2 * t + 1, crank.webs[2 * t + 1], a + split)]
     seq += [("rear", i, c, 0.0) for i, c in enumerate(crank.rear)]
     out, x = [], 0.0
     for kind, idx, spec, a in seq:
         length = (spec.thickness if kind == "web" else spec.length) * s
         centre = (R * math.cos(a), R * math.sin(a)) if kind == "pin" else (0.0, 0.0)
-        out.append(_Piece(kind, idx, x, x + length, spec, centre, a))
+        rear = None
+        if kind == "pin" and spec.split:
+            b = a + spec.split_angle
+            rear = (R * math.cos(b), R * math.sin(b))
+        out.append(_Piece(kind, idx, x, x + length, spec, centre, a, rear))
         x += length
-    return out
-
-
-# ---------------------------------------------------------------------------
-# Primitive builders (model units)
-
-
-def _hollow_cylinder(occ, x0: float, length: float, c: Cylinder, centre, s: float) -> list[tuple[int, int]]:
-    """A cylinder along +x, diameter ``c.diameter`` less its bore; returns volume dimTags."""
-    y, z = centre
-    outer = occ.addCylinder(x0, y, z, length, 0, 0, 0.5 * c.diameter * s)
-    if c.bore <= 0:
-        return [(3, outer)]
-    inner = occ.addCylinder(x0, y, z, length, 0, 0, 0.5 * c.bore * s)
-    out, _ = occ.cut([(3, outer)], [(3, inner)])
     return out
 
 
@@ -214,7 +212,7 @@ def _junction_circles(crank: Crank, pieces: list[_Piece]) -> list[tuple[float, t
     for i, p in enumerate(pieces):
         if p.kind != "web":
             continue
-        for other, x in ((pieces[i - 1], p.x0), (pieces[i + 1], p.x1)):
+        for other, x in ((pieces[i - 1].side(rear=True), p.x0), (pieces[i + 1], p.x1)):
             r = (crank.fillets.pin if other.kind == "pin" else crank.fillets.journal) * s
             if r > 0 and other.kind in ("pin", "journal"):
                 out.append((x, other.centre, 0.5 * other.spec.diameter * s, r, f"{other.name}/{p.name}"))
@@ -277,10 +275,12 @@ def _oil_holes(occ, crank: Crank, pieces: list[_Piece], s: float) -> list[tuple[
             continue
         a = crank.engine.crank_angles[min(p.index, n - 1)] + 0.5 * math.pi
         half = 0.5 * p.spec.diameter * s * 1.05  # run past the surface so the cut is clean
-        y, z = p.centre
-        dy, dz = half * math.cos(a), half * math.sin(a)
-        xm = 0.5 * (p.x0 + p.x1)
-        tools.append((3, occ.addCylinder(xm, y - dy, z - dz, 0, 2 * dy, 2 * dz, 0.5 * oh.diameter * s)))
+        h = p.spec.half_length * s  # a split pin: one drilling at each half's mid-length, across its own radius
+        places = ([(0.5 * (p.x0 + p.x1), p.centre, a)] if p.rear_centre is None else
+                  [(p.x0 + 0.5 * h, p.centre, a), (p.x1 - 0.5 * h, p.rear_centre, a + p.spec.split_angle)])
+        for xm, (y, z), b in places:
+            dy, dz = half * math.cos(b), half * math.sin(b)
+            tools.append((3, occ.addCylinder(xm, y - dy, z - dz, 0, 2 * dy, 2 * dz, 0.5 * oh.diameter * s)))
     return tools
 
 
@@ -338,8 +338,10 @@ def _built_solid(crank: Crank, pieces) -> int:
     for i, p in enumerate(pieces):
         if p.kind == "web":
             journal = pieces[i - 1] if pieces[i - 1].kind == "journal" else pieces[i + 1]
-            pin = pieces[i + 1] if pieces[i + 1].kind == "pin" else pieces[i - 1]
+            pin = pieces[i + 1] if pieces[i + 1].kind == "pin" else pieces[i - 1].side(rear=True)
             volumes.append(web_volume(occ, p, journal, pin, R, s))
+        elif p.rear_centre is not None:
+            volumes.append(split_pin_volumes(occ, p, s))
         else:
             volumes.append(_hollow_cylinder(occ, p.x0, p.x1 - p.x0, p.spec, p.centre, s))
     _check_fillet_room(crank, pieces)  # after the webs: a web that misses its pin says so first

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 
-from ..description.model import Web
+from ..description.model import Cylinder, Web
 from ..errors import GeometryError
 
 
@@ -105,3 +105,45 @@ def web_volume(occ, piece, journal, pin, R: float, s: float) -> list[tuple[int, 
                 f"(width_{'pin' if other.kind == 'pin' else 'journal'}) or shrink the {other.kind}")
     out = occ.extrude([(2, face)], piece.x1 - piece.x0, 0, 0)
     return [dt for dt in out if dt[0] == 3]
+
+
+def hollow_cylinder(occ, x0: float, length: float, c: Cylinder, centre, s: float) -> list[tuple[int, int]]:
+    """A cylinder along +x, diameter ``c.diameter`` less its bore; returns volume dimTags."""
+    y, z = centre
+    outer = occ.addCylinder(x0, y, z, length, 0, 0, 0.5 * c.diameter * s)
+    if c.bore <= 0:
+        return [(3, outer)]
+    inner = occ.addCylinder(x0, y, z, length, 0, 0, 0.5 * c.bore * s)
+    out, _ = occ.cut([(3, outer)], [(3, inner)])
+    return out
+
+
+def split_pin_volumes(occ, piece, s: float) -> list[tuple[int, int]]:
+    """A split pin (docs/vee-engines.md, *split pins*): the front half pin on ``piece.centre``, the
+    flying web, the rear half pin on ``piece.rear_centre``, as volumes to fuse (model units).
+
+    The flying web's outline is the convex hull of the two half pins' circles (the pin's own
+    diameter, a stadium), built as one face of two arcs and their two common tangents, as a web's
+    outline is (:func:`_web_face`), so no boolean meets a tangent face. It is solid: a bored half
+    pin's bore ends at it.
+    """
+    pin = piece.spec
+    h, w, r = pin.half_length * s, pin.flying_web * s, 0.5 * pin.diameter * s
+    c1, c2 = np.asarray(piece.centre, float), np.asarray(piece.rear_centre, float)
+    u = (c2 - c1) / np.linalg.norm(c2 - c1)
+    n = np.array([-u[1], u[0]])
+    x = piece.x0 + h
+
+    def point(p) -> int:
+        return occ.addPoint(x, float(p[0]), float(p[1]))
+
+    a1, b1, tip1 = point(c1 + r * n), point(c1 - r * n), point(c1 - r * u)
+    a2, b2, tip2 = point(c2 + r * n), point(c2 - r * n), point(c2 + r * u)
+    o1, o2 = point(c1), point(c2)
+    # each end is a half circle, split at its tip: OCC arcs through 3 points must span less than π
+    loop = occ.addCurveLoop([occ.addCircleArc(a1, o1, tip1), occ.addCircleArc(tip1, o1, b1), occ.addLine(b1, b2),
+                             occ.addCircleArc(b2, o2, tip2), occ.addCircleArc(tip2, o2, a2), occ.addLine(a2, a1)])
+    web = [dt for dt in occ.extrude([(2, occ.addPlaneSurface([loop]))], w, 0, 0) if dt[0] == 3]
+    front = hollow_cylinder(occ, piece.x0, h, pin, piece.centre, s)
+    rear = hollow_cylinder(occ, piece.x1 - h, h, pin, piece.rear_centre, s)
+    return front + web + rear

@@ -9,6 +9,7 @@ called.
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 from ..description.model import Crank
@@ -47,7 +48,18 @@ WEB_METHODS: dict[str, WebMethod] = {"carter": carter, "ker-wilson": ker_wilson,
 #: classical formulas and the chart have no support condition.
 IN_BEARINGS = {"fe": "fe-held"}
 
-__all__ = ["DEFAULT_WEB_METHOD", "IN_BEARINGS", "WEB_METHODS", "WebMethod", "web_equivalent_length"]
+#: The methods that take a split pin's throw (its flying web): the throw FE, which builds the solid
+#: with its half pins; the formulas and the chart describe a throw with one straight pin.
+SPLIT_PIN_METHODS = ("fe", "fe-held")
+
+__all__ = ["DEFAULT_WEB_METHOD", "IN_BEARINGS", "SPLIT_PIN_METHODS", "WEB_METHODS", "WebMethod", "crank_web_method",
+           "web_equivalent_length"]
+
+
+def crank_web_method(crank: Crank) -> str:
+    """The web method a crank's analyses take when none is named: :data:`DEFAULT_WEB_METHOD`, or
+    ``fe`` for a crank with split pins (which no formula takes)."""
+    return SPLIT_PIN_METHODS[0] if any(p.split for p in getattr(crank, "pins", ())) else DEFAULT_WEB_METHOD
 
 
 def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str = DEFAULT_WEB_METHOD) -> float:
@@ -57,6 +69,12 @@ def web_equivalent_length(crank: Crank, web_index: int, d_e: float, method: str 
     except KeyError:
         raise FetorsionError(
             f"stiffness method {method!r} is not known; choose one of {', '.join(WEB_METHODS)}") from None
+    pin = crank.pins[web_index // 2] if web_index // 2 < len(crank.pins) else None
+    if pin is not None and pin.split and method not in SPLIT_PIN_METHODS:
+        raise FetorsionError(
+            f"webs.{web_index + 1}: pins.{web_index // 2 + 1} is a split pin (two half pins "
+            f"{math.degrees(pin.split_angle):g} deg apart with a flying web): the {method} method has no term for "
+            f"its flying web; use a throw FE method ({', '.join(SPLIT_PIN_METHODS)})")
     value = fn(crank, web_index, d_e)
     if not value > 0:
         raise FetorsionError(

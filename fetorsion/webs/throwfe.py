@@ -331,11 +331,17 @@ def end_loaded_fe(description: Crank, size: float, fine: float) -> EndLoadedFE:
 _CACHE: dict[str, dict] = {}
 
 
+def part_key(c) -> dict:
+    """A journal or pin as a dict for a cache key: its split-pin fields only when it is split, so
+    an unsplit part's key (and the shipped entries) stay what they were before split pins."""
+    return {k: v for k, v in dataclasses.asdict(c).items() if c.split or k not in ("split_angle", "flying_web")}
+
+
 def throw_key(throw: Crank, mesh_size: float | None) -> str:
     """A stable text key of a throw's stiffness-relevant data and the mesh size."""
     fields = {"material": dataclasses.asdict(throw.material), "stroke": throw.engine.stroke,
-              "journals": [dataclasses.asdict(j) for j in throw.journals],
-              "pins": [dataclasses.asdict(p) for p in throw.pins],
+              "journals": [part_key(j) for j in throw.journals],
+              "pins": [part_key(p) for p in throw.pins],
               "webs": [dataclasses.asdict(w) for w in throw.webs],
               "fillets": dataclasses.asdict(throw.fillets), "oil_holes": dataclasses.asdict(throw.oil_holes),
               "mesh_size": mesh_size, "model": MODEL_VERSION}
@@ -505,10 +511,10 @@ def held_key(crank: Crank, mesh_size: float) -> str:
     # change a stiffness, and a field added to the engine must not orphan the shipped entries
     engine = {"stroke": crank.engine.stroke, "crank_angles": list(crank.engine.crank_angles)}
     fields = {"material": dataclasses.asdict(crank.material), "engine": engine,
-              "journals": [dataclasses.asdict(j) for j in crank.journals],
-              "pins": [dataclasses.asdict(p) for p in crank.pins],
+              "journals": [part_key(j) for j in crank.journals],
+              "pins": [part_key(p) for p in crank.pins],
               "webs": [dataclasses.asdict(w) for w in crank.webs],
-              "front": [dataclasses.asdict(c) for c in crank.front], "rear": [dataclasses.asdict(c) for c in crank.rear],
+              "front": [part_key(c) for c in crank.front], "rear": [part_key(c) for c in crank.rear],
               "fillets": dataclasses.asdict(crank.fillets), "oil_holes": dataclasses.asdict(crank.oil_holes),
               "widths": list(crank.main_bearings.width), "mesh_size": mesh_size, "model": MODEL_VERSION + "-held"}
     for key in ("name", *STRENGTH_FIELDS):  # what the stiffness does not depend on
