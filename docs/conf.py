@@ -17,13 +17,13 @@ sys.path.insert(0, str(DOCS / "_ext"))
 os.environ.setdefault("MPLBACKEND", "Agg")
 
 import fetorsion  # noqa: E402
-from fetorsion.description import fields  # noqa: E402
+from fetorsion.description import chain_fields, fields  # noqa: E402
 
 # The description-format and chain-format pages include these: generated from the declarations
 # the reader itself checks against, so that the documented fields cannot drift from the reader.
 GENERATED = DOCS / "_generated"
 GENERATED.mkdir(exist_ok=True)
-for name, sections in (("crank-fields.md", fields.CRANK_SECTIONS), ("chain-fields.md", fields.CHAIN_SECTIONS)):
+for name, sections in (("crank-fields.md", fields.CRANK_SECTIONS), ("chain-fields.md", chain_fields.CHAIN_SECTIONS)):
     text = fields.markdown(sections)
     target = GENERATED / name
     if not target.exists() or target.read_text() != text:  # unchanged: no rebuild of the page

@@ -6,13 +6,13 @@ import pytest
 
 from conftest import ROOT
 
-from fetorsion.description import fields
+from fetorsion.description import chain_fields, fields
 
 pytestmark = [pytest.mark.slow, pytest.mark.fe]  # the gallery runs the FE examples (coarse meshes)
 
 
 def test_every_field_is_on_the_built_pages(site):
-    for page, sections in (("description-format.html", fields.CRANK_SECTIONS), ("chain-format.html", fields.CHAIN_SECTIONS)):
+    for page, sections in (("description-format.html", fields.CRANK_SECTIONS), ("chain-format.html", chain_fields.CHAIN_SECTIONS)):
         html = (site.html / page).read_text()
         for s in sections:
             for f in s.fields:

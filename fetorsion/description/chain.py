@@ -6,7 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ..errors import DescriptionError, Problem
-from .fields import CHAIN_SCHEMA
+from .chain_fields import CHAIN_SCHEMA
 from .chain_model import Chain
 from .reader import Table, read_length_unit
 from .excitation_table import read_chain_excitation, stated_damping_excitation

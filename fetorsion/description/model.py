@@ -14,6 +14,7 @@ from enum import StrEnum
 
 from .defaults import DEFAULT_DAMPING_BAND, DEFAULT_DAMPING_BAND_SOURCE, DEFAULT_DAMPING_RATIO, DEFAULT_OVERSPEED
 from .derived import firing_angles_from_lags, piecewise_linear, reference_value, table_at_temperature, temperature_groups
+from .design_space import DesignSpace
 
 
 class AttachPoint(StrEnum):
@@ -442,37 +443,6 @@ def default_bearings(journals) -> Bearings:
     """Rigid radial bearings as wide as the journals, no thrust bearing (see :class:`Bearings`)."""
     n = len(journals)
     return Bearings((math.inf,) * n, (0.0,) * n, tuple(j.length for j in journals), given=False)
-
-
-#: What a design search may minimise: the crank's mass (and an added damper ring's), its rotating
-#: inertia, or the change from the given design (the sum of the moved inputs' relative changes).
-DESIGN_OBJECTIVES = ("mass", "inertia", "change")
-
-
-@dataclass(frozen=True)
-class DesignSpace:
-    """``[design]``: the inputs a design search may move and their bounds (field paths, file
-    units), what it minimises, and the damper it may add.
-
-    ``damper`` (``rubber``, ``viscous`` or ``tuned``; None: none added) with its ring inertia as a
-    share of the first mode's equivalent inertia seen from the pulley (``damper_inertia_ratio``,
-    the bounds) and the ring's radius of gyration (``damper_ring_radius``, m), which turns its
-    inertia into mass. ``required_safety``: None for the fatigue method's own.
-    ``damper_heat_rating``: the added damper's continuous heat rating, W (None: not rated).
-    ``resonance_orders`` and ``resonance_margin``: each resonance speed 60 f1 / q of these orders
-    with the first mode in the bearings lies outside the running range by this share of its nearer
-    end (empty: no such constraint).
-    """
-
-    inputs: tuple[tuple[str, float, float], ...]
-    objective: str = "mass"
-    damper: str | None = None
-    damper_inertia_ratio: tuple[float, float] | None = None
-    damper_ring_radius: float | None = None
-    required_safety: float | None = None
-    damper_heat_rating: float | None = None
-    resonance_orders: tuple[float, ...] = ()
-    resonance_margin: float = 0.0
 
 
 #: The reference values a description's ``[meta]`` may carry (checked when read; their meaning in

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from ..errors import DescriptionError, Problem
 from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
-from .fields import CHAIN_SCHEMA
+from .chain_fields import CHAIN_SCHEMA
 from .model import CONDENSED, CRANK_END_ALIASES, PARTITIONS, WEB_METHOD_NAMES
 from .chain_model import GROUND, GearPair, Network, NetworkCrank, NonlinearSpring, Shaft
 from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection,

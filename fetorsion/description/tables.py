@@ -7,9 +7,10 @@ from __future__ import annotations
 import math
 
 from ..errors import DescriptionError, Problem
-from .fields import is_count
+from .chain_fields import is_count
 from .derived import table_at_temperature
-from .model import DAMPER_STATIONS, DAMPER_TYPES, DESIGN_OBJECTIVES, LAYOUTS, Damper, DesignSpace, Engine, Limits
+from .design_space import DESIGN_OBJECTIVES, DesignSpace
+from .model import DAMPER_STATIONS, DAMPER_TYPES, LAYOUTS, Damper, Engine, Limits
 from .reader import field_keys, Table, finite_number, resolve_field
 
 
