@@ -82,14 +82,8 @@ def _d(theta, lam):
 
 
 def rod_angle(theta, r, l):
-    """Rod angle β from the cylinder axis, rad: sin β = λ sin θ ([Kazemi] eq. 3).
-
-    Parameters
-    ----------
-    theta : array_like
-        Crank angle from TDC, rad.
-    r, l : float
-        Crank radius and rod length, m.
+    """Rod angle β from the cylinder axis, rad: sin β = λ sin θ ([Kazemi] eq. 3); θ, r and l as
+    the module's conventions (rad from TDC; m).
 
     Examples
     --------
@@ -100,14 +94,8 @@ def rod_angle(theta, r, l):
 
 
 def piston_position(theta, r, l):
-    """Exact piston-pin distance from the crank axis S(θ), m ([Kazemi] eq. 5).
-
-    Parameters
-    ----------
-    theta : array_like
-        Crank angle from TDC, rad.
-    r, l : float
-        Crank radius and rod length, m.
+    """Exact piston-pin distance from the crank axis S(θ), m ([Kazemi] eq. 5); θ, r and l as the
+    module's conventions.
 
     Examples
     --------
@@ -136,16 +124,8 @@ def piston_displacement_series(theta, r, l):
 
 
 def piston_velocity(theta: float | np.ndarray, r: float, l: float, omega: float):
-    """Exact piston velocity dS/dt, m/s (positive towards the head).
-
-    Parameters
-    ----------
-    theta : array_like
-        Crank angle from TDC, rad.
-    r, l : float
-        Crank radius and rod length, m.
-    omega : float
-        Crank speed, rad/s (constant).
+    """Exact piston velocity dS/dt, m/s (positive towards the head), at the constant crank speed
+    ``omega`` (rad/s); θ, r and l as the module's conventions.
 
     Examples
     --------

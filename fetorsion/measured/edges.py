@@ -78,16 +78,8 @@ def read_edges_csv(path, unit: str | None = None, teeth: dict[str, int] | None =
 
 def read_edges_and_header(path, unit: str | None = None,
                           teeth: dict[str, int] | None = None) -> tuple[dict[str, np.ndarray], dict[str, str]]:
-    """:func:`read_edges_csv`'s timestamps and the file's ``# key = value`` lines, from one reading.
-
-    Parameters
-    ----------
-    path : str or Path
-        The tooth-edge CSV (:func:`read_edges_csv`).
-    unit : str, optional
-        The timestamps' unit, if the file has no ``# unit = ...`` line.
-    teeth : dict[str, int], optional
-        Channel -> teeth per revolution: each such channel must hold one revolution at least.
+    """:func:`read_edges_csv`'s timestamps and the file's ``# key = value`` lines, from one reading
+    (``path``, ``unit`` and ``teeth`` as :func:`read_edges_csv` takes them).
 
     Returns
     -------
