@@ -337,16 +337,11 @@ class KinematicsResult:
 
 
 def kinematics(theta, r, l, omega, name: str = "") -> KinematicsResult:
-    """Exact and series slider-crank motion at the crank angles ``theta``.
+    """Exact and series slider-crank motion at the crank angles ``theta`` and the crank speed
+    ``omega`` (rad/s); θ, r and l as the module's conventions.
 
     Parameters
     ----------
-    theta : array_like
-        Crank angle from TDC, rad.
-    r, l : float
-        Crank radius and rod length, m.
-    omega : float
-        Crank speed, rad/s.
     name : str
         Label for tables and plots.
 
