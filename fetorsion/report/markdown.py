@@ -14,6 +14,7 @@ from pathlib import Path
 from ..description.model import Crank
 from ..excitation.campbell import zeta_text
 from ..lumped_model.lumped import PARTITIONS
+from ..modes import F1_TORSION_SHARE
 from .fatigue import fatigue_section
 from .tvc import tvc_section
 from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FEOutcome, LumpedOutcome, RunOutcome,
@@ -147,15 +148,16 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
              f"In the engine: {support}. Free-free is what a modal test measures"
              + (f" (measured {measured:g} Hz)" if measured else "") + "; the Campbell diagram below uses the "
              "modes in bearings.", "",
-             f"**First torsional mode: free-free {outcome.f1_free_hz:.1f} Hz, in bearings "
-             f"{outcome.f1_bearings_hz:.1f} Hz ({100 * (outcome.f1_bearings_hz / outcome.f1_free_hz - 1):+.1f} %).**",
+             _first_modes_line(outcome),
              "", "| mode | free (Hz) | kind (torsion/bending) | in bearings (Hz) | kind (torsion/bending) |",
              "|---|---|---|---|---|"]
     for j in range(min(8, len(free.frequencies_hz), len(held.frequencies_hz))):
         lines.append(f"| {j + 1} | {free.frequencies_hz[j]:.1f} | {free.kinds[j]} ({free.fractions[j, 0]:.2f}/"
                      f"{free.fractions[j, 1]:.2f}) | {held.frequencies_hz[j]:.1f} | {held.kinds[j]} "
                      f"({held.fractions[j, 0]:.2f}/{held.fractions[j, 1]:.2f}) |")
-    lines += ["", "The 17-DOF torsional chain against the condensed crank (f1): `fe-held` takes each throw's "
+    engine = outcome.bearings.first_carrying_torsion(F1_TORSION_SHARE)
+    which = "" if abs(engine - outcome.f1_bearings_hz) <= 1e-6 * engine else "; in bearings, f1 in the engine"
+    lines += ["", f"The 17-DOF torsional chain against the condensed crank (f1{which}): `fe-held` takes each throw's "
               "stiffness inside the whole crank in rigid bearings (statically indeterminate), `fe` a single "
               "throw loaded by a couple (statically determinate: holding it sideways changes nothing).", "",
               "| web method | 17-DOF f1 (Hz) | vs free-free FE | vs FE in bearings |", "|---|---|---|---|"]
@@ -168,6 +170,19 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
                   "amplitudes; bearing forces and bending moments: the largest vibratory magnitude over the cycle):",
                   "", "```", outcome.coupled.table(), "```", ""]
     return lines + [f"![]({img})" for img in outcome.images] + [""]
+
+
+def _first_modes_line(outcome: BearingsOutcome) -> str:
+    """f1 free-free and in the bearings; where the first mode the engine's torque drives
+    (:data:`~fetorsion.modes.F1_TORSION_SHARE` of torsion) lies below the first mostly torsional
+    one, both."""
+    free, held = outcome.f1_free_hz, outcome.f1_bearings_hz
+    engine = outcome.bearings.first_carrying_torsion(F1_TORSION_SHARE)
+    if abs(engine - held) <= 1e-6 * held:
+        return f"**First torsional mode: free-free {free:.1f} Hz, in bearings {held:.1f} Hz ({100 * (held / free - 1):+.1f} %).**"
+    return (f"**First torsional mode: free-free {free:.1f} Hz; in bearings the first mode with at least "
+            f"{100 * F1_TORSION_SHARE:.0f} % torsion (f1 in the engine) is at {engine:.1f} Hz "
+            f"({100 * (engine / free - 1):+.1f} %), the first mostly torsional one at {held:.1f} Hz.**")
 
 
 def _major_orders_line(crank) -> str:
