@@ -88,17 +88,9 @@ def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
 
 
 def rerender(folder: str | Path) -> Rerendered:
-    """Draw the report folder ``folder`` again from its results.json (see the module docstring).
-
-    Parameters
-    ----------
-    folder : str or Path
-        A folder written by ``fetorsion run``.
-
-    Returns
-    -------
-    Rerendered
-        The files written, those kept and why, the sections not read back.
+    """Draw the report folder ``folder`` (one ``fetorsion run`` wrote) again from its results.json
+    (see the module docstring); the :class:`Rerendered` names the files written, those kept and
+    why, and the sections not read back.
     """
     import matplotlib
 

@@ -211,17 +211,8 @@ def _transient(crank, data: dict[str, object]) -> TransientOutcome | Skipped | N
 
 
 def load_run(folder: str | Path) -> LoadedRun:
-    """Read the report folder ``folder`` back (see the module docstring).
-
-    Parameters
-    ----------
-    folder : str or Path
-        A folder written by ``fetorsion run``.
-
-    Returns
-    -------
-    LoadedRun
-        The typed outcome, the JSON, and the sections not read back with the reason.
+    """Read the report folder ``folder`` (one ``fetorsion run`` wrote) back, as the module
+    docstring says: the typed outcome, the JSON, and the sections not read back with the reason.
     """
     folder = Path(folder)
     data = read_results_json(folder)
