@@ -80,21 +80,9 @@ def read_edges_and_header(path, unit: str | None = None,
                           teeth: dict[str, int] | None = None) -> tuple[dict[str, np.ndarray], dict[str, str]]:
     """:func:`read_edges_csv`'s timestamps and the file's ``# key = value`` lines, from one reading.
 
-    Parameters
-    ----------
-    path : str or Path
-        The tooth-edge CSV (:func:`read_edges_csv`).
-    unit : str, optional
-        The timestamps' unit, if the file has no ``# unit = ...`` line.
-    teeth : dict[str, int], optional
-        Channel -> teeth per revolution: each such channel must hold one revolution at least.
-
-    Returns
-    -------
-    edges : dict[str, ndarray]
-        Channel name -> increasing timestamps [s].
-    header : dict[str, str]
-        The file's ``# key = value`` lines (``unit``, ``channel``, ``station``).
+    ``path``, ``unit`` and ``teeth`` are :func:`read_edges_csv`'s. Returns ``(edges, header)``:
+    channel name -> increasing timestamps [s], and the file's ``# key = value`` lines (``unit``,
+    ``channel``, ``station``) as strings.
     """
     path = Path(path)
     lines = checked_text(path, MAX_EDGE_FILE_BYTES).splitlines()

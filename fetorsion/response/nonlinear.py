@@ -358,25 +358,16 @@ def integrate_compiled(M, K, C, t, phi, omega, load, cranks: SliderCranks | None
 
     Parameters
     ----------
-    M, K, C : ndarray (r, r)
-        Mean inertia (kg·m²), the linear stiffness without the nonlinear elements (N·m/rad), damping
-        (N·m·s/rad).
-    t : ndarray (N,)
-        Sample times, s, uniform.
+    M, K, C, t
+        As :func:`integrate_nonlinear`.
     phi, omega : ndarray (N,)
         The mean motion of station 1 at the samples: angle, rad, and speed, rad/s (read linearly
         between them).
     load : callable
         ``load(a, b)`` → (r, b − a): the loads on the coordinates at samples a … b − 1, N·m (read
         linearly between samples).
-    cranks : SliderCranks, optional
-        The cylinders' variable inertia (None: constant).
-    elements : Elements, optional
-        The nonlinear elements.
-    v0 : ndarray (r,), optional
-        Initial q̇, rad/s (rest otherwise).
-    rtol : float
-        Relative tolerance of the error control.
+    cranks, elements, v0, rtol
+        As :func:`integrate_nonlinear`.
     stuck_damping : ndarray (2^f, r, r), optional
         The damping matrix for each stick state of the f elements with friction (in their order;
         bit b set: the b-th sticks), N·m·s/rad; None: ``C`` throughout.

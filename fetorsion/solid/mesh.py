@@ -391,17 +391,8 @@ _TETS_PER_SECOND = 15.0e3
 
 def estimate_mesh(crank: Crank, size: float, fillet_size: float | None = None, purpose: str = "modal") -> MeshEstimate:
     """Estimate the tet count and peak memory of meshing ``crank`` (and of an FE modal job
-    on it) from the description alone, before any Gmsh work.
-
-    Parameters
-    ----------
-    crank : Crank
-    size : float
-        Global element size, m.
-    fillet_size : float, optional
-        Element size on fillets and drillings, m (default :func:`default_fillet_size`).
-    purpose : str
-        The mesh's purpose (``"modal"`` or ``"stress"``), which sets the default fillet size.
+    on it) from the description alone, before any Gmsh work. ``size`` and ``fillet_size`` (m) and
+    ``purpose`` are :func:`mesh_crank`'s (a fillet size not given: :func:`default_fillet_size`).
     """
     from .outline import section_properties
 
