@@ -151,6 +151,7 @@ def test_a_coupled_response_round_trips():
     from fetorsion.response.coupled import CoupledResponse
 
     d = dict(load_run(ROOT / "results/renault21").results["bearings"]["coupled_response"])
+    d.pop("pin_torque_nm", None), d.pop("journal_bending_nm", None)  # as a folder written before they were kept
     with pytest.raises(FetorsionError, match="written before"):
         CoupledResponse.from_dict(d)
     rng = np.random.default_rng(2)
@@ -169,8 +170,11 @@ def test_fetorsion_report_redraws_a_copy_of_the_folder(tmp_path, capsys):
     assert main(["report", str(folder)]) == 0
     seconds = time.perf_counter() - t0
     out = capsys.readouterr().out
-    assert "campbell.png" in out and "not read back: bearings" in out
-    # the condensed crank and the verdict are not read back: the report is kept as the run wrote it
+    assert "campbell.png" in out
+    # a folder written before results.json kept what some section reads (the committed one until it
+    # is written again): that section is named and the report kept as the run wrote it; else the
+    # report is written again, the same
+    assert ("not read back" in out) is not ("report.md" in out.splitlines()[0])
     assert (folder / "report.md").read_bytes() == before
     assert (folder / "campbell.png").read_bytes() == (ROOT / "results/renault21/campbell.png").read_bytes()
     assert seconds < 60, seconds  # about 4 s on a shared 2-core machine; no FE, no solve

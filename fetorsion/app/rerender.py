@@ -21,7 +21,7 @@ from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
 from ..report.load import LoadedRun, load_run
-from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
+from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
                                SensitivityOutcome, TransientOutcome, VerdictOutcome)
 
 
@@ -50,6 +50,8 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     if isinstance(run.bearings, BearingsOutcome):
         out.update(_bearings_figures(run.bearings))
     out.update(_chain_figures(run))
+    if isinstance(run.fatigue, FatigueOutcome):
+        out.update(_fatigue_figures(run.fatigue))
     sens = run.sensitivity
     if isinstance(sens, SensitivityOutcome):
         out[sens.image] = sens.sensitivity.plot
@@ -70,6 +72,16 @@ def _bearings_figures(bearings: BearingsOutcome) -> dict[str, Callable[[], objec
     return out
 
 
+def _fatigue_figures(fatigue: FatigueOutcome) -> dict[str, Callable[[], object]]:
+    """A crank's fatigue verdict: both methods' safeties (the crank as described, firing), the ``fe``
+    path's Haigh diagram and the recommended damper's design, as the fatigue step draws them."""
+    from .steps import haigh_of
+
+    v = fatigue.verdict
+    draw = (lambda: v.fatigue_figure().axes[0], lambda: haigh_of(v, fatigue.assessment), lambda: v.damper.plot())
+    return dict(zip(fatigue.images, draw))
+
+
 def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     """The verdict's, the measured comparison's and the run-up's figures (as the run's steps draw them)."""
     from ..response.transient import plot_order_cuts
@@ -88,17 +100,9 @@ def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
 
 
 def rerender(folder: str | Path) -> Rerendered:
-    """Draw the report folder ``folder`` again from its results.json (see the module docstring).
-
-    Parameters
-    ----------
-    folder : str or Path
-        A folder written by ``fetorsion run``.
-
-    Returns
-    -------
-    Rerendered
-        The files written, those kept and why, the sections not read back.
+    """Draw the report folder ``folder`` (one ``fetorsion run`` wrote) again from its results.json
+    (see the module docstring); the :class:`Rerendered` names the files written, those kept and
+    why, and the sections not read back.
     """
     import matplotlib
 

@@ -259,6 +259,7 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     from ..design.m53 import split_pin_refusal
     from ..design.methods import described_method
     from ..design.stress import fillet_stress
+    from ..report.load import FATIGUE_IMAGES
 
     crank = ctx.crank
     if "condensed" not in ctx.built:
@@ -282,10 +283,9 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     a = described.fe
     stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets) \
         if isinstance(ctx.outcome.campbell, CampbellOutcome) else None
-    images = (ctx.save(verdict.fatigue_figure(described), "fatigue_safety.png"),
-              ctx.save(haigh_of(verdict, a).figure, "fatigue_haigh.png"),
-              ctx.save(verdict.damper.plot().figure, "damper_design.png"))
-    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict(), "scf": scf.to_dict()}
+    images = tuple(ctx.save(fig, name) for fig, name in zip(
+        (verdict.fatigue_figure(described), haigh_of(verdict, a).figure, verdict.damper.plot().figure), FATIGUE_IMAGES))
+    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict(), "scf": scf.to_dict(), "model": setup.model}
     if stress is not None:
         ctx.results["stress"] = stress.to_dict()
     return FatigueOutcome(verdict, a, stress, scf, images, setup.model)

@@ -9,7 +9,7 @@ from pathlib import Path
 from ..description.defaults import LUMPED17
 from ..measured.uff import UnstatedUnit
 from ..measured.reading import UFF_SUFFIXES, MeasuredOptions, read_measured
-from .common import add_json_option, emit_json, load_description, save_plot
+from .common import add_band_option, add_json_option, emit_json, load_description, save_plot
 from .options import integer, real
 from ..errors import FetorsionError
 
@@ -112,8 +112,7 @@ def add_calibrate_parser(sub) -> None:
     what.add_argument("--measured", nargs="+", metavar="FILE",
                       help="universal files (.uff/.unv) of measured FRFs: their modes fitted in --band are the "
                            "measured frequencies")
-    cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="with --measured: the frequency band (Hz) to fit the FRFs' modes in (default: the FRFs' own)")
+    add_band_option(cp)
     sig = cp.add_mutually_exclusive_group()
     sig.add_argument("--sigma-hz", type=real(0.0, unit="Hz"), nargs="+", metavar="HZ",
                      help="standard deviation of the measured frequencies, measurement and model error (Hz): "

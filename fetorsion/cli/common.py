@@ -122,6 +122,16 @@ def add_json_option(p) -> None:
     p.add_argument("--json", metavar="PATH|-", help="write results as JSON to PATH, or '-' for stdout")
 
 
+def add_band_option(p, what: str = "") -> None:
+    """``--band LOW HIGH``: the frequency band (Hz) to fit measured FRFs' modes in (``what``:
+    the words after the default, where a command says more)."""
+    from .options import real
+
+    p.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
+                   help=f"{'with --measured: ' if not what else ''}the frequency band (Hz) to fit the measured "
+                        f"FRFs' modes in (default: the FRFs' own{what})")
+
+
 def add_mesh_size_option(p, what: str = "global element size") -> None:
     """``--mesh-size MM``: the FE mesh's element size, in mm on the command line (m inside)."""
     from ..description.defaults import DEFAULT_MESH_SIZE

@@ -15,7 +15,7 @@ from ..measured.uff import UnstatedUnit
 from ..measured.reading import (LARGEST_FOUND, TRACKED_MAJOR_ORDERS, MeasuredOptions, measured_kind, read_measured,
                                 tracked_orders)
 from .calibrate import add_calibrate_parser
-from .common import add_json_option, check_mesh_size, emit_json, load_description, refuse_network
+from .common import add_band_option, add_json_option, check_mesh_size, emit_json, load_description, refuse_network
 from .options import integer, real
 from ..errors import FetorsionError
 from ..io import save_figure_atomic
@@ -233,9 +233,7 @@ def add_parsers(sub) -> None:
     cp.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size of the condensed crank (default {DEFAULT_MESH_SIZE / MM:g}; the run's, so its "
                          "stored condensed crank is used)")
-    cp.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="frequency band (Hz) in which to fit the measured FRFs' modes (default: the FRFs' own, from "
-                         "their first frequency above 0 Hz)")
+    add_band_option(cp, ", from their first frequency above 0 Hz")
     cp.add_argument("--station", help="where the order cuts were measured: pulley (default), flywheel, or a "
                     "station of the model by name or number (the condensed crank's front, J1, P1, ..., rear; the "
                     "chain's labels)")

@@ -11,7 +11,7 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..io import check_report_folder
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE, LUMPED17
-from .common import SUPPORT_CHOICES, check_mesh_size, load_description
+from .common import SUPPORT_CHOICES, add_band_option, check_mesh_size, load_description
 from ..design.methods import FATIGUE_METHODS
 from .measured import add_measured_options
 
@@ -113,8 +113,7 @@ def add_parser(sub) -> None:
     up.add_argument("--measured", nargs="+", metavar="FILE",
                     help="measured files to set the model against in the report (as 'fetorsion compare': UFF 58 "
                          "FRFs and order functions, CSV order cuts, tooth-edge CSV with --teeth)")
-    up.add_argument("--band", type=real(0.0, low_open=False), nargs=2, metavar=("LOW", "HIGH"),
-                    help="frequency band (Hz) to fit the measured FRFs' modes in (default: the FRFs' own)")
+    add_band_option(up)
     up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
                     "station of the model by name or number (as 'fetorsion compare')")
     add_measured_options(up)

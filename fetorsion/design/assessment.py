@@ -18,6 +18,7 @@ whole history for the multiaxial cross-checks (Crossland, Findley).
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -133,7 +134,20 @@ class CrankAssessment:
                 "defaulted": list(self.worst.defaulted), "scf_source": self.scf_source, "notes": list(self.notes),
                 "governing": {"fillet": self.labels[g], "rpm": float(self.worst_rpm[g]),
                               "safety": float(self.safety[:, g].min()),
-                              "required": float(self.worst.locations[g].required)}}
+                              "required": float(self.worst.locations[g].required)},
+                "worst_diameters_m": None if self.worst_diameters is None else self.worst_diameters.tolist(),
+                "cuts": list(self.cuts)}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "CrankAssessment":
+        """The assessment back from its :meth:`to_dict` (the worst speeds' method read from their
+        places, or this assessment's criterion: ``textbook`` or M53's)."""
+        from ..results import from_fields
+
+        first = d["locations"][0]["method"] if d["locations"] else ASSESSMENT_METHODS.get(d["method"], d["method"])
+        worst = FatigueResult.from_dict({"method": first, "material": d["material"], "locations": d["locations"]})
+        return from_fields(cls, d, {"labels": "fillets", "worst_diameters": "worst_diameters_m"}, worst=worst,
+                           cuts=tuple(d.get("cuts", ())))
 
     def table(self) -> str:
         lines = [f"{self.name}: fatigue of the fillets and oil bores ({self.method}), each at its worst speed",

@@ -20,6 +20,7 @@ it would flip, and what the description's (or the default) damping band gives.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import asdict, dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -105,6 +106,7 @@ class VerdictConfig:
     """One configuration: its name, dampers, both methods' results, and the deciding one's answer."""
 
     name: str
+    #: Its dampers (:class:`~fetorsion.description.model.Damper`; read back, :meth:`from_dict`: their names).
     dampers: tuple
     #: Each method's assessment by its name in :data:`FATIGUE_METHODS` (``iacs-m53`` always).
     results: dict[str, object]
@@ -118,6 +120,11 @@ class VerdictConfig:
     bending: list = field(default_factory=list)
     #: The two methods term by term (:func:`fetorsion.design.bridge.method_bridge`); {} without the fe path.
     bridge: dict = field(default_factory=dict)
+    #: It carries the verdict's recommended damper (firing or in misfire).
+    recommended: bool = False
+    #: Each method's answer as it was stored (a configuration read back, :meth:`from_dict`, keeps
+    #: M53's result and, as described, the ``fe`` path's; the other answers alone); {}: from ``results``.
+    answers: dict[str, MethodAnswer] = field(default_factory=dict)
 
     @property
     def heat_ok(self) -> bool:
@@ -140,15 +147,30 @@ class VerdictConfig:
     def answer(self, method: str) -> MethodAnswer | None:
         """``method``'s answer (governing place and speed, safety against the required; None where it
         did not run)."""
+        if method in self.answers:
+            return self.answers[method]
         r = self.result(method)
         return None if r is None else fatigue_method(method).answer(r)
 
     def to_dict(self) -> dict:
-        return {"name": self.name, "dampers": [d.name for d in self.dampers], "as_described": self.as_described,
+        return {"name": self.name, "dampers": [getattr(d, "name", d) for d in self.dampers], "as_described": self.as_described,
                 "misfire_cylinder": None if self.misfire is None else self.misfire + 1,
                 "iacs-m53": {**self.answer("iacs-m53").to_dict(), "result": self.m53.to_dict()},
                 "fe": answer_dict(self.answer("fe")), "damper_power_w": self.damper_power_w,
-                "damper_allowed_power_w": self.allowed_power_w, "bending": list(self.bending)}
+                "damper_allowed_power_w": self.allowed_power_w, "bending": list(self.bending),
+                "recommended": self.recommended}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object], fe=None, bridge: dict | None = None) -> "VerdictConfig":
+        """The configuration back from its :meth:`to_dict`: its dampers by name, M53's result, the
+        ``fe`` path's assessment ``fe`` where it was kept (as described), every method's answer as
+        stored; ``bridge`` its entry of the verdict's bridge."""
+        m53 = d["iacs-m53"]
+        answers = {"iacs-m53": MethodAnswer.from_dict(m53), **({"fe": MethodAnswer.from_dict(d["fe"])} if d["fe"] else {})}
+        results = {"iacs-m53": M53Result.from_dict(m53["result"]), **({"fe": fe} if fe is not None else {})}
+        misfire = None if d["misfire_cylinder"] is None else d["misfire_cylinder"] - 1
+        return cls(d["name"], tuple(d["dampers"]), results, misfire, d["damper_power_w"], d["damper_allowed_power_w"],
+                   d["as_described"], list(d["bending"]), dict(bridge or {}), d["recommended"], answers)
 
 
 @dataclass
@@ -248,6 +270,30 @@ class CrankVerdict:
                 "damper": None if self.damper is None else self.damper.to_dict(), "scf_m53": self.scf_m53,
                 "notes": list(self.notes), "same_load": self.same_load, "bending": self.bending,
                 "bridge": [{"configuration": c.name, **c.bridge} for c in self.configs if c.bridge]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "CrankVerdict":
+        """The verdict back from its :meth:`to_dict` and, where the run kept it (its ``fe_detail``),
+        the ``fe`` path's assessment of the crank as described, firing (the first configuration as
+        described). A configuration written before ``recommended`` was kept is refused by name."""
+        from ..results import from_fields
+        from .assessment import CrankAssessment
+        from .recovered import RecoveredAssessment
+
+        if any("recommended" not in c for c in d["configurations"]):
+            raise FetorsionError("the verdict's configurations do not say which carries the recommended damper "
+                                 "(written before results.json kept it)")
+        fe = d.get("fe_detail") or None
+        if fe is not None:
+            fe = (RecoveredAssessment if fe.get("criterion") == "findley" else CrankAssessment).from_dict(fe)
+        bridges = {b["configuration"]: {k: v for k, v in b.items() if k != "configuration"} for b in d["bridge"]}
+        described = next(k for k, c in enumerate(d["configurations"]) if c["as_described"])
+        configs = [VerdictConfig.from_dict(c, fe if k == described else None, bridges.get(c["name"]))
+                   for k, c in enumerate(d["configurations"])]
+        return from_fields(cls, d, configs=configs, flip=DampingFlip(d["flip"]["zeta"], d["flip"]["kind"]),
+                           band=list(d["band"]), damper=None if d["damper"] is None else DamperResult.from_dict(d["damper"]),
+                           scf_m53=dict(d["scf_m53"]), same_load=dict(d["same_load"]), bending=dict(d["bending"]),
+                           notes=list(d["notes"]))
 
 
 @dataclass(frozen=True)
@@ -483,6 +529,8 @@ def _configurations(inputs: _VerdictInputs, setup, method: str, mu: float, kind:
                      "M53's bending keeps the firing rod forces (the larger)")
     elif misfire:
         notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
+    for c in configs:
+        c.recommended = best in c.dampers
     return configs, design, notes
 
 

@@ -25,6 +25,7 @@ cylinders' forces (:func:`fetorsion.response.forced.response_setup`).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING
 
@@ -192,7 +193,7 @@ class DamperResult:
         def damper(d):
             return None if d is None else {"type": d.kind, "at": d.at, "hub_inertia_kgm2": d.hub_inertia,
                                            "ring_inertia_kgm2": d.ring_inertia, "stiffness_nm_per_rad": d.stiffness,
-                                           "damping_nms_per_rad": d.damping, "loss_factor": d.loss_factor}
+                                           "damping_nms_per_rad": d.damping, "loss_factor": d.loss_factor, "name": d.name}
         unit = {"stress": "pa", "twist": "deg", "fatigue": "utilisation"}[self.objective]
         return {"name": self.name, "type": self.kind, "inertia_ratio": self.mu, "objective": self.objective,
                 "mode_hz": self.mode_hz, "equivalent_inertia_kgm2": self.equivalent_inertia_kgm2,
@@ -200,6 +201,19 @@ class DamperResult:
                 "rpm": self.rpm.tolist(), **{f"{k}_{unit}": v.tolist() for k, v in self.curves.items()},
                 **{f"peak_{k}_{unit}": v for k, v in self.peaks.items()}, "evaluations": self.evaluations,
                 "limit": self.limit, "limit_label": self.limit_label}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "DamperResult":
+        """The result back from its :meth:`to_dict`: its curves and peaks from the keys ending in
+        the objective's unit, in order; each damper's figures as :meth:`to_dict` keeps them."""
+        from ..results import from_fields
+
+        unit = "_" + {"stress": "pa", "twist": "deg", "fatigue": "utilisation"}[d["objective"]]
+        ends = {k[:-len(unit)]: v for k, v in d.items() if k.endswith(unit)}
+        curves = {k: np.asarray(v, dtype=float) for k, v in ends.items() if not k.startswith("peak_")}
+        peaks = {k[len("peak_"):]: v for k, v in ends.items() if k.startswith("peak_")}
+        return from_fields(cls, d, {"kind": "type", "mu": "inertia_ratio"}, den_hartog=damper_of(d["den_hartog"]),
+                           optimised=damper_of(d["optimised"]), curves=curves, peaks=peaks)
 
     def table(self) -> str:
         """The result as plain text: the table the command line prints."""
@@ -234,6 +248,14 @@ class DamperResult:
         ax.set_title(f"{self.name}:\n{self.kind} damper, μ = {self.mu:g}", fontsize=9, wrap=True)
         ax.legend(fontsize=8)
         return ax
+
+
+def damper_of(d: Mapping[str, object] | None) -> Damper | None:
+    """A damper from its entry of :meth:`DamperResult.to_dict` (None: none)."""
+    if d is None:
+        return None
+    return Damper(d["type"], d["at"], d["hub_inertia_kgm2"], d["ring_inertia_kgm2"], d["stiffness_nm_per_rad"],
+                  d["damping_nms_per_rad"], d["loss_factor"], name=d.get("name", ""))
 
 
 def run_damper(crank: Crank | Chain, kind: str = "rubber", mu: float = DEFAULT_INERTIA_RATIO, optimise: bool = True,

@@ -32,6 +32,7 @@ Two paths, and two multiaxial criteria as a cross-check:
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -399,6 +400,14 @@ class FatigueAssessment:
                 "yield_safety": self.yield_safety, "passes": self.passes, "factors": dict(self.factors),
                 "criteria": {k: dict(v) for k, v in self.criteria.items()}}
 
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "FatigueAssessment":
+        """The assessment back from its :meth:`to_dict`."""
+        from ..results import from_fields
+
+        return from_fields(cls, d, {"strength": "strength_pa", "equivalent_alternating": "equivalent_alternating_pa",
+                                    "equivalent_mean": "equivalent_mean_pa"})
+
 
 @dataclass(frozen=True)
 class FatigueResult:
@@ -423,8 +432,23 @@ class FatigueResult:
         return {"method": self.method, "governing": self.governing.name, "passes": self.passes,
                 "material": {"name": m.name, "tensile_strength_pa": m.tensile_strength,
                              "yield_strength_pa": m.yield_strength, "surface": m.surface, "process": m.process,
-                             "source": m.source, "defaulted": list(self.defaulted)},
+                             "source": m.source, "defaulted": list(self.defaulted),
+                             "fatigue_strength_pa": m.fatigue_strength, "fatigue_strength_source": m.fatigue_strength_source,
+                             "surface_treatment": m.surface_treatment, "treatment_factor": m.treatment_factor,
+                             "treatment_source": m.treatment_source},
                 "locations": [a.to_dict() for a in self.locations]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "FatigueResult":
+        """The result back from its :meth:`to_dict` (a material written before its fatigue strength
+        and surface treatment were kept: without them)."""
+        from ..results import from_fields
+
+        m = d["material"]
+        material = from_fields(FatigueMaterial, m, {"tensile_strength": "tensile_strength_pa",
+                                                    "yield_strength": "yield_strength_pa",
+                                                    "fatigue_strength": "fatigue_strength_pa"})
+        return cls(d["method"], material, tuple(m["defaulted"]), tuple(FatigueAssessment.from_dict(a) for a in d["locations"]))
 
 
 def _check_kind(kind: str) -> None:

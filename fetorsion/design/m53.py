@@ -35,6 +35,7 @@ SI at the API (m, N, Pa); the rule's own units (mm, N/mm²) only where its formu
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from dataclasses import replace as dataclasses_replace
 
@@ -232,7 +233,18 @@ class M53Location:
                 "additional_bending_pa": self.additional, "equivalent_pa": self.equivalent,
                 "strength_pa": self.strength, "safety": self.safety, "required": self.required,
                 "passes": self.passes, "yielding": self.yielding, "scfs": dict(self.scfs), "torque_section": self.torque_section,
-                "torque_rpm": self.torque_rpm}
+                "torque_rpm": self.torque_rpm, "yield_strength_pa": self.yield_strength}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "M53Location":
+        """The place back from its :meth:`to_dict` (one written before R_e was kept: yielding as it
+        was recorded, R_e 0 where it yielded, else infinite)."""
+        from ..results import from_fields
+
+        given = {} if "yield_strength_pa" in d else {"yield_strength": 0.0 if d["yielding"] else math.inf}
+        return from_fields(cls, d, {"bending": "bending_pa", "torsion": "torsion_pa", "additional": "additional_bending_pa",
+                                    "equivalent": "equivalent_pa", "strength": "strength_pa",
+                                    "yield_strength": "yield_strength_pa"}, **given)
 
 
 @dataclass(frozen=True)
@@ -289,6 +301,12 @@ class M53Result:
                               "section": g.torque_section, "rpm": g.torque_rpm},
                 "nominal": {k: dict(v) for k, v in self.nominal.items()}, "scf_source": dict(self.scf_source), "notes": list(self.notes),
                 "locations": [a.to_dict() for a in self.locations]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "M53Result":
+        """The result back from its :meth:`to_dict`."""
+        return cls(tuple(M53Location.from_dict(a) for a in d["locations"]), {k: dict(v) for k, v in d["nominal"].items()},
+                   dict(d["scf_source"]), d["rated_rpm"], tuple(d["notes"]))
 
 
 def choose_scfs(g: M53Geometry, fe: SCFSet | None) -> tuple[dict, dict]:

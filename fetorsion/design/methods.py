@@ -13,6 +13,7 @@ Add a method by writing a module with its ``assess`` and ``answer`` and naming i
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Callable
 
@@ -101,6 +102,13 @@ class MethodAnswer:
         """The answer as JSON-ready numbers and strings."""
         return {"safety": self.safety, "required": self.required, "location": self.location, "where": self.where,
                 "rpm": self.rpm, "passes": self.passes, "yielding": list(self.yielding)}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "MethodAnswer":
+        """The answer back from its :meth:`to_dict` (other keys beside it are left)."""
+        from ..results import from_fields
+
+        return from_fields(cls, d)
 
 
 def answer_dict(answer: MethodAnswer | None) -> dict:

@@ -107,7 +107,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
               + f" ({crank.excitation.damping_source}).", ""] + bending_lines(v) + [""]
     lines += _bending_table_lines(v)
     lines += _recommended_damper_lines(v)
-    lines += _m53_lines(crank, v)
+    lines += _m53_lines(v)
     lines += _fe_path_lines(v, a)
     if outcome.stress is not None:
         lines += ["The vibratory torsional stress at the fillets that both methods start from (SCF × 16 T D / "
@@ -156,7 +156,7 @@ def _recommended_damper_lines(v) -> list[str]:
     lines = []
     if v.damper is not None and v.damper.optimised is not None:
         d = v.damper.optimised
-        rec = [c for c in v.configs if d in c.dampers and c.misfire is None]
+        rec = [c for c in v.configs if c.recommended and c.misfire is None]
         heat = f"; its heat at the worst speed {rec[0].damper_power_w:.1f} W (no rating given)" if rec else ""
         lines += [f"**Recommended damper**, designed for this verdict (Den Hartog's start on mode 1, "
                   f"{v.damper.mode_hz:.1f} Hz, then its stiffness and loss optimised on the whole crank to make M53's "
@@ -165,10 +165,10 @@ def _recommended_damper_lines(v) -> list[str]:
     return lines
 
 
-def _m53_lines(crank: Crank, v) -> list[str]:
-    """IACS UR M53 as written on the crank as described: each place's stresses and safety, the
-    nominal stresses of each throw, and fetorsion's FE SCFs against the rule's formulas."""
-    m = next(c for c in v.configs if c.dampers == tuple(crank.dampers)).m53
+def _m53_lines(v) -> list[str]:
+    """IACS UR M53 as written on the crank as described (firing): each place's stresses and safety,
+    the nominal stresses of each throw, and fetorsion's FE SCFs against the rule's formulas."""
+    m = next(c for c in v.configs if c.as_described).m53
     lines = ["### IACS UR M53, as written ([KR-M53])", "",
              "| place | σ_B (bending) [MPa] | τ or σ_T (torsion) [MPa] | σ_add [MPa] | σ_V [MPa] | σ_DW [MPa] | Q | "
              "required | SCFs |", "|---|---|---|---|---|---|---|---|---|"]

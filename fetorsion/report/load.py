@@ -13,9 +13,11 @@ where no FRF was measured: the FRFs and stability chart are not kept) and the ru
 envelope, order track and order cuts; its time signals thinned as stored). The condensed crank in its bearings is read
 back from the modes, facts and coupled response its entry keeps (a folder written before it kept
 the coupled response's pin torque and journal bending, or an oil film's operating point: not read
-back). Not yet: the crank's fatigue verdict (its configurations keep each
-method's answer, not the results the answers are computed from); such a
-section is named in :attr:`LoadedRun.unread` with the reason.
+back). A crank's fatigue verdict is read back from its entry: each configuration's M53 result
+and every method's answer as stored, the ``fe`` path's assessment of the crank as described
+(``fe_detail``), the damping band, flip and bridge, the recommended damper's design (a folder
+written before the entry kept its model and which configuration carries the recommended damper:
+not read back). A section not read back is named in :attr:`LoadedRun.unread` with the reason.
 """
 
 from __future__ import annotations
@@ -31,13 +33,11 @@ from ..description.files import load
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..results import JSONObject
-from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
+from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
                        SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
 
 #: The file a run writes its figures into.
 RESULTS_FILE = "results.json"
-#: Sections of results.json not read back yet, and why (see the module docstring).
-UNREAD = {"fatigue": "the verdict's configurations keep each method's answer, not the assessments behind them"}
 
 
 @dataclass
@@ -191,6 +191,28 @@ def _verdict(crank, data: dict[str, object]) -> VerdictOutcome | Skipped | None:
     return VerdictOutcome(VerdictResult.from_dict(d), d["mu"], scf, "verdict.png", stress, d.get("model", ""))
 
 
+#: The pictures of a crank's fatigue verdict, in the order its section shows them.
+FATIGUE_IMAGES = ("fatigue_safety.png", "fatigue_haigh.png", "damper_design.png")
+
+
+def _fatigue(crank, data: dict[str, object]) -> FatigueOutcome | Skipped | None:
+    """A crank's fatigue verdict (None: not in the run); one of a folder written before
+    results.json kept what its section reads is refused by name (FetorsionError)."""
+    from ..design.crank_verdict import CrankVerdict
+    from ..design.scfset import SCFSet
+    from ..design.stress import StressResult
+
+    d = data.get("fatigue")
+    if d is None:
+        return skipped(crank, data, "fatigue")
+    if "model" not in d:
+        raise FetorsionError("its model is not in results.json (written before it was kept)")
+    verdict = CrankVerdict.from_dict(d)
+    assessment = next(c for c in verdict.configs if c.as_described).fe
+    stress = StressResult.from_dict(data["stress"]) if "stress" in data else None
+    return FatigueOutcome(verdict, assessment, stress, SCFSet.from_dict(d["scf"]), FATIGUE_IMAGES, d["model"])
+
+
 def _measured(crank, data: dict[str, object]) -> MeasuredOutcome | Skipped | None:
     from ..studies.comparison import ComparisonResult
 
@@ -211,17 +233,8 @@ def _transient(crank, data: dict[str, object]) -> TransientOutcome | Skipped | N
 
 
 def load_run(folder: str | Path) -> LoadedRun:
-    """Read the report folder ``folder`` back (see the module docstring).
-
-    Parameters
-    ----------
-    folder : str or Path
-        A folder written by ``fetorsion run``.
-
-    Returns
-    -------
-    LoadedRun
-        The typed outcome, the JSON, and the sections not read back with the reason.
+    """Read the report folder ``folder`` (one ``fetorsion run`` wrote) back, as the module
+    docstring says: the typed outcome, the JSON, and the sections not read back with the reason.
     """
     folder = Path(folder)
     data = read_results_json(folder)
@@ -232,7 +245,7 @@ def load_run(folder: str | Path) -> LoadedRun:
     driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
     outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline)
     outcome.lumped, outcome.fe = _lumped(data), _fe(data, pictures)
-    unread = {k: why for k, why in UNREAD.items() if k in data}
+    unread = {}
     if "fe" in data and not {"backend", "mesh_quality"} <= set(data["fe"]):
         unread["fe"] = "written before results.json kept the solver's backend and the mesh's quality, which it prints"
     try:
@@ -243,18 +256,18 @@ def load_run(folder: str | Path) -> LoadedRun:
     outcome.sensitivity = _sensitivity(crank, data)
     outcome.verdict, outcome.measured = _verdict(crank, data), _measured(crank, data)
     outcome.transient = _transient(crank, data)
-    for key in ("fatigue",):
-        if key not in data:
-            setattr(outcome, key, skipped(crank, data, key))
+    try:
+        outcome.fatigue = _fatigue(crank, data)
+    except FetorsionError as exc:
+        unread["fatigue"] = f"the crank's fatigue verdict: {exc}"
     return LoadedRun(outcome, data, unread)
 
 
 def load_results(folder: str | Path) -> RunOutcome:
     """A run's report folder read back as its typed :class:`~.outcomes.RunOutcome`.
 
-    The sections :func:`load_run` cannot read back yet (the condensed crank in its bearings, a
-    crank's fatigue verdict: see this module's docstring) are left ``None``; :func:`load_run`
-    names them.
+    The sections :func:`load_run` cannot read back (one written before results.json kept what
+    it reads: see this module's docstring) are left ``None``; :func:`load_run` names them.
 
     Parameters
     ----------

@@ -92,7 +92,8 @@ class LumpedOutcome:
 
 @dataclass(frozen=True)
 class ModeImage:
-    """The picture of one FE mode: its index in the modal result (0-based) and its file."""
+    """The picture of one FE mode: its index in the modal result (0-based) and its file (the FE
+    step names it ``mode_<n>_<kind>.png``, n from 1; :mod:`.load` finds it again by that name)."""
 
     mode: int
     file: str
