@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from ..description.chain_model import Network
+from ..design.barred_passage import barred_passages
 from ..design.tvc_cases import TVCCase, evaluate_case, misfire_cases, worst_case
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
@@ -46,6 +47,8 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     misfires, why = misfires_of(net)
     worst = worst_case(misfires)
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
+    # the time-domain passage of each barred range: normal running's and the worst misfire's
+    passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else []))
     ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
                                        "section_torque_nm": response.section_torque_nm.tolist(),
                                        "sections": list(response.section_labels)},
@@ -53,14 +56,16 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
                           "couplings": heat.to_dict() if heat else None,
                           "hammering": hammer.to_dict() if hammer else None,
                           "misfires": [c.to_dict() for c in misfires], "misfire_note": why,
-                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1}
+                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
+                          "barred_passages": [p.to_dict() for p in passages]}
     return TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
                       ctx.save(shafts.plot().figure, "tvc_shafts.png") if shafts else "",
                       ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
                       tuple(assumptions(net, response)), hammer,
                       ctx.save(hammer.plot().figure, "tvc_hammering.png") if hammer else "",
                       normal, tuple(misfires), worst, why,
-                      ctx.save(worst.shafts.plot().figure, "tvc_shafts_misfire.png") if worst and worst.shafts else "")
+                      ctx.save(worst.shafts.plot().figure, "tvc_shafts_misfire.png") if worst and worst.shafts else "",
+                      passages, tuple(ctx.save(p.plot().figure, f"tvc_passage_{k + 1}.png") for k, p in enumerate(passages)))
 
 
 def assumptions(net: Network, response) -> list[str]:

@@ -18,6 +18,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.assessment import CrankAssessment
     from ..design.coupling_heat import CouplingHeat
     from ..design.gear_hammering import GearHammering
+    from ..design.barred_passage import BarredPassage
     from ..design.tvc_cases import TVCCase
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
@@ -69,6 +70,10 @@ class TVCOutcome:
     worst_misfire: TVCCase | None = None
     misfire_note: str = ""
     misfire_shaft_image: str = ""
+    #: The time-domain passage of each barred range against τ_T (normal running's, the worst misfire's)
+    #: and each passage's picture.
+    passages: tuple[BarredPassage, ...] = ()
+    passage_images: tuple[str, ...] = ()
 
 
 @dataclass(frozen=True)

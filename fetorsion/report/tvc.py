@@ -57,6 +57,18 @@ def misfire_lines(outcome: TVCOutcome) -> list[str]:
     return lines
 
 
+def passage_lines(outcome: TVCOutcome) -> list[str]:
+    """The time-domain passage of each barred range against τ_T, with its rate and picture."""
+    if not outcome.passages:
+        return []
+    lines = ["### Passage through the barred ranges (time domain) against τ_T", "",
+             "Run through each barred range from the steady state below it at the stated rate; the half-range "
+             "stress over each synthesis period against τ_T at its speed.", ""]
+    for p, image in zip(outcome.passages, outcome.passage_images):
+        lines += ["```", p.table(), "```", "", f"![]({image})", ""]
+    return lines
+
+
 def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     """The TVC section of the report (module docs)."""
     lines = ["## Propulsion line: torsional vibration calculation", ""]
@@ -75,6 +87,6 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.hammering is not None:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
-    lines += misfire_lines(outcome)
+    lines += misfire_lines(outcome) + passage_lines(outcome)
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
