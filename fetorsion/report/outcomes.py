@@ -20,6 +20,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.gear_hammering import GearHammering
     from ..design.barred_passage import BarredPassage
     from ..design.tvc_cases import TVCCase
+    from ..design.tvc_modes import ModeRow
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
@@ -74,6 +75,10 @@ class TVCOutcome:
     #: and each passage's picture.
     passages: tuple[BarredPassage, ...] = ()
     passage_images: tuple[str, ...] = ()
+    #: The mode table (each mode's frequency, resonances in the speed range, relative amplitudes) and
+    #: the Campbell diagram with the barred ranges.
+    mode_rows: tuple[ModeRow, ...] = ()
+    campbell_image: str = ""
 
 
 @dataclass(frozen=True)
