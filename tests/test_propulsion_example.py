@@ -81,3 +81,47 @@ def test_the_examples_run_reports_its_tvc_and_its_numbers_agree(tmp_path):
     worst = tvc["worst_misfire_cylinder"]
     u = [m["largest_tau_over_tau_c"] for m in tvc["misfires"]]
     assert u[worst - 1] == max(u) and len(u) == 6
+
+
+MEDIUM = ROOT / "examples/networks/propulsion_line_medium_speed.toml"
+
+
+def test_the_medium_speed_lines_numbers_follow_its_similarity_and_class_rules():
+    # Every engine number is the MWM line's scaled by s = 320/105 (inertia s⁵, stiffness s³,
+    # absolute damping s⁴, lengths and speed s and 1/s, reciprocating mass s³), to the file's four
+    # digits (5e-4); the line's shafts by the class rule's minimum diameter and G π d⁴/(32 L).
+    from dataclasses import replace
+    from fetorsion.lumped_model.lumped import lumped
+
+    s = 0.32 / 0.105
+    small, net = fetorsion.load(PATH), fetorsion.load(MEDIUM)
+    for name in ("pulley", "gear train", "cyl 1", "cyl 2", "cyl 6", "flywheel"):
+        assert net.inertias[net.labels.index(name)] == pytest.approx(
+            small.inertias[small.labels.index(name)] * s**5, rel=5e-4)
+    for a, b in zip(small.shafts[:8], net.shafts[:8]):
+        assert b.stiffness == pytest.approx(a.stiffness * s**3, rel=5e-4)
+    assert net.absolute_damping[2] == pytest.approx(small.absolute_damping[2] * s**4, rel=5e-4)
+    assert net.excitation.reciprocating_mass == pytest.approx(small.excitation.reciprocating_mass * s**3, rel=5e-4)
+    assert net.engine.stroke == pytest.approx(small.engine.stroke * s, rel=1e-4)
+    assert net.excitation.speed_range[1] == pytest.approx(2550.0 / s, rel=1e-4)
+    e, ex = net.engine, net.excitation
+    n = 2550.0 / s
+    brake = 0.85 * ex.running_imep(n) * 6 * math.pi / 4 * e.bore**2 * e.stroke * n / 120.0
+    p = net.propellers[0]
+    assert p.rated_torque == pytest.approx(brake / (n / 3.5 * math.pi / 30.0), rel=1e-4)
+    rule = 100.0 * (brake / 1e3 / (n / 3.5) * 560.0 / 760.0) ** (1 / 3)
+    sections = {net.labels[sh.j]: sh for sh in net.shafts if sh.section is not None}
+    inter, prop = sections["flange"], sections["propeller"]
+    assert 0 <= inter.section.diameter * 1e3 - rule < 5 and 0 <= prop.section.diameter * 1e3 - 1.26 * rule < 5
+    for sh, length in ((inter, 6.0), (prop, 8.0)):
+        assert sh.stiffness == pytest.approx(80e9 * math.pi * sh.section.diameter**4 / (32 * length), rel=1e-6)
+    assert net.inertias[net.labels.index("propeller")] == pytest.approx(2500 * 0.56**2 * 1.25, rel=1e-12)
+    # Den Hartog at the crank mode of the line without the damper (mode 3: the pulley swings > 10 × the flywheel)
+    res = lumped(replace(net, dampers=()))
+    k = next(k for k in range(len(res.frequencies_hz))
+             if abs(res.mode_shapes[k, 0]) > 10 * abs(res.mode_shapes[k, 8]))
+    w1 = 2 * math.pi * res.frequencies_hz[k]
+    d = net.dampers[0]
+    mu = d.ring_inertia / sum(net.inertias[:8])
+    assert mu == pytest.approx(0.1, rel=1e-3)
+    assert d.damping == pytest.approx(w1 * d.ring_inertia / math.sqrt(2 * (1 + mu) * (2 + mu)), rel=1e-3)

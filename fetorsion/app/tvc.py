@@ -10,12 +10,21 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..description.chain_model import Network
+from ..design.barred_passage import barred_passages
 from ..design.tvc_cases import TVCCase, evaluate_case, misfire_cases, worst_case
+from ..design.tvc_modes import ModeRow, mode_table, plot_tvc_campbell
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
 from ..report.outcomes import Skipped, TVCOutcome
-from ..response.propulsion import DEFAULT_SPEED_RATIOS, tvc_setup
+from ..excitation.campbell import major_orders
+from ..lumped_model.network import speed_factors
+from ..response.propulsion import DEFAULT_SPEED_RATIOS, propeller_orders, tvc_setup
+
+#: The highest engine order the TVC's mode table lists resonances of and its Campbell diagram draws.
+TABLE_HIGHEST_ORDER = 12.0
 
 
 def is_propulsion_line(model) -> bool:
@@ -46,6 +55,8 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     misfires, why = misfires_of(net)
     worst = worst_case(misfires)
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
+    # the time-domain passage of each barred range: normal running's and the worst misfire's
+    passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else []))
     ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
                                        "section_torque_nm": response.section_torque_nm.tolist(),
                                        "sections": list(response.section_labels)},
@@ -53,14 +64,43 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
                           "couplings": heat.to_dict() if heat else None,
                           "hammering": hammer.to_dict() if hammer else None,
                           "misfires": [c.to_dict() for c in misfires], "misfire_note": why,
-                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1}
+                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
+                          "barred_passages": [p.to_dict() for p in passages]}
+    rows, campbell = tvc_modes(ctx, normal, [normal, *misfires])
+    ctx.results["tvc"]["modes"] = [r.to_dict() for r in rows]
     return TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
-                      ctx.save(shafts.plot().figure, "tvc_shafts.png") if shafts else "",
+                      ctx.save(titled(shafts.plot(), normal.name).figure, "tvc_shafts.png") if shafts else "",
                       ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
                       tuple(assumptions(net, response)), hammer,
                       ctx.save(hammer.plot().figure, "tvc_hammering.png") if hammer else "",
                       normal, tuple(misfires), worst, why,
-                      ctx.save(worst.shafts.plot().figure, "tvc_shafts_misfire.png") if worst and worst.shafts else "")
+                      ctx.save(titled(worst.shafts.plot(), worst.name).figure, "tvc_shafts_misfire.png")
+                      if worst and worst.shafts else "",
+                      passages, tuple(ctx.save(p.plot().figure, f"tvc_passage_{k + 1}.png") for k, p in enumerate(passages)),
+                      tuple(rows), campbell)
+
+
+def titled(ax, configuration: str):
+    """``ax`` with the configuration it shows in its title (normal running and the worst misfire look alike)."""
+    ax.set_title(f"{ax.get_title()}: {configuration}")
+    return ax
+
+
+def tvc_modes(ctx: RunContext, normal: TVCCase, cases: list[TVCCase]) -> tuple[list[ModeRow], str]:
+    """The mode table (modes up to the top speed's highest listed order) and the Campbell diagram with
+    every configuration's barred ranges, saved: (rows, file name)."""
+    net, response = normal.network, normal.response
+    f = speed_factors(net)
+    blades = sorted({float(q) for p in net.propellers if p.order_shares for q in propeller_orders(p, f[p.station])})
+    engine = [q for q in response.orders if q <= TABLE_HIGHEST_ORDER and not any(abs(q - b) < 1e-9 for b in blades)]
+    span = (float(response.rpm.min()), float(response.rpm.max()))
+    top = max([TABLE_HIGHEST_ORDER, *blades]) * span[1] / 60.0
+    rows = [r for r in mode_table(net, np.array(engine + blades), span, max_modes=len(net.labels)) if r.frequency_hz <= top]
+    rows = rows or mode_table(net, np.array(engine + blades), span, max_modes=1)
+    major = major_orders(net.engine, TABLE_HIGHEST_ORDER) if net.engine is not None else ()
+    barred = [(c.name, b["from_rpm"], b["to_rpm"]) for c in cases if c.shafts for b in c.shafts.barred]
+    ax = plot_tvc_campbell(rows, engine, major, blades, span, barred, f"{net.name}: Campbell diagram, barred ranges")
+    return rows, ctx.save(ax.figure, "tvc_campbell.png")
 
 
 def assumptions(net: Network, response) -> list[str]:

@@ -97,6 +97,9 @@ PROPELLERS = Section("chain.propellers", "Network form: a propeller at a station
           "constant damping at every speed; default the rated speed", "> 0"),
     Field("blade_order_shares", "the blade-order torque amplitudes as shares of the mean torque (orders z, 2z, …)",
           "a list, each >= 0; optional"),
+    Field("passage_rate_rpm_per_s", "the rate the engine's speed (station 1's) passes a barred range at in the "
+          "time-domain check against τ_T, rpm/s (the engine's acceleration); default 10 rpm/s, ASSUMED",
+          "> 0"),
     Field("name", "label; default the station's name", "a string"),
     Field("source", "where the numbers come from", "a string"),
 ), array=True)

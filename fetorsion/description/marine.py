@@ -191,6 +191,8 @@ class Propeller:
     order_shares: tuple[float, ...] = ()
     name: str = ""
     source: str = ""
+    #: The rate station 1's speed passes a barred range at in the time-domain check, rpm/s (0: not stated).
+    passage_rate: float = 0.0
 
     @property
     def inertia(self) -> float:

@@ -466,6 +466,7 @@ def _propellers(t: Table, index: dict, inertias: list, absolute: list, problems:
         if any(v < 0 for v in shares):
             problems.append(Problem(f"{pt.path}.blade_order_shares", list(shares), "each must be >= 0"))
         name, source = pt.text("name", station), pt.text("source")
+        passage = pt.number("passage_rate_rpm_per_s", 0.0, positive=True) if "passage_rate_rpm_per_s" in pt.data else 0.0
         pt.finish()
         s = index.get(station)
         if s is None or not inertias[s] > 0:
@@ -474,7 +475,7 @@ def _propellers(t: Table, index: dict, inertias: list, absolute: list, problems:
             continue
         if any(p.field.startswith(f"{pt.path}.") for p in problems):
             continue
-        p = Propeller(s, blades, inertias[s], share, torque, rated, speed, model, exponent, shares, name, source)
+        p = Propeller(s, blades, inertias[s], share, torque, rated, speed, model, exponent, shares, name, source, passage)
         inertias[s], absolute[s] = p.inertia, absolute[s] + p.damping(speed)
         out.append(p)
     return out

@@ -106,7 +106,7 @@ class CouplingHeat:
             ax.plot(self.rpm, self.heat_w[:, k], color=f"C{k}", label=f"{c.name} at {self.temperature_c[k]:.0f} °C")
             if c.permissible_power:
                 ax.axhline(c.permissible_power, color=f"C{k}", ls="--", lw=0.9, label=f"P_KV {c.name}")
-        ax.set(xlabel="speed of station 1 (rpm)", ylabel="coupling heat (W)", title=f"{self.name}: coupling heat")
+        ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="coupling heat (W)", title=f"{self.name}: coupling heat")
         ax.legend(fontsize=7)
         return ax
 

@@ -105,7 +105,7 @@ class GearHammering:
             ax.plot(self.rpm, m.mean_nm / 1e3, color=f"C{k % 10}", ls="--", lw=0.9, label=f"mean {m.label}")
             for r in m.ranges:
                 ax.axvspan(r["from_rpm"], r["to_rpm"], color="crimson", alpha=0.15, lw=0)
-        ax.set(xlabel="speed of station 1 (rpm)", ylabel="mesh torque (kN m)",
+        ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="mesh torque (kN m)",
                title=f"{self.name}: gear hammering ({self.verdict})")
         ax.legend(fontsize=7)
         return ax

@@ -121,7 +121,7 @@ class ShaftVerdict:
             ax.plot(self.rpm, s.tau_t_pa / 1e6, color=color, ls=":", lw=0.9, label=f"τ_T {s.label}")
         for b in self.barred:
             ax.axvspan(b["from_rpm"], b["to_rpm"], color="crimson", alpha=0.15, lw=0)
-        ax.set(xlabel="speed of station 1 (rpm)", ylabel="vibratory torsional stress (N/mm²)",
+        ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="vibratory torsional stress (N/mm²)",
                title=f"{self.name}: shaft stresses, UR M68 ({self.verdict})")
         ax.legend(fontsize=7)
         return ax

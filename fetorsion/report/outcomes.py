@@ -18,7 +18,9 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.assessment import CrankAssessment
     from ..design.coupling_heat import CouplingHeat
     from ..design.gear_hammering import GearHammering
+    from ..design.barred_passage import BarredPassage
     from ..design.tvc_cases import TVCCase
+    from ..design.tvc_modes import ModeRow
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
@@ -69,6 +71,14 @@ class TVCOutcome:
     worst_misfire: TVCCase | None = None
     misfire_note: str = ""
     misfire_shaft_image: str = ""
+    #: The time-domain passage of each barred range against τ_T (normal running's, the worst misfire's)
+    #: and each passage's picture.
+    passages: tuple[BarredPassage, ...] = ()
+    passage_images: tuple[str, ...] = ()
+    #: The mode table (each mode's frequency, resonances in the speed range, relative amplitudes) and
+    #: the Campbell diagram with the barred ranges.
+    mode_rows: tuple[ModeRow, ...] = ()
+    campbell_image: str = ""
 
 
 @dataclass(frozen=True)

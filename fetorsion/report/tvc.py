@@ -57,6 +57,32 @@ def misfire_lines(outcome: TVCOutcome) -> list[str]:
     return lines
 
 
+def mode_lines(outcome: TVCOutcome) -> list[str]:
+    """The modes with their resonances in the speed range, and each station's relative amplitude."""
+    rows = outcome.mode_rows
+    lines = ["| mode | frequency [Hz] | [cpm] | resonances in the speed range: order @ engine rpm |", "|---|---|---|---|"]
+    lines += [f"| {r.number} | {r.frequency_hz:.3f} | {60 * r.frequency_hz:.0f} | "
+              + (", ".join(f"{q:.4g} @ {n:.0f}" for q, n in r.resonances) or "none") + " |" for r in rows]
+    lines += ["", "Relative amplitudes (each mode's physical station angles over its largest; the blade orders are "
+              "per engine revolution):", "",
+              "| station | " + " | ".join(f"mode {r.number}" for r in rows) + " |", "|---|" + "---|" * len(rows)]
+    lines += [f"| {name} | " + " | ".join(f"{r.amplitudes[k]:+.3f}".replace("-0.000", "+0.000") for r in rows) + " |"
+              for k, name in enumerate(outcome.network.labels)]
+    return lines + [""]
+
+
+def passage_lines(outcome: TVCOutcome) -> list[str]:
+    """The time-domain passage of each barred range against τ_T, with its rate and picture."""
+    if not outcome.passages:
+        return []
+    lines = ["### Passage through the barred ranges (time domain) against τ_T", "",
+             "Run through each barred range from the steady state below it at the stated rate; the half-range "
+             "stress over each synthesis period against τ_T at its speed.", ""]
+    for p, image in zip(outcome.passages, outcome.passage_images):
+        lines += ["```", p.table(), "```", "", f"![]({image})", ""]
+    return lines
+
+
 def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     """The TVC section of the report (module docs)."""
     lines = ["## Propulsion line: torsional vibration calculation", ""]
@@ -65,7 +91,10 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     res = outcome.modes
     lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures.", ""]
     lines += mass_elastic_lines(outcome.network) + ["", "### Natural frequencies", ""]
-    lines += [", ".join(f"{f:.4g} Hz ({60 * f:.1f} cpm)" for f in res.frequencies_hz), ""]
+    if outcome.mode_rows:
+        lines += mode_lines(outcome) + ([f"![]({outcome.campbell_image})", ""] if outcome.campbell_image else [])
+    else:
+        lines += [", ".join(f"{f:.4g} Hz ({60 * f:.1f} cpm)" for f in res.frequencies_hz), ""]
     if outcome.shafts is not None:
         lines += ["### Shaft stresses against IACS UR M68, barred speed ranges", "", "```", outcome.shafts.table(),
                   "```", "", f"![]({outcome.shaft_image})", ""]
@@ -75,6 +104,6 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.hammering is not None:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
-    lines += misfire_lines(outcome)
+    lines += misfire_lines(outcome) + passage_lines(outcome)
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines

@@ -1,5 +1,6 @@
 """The linear time domain: a chain, network or lumped crank at a fixed speed or in a run-up or
-run-down at a stated rate, excited by crank-angle-resolved gas and inertia torques.
+run-down at a stated rate, excited by crank-angle-resolved gas and inertia torques (one cylinder
+misfiring where asked) and a network's propellers' blade orders (:mod:`.transient_sources`).
 
 The shaft turns with a prescribed mean motion φ(t) (the speed schedule); the vibration q
 (rad, the model's coordinates) is superposed on it:
@@ -60,13 +61,14 @@ import scipy.signal
 from ..description.chain_model import Chain, Network
 from ..description.model import Crank
 from ..errors import FetorsionError, ParameterError
-from ..excitation.torque import cycle_angle, firing_angles
+from ..excitation.torque import cycle_angle
 from ..lumped_model.lumped import lumped
 from ..lumped_model.network import speed_factors
 from ..measured.torsiograph import OrderTrack, order_track
 from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
-from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule, table_load, torque_table
+from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule
+from .transient_sources import blade_state, run_sources
 from ..results import from_fields
 from .transient_record import (ORDER_CUT_KEYS, StoredRecord, block_envelope, station_order_track, thinned_signals,
                                 transient_from_dict)
@@ -424,7 +426,7 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
                   damping_ratio: float | None = None, partition: int = DEFAULT_PARTITION,
                   web_method: str = DEFAULT_WEB_METHOD, step_rad: float = DEFAULT_STEP_RAD, teeth: int = DEFAULT_TEETH,
                   track_station: int = 0, variable_inertia: bool = False, method: str = METHODS[0],
-                  settled_start: bool = False) -> TransientResult:
+                  settled_start: bool = False, misfire: int | None = None, propellers: bool = True) -> TransientResult:
     """Simulate a model with an engine in the time domain (module docs): linear by the exact
     propagator; with ``variable_inertia`` or a network's nonlinear elements by the nonlinear
     integrator of :mod:`fetorsion.response.nonlinear`.
@@ -471,6 +473,11 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
         size (the envelope and the order track begin after the hold, ``settle_s``). Without it the
         run starts from rest at speed A and its first cycles ring with the lightly damped modes (a
         driveline's, for seconds). Not with ``variable_inertia`` (its tangential term takes one rate).
+    misfire : int, optional
+        This 0-based cylinder runs its motored cycle, the others fire (linear runs only).
+    propellers : bool
+        A network's propellers' blade orders load the run with the engine's
+        (:mod:`fetorsion.response.transient_sources`; linear runs only).
 
     Returns
     -------
@@ -499,16 +506,15 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     N = check_run_fits(duration, step_rad, top, len(M), len(setup.section_labels), run)  # or refused, by name
     t = np.arange(N) * h
     n_t, phi = n_of_t(t), phi_of_t(t)
-    grid, step, table = torque_table(model, lo, top)
     rings = len(M) - len(setup.labels)  # the dampers' rings: coordinates that no cylinder drives
-    W = np.pad(setup.load_map[:, 0, :].real, ((0, 0), (0, rings)))  # (cylinders, coordinates)
-    elements = tuple(getattr(model, "nonlinear", ()))
-    fire = firing_angles(model.engine)
-    load = table_load(W, fire, grid, step, table, phi, n_t)
+    src = run_sources(model, setup, rings, (lo, top), phi, n_t, misfire, propellers)
+    W, fire, load, elements = src.W, src.fire, src.load, tuple(getattr(model, "nonlinear", ()))
+    notes += src.notes
     rigid_speed, start = 0.0, None
     if run is not None and settled_start and settle == 0.0:
         # linear: the run starts in the frequency domain's periodic state at its start speed
-        start = periodic_state(M, K, C, W, fire, grid, step, table, run[0], float(phi[0]), period)
+        start = periodic_state(M, K, C, W, fire, src.grid, src.step, src.table, run[0], float(phi[0]), period)
+        start = tuple(a + b for a, b in zip(start, blade_state(M, K, C, src.blades, run[0], float(phi[0]))))
         notes.append(f"settled start: the periodic steady state at {run[0]:g} rpm (every harmonic of the torque "
                      "table) as the initial state")
     elif prop.rigid is not None:
@@ -517,6 +523,9 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
         rigid_speed = rigid_start_speed(prop.rigid, load, phi, period, h)
     rows = np.pad(np.real(setup.section_rows), ((0, 0), (0, rings)))
     if variable_inertia or elements:
+        if src.blades or misfire is not None:
+            raise FetorsionError(f"{model.source or model.name}: the nonlinear integrator carries the engine's "
+                                 "firing excitation only (no propeller blade orders, no misfire)")
         if branches is not None:
             raise FetorsionError(f"{model.source or model.name}: a rubber damper's dynamic table (its Maxwell "
                                  "states) is not in the nonlinear integrator yet: run without variable inertia")

@@ -62,18 +62,20 @@ def held_schedule(hold_s: float, duration_s: float, n_of_t, phi_of_t):
     return hold_s + duration_s, n, phi
 
 
-def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total"):
+def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total",
+                 misfire: bool = False):
     """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
 
     ``part``: ``"total"`` (gas and reciprocating inertia) or ``"gas"`` (the variable-inertia model
-    makes the inertia torque itself). Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
+    makes the inertia torque itself); ``misfire``: the cylinder's motored cycle (no combustion).
+    Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
     """
     lo, hi = min(rpm_lo, rpm_hi), max(rpm_lo, rpm_hi)
     n = max(2, int(math.ceil((hi - lo) / TABLE_RPM_STEP)) + 1)
     grid = np.linspace(lo, hi, n) if hi > lo else np.array([lo, lo + 1.0])
     period = cycle_angle(crank.engine)
     theta = np.arange(samples) * (period / samples)
-    table = np.array([getattr(cylinder_torque(crank, r, theta), part) for r in grid])
+    table = np.array([getattr(cylinder_torque(crank, r, theta, misfire=misfire), part) for r in grid])
     return grid, period / samples, table - table.mean(axis=1, keepdims=True)
 
 
@@ -93,12 +95,19 @@ def read_table(grid, step, table, theta, rpm):
     return lo * (1 - fs) + hi * fs
 
 
+def own_table(table, c: int):
+    """Cylinder ``c``'s torque table: ``table`` itself where every cylinder shares one (2-D), else its row."""
+    return table if table.ndim == 2 else table[c]
+
+
 def table_load(W, fire, grid, step, table, phi, rpm):
     """``load(a, b)`` → (coordinates, b − a): the cylinders' torques read from :func:`torque_table`
-    at samples a … b − 1 of the mean angle ``phi`` (rad) and speed ``rpm``, each at its firing angle,
-    put on the coordinates by the weights ``W`` (cylinders × coordinates)."""
+    (one shared table, or one per cylinder: (cylinders, speeds, samples)) at samples a … b − 1 of the
+    mean angle ``phi`` (rad) and speed ``rpm``, each at its firing angle, put on the coordinates by
+    the weights ``W`` (cylinders × coordinates)."""
     def load(a, b):
-        return W.T @ np.stack([read_table(grid, step, table, phi[a:b] - f, rpm[a:b]) for f in fire])
+        return W.T @ np.stack([read_table(grid, step, own_table(table, c), phi[a:b] - f, rpm[a:b])
+                               for c, f in enumerate(fire)])
 
     return load
 
@@ -109,9 +118,9 @@ def periodic_state(M, K, C, W, fire, grid, step, table, rpm: float, phi0: float,
     resolution) and, harmonic k of the cycle at ω_k = k (2π/period) Ω, Z_k = (K − ω_k² M + i ω_k C)⁻¹ F_k;
     q(θ) = Re Σ_k 2 Z_k e^{i k 2π θ/period} (its mean, the static wind-up, left out as the load's is).
     The start a run takes from it does not ring: every state is already the periodic one."""
-    S = table.shape[1]
+    S = table.shape[-1]
     theta = np.arange(S) * step
-    T = np.stack([read_table(grid, step, table, theta - f, np.full(S, rpm)) for f in fire])  # (cylinders, S)
+    T = np.stack([read_table(grid, step, own_table(table, c), theta - f, np.full(S, rpm)) for c, f in enumerate(fire)])  # (cylinders, S)
     F = np.fft.rfft(W.T @ T, axis=1) / S  # (r, S/2 + 1): F(θ_j) = Σ_k F_k e^{2πi jk/S}, one-sided doubled
     k = np.arange(1, F.shape[1])
     w = k * (2 * np.pi / period) * rpm * np.pi / 30

@@ -1,0 +1,201 @@
+"""The transient passage through a barred speed range against UR M68's τ_T, in the time domain
+(docs/propulsion-tvc.md).
+
+A barred range (:mod:`.shaft_verdict`: where the steady-state stress exceeds τ_C) must be passed
+quickly; in the passage the stress may reach τ_T = 1.7 τ_C/√C_K. The frequency domain's check
+(``within_transient``) takes the steady state, the slow-passage limit. Here the line is run through
+the range in the time domain (:func:`fetorsion.response.transient.run_transient`: the engine's
+cylinders, the misfiring one on its motored cycle where the range is a misfire's, and the
+propellers' blade orders), from the periodic steady state at the run's start speed, at a stated
+rate: ``passage_rate_rpm_per_s`` of the network's first propeller, or :data:`DEFAULT_PASSAGE_RATE`
+(ASSUMED, said in the result). The run spans the range widened by :data:`PASSAGE_MARGIN` of its
+width either side (at least :data:`MIN_MARGIN_RPM`), so it starts and ends outside it.
+
+**The stress in the passage.** The record of each section's torque is cut into windows of one
+synthesis period of the response (the common period of the engine's and the blade orders, or the
+engine's cycle where they share none); in each window the half-range (max − min)/2 of the torque,
+as the rule's synthesised half-range amplitude, gives the nominal stress 16 T d/(π (d⁴ − d_i⁴)).
+The largest over the windows is set against τ_T at its window's mean speed (λ = n/n_rated; the
+rule gives no τ_T above λ 0.8: not judged there). For a passage slow against the mode's decay, the
+peak approaches the steady state's (tests/test_propulsion_transient.py); where the sources share
+no period, a window sees only some of their relative phases, and the peak stays at or under the
+frequency domain's bound (the sum of each source's extremes).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..description.chain_model import Network
+from ..response.transient import TransientResult, run_transient
+from .shaft_verdict import judged_sections, rated_speed, section_limits
+from .tvc_cases import TVCCase
+
+#: The passage rate when the network states none, rpm/s of station 1: ASSUMED (no rule text giving a
+#: rate was read here); a slow governor-limited acceleration of a medium-speed engine.
+DEFAULT_PASSAGE_RATE = 10.0
+#: The run spans the barred range widened by this share of its width either side.
+PASSAGE_MARGIN = 1.0
+#: ... and by at least this many rpm either side.
+MIN_MARGIN_RPM = 20.0
+
+
+@dataclass(frozen=True)
+class SectionPassage:
+    """One shaft section's largest half-range stress in a passage (Pa, at ``peak_rpm`` of station 1)
+    against τ_T there (Pa; NaN above λ 0.8, where the rule gives none) and its record: the windows'
+    mean speeds (rpm) and stresses (Pa)."""
+
+    label: str
+    peak_pa: float
+    peak_rpm: float
+    tau_t_pa: float
+    tau_c_pa: float
+    window_rpm: np.ndarray
+    window_stress_pa: np.ndarray
+
+    @property
+    def utilisation(self) -> float:
+        """τ / τ_T at the peak (NaN where the rule gives no τ_T)."""
+        return self.peak_pa / self.tau_t_pa
+
+    @property
+    def within(self) -> bool:
+        """τ ≤ τ_T at the peak (True where the rule gives no τ_T: not judged)."""
+        return not self.peak_pa > self.tau_t_pa
+
+
+@dataclass(frozen=True)
+class BarredPassage:
+    """The time-domain passage through one barred range (module docs): the ``configuration`` it is
+    of, the range (``from_rpm``, ``to_rpm``), the run's span and rate (rpm, rpm/s) with where the
+    rate comes from, the window (rad of station 1), the run's steps and each judged section."""
+
+    configuration: str
+    from_rpm: float
+    to_rpm: float
+    run_from_rpm: float
+    run_to_rpm: float
+    rate_rpm_per_s: float
+    rate_source: str
+    window_rad: float
+    steps: int
+    sections: tuple[SectionPassage, ...]
+
+    @property
+    def verdict(self) -> str:
+        """within τ_T, or above τ_T (some section's peak exceeds it)."""
+        return "within τ_T" if all(s.within for s in self.sections) else "above τ_T"
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the range, the run, the rate and its source, each section's peak and τ_T (Pa)."""
+        return {"configuration": self.configuration, "from_rpm": self.from_rpm, "to_rpm": self.to_rpm,
+                "run_rpm": [self.run_from_rpm, self.run_to_rpm], "rate_rpm_per_s": self.rate_rpm_per_s,
+                "rate_source": self.rate_source, "window_rad": self.window_rad, "steps": self.steps,
+                "verdict": self.verdict,
+                "sections": [{"label": s.label, "peak_pa": s.peak_pa, "peak_rpm": s.peak_rpm,
+                              "tau_t_pa": None if not np.isfinite(s.tau_t_pa) else s.tau_t_pa,
+                              "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
+                              "within": s.within} for s in self.sections]}
+
+    def table(self) -> str:
+        """The passage as plain text, stresses in N/mm²."""
+        lines = [f"{self.configuration}: passage of the barred range {self.from_rpm:.1f}-{self.to_rpm:.1f} rpm, "
+                 f"run {self.run_from_rpm:.1f} -> {self.run_to_rpm:.1f} rpm at {self.rate_rpm_per_s:g} rpm/s "
+                 f"({self.rate_source})"]
+        for s in self.sections:
+            limit = "no τ_T (λ > 0.8)" if not np.isfinite(s.tau_t_pa) else (
+                f"τ_T {s.tau_t_pa / 1e6:.2f} N/mm² ({s.utilisation:.3f} τ_T)")
+            lines.append(f"  {s.label}: peak τ {s.peak_pa / 1e6:.2f} N/mm² at {s.peak_rpm:.1f} rpm; {limit}")
+        return "\n".join(lines + [f"  verdict: {self.verdict}"])
+
+    def plot(self, ax=None):
+        """Each section's half-range stress per window over the run's speed with its τ_T at the peak and
+        the barred range shaded (N/mm²). Returns the Axes."""
+        import matplotlib.pyplot as plt
+
+        ax = ax if ax is not None else plt.figure(figsize=(9, 4.5)).add_subplot()
+        for k, s in enumerate(self.sections):
+            ax.plot(s.window_rpm, s.window_stress_pa / 1e6, color=f"C{k % 10}", label=f"τ {s.label}")
+            if np.isfinite(s.tau_t_pa):
+                ax.axhline(s.tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9, label=f"τ_T {s.label}")
+        ax.axvspan(self.from_rpm, self.to_rpm, color="crimson", alpha=0.15, lw=0, label="barred range")
+        ax.set(xlabel="engine speed (rpm)", ylabel="vibratory torsional stress, half-range (N/mm²)",
+               title=f"{self.configuration}: passage at {self.rate_rpm_per_s:g} rpm/s ({self.verdict})")
+        ax.legend(fontsize=7)
+        return ax
+
+
+def passage_rate(net: Network) -> tuple[float, str]:
+    """(rate rpm/s, where it comes from): the first propeller's ``passage_rate_rpm_per_s``, else
+    :data:`DEFAULT_PASSAGE_RATE`."""
+    stated = next((p.passage_rate for p in net.propellers if p.passage_rate), None)
+    if stated:
+        return stated, "stated in the network file"
+    return DEFAULT_PASSAGE_RATE, "fetorsion's default, ASSUMED: no rate stated in the network file"
+
+
+def window_stresses(result: TransientResult, torque_nm: np.ndarray, section, window_rad: float):
+    """(mean rpm, half-range stress Pa) of each whole window of ``window_rad`` of station 1's mean
+    angle in a run's record of one section's torque (N·m)."""
+    phi = result.crank_angle_rad - result.crank_angle_rad[0]
+    idx = np.floor(phi / window_rad).astype(int)
+    starts = np.flatnonzero(np.diff(idx, prepend=-1))
+    # the last window is cut short by the run's end: left out
+    half = 0.5 * (np.maximum.reduceat(torque_nm, starts) - np.minimum.reduceat(torque_nm, starts))[:-1]
+    rpm = (np.add.reduceat(result.rpm, starts) / np.diff(np.append(starts, result.rpm.size)))[:-1]
+    return rpm, section.stress(half)
+
+
+def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[float, float], rate: float,
+                    rate_source: str, window_rad: float, configuration: str = "normal running",
+                    misfire: int | None = None) -> BarredPassage:
+    """Run ``net`` up through ``span_rpm`` at ``rate`` rpm/s from its settled state and judge the
+    passage of the barred range ``barred`` (rpm) against τ_T (module docs).
+
+    Parameters
+    ----------
+    net : Network
+        The line, with its couplings at the configuration's settled temperature.
+    span_rpm : (float, float)
+        The run's start and end speed of station 1, rpm.
+    barred : (float, float)
+        The barred range's ends, rpm.
+    rate : float
+        |dn/dt| of the run, rpm/s; ``rate_source`` says where it comes from.
+    window_rad : float
+        The synthesis period the half-range is taken over, rad of station 1.
+    configuration : str
+        Normal running or a misfire, in words; ``misfire`` the 0-based misfiring cylinder.
+    """
+    res = run_transient(net, run=span_rpm, rate_rpm_per_s=rate, settled_start=True, misfire=misfire)
+    rated = rated_speed(net)
+    out = []
+    for k, label, sec in judged_sections(net, res):
+        rpm, stress = window_stresses(res, res.section_torque_nm[k], sec, window_rad)
+        j = int(np.argmax(stress))
+        tau_c, tau_t = section_limits(sec, np.array([rpm[j] / rated]))
+        out.append(SectionPassage(label, float(stress[j]), float(rpm[j]), float(tau_t[0]), float(tau_c[0]), rpm,
+                                  stress))
+    return BarredPassage(configuration, barred[0], barred[1], span_rpm[0], span_rpm[1], rate, rate_source,
+                         window_rad, res.samples, tuple(out))
+
+
+def passage_span(barred: dict) -> tuple[float, float]:
+    """The run's span about a barred range {from_rpm, to_rpm} (module docs), rpm."""
+    lo, hi = barred["from_rpm"], barred["to_rpm"]
+    margin = max(PASSAGE_MARGIN * (hi - lo), MIN_MARGIN_RPM)
+    return max(lo - margin, 1.0), hi + margin
+
+
+def barred_passages(case: TVCCase) -> list[BarredPassage]:
+    """The passage of every barred range of a TVC configuration (:class:`.tvc_cases.TVCCase`) at
+    the network's passage rate (:func:`passage_rate`); none without barred ranges or an engine."""
+    net = case.network
+    if case.shafts is None or not case.shafts.barred or net.engine is None or net.excitation is None:
+        return []
+    rate, source = passage_rate(net)
+    return [passage_through(net, passage_span(b), (b["from_rpm"], b["to_rpm"]), rate, source,
+                            case.response.cycle_rad, case.name, case.misfire) for b in case.shafts.barred]

@@ -1,0 +1,109 @@
+"""The natural frequencies of a propulsion line as a TVC tabulates them, and its Campbell diagram
+with the barred ranges (docs/propulsion-tvc.md).
+
+**The mode table.** For each undamped mode of the network at its couplings' settled temperatures:
+its frequency, the resonances in the speed range (each exciting order q, the engine's and the
+propellers' blade orders per revolution of station 1, at n = 60 f / q rpm inside it), and the
+relative amplitude of every station: the mode's physical angles (θ = T q, not referred to station
+1's speed) over the largest of them, so the station that swings most reads 1.
+
+**The Campbell diagram.** The modes' frequencies against station 1's speed, the engine's orders
+(its major orders bold) and the blade orders as lines f = q n / 60, the speed range shaded grey and
+each configuration's barred ranges as bands (normal running crimson, a misfire orange, hatched).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..description.chain_model import Network
+from ..lumped_model.lumped import lumped
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+
+@dataclass(frozen=True)
+class ModeRow:
+    """One mode: ``number`` (1-based), ``frequency_hz``, its ``resonances`` in the speed range
+    ((order, rpm of station 1), …) and ``amplitudes`` (one per station of the network, the largest
+    magnitude 1, signed)."""
+
+    number: int
+    frequency_hz: float
+    resonances: tuple[tuple[float, float], ...]
+    amplitudes: np.ndarray
+
+    def to_dict(self) -> dict:
+        """JSON-ready."""
+        return {"mode": self.number, "frequency_hz": self.frequency_hz,
+                "resonances": [{"order": q, "rpm": n} for q, n in self.resonances],
+                "relative_amplitudes": self.amplitudes.tolist()}
+
+
+def mode_table(net: Network, orders: np.ndarray, speed_range: tuple[float, float],
+               max_modes: int = 6) -> list[ModeRow]:
+    """The lowest ``max_modes`` elastic modes of ``net`` with their resonances in ``speed_range`` (rpm
+    of station 1) for ``orders`` (per revolution of station 1) and their relative station amplitudes
+    (module docs)."""
+    res = lumped(net)
+    T = res.network.T
+    freqs = np.asarray(res.frequencies_hz, dtype=float)
+    shapes = np.asarray(res.mode_shapes, dtype=float)
+    lo, hi = speed_range
+    rows = []
+    for k, f in enumerate(freqs[:max_modes]):
+        theta = T @ shapes[k]
+        amp = theta / theta[np.argmax(np.abs(theta))]
+        hits = tuple((float(q), float(60.0 * f / q)) for q in sorted(set(np.round(orders, 9)))
+                     if q > 0 and lo <= 60.0 * f / q <= hi)
+        rows.append(ModeRow(k + 1, float(f), hits, amp))
+    return rows
+
+
+def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major_orders: Sequence[float],
+                      blade_orders: Sequence[float], speed_range: tuple[float, float],
+                      barred: list[tuple[str, float, float]], title: str, ax: Axes | None = None):
+    """The Campbell diagram with the barred ranges (module docs). ``barred``: (configuration, from
+    rpm, to rpm) of each range; orders per revolution of station 1. Returns the Axes."""
+    import matplotlib.pyplot as plt
+
+    ax = ax if ax is not None else plt.figure(figsize=(9, 6)).add_subplot()
+    lo, hi = speed_range
+    top = 1.1 * hi
+    ax.axvspan(lo, hi, color="0.93", zorder=0, label="speed range")
+    major = {round(float(q), 9) for q in major_orders}
+    n = np.array([0.0, top])
+    first = min(major, default=None)
+    for q in engine_orders:
+        bold = round(float(q), 9) in major
+        ax.plot(n, q * n / 60, color="0.15" if bold else "0.65", lw=1.4 if bold else 0.6, zorder=1,
+                label="engine major order" if bold and round(float(q), 9) == first else None)
+        if q * top / 60 < 1.05 * max(r.frequency_hz for r in rows):
+            ax.annotate(f"{q:g}", (top, q * top / 60), fontsize=6, color="0.3", xytext=(2, 0),
+                        textcoords="offset points", va="center")
+    for q in blade_orders:
+        ax.plot(n, q * n / 60, color="tab:blue", ls="--", lw=1.2, zorder=1, label=f"blade order {q:.4g}")
+    for r in rows:
+        ax.axhline(r.frequency_hz, color="tab:green", lw=1.0, zorder=2)
+        ax.annotate(f"mode {r.number}: {r.frequency_hz:.1f} Hz", (0.99 * top, r.frequency_hz), fontsize=7, ha="right",
+                    xytext=(0, 2), textcoords="offset points", color="darkgreen", zorder=4,
+                    bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85})
+    shown = set()
+    for name, a, b in barred:
+        normal = name == "normal running"
+        label = None if (normal in shown) else ("barred, normal running" if normal else "barred, misfire")
+        shown.add(normal)
+        ax.axvspan(a, b, color="crimson" if normal else "orange", alpha=0.25, lw=0, hatch=None if normal else "//",
+                   zorder=1, label=label)
+    ax.set(xlim=(0, top), ylim=(0, 1.15 * max(r.frequency_hz for r in rows)), xlabel="engine speed (rpm)",
+           ylabel="frequency (Hz)", title=title)
+    ax.legend(fontsize=7, loc="upper left", framealpha=0.95)
+    if not barred:
+        ax.text(0.5, -0.1, "no barred range in normal running or misfire", transform=ax.transAxes, ha="center",
+                va="top", fontsize=8)
+    return ax
