@@ -238,7 +238,18 @@ def test_the_design_loop_lands_where_the_fe_verdict_binds(tmp_path):
     (tmp_path / "thinner.toml").write_text(designed_text(src.read_text(), crank, thinner))
     fe = _confirm(tmp_path / "thinner.toml", tmp_path / "thinner", options, steps, 1.9)
     assert fe.safety < fe.required == 1.9  # the verdict's own 1.15 it passes; the design's 1.9 it fails
-    assert "The crank as described: PASS" in (tmp_path / "d" / "run" / "report.md").read_text()
+    report = (tmp_path / "d" / "run" / "report.md").read_text()
+    assert "The crank as described: PASS" in report
+    # a confirmation reads the deciding method alone: the fe path is left out, and said so
+    assert "iacs-m53** decides; fe was left out" in report and "### fetorsion's own path (`fe`)" in report
+    # and the lean folder reads back whole: `fetorsion report` writes the same report.md (issue 56)
+    import shutil
+
+    from fetorsion.app.rerender import rerender
+
+    copy = shutil.copytree(tmp_path / "d" / "run", tmp_path / "copy")
+    again = rerender(copy)
+    assert not again.unread and (copy / "report.md").read_text() == report
 
 
 @pytest.mark.parametrize("objective", ["inertia", "change"])

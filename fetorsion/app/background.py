@@ -47,7 +47,7 @@ def sensitivity_studies(crank: Crank, workers: int | None, fe_checks: bool, part
     return sens, studies, checks
 
 
-def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | None]:
+def throw_fe_results(crank: Crank, scfs: bool = True, recovery: bool = True) -> tuple[dict, SCFSet | None]:
     """({throw key: the throw's torsion entry}, the fillet SCFs or None) of every distinct throw
     of ``crank``: its one throw FE each (:func:`fetorsion.webs.throwfe.end_loaded_fe`), found
     stored or computed. Run in the background process, first, when the crank has no stored throw
@@ -55,7 +55,9 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | No
     verdict find them done. ``scfs=False`` (a run without the FE steps, whose verdict takes no FE
     SCF): the web stiffnesses only. With the SCFs, and an ``[excitation]`` for a verdict to read
     them, the ``fe`` path's stress-recovery fields (:func:`fetorsion.design.recovery.crank_zones`:
-    every distinct throw and drilled section under six unit end loads) are stored too. SCFs that fail here are left to the verdict, which says why."""
+    every distinct throw and drilled section under six unit end loads) are stored too, unless
+    ``recovery`` is False (a run whose verdict leaves the ``fe`` path out). SCFs that fail here
+    are left to the verdict, which says why."""
     from ..design.recovery import crank_zones
     from ..design.scf import fillet_scfs
     from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
@@ -75,7 +77,7 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | No
     forget_end_loaded()
     # the fe path's stress recovery, stored for the verdict: only where there is one (a crank
     # without [excitation] has no load cycle, and its zones would cost a minute for nothing)
-    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and crank.excitation is not None:
+    if recovery and scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and crank.excitation is not None:
         try:
             crank_zones(crank)
         except FetorsionError:
@@ -83,9 +85,9 @@ def throw_fe_results(crank: Crank, scfs: bool = True) -> tuple[dict, SCFSet | No
     return torsion, scf
 
 
-def needs_throw_fe(crank: Crank, scfs: bool = True) -> bool:
+def needs_throw_fe(crank: Crank, scfs: bool = True, recovery: bool = True) -> bool:
     """True when some throw of ``crank`` has its web stiffness, or (``scfs``) the crank its fillet
-    SCFs, not stored."""
+    SCFs (and, with ``recovery``, the ``fe`` path's stress-recovery fields), not stored."""
     from ..design.recovery import zones_stored
     from ..design.scf import stored_fillet_scfs
     from ..webs.throwfe import stored_throw_torsion, throw_of
@@ -93,7 +95,7 @@ def needs_throw_fe(crank: Crank, scfs: bool = True) -> bool:
     if any(stored_throw_torsion(throw_of(crank, i)) is None for i in range(len(crank.pins))):
         return True
     return scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and (
-        stored_fillet_scfs(crank) is None or (crank.excitation is not None and not zones_stored(crank)))
+        stored_fillet_scfs(crank) is None or (recovery and crank.excitation is not None and not zones_stored(crank)))
 
 
 #: Niceness of the background studies' process (and the Dask workers it starts): they take the

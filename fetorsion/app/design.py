@@ -267,10 +267,15 @@ def _confirm(designed: Path, folder: Path, options: RunOptions | None, steps,
     """``fetorsion run`` of the designed description: the least safety of the crank as designed
     (its own dampers, firing and in misfire) by the deciding method, the required one (the
     larger of the verdict's and ``required``, the ``[design]`` table's), the first mode in the
-    bearings, the designed dampers' heat firing, and whether the verdict passes."""
+    bearings, the designed dampers' heat firing, and whether the verdict passes. The ``fe`` path
+    is left out where it does not decide: the loop reads the deciding method alone, and the
+    path's stress recovery and assessments were most of a confirmation's verdict."""
+    import dataclasses
+
     from ..report.outcomes import FatigueOutcome
 
-    outcome = run(designed, folder, steps=steps, options=options or RunOptions(html=False), force=True)
+    lean = dataclasses.replace(options or RunOptions(html=False), fe_path=False)
+    outcome = run(designed, folder, steps=steps, options=lean, force=True)
     write_report_manifest(folder.parent)
     fatigue = outcome.fatigue
     if not isinstance(fatigue, FatigueOutcome):

@@ -78,8 +78,9 @@ def _fatigue_figures(fatigue: FatigueOutcome) -> dict[str, Callable[[], object]]
     from .steps import haigh_of
 
     v = fatigue.verdict
-    draw = (lambda: v.fatigue_figure().axes[0], lambda: haigh_of(v, fatigue.assessment), lambda: v.damper.plot())
-    return dict(zip(fatigue.images, draw))
+    draw = {"fatigue_safety.png": lambda: v.fatigue_figure().axes[0],
+            "fatigue_haigh.png": lambda: haigh_of(v, fatigue.assessment), "damper_design.png": lambda: v.damper.plot()}
+    return {image: draw[image] for image in fatigue.images}
 
 
 def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:

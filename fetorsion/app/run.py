@@ -35,7 +35,7 @@ from ..report.markdown import report_markdown
 from ..report.outcomes import RunOutcome, Skipped
 from .tvc import is_propulsion_line, step_tvc
 from .background import background_executor, needs_throw_fe, sensitivity_studies, throw_fe_results
-from .steps import (progress, step_bearings, step_campbell, step_fatigue, step_fe, step_lumped, step_measured,
+from .steps import (fe_path_runs, progress, step_bearings, step_campbell, step_fatigue, step_fe, step_lumped, step_measured,
                     step_sensitivity, step_transient, step_verdict)
 
 if TYPE_CHECKING:
@@ -86,6 +86,10 @@ class RunOptions:
         Where the measured order cuts were taken (``--station``).
     no_fe : bool
         The run leaves out the FE steps (``--no-fe``, or a chain file).
+    fe_path : bool
+        The crank's verdict computes the ``fe`` fatigue path beside the deciding method; cleared by
+        the design loop's confirming runs, which read the deciding method alone (kept whenever
+        ``fe`` decides).
     """
 
     mesh_size: float = DEFAULT_MESH_SIZE
@@ -100,6 +104,7 @@ class RunOptions:
     measured: MeasuredData | None = None
     station: str | None = None
     no_fe: bool = False
+    fe_path: bool = True
 
     @classmethod
     def of(cls, options) -> "RunOptions":
@@ -394,9 +399,10 @@ def _start_background(ctx: RunContext, background, steps) -> None:
     """Submit to ``background`` the throws' FE and the f1 studies that the run's steps will read."""
     crank = ctx.crank
     scfs = not ctx.options.no_fe  # without the FE steps the verdict takes no FE SCF
-    if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank, scfs):
+    recovery = fe_path_runs(ctx)
+    if BACKGROUND and not isinstance(crank, (Chain, Network)) and needs_throw_fe(crank, scfs, recovery):
         # first in the queue: the bearings step (the lumped `fe` column) and the verdict read it
-        ctx.built["throw_fe"] = background.submit(throw_fe_results, crank, scfs)
+        ctx.built["throw_fe"] = background.submit(throw_fe_results, crank, scfs, recovery)
     if BACKGROUND and any(s[2] is step_sensitivity for s in steps) and getattr(crank, "uncertainty", ()):
         # the studies run beside the FE steps on one core fewer than the machine has: the FE's
         # assembly and Lanczos iterations keep one core busy, not two (Renault 21 on 2 cores:

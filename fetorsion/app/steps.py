@@ -249,6 +249,16 @@ def step_verdict(ctx: RunContext) -> VerdictOutcome | Skipped:
     return VerdictOutcome(verdict, mu, scf, ctx.save(verdict.plot().figure, "verdict.png"), stress, setup.model)
 
 
+def fe_path_runs(ctx: RunContext) -> bool:
+    """Whether the run's crank verdict computes the ``fe`` path: unless the options leave it out
+    (the design loop's confirmations), and always where it decides."""
+    from ..design.methods import described_method
+
+    if ctx.options.fe_path or isinstance(ctx.crank, (Chain, Network)):
+        return True
+    return described_method(ctx.crank, ctx.options.fatigue_method) == "fe"
+
+
 def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     """A crank's verdict: its fatigue by both methods in every configuration (without a damper,
     with the description's, with the recommended damper designed for this verdict, misfire), on
@@ -277,15 +287,17 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
         return Skipped(f"no {', '.join(missing)} SCF in {scf.source or 'the SCFs'}")
     method = described_method(crank, ctx.options.fatigue_method)
     cc, fillets, setup = ctx.built["condensed"], ctx.fillets(), ctx.engine_setup()
-    verdict = run_crank_verdict(crank, cc, setup, fillets, scf, method,
-                                mu=ctx.options.inertia_ratio, progress=progress)
+    verdict = run_crank_verdict(crank, cc, setup, fillets, scf, method, mu=ctx.options.inertia_ratio,
+                                fe_path=fe_path_runs(ctx), progress=progress)
     described = verdict.configs[1 if crank.dampers else 0]
-    a = described.fe
+    a = described.fe  # None where the fe path was left out
     stress = fillet_stress(crank, ctx.outcome.campbell.response, scf, fillets) \
         if isinstance(ctx.outcome.campbell, CampbellOutcome) else None
-    images = tuple(ctx.save(fig, name) for fig, name in zip(
-        (verdict.fatigue_figure(described), haigh_of(verdict, a).figure, verdict.damper.plot().figure), FATIGUE_IMAGES))
-    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": a.to_dict(), "scf": scf.to_dict(), "model": setup.model}
+    figures = (verdict.fatigue_figure(described), None if a is None else haigh_of(verdict, a).figure,
+               verdict.damper.plot().figure)
+    images = tuple(ctx.save(fig, name) for fig, name in zip(figures, FATIGUE_IMAGES) if fig is not None)
+    ctx.results["fatigue"] = {**verdict.to_dict(), "fe_detail": None if a is None else a.to_dict(),
+                              "scf": scf.to_dict(), "model": setup.model}
     if stress is not None:
         ctx.results["stress"] = stress.to_dict()
     return FatigueOutcome(verdict, a, stress, scf, images, setup.model)

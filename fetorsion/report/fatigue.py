@@ -101,7 +101,7 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     if isinstance(outcome, Skipped):
         return ["## Verdict: fatigue of the fillets and oil bores", "", f"Not run: {outcome.reason}.", ""]
     v, a = outcome.verdict, outcome.assessment
-    lines = _configurations_lines(v, a, outcome.model)
+    lines = _configurations_lines(v, a, outcome.model, crank)
     lines += ["", f"**Damping sensitivity** (the crank as described): {v.flip.kind}; across the band "
               + ", ".join(f"ζ = {b['damping_ratio']:.4g}: safety {b['safety']:.2f}" for b in v.band)
               + f" ({crank.excitation.damping_source}).", ""] + bending_lines(v) + [""]
@@ -116,14 +116,19 @@ def fatigue_section(crank: Crank, outcome) -> list[str]:
     return lines + [f"![]({im})" for im in outcome.images] + [""]
 
 
-def _configurations_lines(v, a, model: str) -> list[str]:
+def _configurations_lines(v, a, model: str, crank: Crank) -> list[str]:
     """The section's heading, the model, method, damping and material, and the table of every configuration."""
-    mat = a.worst.material
+    if a is None:  # the fe path left out: its material (defaults filled in) was not assessed
+        beside = f"{v.other} was left out (a design loop's confirming run reads the deciding method alone)"
+        material = f"Material: {crank.material.name} (the description's)."
+    else:
+        mat = a.worst.material
+        beside = f"{v.other} is shown beside it"
+        material = (f"Material: {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} "
+                    f"MPa ({mat.source or 'the description'}).")
     lines = ["## Verdict: fatigue of the fillets and oil bores", "",
-             f"Computed on the **{model}**. **{v.method}** decides; {v.other} is "
-             f"shown beside it. Damping: modal damping ratio **ζ = {v.damping_ratio:.4g}** ({v.damping_source}). "
-             f"Material: {mat.name}, R_m {mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} MPa "
-             f"({mat.source or 'the description'}).", "",
+             f"Computed on the **{model}**. **{v.method}** decides; {beside}. Damping: modal damping ratio "
+             f"**ζ = {v.damping_ratio:.4g}** ({v.damping_source}). {material}", "",
              f"| configuration | {v.method}: safety | required | governing | at rpm | verdict | {v.other}: safety "
              f"| required | its governing |", "|---|---|---|---|---|---|---|---|---|"]
     for c in v.configs:
@@ -200,6 +205,9 @@ def _m53_lines(v) -> list[str]:
 
 def _fe_path_lines(v, a) -> list[str]:
     """The ``fe`` path's detail: its table, its recovery on M53's loads, the bridge to M53, the notes."""
+    if a is None:
+        return ["", "### fetorsion's own path (`fe`)", "", "Left out of this run: `fetorsion run` on the same "
+                "description gives it.", ""] + [f"- {n}" for n in v.notes] + [""]
     lines = ["", "### fetorsion's own path (`fe`)", "",
              "The condensed crank's fillet sections over the cycle (mean of the gas and inertia forces solved "
              "statically, every vibratory order, the resonant bending included) drive the local stress recovered "

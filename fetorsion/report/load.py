@@ -210,7 +210,9 @@ def _fatigue(crank, data: dict[str, object]) -> FatigueOutcome | Skipped | None:
     verdict = CrankVerdict.from_dict(d)
     assessment = next(c for c in verdict.configs if c.as_described).fe
     stress = StressResult.from_dict(data["stress"]) if "stress" in data else None
-    return FatigueOutcome(verdict, assessment, stress, SCFSet.from_dict(d["scf"]), FATIGUE_IMAGES, d["model"])
+    # a run that left the fe path out drew no Haigh diagram
+    images = FATIGUE_IMAGES if assessment is not None else tuple(i for i in FATIGUE_IMAGES if "haigh" not in i)
+    return FatigueOutcome(verdict, assessment, stress, SCFSet.from_dict(d["scf"]), images, d["model"])
 
 
 def _measured(crank, data: dict[str, object]) -> MeasuredOutcome | Skipped | None:

@@ -131,8 +131,8 @@ def _fatigue_summary(fat) -> list[str]:
                    "verdict's governing safety" + ("" if v.method == "iacs-m53" else
                                                    f" and checked by the deciding {v.method} method")
                    + " (its line above).")
-    mat = fat.assessment.worst.material
-    if fat.assessment.worst.defaulted:
+    mat = None if fat.assessment is None else fat.assessment.worst.material
+    if mat is not None and fat.assessment.worst.defaulted:
         out.append(f"- **Material assumed:** the description gives no strength; {mat.name}, R_m "
                    f"{mat.tensile_strength / 1e6:.0f} MPa, R_e {mat.yield_strength / 1e6:.0f} MPa ({mat.source}).")
     return out
