@@ -428,11 +428,10 @@ def split_pin_refusal(crank: Crank) -> str | None:
 
 def rods_signature(rods: dict[str, np.ndarray]) -> tuple:
     """What makes two throws' rod loads one M53 variant: their rods' places, phases and forces over
-    the cycle (to 9 significant digits of the largest), so a throw whose cylinders load it
-    differently (:class:`fetorsion.excitation.loads.CylinderLoads`) is a variant of its own."""
+    the cycle (to the mN), so a throw whose cylinders load it differently
+    (:class:`fetorsion.excitation.loads.CylinderLoads`) is a variant of its own."""
     forces = np.concatenate([np.ravel(rods["radial"]), np.ravel(rods["tangential"])])
-    scale = float(np.abs(forces).max()) or 1.0
-    return tuple(np.round(np.r_[rods["offset"], rods["phase"], forces / scale], 9))
+    return tuple(np.round(np.r_[rods["offset"], rods["phase"]], 9)) + tuple(np.round(forces, 3))
 
 
 def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None = None, rated_rpm: float | None = None,
