@@ -1,8 +1,9 @@
-"""Which cylinder loads which throw, and how: the one seam between an engine's cylinders and its
-crank's throws.
+"""Which cylinder loads which throw, and how: between an engine's cylinders and its crank's
+throws (the consumers reach it through :meth:`fetorsion.excitation.loads.CylinderLoads.rods_of_throw`).
 
-Every cylinder is the same slider-crank: its torque and its pin force, as functions of the
-crank angle from its own firing TDC, are cylinder 1's (:mod:`fetorsion.excitation.torque`).
+Each cylinder's torque and pin force, as functions of the crank angle from its own firing TDC,
+are :class:`fetorsion.excitation.loads.CylinderLoads`' (today every cylinder is cylinder 1's
+slider-crank, :mod:`fetorsion.excitation.torque`).
 A vee cylinder differs from an in-line one only in when it fires (its throw's angle plus its
 bank's, :meth:`fetorsion.description.model.Engine.tdc_lags`) and where its rod sits along the
 pin. In the throw's own frame (radial along the crank arm, tangential ahead of it) its rod
