@@ -132,7 +132,7 @@ def cmd_flywheel(args) -> int:
 
 def _flywheel_from_engine_torque(crank, args) -> int:
     """Flywheel inertia from the real engine torque of a crank description with [excitation]."""
-    from ..excitation.torque import engine_torque
+    from ..excitation.loads import engine_torque
 
     if args.rpm is None:
         raise FetorsionError(f"{args.file} is a crank description: give the speed with --rpm")

@@ -426,6 +426,14 @@ def split_pin_refusal(crank: Crank) -> str | None:
             "with a flying web between them; fetorsion gives no M53 figure for this crank")
 
 
+def rods_signature(rods: dict[str, np.ndarray]) -> tuple:
+    """What makes two throws' rod loads one M53 variant: their rods' places, phases and forces over
+    the cycle (to the mN), so a throw whose cylinders load it differently
+    (:class:`fetorsion.excitation.loads.CylinderLoads`) is a variant of its own."""
+    forces = np.concatenate([np.ravel(rods["radial"]), np.ravel(rods["tangential"])])
+    return tuple(np.round(np.r_[rods["offset"], rods["phase"]], 9)) + tuple(np.round(forces, 3))
+
+
 def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None = None, rated_rpm: float | None = None,
                   material=None, limits=None) -> M53Result:
     """UR M53 on a crank description in one configuration.
@@ -453,8 +461,7 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
         ``additional_bending`` (σ_add, Pa) replaces §4's trunk-piston value when > 0;
         ``fatigue_strength_bending`` replaces σ_DW; ``fatigue_required_safety`` the 1.15.
     """
-    from ..excitation.cylinders import throw_rods
-    from ..excitation.torque import cylinder_pin_forces
+    from ..excitation.loads import cylinder_loads
     from .fatigue import fatigue_material
 
     if split_pin_refusal(crank):
@@ -465,13 +472,12 @@ def run_m53_crank(crank, fillets, torque_amplitude, rpm, fe_scf: SCFSet | None =
     sigma_add = getattr(limits, "additional_bending", 0.0) or SIGMA_ADD_TRUNK_PISTON
     required = m53_required(limits)
     user_strength = getattr(limits, "fatigue_strength_bending", 0.0) or mat.fatigue_strength or None
-    one = cylinder_pin_forces(crank, rated)
+    loads = cylinder_loads(crank)
     torques = largest_torques(fillets, torque_amplitude, rpm)
     groups: dict = {}
-    rods = [throw_rods(crank, one, i) for i in range(crank.throws)]
+    rods = [loads.rods_of_throw(rated, i) for i in range(crank.throws)]
     for i in range(crank.throws):  # throws of one geometry and load are one variant ([KR-M53] §2.(1)(B)(a)(iv))
-        signature = tuple(np.round(np.r_[rods[i]["offset"], rods[i]["phase"]], 9))  # its rods' places and phases
-        groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i), signature), []).append(i + 1)
+        groups.setdefault((m53_geometry(crank, i), throw_spans(crank, i), rods_signature(rods[i])), []).append(i + 1)
     locations, nominal, sources = [], {}, {}
     for (g, spans, _), throws in groups.items():
         name = f"throw{'s' if len(throws) > 1 else ''} {', '.join(map(str, throws))}"

@@ -378,12 +378,11 @@ def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm:
 
     ``fillets`` and ``cut_centres`` (cuts, 3; m) as :func:`fetorsion.design.recovery.crank_locations`.
     """
-    from ..excitation.cylinders import throw_rods
-    from ..excitation.torque import cylinder_pin_forces
+    from ..excitation.loads import cylinder_loads
     from .m53 import alternating, throw_spans
     from .recovery import throw_rotation, throw_index, throw_origin
 
-    one = cylinder_pin_forces(crank, rated_rpm)
+    loads = cylinder_loads(crank)
     amp = alternating(cycle.bending_in_plane(), axis=-1)  # (speeds, cuts)
     angles = np.asarray(crank.engine.crank_angles, float)
     R = crank.engine.crank_radius
@@ -393,7 +392,7 @@ def vibratory_bending(crank, cycle, fillets, cut_centres: np.ndarray, rated_rpm:
             continue
         i = throw_index(crank, fillets, f)
         if i not in origins:
-            origins[i], rods_of[i] = throw_origin(crank, fillets, i), throw_rods(crank, one, i)
+            origins[i], rods_of[i] = throw_origin(crank, fillets, i), loads.rods_of_throw(rated_rpm, i)
         x = float((throw_rotation(-angles[i]) @ (cut_centres[k] - np.array([origins[i], 0.0, 0.0])))[0])
         spans = throw_spans(crank, i)
         web = spans.L1[0] if x < spans.L2 else spans.L3 - spans.L1[1]  # the fillet's web's centre
@@ -413,7 +412,7 @@ def half_range_cut(rods: dict, component: str, spans, R: float, at) -> np.ndarra
     force of that component is largest and smallest. One rod: the alternating force's own cut;
     two rods of a vee, each at its own place along the pin and with its phase, superposed.
 
-    ``rods``: :func:`fetorsion.excitation.cylinders.throw_rods` of the throw; ``spans``: its
+    ``rods``: :meth:`fetorsion.excitation.loads.CylinderLoads.rods_of_throw`; ``spans``: its
     :class:`~fetorsion.design.m53.ThrowSpans`."""
     f = np.asarray(rods[component], float)  # (rods, samples)
     total = f.sum(axis=0)
@@ -477,13 +476,12 @@ def same_load(crank, m53, zones: dict, throw: int = 0, fe_factors: dict | None =
 
     Returns ``{place: {"m53_sigma_v_pa", "fe_sigma_v_pa", "ratio"}}`` (ratio fe/M53).
     """
-    from ..excitation.cylinders import throw_rods
-    from ..excitation.torque import cylinder_pin_forces
+    from ..excitation.loads import cylinder_loads
     from .fatigue import m53_equivalent_fillet, m53_equivalent_oil_bore
     from .m53 import throw_spans
     from .recovery import load_map
 
-    rods = throw_rods(crank, cylinder_pin_forces(crank, m53.rated_rpm), throw)
+    rods = cylinder_loads(crank).rods_of_throw(m53.rated_rpm, throw)
     i = throw
     spans = throw_spans(crank, i)
     R = crank.engine.crank_radius

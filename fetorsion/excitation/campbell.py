@@ -27,7 +27,8 @@ import numpy as np
 from ..description.model import Crank
 from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
-from .torque import cycle_angle, cylinder_torque, firing_angles, harmonics
+from .loads import cylinder_loads
+from .torque import cycle_angle, firing_angles
 from ..lumped_model.damped import DampedSystem, damped_modes
 from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_ratios,
                                    stated_damping)
@@ -43,8 +44,9 @@ if TYPE_CHECKING:
 
 def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.ndarray, phasors: np.ndarray):
     """The pulley's complex angle (rad) at each crossing from the full solve of the chain with its
-    dampers: the order's torques ``Tq`` (modes, orders) at ω (modes, 1) rad/s, the modal damping
-    ratio ``zeta`` on the chain's own modes plus a chain file's stated dampers."""
+    dampers: the order's torques ``Tq`` (modes, orders, cylinders: each cylinder's own harmonic) at
+    ω (modes, 1) rad/s, the modal damping ratio ``zeta`` on the chain's own modes plus a chain
+    file's stated dampers."""
     M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
     C = modal_damping_matrix(M, K, zeta)
     if isinstance(crank, Chain):
@@ -53,9 +55,9 @@ def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.nd
         C, K = C + C_stated, K + 1j * H
     system = DampedSystem(M, K, C, crank.dampers)
     N = len(system.M)
-    loads = np.zeros(Tq.shape + (N,), dtype=complex)
-    loads[..., : res.dof] = Tq[..., None] * (phasors @ res.pin_weights)[None, :, :]
-    omegas = np.broadcast_to(omega, Tq.shape)
+    loads = np.zeros(Tq.shape[:2] + (N,), dtype=complex)
+    loads[..., : res.dof] = np.einsum("joc,oc,cd->jod", Tq, phasors, res.pin_weights)
+    omegas = np.broadcast_to(omega, Tq.shape[:2])
     return np.linalg.solve(system.matrix(omegas), loads[..., None])[..., 0, 0]
 
 
@@ -339,17 +341,15 @@ def run_campbell(crank: Crank | Chain | Network, modes: TorsionalModes | None = 
         zeta_modes = zeta_modes + gained[:k]
         zeta = tuple(float(z) for z in zeta_modes)
     rpm = 60 * f[:, None] / orders[None, :]  # (modes, orders)
-    phi = firing_angles(crank.engine)
-    phasors = np.exp(-1j * orders[:, None] * phi[None, :])  # (orders, cylinders)
+    loads = cylinder_loads(crank)
+    phasors = loads.phasors(orders)  # (orders, cylinders)
     phase_sum = order_sums(crank.engine, modes.pin_amplitudes[:k], orders)  # (modes, orders)
-    S = phase_sum * np.abs(modes.pin_amplitudes[:k]).sum(axis=1, keepdims=True)  # |Σ_c a_jc e^{−iqφ_c}|
-    period = cycle_angle(crank.engine)
-    Tq = np.empty_like(rpm, dtype=complex)
-    for j in range(k):  # one torque cycle per mode and order (distinct speeds)
-        for i, q in enumerate(orders):
-            Tq[j, i] = harmonics(cylinder_torque(crank, rpm[j, i]).total, period).at([q])[0]
+    # (modes, orders, cylinders): one torque cycle per mode and order (distinct speeds)
+    Tq = np.array([[loads.torque_harmonics([rpm[j, i]], [q])[0, 0] for i, q in enumerate(orders)] for j in range(k)])
     omega = 2 * np.pi * f[:, None]
-    theta = (np.abs(modes.pulley_amplitude[:k, None]) * np.abs(Tq) * np.abs(S)
+    # |Σ_c a_jc T_q,c e^{−iqφ_c}|: the order's work on the mode, each cylinder with its own torque
+    S = np.abs(np.einsum("jc,joc,oc->jo", modes.pin_amplitudes[:k], Tq, phasors))
+    theta = (np.abs(modes.pulley_amplitude[:k, None]) * S
              / (2 * zeta_modes[:, None] * omega**2 * modes.modal_inertia[:k, None]))
     if gained is not None:
         # A damper couples its modes strongly (two close, heavily damped ones): the one-mode
@@ -357,14 +357,15 @@ def run_campbell(crank: Crank | Chain | Network, modes: TorsionalModes | None = 
         # with rubber and tuned rings). The full damped solve of the order at the crossing speed
         # replaces it; without a damper the two agree (the crossing is the resonance peak).
         theta = np.abs(damped_crossing_angles(crank, res, zeta_base, omega, Tq, phasors))
+    largest = np.abs(Tq).max(axis=2)  # the largest cylinder's torque harmonic
     crossings = [
-        Crossing(j + 1, float(f[j]), float(q), float(rpm[j, i]), bool(lo <= rpm[j, i] <= hi), float(abs(Tq[j, i])),
+        Crossing(j + 1, float(f[j]), float(q), float(rpm[j, i]), bool(lo <= rpm[j, i] <= hi), float(largest[j, i]),
                  float(phase_sum[j, i]), float(np.degrees(theta[j, i])), modes.labels[j] if modes.labels else "")
         for j in range(k) for i, q in enumerate(orders)
     ]
     table = {}
     for speed in np.linspace(lo, hi, 5):
-        h = harmonics(cylinder_torque(crank, speed).total, period)
+        h = loads.cylinder_harmonics(speed)  # cylinder 1's
         table[f"{speed:.0f}"] = {"orders": orders.tolist(), "amplitude_nm": np.abs(h.at(orders)).tolist(),
                                  "phase_rad": np.angle(h.at(orders)).tolist(), "mean_nm": h.mean_nm}
     return CampbellResult(crank.name, modes.source, f, orders, (lo, hi), zeta, crossings, table,

@@ -15,16 +15,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from ..description.model import Crank, Engine, Excitation
 from ..errors import FetorsionError
 from .kinematics import pin_forces, piston_acceleration, piston_position, tangential_torque
-
-if TYPE_CHECKING:
-    from collections.abc import Sequence
 
 SAMPLES_PER_CYCLE = 1440  # 0.5° for a 4-stroke: resolves orders up to 360 (Nyquist)
 
@@ -198,21 +193,6 @@ def tangential_pressure(ex: Excitation, engine: Engine, rpm: float, theta: np.nd
     return 2.0 * imep / cycle_angle(engine) + (sine[:, None] * np.sin(q) + cosine[:, None] * np.cos(q)).sum(axis=0)
 
 
-def engine_torque(crank: Crank, rpm: float) -> CycleTorque:
-    """Sum of all cylinders' torques on a rigid crank over one cycle, N·m.
-
-    Cylinder c's torque is cylinder 1's delayed by its firing angle; the shift is done on
-    the periodic sample grid, so the firing angles must fall on it (they do for any even
-    firing of up to 16 cylinders at 0.5° sampling).
-    """
-    one = cylinder_torque(crank, rpm)
-    step = one.theta[1] - one.theta[0]
-    shifts = firing_angles(crank.engine) / step
-    if np.any(np.abs(shifts - np.rint(shifts)) > 1e-6):
-        raise FetorsionError("firing angles do not fall on the 0.5° sample grid")
-    return CycleTorque(one.theta, sum(np.roll(one.total, int(k)) for k in np.rint(shifts)))
-
-
 @dataclass(frozen=True)
 class Harmonics:
     """Harmonic orders of a periodic torque: T(θ) = mean + Re Σ_q T_q e^{i q θ}.
@@ -269,15 +249,3 @@ def cylinder_pin_forces(crank: Crank, rpm: float, misfire: bool = False) -> dict
     f = pin_forces(theta, force, e.crank_radius, e.rod_length)
     radial = f["radial"] + ex.rotating_mass * e.crank_radius * omega**2
     return {"theta": theta, "tangential": f["tangential"], "radial": radial}
-
-
-def pin_force_harmonics(crank: Crank, rpm: Sequence[float] | np.ndarray, orders: Sequence[float] | np.ndarray,
-                        misfire: bool = False) -> np.ndarray:
-    """(speeds, orders, 2) complex harmonics of cylinder 1's tangential and radial pin force, N."""
-    period = cycle_angle(crank.engine)
-    out = np.empty((len(rpm), len(orders), 2), complex)
-    for s, n in enumerate(rpm):
-        f = cylinder_pin_forces(crank, n, misfire)
-        out[s, :, 0] = harmonics(f["tangential"], period).at(orders)
-        out[s, :, 1] = harmonics(f["radial"], period).at(orders)
-    return out

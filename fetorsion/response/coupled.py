@@ -2,7 +2,7 @@
 
 Each pin carries the slider-crank force of its cylinder (gas force and reciprocating inertia
 along the cylinder axis, taken through the exact rod geometry into a tangential and a radial
-component, :func:`fetorsion.excitation.torque.pin_force_harmonics`), with its firing phase. The
+component, :meth:`fetorsion.excitation.loads.CylinderLoads.pin_force_harmonics`), with its firing phase. The
 crank is modelled in its own rotating frame, where each pin force has fixed directions: with
 isotropic bearings this is exact for the linear model. The Coriolis term of that frame
 (Ω G ż, :mod:`fetorsion.fe.rotating`) is included; the centrifugal spin softening is left out
@@ -31,7 +31,7 @@ import numpy as np
 from ..description.defaults import DEFAULT_SPEED_STEPS
 from ..errors import FetorsionError
 from ..excitation.campbell import Crossing, default_orders, response_orders
-from ..excitation.torque import cycle_angle, firing_angles, pin_force_harmonics
+from ..excitation.loads import cylinder_loads
 from ..fe.condensed import CondensedCrank
 from ..fe.couplings import DOF_NAMES
 from ..fe.substructure import reduced_modes, supported_matrices
@@ -312,7 +312,7 @@ def run_coupled_response(cc: CondensedCrank, support: str = "bearings",
     omegas = orders[None, :] * rpm[:, None] * 2 * np.pi / 60
     dampers = tuple(getattr(crank, "dampers", ()))
     z, heat = damped_solution(cc, support, loads, omegas, zeta, dampers, spin=rpm[:, None] * np.pi / 30)
-    period = cycle_angle(crank.engine)
+    period = cylinder_loads(crank).period
 
     def amp(x):  # (..., orders) -> (...)
         return half_peak_to_peak(x, orders, period)
@@ -381,13 +381,14 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm: Sequence
     orders = response_orders(crank) if orders is None else np.asarray(orders, float)
     zeta = ex.modal_damping_ratio if damping_ratio is None else damping_ratio
     Kk, Mk, Ck, keep = supported_damping(cc, support, zeta)
-    harm = pin_force_harmonics(crank, rpm, orders)
-    phasors = np.exp(-1j * np.outer(orders, firing_angles(crank.engine)))
+    loads = cylinder_loads(crank)
+    harm = loads.pin_force_harmonics(rpm, orders)  # (speeds, orders, cylinders, 2)
+    phasors = loads.phasors(orders)
     m = cc.n_master_dofs
     load_map = np.zeros((crank.engine.cylinders, 2, cc.reduced.size))
     load_map[:, :, :m] = pin_load_map(cc)
     load_map = load_map[:, :, keep]
-    forces = np.einsum("sok,oc,ckd->sod", harm, phasors, load_map)
+    forces = np.einsum("sock,oc,ckd->sod", harm, phasors, load_map)
     if cc.cut_rows is not None:
         rows, x = cc.cut_rows[:, 3, keep], cc.cut_centres[:, 0]
         names = section_labels or [f"cut {k + 1} at x = {v * 1e3:.1f} mm" for k, v in enumerate(x)]
@@ -400,7 +401,7 @@ def condensed_setup(cc: CondensedCrank, support: str = "bearings", rpm: Sequence
         [f"interior {j + 1}" for j in range(cc.reduced.size - m)]
     where = {label: int(np.flatnonzero(keep == cc.dof(label, "rx"))[0]) for label in ("front", "rear")}
     return ResponseSetup(crank.name, [dof_names[k] for k in keep], Mk, Kk, Ck, forces, rpm, orders,
-                         cycle_angle(crank.engine), zeta, "", None, harm, phasors, load_map, rows, list(names),
+                         loads.period, zeta, "", None, harm, phasors, load_map, rows, list(names),
                          section_x=np.asarray(x), pulley=where["front"], flywheel=where["rear"], damper_dof=where,
                          torsional_modes=torsional, model=f"condensed crank, {support} ({cc.reduced.size} DOF)",
                          load_kind="pin forces", projected=True,
@@ -476,7 +477,8 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings",
     forces : callable, optional
         ``forces(rpm, order)`` → (the complex master-force amplitude (6·masters,) N of that order at
         that speed, a torque harmonic N·m to show beside it); default every cylinder's pin forces
-        (:func:`pin_force_harmonics`) and one cylinder's torque harmonic. Then ``orders``,
+        (:meth:`fetorsion.excitation.loads.CylinderLoads.pin_force_harmonics`) and the largest
+        cylinder's torque harmonic. Then ``orders``,
         ``speed_range`` and ``damping_ratio`` are required.
     section_names : list of str, optional
         The name of each cut (a fillet's label): each crossing then names its worst section
@@ -488,11 +490,12 @@ def run_coupled_campbell(cc: CondensedCrank, support: str = "bearings",
     if forces is None:
         if crank.excitation is None:
             raise FetorsionError(f"{crank.source or crank.name}: the description has no [excitation] table")
-        phi, load_map = firing_angles(crank.engine), pin_load_map(cc)
+        loads, load_map = cylinder_loads(crank), pin_load_map(cc)
 
-        def forces(n, q):  # and one cylinder's torque harmonic R |F_t,q|, N·m
-            h = pin_force_harmonics(crank, [n], [q])[0, 0]  # (2,): tangential, radial
-            return np.einsum("c,k,ckd->d", np.exp(-1j * q * phi), h, load_map), crank.engine.crank_radius * abs(h[0])
+        def forces(n, q):  # and the largest cylinder's torque harmonic R |F_t,q|, N·m
+            h = loads.pin_force_harmonics([n], [q])[0, 0]  # (cylinders, 2): tangential, radial
+            return (np.einsum("c,ck,ckd->d", loads.phasors([q])[0], h, load_map),
+                    crank.engine.crank_radius * float(np.abs(h[:, 0]).max()))
         orders = default_orders(crank) if orders is None else np.asarray(orders, float)
         lo, hi = crank.excitation.checked_range if speed_range is None else speed_range
         zeta = crank.excitation.modal_damping_ratio if damping_ratio is None else damping_ratio

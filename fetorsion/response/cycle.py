@@ -32,7 +32,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..excitation.torque import cycle_angle, cylinder_pin_forces
+from ..excitation.loads import cylinder_loads
+from ..excitation.torque import cycle_angle
 from ..fe.condensed import CondensedCrank
 
 if TYPE_CHECKING:
@@ -47,12 +48,13 @@ CYCLE_SAMPLES = 720
 
 def mean_master_loads(cc: CondensedCrank, rpm) -> np.ndarray:
     """(speeds, 6·masters): the cycle mean of every cylinder's tangential and radial pin force on
-    the pin masters, N (each cylinder's mean is cylinder 1's: the mean has no firing phase)."""
+    the pin masters, N (each cylinder's own mean: the mean has no firing phase)."""
     from .coupled import pin_load_map
 
-    mean = np.array([[f["tangential"].mean(), f["radial"].mean()]
-                     for f in (cylinder_pin_forces(cc.crank, float(n)) for n in np.atleast_1d(rpm))])
-    return np.einsum("sk,ckd->sd", mean, pin_load_map(cc))
+    loads = cylinder_loads(cc.crank)
+    mean = np.array([[[f["tangential"][c].mean(), f["radial"][c].mean()] for c in range(loads.cylinders)]
+                     for f in (loads.pin_forces(float(n)) for n in np.atleast_1d(rpm))])  # (speeds, cylinders, 2)
+    return np.einsum("sck,ckd->sd", mean, pin_load_map(cc))
 
 
 def static_solution(cc: CondensedCrank, loads: np.ndarray, support: str = "bearings") -> np.ndarray:

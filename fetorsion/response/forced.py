@@ -27,7 +27,7 @@ from ..excitation.campbell import response_orders
 from ..description.model import Crank
 from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError, ParameterError
-from ..excitation.torque import cycle_angle, cylinder_torque, firing_angles, harmonics, pin_force_harmonics
+from ..excitation.loads import cylinder_loads
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
 from ..lumped_model.network import group_place, speed_factors
@@ -234,10 +234,11 @@ class ResponseSetup:
     for the condensed crank in its bearings); solving it with any set of dampers
     (:func:`solve_response`) reuses the costly force harmonics.
 
-    The forces are those of one cylinder, ``cylinder_harmonics`` (speeds, orders, components:
-    its torque for a chain; its tangential and radial pin force for the condensed crank), put on
-    the model's DOF by ``load_map`` (cylinders, components, DOF) with each cylinder's firing
-    phase ``phasors`` (orders, cylinders): a misfire changes one cylinder's share.
+    The forces are the cylinders' own, ``cylinder_harmonics`` (speeds, orders, cylinders,
+    components: each cylinder's torque for a chain; its tangential and radial pin force for the
+    condensed crank; :class:`fetorsion.excitation.loads.CylinderLoads`), put on the model's DOF by
+    ``load_map`` (cylinders, components, DOF) with each cylinder's firing phase ``phasors``
+    (orders, cylinders): a misfire changes one cylinder's share.
     """
 
     name: str
@@ -252,7 +253,7 @@ class ResponseSetup:
     zeta: float
     stated: str
     misfire: int | None
-    cylinder_harmonics: np.ndarray  # (speeds, orders, components): one firing cylinder's, N·m or N
+    cylinder_harmonics: np.ndarray  # (speeds, orders, cylinders, components): each firing cylinder's, N·m or N
     phasors: np.ndarray  # (orders, cylinders): e^{−i q φ_c}
     load_map: np.ndarray  # (cylinders, components, DOF)
     section_rows: np.ndarray  # (sections, DOF): torque through each section per unit DOF, N·m
@@ -296,11 +297,12 @@ class ResponseSetup:
 
     def with_misfire(self, cylinder: int, motored: np.ndarray) -> "ResponseSetup":
         """The same engine with ``cylinder`` (0-based) not firing: its force harmonics replaced by
-        ``motored`` (speeds, orders, components; :func:`misfire_harmonics`), the others' unchanged."""
+        its own of ``motored`` (speeds, orders, cylinders, components; :func:`misfire_harmonics`),
+        the others' unchanged."""
         from dataclasses import replace
 
-        delta = np.einsum("sok,o,kd->sod", motored - self.cylinder_harmonics, self.phasors[:, cylinder],
-                          self.load_map[cylinder])
+        delta = np.einsum("sok,o,kd->sod", motored[:, :, cylinder] - self.cylinder_harmonics[:, :, cylinder],
+                          self.phasors[:, cylinder], self.load_map[cylinder])
         out = replace(self, forces=self.forces + delta, misfire=cylinder)
         if "unit_response" in self.__dict__:  # the same matrices and speeds
             out.unit_response = self.unit_response
@@ -386,10 +388,11 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
     if res.pin_weights is None:
         res.torsional_modes()  # raises the message that says what the chain file lacks
     W = res.pin_weights  # (cylinders, stations)
-    period = cycle_angle(crank.engine)
-    Tq = np.array([harmonics(cylinder_torque(crank, n).total, period).at(orders) for n in rpm])  # (speeds, orders)
-    phasors = np.exp(-1j * orders[:, None] * firing_angles(crank.engine)[None, :])  # (orders, cylinders)
-    forces = Tq[:, :, None] * (phasors @ W)[None, :, :]  # (speeds, orders, stations)
+    loads = cylinder_loads(crank)
+    period = loads.period
+    Tq = loads.torque_harmonics(rpm, orders)  # (speeds, orders, cylinders)
+    phasors = loads.phasors(orders)  # (orders, cylinders)
+    forces = np.einsum("soc,oc,cd->sod", Tq, phasors, W)  # (speeds, orders, stations)
     n = len(res.labels)
     if res.network is not None:
         rows, section_labels = res.network.section_rows, list(res.network.section_labels)
@@ -405,7 +408,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
         section_labels = [f"{a}-{b}" for a, b in zip(res.labels, res.labels[1:])]
         flywheel, model_name = n - 1, f"lumped {res.dof}-DOF chain ({web_method})"
     setup = ResponseSetup(crank.name, res.labels, M, K, C, forces, rpm, orders, period, zeta, stated, None,
-                          Tq[:, :, None], phasors, W[:, None, :], rows,
+                          Tq[..., None], phasors, W[:, None, :], rows,
                           section_labels, positions_m=res.positions_m,
                           pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad,
@@ -432,19 +435,15 @@ def network_damper_dof(net, res, flywheel: int) -> tuple[dict, dict]:
     return out, scale
 
 
-def motored_harmonics(crank, rpm, orders) -> np.ndarray:
-    """(speeds, orders) torque harmonics of a cylinder that does not fire (compression and
-    expansion only, plus its reciprocating inertia), N·m."""
-    period = cycle_angle(crank.engine)
-    return np.array([harmonics(cylinder_torque(crank, n, misfire=True).total, period).at(orders) for n in rpm])
-
-
 def misfire_harmonics(crank: Crank | Chain | Network, setup: ResponseSetup) -> np.ndarray:
-    """(speeds, orders, components) force harmonics of a cylinder that does not fire, in the
-    form of ``setup.cylinder_harmonics`` (its torque, or its tangential and radial pin force)."""
+    """(speeds, orders, cylinders, components) force harmonics of each cylinder when it is the one
+    that does not fire (compression and expansion only, plus its reciprocating inertia), in the form
+    of ``setup.cylinder_harmonics`` (its torque, or its tangential and radial pin force):
+    :meth:`fetorsion.excitation.loads.CylinderLoads.motored_torque_harmonics`."""
+    loads = cylinder_loads(crank)
     if setup.load_kind == "torque":
-        return motored_harmonics(crank, setup.rpm, setup.orders)[:, :, None]
-    return pin_force_harmonics(crank, setup.rpm, setup.orders, misfire=True)
+        return loads.motored_torque_harmonics(setup.rpm, setup.orders)[..., None]
+    return loads.motored_pin_force_harmonics(setup.rpm, setup.orders)
 
 
 #: A heat-following damper's temperature is settled when an iteration moves it less than this, K.

@@ -45,7 +45,7 @@ import scipy.integrate
 from ..description.defaults import NONLINEAR_METHODS
 from ..errors import FetorsionError
 from ..excitation.kinematics import piston_velocity
-from .transient_load import read_table, table_load, torque_table
+from .transient_load import own_table, read_table, table_load, torque_table
 
 #: Relative tolerance of the error-controlled integration: the slider-crank's inertia terms and the
 #: element torques are resolved to this fraction of themselves per step.
@@ -520,7 +520,8 @@ def nonlinear_run(model, M, K, C, rows, W, fire, prop, rigid_speed, t, n_of_t, p
                                               stuck_damping=stuck)
     else:
         def force(tt):
-            return W.T @ read_table(grid, step, table, phi_of_t(tt) - fire, n_of_t(tt))
+            phi_t, n_t = phi_of_t(tt), n_of_t(tt)
+            return W.T @ np.array([read_table(grid, step, own_table(table, c), phi_t - f, n_t) for c, f in enumerate(fire)])
 
         q, z, nfev = integrate_nonlinear(M, K_lin, C, t, phi_of_t, lambda tt: n_of_t(tt) * math.pi / 30, alpha,
                                          force, cranks, parts, v0, method, stuck_damping=stuck)

@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from ..description.cylinders import pin_master_centre, rod_centre
-from ..excitation.torque import cycle_angle, cylinder_pin_forces, firing_angles, pin_force_harmonics
+from ..excitation.loads import cylinder_loads
 from ..fe.condensed import CondensedCrank
 
 
@@ -42,9 +42,11 @@ def pin_load_map(cc: CondensedCrank) -> np.ndarray:
 
 def master_loads(cc: CondensedCrank, rpm: np.ndarray, orders: np.ndarray) -> np.ndarray:
     """Complex master-force amplitudes of each order: (speeds, orders, 6·masters), N; each
-    cylinder's forces lag cylinder 1's by its firing angle φ_c (order q: the factor e^{−i q φ_c})."""
-    phasors = np.exp(-1j * np.outer(orders, firing_angles(cc.crank.engine)))  # (orders, cylinders)
-    return np.einsum("sok,oc,ckd->sod", pin_force_harmonics(cc.crank, rpm, orders), phasors, pin_load_map(cc))
+    cylinder's forces, over its own cycle, lag it by its firing angle φ_c (order q: the factor
+    e^{−i q φ_c}): :class:`fetorsion.excitation.loads.CylinderLoads`."""
+    loads = cylinder_loads(cc.crank)
+    return np.einsum("sock,oc,ckd->sod", loads.pin_force_harmonics(rpm, orders), loads.phasors(orders),
+                     pin_load_map(cc))
 
 
 def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
@@ -54,8 +56,8 @@ def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
     The journals are held radially (and the flywheel master in twist, which takes the mean
     torque; the thrust journal, or the first, axially), and the static reactions to a unit
     tangential and radial force on each pin are solved once on the reduced model (static master
-    loads are exact in a Craig–Bampton model). Over the cycle, cylinder c's pin forces are
-    cylinder 1's delayed by its firing angle φ_c; the reactions in the crank's frame are turned
+    loads are exact in a Craig–Bampton model). Over the cycle, cylinder c's pin forces are its
+    own (:meth:`fetorsion.excitation.loads.CylinderLoads.pin_forces`) delayed by its firing angle φ_c; the reactions in the crank's frame are turned
     into the fixed frame, in which the cylinder reaches its top dead centre at θ = φ_c (pin c,
     at crank-frame angle a_c ≡ φ_c, turned back by θ), and averaged.
     """
@@ -73,13 +75,13 @@ def journal_mean_loads(cc: CondensedCrank, rpm: float) -> np.ndarray:
     react = K[held] @ z - unit[held]  # (held, cylinders·2): the bearings' forces on the crank
     rows = [[list(held).index(6 * k + d) for d in (1, 2)] for k in journals]
     A = np.stack([react[r] for r in rows])  # (journals, 2 (y, z), cylinders·2)
-    f = cylinder_pin_forces(crank, rpm)
-    theta, period = f["theta"], cycle_angle(crank.engine)
-    phi = firing_angles(crank.engine)
+    loads = cylinder_loads(crank)
+    f = loads.pin_forces(rpm)
+    theta, period, phi = f["theta"], loads.period, loads.firing
     forces = np.empty((len(theta), crank.engine.cylinders * 2))
-    for c in range(crank.engine.cylinders):  # cylinder c's force at θ is cylinder 1's at θ − φ_c
+    for c in range(crank.engine.cylinders):  # cylinder c's force at θ is its own cycle's at θ − φ_c
         for k, name in enumerate(("tangential", "radial")):
-            forces[:, 2 * c + k] = np.interp(theta - phi[c], theta, f[name], period=period)
+            forces[:, 2 * c + k] = np.interp(theta - phi[c], theta, f[name][c], period=period)
     on_crank = np.einsum("jdk,tk->tjd", A, forces)  # (angles, journals, y z), crank frame
     c, s = np.cos(theta)[:, None], np.sin(theta)[:, None]
     fixed = np.stack([c * on_crank[..., 0] + s * on_crank[..., 1], -s * on_crank[..., 0] + c * on_crank[..., 1]], -1)

@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from ..excitation.torque import cycle_angle, cylinder_torque
+from ..excitation.loads import cylinder_loads
 
 
 #: Speed grid of the torque tables, rpm (the gas torque's load and the inertia torque's ω² are
@@ -63,20 +63,22 @@ def held_schedule(hold_s: float, duration_s: float, n_of_t, phi_of_t):
 
 
 def torque_table(crank, rpm_lo: float, rpm_hi: float, samples: int = TABLE_SAMPLES, part: str = "total",
-                 misfire: bool = False):
-    """One cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles.
+                 misfire: int | None = None):
+    """Each cylinder's alternating torque (its cycle mean taken off) on a grid of speeds and angles
+    of its own cycle (:meth:`fetorsion.excitation.loads.CylinderLoads.torque_table`).
 
     ``part``: ``"total"`` (gas and reciprocating inertia) or ``"gas"`` (the variable-inertia model
-    makes the inertia torque itself); ``misfire``: the cylinder's motored cycle (no combustion).
-    Returns (rpm grid, angle step rad, table (speeds, samples) N·m).
+    makes the inertia torque itself); ``misfire``: that 0-based cylinder's motored cycle (no
+    combustion). Returns (rpm grid, angle step rad, table (cylinders, speeds, samples) N·m).
     """
     lo, hi = min(rpm_lo, rpm_hi), max(rpm_lo, rpm_hi)
     n = max(2, int(math.ceil((hi - lo) / TABLE_RPM_STEP)) + 1)
     grid = np.linspace(lo, hi, n) if hi > lo else np.array([lo, lo + 1.0])
-    period = cycle_angle(crank.engine)
+    loads = cylinder_loads(crank)
+    period = loads.period
     theta = np.arange(samples) * (period / samples)
-    table = np.array([getattr(cylinder_torque(crank, r, theta, misfire=misfire), part) for r in grid])
-    return grid, period / samples, table - table.mean(axis=1, keepdims=True)
+    table = loads.torque_table(grid, theta, part, misfire)
+    return grid, period / samples, table - table.mean(axis=2, keepdims=True)
 
 
 def read_table(grid, step, table, theta, rpm):
@@ -96,13 +98,14 @@ def read_table(grid, step, table, theta, rpm):
 
 
 def own_table(table, c: int):
-    """Cylinder ``c``'s torque table: ``table`` itself where every cylinder shares one (2-D), else its row."""
+    """Cylinder ``c``'s torque table: its row of :func:`torque_table`'s (cylinders, speeds, samples), or
+    ``table`` itself where every cylinder shares one (2-D)."""
     return table if table.ndim == 2 else table[c]
 
 
 def table_load(W, fire, grid, step, table, phi, rpm):
     """``load(a, b)`` → (coordinates, b − a): the cylinders' torques read from :func:`torque_table`
-    (one shared table, or one per cylinder: (cylinders, speeds, samples)) at samples a … b − 1 of the
+    (one per cylinder: (cylinders, speeds, samples), or one shared) at samples a … b − 1 of the
     mean angle ``phi`` (rad) and speed ``rpm``, each at its firing angle, put on the coordinates by
     the weights ``W`` (cylinders × coordinates)."""
     def load(a, b):

@@ -2,8 +2,9 @@
 of them misfiring, where asked) and a network's propellers' blade orders, as one load on the
 model's coordinates, and the propellers' share of a settled start.
 
-**Cylinders.** Each cylinder's alternating torque is read from its torque table
-(:func:`fetorsion.response.transient_load.torque_table`) at its own firing angle; a misfiring
+**Cylinders.** Each cylinder's alternating torque is read from its own torque table
+(:func:`fetorsion.response.transient_load.torque_table`, through the one load seam
+:class:`fetorsion.excitation.loads.CylinderLoads`) at its own firing angle; a misfiring
 cylinder's table is its motored cycle's (compression and expansion, no combustion), the others
 fire, as in the frequency domain's :meth:`fetorsion.response.forced.ResponseSetup.with_misfire`.
 
@@ -23,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..excitation.torque import firing_angles
+from ..excitation.loads import cylinder_loads
 from ..lumped_model.lumped import lumped
 from ..lumped_model.network import speed_factors
 from .propulsion import propeller_amplitudes, propeller_orders
@@ -36,8 +37,7 @@ class RunSources:
 
     ``load(a, b)`` → (coordinates, b − a) N·m at samples a … b − 1; ``W`` (cylinders × coordinates)
     where each cylinder acts, ``fire`` their firing angles (rad), ``grid`` (rpm), ``step`` (rad) and
-    ``table`` ((speeds, samples) shared, or (cylinders, speeds, samples) with a misfire) the torque
-    tables, ``misfire`` the 0-based misfiring cylinder or None; ``blades`` [(orders per revolution of station 1, amplitude function rpm → (speeds, k)
+    ``table`` (cylinders, speeds, samples) the torque tables (:func:`torque_table`), ``misfire`` the 0-based misfiring cylinder or None; ``blades`` [(orders per revolution of station 1, amplitude function rpm → (speeds, k)
     N·m, the station's row on the coordinates)] of each propeller, ``phase_rad`` their φ_p.
     """
 
@@ -112,13 +112,9 @@ def run_sources(model, setup, rings: int, speeds: tuple[float, float], phi: np.n
         φ_p of every blade order, rad.
     """
     lo, top = speeds
-    grid, step, table = torque_table(model, lo, top)
-    if misfire is not None:
-        tables = np.repeat(table[None], model.engine.cylinders, axis=0)
-        tables[misfire] = torque_table(model, lo, top, misfire=True)[2]
-        table = tables
+    grid, step, table = torque_table(model, lo, top, misfire=misfire)
     W = np.pad(setup.load_map[:, 0, :].real, ((0, 0), (0, rings)))  # (cylinders, coordinates)
-    fire = firing_angles(model.engine)
+    fire = cylinder_loads(model).firing
     engine = table_load(W, fire, grid, step, table, phi, rpm)
     blades = propeller_blades(model, rings) if propellers else ()
     if not blades:
