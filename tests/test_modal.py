@@ -166,7 +166,7 @@ def test_backends_and_methods_agree(small_bar, backend, method):
 
 def test_json_layout(free_bar):
     d = json.loads(json.dumps(free_bar.to_dict()))
-    assert set(d) == {"modes", "rigid_body_hz", "mesh", "material", "timings_s", "method"}
+    assert set(d) == {"modes", "rigid_body_hz", "mesh", "material", "timings_s", "method", "backend"}
     assert set(d["modes"][0]) == {"frequency_hz", "kind", "torsional_fraction", "bending_fraction",
                                   "axial_fraction"}
     assert set(d["mesh"]) == {"nodes", "elements", "dofs"} and d["mesh"]["dofs"] == 3 * d["mesh"]["nodes"]

@@ -238,7 +238,8 @@ def test_run_takes_typed_options_and_returns_its_outcome(tmp_path, monkeypatch):
     cli_dests = {a.dest for a in build_parser()._subparsers._group_actions[0].choices["run"]._actions}
     named = {"mesh_size": "mesh_size", "modes": "modes", "support": "support", "source": "source",
              "inertia_ratio": "inertia_ratio", "fatigue_method": "fatigue_method", "runup_rate": "run_up_rate",
-             "workers": "workers", "html": "no_html", "measured": "measured", "station": "station", "no_fe": "no_fe"}
+             "workers": "workers", "html": "no_html", "measured": "measured", "station": "station", "no_fe": "no_fe",
+             "fe_path": "no_fe_path"}
     assert set(named) == {f.name for f in dataclasses.fields(RunOptions)}
     assert set(named.values()) <= cli_dests
     outcome = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED, options=RunOptions(html=False))

@@ -87,9 +87,9 @@ class RunOptions:
     no_fe : bool
         The run leaves out the FE steps (``--no-fe``, or a chain file).
     fe_path : bool
-        The crank's verdict computes the ``fe`` fatigue path beside the deciding method; cleared by
-        the design loop's confirming runs, which read the deciding method alone (kept whenever
-        ``fe`` decides).
+        The crank's verdict computes the ``fe`` fatigue path beside the deciding method
+        (``--no-fe-path`` clears it, as the design loop's confirming runs do: they read the
+        deciding method alone); kept whenever ``fe`` decides.
     """
 
     mesh_size: float = DEFAULT_MESH_SIZE

@@ -63,7 +63,7 @@ def cmd_run(args) -> int:
     options = {"mesh_size": args.mesh_size, "modes": args.modes, "support": args.support,
                "inertia_ratio": args.inertia_ratio, "source": args.source, "runup_rate": args.run_up_rate,
                "fatigue_method": args.fatigue_method, "workers": args.workers, "html": not args.no_html,
-               "no_fe": args.no_fe}
+               "no_fe": args.no_fe, "fe_path": not args.no_fe_path}
     if args.measured:  # read and checked now, before any work
         from .measured import check_measured, check_station, measured_of
 
@@ -92,6 +92,9 @@ def add_parser(sub) -> None:
     up.add_argument("--mesh-size", type=millimetres(), default=DEFAULT_MESH_SIZE, metavar="MM",
                     help=f"FE mesh size in mm (default {DEFAULT_MESH_SIZE / MM:g})")
     up.add_argument("--no-fe", action="store_true", help="skip the mesh and FE modal steps (a quick report)")
+    up.add_argument("--no-fe-path", action="store_true",
+                    help="the crank's verdict by the deciding method alone: leave out the fe fatigue path (its stress "
+                         "recovery and assessments) where it does not decide, as the design loop's confirmations do")
     up.add_argument("--support", choices=SUPPORT_CHOICES, default="bearings",
                     help="the modes the Campbell diagram uses: the condensed crank in its bearings (default) or the "
                          "free-free FE; the report shows both")
