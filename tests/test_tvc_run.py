@@ -109,6 +109,7 @@ def test_a_geared_line_gets_the_hammering_check(tmp_path):
     assert mesh["mean_nm"][-1] == pytest.approx(60e3 * (rpm[-1] * 0.25 / 150.0) ** 2, rel=1e-12)
 
 
+@pytest.mark.slow  # 68 s: every misfire's passage in the time domain (each misfire's response: test_tvc_misfire)
 def test_an_engine_line_gets_normal_running_and_each_misfire(tmp_path):
     text = (ROOT / "examples/networks/geared_engine.toml").read_text().replace(
         'between = ["wheel", "propeller"]     # propeller shaft',
