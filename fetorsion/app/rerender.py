@@ -22,7 +22,7 @@ from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
 from ..report.load import LoadedRun, load_run
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
-                               SensitivityOutcome, TransientOutcome, VerdictOutcome)
+                               SensitivityOutcome, TransientOutcome, TVCOutcome, VerdictOutcome)
 
 
 @dataclass(frozen=True)
@@ -52,6 +52,10 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     out.update(_chain_figures(run))
     if isinstance(run.fatigue, FatigueOutcome):
         out.update(_fatigue_figures(run.fatigue))
+    if isinstance(run.tvc, TVCOutcome):
+        from .tvc import tvc_figures
+
+        out.update(tvc_figures(run.tvc))
     sens = run.sensitivity
     if isinstance(sens, SensitivityOutcome):
         out[sens.image] = sens.sensitivity.plot

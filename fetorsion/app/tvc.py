@@ -9,16 +9,17 @@ imports this module to list its steps).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
 from ..description.chain_model import Network
 from ..design.barred_passage import barred_passages
 from ..design.tvc_cases import TVCCase, evaluate_case, misfire_cases, worst_case
-from ..design.tvc_modes import ModeRow, mode_table, plot_tvc_campbell
+from ..design.tvc_modes import ModeRow, TVCCampbell, mode_table
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
-from ..report.outcomes import Skipped, TVCOutcome
+from ..report.outcomes import TVC_IMAGES, Skipped, TVCOutcome, passage_image
 from ..excitation.campbell import major_orders
 from ..lumped_model.network import speed_factors
 from ..response.propulsion import DEFAULT_SPEED_RATIOS, propeller_orders, tvc_setup
@@ -44,7 +45,8 @@ def misfires_of(net: Network) -> tuple[list[TVCCase], str]:
 
 def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges, gear
-    hammering, in normal running and in the misfire of each cylinder."""
+    hammering, in normal running and in the misfire of each cylinder (results.json's ``tvc`` entry:
+    :meth:`TVCOutcome.to_dict`)."""
     net = ctx.crank
     if not is_propulsion_line(net):
         return None
@@ -57,27 +59,36 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
     # the time-domain passage of each barred range: normal running's and the worst misfire's
     passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else []))
-    ctx.results["tvc"] = {"response": {"rpm": response.rpm.tolist(), "orders": response.orders.tolist(),
-                                       "section_torque_nm": response.section_torque_nm.tolist(),
-                                       "sections": list(response.section_labels)},
-                          "shafts": shafts.to_dict() if shafts else None,
-                          "couplings": heat.to_dict() if heat else None,
-                          "hammering": hammer.to_dict() if hammer else None,
-                          "misfires": [c.to_dict() for c in misfires], "misfire_note": why,
-                          "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
-                          "barred_passages": [p.to_dict() for p in passages]}
-    rows, campbell = tvc_modes(ctx, normal, [normal, *misfires])
-    ctx.results["tvc"]["modes"] = [r.to_dict() for r in rows]
-    return TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
-                      ctx.save(titled(shafts.plot(), normal.name).figure, "tvc_shafts.png") if shafts else "",
-                      ctx.save(heat.plot().figure, "tvc_coupling_heat.png") if heat else "",
-                      tuple(assumptions(net, response)), hammer,
-                      ctx.save(hammer.plot().figure, "tvc_hammering.png") if hammer else "",
-                      normal, tuple(misfires), worst, why,
-                      ctx.save(titled(worst.shafts.plot(), worst.name).figure, "tvc_shafts_misfire.png")
-                      if worst and worst.shafts else "",
-                      passages, tuple(ctx.save(p.plot().figure, f"tvc_passage_{k + 1}.png") for k, p in enumerate(passages)),
-                      tuple(rows), campbell)
+    rows, campbell = tvc_modes(normal, [normal, *misfires])
+    outcome = TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
+                         TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
+                         tuple(assumptions(net, response)), hammer, TVC_IMAGES["hammering"] if hammer else "",
+                         normal, tuple(misfires), worst, why,
+                         TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
+                         passages, tuple(passage_image(k) for k in range(len(passages))),
+                         tuple(rows), TVC_IMAGES["campbell"], campbell)
+    for name, draw in tvc_figures(outcome).items():
+        ctx.save(draw().figure, name)
+    ctx.results["tvc"] = outcome.to_dict()
+    return outcome
+
+
+def tvc_figures(outcome: TVCOutcome) -> dict[str, Callable[[], object]]:
+    """Each picture of the TVC section: file name -> a function drawing it (an Axes)."""
+    out = {}
+    if outcome.shaft_image:
+        out[outcome.shaft_image] = lambda: titled(outcome.shafts.plot(), outcome.normal.name)
+    if outcome.heat_image:
+        out[outcome.heat_image] = outcome.couplings.plot
+    if outcome.hammering_image:
+        out[outcome.hammering_image] = outcome.hammering.plot
+    worst = outcome.worst_misfire
+    if outcome.misfire_shaft_image:
+        out[outcome.misfire_shaft_image] = lambda: titled(worst.shafts.plot(), worst.name)
+    out.update({image: p.plot for p, image in zip(outcome.passages, outcome.passage_images)})
+    if outcome.campbell_image:
+        out[outcome.campbell_image] = lambda: outcome.campbell.plot(outcome.mode_rows)
+    return out
 
 
 def titled(ax, configuration: str):
@@ -86,21 +97,22 @@ def titled(ax, configuration: str):
     return ax
 
 
-def tvc_modes(ctx: RunContext, normal: TVCCase, cases: list[TVCCase]) -> tuple[list[ModeRow], str]:
-    """The mode table (modes up to the top speed's highest listed order) and the Campbell diagram with
-    every configuration's barred ranges, saved: (rows, file name)."""
+def tvc_modes(normal: TVCCase, cases: list[TVCCase]) -> tuple[list[ModeRow], TVCCampbell]:
+    """The mode table (modes up to the top speed's highest listed order) and the Campbell diagram's data
+    with every configuration's barred ranges: (rows, diagram)."""
     net, response = normal.network, normal.response
     f = speed_factors(net)
     blades = sorted({float(q) for p in net.propellers if p.order_shares for q in propeller_orders(p, f[p.station])})
-    engine = [q for q in response.orders if q <= TABLE_HIGHEST_ORDER and not any(abs(q - b) < 1e-9 for b in blades)]
+    engine = [float(q) for q in response.orders
+              if q <= TABLE_HIGHEST_ORDER and not any(abs(q - b) < 1e-9 for b in blades)]
     span = (float(response.rpm.min()), float(response.rpm.max()))
     top = max([TABLE_HIGHEST_ORDER, *blades]) * span[1] / 60.0
     rows = [r for r in mode_table(net, np.array(engine + blades), span, max_modes=len(net.labels)) if r.frequency_hz <= top]
     rows = rows or mode_table(net, np.array(engine + blades), span, max_modes=1)
     major = major_orders(net.engine, TABLE_HIGHEST_ORDER) if net.engine is not None else ()
-    barred = [(c.name, b["from_rpm"], b["to_rpm"]) for c in cases if c.shafts for b in c.shafts.barred]
-    ax = plot_tvc_campbell(rows, engine, major, blades, span, barred, f"{net.name}: Campbell diagram, barred ranges")
-    return rows, ctx.save(ax.figure, "tvc_campbell.png")
+    barred = tuple((c.name, float(b["from_rpm"]), float(b["to_rpm"])) for c in cases if c.shafts for b in c.shafts.barred)
+    return rows, TVCCampbell(tuple(engine), tuple(float(q) for q in major), tuple(blades), span, barred,
+                             f"{net.name}: Campbell diagram, barred ranges")
 
 
 def assumptions(net: Network, response) -> list[str]:

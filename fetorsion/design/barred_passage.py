@@ -24,12 +24,14 @@ frequency domain's bound (the sum of each source's extremes).
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..description.chain_model import Network
 from ..response.transient import TransientResult, run_transient
+from ..results import from_fields
 from .shaft_verdict import judged_sections, rated_speed, section_limits
 from .tvc_cases import TVCCase
 
@@ -90,7 +92,8 @@ class BarredPassage:
         return "within τ_T" if all(s.within for s in self.sections) else "above τ_T"
 
     def to_dict(self) -> dict:
-        """JSON-ready: the range, the run, the rate and its source, each section's peak and τ_T (Pa)."""
+        """JSON-ready: the range, the run, the rate and its source, each section's peak and τ_T (Pa) and
+        its windows' mean speeds (rpm) and stresses (Pa)."""
         return {"configuration": self.configuration, "from_rpm": self.from_rpm, "to_rpm": self.to_rpm,
                 "run_rpm": [self.run_from_rpm, self.run_to_rpm], "rate_rpm_per_s": self.rate_rpm_per_s,
                 "rate_source": self.rate_source, "window_rad": self.window_rad, "steps": self.steps,
@@ -98,7 +101,17 @@ class BarredPassage:
                 "sections": [{"label": s.label, "peak_pa": s.peak_pa, "peak_rpm": s.peak_rpm,
                               "tau_t_pa": None if not np.isfinite(s.tau_t_pa) else s.tau_t_pa,
                               "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
-                              "within": s.within} for s in self.sections]}
+                              "within": s.within, "window_rpm": s.window_rpm.tolist(),
+                              "window_stress_pa": s.window_stress_pa.tolist()} for s in self.sections]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "BarredPassage":
+        """The passage back from its :meth:`to_dict` (KeyError: one written before the windows were kept)."""
+        sections = tuple(from_fields(SectionPassage, s, window_rpm=np.array(s["window_rpm"], dtype=float),
+                                     window_stress_pa=np.array(s["window_stress_pa"], dtype=float))
+                         for s in d["sections"])
+        return from_fields(cls, d, run_from_rpm=float(d["run_rpm"][0]), run_to_rpm=float(d["run_rpm"][1]),
+                           sections=sections)
 
     def table(self) -> str:
         """The passage as plain text, stresses in N/mm²."""

@@ -22,8 +22,8 @@ heat is the largest over the speed range: the steady temperature of the hottest 
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
-from collections.abc import Callable, Sequence
+from dataclasses import asdict, dataclass, field, replace
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
@@ -31,6 +31,7 @@ from ..description.chain_model import Network
 from ..description.marine import Coupling, loss_factor_of
 from ..errors import FetorsionError
 from ..response.forced import ResponseResult, ResponseSetup, section_torques, solve_response
+from ..results import from_fields
 
 #: The coupling temperatures are settled when an iteration moves none more than this, K.
 TOLERANCE_K = 0.05
@@ -46,7 +47,8 @@ class CouplingHeat:
 
     ``temperature_c`` per coupling (°C); ``history_c`` the temperatures of each iteration (the first
     the ambient); ``heat_w`` and ``torque_nm`` (speeds, couplings): the heat and the synthesised
-    half-range vibratory torque at the settled temperatures; ``response`` the forced response there.
+    half-range vibratory torque at the settled temperatures; ``response`` the forced response there
+    (None: read back from results.json, which keeps normal running's response beside it, not in it).
     """
 
     name: str
@@ -57,7 +59,7 @@ class CouplingHeat:
     heat_w: np.ndarray
     torque_nm: np.ndarray
     tolerance_k: float
-    response: ResponseResult
+    response: ResponseResult | None
     notes: list[str] = field(default_factory=list)
 
     @property
@@ -83,7 +85,16 @@ class CouplingHeat:
         """JSON-ready: the rows, the iteration (tolerance K, count, history °C), heat (W) and torque (N·m) over speed."""
         return {"name": self.name, "rows": self.rows(), "tolerance_k": self.tolerance_k,
                 "iterations": self.iterations, "history_c": self.history_c, "rpm": self.rpm.tolist(),
-                "heat_w": self.heat_w.tolist(), "torque_nm": self.torque_nm.tolist(), "notes": self.notes}
+                "heat_w": self.heat_w.tolist(), "torque_nm": self.torque_nm.tolist(), "notes": self.notes,
+                "sheets": [sheet_dict(c) for c in self.couplings]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object], response: ResponseResult | None = None) -> "CouplingHeat":
+        """The result back from its :meth:`to_dict` (each coupling's sheet from ``sheets``; the
+        ``response`` given, None where not kept)."""
+        couplings = [from_fields(Coupling, s) for s in d["sheets"]]
+        temperatures = np.array([r["temperature_c"] for r in d["rows"]], dtype=float)
+        return from_fields(cls, d, couplings=couplings, temperature_c=temperatures, response=response)
 
     def table(self) -> str:
         """Each coupling's settled temperature, heat and torque against the sheet."""
@@ -109,6 +120,11 @@ class CouplingHeat:
         ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="coupling heat (W)", title=f"{self.name}: coupling heat")
         ax.legend(fontsize=7)
         return ax
+
+
+def sheet_dict(coupling: Coupling) -> dict:
+    """A coupling's data sheet as JSON-ready (its fields by name; None for a value the sheet does not give)."""
+    return {k: None if isinstance(v, float) and not np.isfinite(v) else v for k, v in asdict(coupling).items()}
 
 
 def held_temperature(coupling: Coupling, heat_w: float) -> float:

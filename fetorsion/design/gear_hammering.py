@@ -29,6 +29,7 @@ the linear crossings between the speeds (:func:`fetorsion.design.verdict.barred_
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -39,6 +40,7 @@ from ..errors import FetorsionError
 from ..lumped_model.network import network_matrices, resolved, speed_factors
 from ..response.forced import ResponseSetup
 from ..response.synthesis import grouped_extremes
+from ..results import from_fields
 from .verdict import barred_ranges
 
 
@@ -79,6 +81,11 @@ class GearHammering:
         return {"name": self.name, "rpm": self.rpm.tolist(), "verdict": self.verdict, "notes": self.notes,
                 "meshes": [{"label": m.label, "station": m.station, "vibratory_nm": m.vibratory_nm.tolist(),
                             "mean_nm": m.mean_nm.tolist(), "ranges": m.ranges} for m in self.meshes]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "GearHammering":
+        """The result back from its :meth:`to_dict`."""
+        return from_fields(cls, d)
 
     def table(self) -> str:
         """Each mesh's largest vibratory/mean ratio and its hammering ranges."""

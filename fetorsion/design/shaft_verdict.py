@@ -17,6 +17,7 @@ gives no limit: those speeds are shown but not judged.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -26,6 +27,7 @@ from ..description.marine import ShaftSection
 from ..errors import ParameterError
 from ..lumped_model.network import resolved, speed_factors
 from ..response.forced import ResponseResult
+from ..results import from_fields
 from .shaft_limits import LAMBDA_MAX, LAMBDA_TRANSIENT_MAX, capped_strength, continuous_limit, size_factor
 from .shaft_limits import transient_limit
 from .verdict import barred_ranges
@@ -48,6 +50,22 @@ class SectionStress:
     def utilisation(self) -> np.ndarray:
         """τ / τ_C at each speed (NaN where the rule gives no τ_C)."""
         return self.stress_pa / self.tau_c_pa
+
+    def to_dict(self) -> dict:
+        """JSON-ready: the section (m, Pa), its stress and limits over the speeds (Pa, None where no limit)."""
+        return {"label": self.label, "feature": self.section.feature, "ck": self.section.ck,
+                "diameter_m": self.section.diameter, "bore_m": self.section.bore,
+                "tensile_strength_pa": self.section.tensile_strength, "material": self.section.material,
+                "stress_pa": self.stress_pa.tolist(), "tau_c_pa": _nulls(self.tau_c_pa),
+                "tau_t_pa": _nulls(self.tau_t_pa), "barred_ranges": self.barred}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "SectionStress":
+        """The section back from its :meth:`to_dict` (one written before the material was kept: carbon steel,
+        which only the limits already stored depended on)."""
+        section = from_fields(ShaftSection, d, {"diameter": "diameter_m", "bore": "bore_m",
+                                                "tensile_strength": "tensile_strength_pa"})
+        return from_fields(cls, d, {"barred": "barred_ranges"}, section=section)
 
 
 @dataclass
@@ -86,11 +104,12 @@ class ShaftVerdict:
         return {"name": self.name, "rpm": self.rpm.tolist(), "rated_rpm": self.rated_rpm,
                 "speed_ratio": self.speed_ratio.tolist(), "verdict": self.verdict, "barred_ranges": self.barred,
                 "propeller_line": self.propeller_line, "notes": self.notes,
-                "sections": [{"label": s.label, "feature": s.section.feature, "ck": s.section.ck,
-                              "diameter_m": s.section.diameter, "bore_m": s.section.bore,
-                              "tensile_strength_pa": s.section.tensile_strength,
-                              "stress_pa": s.stress_pa.tolist(), "tau_c_pa": _nulls(s.tau_c_pa),
-                              "tau_t_pa": _nulls(s.tau_t_pa), "barred_ranges": s.barred} for s in self.sections]}
+                "sections": [s.to_dict() for s in self.sections]}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "ShaftVerdict":
+        """The verdict back from its :meth:`to_dict`."""
+        return from_fields(cls, d, {"barred": "barred_ranges"})
 
     def table(self) -> str:
         """Each section's worst stress against τ_C there, the barred ranges, the verdict (N/mm²)."""

@@ -11,7 +11,7 @@ sections, the largest coupling torque against its permissible, else the largest 
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -19,6 +19,7 @@ import numpy as np
 from ..description.chain_model import Network
 from ..errors import FetorsionError
 from ..response.forced import ResponseResult, ResponseSetup, misfire_harmonics, solve_response
+from ..results import from_fields
 from .coupling_heat import CouplingHeat, at_temperatures, coupling_heat
 from .gear_hammering import GearHammering, gear_hammering
 from .shaft_verdict import ShaftVerdict, shaft_verdict
@@ -28,12 +29,13 @@ from .shaft_verdict import ShaftVerdict, shaft_verdict
 class TVCCase:
     """One configuration: ``name``, ``misfire`` (0-based cylinder, None: normal running), the
     ``network`` at its couplings' settled temperatures, its ``response`` and verdicts (None where the
-    line has no shaft section, coupling, or gear and propeller)."""
+    line has no shaft section, coupling, or gear and propeller). Read back from results.json, a
+    misfire's ``response`` is None (the file keeps normal running's alone)."""
 
     name: str
     misfire: int | None
     network: Network
-    response: ResponseResult
+    response: ResponseResult | None
     shafts: ShaftVerdict | None
     couplings: CouplingHeat | None
     hammering: GearHammering | None
@@ -66,6 +68,15 @@ class TVCCase:
         return {**self.summary(), "shafts": self.shafts.to_dict() if self.shafts else None,
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object], network: Network | None = None,
+                  response: ResponseResult | None = None) -> "TVCCase":
+        """The case back from its :meth:`to_dict`; its ``network`` and ``response`` given (not kept in it)."""
+        cylinder = d["misfire_cylinder"]
+        heat = None if d["couplings"] is None else CouplingHeat.from_dict(d["couplings"], response)
+        return from_fields(cls, d, {"name": "case"}, misfire=None if cylinder is None else cylinder - 1,
+                           network=network, response=response, couplings=heat)
 
 
 def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], name: str,

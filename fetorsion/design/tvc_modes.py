@@ -14,7 +14,7 @@ each configuration's barred ranges as bands (normal running crimson, a misfire o
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -22,6 +22,7 @@ import numpy as np
 
 from ..description.chain_model import Network
 from ..lumped_model.lumped import lumped
+from ..results import from_fields
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -43,6 +44,44 @@ class ModeRow:
         return {"mode": self.number, "frequency_hz": self.frequency_hz,
                 "resonances": [{"order": q, "rpm": n} for q, n in self.resonances],
                 "relative_amplitudes": self.amplitudes.tolist()}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "ModeRow":
+        """The row back from its :meth:`to_dict`."""
+        return from_fields(cls, d, {"number": "mode", "amplitudes": "relative_amplitudes"},
+                           resonances=tuple((float(r["order"]), float(r["rpm"])) for r in d["resonances"]))
+
+
+@dataclass(frozen=True)
+class TVCCampbell:
+    """What the TVC's Campbell diagram draws besides the modes (:func:`plot_tvc_campbell`): the engine's
+    orders, its major orders and the blade orders (per revolution of station 1), the speed range (rpm),
+    each configuration's barred ranges ((configuration, from rpm, to rpm), …) and the title."""
+
+    engine_orders: tuple[float, ...]
+    major_orders: tuple[float, ...]
+    blade_orders: tuple[float, ...]
+    speed_range: tuple[float, float]
+    barred: tuple[tuple[str, float, float], ...]
+    title: str
+
+    def to_dict(self) -> dict:
+        """JSON-ready (speeds in rpm)."""
+        return {"engine_orders": list(self.engine_orders), "major_orders": list(self.major_orders),
+                "blade_orders": list(self.blade_orders), "speed_range_rpm": list(self.speed_range),
+                "barred": [{"configuration": c, "from_rpm": a, "to_rpm": b} for c, a, b in self.barred],
+                "title": self.title}
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, object]) -> "TVCCampbell":
+        """The diagram's data back from its :meth:`to_dict`."""
+        barred = tuple((b["configuration"], b["from_rpm"], b["to_rpm"]) for b in d["barred"])
+        return from_fields(cls, d, {"speed_range": "speed_range_rpm"}, barred=barred)
+
+    def plot(self, rows: Sequence[ModeRow], ax: Axes | None = None):
+        """The diagram with the modes ``rows`` (:func:`plot_tvc_campbell`). Returns the Axes."""
+        return plot_tvc_campbell(list(rows), self.engine_orders, self.major_orders, self.blade_orders,
+                                 self.speed_range, list(self.barred), self.title, ax)
 
 
 def mode_table(net: Network, orders: np.ndarray, speed_range: tuple[float, float],

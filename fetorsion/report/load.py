@@ -17,7 +17,11 @@ back). A crank's fatigue verdict is read back from its entry: each configuration
 and every method's answer as stored, the ``fe`` path's assessment of the crank as described
 (``fe_detail``), the damping band, flip and bridge, the recommended damper's design (a folder
 written before the entry kept its model and which configuration carries the recommended damper:
-not read back). A section not read back is named in :attr:`LoadedRun.unread` with the reason.
+not read back). A propulsion line's TVC is read back from its entry (normal running's response and
+verdicts, each misfire's verdicts, the barred passages, the mode table, the modes at the settled
+temperatures, the Campbell diagram's data and the assumptions; a misfire's response is not kept), its
+networks the described one with the couplings at the temperatures it keeps (a folder written before
+the entry kept these: not read back). A section not read back is named in :attr:`LoadedRun.unread` with the reason.
 """
 
 from __future__ import annotations
@@ -33,8 +37,9 @@ from ..description.files import load
 from ..description.model import Crank
 from ..errors import FetorsionError
 from ..results import JSONObject
-from .outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome, LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome,
-                       SensitivityOutcome, Skipped, TransientOutcome, VerdictOutcome)
+from .outcomes import (TVC_IMAGES, BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome,
+                       LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome, SensitivityOutcome, Skipped,
+                       TransientOutcome, TVCOutcome, VerdictOutcome, passage_image)
 
 #: The file a run writes its figures into.
 RESULTS_FILE = "results.json"
@@ -234,6 +239,54 @@ def _transient(crank, data: dict[str, object]) -> TransientOutcome | Skipped | N
                             "runup_waterfall.png", "runup_order_cuts.png")
 
 
+def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
+    """A propulsion line's TVC read back from its ``tvc`` entry (:meth:`TVCOutcome.to_dict`) and the
+    described network ``net``: each configuration's network is ``net`` with its couplings at the
+    temperatures the entry keeps. One written before the entry kept its response, modes, Campbell data,
+    assumptions or passages' windows is refused by name (FetorsionError)."""
+    from ..design.barred_passage import BarredPassage
+    from ..design.coupling_heat import at_temperatures
+    from ..design.gear_hammering import GearHammering
+    from ..design.shaft_verdict import ShaftVerdict
+    from ..design.tvc_cases import TVCCase
+    from ..design.tvc_modes import ModeRow, TVCCampbell
+    from ..lumped_model.lumped import LumpedResult
+    from ..response.forced import ResponseResult
+
+    missing = [k for k in ("network_modes", "campbell", "assumptions") if k not in d] + (
+        ["the response"] if "modal_damping_ratio" not in d["response"] else [])
+    if missing or any("window_rpm" not in s for p in d["barred_passages"] for s in p["sections"]):
+        raise FetorsionError(f"written before its entry kept {', '.join(missing) or 'the passages windows'}")
+
+    def settled(case: dict) -> Network:
+        rows = case["couplings"]["rows"] if case.get("couplings") else []
+        return at_temperatures(net, [r["temperature_c"] for r in rows]) if rows else net
+
+    response = ResponseResult.from_dict(d["response"])
+    normal = TVCCase.from_dict({"case": "normal running", "misfire_cylinder": None, **d}, settled(d), response)
+    misfires = tuple(TVCCase.from_dict(c, settled(c)) for c in d["misfires"])
+    worst = None if d["worst_misfire_cylinder"] is None else misfires[d["worst_misfire_cylinder"] - 1]
+    passages = tuple(BarredPassage.from_dict(p) for p in d["barred_passages"])
+    shafts, heat, hammer = normal.shafts, normal.couplings, normal.hammering
+    return TVCOutcome(normal.network, LumpedResult.from_dict(d["network_modes"]), response, shafts, heat,
+                      TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
+                      tuple(d["assumptions"]), hammer, TVC_IMAGES["hammering"] if hammer else "", normal, misfires,
+                      worst, d["misfire_note"], TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
+                      passages, tuple(passage_image(k) for k in range(len(passages))),
+                      tuple(ModeRow.from_dict(r) for r in d["modes"]), TVC_IMAGES["campbell"],
+                      TVCCampbell.from_dict(d["campbell"]))
+
+
+def _tvc(crank, data: dict[str, object]) -> TVCOutcome | Skipped | None:
+    """The propulsion line's TVC (None: not in the run)."""
+    if "tvc" not in data:
+        return skipped(crank, data, "tvc")
+    try:
+        return tvc_outcome(crank, data["tvc"])
+    except FetorsionError as exc:
+        raise FetorsionError(f"the propulsion line's TVC: {exc}") from None
+
+
 def load_run(folder: str | Path) -> LoadedRun:
     """Read the report folder ``folder`` (one ``fetorsion run`` wrote) back, as the module
     docstring says: the typed outcome, the JSON, and the sections not read back with the reason.
@@ -262,6 +315,10 @@ def load_run(folder: str | Path) -> LoadedRun:
         outcome.fatigue = _fatigue(crank, data)
     except FetorsionError as exc:
         unread["fatigue"] = f"the crank's fatigue verdict: {exc}"
+    try:
+        outcome.tvc = _tvc(crank, data)
+    except FetorsionError as exc:
+        unread["tvc"] = str(exc)
     return LoadedRun(outcome, data, unread)
 
 

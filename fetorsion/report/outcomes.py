@@ -20,7 +20,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.gear_hammering import GearHammering
     from ..design.barred_passage import BarredPassage
     from ..design.tvc_cases import TVCCase
-    from ..design.tvc_modes import ModeRow
+    from ..design.tvc_modes import ModeRow, TVCCampbell
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
     from ..design.scfset import SCFSet
@@ -79,6 +79,32 @@ class TVCOutcome:
     #: the Campbell diagram with the barred ranges.
     mode_rows: tuple[ModeRow, ...] = ()
     campbell_image: str = ""
+    #: What the Campbell diagram draws besides the modes (None: not drawn).
+    campbell: TVCCampbell | None = None
+
+    def to_dict(self) -> dict:
+        """results.json's ``tvc`` entry: normal running's response and verdicts, each misfire, the passages,
+        the mode table, the modes at the settled temperatures, the Campbell diagram's data and the assumptions
+        (:func:`fetorsion.report.load.tvc_outcome` reads it back)."""
+        worst = self.worst_misfire
+        return {"response": self.response.to_dict(), "shafts": self.shafts.to_dict() if self.shafts else None,
+                "couplings": self.couplings.to_dict() if self.couplings else None,
+                "hammering": self.hammering.to_dict() if self.hammering else None,
+                "misfires": [c.to_dict() for c in self.misfires], "misfire_note": self.misfire_note,
+                "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
+                "barred_passages": [p.to_dict() for p in self.passages],
+                "modes": [r.to_dict() for r in self.mode_rows], "network_modes": self.modes.to_dict(),
+                "campbell": self.campbell.to_dict() if self.campbell else None, "assumptions": list(self.assumptions)}
+
+
+#: The file names of the TVC section's pictures (the run saves them, ``fetorsion report`` draws them again).
+TVC_IMAGES = {"shafts": "tvc_shafts.png", "heat": "tvc_coupling_heat.png", "hammering": "tvc_hammering.png",
+              "misfire_shafts": "tvc_shafts_misfire.png", "campbell": "tvc_campbell.png"}
+
+
+def passage_image(k: int) -> str:
+    """The file name of the ``k``-th (0-based) barred passage's picture."""
+    return f"tvc_passage_{k + 1}.png"
 
 
 @dataclass(frozen=True)
