@@ -89,8 +89,6 @@ def _fatigue_figures(fatigue: FatigueOutcome) -> dict[str, Callable[[], object]]
 
 def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
     """The verdict's, the measured comparison's and the run-up's figures (as the run's steps draw them)."""
-    from ..response.transient import plot_order_cuts
-
     out = {}
     if isinstance(run.verdict, VerdictOutcome):
         out[run.verdict.image] = run.verdict.verdict.plot
@@ -98,6 +96,8 @@ def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
         out[run.measured.image] = lambda: run.measured.comparison.plot().axes[0]
     tra, camp = run.transient, run.campbell
     if isinstance(tra, TransientOutcome) and isinstance(camp, CampbellOutcome):
+        from ..response.transient import plot_order_cuts  # the time domain's kernel: 2-3 s to import
+
         top = float(np.max(camp.response.orders))
         out[tra.waterfall_image] = lambda: tra.transient.waterfall(max_order=top)
         out[tra.cuts_image] = lambda: plot_order_cuts(tra.transient, camp.response, tra.cuts)

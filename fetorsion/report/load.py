@@ -229,11 +229,13 @@ def _measured(crank, data: dict[str, object]) -> MeasuredOutcome | Skipped | Non
 
 
 def _transient(crank, data: dict[str, object]) -> TransientOutcome | Skipped | None:
-    from ..response.transient import OrderCut, TransientResult
-
     d = data.get("transient")
     if d is None:
         return skipped(crank, data, "transient")
+    # imported only for a run-up: the time domain's compiled kernel takes 3 s to import, a third
+    # of `fetorsion report` on a crank's folder
+    from ..response.transient import OrderCut, TransientResult
+
     cuts = tuple(OrderCut.from_dict(c) for c in d["order_cuts"])
     return TransientOutcome(TransientResult.from_dict(d), d["rate_rpm_per_s"], cuts, d["seconds"],
                             "runup_waterfall.png", "runup_order_cuts.png")
