@@ -162,22 +162,26 @@ def test_a_coupled_response_round_trips():
     assert copy.plot().get_title() == res.plot().get_title()
 
 
-def test_fetorsion_report_redraws_a_copy_of_the_folder(tmp_path, capsys):
-    folder = tmp_path / "renault21"
-    shutil.copytree(ROOT / "results/renault21", folder)
-    before = (folder / "report.md").read_bytes()
+@pytest.mark.parametrize("name", ["renault21", "peugeot_glx", "peugeot_glx_engine", "inline6_diesel", "v8_petrol"])
+def test_fetorsion_report_writes_the_committed_report_again(tmp_path, capsys, name):
+    """Issue 56's done-when: `fetorsion report` on a copy of each committed crank folder (a
+    `fetorsion run` with FE, written by this code) reads every section back and writes report.md
+    byte-identical to the run's, every figure of matplotlib the same to the byte (the PyVista mode
+    images are kept: they need the mesh); no FE, no solve."""
+    folder = tmp_path / name
+    shutil.copytree(ROOT / "results" / name, folder)
+    before = {p.name: p.read_bytes() for p in folder.iterdir() if p.suffix in (".md", ".png")}
     t0 = time.perf_counter()
     assert main(["report", str(folder)]) == 0
     seconds = time.perf_counter() - t0
     out = capsys.readouterr().out
-    assert "campbell.png" in out
-    # a folder written before results.json kept what some section reads (the committed one until it
-    # is written again): that section is named and the report kept as the run wrote it; else the
-    # report is written again, the same
-    assert ("not read back" in out) is not ("report.md" in out.splitlines()[0])
-    assert (folder / "report.md").read_bytes() == before
-    assert (folder / "campbell.png").read_bytes() == (ROOT / "results/renault21/campbell.png").read_bytes()
-    assert seconds < 60, seconds  # about 4 s on a shared 2-core machine; no FE, no solve
+    assert "not read back" not in out and "report.md" in out.splitlines()[0], out
+    after = {p.name: p.read_bytes() for p in folder.iterdir() if p.suffix in (".md", ".png")}
+    assert after.keys() == before.keys()
+    assert [n for n in before if after[n] != before[n]] == []
+    # the issue asks under 10 s on a quiet machine (measured 5-9 s): the bound leaves a loaded CI
+    # machine three times that
+    assert seconds < 30, seconds
 
 
 @pytest.mark.parametrize("make, message", [(lambda p: None, "no such report folder"),

@@ -94,15 +94,17 @@ class StudyResult:
                 "measured_percentile": self.measured_percentile(), "errors": self.errors[:100],
                 "computed": self.summary.computed, "stored_before": self.summary.stored_before,
                 "wall_s": self.summary.wall_s, "frequency_unit": "Hz", "severity_unit": "deg",
-                # the runs' inputs and outputs (the histogram's); none for a study read back without them
-                **({} if not self.Y else {"X": self.X.tolist(), "Y": {
+                # the runs' outputs (the histogram's, the percentile's); none for a study read back without
+                # them. Not their inputs: nothing the report draws reads them, and a Sobol' design's were 6 MB
+                # of a run's results.json (the sample store keeps every run)
+                **({} if not self.Y else {"Y": {
                     k: [None if math.isnan(v) else v for v in y.tolist()] for k, y in self.Y.items()}})}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "StudyResult":
-        """The study back from its :meth:`to_dict`. One written before the runs' inputs and outputs
-        were kept (no ``X``, ``Y``) comes back with its runs' count, NaN inputs, no outputs (its
-        histogram cannot be drawn again) and the measured percentile it stated."""
+        """The study back from its :meth:`to_dict`: its runs' count with NaN inputs (``X`` is not
+        kept) and their outputs. One written before the outputs were kept (no ``Y``) comes back
+        without them (its histogram cannot be drawn again) and with the measured percentile it stated."""
         inputs = [from_fields(StudyInput, i) for i in d["inputs"]]
         X = np.array(d["X"], dtype=float) if "X" in d else np.full((d["runs"], len(inputs)), np.nan)
         Y = {k: np.array(y, dtype=float) for k, y in d.get("Y", {}).items()}
