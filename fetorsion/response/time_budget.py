@@ -32,15 +32,6 @@ def sample_bytes(coordinates: int, sections: int) -> int:
     return 8 * (coordinates + sections + SCALARS_PER_SAMPLE)
 
 
-def run_duration_s(rpm: float | None, run: tuple[float, float] | None, rate_rpm_per_s: float | None,
-                   cycles: int, period_rad: float, settle_s: float = 0.0) -> float:
-    """Duration of a run, s: ``|B − A| / rate`` for a run (A, B), else ``settle_s`` plus
-    ``cycles`` working cycles of ``period_rad`` at ``rpm``."""
-    if run is not None:
-        return abs(run[1] - run[0]) / rate_rpm_per_s
-    return settle_s + cycles * period_rad / (rpm * math.pi / 30)
-
-
 def check_run_fits(duration_s: float, step_rad: float, top_rpm: float, coordinates: int, sections: int,
                    run: tuple[float, float] | None, available: int | None = None) -> int:
     """The run's sample count, or a :class:`ParameterError` naming what to change when its samples
@@ -50,7 +41,7 @@ def check_run_fits(duration_s: float, step_rad: float, top_rpm: float, coordinat
     Parameters
     ----------
     duration_s : float
-        The run's duration, s (:func:`run_duration_s`).
+        The run's duration, s (a run (A, B) at rate r: |B − A| / r; steady: its settling and cycles).
     step_rad : float
         Crank angle per step at the top speed, rad.
     top_rpm : float
@@ -65,11 +56,10 @@ def check_run_fits(duration_s: float, step_rad: float, top_rpm: float, coordinat
     h = step_rad / (top_rpm * math.pi / 30)
     samples = int(duration_s / h) + 1
     each = sample_bytes(coordinates, sections)
-    room = MEMORY_SHARE * (available_memory() if available is None else available)
+    room, need = _room(samples, each, available)
     if samples * each <= room:
         return samples
     fit = room / each  # samples that fit
-    need = f"{samples:.3g} samples of {each} bytes ({samples * each / 2**30:.3g} GiB) where {room / 2**30:.3g} GiB is free"
     if run is not None:
         rate = abs(run[1] - run[0]) / duration_s
         raise ParameterError("rate_rpm_per_s", f"{rate:g}: the run would hold {need}; the smallest rate that fits "
@@ -84,10 +74,14 @@ def check_cycles_fit(samples: int, values_per_sample: int, cycles: int, availabl
     ``cycles`` working cycles whose ``samples`` of ``values_per_sample`` doubles each would not fit
     in :data:`MEMORY_SHARE` of the available memory (the condensed crank's state-space run)."""
     each = 8 * values_per_sample
-    room = MEMORY_SHARE * (available_memory() if available is None else available)
+    room, need = _room(samples, each, available)
     if samples * each > room:
-        most = int(cycles * room / (samples * each))
-        raise ParameterError("cycles", f"{cycles}: the run would hold {samples:.3g} samples of {each} bytes "
-                             f"({samples * each / 2**30:.3g} GiB) where {room / 2**30:.3g} GiB is free; at most "
-                             f"{most} cycles fit")
+        raise ParameterError("cycles", f"{cycles}: the run would hold {need}; at most "
+                             f"{int(cycles * room / (samples * each))} cycles fit")
+
+
+def _room(samples: int, each: int, available: int | None) -> tuple[float, str]:
+    """(bytes a run may plan to fill, what ``samples`` of ``each`` bytes would hold against it, in words)."""
+    room = MEMORY_SHARE * (available_memory() if available is None else available)
+    return room, f"{samples:.3g} samples of {each} bytes ({samples * each / 2**30:.3g} GiB) where {room / 2**30:.3g} GiB is free"
 
