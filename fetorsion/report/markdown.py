@@ -141,6 +141,7 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
                     "eccentricity ratios " + ", ".join(f"{e:.2f}" for e in film.eccentricity)
                     + ", damping " + ", ".join(f"{c:.3g}" for c in b.radial_damping) + " N s/m")
     measured = crank.measured_f1_hz
+    engine = outcome.bearings.first_carrying_torsion(F1_TORSION_SHARE)  # f1 in the engine, the summary's
     lines = ["## The crank in its bearings (condensed 3D FE, torsion and bending coupled)", "",
              f"The FE crank of the previous section condensed (Craig–Bampton, distributing couplings) to "
              f"{len(cc.labels)} masters ({', '.join(cc.labels)}): {cc.reduced_dofs} DOF from {cc.full_dofs} "
@@ -148,14 +149,13 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
              f"In the engine: {support}. Free-free is what a modal test measures"
              + (f" (measured {measured:g} Hz)" if measured else "") + "; the Campbell diagram below uses the "
              "modes in bearings.", "",
-             _first_modes_line(outcome),
+             _first_modes_line(outcome, engine),
              "", "| mode | free (Hz) | kind (torsion/bending) | in bearings (Hz) | kind (torsion/bending) |",
              "|---|---|---|---|---|"]
     for j in range(min(8, len(free.frequencies_hz), len(held.frequencies_hz))):
         lines.append(f"| {j + 1} | {free.frequencies_hz[j]:.1f} | {free.kinds[j]} ({free.fractions[j, 0]:.2f}/"
                      f"{free.fractions[j, 1]:.2f}) | {held.frequencies_hz[j]:.1f} | {held.kinds[j]} "
                      f"({held.fractions[j, 0]:.2f}/{held.fractions[j, 1]:.2f}) |")
-    engine = outcome.bearings.first_carrying_torsion(F1_TORSION_SHARE)
     which = "" if abs(engine - outcome.f1_bearings_hz) <= 1e-6 * engine else "; in bearings, f1 in the engine"
     lines += ["", f"The 17-DOF torsional chain against the condensed crank (f1{which}): `fe-held` takes each throw's "
               "stiffness inside the whole crank in rigid bearings (statically indeterminate), `fe` a single "
@@ -172,12 +172,11 @@ def bearings_section(crank: Crank, outcome: BearingsOutcome) -> list[str]:
     return lines + [f"![]({img})" for img in outcome.images] + [""]
 
 
-def _first_modes_line(outcome: BearingsOutcome) -> str:
+def _first_modes_line(outcome: BearingsOutcome, engine: float) -> str:
     """f1 free-free and in the bearings; where the first mode the engine's torque drives
-    (:data:`~fetorsion.modes.F1_TORSION_SHARE` of torsion) lies below the first mostly torsional
-    one, both."""
+    (``engine``, Hz: :data:`~fetorsion.modes.F1_TORSION_SHARE` of torsion) lies below the first
+    mostly torsional one, both."""
     free, held = outcome.f1_free_hz, outcome.f1_bearings_hz
-    engine = outcome.bearings.first_carrying_torsion(F1_TORSION_SHARE)
     if abs(engine - held) <= 1e-6 * held:
         return f"**First torsional mode: free-free {free:.1f} Hz, in bearings {held:.1f} Hz ({100 * (held / free - 1):+.1f} %).**"
     return (f"**First torsional mode: free-free {free:.1f} Hz; in bearings the first mode with at least "
