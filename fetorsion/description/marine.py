@@ -18,6 +18,8 @@ import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
+from .derived import piecewise_linear
+
 #: The largest σ_B (Pa) the rule's formulas take, by material [LRShipsShafts]: carbon and
 #: carbon-manganese steel 760 N/mm², alloy steel 800 N/mm²; a stronger steel gives no higher
 #: limit without the fatigue approval the rules ask for.
@@ -108,8 +110,7 @@ def sheet_value(temperature_c: float, t_nominal_c: float, nominal: float, t_warm
     the nearer one outside them (a sheet says nothing beyond its two temperatures)."""
     if t_warm_c == t_nominal_c:
         return nominal
-    s = min(max((temperature_c - t_nominal_c) / (t_warm_c - t_nominal_c), 0.0), 1.0)
-    return nominal + s * (warm - nominal)
+    return piecewise_linear(temperature_c, sorted([(t_nominal_c, nominal), (t_warm_c, warm)]))
 
 
 def loss_factor_of(relative_damping: float) -> float:
