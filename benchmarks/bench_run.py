@@ -1,6 +1,6 @@
 """The main job against one modal analysis of the same crank, timed back to back (issue 26).
 
-    nice python benchmarks/bench_run.py [geometry/renault21.toml] [--six]
+    nice python benchmarks/bench_run.py [geometry/renault21.toml] [--six] [--again]
 
 Runs ``fetorsion modal FILE`` and then ``fetorsion run FILE`` (a fresh, empty sample store and
 report folder in a temporary directory, so nothing is reused from earlier runs) and prints
@@ -72,6 +72,8 @@ def main() -> None:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("file", nargs="?", default=str(ROOT / "geometry" / "renault21.toml"))
     p.add_argument("--six", action="store_true", help="the six-cylinder variant without shipped data")
+    p.add_argument("--again", action="store_true",
+                   help="run a second time on the same store (issue 55: the second run against the first)")
     a = p.parse_args()
     exe = [sys.executable, "-c", "import sys; from fetorsion.cli import console; sys.exit(console())"]
     load_before = os.getloadavg()[0]
@@ -88,6 +90,9 @@ def main() -> None:
         modal = timed(exe + ["modal", str(crank)], env)
         run = timed(exe + ["run", str(crank), "--out", str(tmp / "report"), "--no-html"], env)
         results = json.loads((tmp / "report" / "results.json").read_text())
+        if a.again:
+            again = timed(exe + ["run", str(crank), "--out", str(tmp / "again"), "--no-html"], env)
+            second = json.loads((tmp / "again" / "results.json").read_text())
     fe = results.get("fe", {})
     print(f"{results.get('fe', {}).get('mesh', {}).get('dofs', '?')} DOF; {cpu_name()}, {os.cpu_count()} cores; "
           f"load average before {load_before:.2f}")
@@ -96,6 +101,9 @@ def main() -> None:
     print("run, by step [s]: " + ", ".join(f"{k} {v:.1f}" for k, v in results["timings_s"].items()))
     if fe:
         print("FE step: " + ", ".join(f"{k} {v:.1f}" for k, v in fe.get("timings_s", {}).items()))
+    if a.again:
+        print(f"second run, same store: {again:.1f} s ({again / run:.2f} of the first)")
+        print("second run, by step [s]: " + ", ".join(f"{k} {v:.1f}" for k, v in second["timings_s"].items()))
     cond = results.get("bearings", {}).get("timings_s")
     if cond:
         print("condensed crank: " + ", ".join(f"{k} {v:.1f}" for k, v in cond.items()))

@@ -287,13 +287,15 @@ _CODE_HASH: str | None = None
 
 
 def code_hash() -> str:
-    """SHA-256 of fetorsion's Python source: part of every stored key, so that results stored
-    by other code (an older checkout, an edited model) are never taken for this code's."""
+    """SHA-256 of fetorsion's Python source and shipped data (the ``data/*.json`` tables: the
+    stored SCFs and throw stiffnesses answer as the code does): part of every stored key, so
+    that results stored by other code (an older checkout, an edited model or table) are never
+    taken for this code's."""
     global _CODE_HASH
     if _CODE_HASH is None:
         root = Path(__file__).resolve().parent
         h = hashlib.sha256()
-        for path in sorted(root.rglob("*.py")):
+        for path in sorted([*root.rglob("*.py"), *root.rglob("data/*.json")]):
             h.update(str(path.relative_to(root)).encode())
             h.update(path.read_bytes())
         _CODE_HASH = h.hexdigest()
@@ -365,3 +367,19 @@ def available_memory() -> float:
     except OSError:
         pass
     return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+
+
+def jsonable(x):
+    """``x`` with numpy arrays and scalars as lists and Python numbers, dict keys as strings: what
+    ``json.dumps`` writes and reads back as it was (a results.json entry)."""
+    import numpy as np
+
+    if isinstance(x, dict):
+        return {str(k): jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [jsonable(v) for v in x]
+    if isinstance(x, np.ndarray):
+        return x.tolist()
+    if isinstance(x, np.generic):
+        return x.item()
+    return x

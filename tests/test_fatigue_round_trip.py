@@ -61,7 +61,7 @@ def _bridge(m53, fe, ratio: float) -> dict:
 
 def live_fatigue():
     """(crank, the fatigue outcome as the step returns it, its results.json entries as the step writes them)."""
-    from fetorsion.app.run import _jsonable
+    from fetorsion.io import jsonable as _jsonable
     from fetorsion.design.crank_verdict import (CrankVerdict, DampingFlip, VerdictConfig, fillet_torque_amplitude,
                                                 run_fatigue_damper, verdict_scfs)
     from fetorsion.design.m53 import m53_geometry, run_m53_crank
@@ -175,7 +175,7 @@ def test_fetorsion_report_draws_the_live_report_and_figures(written, tmp_path):
     """``fetorsion report`` on the folder: report.md is the live outcome's, and each fatigue figure
     the live objects' PNG, byte for byte."""
     from fetorsion.app.rerender import rerender
-    from fetorsion.app.steps import haigh_of
+    from fetorsion.app.fatigue_figures import haigh_of
     from fetorsion.io import save_figure_atomic
     from fetorsion.report.markdown import report_markdown
 

@@ -225,3 +225,25 @@ def test_the_reports_verdict_is_one_row_per_configuration(tmp_path, monkeypatch)
     for k, row in data["scf_m53"].items():
         assert row["empirical"] > 0 and (row["fe"] is None or row["difference"] == pytest.approx(
             row["fe"] / row["empirical"] - 1, rel=1e-12)), k
+    # issue 55: the same run again takes its FE step and its verdict from the store, says so, and
+    # writes the same results, report and figures (byte for byte); no mesh is made for it
+    from fetorsion.fe import cranksystem
+
+    monkeypatch.setattr(cranksystem, "build_system", lambda *a, **k: pytest.fail("the FE system was built again"))
+    again = Path(run(ROOT / "geometry" / "renault21.toml", tmp_path / "again", steps=steps,
+                     options=RunOptions(mesh_size=0.03, fatigue_method="fe")).folder)
+
+    def untimed(x):
+        if isinstance(x, dict):
+            return {k: untimed(v) for k, v in x.items() if k not in ("timings_s", "from_store")}
+        return [untimed(v) for v in x] if isinstance(x, list) else x
+
+    first, second = (json.loads((d / "results.json").read_text()) for d in (out, again))
+    assert set(second["from_store"]) == {"fe", "fatigue"} and "from_store" not in first
+    assert untimed(second) == untimed(first)
+    text = [(d / "report.md").read_text().split("## Timings", 1) for d in (out, again)]
+    assert text[1][0] == text[0][0] and "Taken from the store" in text[1][1] and "Taken from" not in text[0][1]
+    pictures = sorted(p.name for p in out.glob("*.png"))
+    assert pictures == sorted(p.name for p in again.glob("*.png"))
+    for name in pictures:
+        assert (out / name).read_bytes() == (again / name).read_bytes(), name

@@ -21,6 +21,7 @@ from ..errors import FetorsionError
 from ..io import save_figure_atomic, write_text_atomic
 from ..lumped_model.lumped import PARTITIONS
 from ..report.load import LoadedRun, load_run
+from .fatigue_figures import fatigue_figures
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, FatigueOutcome, LumpedOutcome, MeasuredOutcome, RunOutcome,
                                SensitivityOutcome, TransientOutcome, TVCOutcome, VerdictOutcome)
 
@@ -51,7 +52,7 @@ def figures(run: RunOutcome) -> dict[str, Callable[[], object]]:
         out.update(_bearings_figures(run.bearings))
     out.update(_chain_figures(run))
     if isinstance(run.fatigue, FatigueOutcome):
-        out.update(_fatigue_figures(run.fatigue))
+        out.update(fatigue_figures(run.fatigue))
     if isinstance(run.tvc, TVCOutcome):
         from .tvc import tvc_figures
 
@@ -74,17 +75,6 @@ def _bearings_figures(bearings: BearingsOutcome) -> dict[str, Callable[[], objec
     if bearings.coupled is not None:
         out[bearings.images[1]] = bearings.coupled.plot
     return out
-
-
-def _fatigue_figures(fatigue: FatigueOutcome) -> dict[str, Callable[[], object]]:
-    """A crank's fatigue verdict: both methods' safeties (the crank as described, firing), the ``fe``
-    path's Haigh diagram and the recommended damper's design, as the fatigue step draws them."""
-    from .steps import haigh_of
-
-    v = fatigue.verdict
-    draw = {"fatigue_safety.png": lambda: v.fatigue_figure().axes[0],
-            "fatigue_haigh.png": lambda: haigh_of(v, fatigue.assessment), "damper_design.png": lambda: v.damper.plot()}
-    return {image: draw[image] for image in fatigue.images}
 
 
 def _chain_figures(run: RunOutcome) -> dict[str, Callable[[], object]]:

@@ -20,7 +20,6 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable
 
-import numpy as np
 
 from ..description.files import load
 from ..design.scfset import SCFSet
@@ -28,7 +27,7 @@ from ..measured.dataset import MeasuredData
 from ..description.model import Crank
 from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError, ParameterError
-from ..io import atomic_folder, check_report_folder, save_figure_atomic, write_text_atomic
+from ..io import atomic_folder, check_report_folder, jsonable, save_figure_atomic, write_text_atomic
 from ..studies.runner import machine_workers
 from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE
 from ..report.markdown import report_markdown
@@ -435,16 +434,5 @@ def _write_report(ctx: RunContext) -> None:
         from ..report.html import report_html
 
         write_text_atomic(work / "report.html", report_html(ctx.outcome, work))
-    write_text_atomic(work / "results.json", json.dumps(_jsonable(ctx.results), indent=1) + "\n")
+    write_text_atomic(work / "results.json", json.dumps(jsonable(ctx.results), indent=1) + "\n")
 
-
-def _jsonable(x):
-    if isinstance(x, dict):
-        return {str(k): _jsonable(v) for k, v in x.items()}
-    if isinstance(x, (list, tuple)):
-        return [_jsonable(v) for v in x]
-    if isinstance(x, np.ndarray):
-        return x.tolist()
-    if isinstance(x, np.generic):
-        return x.item()
-    return x

@@ -27,6 +27,8 @@ from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, C
                                MeasuredOutcome, ModeImage, SensitivityOutcome, Skipped, TransientOutcome,
                                VerdictOutcome)
 from .background import sensitivity_studies
+from .fatigue_figures import fatigue_figures, haigh_of
+from .run_store import fatigue_key, fe_key, remember as remember_section, stored as stored_section
 
 
 #: A mode image's named places: the mesh's end faces
@@ -94,12 +96,15 @@ def step_fe(ctx: RunContext) -> FEOutcome:
 
     size = ctx.options.mesh_size
     modes = ctx.options.modes
+    cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
+    kept = fe_from_store(ctx, cuts)
+    if kept is not None:
+        return kept
     progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
     mesh = mesh_crank(ctx.crank, size)
     progress(f"  {len(mesh.tets)} tetrahedra, {len(np.unique(mesh.tets))} nodes in {mesh.quality.seconds:.1f} s; "
               "assembling, factorising, condensing ...")
     system = build_system(ctx.crank, size, mesh)
-    cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
     cc = ctx.built["condensed"] = run_condensed(ctx.crank, system=system, cuts=cuts, start_modes=modes + 6 + 4)
     remember_condensed(cc, size, cuts)  # the next campbell, response, damper ... take it from the store
     fe = run_modal(ctx.crank, size, modes=modes, system=system, ritz=cc.free_ritz)
@@ -129,7 +134,63 @@ def step_fe(ctx: RunContext) -> FEOutcome:
         solid_image = "solid_recognised.png"
         ctx.deferred.append(functools.partial(render_solid, ctx.crank, ctx.folder / solid_image))
         features = solid_features(ctx.crank)  # read when the run began: kept
+    if not ctx.crank.solid_step and ctx.options.support == "bearings":  # after the pictures: what the store keeps
+        ctx.deferred.append(functools.partial(_remember_fe, ctx, fe_key(ctx.crank, size, cuts, modes)))
     return FEOutcome(fe, size, images, solid_image, features)
+
+
+def fe_from_store(ctx: RunContext, cuts) -> FEOutcome | None:
+    """The FE step's outcome as an earlier run of the same crank, mesh and code kept it
+    (:mod:`fetorsion.app.run_store`: its results.json entry, mode pictures and 3D view; the
+    condensed crank from :mod:`fetorsion.fe.store`), or None. Not for a CAD crank (its picture of
+    the recognised solid is drawn from the solid) nor a Campbell diagram of the free-free modes
+    (it reads their shapes, which are not kept)."""
+    from ..fe.crankfe import CrankModal
+    from ..fe.store import stored_condensed
+    from ..io import atomic_output
+
+    size, modes = ctx.options.mesh_size, ctx.options.modes
+    if ctx.crank.solid_step or ctx.options.support != "bearings":
+        return None
+    key = fe_key(ctx.crank, size, cuts, modes)
+    hit = stored_section(key)
+    if hit is None or (ctx.options.html and VIEW_FILE not in hit[1]):
+        return None
+    cc = stored_condensed(ctx.crank, size, cuts)
+    if cc is None:  # the condensed crank went from the store first: the step is computed again
+        return None
+    entry, files = hit
+    ctx.built["condensed"] = cc
+    for name, data in files.items():
+        if name != VIEW_FILE:
+            with atomic_output(ctx.folder / name) as tmp:
+                tmp.write_bytes(data)
+    ctx.results["fe"] = entry
+    ctx.results.setdefault("from_store", {})["fe"] = ctx.outcome.from_store["fe"] = key
+    images = tuple(ModeImage(int(name.split("_")[1]) - 1, name) for name in files if name != VIEW_FILE)
+    progress(f"  the FE modes, their pictures and the condensed crank of an earlier run of this crank "
+             f"(store key {key[:12]})")
+    return FEOutcome(CrankModal.from_dict(entry), size, images,
+                     view_html=files[VIEW_FILE].decode() if VIEW_FILE in files else "")
+
+
+#: The store's name of the report page's 3D view of the FE step's modes.
+VIEW_FILE = "modes_view.html"
+
+
+def _remember_fe(ctx: RunContext, key: str) -> None:
+    """Keep the FE step's results.json entry, mode pictures and (for a report page) its 3D view
+    for the next run: deferred work, after the pictures are drawn."""
+    from ..io import jsonable
+    from ..report.html import fe_modes_view
+
+    out = ctx.outcome.fe
+    if ctx.options.html:  # the page's view, drawn here rather than by the page: the store keeps it
+        out = ctx.outcome.fe = dataclasses.replace(out, view_html=fe_modes_view(out))
+    files = {im.file: (ctx.folder / im.file).read_bytes() for im in out.images}
+    if out.view_html:
+        files[VIEW_FILE] = out.view_html.encode()
+    remember_section(key, jsonable(ctx.results["fe"]), files)
 
 
 def step_bearings(ctx: RunContext) -> BearingsOutcome | None:
@@ -281,6 +342,10 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
     if split_pin_refusal(crank):  # and the fe path's pin cuts and SCFs sit on one pin axis per throw
         return Skipped(split_pin_refusal(crank) + "; the fe path's pin-fillet cuts and SCFs take one pin axis per "
                        "throw and do not model a split pin either")
+    key = None if ctx.network is not None else fatigue_key(crank, ctx.options)  # a driveline's: not kept
+    kept = None if key is None else stored_section(key)
+    if kept is not None:  # kept only where the SCFs were complete
+        return _fatigue_from_store(ctx, key, kept[0])
     scf = ctx.scf()
     missing = scf.missing_bending()
     if missing:
@@ -300,16 +365,32 @@ def step_fatigue(ctx: RunContext) -> FatigueOutcome | Skipped:
                               "scf": scf.to_dict(), "model": setup.model}
     if stress is not None:
         ctx.results["stress"] = stress.to_dict()
+    if key is not None:
+        from ..io import jsonable
+
+        remember_section(key, jsonable(ctx.results["fatigue"]))
     return FatigueOutcome(verdict, a, stress, scf, images, setup.model)
 
 
-def haigh_of(verdict, assessment):
-    """The ``fe`` path's Haigh diagram, titled with whether that path decides the verdict (M53
-    reads no mean stress: it has no Haigh diagram of its own)."""
-    ax = assessment.haigh()
-    ax.set_title(f"{ax.get_title()} (fe path, Findley)\n{verdict.decides('fe')}", fontsize=8, wrap=True)
-    return ax
+def _fatigue_from_store(ctx: RunContext, key: str, entry: dict) -> FatigueOutcome:
+    """The fatigue step's outcome from its results.json entry as an earlier run of the same
+    description, options and code kept it: read back as ``fetorsion report`` reads it, its
+    figures drawn as that draws them; the fillet stress of this run's response."""
+    from ..design.scfset import SCFSet
+    from ..design.stress import fillet_stress
+    from ..report.load import read_fatigue
 
+    progress(f"  the fatigue verdict of an earlier run of this description (store key {key[:12]})")
+    ctx.results["fatigue"] = entry
+    ctx.results.setdefault("from_store", {})["fatigue"] = ctx.outcome.from_store["fatigue"] = key
+    stress = None
+    if isinstance(ctx.outcome.campbell, CampbellOutcome):
+        stress = fillet_stress(ctx.crank, ctx.outcome.campbell.response, SCFSet.from_dict(entry["scf"]), ctx.fillets())
+        ctx.results["stress"] = stress.to_dict()
+    out = read_fatigue(entry, stress)
+    for name, draw in fatigue_figures(out).items():
+        ctx.save(draw().figure, name)
+    return out
 
 
 def step_measured(ctx: RunContext) -> MeasuredOutcome | Skipped | None:

@@ -71,11 +71,11 @@ def add_parser(sub) -> None:
     sp.set_defaults(func=cmd_study)
 
     tp = sub.add_parser("store", help="where the store is (the studies' samples, the condensed cranks, the "
-                        "stress-recovery fields), how full; --clear empties it")
+                        "stress-recovery fields, the runs' FE modes and verdicts), how full; --clear empties it")
     tp.add_argument("--store", metavar="DIR", help=f"the store's folder (default ${STORE_ENV}, else "
                                                    "~/.cache/fetorsion/samples)")
-    tp.add_argument("--clear", action="store_true", help="remove every stored sample, condensed crank and "
-                    "stress-recovery field")
+    tp.add_argument("--clear", action="store_true", help="remove every stored sample, condensed crank, "
+                    "stress-recovery field and run section")
     tp.set_defaults(func=cmd_store)
 
 
@@ -85,6 +85,7 @@ def cmd_store(args) -> int:
     if os.path.lexists(folder) and not folder.is_dir():
         raise FetorsionError(f"--store {folder}: exists and is not a folder")
     store_max_bytes()  # a bad $FETORSION_STORE_MAX_MB is named before anything is touched
+    from ..app.run_store import FOLDER as RUNS_FOLDER
     from ..design.recovery import FOLDER as RECOVERY_FOLDER
     from ..fe.store import clear_condensed, condensed_store_info
 
@@ -96,6 +97,8 @@ def cmd_store(args) -> int:
         print(f"removed {n} condensed cranks from {folder / 'condensed'}")
         n = clear_condensed(folder, RECOVERY_FOLDER)
         print(f"removed {n} stress-recovery fields from {folder / RECOVERY_FOLDER}")
+        n = clear_condensed(folder, RUNS_FOLDER)
+        print(f"removed {n} run sections (FE modes, fatigue verdicts) from {folder / RUNS_FOLDER}")
     print(store.describe().replace("sample store ", "", 1) + f" (the bound: ${STORE_MAX_ENV})")
     c = condensed_store_info(folder)
     print(f"{c['folder']}: {c['cranks']} condensed cranks, {c['bytes'] / 2**20:.1f} MiB of at most "
@@ -103,6 +106,9 @@ def cmd_store(args) -> int:
     r = condensed_store_info(folder, RECOVERY_FOLDER)
     print(f"{r['folder']}: {r['cranks']} stress-recovery fields (throws and drilled bars of the fe fatigue path), "
           f"{r['bytes'] / 2**20:.1f} MiB of at most {r['max_bytes'] / 2**20:.0f} MiB (a quarter of the bound)")
+    s = condensed_store_info(folder, RUNS_FOLDER)
+    print(f"{s['folder']}: {s['cranks']} run sections (the FE step's modes and pictures, fatigue verdicts), "
+          f"{s['bytes'] / 2**20:.1f} MiB of at most {s['max_bytes'] / 2**20:.0f} MiB (a quarter of the bound)")
     return 0
 
 

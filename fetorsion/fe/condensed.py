@@ -538,7 +538,8 @@ def save_condensed(cc: CondensedCrank, path: str | Path, shapes: bool = True) ->
                   attachment_mass=cc.attachment_mass, bearing_stiffness=cc.bearing_stiffness,
                   bearing_damping=cc.bearing_damping, held=cc.held, sections=cc.sections,
                   interior_hz=cc.reduced.fixed_interface_hz, full_dofs=cc.full_dofs,
-                  description_json=json.dumps(document(cc.crank)))
+                  description_json=json.dumps(document(cc.crank)),
+                  timings_json=json.dumps({k: float(v) for k, v in (cc.timings_s or {}).items()}))
     for name in ("cut_rows", "cut_centres", "gyroscopic", "centrifugal"):
         if getattr(cc, name) is not None:
             arrays[name] = getattr(cc, name)
@@ -570,8 +571,11 @@ def load_condensed(path, crank: Crank | None = None) -> CondensedCrank:
             crank = parse_crank(json.loads(str(data["description_json"])), str(path), check_uncertainty=False)
         red = ReducedModel(data["K"], data["M"], int(data["n_master_dofs"]), data["interior_hz"])
         optional = {k: data[k] for k in ("cut_rows", "cut_centres", "gyroscopic", "centrifugal") if k in data.files}
-        return CondensedCrank(crank, [str(s) for s in data["labels"]], data["positions"], red, data["attachment_mass"],
-                              data["bearing_stiffness"], data["bearing_damping"], data["held"], int(data["full_dofs"]),
-                              sections=data["sections"], **optional)
+        cc = CondensedCrank(crank, [str(s) for s in data["labels"]], data["positions"], red, data["attachment_mass"],
+                            data["bearing_stiffness"], data["bearing_damping"], data["held"], int(data["full_dofs"]),
+                            sections=data["sections"], **optional)
+        if "timings_json" in data.files:  # the condensation's, when it was built (a file before: none)
+            cc.timings_s = json.loads(str(data["timings_json"]))
+        return cc
     except (OSError, ValueError, KeyError) as exc:
         raise FetorsionError(f"{path}: not a condensed crank written by fetorsion ({exc})") from None

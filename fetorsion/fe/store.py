@@ -47,7 +47,7 @@ FOLDER = "condensed"
 BOUND_SHARE = 0.25
 
 
-def condensed_key(crank, mesh_size: float, cuts=None) -> str:
+def condensed_key(crank: Crank, mesh_size: float, cuts: np.ndarray | None = None) -> str:
     """The cache key of ``crank`` condensed at ``mesh_size`` (m) with section cuts at ``cuts``
     ((k, 3) m or None): module docstring."""
     exact = lambda a: [float(v).hex() for v in np.asarray(a, float).ravel()]  # noqa: E731

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .outcomes import CampbellOutcome, RunOutcome, SensitivityOutcome, TransientOutcome
+from .outcomes import CampbellOutcome, FEOutcome, RunOutcome, SensitivityOutcome, TransientOutcome
 
 if TYPE_CHECKING:
     from ..excitation.campbell import CampbellResult
@@ -44,6 +44,17 @@ def surface(tets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 def _b64(array) -> str:
     return base64.b64encode(np.ascontiguousarray(array, dtype=np.float32).tobytes()).decode()
+
+
+def fe_modes_view(fe: FEOutcome) -> str:
+    """The one 3D view of an FE outcome's pictured modes (:func:`mode_view`); "" where the outcome
+    has no pictures or no mesh (read back from results.json)."""
+    res = fe.modal
+    if not fe.images or res.mesh is None:
+        return ""
+    picks = [img.mode for img in fe.images]
+    return mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],
+                     [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
 
 
 def mode_view(nodes: np.ndarray, tets: np.ndarray, shapes: list[np.ndarray], titles: list[str], div: str) -> str:
@@ -330,11 +341,8 @@ def report_html(run: RunOutcome, folder: Path) -> str:
             if "not_computed" not in studies["sobol"].indices["f1"]:
                 figures[images["sobol"]] = sobol_figure(studies["sobol"], "f1_sobol")
     fe = run.fe
-    if fe is not None and fe.images and fe.modal.mesh is not None:  # read back, the mesh is not kept: the pictures
-        res = fe.modal
-        picks = [img.mode for img in fe.images]
-        view = mode_view(res.mesh.nodes, res.mesh.tets, [res.shapes[j] for j in picks],
-                         [f"mode {j + 1}: {res.frequencies_hz[j]:.1f} Hz, {res.kinds[j]}" for j in picks], "modes")
+    view = "" if fe is None else (fe.view_html or fe_modes_view(fe))
+    if view:  # else (read back, the mesh not kept) the pictures
         figures[fe.images[0].file] = view
         for img in fe.images[1:]:
             figures[img.file] = ""  # all modes are in the one 3D view

@@ -31,6 +31,7 @@ import re
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..description.chain_model import Chain, Network
 from ..description.files import load
@@ -40,6 +41,9 @@ from ..results import JSONObject
 from .outcomes import (TVC_IMAGES, BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome,
                        LumpedOutcome, MeasuredOutcome, ModeImage, RunOutcome, SensitivityOutcome, Skipped,
                        TransientOutcome, TVCOutcome, VerdictOutcome, passage_image)
+
+if TYPE_CHECKING:
+    from ..design.stress import StressResult
 
 #: The file a run writes its figures into.
 RESULTS_FILE = "results.json"
@@ -203,18 +207,25 @@ FATIGUE_IMAGES = ("fatigue_safety.png", "fatigue_haigh.png", "damper_design.png"
 def _fatigue(crank, data: dict[str, object]) -> FatigueOutcome | Skipped | None:
     """A crank's fatigue verdict (None: not in the run); one of a folder written before
     results.json kept what its section reads is refused by name (FetorsionError)."""
-    from ..design.crank_verdict import CrankVerdict
-    from ..design.scfset import SCFSet
     from ..design.stress import StressResult
 
     d = data.get("fatigue")
     if d is None:
         return skipped(crank, data, "fatigue")
+    return read_fatigue(d, StressResult.from_dict(data["stress"]) if "stress" in data else None)
+
+
+def read_fatigue(d: JSONObject, stress: StressResult | None) -> FatigueOutcome:
+    """A crank's fatigue verdict from its results.json entry ``d`` and the run's fillet stress
+    (``stress``, a :class:`~fetorsion.design.stress.StressResult` or None); one written before the
+    entry kept its model is refused by name (FetorsionError)."""
+    from ..design.crank_verdict import CrankVerdict
+    from ..design.scfset import SCFSet
+
     if "model" not in d:
         raise FetorsionError("its model is not in results.json (written before it was kept)")
     verdict = CrankVerdict.from_dict(d)
     assessment = next(c for c in verdict.configs if c.as_described).fe
-    stress = StressResult.from_dict(data["stress"]) if "stress" in data else None
     # a run that left the fe path out drew no Haigh diagram
     images = FATIGUE_IMAGES if assessment is not None else tuple(i for i in FATIGUE_IMAGES if "haigh" not in i)
     return FatigueOutcome(verdict, assessment, stress, SCFSet.from_dict(d["scf"]), images, d["model"])
@@ -300,7 +311,8 @@ def load_run(folder: str | Path) -> LoadedRun:
     crank = read_description(path, entry.get("text") if isinstance(entry, dict) else None)
     pictures = sorted(p.name for p in folder.glob("*.png"))
     driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
-    outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline)
+    outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline,
+                         from_store=dict(data.get("from_store", {})))
     outcome.lumped, outcome.fe = _lumped(data), _fe(data, pictures)
     unread = {}
     if "fe" in data and not {"backend", "mesh_quality"} <= set(data["fe"]):

@@ -364,6 +364,11 @@ SECTIONS = (("lumped", lumped_section), ("fe", fe_section), ("bearings", bearing
             ("measured", measured_section), ("transient", transient_section))
 
 
+#: What the report calls each section a run can take from the store (:mod:`fetorsion.app.run_store`).
+STORED_SECTIONS = {"fe": "the 3D FE free-free modes and the condensed crank, with their pictures and timings",
+                   "fatigue": "the fatigue verdict (both methods, the recommended damper, misfire)"}
+
+
 def report_markdown(run: RunOutcome) -> str:
     """The whole report: a title, the summary, each section whose step ran, in pipeline order, the timings."""
     lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""]
@@ -378,4 +383,7 @@ def report_markdown(run: RunOutcome) -> str:
         if outcome is not None:
             lines += render(run.crank, outcome)
     lines += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in (run.timings_s or {}).items()], ""]
+    if run.from_store:
+        lines += ["Taken from the store, computed by an earlier run of the same description, options and code: "
+                  + ", ".join(STORED_SECTIONS.get(k, k) for k in run.from_store) + ".", ""]
     return "\n".join(lines)

@@ -9,7 +9,7 @@ nothing to work on is :class:`Skipped`, with the reason the report prints.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:  # the results each outcome holds, named for the reader and the checks, not imported at run time
@@ -147,6 +147,9 @@ class FEOutcome:
     solid_image: str = ""
     #: What was found on a CAD crank's solid (None: a crank built from its dimensions).
     solid_features: SolidFeatures | None = None
+    #: The report page's interactive 3D view of the pictured modes (HTML), where the run drew it
+    #: ("": the page draws it from the mesh, or shows the pictures where the mesh is not kept).
+    view_html: str = ""
 
 
 @dataclass(frozen=True)
@@ -303,6 +306,9 @@ class RunOutcome:
     #: A network with a propeller or shaft sections: its TVC (None otherwise: no section)
     tvc: TVCOutcome | Skipped | None = None
     timings_s: dict[str, float] | None = None
+    #: The sections taken from the store (section -> its key): computed by an earlier run of the
+    #: same description, options and code (:mod:`fetorsion.app.run_store`), not by this one.
+    from_store: dict[str, str] = field(default_factory=dict)
     #: The report folder the run wrote
     folder: str = ""
     #: A network file whose condensed crank part ``crank`` is: the name of that driveline (the
