@@ -80,7 +80,7 @@ def test_flat_four_boxer_fires_every_180_degrees():
 
 
 @pytest.mark.parametrize("change, field, words", [
-    (dict(rods="articulated"), "engine.rods", "not modelled"),
+    (dict(rods="articulated"), "engine.knuckle_radius", "required"),  # master and articulated: its knuckle
     (dict(cylinders=7, firing_order=[1, 2, 3, 4, 5, 6, 7]), "engine.cylinders", "must be even"),
     (dict(crank_angles_deg=[0.0, 90.0, 180.0, 270.0, 0.0, 90.0, 180.0, 270.0]), "engine.crank_angles_deg",
      "one angle per throw"),

@@ -121,8 +121,16 @@ ENGINE = Section("engine", "The slider-crank data; read the same way in a crank 
           "second's N/2+1..N; `alternate`: 1 and 2 on throw 1 (first bank, second bank), 3 and 4 on throw 2 …",
           "one of `by-bank`, `alternate`; vee only"),
     Field("rods", "vee: how the two rods share a pin: `side-by-side` (default; the first bank's rod in front), "
-          "`fork-and-blade` (both at mid-pin), `articulated` (master and articulated rod: refused, not modelled)",
+          "`fork-and-blade` (both at mid-pin), `articulated` (the first bank's master rod on the pin carries "
+          "the second bank's articulated rod on a knuckle pin; both at mid-pin)",
           "one of `side-by-side`, `fork-and-blade`, `articulated`; vee only"),
+    Field("knuckle_radius", "articulated rods: the knuckle pin's distance from the master rod's big-end centre "
+          "(file length unit)", "> 0; required with `rods = \"articulated\"`"),
+    Field("knuckle_angle_deg", "articulated rods: the knuckle pin's angle from the master rod's axis towards the "
+          "second bank, deg (default: the bank angle)", "in (−180, 180]; articulated rods only"),
+    Field("articulated_rod_length", "articulated rods: the articulated rod's length, knuckle pin to piston pin "
+          "(file length unit)", "longer than the crank radius and `knuckle_radius` together; required with "
+          "`rods = \"articulated\"`"),
     Field("rod_spacing", "vee, side by side: the distance between the two big ends' centres along the pin "
           "(file length unit)", "> 0, less than the pin's length; required with side-by-side rods on unsplit "
           "pins; not taken with split pins (each rod at its half pin's mid-length)"),

@@ -122,6 +122,18 @@ LAYOUTS = ("in-line", "vee", "opposed")
 
 
 @dataclass(frozen=True)
+class Articulation:
+    """A vee's master and articulated rods: the first bank's (master) rod on the pin carries a
+    knuckle pin at ``knuckle_radius`` (m) from its big end's centre, ``knuckle_angle`` (rad) from
+    its axis towards the second bank; the second bank's (articulated) rod of ``rod_length`` (m)
+    runs on it (docs/vee-engines.md, *master and articulated rods*)."""
+
+    knuckle_radius: float
+    knuckle_angle: float
+    rod_length: float
+
+
+@dataclass(frozen=True)
 class Engine:
     """Cylinder layout and slider-crank data; lengths in m, angles in rad.
 
@@ -149,6 +161,13 @@ class Engine:
     bank_angles: tuple[float, ...] = ()
     rod_offsets: tuple[float, ...] = ()
     half_pin_angles: tuple[float, ...] = ()
+    #: A vee's master and articulated rods (None: each rod on the pin).
+    articulation: Articulation | None = None
+
+    def articulated(self, cylinder: int) -> bool:
+        """Whether 0-based ``cylinder`` drives an articulated rod (a second-bank cylinder of an
+        engine with master and articulated rods)."""
+        return self.articulation is not None and bool(self.bank_angles) and self.bank_angles[cylinder] != 0.0
 
     @property
     def crank_radius(self) -> float:

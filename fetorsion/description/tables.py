@@ -10,7 +10,7 @@ from ..errors import DescriptionError, Problem
 from .chain_fields import is_count
 from .derived import table_at_temperature
 from .design_space import DESIGN_OBJECTIVES, DesignSpace
-from .model import DAMPER_STATIONS, DAMPER_TYPES, LAYOUTS, Damper, Engine, Limits
+from .model import DAMPER_STATIONS, DAMPER_TYPES, LAYOUTS, Articulation, Damper, Engine, Limits
 from .reader import field_keys, Table, finite_number, resolve_field
 
 
@@ -59,8 +59,15 @@ def read_engine(root: Table, split: bool = False) -> Engine:
     if rod <= 0.5 * stroke:
         problems.append(Problem("engine.rod_length", rod / root.scale,
                                 f"must be longer than the crank radius ({0.5 * stroke / root.scale:g})"))
+    art = banks.get("articulation")
+    if art is not None and art.rod_length <= 0.5 * stroke + art.knuckle_radius:
+        problems.append(Problem("engine.articulated_rod_length", art.rod_length / root.scale,
+                                f"must be longer than the crank radius and knuckle_radius together "
+                                f"({(0.5 * stroke + art.knuckle_radius) / root.scale:g}): its piston is out of "
+                                "the rod's reach at some angle"))
     engine = Engine(n, strokes, stroke, rod, tuple(math.radians(a) for a in angles), tuple(firing), bore,
-                    banks["layout"], banks["cylinder_throws"], banks["bank_angles"], banks["rod_offsets"])
+                    banks["layout"], banks["cylinder_throws"], banks["bank_angles"], banks["rod_offsets"],
+                    articulation=banks.get("articulation"))
     if n and firing and angles and len(angles) == throws and not split:
         problems.extend(firing_problems(engine))
     return engine
@@ -80,8 +87,36 @@ def firing_problems(engine: Engine, by: str = "crank_angles_deg") -> list[Proble
 #: second's; "alternate", cylinders 1 and 2 on throw 1 (first bank, second bank), 3 and 4 on throw 2.
 NUMBERINGS = ("by-bank", "alternate")
 #: How a vee's two rods share a pin: side by side (each on its own half, ``rod_spacing`` apart),
-#: fork-and-blade (one inside the other, both at mid-pin), master and articulated (refused).
+#: fork-and-blade (one inside the other, both at mid-pin), master and articulated (the second
+#: bank's rod on a knuckle pin of the first's, both at mid-pin).
 RODS = ("side-by-side", "fork-and-blade", "articulated")
+#: ``[engine]`` fields of master and articulated rods.
+ARTICULATION_FIELDS = ("knuckle_radius", "knuckle_angle_deg", "articulated_rod_length")
+
+
+def _articulation(et, rods: str, bank: float, split: bool) -> Articulation | None:
+    """The master and articulated rods of ``rods = "articulated"`` (None otherwise; their fields
+    refused by name on other rods). The knuckle angle defaults to the bank angle (the articulated
+    rod then lines up with its cylinder at the master's TDC); the articulated rod must be longer than
+    crank radius and knuckle radius together, so that its piston is reached at every angle."""
+    problems = et.problems
+    if rods != "articulated":
+        for key in ARTICULATION_FIELDS:
+            if key in et.data:
+                et.get(key)
+                problems.append(Problem(f"engine.{key}", et.data[key], 'belongs to rods = "articulated"'))
+        return None
+    if split:
+        problems.append(Problem("engine.rods", rods, "split pins carry side-by-side rods only"))
+    if "rod_spacing" in et.data:
+        problems.append(Problem("engine.rod_spacing", et.data["rod_spacing"], 'belongs to rods = "side-by-side" '
+                                                                               "(master and articulated rods run at mid-pin)"))
+    rk = et.number("knuckle_radius", length=True, positive=True)
+    angle = et.number("knuckle_angle_deg", bank if math.isfinite(bank) else 0.0, above=-180.0, below=180.0 + 1e-9)
+    la = et.number("articulated_rod_length", length=True, positive=True)
+    if not all(math.isfinite(v) for v in (rk, angle, la)):
+        return None
+    return Articulation(rk, math.radians(angle), la)
 
 
 def _banks(et, n: int, split: bool = False) -> dict:
@@ -96,7 +131,7 @@ def _banks(et, n: int, split: bool = False) -> dict:
     layout = et.text("layout", "in-line", choices=LAYOUTS)
     out = {"layout": layout if layout in LAYOUTS else "in-line", "throws": n, "cylinder_throws": (),
            "bank_angles": (), "rod_offsets": ()}
-    vee_only = ("bank_angle_deg", "numbering", "rods", "rod_spacing")
+    vee_only = ("bank_angle_deg", "numbering", "rods", "rod_spacing") + ARTICULATION_FIELDS
     if out["layout"] != "vee":
         for key in vee_only:
             if key in et.data:
@@ -116,10 +151,7 @@ def _banks(et, n: int, split: bool = False) -> dict:
         spacing = 0.0
     if bank == 0:
         problems.append(Problem("engine.bank_angle_deg", bank, "must not be 0: two banks at 0° are an in-line engine"))
-    if rods == "articulated":
-        problems.append(Problem("engine.rods", rods, "master and articulated rods are not modelled: the articulated "
-                                                     "rod's piston path, stroke and TDC differ from the master's; "
-                                                     "describe them as fork-and-blade to approximate"))
+    out["articulation"] = _articulation(et, rods, bank, split)
     if rods == "fork-and-blade" and "rod_spacing" in et.data:
         problems.append(Problem("engine.rod_spacing", et.data["rod_spacing"], 'belongs to rods = "side-by-side" '
                                                                                "(a fork's blade runs at mid-pin)"))

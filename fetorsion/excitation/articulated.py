@@ -4,7 +4,10 @@ A vee's two cylinders on one throw can share one big end: the first bank's (mast
 the pin; the second bank's (articulated) rod runs on a knuckle pin carried by the master rod at a
 radius r_k from the big end's centre and an angle γ from the master rod's axis, towards the
 second bank. The articulated piston's path is then not a slider-crank's: its stroke, its TDC and
-its harmonics differ from the master's (textbook kinematics: [Taylor] vol. 2).
+its harmonics differ from the master's. The equations below are derived here from the linkage's
+geometry (a textbook treatment is in Taylor's *The Internal-Combustion Engine in Theory and
+Practice*, vol. 2, which was not read); the tests check them against the loop closure solved
+numerically and against virtual work.
 
 Geometry in the plane of the throw, x along the master cylinder's axis, angles positive in the
 crank's rotation; θ is the crank angle from the master's TDC, δ the bank angle (the second bank's

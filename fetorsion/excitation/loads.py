@@ -26,7 +26,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .torque import CycleTorque, Harmonics, cycle_angle, cylinder_pin_forces, cylinder_torque, firing_angles, harmonics
+from .torque import (CycleTorque, Harmonics, articulated_cylinder_torque, articulated_pin_forces, cycle_angle,
+                     cylinder_pin_forces, cylinder_torque, firing_angles, harmonics)
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -78,14 +79,21 @@ class CylinderLoads:
                         misfire: bool = False) -> CycleTorque:
         """0-based ``cylinder``'s torque over its cycle from its own firing TDC at ``rpm`` (``theta``
         rad, default :func:`~fetorsion.excitation.torque.cycle_grid`); ``misfire``: its motored
-        cycle. Every cylinder is cylinder 1's slider-crank on the engine's one pressure curve."""
-        key = ("torque", float(rpm), None if theta is None else np.asarray(theta, float).tobytes(), bool(misfire))
+        cycle. Every cylinder is cylinder 1's slider-crank on the engine's one pressure curve, but an
+        articulated rod's (:func:`~fetorsion.excitation.torque.articulated_cylinder_torque`)."""
+        art = self.engine.articulated(cylinder)  # a master and articulated rod pair's second cylinder
+        key = ("torque", float(rpm), None if theta is None else np.asarray(theta, float).tobytes(), bool(misfire), art)
+        if art:
+            return self._kept_or(key, lambda: articulated_cylinder_torque(self.model, rpm, theta, misfire))
         return self._kept_or(key, lambda: cylinder_torque(self.model, rpm, theta, misfire))
 
     def cylinder_pin_forces(self, cylinder: int, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
         """0-based ``cylinder``'s rod force on its pin over its cycle from its own firing TDC, in the
         throw's frame: ``theta`` rad, ``tangential`` and ``radial`` N
         (:func:`~fetorsion.excitation.torque.cylinder_pin_forces`); ``misfire``: its motored cycle."""
+        if self.engine.articulated(cylinder):
+            return self._kept_or(("pins", float(rpm), None, bool(misfire), True),
+                                 lambda: articulated_pin_forces(self.model, rpm, misfire))
         return self._kept_or(("pins", float(rpm), None, bool(misfire)),
                              lambda: cylinder_pin_forces(self.model, rpm, misfire))
 

@@ -249,3 +249,58 @@ def cylinder_pin_forces(crank: Crank, rpm: float, misfire: bool = False) -> dict
     f = pin_forces(theta, force, e.crank_radius, e.rod_length)
     radial = f["radial"] + ex.rotating_mass * e.crank_radius * omega**2
     return {"theta": theta, "tangential": f["tangential"], "radial": radial}
+
+
+def articulated_link(engine: Engine):
+    """The :class:`~fetorsion.excitation.articulated.ArticulatedLink` of an engine with master and
+    articulated rods: its crank radius, master rod, knuckle, articulated rod and bank angle."""
+    from .articulated import ArticulatedLink
+
+    a = engine.articulation
+    bank = next(b for b in engine.bank_angles if b != 0.0)
+    return ArticulatedLink(engine.crank_radius, engine.rod_length, a.knuckle_radius, a.knuckle_angle, a.rod_length,
+                           bank)
+
+
+def articulated_piston_force(crank: Crank, rpm: float, theta: np.ndarray | None = None, misfire: bool = False):
+    """(θ, F, link): an articulated cylinder's piston force F (N, towards the crank: gas A (p − p_intake)
+    and reciprocating inertia m s̈, s its distance from the crank axis) over its cycle, θ rad from its nominal TDC (its throw's angle
+    plus the bank angle, where a side-by-side rod's would be). Its own TDC lies
+    :meth:`~fetorsion.excitation.articulated.ArticulatedLink.tdc_shift` later: its pressure curve
+    (the engine's one curve, on the crank angle from the cylinder's own TDC) is shifted by it. The
+    synthetic cycle's volume stays the slider-crank's: the articulated stroke differs from it by
+    parts in ten thousand (docs/vee-engines.md)."""
+    engine, ex = crank.engine, _excitation_of(crank)
+    if ex.tangential_harmonics:
+        raise FetorsionError("engine.rods = \"articulated\": the tangential-pressure harmonics are one slider-crank's; "
+                             "give the articulated cylinders a pressure curve (imep_pa, peak_pressure_pa or pressure_csv)")
+    link = articulated_link(engine)
+    grid, p = cylinder_pressure(crank, rpm, misfire=misfire)
+    theta = grid if theta is None else np.asarray(theta, dtype=float)
+    p = np.interp(theta - link.tdc_shift(), grid, p, period=cycle_angle(engine))
+    omega = rpm * 2 * np.pi / 60
+    s2 = link.path(theta + link.bank)[2]
+    return theta, math.pi / 4 * engine.bore**2 * (p - ex.intake_pressure) + ex.reciprocating_mass * s2 * omega**2, link
+
+
+def articulated_cylinder_torque(crank: Crank, rpm: float, theta: np.ndarray | None = None,
+                                misfire: bool = False) -> CycleTorque:
+    """An articulated cylinder's torque on the crank over its cycle (:func:`articulated_piston_force`):
+    T = F (−s′) by virtual work, gas and inertia apart."""
+    engine, ex = crank.engine, _excitation_of(crank)
+    theta, force, link = articulated_piston_force(crank, rpm, theta, misfire)
+    _, s1, s2 = link.path(theta + link.bank)
+    inertia = ex.reciprocating_mass * s2 * (rpm * 2 * np.pi / 60) ** 2 * -s1
+    return CycleTorque(theta, force * -s1, (force * -s1) - inertia, inertia)
+
+
+def articulated_pin_forces(crank: Crank, rpm: float, misfire: bool = False) -> dict[str, np.ndarray]:
+    """An articulated cylinder's force on its throw's pin through the master rod over its cycle
+    (θ rad from its nominal TDC; ``tangential``, ``radial`` N), with its rod's rotating big-end mass
+    at the pin as :func:`cylinder_pin_forces` takes it (the knuckle's small circle about the pin
+    neglected)."""
+    theta, force, link = articulated_piston_force(crank, rpm, misfire=misfire)
+    f = link.pin_forces(theta + link.bank, force)
+    e, ex = crank.engine, crank.excitation
+    radial = f["radial"] + ex.rotating_mass * e.crank_radius * (rpm * 2 * np.pi / 60) ** 2
+    return {"theta": theta, "tangential": f["tangential"], "radial": radial}

@@ -190,9 +190,22 @@ def _major_orders_line(crank) -> str:
 
     orders = major_orders(crank.engine)
     listed = ", ".join(f"{q:g}" for q in orders) if len(orders) else "none (the firing is uneven)"
-    return (f"Major orders of this {crank.engine.cylinders}-cylinder {crank.engine.layout} engine, where every "
+    line = (f"Major orders of this {crank.engine.cylinders}-cylinder {crank.engine.layout} engine, where every "
             f"cylinder's torque adds in phase on a rigid crank (to order {CAMPBELL_HIGHEST_ORDER:g}): "
             f"{listed}.")
+    if crank.engine.articulation is not None:
+        import numpy as np
+
+        from ..excitation.torque import articulated_link
+
+        link = articulated_link(crank.engine)
+        s = link.path(np.linspace(0.0, 2 * np.pi, 3601))[0]
+        line += (f" Master and articulated rods: the articulated (second-bank) cylinders reach TDC "
+                 f"{np.degrees(link.tdc_shift()):+.2f}° after their bank angle, with a stroke of "
+                 f"{(s.max() - s.min()) * 1e3:.2f} mm (the master's {2e3 * link.r:.2f} mm); their loads reach the "
+                 "pin through the master rod (the sums above take the bank angles alone; the response, "
+                 "Campbell's order sums and the verdict take each cylinder's own).")
+    return line
 
 
 def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[str]:
