@@ -45,6 +45,7 @@ def synthetic():
     return crank, measured, res
 
 
+@pytest.mark.slow  # its module fixture runs the MCMC (20 s)
 def test_least_squares_recovers_the_moved_inputs(synthetic):
     crank, measured, res = synthetic
     S = res.lsq.sensitivity_hz[:, :3]  # Hz per prior standard deviation, the three moved inputs
@@ -58,6 +59,7 @@ def test_least_squares_recovers_the_moved_inputs(synthetic):
     np.testing.assert_allclose(res.lsq.frequencies_hz, measured, atol=5 * SIGMA_HZ)
 
 
+@pytest.mark.slow  # the MCMC fixture (20 s)
 def test_posterior_covers_the_truth_and_says_what_is_identified(synthetic):
     _, measured, res = synthetic
     rows = {r["input"]: r for r in res.input_rows()}
@@ -188,6 +190,7 @@ def one_frequency():
     return run_calibration(fetorsion.load(GEOMETRY / "renault21.toml"), [530.0], seed=0, **SHORT)
 
 
+@pytest.mark.slow  # 23 s: its fixture and two identifications
 def test_identification_is_deterministic_and_names_the_determined_combination(capsys, one_frequency):
     """Issue 42: the Renault's inputs on one measured frequency. The identification is the same
     for every seed and method (a rule on the information at the least-squares estimate, not on
@@ -307,6 +310,7 @@ def test_a_network_file_is_calibrated_through_its_stations_tables(tmp_path):
         res["predictions"][0]["lsq_hz"], rel=1e-5)
 
 
+@pytest.mark.slow  # the one-frequency fixture (11 s)
 def test_one_frequency_and_many_inputs_writes_every_input_it_moved(tmp_path, one_frequency):
     """Issue 54: one measured frequency fixes one combination of the Renault's 15 inputs and none
     on its own; the calibrated description then holds every input the posterior moved, at its

@@ -297,6 +297,7 @@ def condensed_hammer_test(tmp_path):
     return src, write_uff58(tmp_path / "hammer.uff", frfs), f1
 
 
+@pytest.mark.slow  # 12 s: a condensed crank built
 @pytest.mark.fe
 def test_a_modal_test_is_set_beside_the_free_condensed_crank(tmp_path):
     """The condensed crank's own free-free receptances (pulley and flywheel ends, ζ 1 %), fitted

@@ -134,6 +134,7 @@ def frd_displacements(path: Path) -> list[np.ndarray]:
     return modes
 
 
+@pytest.mark.slow  # 9 s: CalculiX
 @pytest.mark.skipif(shutil.which("ccx") is None, reason="CalculiX (ccx) not installed: apt-get install calculix-ccx")
 def test_cylinder_inp_gives_analytic_torsion_in_calculix(tmp_path):
     L, r = 0.2, 0.02
@@ -176,6 +177,7 @@ def test_cli_png_is_a_picture(tmp_path):
     assert_picture(out, min_ink=0.05)
 
 
+@pytest.mark.slow  # 14 s: the crank meshed twice
 def test_modal_mesh_is_the_same_on_every_run():
     # Reproducible: the same description gives the same mesh, node for node. The Renault at
     # 20 mm has folded fillet elements (75); Gmsh's optimiser placed their nodes differently on

@@ -197,6 +197,7 @@ def _stiffness_and_mass(mesh):
     return K, M, m, dof_of_node
 
 
+@pytest.mark.slow  # 11 s: two modal solves
 def test_block_reduction_equals_triple_product(bar):
     # Tᵀ A T by blocks (free rows kept by a mask, only tied rows multiplied) against the plain
     # sparse triple product, for K and M with two bodies: the same sums, so to round-off.

@@ -123,6 +123,7 @@ def test_a_cad_cranks_lumped_chain_takes_its_inertias_from_the_solid(written, tm
     assert chain.frequencies_hz[0] == pytest.approx(lumped(built).frequencies_hz[0], rel=3e-3)
 
 
+@pytest.mark.slow  # 12 s: a rendered CAD crank
 def test_the_picture_of_a_cad_crank_shows_what_was_found_on_it(written, tmp_path):
     """The report's picture of a [solid] crank: the fillet faces drawn red and the drilling faces
     green over the parts' colours (pixels of those colours in the picture), off-screen."""
@@ -142,6 +143,7 @@ def test_the_picture_of_a_cad_crank_shows_what_was_found_on_it(written, tmp_path
     assert share((0x4c, 0x72, 0xb0)) > 1e-3  # the journals, for scale
 
 
+@pytest.mark.slow  # 20 s: a CAD throw meshed and solved twice
 def test_a_cad_cranks_throw_is_its_solids_slab(tmp_path):
     """The throw FE of a [solid] crank (web stiffness, fillet SCFs) meshes the solid's slab from
     journal centre to journal centre, turned to put its pin at angle 0. Without drillings the

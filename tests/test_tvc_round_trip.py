@@ -61,12 +61,14 @@ def reports_the_same(folder: Path, copy: Path) -> None:
         assert (copy / name).read_bytes() == (folder / name).read_bytes(), name
 
 
+@pytest.mark.slow  # 17 s: its fixture runs the TVC lines
 def test_fetorsion_report_of_a_tvc_writes_the_same_report(tvc_runs, tmp_path, capsys):
     for kind, folder in tvc_runs.items():
         reports_the_same(folder, tmp_path / kind)
         assert "not read back" not in capsys.readouterr().out
 
 
+@pytest.mark.slow  # its fixture runs the TVC lines (17 s)
 def test_the_tvc_read_back_writes_the_json_it_was_read_from(tvc_runs):
     seen = set()
     for folder in tvc_runs.values():
@@ -90,6 +92,7 @@ def test_the_tvc_read_back_writes_the_json_it_was_read_from(tvc_runs):
     assert seen == {"couplings", "shafts", "hammering", "misfires", "passages"}
 
 
+@pytest.mark.slow  # its fixture runs the TVC lines (17 s)
 def test_a_tvc_entry_written_before_it_was_kept_whole_is_named_unread(tvc_runs, tmp_path, capsys):
     copy = tmp_path / "old"
     shutil.copytree(tvc_runs["coupling"], copy)

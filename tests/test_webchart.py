@@ -29,6 +29,7 @@ def test_richardson_recovers_a_power_law():
     assert wc.richardson(f(1 / 8), f(1 / 12), 1 / 8, 1 / 12, 1.4) == pytest.approx(2.0, rel=1e-12)
 
 
+@pytest.mark.slow  # 13 s: a throw FE
 @pytest.mark.fe
 def test_chart_reproduces_a_held_out_fe_point_within_its_stated_error():
     chart = wc.load_chart()
