@@ -97,7 +97,11 @@ def step_fe(ctx: RunContext) -> FEOutcome:
     size = ctx.options.mesh_size
     modes = ctx.options.modes
     cuts = fillet_cuts(ctx.crank, ctx.fillets())  # the verdict's sections: torque through every fillet
-    kept = fe_from_store(ctx, cuts)
+    # kept in the store unless a CAD crank (its picture of the recognised solid is drawn from the
+    # solid) or a Campbell diagram of the free-free modes (it reads their shapes, which are not kept)
+    key = fe_key(ctx.crank, size, cuts, modes) if not ctx.crank.solid_step and ctx.options.support == "bearings" \
+        else None
+    kept = None if key is None else fe_from_store(ctx, key, cuts)
     if kept is not None:
         return kept
     progress(f"  meshing the Gmsh solid ({size * 1e3:g} mm, curved P2 tetrahedra) ...")
@@ -134,25 +138,21 @@ def step_fe(ctx: RunContext) -> FEOutcome:
         solid_image = "solid_recognised.png"
         ctx.deferred.append(functools.partial(render_solid, ctx.crank, ctx.folder / solid_image))
         features = solid_features(ctx.crank)  # read when the run began: kept
-    if not ctx.crank.solid_step and ctx.options.support == "bearings":  # after the pictures: what the store keeps
-        ctx.deferred.append(functools.partial(_remember_fe, ctx, fe_key(ctx.crank, size, cuts, modes)))
+    if key is not None:  # after the pictures: what the store keeps
+        ctx.deferred.append(functools.partial(_remember_fe, ctx, key))
     return FEOutcome(fe, size, images, solid_image, features)
 
 
-def fe_from_store(ctx: RunContext, cuts) -> FEOutcome | None:
-    """The FE step's outcome as an earlier run of the same crank, mesh and code kept it
+def fe_from_store(ctx: RunContext, key: str, cuts) -> FEOutcome | None:
+    """The FE step's outcome kept under ``key`` by an earlier run of the same crank, mesh and code
     (:mod:`fetorsion.app.run_store`: its results.json entry, mode pictures and 3D view; the
-    condensed crank from :mod:`fetorsion.fe.store`), or None. Not for a CAD crank (its picture of
-    the recognised solid is drawn from the solid) nor a Campbell diagram of the free-free modes
-    (it reads their shapes, which are not kept)."""
+    condensed crank from :mod:`fetorsion.fe.store`), or None."""
     from ..fe.crankfe import CrankModal
     from ..fe.store import stored_condensed
     from ..io import atomic_output
+    from ..report.load import mode_images
 
-    size, modes = ctx.options.mesh_size, ctx.options.modes
-    if ctx.crank.solid_step or ctx.options.support != "bearings":
-        return None
-    key = fe_key(ctx.crank, size, cuts, modes)
+    size = ctx.options.mesh_size
     hit = stored_section(key)
     if hit is None or (ctx.options.html and VIEW_FILE not in hit[1]):
         return None
@@ -167,7 +167,7 @@ def fe_from_store(ctx: RunContext, cuts) -> FEOutcome | None:
                 tmp.write_bytes(data)
     ctx.results["fe"] = entry
     ctx.results.setdefault("from_store", {})["fe"] = ctx.outcome.from_store["fe"] = key
-    images = tuple(ModeImage(int(name.split("_")[1]) - 1, name) for name in files if name != VIEW_FILE)
+    images = mode_images(files)
     progress(f"  the FE modes, their pictures and the condensed crank of an earlier run of this crank "
              f"(store key {key[:12]})")
     return FEOutcome(CrankModal.from_dict(entry), size, images,

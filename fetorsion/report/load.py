@@ -31,6 +31,7 @@ import re
 import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
+from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from ..description.chain_model import Chain, Network
@@ -133,13 +134,18 @@ def _lumped(data: dict[str, object]) -> LumpedOutcome | ChainOutcome | None:
     return LumpedOutcome(table, dict(data.get("lumped_skipped", {})), "lumped_modes_17dof.png")
 
 
+def mode_images(names: Iterable[str]) -> tuple[ModeImage, ...]:
+    """The FE mode pictures among the file ``names`` (``mode_NN_kind.png``), in their order."""
+    return tuple(ModeImage(int(m.group(1)) - 1, name) for name in names
+                 if (m := re.fullmatch(r"mode_(\d+)_[a-z]+\.png", name)))
+
+
 def _fe(data: dict[str, object], pictures: list[str]) -> FEOutcome | None:
     from ..fe.crankfe import CrankModal
 
     if "fe" not in data:
         return None
-    images = tuple(ModeImage(int(m.group(1)) - 1, name) for name in pictures
-                   if (m := re.fullmatch(r"mode_(\d+)_[a-z]+\.png", name)))
+    images = mode_images(pictures)
     solid = "solid_recognised.png" if "solid_recognised.png" in pictures else ""
     return FEOutcome(CrankModal.from_dict(data["fe"]), data["fe"]["mesh_size_m"], images, solid)
 
