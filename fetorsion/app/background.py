@@ -58,30 +58,37 @@ def throw_fe_results(crank: Crank, scfs: bool = True, recovery: bool = True) -> 
     every distinct throw and drilled section under six unit end loads) are stored too, unless
     ``recovery`` is False (a run whose verdict leaves the ``fe`` path out). SCFs that fail here
     are left to the verdict, which says why."""
-    from ..design.recovery import crank_zones
+    from ..design.recovery import crank_zones, stored_throw_zones
     from ..design.scf import fillet_scfs
     from ..webs.throwfe import forget_end_loaded, throw_key, throw_of, throw_torsion
 
     scf = None
-    if scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0:
+    filleted = crank.fillets.journal > 0 and crank.fillets.pin > 0
+    if scfs and filleted:
         try:
             # first: throw 1's FE is then the one kept in memory (the last one) when its web
             # stiffness is asked for below, and is not built a second time
             scf = fillet_scfs(crank)
         except FetorsionError:
             pass
+    # the fe path's stress recovery, stored for the verdict: only where there is one (a crank
+    # without [excitation] has no load cycle, and its zones would cost a minute for nothing)
+    zones = recovery and scfs and filleted and crank.excitation is not None
     torsion = {}
     for i in range(len(crank.pins)):
         throw = throw_of(crank, i)
         torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
+        if zones:
+            try:  # while the throw's FE (mesh, factorisation, end loads) is the one kept in memory
+                stored_throw_zones(crank, i)
+            except FetorsionError:
+                pass  # left to the verdict, which says why
     forget_end_loaded()
-    # the fe path's stress recovery, stored for the verdict: only where there is one (a crank
-    # without [excitation] has no load cycle, and its zones would cost a minute for nothing)
-    if recovery and scfs and crank.fillets.journal > 0 and crank.fillets.pin > 0 and crank.excitation is not None:
+    if zones:
         try:
-            crank_zones(crank)
+            crank_zones(crank)  # the drilled sections' bars; the throws' are stored now
         except FetorsionError:
-            pass  # left to the verdict, which says why
+            pass
     return torsion, scf
 
 

@@ -42,13 +42,12 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import FetorsionError
+from ..webs.throwfe import UNIT_LOADS  # the six unit end loads, N and N·m
 
 if TYPE_CHECKING:
     from collections.abc import Callable
     from ..description.model import Crank
 
-#: The six unit end loads (Fx, Fy, Fz, Mx, My, Mz) at the loaded face's centre, N and N·m.
-UNIT_LOADS = tuple(tuple(float(i == j) for i in range(6)) for j in range(6))
 #: Part of every stored field's key: bump when the sub-models or the zones change.
 MODEL_VERSION = "recovery-2"
 #: The recovered fields' folder in the store.
@@ -100,21 +99,29 @@ def node_stresses(sol, material, dofs: np.ndarray) -> np.ndarray:
     """Stress tensors (len(dofs), 3, 3), Pa, at DOF-numbered nodes ``dofs`` of a solution, each the
     average over the elements sharing the node of the element's P2 gradient at that node (the
     nodal averaging of :func:`fetorsion.design.scf.nodal_stress`, on those elements only)."""
-    from skfem import Basis, ElementTetP2
+    return node_stresses_of([sol], material, dofs)[0]
 
-    from .scf import element_node_stresses
 
-    element_dofs = Basis(sol.skfem_mesh, ElementTetP2(), intorder=1).element_dofs  # (10, E)
+def node_stresses_of(sols, material, dofs: np.ndarray) -> np.ndarray:
+    """:func:`node_stresses` of each of ``sols`` (solutions on one mesh), (len(sols), len(dofs), 3,
+    3) Pa: the elements at the nodes and their basis found once for all of them."""
+    from .scf import element_node_stresses, nodes_basis
+
+    element_dofs = sols[0].basis.element_dofs  # (10, E): the solutions' scalar P2 numbering
     wanted = np.zeros(element_dofs.max() + 1, bool)
     wanted[dofs] = True
-    flat, local = element_node_stresses(sol, material, np.flatnonzero(wanted[element_dofs].any(axis=0)))
+    at_nodes = nodes_basis(sols[0].skfem_mesh, np.flatnonzero(wanted[element_dofs].any(axis=0)))
     slot = np.full(wanted.size, -1)
     slot[dofs] = np.arange(len(dofs))
-    keep = slot[local] >= 0
-    idx = slot[local[keep]]
-    total = np.stack([np.bincount(idx, flat[c, keep], minlength=len(dofs)) for c in range(9)], axis=1)
-    count = np.bincount(idx, minlength=len(dofs))
-    return (total / np.maximum(count, 1)[:, None]).reshape(-1, 3, 3)
+    out = np.empty((len(sols), len(dofs), 3, 3))
+    for j, sol in enumerate(sols):
+        flat, local = element_node_stresses(sol, material, basis=at_nodes)
+        keep = slot[local] >= 0
+        idx = slot[local[keep]]
+        total = np.stack([np.bincount(idx, flat[c, keep], minlength=len(dofs)) for c in range(9)], axis=1)
+        count = np.bincount(idx, minlength=len(dofs))
+        out[j] = (total / np.maximum(count, 1)[:, None]).reshape(-1, 3, 3)
+    return out
 
 
 @dataclass(frozen=True)
@@ -160,8 +167,7 @@ def zone_of(name: str, kind: str, sols, material, mask: np.ndarray, normals: np.
     influence = np.empty((len(dofs), 3, 6))
     residual, largest = 0.0, 0.0
     e1, e2 = frames[:, 0], frames[:, 1]
-    for j, sol in enumerate(sols):
-        sig = node_stresses(sol, material, dofs)
+    for j, sig in enumerate(node_stresses_of(sols, material, dofs)):
         influence[:, 0, j] = np.einsum("ni,nij,nj->n", e1, sig, e1)
         influence[:, 1, j] = np.einsum("ni,nij,nj->n", e2, sig, e2)
         influence[:, 2, j] = np.einsum("ni,nij,nj->n", e1, sig, e2)
@@ -189,19 +195,19 @@ def _loaded_centre(sol, mesh, name: str = "rear_face") -> np.ndarray:
 
 def throw_zones(crank, index: int, size: float | None = None, fine: float | None = None) -> list[StressZone]:
     """The four fillet zones of throw ``index`` (journal, web 1; pin, web 1; pin, web 2; journal,
-    web 2) under the six unit end loads at its rear face (front face held), one factorisation."""
-    from ..solid.isolate import call_isolated
-    from ..solid.mesh import default_fillet_size, mesh_crank
-    from ..fe.tetmesh import TetMesh
-    from ..webs.throwfe import default_mesh_size, end_load_solutions, throw_of
+    web 2) under the six unit end loads at its rear face (front face held): the throw's one FE
+    (:func:`fetorsion.webs.throwfe.end_loaded_fe`, the same mesh and factorisation as its web
+    stiffness and fillet SCFs at these sizes)."""
+    from ..solid.mesh import default_fillet_size
+    from ..webs.throwfe import END_LOADS, default_mesh_size, end_loaded_fe, throw_of
     from .scf import DEFAULT_FILLET_SHARE, found_zones, fillet_zone, found_zone
 
     throw = throw_of(crank, index)
     size = default_mesh_size(throw) if size is None else size
     fine = DEFAULT_FILLET_SHARE * default_fillet_size(throw, size, "stress") if fine is None else fine
-    cm = call_isolated(mesh_crank, throw, size, fine, "stress", what="Gmsh, recovery throw")
-    mesh = TetMesh(cm.nodes, cm.tets, cm.node_sets)
-    sols = end_load_solutions(mesh, throw.material, UNIT_LOADS)
+    fe = end_loaded_fe(throw, size, fine)
+    mesh = fe.mesh
+    sols = [fe.solutions[END_LOADS.index(u)] for u in UNIT_LOADS]
     xyz = sols[0].skfem_mesh.doflocs.T
     normals = dof_normals(mesh, sols[0].dof_of_node, len(xyz))
     j1, j2 = throw.journals
@@ -400,6 +406,11 @@ def _bar_sections(crank):
     return out
 
 
+def stored_throw_zones(crank: Crank, index: int, store: str | Path | None = None) -> list[StressZone]:
+    """:func:`throw_zones` of throw ``index`` from the store, or computed and stored."""
+    return stored_zones(throw_zone_key(crank, index), lambda: throw_zones(crank, index), store)
+
+
 def crank_zones(crank: Crank, store: str | Path | None = None, progress: Callable[[str], None] | None = None) -> dict:
     """Every distinct throw's fillet zones and every drilled kind of section's bar zone of ``crank``,
     from the store or computed once each (and stored): ``{("throw", i): [4 zones], ("bar", kind):
@@ -411,7 +422,7 @@ def crank_zones(crank: Crank, store: str | Path | None = None, progress: Callabl
         if key not in seen:
             if not (_folder(store) / f"{key}.npz").exists():
                 say(f"  stress recovery: throw {i + 1} under six unit end loads (static 3D FE) ...")
-            seen[key] = stored_zones(key, lambda i=i: throw_zones(crank, i), store)
+            seen[key] = stored_throw_zones(crank, i, store)
         out[("throw", i)] = seen[key]
     for kind, (D, d, bore) in _bar_sections(crank).items():
         key = bore_zone_key(D, d, bore, crank.material)

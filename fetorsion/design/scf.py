@@ -132,16 +132,21 @@ def nominal_shear(torque, diameter: float, bore: float = 0.0):
     return 16.0 * np.asarray(torque) * diameter / (math.pi * (diameter**4 - bore**4))
 
 
-def element_node_stresses(sol, material, elements=None) -> tuple[np.ndarray, np.ndarray]:
-    """Each element's stress at its own ten nodes, from its P2 gradient there: (9, E·10) tensor
-    components (Pa, element-major) and the DOF-numbered node of each column. ``elements``: those
-    elements only (default all)."""
+def nodes_basis(skfem_mesh, elements=None):
+    """The scalar P2 basis of ``skfem_mesh`` (``elements`` only, default all) whose quadrature
+    "points" are each element's own ten nodes: the gradient there, element by element."""
     from skfem import Basis, ElementTetP2
 
     elem = ElementTetP2()
-    # Quadrature "points" at the element's own ten nodes: the gradient there, element by element.
-    at_nodes = Basis(sol.skfem_mesh, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)),
-                     **({} if elements is None else {"elements": elements}))
+    return Basis(skfem_mesh, elem, quadrature=(elem.doflocs.T, np.full(10, 1.0 / 60.0)),
+                 **({} if elements is None else {"elements": elements}))
+
+
+def element_node_stresses(sol, material, elements=None, basis=None) -> tuple[np.ndarray, np.ndarray]:
+    """Each element's stress at its own ten nodes, from its P2 gradient there: (9, E·10) tensor
+    components (Pa, element-major) and the DOF-numbered node of each column. ``elements``: those
+    elements only (default all); ``basis``: :func:`nodes_basis` of them, built already."""
+    at_nodes = nodes_basis(sol.skfem_mesh, elements) if basis is None else basis
     u = sol.u.reshape(-1, 3)
     grad = np.stack([at_nodes.interpolate(u[:, c]).grad for c in range(3)])  # (comp, dir, E, 10)
     eps = 0.5 * (grad + grad.transpose(1, 0, 2, 3))

@@ -283,10 +283,15 @@ def torsional_stiffness_fe(description: Crank, mesh_size: float | None = None,
 
 #: Bending in the throw's plane (about z) at the loaded face, N·m.
 BENDING_LOAD = (0.0, 0.0, 0.0, 0.0, 0.0, TORQUE)
+#: The six unit end loads (Fx, Fy, Fz, Mx, My, Mz) at the loaded face's centre, N and N·m: the
+#: ``fe`` fatigue path's stress recovery (:func:`fetorsion.design.recovery.throw_zones`).
+UNIT_LOADS = tuple(tuple(float(i == j) for i in range(6)) for j in range(6))
 #: The end loads every :func:`end_loaded_fe` solves from its one factorisation: torsion (the web
-#: stiffness) and bending in the throw's plane (with torsion, the fillet SCFs of
-#: :func:`fetorsion.design.scf.throw_scfs`); one more right-hand side costs next to nothing.
-END_LOADS = (TORSION_LOAD, BENDING_LOAD)
+#: stiffness), bending in the throw's plane (with torsion, the fillet SCFs of
+#: :func:`fetorsion.design.scf.throw_scfs`) and the six unit loads (the stress recovery). A
+#: right-hand side more costs a pair of triangular solves; a second mesh and factorisation of the
+#: same throw cost 15-40 s (issue 55: one factorisation wherever the matrix is the same).
+END_LOADS = (TORSION_LOAD, BENDING_LOAD, *UNIT_LOADS)
 
 
 @dataclass
