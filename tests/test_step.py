@@ -462,12 +462,12 @@ def test_a_cad_cranks_fe_scfs_are_read_where_its_fillets_are(written, oval, tmp_
 def test_a_crank_whose_webs_are_not_the_built_outline_runs_end_to_end(built_chain_gap, tmp_path):
     """The Renault with a lightening hole through each web's counterweight, as STEP: its mass is
     the built one less the holes' (π r² t ρ each, 1e-6: OCC's integration); fetorsion run's FE
-    and bearings steps run on it; its FE f1 at 20 and 14 mm agree within 0.5 % (the issue's
-    convergence bound); and its 17-DOF chain with `fe` web stiffness (throw FE on its own slabs,
-    inertias from its own solid) sits as far from its FE f1 in bearings as the built crank's
-    does, within one percentage point (the issue's bound)."""
+    and bearings steps run on it; and its 17-DOF chain with `fe` web stiffness (throw FE on its
+    own slabs, inertias from its own solid) sits as far from its FE f1 in bearings as the built
+    crank's does, within one percentage point (the issue's bound). The issue's convergence bound
+    (f1 at 20 and 14 mm within 0.5 %) is held on the oval-webbed crank below, whose undercuts
+    and chamfers make it the harder mesh of the two (a second 14 mm modal here cost 50 s)."""
     from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
-    from fetorsion.fe.crankfe import run_modal
     from fetorsion.solid.geometry import crank_mass_properties
 
     built = fetorsion.load(RENAULT)
@@ -478,10 +478,7 @@ def test_a_crank_whose_webs_are_not_the_built_outline_runs_end_to_end(built_chai
     assert removed == pytest.approx(holes * 1e-9 * built.material.density, rel=1e-6)
     steps = tuple(s for s in DEFAULT_STEPS if s[1] in ("fe", "bearings"))
     outcome = run(src, tmp_path / "lightened", steps=steps, options=RunOptions(mesh_size=0.02, html=False))
-    coarse = outcome.fe.modal.first_torsional()
     assert "lightened.step" in (tmp_path / "lightened" / "report.md").read_text()
-    fine = run_modal(lightened, 0.014, modes=8).first_torsional()
-    assert fine == pytest.approx(coarse, rel=5e-3)
     assert abs(outcome.bearings.chain["fe"]["vs_bearings"] - built_chain_gap) < 0.01
 
 
