@@ -218,36 +218,11 @@ def least_squares_fit(model: FrequencyModel, inputs, measured_hz, sigma_hz) -> L
                            float(np.sum(((f[:m] - measured_hz) / sigma_hz) ** 2)), model.evaluations - start)
 
 
-def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start: LeastSquaresFit, walkers: int,
-                     steps: int, burn: int, seed: int) -> Posterior:
-    """Sample the posterior of the inputs with ``emcee`` (see :mod:`fetorsion.studies.calibration`).
-
-    Parameters
-    ----------
-    model : FrequencyModel
-    inputs : list of CalibrationInput
-    measured_hz, sigma_hz : ndarray
-        Hz.
-    start : LeastSquaresFit
-        The walkers start from its Laplace approximation, clipped into the ranges.
-    walkers, steps, burn : int
-        Ensemble size, steps kept, steps of burn-in discarded.
-    seed : int
-        Of the start and of the sampler's moves.
-
-    Returns
-    -------
-    Posterior
-    """
-    import emcee
+def _log_posterior(model, priors, lo, width, measured_hz, sigma_hz):
+    """The sampler's log posterior of every walker's z at once: [(log p, the model's frequencies)]."""
     from scipy.special import expit
 
-    m, d = measured_hz.size, len(inputs)
-    priors = [i.prior() for i in inputs]
-    lo = np.array([i.low for i in inputs])
-    hi = np.array([i.high for i in inputs])
-
-    width = hi - lo
+    m = measured_hz.size
 
     def log_prob(z):
         # The walkers move in z = logit of each input's place in its range: unbounded, so that no
@@ -273,6 +248,39 @@ def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start
                 continue
             out.append((float(lp[k]) - 0.5 * float(np.sum(((f[:m] - measured_hz) / sigma_hz) ** 2)), f))
         return out
+
+    return log_prob
+
+
+def sample_posterior(model: FrequencyModel, inputs, measured_hz, sigma_hz, start: LeastSquaresFit, walkers: int,
+                     steps: int, burn: int, seed: int) -> Posterior:
+    """Sample the posterior of the inputs with ``emcee`` (see :mod:`fetorsion.studies.calibration`).
+
+    Parameters
+    ----------
+    model : FrequencyModel
+    inputs : list of CalibrationInput
+    measured_hz, sigma_hz : ndarray
+        Hz.
+    start : LeastSquaresFit
+        The walkers start from its Laplace approximation, clipped into the ranges.
+    walkers, steps, burn : int
+        Ensemble size, steps kept, steps of burn-in discarded.
+    seed : int
+        Of the start and of the sampler's moves.
+
+    Returns
+    -------
+    Posterior
+    """
+    import emcee
+    from scipy.special import expit
+
+    d = len(inputs)
+    lo = np.array([i.low for i in inputs])
+    hi = np.array([i.high for i in inputs])
+    width = hi - lo
+    log_prob = _log_posterior(model, [i.prior() for i in inputs], lo, width, measured_hz, sigma_hz)
 
     rng = np.random.default_rng(seed)
     # The Laplace approximation truncated to the ranges, less a sliver of each (a triangular prior

@@ -290,7 +290,7 @@ UNIT_LOADS = tuple(tuple(float(i == j) for i in range(6)) for j in range(6))
 #: stiffness), bending in the throw's plane (with torsion, the fillet SCFs of
 #: :func:`fetorsion.design.scf.throw_scfs`) and the six unit loads (the stress recovery). A
 #: right-hand side more costs a pair of triangular solves; a second mesh and factorisation of the
-#: same throw cost 15-40 s (issue 55: one factorisation wherever the matrix is the same).
+#: same throw cost 15-40 s.
 END_LOADS = (TORSION_LOAD, BENDING_LOAD, *UNIT_LOADS)
 
 
