@@ -166,6 +166,13 @@ class RunContext:
             self.built["fillet_scf"] = scf
         return self.built.get("fillet_scf")
 
+    def throws_stored(self) -> bool:
+        """True when every throw's web stiffness is stored (the lumped ``fe`` column needs no wait
+        on the background's throw FE)."""
+        from ..webs.throwfe import stored_throw_torsion, throw_of
+
+        return all(stored_throw_torsion(throw_of(self.crank, i)) is not None for i in range(self.crank.throws))
+
     def parts(self, method: str | None = None):
         """The crank cut into its parts with ``method``'s web stiffness (built once; None: the
         crank's own, :func:`~fetorsion.webs.methods.crank_web_method`). With the
@@ -180,8 +187,8 @@ class RunContext:
         method = method or crank_web_method(self.crank)
 
         def build():
-            if method == "fe":
-                self.throw_fe()
+            if method == "fe" and not self.throws_stored():
+                self.throw_fe()  # else the background's stress recovery is left to the verdict's wait
             if method == "fe-held" and "condensed" not in self.built and self.options.no_fe:
                 from ..webs.throwfe import held_stiffnesses_stored
 
