@@ -77,7 +77,10 @@ def throw_fe_results(crank: Crank, scfs: bool = True, recovery: bool = True) -> 
     torsion = {}
     for i in range(len(crank.pins)):
         throw = throw_of(crank, i)
-        torsion.setdefault(throw_key(throw, None), throw_torsion(throw))
+        key = throw_key(throw, None)  # the zones' key reads the same throw: one FE per distinct throw
+        if key in torsion:
+            continue
+        torsion[key] = throw_torsion(throw)
         if zones:
             try:  # while the throw's FE (mesh, factorisation, end loads) is the one kept in memory
                 stored_throw_zones(crank, i)
