@@ -89,3 +89,40 @@ def test_a_maximum_below_the_ambient_is_refused_by_name():
     data["chain"]["couplings"][0].update(permissible_power_w=P_KV, ambient_c=AMBIENT, max_temperature_c=30.0)
     with pytest.raises(DescriptionError, match="chain.couplings.1.max_temperature_c"):
         parse_network(data, "line")
+
+
+# a viscous damper on the engine station: ring J_D on a dashpot C_D (N m s/rad) to it
+J_D, C_D = 5.0, 4000.0
+
+
+def heat_with_damper_by_hand(t: float) -> np.ndarray:
+    """heat_by_hand's line with the ring as a fourth coordinate: (k − J1 ω² + iωC_D) θ1 − iωC_D θ_D on
+    the engine's row, −iωC_D θ1 + (iωC_D − J_D ω²) θ_D on the ring's."""
+    C, psi = sheet(t)
+    k = C * (1 + 1j * psi / (2 * math.pi))
+    c = 2 * QR * (ND / NR) ** 2 / (ND * math.pi / 30)
+    out = []
+    for n in RPM:
+        w = Z * n * math.pi / 30
+        d = 1j * w * C_D
+        A = np.array([[k - J1 * w**2 + d, -k, 0, -d], [-k, k + KS - JG * w**2, -KS, 0],
+                      [0, -KS, KS - J2 * w**2 + 1j * c * w, 0], [-d, 0, 0, d - J_D * w**2]])
+        theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2, 0])
+        out.append(Z * n / 60 * psi * abs(C * (theta[0] - theta[1])) ** 2 / (2 * C))
+    return np.array(out)
+
+
+def test_the_tvc_response_carries_the_networks_dampers():
+    """A TVC configuration (normal running) solves the line with its [[dampers]]: the coupling's heat
+    with a viscous damper on the engine equals the hand calculation with the ring written out (1e-9),
+    and the damper moves it (the TVC once left the network's dampers out)."""
+    from fetorsion.design.tvc_cases import evaluate_case
+
+    data = copy.deepcopy(LINE)
+    data["dampers"] = [{"type": "viscous", "at": "front", "ring_inertia_kgm2": J_D, "damping_nms_per_rad": C_D}]
+    net = parse_network(data, "line")
+    case = evaluate_case(net, lambda n: propeller_setup(n, rpm=RPM, damping_ratio=0.0), "normal running")
+    by_hand = heat_with_damper_by_hand(65.0)
+    assert case.couplings.heat_w[:, 0] == pytest.approx(by_hand, rel=1e-9)
+    assert np.abs(by_hand / heat_by_hand(65.0) - 1).max() > 0.01
+    assert case.response.damper_names == [net.dampers[0].name]

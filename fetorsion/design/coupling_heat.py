@@ -147,8 +147,9 @@ def at_temperatures(net: Network, temperatures_c: Sequence[float] | np.ndarray) 
 def coupling_loads(net: Network, setup: ResponseSetup,
                    temperatures_c: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.ndarray, ResponseResult]:
     """(heat W (speeds, couplings), half-range torque N·m (speeds, couplings), the response) of the
-    network's couplings at ``temperatures_c``, from the forced response of ``setup``."""
-    response = solve_response(setup)
+    network's couplings at ``temperatures_c``, from the forced response of ``setup`` with the
+    network's ``[[dampers]]``."""
+    response = solve_response(setup, net.dampers)
     theta = response.theta
     torque = section_torques(setup, theta)  # (speeds, sections, orders), the elastic k Δθ
     first = len(net.shafts) - len(net.couplings)

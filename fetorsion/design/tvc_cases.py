@@ -29,8 +29,9 @@ from .shaft_verdict import ShaftVerdict, shaft_verdict
 class TVCCase:
     """One configuration: ``name``, ``misfire`` (0-based cylinder, None: normal running), the
     ``network`` at its couplings' settled temperatures, its ``response`` and verdicts (None where the
-    line has no shaft section, coupling, or gear and propeller). Read back from results.json, a
-    misfire's ``response`` is None (the file keeps normal running's alone)."""
+    line has no shaft section, coupling, or gear and propeller), and ``damper_heat_w``: each of the
+    network's ``[[dampers]]``' largest dissipated power over the speed range (W, in its order). Read
+    back from results.json, a misfire's ``response`` is None (the file keeps normal running's alone)."""
 
     name: str
     misfire: int | None
@@ -39,6 +40,7 @@ class TVCCase:
     shafts: ShaftVerdict | None
     couplings: CouplingHeat | None
     hammering: GearHammering | None
+    damper_heat_w: tuple[float, ...] = ()
 
     @property
     def severity(self) -> float:
@@ -61,11 +63,12 @@ class TVCCase:
                 "coupling_temperature_c": max((r["temperature_c"] for r in rows), default=None),
                 "coupling_heat_w": max((r["heat_w"] for r in rows), default=None),
                 "coupling_torque_nm": max((r["torque_nm"] for r in rows), default=None),
-                "hammering": self.hammering.verdict if self.hammering else None}
+                "hammering": self.hammering.verdict if self.hammering else None,
+                "largest_damper_heat_w": max(self.damper_heat_w, default=None)}
 
     def to_dict(self) -> dict:
-        """JSON-ready: the summary, and the verdicts' own dicts."""
-        return {**self.summary(), "shafts": self.shafts.to_dict() if self.shafts else None,
+        """JSON-ready: the summary, each damper's heat, and the verdicts' own dicts."""
+        return {**self.summary(), "damper_heat_w": list(self.damper_heat_w), "shafts": self.shafts.to_dict() if self.shafts else None,
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None}
 
@@ -85,10 +88,11 @@ def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], na
     heat = coupling_heat(net, setup_of) if net.couplings else None
     settled = at_temperatures(net, heat.temperature_c) if heat else net
     setup = setup_of(settled)
-    response = heat.response if heat else solve_response(setup)
+    response = heat.response if heat else solve_response(setup, net.dampers)
     shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
     hammer = gear_hammering(settled, setup, response.theta) if net.gears and net.propellers else None
-    return TVCCase(name, misfire, settled, response, shafts, heat, hammer)
+    dampers = tuple(float(p) for p in response.damper_power_w.sum(axis=2).max(axis=0)) if net.dampers else ()
+    return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers)
 
 
 def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:

@@ -83,13 +83,14 @@ class TVCOutcome:
     campbell: TVCCampbell | None = None
 
     def to_dict(self) -> dict:
-        """results.json's ``tvc`` entry: normal running's response and verdicts, each misfire, the passages,
+        """results.json's ``tvc`` entry: normal running's response, verdicts and dampers' heat, each misfire, the passages,
         the mode table, the modes at the settled temperatures, the Campbell diagram's data and the assumptions
         (:func:`fetorsion.report.load.tvc_outcome` reads it back)."""
         worst = self.worst_misfire
         return {"response": self.response.to_dict(), "shafts": self.shafts.to_dict() if self.shafts else None,
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None,
+                "damper_heat_w": list(self.normal.damper_heat_w) if self.normal else [],
                 "misfires": [c.to_dict() for c in self.misfires], "misfire_note": self.misfire_note,
                 "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
                 "barred_passages": [p.to_dict() for p in self.passages],

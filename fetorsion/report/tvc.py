@@ -27,7 +27,30 @@ def mass_elastic_lines(net: Network) -> list[str]:
                                        f"{sec.tensile_strength / 1e6:.0f} N/mm², {sec.feature} (C_K {sec.ck:g})")
         lines.append(f"| {net.labels[sh.i]} – {b} | {sh.stiffness:.6g} | {sh.loss_factor:.4g} | {what} |")
     lines += [f"| {net.labels[g.i]} – {net.labels[g.j]} | gear, ratio {g.ratio:g} | | |" for g in net.gears]
+    if net.dampers:
+        lines += ["", "| damper | kind | on | ring inertia [kg m²] | housing/hub [kg m²] | stiffness [N m/rad] | "
+                  "damping [N m s/rad] | loss factor |", "|---|---|---|---|---|---|---|---|"]
+        lines += [f"| {d.name} | {d.kind} | {d.at} | {d.ring_inertia:.6g} | {d.hub_inertia:.6g} | {d.stiffness:.6g} | "
+                  f"{d.damping:.6g} | {d.loss_factor:.4g} |" for d in net.dampers]
     return lines
+
+
+def damper_lines(outcome: TVCOutcome) -> list[str]:
+    """Each damper's largest heat over the speed range, normal running and the worst misfire, against
+    the heat its maker allows where the description states it."""
+    dampers = outcome.network.dampers
+    if not dampers:
+        return []
+    worst = outcome.worst_misfire
+    lines = ["### Dampers: heat", "", "| damper | normal running [W] | " + (f"{worst.name} [W] | " if worst else "")
+             + "permissible [W] | verdict |", "|---|---|" + "---|" * bool(worst) + "---|---|"]
+    for k, d in enumerate(dampers):
+        heats = [outcome.normal.damper_heat_w[k]] + ([worst.damper_heat_w[k]] if worst else [])
+        verdict = "not judged (no permissible heat stated)" if not d.allowed_power else (
+            "within" if max(heats) <= d.allowed_power else "EXCEEDED")
+        lines.append(f"| {d.name} | " + " | ".join(f"{h:.1f}" for h in heats)
+                     + f" | {_cell(d.allowed_power or None, '.0f')} | {verdict} |")
+    return lines + [""]
 
 
 def _cell(v, fmt: str) -> str:
@@ -40,15 +63,17 @@ def misfire_lines(outcome: TVCOutcome) -> list[str]:
         return ["### Misfire", "", f"Not computed: {outcome.misfire_note}.", ""]
     if not outcome.misfires:
         return []
+    dampers = bool(outcome.network.dampers)
     lines = ["### Normal running and misfire", "",
              "| configuration | largest τ/τ_C | barred ranges | shafts | coupling °C | coupling heat [W] | "
-             "coupling torque [N m] | gears |", "|---|---|---|---|---|---|---|---|"]
+             "coupling torque [N m] | gears |" + " damper heat [W] |" * dampers, "|---|---|---|---|---|---|---|---|"
+             + "---|" * dampers]
     for case in (outcome.normal, *outcome.misfires):
         r = case.summary()
         lines.append(f"| {r['case']} | {_cell(r['largest_tau_over_tau_c'], '.3f')} | {r['barred'] or '–'} | "
                      f"{r['shaft_verdict'] or '–'} | {_cell(r['coupling_temperature_c'], '.1f')} | "
                      f"{_cell(r['coupling_heat_w'], '.1f')} | {_cell(r['coupling_torque_nm'], '.0f')} | "
-                     f"{r['hammering'] or '–'} |")
+                     f"{r['hammering'] or '–'} |" + f" {_cell(r['largest_damper_heat_w'], '.1f')} |" * dampers)
     worst = outcome.worst_misfire
     lines += ["", f"Worst misfire: {worst.name} (each misfiring cylinder runs its motored cycle; the couplings "
               "at the temperature their heat holds in that configuration).", ""]
@@ -104,6 +129,6 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.hammering is not None:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
-    lines += misfire_lines(outcome) + passage_lines(outcome)
+    lines += damper_lines(outcome) + misfire_lines(outcome) + passage_lines(outcome)
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
