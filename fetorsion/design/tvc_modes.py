@@ -126,7 +126,8 @@ def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major
             ax.annotate(f"{q:g}", (top, q * top / 60), fontsize=6, color="0.3", xytext=(2, 0),
                         textcoords="offset points", va="center")
     for q in blade_orders:
-        ax.plot(n, q * n / 60, color="tab:blue", ls="--", lw=1.2, zorder=1, label=f"blade order {q:.4g}")
+        ax.plot(n, q * n / 60, color="tab:blue", ls="--", lw=1.2, zorder=1,
+                label=f"propeller blade rate (engine order {q:.4g})")
     for r in rows:
         ax.axhline(r.frequency_hz, color="tab:green", lw=1.0, zorder=2)
         ax.annotate(f"mode {r.number}: {r.frequency_hz:.1f} Hz", (0.99 * top, r.frequency_hz), fontsize=7, ha="right",
