@@ -268,7 +268,9 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     pat = assembly.block_pattern(basis)
     mat = crank.material
     K = assembly.stiffness(basis, mat.youngs_modulus, mat.poisson_ratio, pat)
-    M = assembly.mass(basis, mat.density, pat)
+    # the mass's diagonal components alone (a third of K's entries): the reduction, the shifted
+    # matrix and every product with M read no explicit zeros
+    M = assembly.mass(basis, mat.density, pat, compact=True)
     w = node_masses(basis, mat.density)
     m_scalar = sp.csr_array(M[0::3][:, 0::3])
     del basis, pat
@@ -290,6 +292,10 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
                                           shape=(6, Kc.shape[0]))
         G = sp.vstack([pick(0), (G[6:-6] @ T), pick(6)]).tocsr()
         groups = red.groups()
+    # the mesh's K and M are not needed past here (but as the caller's kept stiffness): freed
+    # before the factorisation, the run's peak (1.2 GiB at 664 k DOF)
+    K_mesh = K if keep_mesh_stiffness else None
+    del K, M
     t2 = time.perf_counter()
     stage("factorising")
     itf = interface(Kc, Mc, G, default_shift(tm, mat), backend, groups=groups)
@@ -297,5 +303,5 @@ def build_system(crank: Crank, mesh_size: float = DEFAULT_MESH_SIZE, mesh: Crank
     positions = np.array([mst.position for mst in masters])
     timings = {"meshing": cm.quality.seconds if cm.quality and mesh is None else t1 - t0, "assembly": t2 - t1,
                **itf.timings_s}
-    return CrankSystem(crank, cm, labels, positions, itf, T, K if keep_mesh_stiffness else None, dof_of_node, xyz, w,
+    return CrankSystem(crank, cm, labels, positions, itf, T, K_mesh, dof_of_node, xyz, w,
                        attachment_masses(crank, labels, positions), end_ties, timings, free, m_scalar)
