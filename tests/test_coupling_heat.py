@@ -39,7 +39,7 @@ def sheet(t: float) -> tuple[float, float]:
     return 262.5e3 - s * 78.75e3, 1.13 - s * 0.34
 
 
-def heat_by_hand(t: float) -> np.ndarray:
+def heat_by_hand(t: float, j1: float = J1) -> np.ndarray:
     """P (W) at each speed: θ = A⁻¹ (0, 0, F), A = K* − ω²M + iωC_p with the coupling C(1 + iψ/2π);
     the elastic torque T = C (θ1 − θ2), P = f ψ T²/(2C), f = z n/60."""
     C, psi = sheet(t)
@@ -48,7 +48,7 @@ def heat_by_hand(t: float) -> np.ndarray:
     out = []
     for n in RPM:
         w = Z * n * math.pi / 30
-        A = np.array([[k - J1 * w**2, -k, 0], [-k, k + KS - JG * w**2, -KS], [0, -KS, KS - J2 * w**2 + 1j * c * w]])
+        A = np.array([[k - j1 * w**2, -k, 0], [-k, k + KS - JG * w**2, -KS], [0, -KS, KS - J2 * w**2 + 1j * c * w]])
         theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2])
         out.append(Z * n / 60 * psi * abs(C * (theta[0] - theta[1])) ** 2 / (2 * C))
     return np.array(out)
@@ -126,3 +126,28 @@ def test_the_tvc_response_carries_the_networks_dampers():
     assert case.couplings.heat_w[:, 0] == pytest.approx(by_hand, rel=1e-9)
     assert np.abs(by_hand / heat_by_hand(65.0) - 1).max() > 0.01
     assert case.response.damper_names == [net.dampers[0].name]
+
+
+def test_a_failed_damper_is_the_line_written_without_it():
+    """Each failed damper is a TVC configuration: its ring free is the line without the damper but
+    with its housing on the engine station, seized the line with housing and ring on it (the
+    coupling heat against the hand calculation of that three-inertia line, 1e-9); the states are
+    named, the configurations read back with their damper, and an unknown state is refused by name."""
+    from fetorsion.design.tvc_cases import TVCCase, damper_failure_cases, with_failed_damper
+    from fetorsion.errors import FetorsionError
+
+    housing = 2.0
+    data = copy.deepcopy(LINE)
+    data["dampers"] = [{"type": "viscous", "at": "front", "ring_inertia_kgm2": J_D, "damping_nms_per_rad": C_D,
+                        "housing_inertia_kgm2": housing}]
+    net = parse_network(data, "line")
+    cases = damper_failure_cases(net, lambda n: propeller_setup(n, rpm=RPM, damping_ratio=0.0))
+    assert [c.name for c in cases] == ["damper 'viscous' ring free", "damper 'viscous' seized"]
+    for case, added in zip(cases, (housing, housing + J_D)):
+        assert case.couplings.heat_w[:, 0] == pytest.approx(heat_by_hand(65.0, J1 + added), rel=1e-9)
+        assert case.network.dampers == () and case.damper == 0
+        back = TVCCase.from_dict(case.to_dict(), case.network)
+        assert (back.damper, back.damper_state, back.name) == (0, case.damper_state, case.name)
+    assert not np.allclose(cases[0].couplings.heat_w, cases[1].couplings.heat_w, rtol=1e-3)
+    with pytest.raises(FetorsionError, match="jammed"):
+        with_failed_damper(net, 0, "jammed")

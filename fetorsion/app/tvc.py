@@ -15,7 +15,7 @@ import numpy as np
 
 from ..description.chain_model import Network
 from ..design.barred_passage import barred_passages
-from ..design.tvc_cases import TVCCase, evaluate_case, misfire_cases, worst_case
+from ..design.tvc_cases import TVCCase, damper_failure_cases, evaluate_case, misfire_cases, worst_case
 from ..design.tvc_modes import ModeRow, TVCCampbell, mode_table
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
@@ -45,8 +45,8 @@ def misfires_of(net: Network) -> tuple[list[TVCCase], str]:
 
 def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges, gear
-    hammering, in normal running and in the misfire of each cylinder (results.json's ``tvc`` entry:
-    :meth:`TVCOutcome.to_dict`)."""
+    hammering, in normal running, in the misfire of each cylinder and with each damper failed
+    (results.json's ``tvc`` entry: :meth:`TVCOutcome.to_dict`)."""
     net = ctx.crank
     if not is_propulsion_line(net):
         return None
@@ -56,17 +56,20 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     normal = evaluate_case(net, tvc_setup, "normal running")
     misfires, why = misfires_of(net)
     worst = worst_case(misfires)
+    failed = damper_failure_cases(net, tvc_setup)
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
-    # the time-domain passage of each barred range: normal running's and the worst misfire's
-    passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else []))
-    rows, campbell = tvc_modes(normal, [normal, *misfires])
+    # the time-domain passage of each barred range: normal running's, the worst misfire's and each
+    # failed damper's (the restriction a ship runs under until the damper is mended)
+    passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else [])
+                     + [p for c in failed for p in barred_passages(c)])
+    rows, campbell = tvc_modes(normal, [normal, *misfires, *failed])
     outcome = TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
                          TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
                          tuple(assumptions(net, response)), hammer, TVC_IMAGES["hammering"] if hammer else "",
                          normal, tuple(misfires), worst, why,
                          TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
                          passages, tuple(passage_image(k) for k in range(len(passages))),
-                         tuple(rows), TVC_IMAGES["campbell"], campbell)
+                         tuple(rows), TVC_IMAGES["campbell"], campbell, tuple(failed))
     for name, draw in tvc_figures(outcome).items():
         ctx.save(draw().figure, name)
     ctx.results["tvc"] = outcome.to_dict()
@@ -136,6 +139,10 @@ def assumptions(net: Network, response) -> list[str]:
     if net.couplings:
         out.append("Coupling temperature: T = T_amb + (T_max − T_amb) P/P_KV with P the largest heat over the speeds; "
                    "the sheet's C and ψ linear between its two temperatures")
+    if net.dampers:
+        out.append("A failed damper: each damper in turn with its ring free (the housing or hub left on its station) "
+                   "and, a viscous one, seized (its ring turning with its housing), no damping from it; the shafts' "
+                   "limits and barred ranges as in normal running ([LRNavalTV] Ch 1 §1.3)")
     if net.gears and net.propellers:
         out.append("Gear hammering: mesh torque from the gear's own equilibrium (the modal damping left out), against "
                    "the propeller law's mean torque referred by power, no gear losses")

@@ -7,17 +7,24 @@ engine's synthetic cycle, :func:`fetorsion.response.forced.misfire_harmonics`), 
 before (:meth:`fetorsion.response.forced.ResponseSetup.with_misfire`); the propeller's blade orders
 are unchanged. The worst misfire is the one with the largest τ/τ_C of any shaft section (without
 sections, the largest coupling torque against its permissible, else the largest section torque).
+
+A damper that fails is a configuration too ([LRNavalTV] Ch 1 §1.3.1: a design takes account of
+component malfunction; §1.3.2: where a limit is exceeded, speed is restricted), one damper at a
+time in each of :data:`DAMPER_STATES`: its ring free (the silicone lost, the rubber torn: the ring
+no longer coupled, the housing or hub still on its station) and, for a viscous damper, seized (the
+silicone thickened until the ring turns with its housing: both on the station, no damping).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..description.chain_model import Network
 from ..errors import FetorsionError
+from ..lumped_model.network import speed_factors
 from ..response.forced import ResponseResult, ResponseSetup, misfire_harmonics, solve_response
 from ..results import from_fields
 from .coupling_heat import CouplingHeat, at_temperatures, coupling_heat
@@ -41,6 +48,10 @@ class TVCCase:
     couplings: CouplingHeat | None
     hammering: GearHammering | None
     damper_heat_w: tuple[float, ...] = ()
+    #: A failed damper's configuration: its index in the described network's dampers (0-based) and
+    #: state (:data:`DAMPER_STATES`); None and "" otherwise.
+    damper: int | None = None
+    damper_state: str = ""
 
     @property
     def severity(self) -> float:
@@ -68,7 +79,9 @@ class TVCCase:
 
     def to_dict(self) -> dict:
         """JSON-ready: the summary, each damper's heat, and the verdicts' own dicts."""
-        return {**self.summary(), "damper_heat_w": list(self.damper_heat_w), "shafts": self.shafts.to_dict() if self.shafts else None,
+        return {**self.summary(), "damper_heat_w": list(self.damper_heat_w),
+                "failed_damper": None if self.damper is None else self.damper + 1, "damper_state": self.damper_state,
+                "shafts": self.shafts.to_dict() if self.shafts else None,
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None}
 
@@ -76,14 +89,15 @@ class TVCCase:
     def from_dict(cls, d: Mapping[str, object], network: Network | None = None,
                   response: ResponseResult | None = None) -> "TVCCase":
         """The case back from its :meth:`to_dict`; its ``network`` and ``response`` given (not kept in it)."""
-        cylinder = d["misfire_cylinder"]
+        cylinder, failed = d["misfire_cylinder"], d.get("failed_damper")
         heat = None if d["couplings"] is None else CouplingHeat.from_dict(d["couplings"], response)
         return from_fields(cls, d, {"name": "case"}, misfire=None if cylinder is None else cylinder - 1,
-                           network=network, response=response, couplings=heat)
+                           network=network, response=response, couplings=heat,
+                           damper=None if failed is None else failed - 1)
 
 
 def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], name: str,
-                  misfire: int | None = None) -> TVCCase:
+                  misfire: int | None = None, damper: int | None = None, damper_state: str = "") -> TVCCase:
     """One configuration of ``net`` (module docs), its response from ``setup_of`` (network → setup)."""
     heat = coupling_heat(net, setup_of) if net.couplings else None
     settled = at_temperatures(net, heat.temperature_c) if heat else net
@@ -92,7 +106,7 @@ def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], na
     shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
     hammer = gear_hammering(settled, setup, response.theta) if net.gears and net.propellers else None
     dampers = tuple(float(p) for p in response.damper_power_w.sum(axis=2).max(axis=0)) if net.dampers else ()
-    return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers)
+    return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers, damper, damper_state)
 
 
 def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:
@@ -114,3 +128,39 @@ def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) ->
 def worst_case(cases: list[TVCCase]) -> TVCCase | None:
     """The case of the largest :attr:`TVCCase.severity` (None: no case)."""
     return max(cases, key=lambda c: c.severity, default=None)
+
+
+#: A failed damper's states, each a configuration (module docs); "seized" for a viscous damper only.
+DAMPER_STATES = ("ring free", "seized")
+
+
+def damper_station(net: Network, at: str) -> int:
+    """The station (index of ``net.labels``) a damper ``at`` acts on: ``front`` the first, ``rear``
+    the last coordinate at the engine's speed, else the named station."""
+    if at == "front":
+        return 0
+    if at == "rear":
+        from ..lumped_model.network import network_matrices
+
+        masters = network_matrices(net).masters
+        f = speed_factors(net)[masters]
+        return int(masters[np.flatnonzero(np.isclose(f, 1.0))[-1]])
+    return list(net.labels).index(at)
+
+
+def with_failed_damper(net: Network, k: int, state: str) -> Network:
+    """``net`` with its damper ``k`` failed in ``state`` (module docs): the damper taken out and its
+    housing or hub (and, seized, its ring) added to its station's inertia."""
+    if state not in DAMPER_STATES:
+        raise FetorsionError(f"damper state {state!r}: choose from {', '.join(DAMPER_STATES)}")
+    d = net.dampers[k]
+    inertias = list(net.inertias)
+    inertias[damper_station(net, d.at)] += d.hub_inertia + (d.ring_inertia if state == "seized" else 0.0)
+    return replace(net, dampers=net.dampers[:k] + net.dampers[k + 1:], inertias=tuple(inertias))
+
+
+def damper_failure_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:
+    """Each damper of ``net`` failed in each of its states, one at a time (module docs)."""
+    return [evaluate_case(with_failed_damper(net, k, state), setup_of, f"damper '{d.name}' {state}",
+                          damper=k, damper_state=state)
+            for k, d in enumerate(net.dampers) for state in DAMPER_STATES if state != "seized" or d.kind == "viscous"]

@@ -267,7 +267,7 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
     from ..design.coupling_heat import at_temperatures
     from ..design.gear_hammering import GearHammering
     from ..design.shaft_verdict import ShaftVerdict
-    from ..design.tvc_cases import TVCCase
+    from ..design.tvc_cases import TVCCase, with_failed_damper
     from ..design.tvc_modes import ModeRow, TVCCampbell
     from ..lumped_model.lumped import LumpedResult
     from ..response.forced import ResponseResult
@@ -279,7 +279,9 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
 
     def settled(case: dict) -> Network:
         rows = case["couplings"]["rows"] if case.get("couplings") else []
-        return at_temperatures(net, [r["temperature_c"] for r in rows]) if rows else net
+        described = net if case.get("failed_damper") is None else \
+            with_failed_damper(net, case["failed_damper"] - 1, case["damper_state"])
+        return at_temperatures(described, [r["temperature_c"] for r in rows]) if rows else described
 
     response = ResponseResult.from_dict(d["response"])
     normal = TVCCase.from_dict({"case": "normal running", "misfire_cylinder": None, **d}, settled(d), response)
@@ -293,7 +295,8 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
                       worst, d["misfire_note"], TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
                       passages, tuple(passage_image(k) for k in range(len(passages))),
                       tuple(ModeRow.from_dict(r) for r in d["modes"]), TVC_IMAGES["campbell"],
-                      TVCCampbell.from_dict(d["campbell"]))
+                      TVCCampbell.from_dict(d["campbell"]),
+                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("failed_dampers", [])))
 
 
 def _tvc(crank, data: dict[str, object]) -> TVCOutcome | Skipped | None:

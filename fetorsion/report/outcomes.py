@@ -81,6 +81,8 @@ class TVCOutcome:
     campbell_image: str = ""
     #: What the Campbell diagram draws besides the modes (None: not drawn).
     campbell: TVCCampbell | None = None
+    #: Each damper failed in each of its states (:func:`fetorsion.design.tvc_cases.damper_failure_cases`).
+    failed_dampers: tuple[TVCCase, ...] = ()
 
     def to_dict(self) -> dict:
         """results.json's ``tvc`` entry: normal running's response, verdicts and dampers' heat, each misfire, the passages,
@@ -92,6 +94,7 @@ class TVCOutcome:
                 "hammering": self.hammering.to_dict() if self.hammering else None,
                 "damper_heat_w": list(self.normal.damper_heat_w) if self.normal else [],
                 "misfires": [c.to_dict() for c in self.misfires], "misfire_note": self.misfire_note,
+                "failed_dampers": [c.to_dict() for c in self.failed_dampers],
                 "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
                 "barred_passages": [p.to_dict() for p in self.passages],
                 "modes": [r.to_dict() for r in self.mode_rows], "network_modes": self.modes.to_dict(),

@@ -63,23 +63,39 @@ def misfire_lines(outcome: TVCOutcome) -> list[str]:
         return ["### Misfire", "", f"Not computed: {outcome.misfire_note}.", ""]
     if not outcome.misfires:
         return []
-    dampers = bool(outcome.network.dampers)
-    lines = ["### Normal running and misfire", "",
-             "| configuration | largest τ/τ_C | barred ranges | shafts | coupling °C | coupling heat [W] | "
-             "coupling torque [N m] | gears |" + " damper heat [W] |" * dampers, "|---|---|---|---|---|---|---|---|"
-             + "---|" * dampers]
-    for case in (outcome.normal, *outcome.misfires):
-        r = case.summary()
-        lines.append(f"| {r['case']} | {_cell(r['largest_tau_over_tau_c'], '.3f')} | {r['barred'] or '–'} | "
-                     f"{r['shaft_verdict'] or '–'} | {_cell(r['coupling_temperature_c'], '.1f')} | "
-                     f"{_cell(r['coupling_heat_w'], '.1f')} | {_cell(r['coupling_torque_nm'], '.0f')} | "
-                     f"{r['hammering'] or '–'} |" + f" {_cell(r['largest_damper_heat_w'], '.1f')} |" * dampers)
+    lines = ["### Normal running and misfire", ""] + configuration_rows((outcome.normal, *outcome.misfires))
     worst = outcome.worst_misfire
     lines += ["", f"Worst misfire: {worst.name} (each misfiring cylinder runs its motored cycle; the couplings "
               "at the temperature their heat holds in that configuration).", ""]
     if worst.shafts is not None:
         lines += ["```", worst.shafts.table(), "```", "", f"![]({outcome.misfire_shaft_image})", ""]
     return lines
+
+
+def configuration_rows(cases) -> list[str]:
+    """The configurations' table: one row per TVC case (τ/τ_C, barred ranges, couplings, gears and,
+    where the network has dampers, their heat)."""
+    dampers = any(c.network.dampers for c in cases) or any(c.damper is not None for c in cases)
+    lines = ["| configuration | largest τ/τ_C | barred ranges | shafts | coupling °C | coupling heat [W] | "
+             "coupling torque [N m] | gears |" + " damper heat [W] |" * dampers, "|---|---|---|---|---|---|---|---|"
+             + "---|" * dampers]
+    for case in cases:
+        r = case.summary()
+        lines.append(f"| {r['case']} | {_cell(r['largest_tau_over_tau_c'], '.3f')} | {r['barred'] or '–'} | "
+                     f"{r['shaft_verdict'] or '–'} | {_cell(r['coupling_temperature_c'], '.1f')} | "
+                     f"{_cell(r['coupling_heat_w'], '.1f')} | {_cell(r['coupling_torque_nm'], '.0f')} | "
+                     f"{r['hammering'] or '–'} |" + f" {_cell(r['largest_damper_heat_w'], '.1f')} |" * dampers)
+    return lines
+
+
+def failed_damper_lines(outcome: TVCOutcome) -> list[str]:
+    """Each damper failed in each of its states, one row each beside normal running ([LRNavalTV] Ch 1 §1.3)."""
+    if not outcome.failed_dampers:
+        return []
+    return (["### A failed damper", "", "Each damper in turn with its ring free (the silicone lost, the rubber torn: "
+             "the housing or hub left on its station) and, a viscous one, seized (its ring turning with its housing). "
+             "A barred range here is the restriction the line runs under until the damper is mended.", ""]
+            + configuration_rows((outcome.normal, *outcome.failed_dampers)) + [""])
 
 
 def mode_lines(outcome: TVCOutcome) -> list[str]:
@@ -129,6 +145,6 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.hammering is not None:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
-    lines += damper_lines(outcome) + misfire_lines(outcome) + passage_lines(outcome)
+    lines += damper_lines(outcome) + misfire_lines(outcome) + failed_damper_lines(outcome) + passage_lines(outcome)
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
