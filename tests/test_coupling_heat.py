@@ -39,17 +39,27 @@ def sheet(t: float) -> tuple[float, float]:
     return 262.5e3 - s * 78.75e3, 1.13 - s * 0.34
 
 
-def heat_by_hand(t: float, j1: float = J1) -> np.ndarray:
+def heat_by_hand(t: float, j1: float = J1, ring: tuple[float, float] | None = None) -> np.ndarray:
     """P (W) at each speed: θ = A⁻¹ (0, 0, F), A = K* − ω²M + iωC_p with the coupling C(1 + iψ/2π);
-    the elastic torque T = C (θ1 − θ2), P = f ψ T²/(2C), f = z n/60."""
+    the elastic torque T = C (θ1 − θ2), P = f ψ T²/(2C), f = z n/60. ``ring`` (J_d, c_d): a viscous
+    damper's ring on the engine as a fourth coordinate, (k − J1 ω² + iωc_d) θ1 − iωc_d θ_d on the
+    engine's row, −iωc_d θ1 + (iωc_d − J_d ω²) θ_d on the ring's."""
     C, psi = sheet(t)
     k = C * (1 + 1j * psi / (2 * math.pi))
     c = 2 * QR * (ND / NR) ** 2 / (ND * math.pi / 30)
     out = []
     for n in RPM:
         w = Z * n * math.pi / 30
-        A = np.array([[k - j1 * w**2, -k, 0], [-k, k + KS - JG * w**2, -KS], [0, -KS, KS - J2 * w**2 + 1j * c * w]])
-        theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2])
+        A = np.zeros((4, 4), complex)
+        A[:3, :3] = [[k - j1 * w**2, -k, 0], [-k, k + KS - JG * w**2, -KS], [0, -KS, KS - J2 * w**2 + 1j * c * w]]
+        if ring is None:
+            A[3, 3] = 1.0  # no ring: its row decoupled, θ_d = 0
+        else:
+            d = 1j * w * ring[1]
+            A[0, 0] += d
+            A[0, 3] = A[3, 0] = -d
+            A[3, 3] = d - ring[0] * w**2
+        theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2, 0])
         out.append(Z * n / 60 * psi * abs(C * (theta[0] - theta[1])) ** 2 / (2 * C))
     return np.array(out)
 
@@ -95,23 +105,6 @@ def test_a_maximum_below_the_ambient_is_refused_by_name():
 J_D, C_D = 5.0, 4000.0
 
 
-def heat_with_damper_by_hand(t: float) -> np.ndarray:
-    """heat_by_hand's line with the ring as a fourth coordinate: (k − J1 ω² + iωC_D) θ1 − iωC_D θ_D on
-    the engine's row, −iωC_D θ1 + (iωC_D − J_D ω²) θ_D on the ring's."""
-    C, psi = sheet(t)
-    k = C * (1 + 1j * psi / (2 * math.pi))
-    c = 2 * QR * (ND / NR) ** 2 / (ND * math.pi / 30)
-    out = []
-    for n in RPM:
-        w = Z * n * math.pi / 30
-        d = 1j * w * C_D
-        A = np.array([[k - J1 * w**2 + d, -k, 0, -d], [-k, k + KS - JG * w**2, -KS, 0],
-                      [0, -KS, KS - J2 * w**2 + 1j * c * w, 0], [-d, 0, 0, d - J_D * w**2]])
-        theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2, 0])
-        out.append(Z * n / 60 * psi * abs(C * (theta[0] - theta[1])) ** 2 / (2 * C))
-    return np.array(out)
-
-
 def test_the_tvc_response_carries_the_networks_dampers():
     """A TVC configuration (normal running) solves the line with its [[dampers]]: the coupling's heat
     with a viscous damper on the engine equals the hand calculation with the ring written out (1e-9),
@@ -122,7 +115,7 @@ def test_the_tvc_response_carries_the_networks_dampers():
     data["dampers"] = [{"type": "viscous", "at": "front", "ring_inertia_kgm2": J_D, "damping_nms_per_rad": C_D}]
     net = parse_network(data, "line")
     case = evaluate_case(net, lambda n: propeller_setup(n, rpm=RPM, damping_ratio=0.0), "normal running")
-    by_hand = heat_with_damper_by_hand(65.0)
+    by_hand = heat_by_hand(65.0, ring=(J_D, C_D))
     assert case.couplings.heat_w[:, 0] == pytest.approx(by_hand, rel=1e-9)
     assert np.abs(by_hand / heat_by_hand(65.0) - 1).max() > 0.01
     assert case.response.damper_names == [net.dampers[0].name]

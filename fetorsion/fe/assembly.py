@@ -230,39 +230,44 @@ def _node_pattern(ed, n):
             inc[fill[r]] = e * p + a
             fill[r] += 1
     mark = np.full(n, -1, np.int64)
-    indptr = np.zeros(n + 1, np.int64)
+    width = 0
     for r in range(n):
-        c = 0
-        for k in range(inc_ptr[r], inc_ptr[r + 1]):
-            e = inc[k] // p
-            for b in range(p):
-                col = ed[e, b]
-                if mark[col] != r:
-                    mark[col] = r
-                    c += 1
-        indptr[r + 1] = indptr[r] + c
+        width = max(width, (inc_ptr[r + 1] - inc_ptr[r]) * p)
+    buf = np.empty(width, np.int64)
+    indptr = np.zeros(n + 1, np.int64)
+    for r in range(n):  # first the row lengths, then the rows
+        indptr[r + 1] = indptr[r] + _row_columns(r, inc_ptr, inc, ed, mark, buf)
     cols = np.empty(indptr[n], np.int64)
     slot = np.empty(E * p * p, np.int64)
     pos = np.empty(n, np.int64)
     mark[:] = -1
     for r in range(n):
-        c = indptr[r]
-        for k in range(inc_ptr[r], inc_ptr[r + 1]):
-            e = inc[k] // p
-            for b in range(p):
-                col = ed[e, b]
-                if mark[col] != r:
-                    mark[col] = r
-                    cols[c] = col
-                    c += 1
-        cols[indptr[r]:c].sort()
-        for j in range(indptr[r], c):
+        c = _row_columns(r, inc_ptr, inc, ed, mark, buf)
+        cols[indptr[r]:indptr[r] + c] = np.sort(buf[:c])
+        for j in range(indptr[r], indptr[r] + c):
             pos[cols[j]] = j
         for k in range(inc_ptr[r], inc_ptr[r + 1]):
             e, a = inc[k] // p, inc[k] % p
             for b in range(p):
                 slot[(e * p + a) * p + b] = pos[ed[e, b]]
     return indptr, cols, slot
+
+
+@njit(cache=True)
+def _row_columns(r, inc_ptr, inc, ed, mark, buf):
+    """The distinct nodes of node r's elements (``inc``: e p + a of its entries), written into
+    ``buf`` unsorted; their count. ``mark`` (one per node) must not hold r on entry."""
+    p = ed.shape[1]
+    c = 0
+    for k in range(inc_ptr[r], inc_ptr[r + 1]):
+        e = inc[k] // p
+        for b in range(p):
+            col = ed[e, b]
+            if mark[col] != r:
+                mark[col] = r
+                buf[c] = col
+                c += 1
+    return c
 
 
 @njit(cache=True)
