@@ -24,7 +24,7 @@ import numpy as np
 
 from ..description.chain_model import Network
 from ..errors import FetorsionError
-from ..lumped_model.network import network_matrices, speed_factors
+from ..lumped_model.network import network_matrices, rear_coordinate
 from ..response.forced import ResponseResult, ResponseSetup, misfire_harmonics, solve_response
 from ..results import from_fields
 from .coupling_heat import CouplingHeat, at_temperatures, coupling_heat
@@ -141,8 +141,7 @@ def damper_station(net: Network, at: str) -> int:
         return 0
     if at == "rear":
         masters = network_matrices(net).masters
-        f = speed_factors(net)[masters]
-        return int(masters[np.flatnonzero(np.isclose(f, 1.0))[-1]])
+        return int(masters[rear_coordinate(net, masters)])
     return list(net.labels).index(at)
 
 

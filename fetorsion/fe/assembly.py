@@ -107,11 +107,16 @@ def block_pattern(basis) -> BlockPattern:
     return BlockPattern(n, indptr, cols.astype(np.int32), slot.ravel(), csr_indptr, csr_indices, base, row3)
 
 
+def _require_csr(pat: BlockPattern) -> None:
+    """Refuses a pattern built by hand without the CSR structure (ValueError)."""
+    if pat.csr_indptr is None:
+        raise ValueError("BlockPattern lacks its CSR structure; build it with block_pattern()")
+
+
 def _csr(pat: BlockPattern, blocks) -> sp.csr_array:
     """The 3n × 3n CSR whose block ``slot`` has component (i, j) ``blocks(i, j)`` (length-nb
     arrays, or None for zeros)."""
-    if pat.csr_indptr is None:  # a pattern built by hand without the CSR structure
-        raise ValueError("BlockPattern lacks its CSR structure; build it with block_pattern()")
+    _require_csr(pat)
     data = np.zeros(len(pat.csr_indices))
     for i in range(3):
         for j in range(3):
@@ -138,8 +143,7 @@ def stiffness(basis, youngs_modulus: float, poisson_ratio: float,
     """
     lam, mu = lame(youngs_modulus, poisson_ratio)
     pat = block_pattern(basis) if pattern is None else pattern
-    if pat.csr_indptr is None:  # a pattern built by hand without the CSR structure
-        raise ValueError("BlockPattern lacks its CSR structure; build it with block_pattern()")
+    _require_csr(pat)
     # K is linear in G, so the nine sums Σ_e G[e, i, ·, j, ·] are gathered per node pair first
     # and combined there (the element-level λ/μ combination is never formed), in one compiled
     # pass over the elements (:func:`_gradient_sums`; numpy's batched products and nine

@@ -234,6 +234,13 @@ def speed_factors(net: Network) -> np.ndarray:
     return speed_walk(len(net.inertias), net.linear_shafts, net.gears)[0]
 
 
+def rear_coordinate(net: Network, masters: np.ndarray) -> int:
+    """The index among ``masters`` (the coordinates' stations) of the last coordinate that turns at
+    the engine's speed (factor 1): a damper's ``rear``, the station the pulley twist is read against."""
+    f = speed_factors(net)[masters]
+    return int(np.flatnonzero(np.isclose(f, 1.0))[-1])
+
+
 def referred(net: Network) -> Network:
     """The same network referred to the speed of station 1, with no gears: each station's J f²,
     each shaft's k f² and c f² (f: :func:`speed_factors`), the two stations of a gear pair

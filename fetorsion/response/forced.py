@@ -30,7 +30,7 @@ from ..errors import FetorsionError, ParameterError
 from ..excitation.loads import cylinder_loads
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
-from ..lumped_model.network import group_place, speed_factors
+from ..lumped_model.network import group_place, rear_coordinate
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .forced_plots import compare_lines, plot_response
 from ..results import from_fields
@@ -398,8 +398,7 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
         rows, section_labels = res.network.section_rows, list(res.network.section_labels)
         # the pulley twist is read against the last station that turns at the pulley's speed
         # and is a coordinate of its own (factor 1 in its column)
-        f = speed_factors(crank)[res.network.masters]
-        flywheel = int(np.flatnonzero(np.isclose(f, 1.0))[-1])
+        flywheel = rear_coordinate(crank, res.network.masters)
         model_name = f"network of {len(res.network.labels)} stations"
     else:
         k = np.real(res.stiffnesses_nm_per_rad)

@@ -36,7 +36,7 @@ from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_SPEED_STEPS
 from ..description.marine import Propeller, law_torque
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped, stated_damping
-from ..lumped_model.network import speed_factors
+from ..lumped_model.network import rear_coordinate, speed_factors
 from ..modes import modal_damping_matrix
 from .forced import ResponseSetup, network_damper_dof, response_setup
 
@@ -215,8 +215,7 @@ def _bare_setup(net: Network, rpm, damping_ratio: float | None) -> ResponseSetup
     rpm = np.asarray(rpm, dtype=float)
     r = M.shape[0]
     orders = np.zeros(0)
-    f = speed_factors(net)[res.network.masters]
-    flywheel = int(np.flatnonzero(np.isclose(f, 1.0))[-1])
+    flywheel = rear_coordinate(net, res.network.masters)
     return ResponseSetup(net.name, res.labels, M, K + 1j * H, C, np.zeros((len(rpm), 0, r), complex), rpm, orders,
                          2.0 * math.pi, zeta, "stated dampers of the network" if net.has_dampers else "", None,
                          np.zeros((len(rpm), 0, 1)), np.zeros((0, 0), complex), np.zeros((0, 1, r)),
