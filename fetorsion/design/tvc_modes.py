@@ -9,7 +9,8 @@ relative amplitude of every station: the mode's physical angles (θ = T q, not r
 
 **The Campbell diagram.** The modes' frequencies against station 1's speed, the engine's orders
 (its major orders bold) and the blade orders as lines f = q n / 60, the speed range shaded grey and
-each configuration's barred ranges as bands (normal running crimson, a misfire orange, hatched).
+each configuration's barred ranges as bands (normal running crimson, a misfire orange, hatched, a failed
+damper purple, hatched the other way).
 """
 
 from __future__ import annotations
@@ -104,6 +105,10 @@ def mode_table(net: Network, orders: np.ndarray, speed_range: tuple[float, float
     return rows
 
 
+#: Each kind of configuration's barred band on the Campbell diagram: (colour, hatch).
+BAND_STYLES = {"normal running": ("crimson", None), "misfire": ("orange", "//"), "failed damper": ("purple", "\\\\")}
+
+
 def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major_orders: Sequence[float],
                       blade_orders: Sequence[float], speed_range: tuple[float, float],
                       barred: list[tuple[str, float, float]], title: str, ax: Axes | None = None):
@@ -135,15 +140,16 @@ def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major
                     bbox={"boxstyle": "round,pad=0.15", "fc": "white", "ec": "none", "alpha": 0.85})
     shown = set()
     for name, a, b in barred:
-        normal = name == "normal running"
-        label = None if (normal in shown) else ("barred, normal running" if normal else "barred, misfire")
-        shown.add(normal)
-        ax.axvspan(a, b, color="crimson" if normal else "orange", alpha=0.25, lw=0, hatch=None if normal else "//",
-                   zorder=1, label=label)
+        kind = "normal running" if name == "normal running" else "misfire" if name.startswith("misfire") \
+            else "failed damper"
+        color, hatch = BAND_STYLES[kind]
+        ax.axvspan(a, b, color=color, alpha=0.25, lw=0, hatch=hatch, zorder=1,
+                   label=None if kind in shown else f"barred, {kind}")
+        shown.add(kind)
     ax.set(xlim=(0, top), ylim=(0, 1.15 * max(r.frequency_hz for r in rows)), xlabel="engine speed (rpm)",
            ylabel="frequency (Hz)", title=title)
     ax.legend(fontsize=7, loc="upper left", framealpha=0.95)
     if not barred:
-        ax.text(0.5, -0.1, "no barred range in normal running or misfire", transform=ax.transAxes, ha="center",
+        ax.text(0.5, -0.1, "no barred range in any configuration computed", transform=ax.transAxes, ha="center",
                 va="top", fontsize=8)
     return ax
