@@ -159,6 +159,39 @@ def test_network_campbell_and_response_run():
     assert r.to_dict()["sections"][-1] == "pump gear-pump"
 
 
+@pytest.mark.parametrize("at", ["front", "wheel"])
+def test_campbell_of_a_network_with_a_damper_is_the_network_with_its_ring(at, tmp_path):
+    """The Campbell diagram's modes of a geared line with a rubber damper (on the crank's pulley, or
+    on the wheel at 1/3.5 of the engine's speed) equal the network's own modes, by its assembler
+    (validated against the published networks above), with the damper written as what it is
+    undamped: its hub added to the station, its ring a station on a shaft of the damper's
+    stiffness (1e-9). They once came from a serial chain of the network's springs in list order
+    with no gear referral (the medium line's 56.1 Hz mode read 31.6 Hz)."""
+    from fetorsion.excitation.campbell import run_campbell
+    from fetorsion.lumped_model.lumped import lumped
+
+    text = (NETWORKS / "propulsion_line_medium_speed.toml").read_text(encoding="utf-8")
+    start = text.index("[[dampers]]")
+    end = text.index("\n[", start + 1)
+    rubber = (f'[[dampers]]\ntype = "rubber"\nat = "{at}"\nhub_inertia_kgm2 = 2.0\nring_inertia_kgm2 = 30.0\n'
+              "stiffness_nm_per_rad = 2.0e6\nloss_factor = 0.2\n")
+    damped = tmp_path / "damped.toml"
+    damped.write_text(text[:start] + rubber + text[end:], encoding="utf-8")
+    station = "pulley" if at == "front" else "wheel"
+    inertia = {"pulley": "4.469", "wheel": "740.2"}[station]
+    plain_text = text[:start] + text[end:]
+    head = f'name = "{station}"\ninertia_kgm2 = {inertia}'
+    assert head in plain_text
+    plain_text = plain_text.replace(head, f'name = "{station}"\ninertia_kgm2 = {float(inertia) + 2.0!r}', 1)
+    plain_text += (f'\n[[chain.stations]]\nname = "ring"\ninertia_kgm2 = 30.0\n'
+                   f'[[chain.shafts]]\nbetween = ["{station}", "ring"]\nstiffness_nm_per_rad = 2.0e6\n')
+    plain = tmp_path / "plain.toml"
+    plain.write_text(plain_text, encoding="utf-8")
+    got = run_campbell(fetorsion.load(damped)).frequencies_hz
+    want = lumped(fetorsion.load(plain)).frequencies_hz[:len(got)]
+    assert got == pytest.approx(want, rel=1e-9)
+
+
 NET = """
 [chain]
 name = "n"

@@ -29,8 +29,8 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from .loads import cylinder_loads
 from .torque import cycle_angle, firing_angles
-from ..lumped_model.damped import DampedSystem, damped_modes
-from ..lumped_model.lumped import (chain_damping, chain_matrices, lumped, lumped_modes_source, modal_damping_ratios,
+from ..lumped_model.damped import DampedSystem, damped_modes_of
+from ..lumped_model.lumped import (lumped, lumped_modes_source, modal_damping_ratios,
                                    stated_damping)
 from ..modes import TorsionalModes, modal_damping_matrix
 from ..results import from_fields
@@ -42,21 +42,35 @@ if TYPE_CHECKING:
     from ..lumped_model.parts import PartChain
 
 
+def damper_model(crank, res):
+    """(M, K, at, scale) of ``crank``'s lumped result ``res`` for its dampers: the model's own
+    matrices (a network's in its reduced coordinates, the gears' ratios in them) and where each
+    damper acts and how it is referred (:func:`fetorsion.response.forced.network_damper_dof`, the
+    forced response's placement; a chain: its front and rear stations)."""
+    M, K = res.matrices()
+    if res.network is None:
+        return M, K, None, None
+    from ..lumped_model.network import rear_coordinate
+    from ..response.forced import network_damper_dof
+
+    dof, scale = network_damper_dof(crank, res, rear_coordinate(crank, res.network.masters))
+    return M, K, (lambda d: dof[d.at]), (lambda d: scale.get(d.at, 1.0))
+
+
 def damped_crossing_angles(crank, res, zeta: float, omega: np.ndarray, Tq: np.ndarray, phasors: np.ndarray):
     """The pulley's complex angle (rad) at each crossing from the full solve of the chain with its
     dampers: the order's torques ``Tq`` (modes, orders, cylinders: each cylinder's own harmonic) at
     ω (modes, 1) rad/s, the modal damping ratio ``zeta`` on the chain's own modes plus a chain
     file's stated dampers."""
-    M, K = chain_matrices(res.inertias_kgm2, res.stiffnesses_nm_per_rad)
+    M, K, at, scale = damper_model(crank, res)
     C = modal_damping_matrix(M, K, zeta)
-    if isinstance(crank, Chain):
-        C_stated, H = chain_damping(res.dof, res.stiffnesses_nm_per_rad, crank.absolute_damping,
-                                    crank.relative_damping, crank.loss_factors)
+    if isinstance(crank, (Chain, Network)):
+        C_stated, H = stated_damping(crank, res)
         C, K = C + C_stated, K + 1j * H
-    system = DampedSystem(M, K, C, crank.dampers)
+    system = DampedSystem(M, K, C, crank.dampers, stations=len(M), at=at, scale=scale)
     N = len(system.M)
     loads = np.zeros(Tq.shape[:2] + (N,), dtype=complex)
-    loads[..., : res.dof] = np.einsum("joc,oc,cd->jod", Tq, phasors, res.pin_weights)
+    loads[..., : len(M)] = np.einsum("joc,oc,cd->jod", Tq, phasors, res.pin_weights)
     omegas = np.broadcast_to(omega, Tq.shape[:2])
     return np.linalg.solve(system.matrix(omegas), loads[..., None])[..., 0, 0]
 
@@ -320,8 +334,9 @@ def run_campbell(crank: Crank | Chain | Network, modes: TorsionalModes | None = 
     gained = None
     if modes is None and crank.dampers:
         res = lumped(crank, partition, web_method, parts=parts)
-        modes, gained = damped_modes(res.inertias_kgm2, res.stiffnesses_nm_per_rad, res.pin_weights, crank.dampers,
-                                     source=f"{lumped_modes_source(res)} with {len(crank.dampers)} damper(s)")
+        M, K, at, scale = damper_model(crank, res)
+        modes, gained = damped_modes_of(M, K, res.pin_weights, crank.dampers, at=at, scale=scale,
+                                        source=f"{lumped_modes_source(res)} with {len(crank.dampers)} damper(s)")
     modes = modes or lumped_modes(crank, partition, web_method, parts)
     orders = default_orders(crank) if orders is None else np.asarray(orders, dtype=float)
     if np.any(orders <= 0):

@@ -194,20 +194,30 @@ def damped_modes(inertias: Sequence[float] | np.ndarray, stiffnesses: Sequence[f
         The modes (pin amplitudes over the chain's stations, pulley at station 0) and the
         gained damping ratio per mode.
     """
-    import scipy.linalg
-
-    from ..modes import TorsionalModes
     from .lumped import chain_matrices
 
     M, K = chain_matrices(inertias, stiffnesses)
+    return damped_modes_of(M, K, pin_weights, dampers, source)
+
+
+def damped_modes_of(M: np.ndarray, K: np.ndarray, pin_weights: np.ndarray, dampers: Sequence[Damper],
+                    source: str = "chain", at=None, scale=None):
+    """:func:`damped_modes` of any model given by its matrices (a chain's, or a network's in its
+    reduced coordinates with the gears' ratios in them): ``at`` and ``scale`` place and refer
+    each damper as :class:`DampedSystem` does (None: a chain's front and rear stations, f = 1)."""
+    import scipy.linalg
+
+    from ..modes import TorsionalModes
+
     n = len(M)
     springy = [d for d in dampers if d.kind != "viscous"]
-    system = DampedSystem(M, K, np.zeros_like(M), springy, stations=n)
+    system = DampedSystem(M, K, np.zeros_like(M), springy, stations=n, at=at, scale=scale)
     Mn, Kn, C, _ = system.nominal(0.0)
     Mn = Mn.copy()
-    for d in dampers:
-        if d.kind == "viscous":
-            Mn[damper_station(d, n), damper_station(d, n)] += d.hub_inertia
+    viscous = [(d if scale is None else referred_damper(d, scale(d)), damper_station(d, n) if at is None else at(d))
+               for d in dampers if d.kind == "viscous"]
+    for d, s in viscous:
+        Mn[s, s] += d.hub_inertia
     lam, vec = scipy.linalg.eigh(Kn, Mn)
     shapes = vec[:, 1:].T  # the rigid-body mode first
     shapes = shapes / np.where(np.abs(shapes[:, 0]) > 1e-9, shapes[:, 0], 1.0)[:, None]
@@ -217,9 +227,8 @@ def damped_modes(inertias: Sequence[float] | np.ndarray, stiffnesses: Sequence[f
     for j, w in enumerate(omega):
         H = system.nominal(w)[3] if springy else np.zeros_like(Mn)
         loss[j] += shapes[j] @ H @ shapes[j]
-        for d in dampers:
-            if d.kind == "viscous":
-                loss[j] += shapes[j, damper_station(d, n)] ** 2 * np.imag(viscous_impedance(d, w))
+        for d, s in viscous:
+            loss[j] += shapes[j, s] ** 2 * np.imag(viscous_impedance(d, w))
     modes = TorsionalModes(source=source, frequencies_hz=omega / (2 * np.pi),
                            pin_amplitudes=shapes[:, :n] @ np.asarray(pin_weights).T,
                            pulley_amplitude=shapes[:, 0], modal_inertia=m)

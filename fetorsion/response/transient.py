@@ -412,6 +412,8 @@ def order_cuts(result: TransientResult, response: ResponseResult, crossings: Seq
         a, b = n * (1 - window), n * (1 + window)
         s = (response.rpm >= a) & (response.rpm <= b)
         r = (result.track.rpm >= a) & (result.track.rpm <= b)
+        if not (s.any() and r.any()):  # a fast run's order track has no sample this near the crossing
+            continue
         steady, cut = response.order_pulley_deg[s, int(k[0])], np.degrees(np.abs(result.track.at(q)[r]))
         i, j = int(np.argmax(steady)), int(np.argmax(cut))
         out.append(OrderCut(q, c.mode, c.frequency_hz, n,
