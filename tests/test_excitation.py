@@ -204,3 +204,32 @@ def test_the_default_orders_leave_out_under_one_percent(path):
     assert default.orders.max() == 24.0
     share = np.abs(default.section_torque_nm - full.section_torque_nm) / full.section_torque_nm.max(axis=1, keepdims=True)
     assert share.max() < 0.01, share.max()
+
+
+def test_the_synthetic_cycle_on_the_propeller_law(tmp_path):
+    """``propeller_law_imep_pa`` with the synthetic cycle: at any speed n the cylinder's torque is the
+    one of ``imep_pa`` = p (n / n_top)² stated as a constant (the propeller law on the indicated
+    work, as the harmonic table reads it), to round-off; a value that is not a pressure is refused
+    by its name."""
+    from fetorsion.description.files import load
+    from fetorsion.errors import DescriptionError
+    from fetorsion.excitation.loads import cylinder_loads
+
+    text = (ROOT / "examples" / "networks" / "propulsion_line_medium_speed.toml").read_text(encoding="utf-8")
+    assert "propeller_law_imep_pa = 1.2e6" in text
+    law = tmp_path / "law.toml"
+    law.write_text(text, encoding="utf-8")
+    orders = np.arange(0.5, 12.01, 0.5)
+    top = load(law).excitation.speed_range[1]
+    for n in (400.0, 700.0):
+        fixed = tmp_path / f"fixed_{n:g}.toml"
+        fixed.write_text(text.replace("propeller_law_imep_pa = 1.2e6", f"imep_pa = {1.2e6 * (n / top) ** 2!r}"),
+                         encoding="utf-8")
+        a = cylinder_loads(load(law)).torque_harmonics([n], orders)
+        b = cylinder_loads(load(fixed)).torque_harmonics([n], orders)
+        np.testing.assert_allclose(a, b, rtol=1e-12, atol=1e-9 * np.abs(b).max())
+    bad = tmp_path / "bad.toml"
+    bad.write_text(text.replace("propeller_law_imep_pa = 1.2e6", "propeller_law_imep_pa = [[300.0, 1.0e6]]"),
+                   encoding="utf-8")
+    with pytest.raises(DescriptionError, match="excitation.propeller_law_imep_pa"):
+        load(bad)

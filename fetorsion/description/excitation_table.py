@@ -14,7 +14,7 @@ from .model import Engine, Excitation
 from .reader import MAX_DESCRIPTION_BYTES, Table, finite_number
 
 
-EXCITATION_SOURCES = ("imep_pa", "peak_pressure_pa", "pressure_csv")  # or tangential_harmonics
+EXCITATION_SOURCES = ("imep_pa", "propeller_law_imep_pa", "peak_pressure_pa", "pressure_csv")  # or tangential_harmonics
 
 
 def read_excitation(t: Table, folder: Path, engine: Engine | None, zero_damping_ok: bool = False) -> Excitation:
@@ -80,11 +80,17 @@ def _operating_fields(t: Table, zero_damping_ok: bool) -> dict:
 
 
 def _synthetic_cycle(t: Table, key: str, engine: Engine | None, common: dict) -> Excitation:
-    """The synthetic cycle's excitation: its load ``key`` (``imep_pa`` or ``peak_pressure_pa``), the
-    cycle's fields, checked against the ``engine`` it drives."""
+    """The synthetic cycle's excitation: its load ``key`` (``imep_pa``, ``propeller_law_imep_pa`` or
+    ``peak_pressure_pa``), the cycle's fields, checked against the ``engine`` it drives."""
     raw = t.get(key)
     pairs = [(1.0, raw)] if finite_number(raw) else raw
-    if not (isinstance(pairs, list) and pairs and all(
+    if key == "propeller_law_imep_pa":  # p_mi at the top of the speed range, ∝ n² below (a fixed-pitch propeller)
+        if not (finite_number(raw) and raw > 0):
+            t.problems.append(Problem(f"{t.path}.{key}", raw, "must be a finite pressure > 0 (Pa): the mean indicated "
+                                      "pressure at the top of speed_range_rpm"))
+            raw = 1.0
+        pairs = [(common["speed_range"][1] if common["speed_range"] else 1.0, raw)]
+    elif not (isinstance(pairs, list) and pairs and all(
             isinstance(p, (list, tuple)) and len(p) == 2 and all(finite_number(v) for v in p) and p[1] > 0
             for p in pairs) and all(a[0] < b[0] for a, b in zip(pairs, pairs[1:]))):
         t.problems.append(Problem(f"{t.path}.{key}", raw,
@@ -92,7 +98,7 @@ def _synthetic_cycle(t: Table, key: str, engine: Engine | None, common: dict) ->
         pairs = [(1.0, 1.0)]
     ex = Excitation(
         compression_ratio=t.number("compression_ratio", above=1.0),
-        load_kind="imep" if key == "imep_pa" else "peak",
+        load_kind={"imep_pa": "imep", "propeller_law_imep_pa": "propeller_imep"}.get(key, "peak"),
         load=tuple((float(a), float(b)) for a, b in pairs),
         intake_pressure=t.number("intake_pressure_pa", 1.0e5, positive=True),
         polytropic_exponent=t.number("polytropic_exponent", 1.3, above=1.0, below=1.67),

@@ -292,7 +292,7 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
           "cycle; path relative to the description)", ">= 8 rows of finite numbers, angles ascending, pressure > 0, "
           "covering one whole cycle (720° for a 4-stroke, 360° for a 2-stroke; one step short at most)"),
     Field("imep_pa", "synthetic 4-stroke cycle scaled to this indicated mean effective pressure, Pa: a value or "
-          "`[[rpm, Pa], ...]`", "> 0; exactly one of `pressure_csv`, `imep_pa`, `peak_pressure_pa`"),
+          "`[[rpm, Pa], ...]`", "> 0; exactly one of `pressure_csv`, `imep_pa`, `propeller_law_imep_pa`, `peak_pressure_pa`"),
     Field("peak_pressure_pa", "synthetic 4-stroke cycle scaled to this peak pressure, Pa: a value or "
           "`[[rpm, Pa], ...]`", "above the motored peak p_intake·CR^n at every speed"),
     Field("compression_ratio", "synthetic cycle: compression ratio", "> 1; required with a synthetic cycle"),
@@ -324,8 +324,9 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
           "with `harmonic_imep_pa`"),
     Field("harmonic_imep_pa", "the harmonic table's columns: mean indicated pressures, Pa", "> 0, ascending"),
     Field("tangential_pressure_unit", "the harmonic table's unit: `Pa` (default), `bar` or `MPa`", "one of these"),
-    Field("propeller_law_imep_pa", "with the harmonic table: p_mi at the top of `speed_range_rpm`, Pa, the load's "
-          "p_mi ∝ n² below it (the propeller law)", "> 0; or `imep_pa`"),
+    Field("propeller_law_imep_pa", "with the harmonic table or the synthetic cycle: p_mi at the top of "
+          "`speed_range_rpm`, Pa, the load's p_mi ∝ n² below it (an engine on a fixed-pitch propeller's curve)",
+          "> 0; or `imep_pa`"),
 ))
 
 TANGENTIAL_HARMONICS = Section("excitation.tangential_harmonics", "One order q of the tangential-pressure table: "

@@ -107,9 +107,9 @@ def cylinder_pressure(crank: Crank, rpm: float, theta=None, misfire: bool = Fals
         raise FetorsionError("the synthetic cycle is a 4-stroke cycle; give excitation.pressure_csv for a 2-stroke")
     if not engine.bore > 0:
         raise FetorsionError("engine.bore is needed for the gas force")
-    target = float(np.interp(rpm, *zip(*ex.load)))
+    target = ex.running_imep(rpm) if ex.load_kind == "propeller_imep" else float(np.interp(rpm, *zip(*ex.load)))
     motored, per_joule = _closed_cycle_parts(theta, engine, ex)
-    if ex.load_kind == "imep":
+    if ex.load_kind in ("imep", "propeller_imep"):
         q = (target - _imep(theta, motored, engine, ex)) / _imep(theta, per_joule, engine, ex)
     else:
         if motored.max() >= target:
