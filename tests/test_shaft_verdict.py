@@ -77,3 +77,34 @@ def test_a_range_above_lambda_0_8_fails_a_propeller_line():
     verdict = shaft_verdict(net, solve_response(propeller_setup(net, rpm=rpm, damping_ratio=0.0)))
     assert verdict.barred and verdict.barred[0]["above_0_8"]
     assert verdict.verdict == "fail"
+
+
+def test_a_stress_over_tau_c_above_lambda_1_05_is_named_not_judged():
+    """The same line stiffer (its resonance at λ 1.08) and excited at a ninth of the share, the
+    speeds to λ 1.1 (a generator set's overspeed): below λ 1.05 the stress stays under τ_C, above
+    it UR M68 gives no τ_C, so the verdict stays the rule's pass, but a line names the section,
+    the speed from which its stress passes τ_C at λ 1.05 (bisection on the hand stress, to the
+    0.02 rpm the linear interpolation between samples 0.05 rpm apart allows) and the peak's
+    ratio to it."""
+    k, share = K * (1.08 / 0.6) ** 2, SHARE / 9
+    shaft = dict(LINE["chain"]["shafts"][0], stiffness_nm_per_rad=k)
+    prop = dict(LINE["chain"]["propellers"][0], blade_order_shares=[share])
+    net = parse_network({"chain": dict(LINE["chain"], shafts=[shaft], propellers=[prop])}, "line")
+    rpm = np.linspace(96.0, 132.0, 721)  # λ 0.8 … 1.1, 0.05 rpm apart
+    verdict = shaft_verdict(net, solve_response(propeller_setup(net, rpm=rpm, damping_ratio=0.0)))
+
+    def stress(n):  # stress_by_hand's arithmetic with this stiffness and share
+        w, c = Z * n * math.pi / 30, 2 * Q_R * (N_D / N_R) ** 2 / (N_D * math.pi / 30)
+        torque = k * share * Q_R * (n / N_R) ** 2 / abs(k - J * w**2 + 1j * c * w)
+        return 16 * torque * D / (math.pi * (D**4 - BORE**4))
+
+    edge = tau_c_by_hand(1.05 * N_R)
+    assert all(stress(n) < tau_c_by_hand(n) for n in rpm if n <= 1.05 * N_R)
+    start = brentq(lambda n: stress(n) - edge, 1.05 * N_R, 1.08 * N_R, xtol=1e-10)
+    line = next(n for n in verdict.notes if n.startswith("beyond the rule"))
+    assert "propeller-ground" in line and f"{edge / 1e6:.2f} N/mm²" in line
+    said = float(line.split(" from ")[1].split(" rpm")[0])
+    assert said == pytest.approx(start, abs=0.02)
+    top = max((n for n in rpm if n > 1.05 * N_R), key=stress)
+    assert f"{stress(top) / edge:.2f} × it" in line
+    assert not verdict.barred and verdict.verdict == "pass"

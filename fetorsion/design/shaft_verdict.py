@@ -242,4 +242,29 @@ def shaft_verdict(net: Network, response: ResponseResult, rated_rpm: float | Non
     notes = ["stresses: half-range synthesised amplitudes, nominal on the plain section, 16 T d/(π(d⁴ − d_i⁴))"]
     if lam[-1] > LAMBDA_MAX:
         notes.append(f"speeds above λ {LAMBDA_MAX} ({LAMBDA_MAX * rated:.1f} rpm) are not judged: the rule gives no τ_C")
+        notes += beyond_the_rule(sections, rpm, lam)
+    return ShaftVerdict(net.name, rpm, rated, sections, merged_ranges(sections, rpm, rated), bool(net.propellers), notes)
+
+
+def beyond_the_rule(sections: list[SectionStress], rpm: np.ndarray, lam: np.ndarray) -> list[str]:
+    """A line for each section whose stress above λ 1.05 (speeds the file asks for, where UR M68 gives
+    no τ_C) passes its τ_C at λ 1.05: from which speed (linear between samples), how far and where.
+    Not a verdict — the rule does not reach there — but what a reviewer asks about first."""
+    out = []
+    above = lam > LAMBDA_MAX
+    for s in sections:
+        edge = float(section_limits(s.section, np.array([LAMBDA_MAX]))[0][0])
+        over = above & (s.stress_pa > edge)
+        if not over.any():
+            continue
+        k = int(np.flatnonzero(over)[0])
+        start = float(rpm[k])
+        if k > 0 and above[k - 1]:  # the crossing between this sample and the one before it
+            a, b = s.stress_pa[k - 1] - edge, s.stress_pa[k] - edge
+            start = float(rpm[k - 1] + (rpm[k] - rpm[k - 1]) * a / (a - b))
+        j = int(np.flatnonzero(above)[np.argmax(s.stress_pa[above])])
+        out.append(f"beyond the rule: {s.label} passes its τ_C at λ {LAMBDA_MAX} ({edge / 1e6:.2f} N/mm²) from "
+                   f"{start:.1f} rpm, up to {s.stress_pa[j] / 1e6:.2f} N/mm² ({s.stress_pa[j] / edge:.2f} × it) at "
+                   f"{rpm[j]:.1f} rpm (λ {lam[j]:.3f}): inside the speed range asked for, not judged by UR M68")
+    return out
     return ShaftVerdict(net.name, rpm, rated, sections, merged_ranges(sections, rpm, rated), bool(net.propellers), notes)
