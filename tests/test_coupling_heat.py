@@ -144,3 +144,22 @@ def test_a_failed_damper_is_the_line_written_without_it():
     assert not np.allclose(cases[0].couplings.heat_w, cases[1].couplings.heat_w, rtol=1e-3)
     with pytest.raises(FetorsionError, match="jammed"):
         with_failed_damper(net, 0, "jammed")
+
+
+def test_the_couplings_torque_is_what_its_element_carries():
+    """The vibratory torque set against the sheet's permissible one is what the rubber carries,
+    elastic and damping: |C (1 + iψ/2π)(θ1 − θ2)| at the one blade order (the same 3 × 3 solve as
+    heat_by_hand, 1e-9), √(1 + (ψ/2π)²) = 1.6 % above the elastic part at ψ 1.13 (it was the
+    elastic part alone); without a permissible torque on the sheet the table says it is not judged."""
+    C, psi = sheet(65.0)
+    k = C * (1 + 1j * psi / (2 * math.pi))
+    c = 2 * QR * (ND / NR) ** 2 / (ND * math.pi / 30)
+    want = []
+    for n in RPM:
+        w = Z * n * math.pi / 30
+        A = np.array([[k - J1 * w**2, -k, 0], [-k, k + KS - JG * w**2, -KS], [0, -KS, KS - J2 * w**2 + 1j * c * w]])
+        theta = np.linalg.solve(A, [0, 0, S * QR * (n / NR) ** 2])
+        want.append(abs(k * (theta[0] - theta[1])))
+    r = _run(copy.deepcopy(LINE))
+    assert r.torque_nm[:, 0] == pytest.approx(want, rel=1e-9)
+    assert "no permissible vibratory torque: not judged" in r.table()

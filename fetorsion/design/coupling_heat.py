@@ -31,6 +31,7 @@ from ..description.chain_model import Network
 from ..description.marine import Coupling, loss_factor_of
 from ..errors import FetorsionError
 from ..response.forced import ResponseResult, ResponseSetup, section_torques, solve_response
+from ..response.synthesis import grouped_extremes
 from ..results import from_fields
 
 #: The coupling temperatures are settled when an iteration moves none more than this, K.
@@ -100,8 +101,10 @@ class CouplingHeat:
         """Each coupling's settled temperature, heat and torque against the sheet."""
         lines = [f"{self.name}: coupling heat, settled in {self.iterations} iterations to {self.tolerance_k:g} K"]
         for r in self.rows():
-            heat = "" if r["permissible_power_w"] is None else f" of P_KV {r['permissible_power_w']:.0f} W"
-            torque = "" if r["permissible_torque_nm"] is None else f" of {r['permissible_torque_nm']:.0f} N m"
+            heat = (" (the sheet gives no P_KV: not judged)" if r["permissible_power_w"] is None
+                    else f" of P_KV {r['permissible_power_w']:.0f} W")
+            torque = (" (the sheet gives no permissible vibratory torque: not judged)"
+                      if r["permissible_torque_nm"] is None else f" of {r['permissible_torque_nm']:.0f} N m")
             lines.append(f"  {r['coupling']}: {r['temperature_c']:.1f} °C (C {r['stiffness_nm_per_rad']:.4g} N m/rad, "
                          f"ψ {r['relative_damping']:.3f}); heat up to {r['heat_w']:.1f} W{heat} at "
                          f"{r['heat_rpm']:.1f} rpm; vibratory torque up to {r['torque_nm']:.0f} N m{torque} at "
@@ -146,7 +149,8 @@ def at_temperatures(net: Network, temperatures_c: Sequence[float] | np.ndarray) 
 
 def coupling_loads(net: Network, setup: ResponseSetup,
                    temperatures_c: Sequence[float] | np.ndarray) -> tuple[np.ndarray, np.ndarray, ResponseResult]:
-    """(heat W (speeds, couplings), half-range torque N·m (speeds, couplings), the response) of the
+    """(heat W (speeds, couplings), the half-range torque each carries, elastic and damping, N·m (speeds,
+    couplings), the response) of the
     network's couplings at ``temperatures_c``, from the forced response of ``setup`` with the
     network's ``[[dampers]]``."""
     response = solve_response(setup, net.dampers)
@@ -156,7 +160,13 @@ def coupling_loads(net: Network, setup: ResponseSetup,
     freq = setup.orders[None, :] * setup.rpm[:, None] / 60.0  # (speeds, orders) Hz
     heat = np.array([[c.heat(np.abs(torque[s, first + k]), freq[s], t) for k, (c, t) in
                       enumerate(zip(net.couplings, temperatures_c))] for s in range(len(setup.rpm))])
-    return heat, response.section_torque_nm[:, first:first + len(net.couplings)], response
+    # the torque the element carries, elastic and damping, C (1 + i ψ/2π) Δθ of each order, synthesised
+    # over the cycle: what the sheet's permissible vibratory torque is set against (the section
+    # torques are the elastic part alone, 1.3 % less at ψ 1)
+    eta = np.array([loss_factor_of(c.relative_damping_at(t)) for c, t in zip(net.couplings, temperatures_c)])
+    carried = torque[:, first:first + len(net.couplings)] * (1 + 1j * eta)[None, :, None]
+    top, bottom = grouped_extremes(carried, setup.orders, setup.period, setup.order_groups)
+    return heat, 0.5 * (top - bottom), response
 
 
 def coupling_heat(net: Network, setup_of: Callable[[Network], ResponseSetup], tolerance_k: float = TOLERANCE_K,

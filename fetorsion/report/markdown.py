@@ -219,8 +219,21 @@ def campbell_section(crank: Crank, outcome: CampbellOutcome | Skipped) -> list[s
             f"overspeed), most severe first ({camp.source}; severity in {camp.severity_unit.split(': ')[1]} for "
             f"ζ = {zeta_text(camp.damping_ratio)}, {camp.severity_unit.split(':')[0]}):", "", "```", camp.table(), "```",
             "", _major_orders_line(crank),
-            "", f"![]({a})", "", f"Forced response on the {resp.model}, every order summed with its phase:", "",
-            "```", resp.table(), "```", "", f"![]({b})", ""]
+            "", f"![]({a})", "", f"Forced response on the {resp.model}, every order summed with its phase"
+            f"{_coupling_basis(crank)}:", "", "```", resp.table(), "```", "", f"![]({b})", ""]
+
+
+def _coupling_basis(crank) -> str:
+    """Where a network's flexible couplings stand in the Campbell diagram and the forced response:
+    at the temperature the file states, not the one their heat settles to (the TVC's), so that a
+    reader comparing the two sections knows why their numbers differ."""
+    couplings = getattr(crank, "couplings", ())
+    if not couplings:
+        return ""
+    at = ", ".join(f"{c.name or 'coupling'} at {c.operating_temperature_c:g} °C (C {c.stiffness_at(c.operating_temperature_c):.4g} "
+                   "N m/rad)" for c in couplings)
+    return (f" (the flexible couplings as the file states them, {at}; the propulsion TVC below runs them at the "
+            "temperature their heat holds: its natural frequencies, stresses and heats are the ones judged)")
 
 
 def sensitivity_section(crank: Crank, outcome: SensitivityOutcome | Skipped) -> list[str]:
