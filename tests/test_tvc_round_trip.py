@@ -13,6 +13,7 @@ import json
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from conftest import ROOT
@@ -112,3 +113,20 @@ def test_fetorsion_report_of_the_medium_speed_line_writes_the_same_report(tmp_pa
     reports_the_same(folder, tmp_path / "copy")
     loaded = load_run(folder)
     assert same_json(jsonable(loaded.outcome.tvc.to_dict()), loaded.results["tvc"])
+
+
+def test_the_conclusions_name_the_cranks_largest_torque_and_each_criterion(tvc_runs):
+    """The TVC's conclusions: the crank's largest section torque is the largest half-range torque of
+    the response's sections with a cylinder station at one end (read from results.json's own
+    response), shown as not judged; each criterion the line has gets its line."""
+    folder = tvc_runs["engine"]
+    d = json.loads((folder / "results.json").read_text())["tvc"]
+    response = d["response"]
+    throws = {f"throw {k}" for k in range(1, 5)}
+    torque = np.array(response["section_torque_nm"])
+    cols = [k for k, label in enumerate(response["sections"]) if set(label.split("-")) & throws]
+    assert cols and d["crank_torque_nm"] == pytest.approx(torque[:, cols].max(), rel=1e-12)
+    text = (folder / "report.md").read_text()
+    conclusions = text.split("### Conclusions")[1].split("###")[0]
+    assert f"{d['crank_torque_nm'] / 1e3:.1f} kN m" in conclusions and "Crankshaft: not judged here" in conclusions
+    assert "Shafts, IACS UR M68" in conclusions and "Gear hammering" in conclusions

@@ -52,6 +52,12 @@ class TVCCase:
     #: state (:data:`DAMPER_STATES`); None and "" otherwise.
     damper: int | None = None
     damper_state: str = ""
+    #: The largest half-range torque over the crank's sections (a shaft with a cylinder station at
+    #: one end), N·m, where and at which speed: shown, not judged — the engine maker's permissible
+    #: values are not in a network file (None: no cylinder station).
+    crank_torque_nm: float | None = None
+    crank_torque_rpm: float | None = None
+    crank_section: str = ""
 
     @property
     def severity(self) -> float:
@@ -75,7 +81,9 @@ class TVCCase:
                 "coupling_heat_w": max((r["heat_w"] for r in rows), default=None),
                 "coupling_torque_nm": max((r["torque_nm"] for r in rows), default=None),
                 "hammering": self.hammering.verdict if self.hammering else None,
-                "largest_damper_heat_w": max(self.damper_heat_w, default=None)}
+                "largest_damper_heat_w": max(self.damper_heat_w, default=None),
+                "crank_torque_nm": self.crank_torque_nm, "crank_torque_rpm": self.crank_torque_rpm,
+                "crank_section": self.crank_section}
 
     def to_dict(self) -> dict:
         """JSON-ready: the summary, each damper's heat, and the verdicts' own dicts."""
@@ -106,7 +114,21 @@ def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], na
     shafts = shaft_verdict(settled, response) if any(s.section for s in net.shafts) else None
     hammer = gear_hammering(settled, setup, response.theta) if net.gears and net.propellers else None
     dampers = tuple(float(p) for p in response.damper_power_w.sum(axis=2).max(axis=0)) if net.dampers else ()
-    return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers, damper, damper_state)
+    return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers, damper, damper_state,
+                   *crank_torque(settled, response))
+
+
+def crank_torque(net: Network, response: ResponseResult) -> tuple[float | None, float | None, str]:
+    """(largest half-range torque N·m, its speed rpm, its section) over the crank's sections of ``net``
+    (a shaft with a cylinder station at one end: the throws' and the crank's ends); (None, None, "")
+    without cylinder stations."""
+    cylinders = set(net.cylinder_stations)
+    ks = [k for k, sh in enumerate(net.shafts) if sh.i in cylinders or sh.j in cylinders]
+    if not ks:
+        return None, None, ""
+    T = response.section_torque_nm[:, ks]
+    s, k = np.unravel_index(int(np.argmax(T)), T.shape)
+    return float(T[s, k]), float(response.rpm[s]), str(response.section_labels[ks[k]])
 
 
 def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:

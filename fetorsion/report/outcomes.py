@@ -93,6 +93,8 @@ class TVCOutcome:
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None,
                 "damper_heat_w": list(self.normal.damper_heat_w) if self.normal else [],
+                **({k: getattr(self.normal, k) for k in ("crank_torque_nm", "crank_torque_rpm", "crank_section")}
+                   if self.normal else {}),
                 "misfires": [c.to_dict() for c in self.misfires], "misfire_note": self.misfire_note,
                 "failed_dampers": [c.to_dict() for c in self.failed_dampers],
                 "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,

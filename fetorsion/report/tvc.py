@@ -5,6 +5,7 @@ their settled temperature, the gear meshes against hammering, and what is assume
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from .outcomes import Skipped, TVCOutcome
@@ -76,16 +77,86 @@ def configuration_rows(cases) -> list[str]:
     """The configurations' table: one row per TVC case (τ/τ_C, barred ranges, couplings, gears and,
     where the network has dampers, their heat)."""
     dampers = any(c.network.dampers for c in cases)  # normal running's, where a failed case has none
+    crank = any(c.crank_torque_nm is not None for c in cases)
     lines = ["| configuration | largest τ/τ_C | barred ranges | shafts | coupling °C | coupling heat [W] | "
-             "coupling torque [N m] | gears |" + " damper heat [W] |" * dampers, "|---|---|---|---|---|---|---|---|"
-             + "---|" * dampers]
+             "coupling torque [N m] | gears |" + " damper heat [W] |" * dampers
+             + " crank torque [kN m] @ rpm (not judged) |" * crank,
+             "|---|---|---|---|---|---|---|---|" + "---|" * dampers + "---|" * crank]
     for case in cases:
         r = case.summary()
         lines.append(f"| {r['case']} | {_cell(r['largest_tau_over_tau_c'], '.3f')} | {r['barred'] or '–'} | "
                      f"{r['shaft_verdict'] or '–'} | {_cell(r['coupling_temperature_c'], '.1f')} | "
                      f"{_cell(r['coupling_heat_w'], '.1f')} | {_cell(r['coupling_torque_nm'], '.0f')} | "
-                     f"{r['hammering'] or '–'} |" + f" {_cell(r['largest_damper_heat_w'], '.1f')} |" * dampers)
+                     f"{r['hammering'] or '–'} |" + f" {_cell(r['largest_damper_heat_w'], '.1f')} |" * dampers
+                     + f" {_crank_cell(case)} |" * crank)
     return lines
+
+
+def _crank_cell(case) -> str:
+    if case.crank_torque_nm is None:
+        return "–"
+    return f"{case.crank_torque_nm / 1e3:.1f} @ {case.crank_torque_rpm:.0f} ({case.crank_section})"
+
+
+def conclusion_lines(outcome: TVCOutcome) -> list[str]:
+    """Each criterion's result over every configuration computed (normal running, each misfire, each
+    failed damper), what it restricts and what is not judged: what a reviewer reads first."""
+    cases = [c for c in (outcome.normal, *outcome.misfires, *outcome.failed_dampers) if c is not None]
+    if not cases:
+        return []
+    lines = ["### Conclusions", "", f"Over {len(cases)} configuration(s): normal running"
+             + (f", the misfire of each of {len(outcome.misfires)} cylinders" if outcome.misfires else "")
+             + (f", {len(outcome.failed_dampers)} failed-damper state(s)" if outcome.failed_dampers else "") + ".", ""]
+
+    def worst(key):
+        have = [c for c in cases if c.summary()[key] is not None]
+        return max(have, key=lambda c: c.summary()[key]) if have else None
+
+    if any(c.shafts is not None for c in cases):
+        w = worst("largest_tau_over_tau_c")
+        barred = [(c.name, c.summary()["barred"], c.shafts.verdict) for c in cases if c.shafts and c.shafts.barred]
+        verdict = "fail" if any(v == "fail" for _, _, v in barred) else "pass with barred ranges" if barred else "pass"
+        lines.append(f"- **Shafts, IACS UR M68: {verdict}.** Largest τ/τ_C {w.summary()['largest_tau_over_tau_c']:.3f} "
+                     f"({w.name})" + ("; barred speed ranges: " + "; ".join(f"{b} ({n})" for n, b, _ in barred)
+                                      if barred else "; no barred speed range") + ".")
+        beyond = [(c.name, n) for c in cases if c.shafts for n in c.shafts.notes if n.startswith("beyond the rule")]
+        lines += [f"- **Above λ 1.05, not judged by the rule** ({n}): {t.removeprefix('beyond the rule: ')}."
+                  for n, t in beyond]
+    if outcome.couplings is not None:
+        for k, sheet in enumerate(outcome.couplings.couplings):
+            rows = [(c, c.couplings.rows()[k]) for c in cases if c.couplings is not None]
+            (hc, h), (tc, t) = max(rows, key=lambda x: x[1]["heat_w"]), max(rows, key=lambda x: x[1]["torque_nm"])
+            heat = ("not judged (the sheet gives no P_KV)" if h["permissible_power_w"] is None else
+                    f"{'pass' if h['heat_w'] <= h['permissible_power_w'] else 'fail'} against P_KV "
+                    f"{h['permissible_power_w']:.0f} W")
+            torque = ("not judged (the sheet gives no permissible vibratory torque)" if t["permissible_torque_nm"] is None
+                      else f"{'pass' if t['torque_nm'] <= t['permissible_torque_nm'] else 'fail'} against "
+                      f"{t['permissible_torque_nm']:.0f} N m")
+            lines.append(f"- **Flexible coupling '{h['coupling']}':** heat up to {h['heat_w']:.1f} W ({hc.name}), {heat}; "
+                         f"vibratory torque up to {t['torque_nm']:.0f} N m ({tc.name}), {torque}; settled at up to "
+                         f"{max(r['temperature_c'] for _, r in rows):.1f} °C.")
+    if any(c.hammering is not None for c in cases):
+        groups = {}  # normal running, the misfires together, each failed damper: the span of its ranges, the worst peak
+        for c in cases:
+            key = "misfire (any cylinder)" if c.misfire is not None else c.name
+            for m in (c.hammering.meshes if c.hammering else ()):
+                for r in m.ranges:
+                    lo, hi, peak, who = groups.get(key, (math.inf, -math.inf, 0.0, ""))
+                    groups[key] = (min(lo, r["from_rpm"]), max(hi, r["to_rpm"]),
+                                   *max((peak, who), (r["peak"], c.name)))
+        lines.append("- **Gear hammering: " + ("possible.** " + "; ".join(
+            f"{k} within {lo:.1f}-{hi:.1f} rpm, peak {p:.2f} × mean" + (f" ({w})" if w != k else "")
+            for k, (lo, hi, p, w) in groups.items())
+            + ": a corrective measure, or an acceptance with its reason, is needed" if groups else "none.**") + ".")
+    if any(c.crank_torque_nm is not None for c in cases):
+        w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
+        lines.append(f"- **Crankshaft: not judged here.** Its largest section torque {w.crank_torque_nm / 1e3:.1f} kN m "
+                     f"({w.crank_section}, {w.crank_torque_rpm:.0f} rpm, {w.name}); the engine maker's permissible "
+                     "values are not in a network file.")
+    if outcome.normal is not None and outcome.normal.damper_heat_w:
+        lines.append(f"- **Dampers' heat:** up to {max(c.summary()['largest_damper_heat_w'] or 0.0 for c in cases):.1f} W; "
+                     "see the dampers' table for each against its permissible heat where the file states it.")
+    return lines + [""]
 
 
 def failed_damper_lines(outcome: TVCOutcome) -> list[str]:
@@ -130,6 +201,7 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if isinstance(outcome, Skipped):
         return lines + [f"Not computed: {outcome.reason}.", ""]
     res = outcome.modes
+    lines += conclusion_lines(outcome)
     lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures.", ""]
     lines += mass_elastic_lines(outcome.network) + ["", "### Natural frequencies", ""]
     if outcome.mode_rows:
