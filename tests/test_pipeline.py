@@ -10,7 +10,7 @@ from fetorsion.design.scfset import SCFSet
 from fetorsion.errors import DescriptionError
 from fetorsion.app.run import DEFAULT_STEPS, RunOptions, run
 
-from conftest import GEOMETRY, assert_picture
+from conftest import GEOMETRY, ROOT, assert_picture
 
 
 NO_FE = tuple(step for step in DEFAULT_STEPS if step[1] not in ("fe", "bearings"))
@@ -248,3 +248,19 @@ def test_run_takes_typed_options_and_returns_its_outcome(tmp_path, monkeypatch):
     outcome = run(GEOMETRY / "peugeot_glx.toml", tmp_path / "r", steps=LUMPED, options=RunOptions(html=False))
     assert isinstance(outcome, RunOutcome) and isinstance(outcome.lumped, LumpedOutcome)
     assert (Path(outcome.folder) / "report.md").is_file() and not (Path(outcome.folder) / "report.html").exists()
+
+
+def test_a_propulsion_lines_run_up_takes_its_stated_passage_rate():
+    """Without --run-up-rate, a network whose propellers state a passage rate runs up at the slowest
+    stated (the medium-speed line's 10 rpm/s, not the 1000 rpm/s fast sweep its report once showed,
+    which needed ~5 × the engine's rated torque to accelerate the line); a chain without one at the
+    default; a given rate wins (RunOptions)."""
+    import fetorsion
+    from fetorsion.app.run import RunOptions
+    from fetorsion.app.steps import stated_runup_rate
+    from fetorsion.description.defaults import DEFAULT_RUNUP_RATE
+
+    line = fetorsion.load(ROOT / "examples/networks/propulsion_line_medium_speed.toml")
+    assert stated_runup_rate(line) == min(p.passage_rate for p in line.propellers) == 10.0
+    assert stated_runup_rate(fetorsion.load(ROOT / "examples/networks/geared_engine.toml")) == DEFAULT_RUNUP_RATE
+    assert RunOptions().runup_rate is None and RunOptions.of({"runup_rate": 50.0}).runup_rate == 50.0

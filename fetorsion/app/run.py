@@ -29,7 +29,7 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError, ParameterError
 from ..io import atomic_folder, check_report_folder, jsonable, save_figure_atomic, write_text_atomic
 from ..studies.runner import machine_workers
-from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES, DEFAULT_RUNUP_RATE
+from ..description.defaults import DEFAULT_INERTIA_RATIO, DEFAULT_MESH_SIZE, DEFAULT_MODES
 from ..report.markdown import report_markdown
 from ..report.outcomes import RunOutcome, Skipped
 from .tvc import is_propulsion_line, step_tvc
@@ -72,8 +72,9 @@ class RunOptions:
         The recommended damper's ring inertia ratio (``--inertia-ratio``).
     fatigue_method : {"iacs-m53", "fe"} or None
         The method that decides the verdict (``--fatigue-method``; None: the description's).
-    runup_rate : float
-        A chain's or network's run-up rate, rpm/s (``--run-up-rate``).
+    runup_rate : float or None
+        A chain's or network's run-up rate, rpm/s (``--run-up-rate``; None: a propulsion line's
+        stated passage rate, else the default, :func:`fetorsion.app.steps.stated_runup_rate`).
     workers : int or None
         Workers of the background studies' local cluster (``--workers``; None: the machine's
         cores less one).
@@ -97,7 +98,7 @@ class RunOptions:
     source: str = "condensed"
     inertia_ratio: float = DEFAULT_INERTIA_RATIO
     fatigue_method: str | None = None
-    runup_rate: float = DEFAULT_RUNUP_RATE
+    runup_rate: float | None = None
     workers: int | None = None
     html: bool = True
     measured: MeasuredData | None = None

@@ -21,7 +21,7 @@ from ..description.chain_model import Chain, Network
 from ..errors import FetorsionError
 from ..lumped_model.lumped import PARTITIONS, lumped
 from ..modes import F1_TORSION_SHARE
-from ..description.defaults import DEFAULT_PARTITION, LUMPED17
+from ..description.defaults import DEFAULT_PARTITION, DEFAULT_RUNUP_RATE, LUMPED17
 from ..webs.methods import SPLIT_PIN_METHODS, WEB_METHODS, crank_web_method
 from ..report.outcomes import (BearingsOutcome, CampbellOutcome, ChainOutcome, CondensedFacts, FatigueOutcome, FEOutcome, LumpedOutcome,
                                MeasuredOutcome, ModeImage, SensitivityOutcome, Skipped, TransientOutcome,
@@ -447,7 +447,7 @@ def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
     camp = ctx.outcome.campbell
     if not isinstance(camp, CampbellOutcome):
         return Skipped(camp.reason if isinstance(camp, Skipped) else "no Campbell diagram and forced response")
-    rate = ctx.options.runup_rate
+    rate = ctx.options.runup_rate or stated_runup_rate(ctx.crank)
     lo, hi = ctx.crank.excitation.checked_range
     t0 = time.perf_counter()
     res = run_transient(ctx.crank, run=(lo, hi), rate_rpm_per_s=rate, settled_start=True)
@@ -460,6 +460,15 @@ def step_transient(ctx: RunContext) -> TransientOutcome | Skipped | None:
     waterfall = ctx.save(res.waterfall(max_order=top).figure, "runup_waterfall.png")
     image = ctx.save(plot_order_cuts(res, camp.response, cuts).figure, "runup_order_cuts.png")
     return TransientOutcome(res, rate, cuts, seconds, waterfall, image)
+
+
+def stated_runup_rate(net) -> float:
+    """The run-up's rate where the run is not given one, rpm/s: a propulsion line's slowest stated
+    passage rate (``passage_rate_rpm_per_s``: the rate its speed passes a range at, the barred
+    ranges' time-domain check's), else :data:`~fetorsion.description.defaults.DEFAULT_RUNUP_RATE`
+    (a fast sweep, the report stating its α/Γ²)."""
+    rates = [p.passage_rate for p in getattr(net, "propellers", ()) if p.passage_rate > 0]
+    return min(rates) if rates else DEFAULT_RUNUP_RATE
 
 
 #: The most severe crossings whose orders the report's run-up compares with the steady state.

@@ -120,9 +120,10 @@ def add_parser(sub) -> None:
     up.add_argument("--station", help="where the measured order cuts were taken: pulley (default), flywheel or a "
                     "station of the model by name or number (as 'fetorsion compare')")
     add_measured_options(up)
-    up.add_argument("--run-up-rate", type=real(0.0, 1.0e5, unit="rpm/s"), default=DEFAULT_RUNUP_RATE,
+    up.add_argument("--run-up-rate", type=real(0.0, 1.0e5, unit="rpm/s"), default=None,
                     metavar="RPM_PER_S", help="a chain's or network's time-domain run-up over its checked range: "
-                    "|dn/dt| in rpm/s (default %(default)g; the cost grows as the rate falls)")
+                    f"|dn/dt| in rpm/s (default: a propulsion line's stated passage_rate_rpm_per_s, else "
+                    f"{DEFAULT_RUNUP_RATE:g}; the cost grows as the rate falls)")
     up.add_argument("--no-html", action="store_true", help="no report.html (the interactive web page) beside report.md")
     up.add_argument("--force", action="store_true",
                     help="replace --out even if it is not an earlier fetorsion report (its contents are lost)")

@@ -175,8 +175,8 @@ def mode_lines(outcome: TVCOutcome) -> list[str]:
     lines = ["| mode | frequency [Hz] | [cpm] | resonances in the speed range: order @ engine rpm |", "|---|---|---|---|"]
     lines += [f"| {r.number} | {r.frequency_hz:.3f} | {60 * r.frequency_hz:.0f} | "
               + (", ".join(f"{q:.4g} @ {n:.0f}" for q, n in r.resonances) or "none") + " |" for r in rows]
-    lines += ["", "Relative amplitudes (each mode's physical station angles over its largest; the blade orders are "
-              "per engine revolution):", "",
+    blades = "; the blade orders are per engine revolution" if outcome.network.propellers else ""
+    lines += ["", f"Relative amplitudes (each mode's physical station angles over its largest{blades}):", "",
               "| station | " + " | ".join(f"mode {r.number}" for r in rows) + " |", "|---|" + "---|" * len(rows)]
     lines += [f"| {name} | " + " | ".join(f"{r.amplitudes[k]:+.3f}".replace("-0.000", "+0.000") for r in rows) + " |"
               for k, name in enumerate(outcome.network.labels)]
@@ -197,7 +197,9 @@ def passage_lines(outcome: TVCOutcome) -> list[str]:
 
 def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     """The TVC section of the report (module docs)."""
-    lines = ["## Propulsion line: torsional vibration calculation", ""]
+    net = getattr(outcome, "network", crank)
+    lines = [f"## {'Propulsion line' if getattr(net, 'propellers', ()) else 'Shaft line'}: torsional vibration "
+             "calculation", ""]
     if isinstance(outcome, Skipped):
         return lines + [f"Not computed: {outcome.reason}.", ""]
     res = outcome.modes
