@@ -89,3 +89,20 @@ def test_passage_span_starts_and_ends_outside_the_range():
     # widened by its width either side, at least 20 rpm
     assert passage_span({"from_rpm": 400.0, "to_rpm": 430.0}) == (370.0, 460.0)
     assert passage_span({"from_rpm": 400.0, "to_rpm": 405.0}) == (380.0, 425.0)
+
+
+def test_damping_at_a_speed_is_the_law_there(line):
+    """A propeller without a stated damping speed: the time domain's one damping at station 1's n
+    is the law's c = 2 Q_r (n_p/n_r)² / ω_p at the propeller's own speed n_p = 0.4 n (its wheel),
+    in place of the rated speed's the network holds; a stated damping speed is kept."""
+    import math
+
+    from fetorsion.response.propulsion import damping_at
+    from test_tvc_misfire import N_R, Q_R
+
+    s = line.propellers[0].station
+    c = lambda n_p: 2 * Q_R * (n_p / N_R) ** 2 / (n_p * math.pi / 30)  # noqa: E731
+    at = damping_at(line, RPM)
+    assert at.absolute_damping[s] == pytest.approx(line.absolute_damping[s] - c(N_R) + c(0.4 * RPM), rel=1e-12)
+    fixed = replace(line, propellers=tuple(replace(p, damping_each_speed=False) for p in line.propellers))
+    assert damping_at(fixed, RPM) is fixed

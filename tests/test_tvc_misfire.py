@@ -40,7 +40,7 @@ def own_harmonics(torque: np.ndarray, orders: np.ndarray) -> np.ndarray:
 
 def direct_solve(net, orders: np.ndarray, misfire: int) -> np.ndarray:
     """(speeds, orders, stations) angles of every station, written out: M, K (1 + iη), C per station;
-    the gears' constraint by hand (wheel 0.4, pump gear 1.5 times the pinion; coordinates the other
+    the propeller's damping the law's at each speed; the gears' constraint by hand (wheel 0.4, pump gear 1.5 times the pinion; coordinates the other
     stations); the cylinders at the engine's orders (multiples of 1/2 on its 4π cycle), 1, 3, 4, 2 firing at 0, 180, 360, 540° (firing order 1-3-4-2 on 4 strokes)."""
     n = len(net.labels)
     K = np.zeros((n, n), complex)
@@ -56,6 +56,11 @@ def direct_solve(net, orders: np.ndarray, misfire: int) -> np.ndarray:
     T[lab.index("wheel"), coords.index(lab.index("pinion"))] = 0.4
     T[lab.index("pump gear"), coords.index(lab.index("pinion"))] = 1.5
     fire = np.radians([0.0, 540.0, 180.0, 360.0])  # cylinders 1..4
+    # the propeller law's damping c = 2 Q/ω at the propeller's own speed (0.4 × the engine's) at each
+    # speed, in place of the one at its rated speed the network holds (the file names no damping speed)
+    c_law = lambda n_p: 2 * Q_R * (n_p / N_R) ** 2 / (n_p * math.pi / 30)  # noqa: E731
+    law = np.zeros((len(RPM), n, n))
+    law[:, lab.index("propeller"), lab.index("propeller")] = [c_law(0.4 * r) - c_law(N_R) for r in RPM]
     out = np.zeros((len(RPM), len(orders), n), complex)
     for a, rpm in enumerate(RPM):
         firing = own_harmonics(cylinder_torque(net, rpm).total, orders)
@@ -67,7 +72,7 @@ def direct_solve(net, orders: np.ndarray, misfire: int) -> np.ndarray:
             if math.isclose(q, Z * 0.4, rel_tol=1e-12):  # the blade order of the propeller at 0.4 × the engine
                 F[lab.index("propeller")] += SHARE * Q_R * (0.4 * rpm / N_R) ** 2
             w = q * rpm * math.pi / 30
-            A = T.T @ (K + 1j * w * C - w**2 * M) @ T
+            A = T.T @ (K + 1j * w * (C + law[a]) - w**2 * M) @ T
             out[a, b] = T @ np.linalg.solve(A, T.T @ F)
     return out
 

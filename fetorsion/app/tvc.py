@@ -123,8 +123,10 @@ def assumptions(net: Network, response) -> list[str]:
     out = [f"Damping: {response.damping_text()} (the modal ratio on every elastic mode"
            + ("; no [excitation] table states it: fetorsion's default)" if net.excitation is None else ")")]
     for p in net.propellers:
-        out.append(f"Propeller '{p.name}': damping by the {p.damping_model.replace('_', ' ')} linearised at "
-                   f"{p.damping_speed * 30 / math.pi:.1f} rpm, held at every speed; inertia with "
+        held = (f"c = n Q(ω)/ω at each speed of the sweep (the modes' damping at {p.damping_speed * 30 / math.pi:.1f} "
+                "rpm, the time domain's at the speed it runs or judges)" if p.damping_each_speed else
+                f"linearised at {p.damping_speed * 30 / math.pi:.1f} rpm, held at every speed")
+        out.append(f"Propeller '{p.name}': damping by the {p.damping_model.replace('_', ' ')}, {held}; inertia with "
                    f"{100 * p.entrained_share:g} % entrained water; blade orders {p.blades} × k at "
                    f"{', '.join(f'{100 * s:g} %' for s in p.order_shares) or 'no'} of the law's mean torque")
     if net.propellers and net.excitation is not None:

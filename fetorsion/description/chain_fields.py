@@ -94,7 +94,9 @@ PROPELLERS = Section("chain.propellers", "Network form: a propeller at a station
           "not offered: no published worked value was found to test them); default propeller_law",
           one_of(tuple(PROPELLER_DAMPING))),
     Field("damping_speed_rpm", "the speed at which the damping is linearised, rpm: the response takes this one "
-          "constant damping at every speed; default the rated speed", "> 0"),
+          "constant damping at every speed (a published case's stated damping); without it the forced response "
+          "takes the law's damping at each speed of its sweep, and the modes' damping and the time domain "
+          "the rated speed's", "> 0"),
     Field("blade_order_shares", "the blade-order torque amplitudes as shares of the mean torque (orders z, 2z, …)",
           "a list, each >= 0; optional"),
     Field("passage_rate_rpm_per_s", "the rate the engine's speed (station 1's) passes a barred range at in the "

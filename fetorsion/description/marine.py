@@ -194,6 +194,10 @@ class Propeller:
     source: str = ""
     #: The rate station 1's speed passes a barred range at in the time-domain check, rpm/s (0: not stated).
     passage_rate: float = 0.0
+    #: The frequency-domain response takes the law's damping at each speed of its sweep (no
+    #: ``damping_speed_rpm`` in the file); False: the one at ``damping_speed`` at every speed. The
+    #: modes' damping and the time domain take ``damping_speed``'s either way.
+    damping_each_speed: bool = False
 
     @property
     def inertia(self) -> float:

@@ -475,7 +475,9 @@ def _propellers(t: Table, index: dict, inertias: list, absolute: list, problems:
             continue
         if any(p.field.startswith(f"{pt.path}.") for p in problems):
             continue
-        p = Propeller(s, blades, inertias[s], share, torque, rated, speed, model, exponent, shares, name, source, passage)
+        each = "damping_speed_rpm" not in pt.data  # the law at each speed, not linearised at one the file names
+        p = Propeller(s, blades, inertias[s], share, torque, rated, speed, model, exponent, shares, name, source, passage,
+                      each)
         inertias[s], absolute[s] = p.inertia, absolute[s] + p.damping(speed)
         out.append(p)
     return out

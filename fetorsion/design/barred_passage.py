@@ -30,6 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..description.chain_model import Network
+from ..response.propulsion import damping_at
 from ..response.transient import TransientResult, run_transient
 from ..results import from_fields
 from .shaft_verdict import judged_sections, rated_speed, section_limits
@@ -183,7 +184,9 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
     configuration : str
         Normal running or a misfire, in words; ``misfire`` the 0-based misfiring cylinder.
     """
-    res = run_transient(net, run=span_rpm, rate_rpm_per_s=rate, settled_start=True, misfire=misfire)
+    # a propeller whose law damping follows the speed takes the one at the range's middle, where its peak is judged
+    res = run_transient(damping_at(net, 0.5 * (barred[0] + barred[1])), run=span_rpm, rate_rpm_per_s=rate,
+                        settled_start=True, misfire=misfire)
     rated = rated_speed(net)
     out = []
     for k, label, sec in judged_sections(net, res):

@@ -281,6 +281,10 @@ class ResponseSetup:
     gyroscopic: np.ndarray | None = None
     #: [(order indices, period rad)] of sources whose periods differ (:mod:`.propulsion`); None: one
     order_groups: tuple | None = None
+    #: (speeds, DOF) viscous damping to ground added at each speed to ``C``'s, N·m·s/rad: a
+    #: propeller's law damping at that speed less the one ``C`` holds (its linearisation speed's,
+    #: :func:`fetorsion.response.propulsion.with_propellers`); None: ``C`` at every speed.
+    speed_damping: np.ndarray | None = None
 
     def at_speeds(self, index) -> "ResponseSetup":
         """The same setup at a subset of its speeds (``index`` into ``rpm``: a slice or indices),
@@ -288,7 +292,8 @@ class ResponseSetup:
         from dataclasses import replace
 
         out = replace(self, rpm=self.rpm[index], forces=self.forces[index],
-                      cylinder_harmonics=self.cylinder_harmonics[index])
+                      cylinder_harmonics=self.cylinder_harmonics[index],
+                      speed_damping=None if self.speed_damping is None else self.speed_damping[index])
         if "free_response" in self.__dict__:  # solved already: each speed's solve is its own
             out.free_response = self.free_response[index]
         if "unit_response" in self.__dict__:
@@ -495,7 +500,11 @@ def _solve_theta(setup: ResponseSetup, dampers):
         return with_dampers(setup.free_response, *setup.unit_response, system, omegas), omegas, system
     N = len(system.M)
     forces = np.concatenate([setup.forces, np.zeros(setup.forces.shape[:2] + (N - n,))], axis=2)
-    return np.linalg.solve(system.matrix(omegas), forces[..., None])[..., 0], omegas, system
+    A = system.matrix(omegas)
+    if setup.speed_damping is not None:  # each speed's own damping to ground (a propeller's law)
+        k = np.arange(n)
+        A[..., k, k] += 1j * omegas[..., None] * setup.speed_damping[:, None, :]
+    return np.linalg.solve(A, forces[..., None])[..., 0], omegas, system
 
 
 def section_torques(setup: ResponseSetup, theta: np.ndarray) -> np.ndarray:

@@ -165,13 +165,36 @@ def with_propellers(setup: ResponseSetup, net: Network, phase_rad: float = 0.0) 
 
     T = lumped(net).network.T
     forces = widened(setup.forces) + propeller_forces(net, T, setup.rpm, orders, phase_rad)
+    extra = None if setup.projected or not any(p.damping_each_speed for p in net.propellers) else \
+        law_damping_by_speed(net, T, f, setup.rpm, setup.M.shape[0])
     sources = ([(np.asarray(engine, float), 2.0 * math.pi / setup.period)] if len(engine) else []) + [
         (qs, qs[0]) for qs in blade if len(qs)]
     groups = order_groups(sources, orders)
     period = groups[0][1] if len(groups) == 1 else setup.period
     return replace(setup, orders=orders, forces=forces, cylinder_harmonics=widened(setup.cylinder_harmonics),
                    phasors=widened(setup.phasors[None])[0], period=period,
-                   order_groups=None if len(groups) == 1 else tuple(groups))
+                   order_groups=None if len(groups) == 1 else tuple(groups),
+                   speed_damping=extra if setup.speed_damping is None or extra is None else setup.speed_damping + extra)
+
+
+def law_damping_by_speed(net: Network, T: np.ndarray, factors: np.ndarray, rpm: np.ndarray, size: int) -> np.ndarray:
+    """(speeds, coordinates) damping to ground each propeller adds at each speed of station 1 (rpm)
+    beyond the one the network holds (its law's at ``damping_speed_rpm``), N·m·s/rad referred to its
+    gear group's coordinate (× f², f its station's speed over the coordinate's): the law's damping
+    c = n Q(ω)/ω taken at the propeller's own speed at every speed of the sweep, not at one speed
+    held at all (a resonance below the linearisation speed was damped too much: by ω_lin/ω at n = 2).
+    ``factors``: each station's speed over station 1's (:func:`speed_factors`)."""
+    from ..lumped_model.network import group_place
+
+    out = np.zeros((len(rpm), size))
+    omega = np.asarray(rpm, float) * math.pi / 30.0
+    for p in net.propellers:
+        if not p.damping_each_speed:  # the file names its linearisation speed: held there
+            continue
+        col, f2 = group_place(T, p.station)
+        own = omega * abs(factors[p.station])
+        out[:, col] += f2 * (np.array([p.damping(w) for w in own]) - p.damping(p.damping_speed))
+    return out
 
 
 def propeller_setup(net: Network, rpm: np.ndarray | None = None, damping_ratio: float | None = None,
@@ -232,3 +255,22 @@ def tvc_setup(net: Network) -> ResponseSetup:
     if any(p.order_shares for p in net.propellers):
         return propeller_setup(net)
     return response_setup(net)
+
+
+def damping_at(net: Network, rpm: float) -> Network:
+    """``net`` with each propeller whose damping follows the speed (``damping_each_speed``) damped by its
+    law at station 1's ``rpm`` (its station's own speed) instead of at its linearisation speed: the one
+    constant damping a time-domain run can take (a steady run at that speed exactly; a passage at the
+    speed it is judged at). Unchanged without such a propeller."""
+    if not any(p.damping_each_speed for p in net.propellers):
+        return net
+    f = speed_factors(net)
+    absolute, props = list(net.absolute_damping), []
+    for p in net.propellers:
+        if p.damping_each_speed:
+            w = rpm * math.pi / 30.0 * abs(f[p.station])
+            absolute[p.station] += p.damping(w) - p.damping(p.damping_speed)
+            p = replace(p, damping_speed=w)
+        props.append(p)
+    return replace(net, absolute_damping=tuple(absolute), propellers=tuple(props))
+

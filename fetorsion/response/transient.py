@@ -494,6 +494,15 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     ('steady running at 2000 rpm', True)
     """
     _check_arguments(model, rpm, run, teeth, step_rad, method)
+    law_notes = []
+    if any(getattr(p, "damping_each_speed", False) for p in getattr(model, "propellers", ())):
+        from .propulsion import damping_at
+
+        if rpm is not None:  # a steady run: the law's damping at its speed, as the frequency domain's
+            model = damping_at(model, rpm)
+        else:
+            law_notes.append("the propellers' law damping held at one speed, their stated or rated one (the "
+                             "frequency domain takes it at each speed)")
     top = rpm if run is None else max(run)
     lo = rpm if run is None else min(run)
     setup, M, K, C, branches, ring_labels, notes = transient_matrices(model, (lo, top), partition, damping_ratio,
@@ -511,7 +520,7 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     rings = len(M) - len(setup.labels)  # the dampers' rings: coordinates that no cylinder drives
     src = run_sources(model, setup, rings, (lo, top), phi, n_t, misfire, propellers)
     W, fire, load, elements = src.W, src.fire, src.load, tuple(getattr(model, "nonlinear", ()))
-    notes += src.notes
+    notes += src.notes + law_notes
     rigid_speed, start = 0.0, None
     if run is not None and settled_start and settle == 0.0:
         # linear: the run starts in the frequency domain's periodic state at its start speed
