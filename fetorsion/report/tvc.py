@@ -119,9 +119,14 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
         lines.append(f"- **Shafts, IACS UR M68: {verdict}.** Largest τ/τ_C {w.summary()['largest_tau_over_tau_c']:.3f} "
                      f"({w.name})" + ("; barred speed ranges: " + "; ".join(f"{b} ({n})" for n, b, _ in barred)
                                       if barred else "; no barred speed range") + ".")
-        beyond = [(c.name, n) for c in cases if c.shafts for n in c.shafts.notes if n.startswith("beyond the rule")]
-        lines += [f"- **Above λ 1.05, not judged by the rule** ({n}): {t.removeprefix('beyond the rule: ')}."
-                  for n, t in beyond]
+        beyond = [(c, n) for c in cases if c.shafts for n in c.shafts.notes if n.startswith("beyond the rule")]
+        if beyond:
+            # the worst by its ratio "(r × it)", the others named
+            ratio = lambda n: float(n.split(" × it")[0].rsplit("(", 1)[1])  # noqa: E731
+            c, n = max(beyond, key=lambda b: ratio(b[1]))
+            lines.append(f"- **Above λ 1.05, not judged by the rule,** in {len(beyond)} configuration(s) "
+                         f"({', '.join(b[0].name for b in beyond)}); the worst, {c.name}: "
+                         f"{n.removeprefix('beyond the rule: ')}.")
     if outcome.couplings is not None:
         for k, sheet in enumerate(outcome.couplings.couplings):
             rows = [(c, c.couplings.rows()[k]) for c in cases if c.couplings is not None]
@@ -147,7 +152,7 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
         lines.append("- **Gear hammering: " + ("possible.** " + "; ".join(
             f"{k} within {lo:.1f}-{hi:.1f} rpm, peak {p:.2f} × mean" + (f" ({w})" if w != k else "")
             for k, (lo, hi, p, w) in groups.items())
-            + ": a corrective measure, or an acceptance with its reason, is needed" if groups else "none.**") + ".")
+            + ": a corrective measure, or an acceptance with its reason, is needed." if groups else "none.**"))
     if any(c.crank_torque_nm is not None for c in cases):
         w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
         lines.append(f"- **Crankshaft: not judged here.** Its largest section torque {w.crank_torque_nm / 1e3:.1f} kN m "
