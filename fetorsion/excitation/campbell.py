@@ -45,15 +45,14 @@ if TYPE_CHECKING:
 def damper_model(crank, res):
     """(M, K, at, scale) of ``crank``'s lumped result ``res`` for its dampers: the model's own
     matrices (a network's in its reduced coordinates, the gears' ratios in them) and where each
-    damper acts and how it is referred (:func:`fetorsion.response.forced.network_damper_dof`, the
+    damper acts and how it is referred (:func:`fetorsion.lumped_model.network.network_damper_dof`, the
     forced response's placement; a chain: its front and rear stations)."""
     M, K = res.matrices()
     if res.network is None:
         return M, K, None, None
-    from ..lumped_model.network import rear_coordinate
-    from ..response.forced import network_damper_dof
+    from ..lumped_model.network import network_damper_dof, rear_coordinate
 
-    dof, scale = network_damper_dof(crank, res, rear_coordinate(crank, res.network.masters))
+    dof, scale = network_damper_dof(crank, res.network, rear_coordinate(crank, res.network.masters))
     return M, K, (lambda d: dof[d.at]), (lambda d: scale.get(d.at, 1.0))
 
 

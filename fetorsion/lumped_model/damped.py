@@ -201,7 +201,8 @@ def damped_modes(inertias: Sequence[float] | np.ndarray, stiffnesses: Sequence[f
 
 
 def damped_modes_of(M: np.ndarray, K: np.ndarray, pin_weights: np.ndarray, dampers: Sequence[Damper],
-                    source: str = "chain", at=None, scale=None):
+                    source: str = "chain", at: Callable[[Damper], int] | None = None,
+                    scale: Callable[[Damper], float] | None = None):
     """:func:`damped_modes` of any model given by its matrices (a chain's, or a network's in its
     reduced coordinates with the gears' ratios in them): ``at`` and ``scale`` place and refer
     each damper as :class:`DampedSystem` does (None: a chain's front and rear stations, f = 1)."""

@@ -289,3 +289,17 @@ def network_modes(mats: NetworkMatrices):
     scale = np.where(np.abs(ref) > 1e-6 * np.abs(shapes).max(axis=1), ref,
                      shapes[np.arange(len(shapes)), np.abs(shapes).argmax(axis=1)])
     return rigid, np.sqrt(np.maximum(lam, 0.0)) / (2 * np.pi), shapes / scale[:, None]
+
+
+def network_damper_dof(net: Network, matrices: NetworkMatrices, flywheel: int) -> tuple[dict, dict]:
+    """Where a network's dampers act and how they are referred, on its ``matrices``: ({at: coordinate}, {at: f²}).
+    ``front`` is the first coordinate, ``rear`` the last one at the engine's speed
+    (``flywheel``), a station's name its gear group's coordinate; a station that turns f times
+    as fast as that coordinate (row T of the gear constraint) carries the damper referred by f²
+    (:func:`fetorsion.lumped_model.damped.referred_damper`)."""
+    out, scale = {"front": 0, "rear": flywheel}, {}
+    for d in getattr(net, "dampers", ()):
+        if d.at in out:
+            continue
+        out[d.at], scale[d.at] = group_place(matrices.T, list(matrices.labels).index(d.at))
+    return out, scale

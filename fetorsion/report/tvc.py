@@ -107,52 +107,7 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
     lines = ["### Conclusions", "", f"Over {len(cases)} configuration(s): normal running"
              + (f", the misfire of each of {len(outcome.misfires)} cylinders" if outcome.misfires else "")
              + (f", {len(outcome.failed_dampers)} failed-damper state(s)" if outcome.failed_dampers else "") + ".", ""]
-
-    def worst(key):
-        have = [c for c in cases if c.summary()[key] is not None]
-        return max(have, key=lambda c: c.summary()[key]) if have else None
-
-    if any(c.shafts is not None for c in cases):
-        w = worst("largest_tau_over_tau_c")
-        barred = [(c.name, c.summary()["barred"], c.shafts.verdict) for c in cases if c.shafts and c.shafts.barred]
-        verdict = "fail" if any(v == "fail" for _, _, v in barred) else "pass with barred ranges" if barred else "pass"
-        lines.append(f"- **Shafts, IACS UR M68: {verdict}.** Largest τ/τ_C {w.summary()['largest_tau_over_tau_c']:.3f} "
-                     f"({w.name})" + ("; barred speed ranges: " + "; ".join(f"{b} ({n})" for n, b, _ in barred)
-                                      if barred else "; no barred speed range") + ".")
-        beyond = [(c, n) for c in cases if c.shafts for n in c.shafts.notes if n.startswith("beyond the rule")]
-        if beyond:
-            # the worst by its ratio "(r × it)", the others named
-            ratio = lambda n: float(n.split(" × it")[0].rsplit("(", 1)[1])  # noqa: E731
-            c, n = max(beyond, key=lambda b: ratio(b[1]))
-            lines.append(f"- **Above λ 1.05, not judged by the rule,** in {len(beyond)} configuration(s) "
-                         f"({', '.join(b[0].name for b in beyond)}); the worst, {c.name}: "
-                         f"{n.removeprefix('beyond the rule: ')}.")
-    if outcome.couplings is not None:
-        for k, sheet in enumerate(outcome.couplings.couplings):
-            rows = [(c, c.couplings.rows()[k]) for c in cases if c.couplings is not None]
-            (hc, h), (tc, t) = max(rows, key=lambda x: x[1]["heat_w"]), max(rows, key=lambda x: x[1]["torque_nm"])
-            heat = ("not judged (the sheet gives no P_KV)" if h["permissible_power_w"] is None else
-                    f"{'pass' if h['heat_w'] <= h['permissible_power_w'] else 'fail'} against P_KV "
-                    f"{h['permissible_power_w']:.0f} W")
-            torque = ("not judged (the sheet gives no permissible vibratory torque)" if t["permissible_torque_nm"] is None
-                      else f"{'pass' if t['torque_nm'] <= t['permissible_torque_nm'] else 'fail'} against "
-                      f"{t['permissible_torque_nm']:.0f} N m")
-            lines.append(f"- **Flexible coupling '{h['coupling']}':** heat up to {h['heat_w']:.1f} W ({hc.name}), {heat}; "
-                         f"vibratory torque up to {t['torque_nm']:.0f} N m ({tc.name}), {torque}; settled at up to "
-                         f"{max(r['temperature_c'] for _, r in rows):.1f} °C.")
-    if any(c.hammering is not None for c in cases):
-        groups = {}  # normal running, the misfires together, each failed damper: the span of its ranges, the worst peak
-        for c in cases:
-            key = "misfire (any cylinder)" if c.misfire is not None else c.name
-            for m in (c.hammering.meshes if c.hammering else ()):
-                for r in m.ranges:
-                    lo, hi, peak, who = groups.get(key, (math.inf, -math.inf, 0.0, ""))
-                    groups[key] = (min(lo, r["from_rpm"]), max(hi, r["to_rpm"]),
-                                   *max((peak, who), (r["peak"], c.name)))
-        lines.append("- **Gear hammering: " + ("possible.** " + "; ".join(
-            f"{k} within {lo:.1f}-{hi:.1f} rpm, peak {p:.2f} × mean" + (f" ({w})" if w != k else "")
-            for k, (lo, hi, p, w) in groups.items())
-            + ": a corrective measure, or an acceptance with its reason, is needed." if groups else "none.**"))
+    lines += _shaft_conclusions(cases) + _coupling_conclusions(outcome, cases) + _hammering_conclusion(cases)
     if any(c.crank_torque_nm is not None for c in cases):
         w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
         lines.append(f"- **Crankshaft: not judged here.** Its largest section torque {w.crank_torque_nm / 1e3:.1f} kN m "
@@ -162,6 +117,66 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
         lines.append(f"- **Dampers' heat:** up to {max(c.summary()['largest_damper_heat_w'] or 0.0 for c in cases):.1f} W; "
                      "see the dampers' table for each against its permissible heat where the file states it.")
     return lines + [""]
+
+
+def _shaft_conclusions(cases) -> list[str]:
+    """The shafts against UR M68 over the configurations, and what lies beyond λ 1.05."""
+    if not any(c.shafts is not None for c in cases):
+        return []
+    have = [c for c in cases if c.summary()["largest_tau_over_tau_c"] is not None]
+    w = max(have, key=lambda c: c.summary()["largest_tau_over_tau_c"])
+    barred = [(c.name, c.summary()["barred"], c.shafts.verdict) for c in cases if c.shafts and c.shafts.barred]
+    verdict = "fail" if any(v == "fail" for _, _, v in barred) else "pass with barred ranges" if barred else "pass"
+    lines = [f"- **Shafts, IACS UR M68: {verdict}.** Largest τ/τ_C {w.summary()['largest_tau_over_tau_c']:.3f} "
+             f"({w.name})" + ("; barred speed ranges: " + "; ".join(f"{b} ({n})" for n, b, _ in barred)
+                              if barred else "; no barred speed range") + "."]
+    beyond = [(c, n) for c in cases if c.shafts for n in c.shafts.notes if n.startswith("beyond the rule")]
+    if beyond:
+        # the worst by its ratio "(r × it)", the others named
+        ratio = lambda n: float(n.split(" × it")[0].rsplit("(", 1)[1])  # noqa: E731
+        c, n = max(beyond, key=lambda b: ratio(b[1]))
+        lines.append(f"- **Above λ 1.05, not judged by the rule,** in {len(beyond)} configuration(s) "
+                     f"({', '.join(b[0].name for b in beyond)}); the worst, {c.name}: "
+                     f"{n.removeprefix('beyond the rule: ')}.")
+    return lines
+
+
+def _coupling_conclusions(outcome: TVCOutcome, cases) -> list[str]:
+    """Each coupling's largest heat and torque over the configurations against its sheet."""
+    if outcome.couplings is None:
+        return []
+    lines = []
+    for k in range(len(outcome.couplings.couplings)):
+        rows = [(c, c.couplings.rows()[k]) for c in cases if c.couplings is not None]
+        (hc, h), (tc, t) = max(rows, key=lambda x: x[1]["heat_w"]), max(rows, key=lambda x: x[1]["torque_nm"])
+        heat = ("not judged (the sheet gives no P_KV)" if h["permissible_power_w"] is None else
+                f"{'pass' if h['heat_w'] <= h['permissible_power_w'] else 'fail'} against P_KV "
+                f"{h['permissible_power_w']:.0f} W")
+        torque = ("not judged (the sheet gives no permissible vibratory torque)" if t["permissible_torque_nm"] is None
+                  else f"{'pass' if t['torque_nm'] <= t['permissible_torque_nm'] else 'fail'} against "
+                  f"{t['permissible_torque_nm']:.0f} N m")
+        lines.append(f"- **Flexible coupling '{h['coupling']}':** heat up to {h['heat_w']:.1f} W ({hc.name}), {heat}; "
+                     f"vibratory torque up to {t['torque_nm']:.0f} N m ({tc.name}), {torque}; settled at up to "
+                     f"{max(r['temperature_c'] for _, r in rows):.1f} °C.")
+    return lines
+
+
+def _hammering_conclusion(cases) -> list[str]:
+    """Gear hammering over the configurations: normal running, the misfires together, each failed damper."""
+    if not any(c.hammering is not None for c in cases):
+        return []
+    groups = {}  # the span of each group's ranges and its worst peak
+    for c in cases:
+        key = "misfire (any cylinder)" if c.misfire is not None else c.name
+        for m in (c.hammering.meshes if c.hammering else ()):
+            for r in m.ranges:
+                lo, hi, peak, who = groups.get(key, (math.inf, -math.inf, 0.0, ""))
+                groups[key] = (min(lo, r["from_rpm"]), max(hi, r["to_rpm"]), *max((peak, who), (r["peak"], c.name)))
+    if not groups:
+        return ["- **Gear hammering: none.**"]
+    return ["- **Gear hammering: possible.** " + "; ".join(
+        f"{k} within {lo:.1f}-{hi:.1f} rpm, peak {p:.2f} × mean" + (f" ({w})" if w != k else "")
+        for k, (lo, hi, p, w) in groups.items()) + ": a corrective measure, or an acceptance with its reason, is needed."]
 
 
 def failed_damper_lines(outcome: TVCOutcome) -> list[str]:

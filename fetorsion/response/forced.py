@@ -30,7 +30,7 @@ from ..errors import FetorsionError, ParameterError
 from ..excitation.loads import cylinder_loads
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
-from ..lumped_model.network import group_place, rear_coordinate
+from ..lumped_model.network import group_place, network_damper_dof, rear_coordinate
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .forced_plots import compare_lines, plot_response
 from ..results import from_fields
@@ -417,26 +417,11 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
                           pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad,
                           # a network's rear damper sits on the last coordinate at the engine's speed
-                          damper_dof=None if res.network is None else network_damper_dof(crank, res, flywheel)[0],
-                          damper_scale=None if res.network is None else network_damper_dof(crank, res, flywheel)[1])
+                          damper_dof=None if res.network is None else network_damper_dof(crank, res.network, flywheel)[0],
+                          damper_scale=None if res.network is None else network_damper_dof(crank, res.network, flywheel)[1])
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup
-
-
-def network_damper_dof(net, res, flywheel: int) -> tuple[dict, dict]:
-    """Where a network's dampers act and how they are referred: ({at: coordinate}, {at: f²}).
-    ``front`` is the first coordinate, ``rear`` the last one at the engine's speed
-    (``flywheel``), a station's name its gear group's coordinate; a station that turns f times
-    as fast as that coordinate (row T of the gear constraint) carries the damper referred by f²
-    (:func:`fetorsion.lumped_model.damped.referred_damper`)."""
-    out, scale = {"front": 0, "rear": flywheel}, {}
-    T = res.network.T
-    for d in getattr(net, "dampers", ()):
-        if d.at in out:
-            continue
-        out[d.at], scale[d.at] = group_place(T, list(res.network.labels).index(d.at))
-    return out, scale
 
 
 def misfire_harmonics(crank: Crank | Chain | Network, setup: ResponseSetup) -> np.ndarray:

@@ -36,9 +36,9 @@ from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_SPEED_STEPS
 from ..description.marine import Propeller, law_torque
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped, stated_damping
-from ..lumped_model.network import rear_coordinate, speed_factors
+from ..lumped_model.network import network_damper_dof, rear_coordinate, speed_factors
 from ..modes import modal_damping_matrix
-from .forced import ResponseSetup, network_damper_dof, response_setup
+from .forced import ResponseSetup, response_setup
 
 #: Largest numerator and denominator of the ratio of two sources' fundamental orders for which
 #: they are synthesised over one common period (a longer common period is treated as none).
@@ -245,8 +245,8 @@ def _bare_setup(net: Network, rpm, damping_ratio: float | None) -> ResponseSetup
                          res.network.section_rows, list(res.network.section_labels), positions_m=res.positions_m,
                          pulley=0, flywheel=flywheel,
                          model=f"network of {len(res.network.labels)} stations", stiffnesses=res.stiffnesses_nm_per_rad,
-                         damper_dof=network_damper_dof(net, res, flywheel)[0],
-                         damper_scale=network_damper_dof(net, res, flywheel)[1])
+                         damper_dof=network_damper_dof(net, res.network, flywheel)[0],
+                         damper_scale=network_damper_dof(net, res.network, flywheel)[1])
 
 
 def tvc_setup(net: Network) -> ResponseSetup:
@@ -273,4 +273,16 @@ def damping_at(net: Network, rpm: float) -> Network:
             p = replace(p, damping_speed=w)
         props.append(p)
     return replace(net, absolute_damping=tuple(absolute), propellers=tuple(props))
+
+
+def run_damping(model: object, rpm: float | None) -> tuple[object, list[str]]:
+    """(the model a time-domain run takes, its note): a network whose propellers' law damping follows
+    the speed, damped at a steady run's ``rpm`` as the frequency domain is there; a run over a range
+    holds the one at their stated or rated speed, and says so. Any other model as it is."""
+    if not any(getattr(p, "damping_each_speed", False) for p in getattr(model, "propellers", ())):
+        return model, []
+    if rpm is not None:
+        return damping_at(model, rpm), []
+    return model, ["the propellers' law damping held at one speed, their stated or rated one (the frequency domain "
+                   "takes it at each speed)"]
 

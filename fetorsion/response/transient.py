@@ -68,6 +68,7 @@ from ..measured.torsiograph import OrderTrack, order_track
 from .forced import ResponseResult
 from .nonlinear import METHODS, nonlinear_run
 from .transient_load import held_schedule, periodic_state, rigid_start_speed, speed_schedule
+from .propulsion import run_damping
 from .transient_sources import blade_state, run_sources
 from ..results import from_fields
 from .transient_record import (ORDER_CUT_KEYS, StoredRecord, block_envelope, station_order_track, thinned_signals,
@@ -494,17 +495,8 @@ def run_transient(model: Crank | Chain | Network, rpm: float | None = None, run:
     ('steady running at 2000 rpm', True)
     """
     _check_arguments(model, rpm, run, teeth, step_rad, method)
-    law_notes = []
-    if any(getattr(p, "damping_each_speed", False) for p in getattr(model, "propellers", ())):
-        from .propulsion import damping_at
-
-        if rpm is not None:  # a steady run: the law's damping at its speed, as the frequency domain's
-            model = damping_at(model, rpm)
-        else:
-            law_notes.append("the propellers' law damping held at one speed, their stated or rated one (the "
-                             "frequency domain takes it at each speed)")
-    top = rpm if run is None else max(run)
-    lo = rpm if run is None else min(run)
+    model, law_notes = run_damping(model, rpm)
+    lo, top = (rpm, rpm) if run is None else (min(run), max(run))
     setup, M, K, C, branches, ring_labels, notes = transient_matrices(model, (lo, top), partition, damping_ratio,
                                                                       web_method)
     h = step_rad / (top * math.pi / 30)
