@@ -128,21 +128,44 @@ class ShaftVerdict:
         return "\n".join(lines + [f"  verdict: {self.verdict}"] + [f"  note: {n}" for n in self.notes])
 
     def plot(self, ax=None):
-        """τ (solid), τ_C (dashed) and τ_T (dotted) of each section over speed, N/mm², the barred
-        ranges shaded. Returns the Axes."""
+        """Each section's τ/τ_C over speed (solid; log scale, so that a section far below its limit
+        still shows its resonances), the limit 1 and τ_T/τ_C (dotted, to λ 0.8), past λ 1.05 the
+        stress over τ_C at λ 1.05 (dashed: the rule gives none there), the barred ranges shaded and
+        λ on the top axis with 0.8 and 1.05 marked. Returns the Axes."""
         import matplotlib.pyplot as plt
 
         ax = ax if ax is not None else plt.figure(figsize=(9, 5)).add_subplot()
+        lam = self.speed_ratio
+        low = []
         for k, s in enumerate(self.sections):
             color = f"C{k % 10}"
-            ax.plot(self.rpm, s.stress_pa / 1e6, color=color, label=f"τ {s.label}")
-            ax.plot(self.rpm, s.tau_c_pa / 1e6, color=color, ls="--", lw=0.9, label=f"τ_C {s.label}")
-            ax.plot(self.rpm, s.tau_t_pa / 1e6, color=color, ls=":", lw=0.9, label=f"τ_T {s.label}")
+            u = s.utilisation
+            ax.plot(self.rpm, u, color=color, label=f"τ/τ_C {s.label}")
+            if np.isfinite(s.tau_t_pa).any():  # the rule gives τ_T to λ 0.8 only
+                ax.plot(self.rpm, s.tau_t_pa / s.tau_c_pa, color=color, ls=":", lw=0.9, label=f"τ_T/τ_C {s.label}")
+            beyond = lam > LAMBDA_MAX
+            if beyond.any():
+                edge = float(section_limits(s.section, np.array([LAMBDA_MAX]))[0][0])
+                ax.plot(self.rpm[beyond], s.stress_pa[beyond] / edge, color=color, ls="--", lw=1.0,
+                        label=f"τ/τ_C(λ {LAMBDA_MAX}) {s.label}, not judged")
+            low.append(np.nanmin(np.where(u > 0, u, np.nan)) if np.any(u > 0) else 1.0)
+        ax.axhline(1.0, color="crimson", lw=1.2, label="τ = τ_C")
         for b in self.barred:
             ax.axvspan(b["from_rpm"], b["to_rpm"], color="crimson", alpha=0.15, lw=0)
-        ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="vibratory torsional stress (N/mm²)",
+        ax.set_yscale("log")
+        ax.set_ylim(max(min(low) / 3, 1e-4), 3.0)
+        from matplotlib.ticker import FuncFormatter, NullFormatter
+
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.yaxis.set_minor_formatter(NullFormatter())
+        ax.set(xlabel="engine speed, station 1 (rpm)", ylabel="τ / τ_C (log)",
                title=f"{self.name}: shaft stresses, UR M68 ({self.verdict})")
-        ax.legend(fontsize=7)
+        top = ax.secondary_xaxis("top", functions=(lambda n: n / self.rated_rpm, lambda x: x * self.rated_rpm))
+        top.set_xlabel("λ = n / rated", fontsize=8)
+        for mark in (LAMBDA_TRANSIENT_MAX, LAMBDA_MAX):
+            if lam[0] <= mark <= lam[-1]:
+                ax.axvline(mark * self.rated_rpm, color="0.5", lw=0.8, ls="-.")
+        ax.legend(fontsize=7, loc="best")
         return ax
 
 
