@@ -123,13 +123,26 @@ def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major
     major = {round(float(q), 9) for q in major_orders}
     n = np.array([0.0, top])
     first = min(major, default=None)
-    for q in engine_orders:
+    fmax = 1.15 * max(r.frequency_hz for r in rows)
+    placed = []  # an order line leaving through the top is labelled there, where it has room (a major order always)
+    for q in sorted(engine_orders, key=lambda q: (round(float(q), 9) not in major, -q)):
         bold = round(float(q), 9) in major
         ax.plot(n, q * n / 60, color="0.15" if bold else "0.65", lw=1.4 if bold else 0.6, zorder=1,
                 label="engine major order" if bold and round(float(q), 9) == first else None)
-        if q * top / 60 < 1.05 * max(r.frequency_hz for r in rows):
-            ax.annotate(f"{q:g}", (top, q * top / 60), fontsize=6, color="0.3", xytext=(2, 0),
-                        textcoords="offset points", va="center")
+        style = {"fontsize": 7 if bold else 6, "color": "0.1" if bold else "0.4", "fontweight": "bold" if bold else None}
+        if q * top / 60 < fmax:  # leaves through the right edge
+            ax.annotate(f"{q:g}", (top, q * top / 60), xytext=(2, 0), textcoords="offset points", va="center", **style)
+        else:
+            x = fmax * 60 / q
+            if bold or all(abs(x - p) > 0.03 * top for p in placed):
+                placed.append(x)
+                ax.annotate(f"{q:g}", (x, fmax), xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
+                            **style)
+    for r in rows:  # each resonance inside the speed range marked where its order meets the mode
+        ax.scatter([rpm for _, rpm in r.resonances], [r.frequency_hz] * len(r.resonances), s=14, facecolors="none",
+                   edgecolors="crimson", lw=0.9, zorder=3,
+                   label="resonance in the speed range" if r is rows[0] or not any(x.resonances for x in rows[:rows.index(r)])
+                   else None)
     for q in blade_orders:
         ax.plot(n, q * n / 60, color="tab:blue", ls="--", lw=1.2, zorder=1,
                 label=f"propeller blade rate (engine order {q:.4g})")
@@ -146,8 +159,8 @@ def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major
         ax.axvspan(a, b, color=color, alpha=0.25, lw=0, hatch=hatch, zorder=1,
                    label=None if kind in shown else f"barred, {kind}")
         shown.add(kind)
-    ax.set(xlim=(0, top), ylim=(0, 1.15 * max(r.frequency_hz for r in rows)), xlabel="engine speed (rpm)",
-           ylabel="frequency (Hz)", title=title)
+    ax.set(xlim=(0, top), ylim=(0, fmax), xlabel="engine speed (rpm)", ylabel="frequency (Hz)")
+    ax.set_title(title, pad=14)
     ax.legend(fontsize=7, loc="upper left", framealpha=0.95)
     if not barred:
         ax.text(0.5, -0.1, "no barred range in any configuration computed", transform=ax.transAxes, ha="center",

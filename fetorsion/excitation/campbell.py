@@ -204,15 +204,28 @@ class CampbellResult:
         ax.axvspan(lo, hi, color="0.92", zorder=0, label="operating range")
         rpm = np.array([0.0, top])
         major = {round(float(q), 9) for q in self.major}
+        # the order lines that leave through the top crowd there: a label is kept where it has room
+        # (a major order's always), so that "12 11.5 11" does not print as "1211.511"
+        room, kept = 0.025 * top, []
+        ends = {float(q): min(top, fmax * 60 / q) for q in self.orders}
+        for q in sorted(self.orders, key=lambda q: (round(float(q), 9) not in major, ends[float(q)])):
+            e = ends[float(q)]
+            if e >= top or round(float(q), 9) in major or all(abs(e - k) > room for k in kept):
+                kept.append(e)
+                ends[float(q)] = -e  # marked: labelled
         for q in self.orders:
             bold = round(float(q), 9) in major
             ax.plot(rpm, q * rpm / 60, color="0.1" if bold else "0.6", lw=1.6 if bold else 0.6, zorder=1,
                     label="major order (all cylinders in phase)" if bold and round(float(q), 9) == min(major) else None)
-            end = min(top, fmax * 60 / q)
-            ax.text(end, q * end / 60, f" {q:g}", fontsize=8 if bold else 7, color="0.1" if bold else "0.45",
-                    va="bottom", fontweight="bold" if bold else None)
+            if ends[float(q)] < 0:
+                end = -ends[float(q)]
+                ax.text(end, q * end / 60, f" {q:g}", fontsize=8 if bold else 7, color="0.1" if bold else "0.45",
+                        va="bottom", fontweight="bold" if bold else None)
+        zetas = self.damping_ratio if isinstance(self.damping_ratio, tuple) else None
         for j, f in enumerate(self.frequencies_hz):
-            ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz")
+            damped = f", ζ {zetas[j]:.3g}" if zetas and j < len(zetas) else ""
+            ax.axhline(f, color=f"C{j}", lw=1.2, label=f"mode {j + 1}: {f:.0f} Hz{damped}" if f >= 100
+                       else f"mode {j + 1}: {f:.3g} Hz{damped}")
         inside = [c for c in self.crossings if c.in_range]
         unit = self.severity_unit.split(":")[0]
         if inside:
@@ -228,8 +241,8 @@ class CampbellResult:
         ax.set_ylim(0, fmax)
         ax.set_xlabel("engine speed [rpm]")
         ax.set_ylabel("frequency [Hz]")
-        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}, ζ = {zeta_text(self.damping_ratio)}",
-                     fontsize=9, wrap=True)
+        damping = "ζ per mode in the key" if isinstance(self.damping_ratio, tuple) else f"ζ = {zeta_text(self.damping_ratio)}"
+        ax.set_title(f"{self.name}\nCampbell diagram, modes from {self.source}\n{damping}", fontsize=9, pad=14)
         ax.legend(fontsize=7, loc="upper left", labelspacing=1.1, borderpad=0.8)
         ax.figure.tight_layout()
         return ax
