@@ -15,11 +15,16 @@ if TYPE_CHECKING:
 
 
 def mass_elastic_lines(net: Network) -> list[str]:
-    """The mass-elastic table: each station's inertia (in water for a propeller) and absolute
-    damping, each shaft's and coupling's stiffness and section."""
-    lines = ["| station | inertia [kg m²] | damping to ground [N m s/rad] |", "|---|---|---|"]
+    """The mass-elastic table: each station's speed over station 1's, inertia (in water for a
+    propeller) and absolute damping, each shaft's and coupling's stiffness and section, at their own
+    stations' speed (not referred to the engine's)."""
+    from ..lumped_model.network import speed_factors
+
+    # each value at its own station's speed, as the file states it; the ratio says where it turns
+    lines = ["| station | speed / station 1's | inertia [kg m²] | damping to ground [N m s/rad] |", "|---|---|---|---|"]
     damping = net.absolute_damping or (0.0,) * len(net.labels)
-    lines += [f"| {s} | {j:.6g} | {c:.4g} |" for s, j, c in zip(net.labels, net.inertias, damping)]
+    lines += [f"| {s} | {f:.4g} | {j:.6g} | {c:.4g} |"
+              for s, f, j, c in zip(net.labels, speed_factors(net), net.inertias, damping)]
     lines += ["", "| between | stiffness [N m/rad] | loss factor | section |", "|---|---|---|---|"]
     for sh in net.shafts:
         b = net.labels[sh.j] if sh.j >= 0 else "ground"
@@ -224,7 +229,8 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
         return lines + [f"Not computed: {outcome.reason}.", ""]
     res = outcome.modes
     lines += conclusion_lines(outcome)
-    lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures.", ""]
+    lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures; every value at its own station's speed "
+              "(not referred to the engine's), the speed ratio beside it.", ""]
     lines += mass_elastic_lines(outcome.network) + ["", "### Natural frequencies", ""]
     if outcome.mode_rows:
         lines += mode_lines(outcome) + ([f"![]({outcome.campbell_image})", ""] if outcome.campbell_image else [])
