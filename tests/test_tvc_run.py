@@ -125,3 +125,23 @@ def test_an_engine_line_gets_normal_running_and_each_misfire(tmp_path):
     worst = res["worst_misfire_cylinder"]
     u = [m["largest_tau_over_tau_c"] for m in res["misfires"]]
     assert u[worst - 1] == max(u) and (out / "tvc_shafts_misfire.png").stat().st_size > 10_000
+
+
+def test_the_installation_particulars_state_the_files_numbers():
+    """The TVC's installation particulars: the indicated power at the rated speed is p_mi V_s n/120
+    (4 strokes) from the file's bore, stroke and p_mi (the example's comment: 0.85 of it is its
+    stated 1433 kW brake power, 1e-3), the coupling's sheet and the propeller's water as stated."""
+    import math
+
+    import fetorsion
+    from conftest import ROOT
+    from fetorsion.report.tvc import installation_lines
+
+    net = fetorsion.load(ROOT / "examples/networks/propulsion_line_medium_speed.toml")
+    text = "\n".join(installation_lines(net))
+    v_s = 6 * math.pi / 4 * 0.32**2 * 0.41752
+    kw = 1.2e6 * v_s * 836.7 / 120 / 1e3
+    assert f"indicated power there {kw:.0f} kW" in text and 0.85 * kw == pytest.approx(1433, rel=1e-3)
+    assert "on the propeller curve" in text and "25 % entrained water = 980 kg m²" in text
+    assert "permissible vibratory torque not stated, P_KV 5759 W at 40 °C ambient" in text
+    assert "| order | 0.5 |" in text

@@ -41,6 +41,70 @@ def mass_elastic_lines(net: Network) -> list[str]:
     return lines
 
 
+def installation_lines(net: Network) -> list[str]:
+    """The installation's particulars as the file states them (engine, load, propellers, gears,
+    couplings) and cylinder 1's tangential torque harmonics at the rated speed: what a reviewer
+    checks the mass-elastic data and the excitation against."""
+    lines = ["### Installation particulars", ""]
+    ex, eng = net.excitation, net.engine
+    if eng is not None and ex is not None:
+        lo, hi = ex.speed_range
+        load = {"propeller_imep": "on the propeller curve, p_mi ∝ n² below the rated speed",
+                "imep": "as stated at each speed", "peak": "by its peak pressure"}.get(ex.load_kind, ex.load_kind)
+        swept = eng.cylinders * math.pi / 4 * eng.bore ** 2 * eng.stroke
+        p_mi = ex.running_imep(hi) if ex.load_kind != "peak" else math.nan
+        power = p_mi * swept * hi / 60 / (eng.strokes_per_cycle / 2) if math.isfinite(p_mi) else math.nan
+        lines += [f"- Engine: {eng.cylinders} cylinders {eng.layout}, {eng.strokes_per_cycle}-stroke, bore "
+                  f"{eng.bore * 1e3:.1f} mm, stroke {eng.stroke * 1e3:.1f} mm, rod {eng.rod_length * 1e3:.1f} mm, "
+                  f"firing order {'-'.join(str(c) for c in eng.firing_order)}; speed range {lo:g}-{hi:g} rpm (rated "
+                  f"{hi:g}), computed to {ex.overspeed:g} × rated.",
+                  f"- Load: p_mi {p_mi / 1e6:.3g} MPa at the rated speed, {load}" + (
+                      f"; indicated power there {power / 1e3:.0f} kW (brake power is not in the file)"
+                      if math.isfinite(power) else "") + "."]
+    f = None
+    for p in net.propellers:
+        if f is None:
+            from ..lumped_model.network import speed_factors
+
+            f = speed_factors(net)
+        lines.append(f"- Propeller '{p.name}' at {net.labels[p.station]}: {p.blades} blades, dry inertia "
+                     f"{p.dry_inertia:.6g} kg m² + {100 * p.entrained_share:g} % entrained water = {p.inertia:.6g} kg m²; "
+                     f"rated {p.rated_torque:.6g} N m at {p.rated_speed * 30 / math.pi:.1f} rpm (its shaft; "
+                     f"{f[p.station]:.4g} × station 1's speed); blade orders at "
+                     f"{', '.join(f'{100 * v:g} %' for v in p.order_shares) or 'none'} of the mean torque.")
+    lines += [f"- Gear {net.labels[g.i]} – {net.labels[g.j]}: speed ratio {g.ratio:g}." for g in net.gears]
+    for c in net.couplings:
+        warm = "" if not math.isfinite(c.warm_temperature_c) else (
+            f", {c.warm_stiffness:.4g} N m/rad and ψ {c.warm_relative_damping:g} at {c.warm_temperature_c:g} °C")
+        lines.append(f"- Coupling '{c.name or 'coupling'}' ({net.labels[c.i]} – {net.labels[c.j]}): "
+                     f"{c.stiffness:.4g} N m/rad and ψ {c.relative_damping:g} at {c.temperature_c:g} °C{warm}; "
+                     f"permissible vibratory torque {f'{c.permissible_torque:.0f} N m' if c.permissible_torque else 'not stated'}, "
+                     f"P_KV {f'{c.permissible_power:.0f} W' if c.permissible_power else 'not stated'}"
+                     + (f" at {c.ambient_c:g} °C ambient" if math.isfinite(c.ambient_c) else "")
+                     + (f"; source: {c.source}" if c.source else "") + ".")
+    if eng is not None and ex is not None:
+        lines += [""] + _excitation_lines(net)
+    return lines + [""]
+
+
+def _excitation_lines(net: Network) -> list[str]:
+    """Cylinder 1's tangential torque harmonics at the rated speed, the largest eight by amplitude."""
+    import numpy as np
+
+    from ..excitation.loads import cylinder_loads
+
+    rated = net.excitation.speed_range[1]
+    orders = np.arange(0.5, 24.01, 0.5)
+    try:
+        h = cylinder_loads(net).torque_harmonics([rated], orders)[0, :, 0]
+    except Exception:  # noqa: BLE001 - a table without every order: the section goes without the list
+        return []
+    top = sorted(np.argsort(-np.abs(h))[:8])
+    return ([f"Cylinder 1's torque harmonics at {rated:g} rpm (gas and reciprocating inertia; the largest eight):", "",
+             "| order | " + " | ".join(f"{orders[k]:g}" for k in top) + " |", "|---|" + "---|" * len(top),
+             "| amplitude [N m] | " + " | ".join(f"{abs(h[k]):.4g}" for k in top) + " |"])
+
+
 def damper_lines(outcome: TVCOutcome) -> list[str]:
     """Each damper's largest heat over the speed range, normal running and the worst misfire, against
     the heat its maker allows where the description states it."""
@@ -228,7 +292,7 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if isinstance(outcome, Skipped):
         return lines + [f"Not computed: {outcome.reason}.", ""]
     res = outcome.modes
-    lines += conclusion_lines(outcome)
+    lines += conclusion_lines(outcome) + installation_lines(outcome.network)
     lines += ["### Mass-elastic data", "", "At the couplings' settled temperatures; every value at its own station's speed "
               "(not referred to the engine's), the speed ratio beside it.", ""]
     lines += mass_elastic_lines(outcome.network) + ["", "### Natural frequencies", ""]
