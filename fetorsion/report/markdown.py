@@ -395,6 +395,11 @@ STORED_SECTIONS = {"fe": "the 3D FE free-free modes and the condensed crank, wit
                    "fatigue": "the fatigue verdict (both methods, the recommended damper, misfire)"}
 
 
+#: The sections a TVC report leaves out where their step did not run (a network file has no
+#: uncertainty table, no [limits] of its own beside the TVC's, no crank to judge for fatigue).
+TVC_LEAVES_OUT = ("sensitivity", "verdict", "fatigue")
+
+
 def report_markdown(run: RunOutcome) -> str:
     """The whole report: a title, the summary, each section whose step ran, in pipeline order, the timings."""
     lines = [f"# {run.crank.name}", "", f"Description: `{run.path}`", ""]
@@ -404,9 +409,12 @@ def report_markdown(run: RunOutcome) -> str:
                   "and flywheel); the lumped models, the Campbell diagram and the bearings' coupled response are "
                   "the crank's alone.", ""]
     lines += summary_lines(run)
+    # a TVC report leaves out the crank's sections it cannot have (a reviewer read "Verdict: Not run"
+    # beside the TVC's verdicts as a contradiction); their reasons stay in results.json's "skipped"
+    tvc = getattr(run, "tvc", None) is not None and not isinstance(run.tvc, Skipped)
     for key, render in SECTIONS:
         outcome = getattr(run, key)
-        if outcome is not None:
+        if outcome is not None and not (tvc and key in TVC_LEAVES_OUT and isinstance(outcome, Skipped)):
             lines += render(run.crank, outcome)
     lines += ["## Timings", "", *[f"- {k}: {v:.1f} s" for k, v in (run.timings_s or {}).items()], ""]
     if run.from_store:
