@@ -163,3 +163,29 @@ def test_the_couplings_torque_is_what_its_element_carries():
     r = _run(copy.deepcopy(LINE))
     assert r.torque_nm[:, 0] == pytest.approx(want, rel=1e-9)
     assert "no permissible vibratory torque: not judged" in r.table()
+
+
+def test_the_stiffness_tolerance_cases_are_the_sheet_written_at_its_ends():
+    """A sheet with a stiffness tolerance t gives two configurations, the coupling at C (1 ∓ t) (nominal
+    and warm): each equals the line parsed from a sheet whose stiffnesses are written multiplied
+    (its settled temperature and heat, 1e-9); a tolerance of 1 or more is refused by name."""
+    from fetorsion.design.tvc_cases import evaluate_case, tolerance_cases
+
+    data = copy.deepcopy(LINE)
+    data["chain"]["couplings"][0].update(permissible_power_w=P_KV, ambient_c=AMBIENT, max_temperature_c=T_MAX,
+                                         stiffness_tolerance=0.15)
+    setup_of = lambda n: propeller_setup(n, rpm=RPM, damping_ratio=0.0)  # noqa: E731
+    cases = tolerance_cases(parse_network(data, "line"), setup_of)
+    assert [c.stiffness_factor for c in cases] == [0.85, 1.15] and [c.coupling for c in cases] == [0, 0]
+    for case, f in zip(cases, (0.85, 1.15)):
+        written = copy.deepcopy(data)
+        sheet = written["chain"]["couplings"][0]
+        sheet.update(stiffness_nm_per_rad=sheet["stiffness_nm_per_rad"] * f,
+                     warm_stiffness_nm_per_rad=sheet["warm_stiffness_nm_per_rad"] * f, stiffness_tolerance=0.0)
+        by_file = evaluate_case(parse_network(written, "line"), setup_of, "written")
+        assert case.couplings.temperature_c == pytest.approx(by_file.couplings.temperature_c, rel=1e-9)
+        assert case.couplings.heat_w == pytest.approx(by_file.couplings.heat_w, rel=1e-9)
+    bad = copy.deepcopy(LINE)
+    bad["chain"]["couplings"][0]["stiffness_tolerance"] = 1.0
+    with pytest.raises(DescriptionError, match="chain.couplings.1.stiffness_tolerance"):
+        parse_network(bad, "line")

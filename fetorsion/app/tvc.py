@@ -15,7 +15,8 @@ import numpy as np
 
 from ..description.chain_model import Network
 from ..design.barred_passage import barred_passages
-from ..design.tvc_cases import TVCCase, damper_failure_cases, evaluate_case, misfire_cases, worst_case
+from ..design.tvc_cases import (TVCCase, damper_failure_cases, evaluate_case, misfire_cases, tolerance_cases,
+                                 worst_case)
 from ..design.tvc_modes import ModeRow, TVCCampbell, mode_table
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
@@ -57,19 +58,20 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     misfires, why = misfires_of(net)
     worst = worst_case(misfires)
     failed = damper_failure_cases(net, tvc_setup)
+    tolerances = tolerance_cases(net, tvc_setup)
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
     # the time-domain passage of each barred range: normal running's, the worst misfire's and each
     # failed damper's (the restriction a ship runs under until the damper is mended)
     passages = tuple(barred_passages(normal) + (barred_passages(worst) if worst else [])
-                     + [p for c in failed for p in barred_passages(c)])
-    rows, campbell = tvc_modes(normal, [normal, *misfires, *failed])
+                     + [p for c in (*failed, *tolerances) for p in barred_passages(c)])
+    rows, campbell = tvc_modes(normal, [normal, *misfires, *failed, *tolerances])
     outcome = TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
                          TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
                          tuple(assumptions(net, response)), hammer, TVC_IMAGES["hammering"] if hammer else "",
                          normal, tuple(misfires), worst, why,
                          TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
                          passages, tuple(passage_image(k) for k in range(len(passages))),
-                         tuple(rows), TVC_IMAGES["campbell"], campbell, tuple(failed))
+                         tuple(rows), TVC_IMAGES["campbell"], campbell, tuple(failed), tuple(tolerances))
     for name, draw in tvc_figures(outcome).items():
         ctx.save(draw().figure, name)
     ctx.results["tvc"] = outcome.to_dict()

@@ -239,6 +239,9 @@ class Coupling:
     source: str = ""
     #: The rubber's permissible continuous temperature, °C: where P_KV brings it from ``ambient_c``.
     max_temperature_c: float = math.nan
+    #: The sheet's tolerance of the dynamic stiffness, a share (0: not stated): the TVC's configurations
+    #: with the stiffness at both ends (:func:`fetorsion.design.tvc_cases.tolerance_cases`).
+    stiffness_tolerance: float = 0.0
 
     def stiffness_at(self, temperature_c: float) -> float:
         """C_Tdyn at a temperature, N·m/rad."""

@@ -58,6 +58,10 @@ class TVCCase:
     crank_torque_nm: float | None = None
     crank_torque_rpm: float | None = None
     crank_section: str = ""
+    #: A coupling-tolerance configuration: the coupling's index (0-based) and the factor on its
+    #: sheet's stiffness (:func:`tolerance_cases`); None and 1 otherwise.
+    coupling: int | None = None
+    stiffness_factor: float = 1.0
 
     @property
     def severity(self) -> float:
@@ -89,6 +93,7 @@ class TVCCase:
         """JSON-ready: the summary, each damper's heat, and the verdicts' own dicts."""
         return {**self.summary(), "damper_heat_w": list(self.damper_heat_w),
                 "failed_damper": None if self.damper is None else self.damper + 1, "damper_state": self.damper_state,
+                "coupling": None if self.coupling is None else self.coupling + 1, "stiffness_factor": self.stiffness_factor,
                 "shafts": self.shafts.to_dict() if self.shafts else None,
                 "couplings": self.couplings.to_dict() if self.couplings else None,
                 "hammering": self.hammering.to_dict() if self.hammering else None}
@@ -97,15 +102,17 @@ class TVCCase:
     def from_dict(cls, d: Mapping[str, object], network: Network | None = None,
                   response: ResponseResult | None = None) -> "TVCCase":
         """The case back from its :meth:`to_dict`; its ``network`` and ``response`` given (not kept in it)."""
-        cylinder, failed = d["misfire_cylinder"], d.get("failed_damper")
+        cylinder, failed, coupling = d["misfire_cylinder"], d.get("failed_damper"), d.get("coupling")
         heat = None if d["couplings"] is None else CouplingHeat.from_dict(d["couplings"], response)
         return from_fields(cls, d, {"name": "case"}, misfire=None if cylinder is None else cylinder - 1,
                            network=network, response=response, couplings=heat,
-                           damper=None if failed is None else failed - 1)
+                           damper=None if failed is None else failed - 1,
+                           coupling=None if coupling is None else coupling - 1)
 
 
 def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], name: str,
-                  misfire: int | None = None, damper: int | None = None, damper_state: str = "") -> TVCCase:
+                  misfire: int | None = None, damper: int | None = None, damper_state: str = "",
+                  coupling: int | None = None, stiffness_factor: float = 1.0) -> TVCCase:
     """One configuration of ``net`` (module docs), its response from ``setup_of`` (network → setup)."""
     heat = coupling_heat(net, setup_of) if net.couplings else None
     settled = at_temperatures(net, heat.temperature_c) if heat else net
@@ -115,7 +122,7 @@ def evaluate_case(net: Network, setup_of: Callable[[Network], ResponseSetup], na
     hammer = gear_hammering(settled, setup, response.theta) if net.gears and net.propellers else None
     dampers = tuple(float(p) for p in response.damper_power_w.sum(axis=2).max(axis=0)) if net.dampers else ()
     return TVCCase(name, misfire, settled, response, shafts, heat, hammer, dampers, damper, damper_state,
-                   *crank_torque(settled, response))
+                   *crank_torque(settled, response), coupling, stiffness_factor)
 
 
 def crank_torque(net: Network, response: ResponseResult) -> tuple[float | None, float | None, str]:
@@ -183,3 +190,27 @@ def damper_failure_cases(net: Network, setup_of: Callable[[Network], ResponseSet
     return [evaluate_case(with_failed_damper(net, k, state), setup_of, f"damper '{d.name}' {state}",
                           damper=k, damper_state=state)
             for k, d in enumerate(net.dampers) for state in DAMPER_STATES if state != "seized" or d.kind == "viscous"]
+
+
+def with_coupling_stiffness(net: Network, k: int, factor: float) -> Network:
+    """``net`` with coupling ``k``'s sheet stiffness (nominal and warm) times ``factor``, and the spring
+    the network holds for it at its operating temperature likewise (the couplings' springs are the last
+    of ``net.shafts``, in the couplings' order)."""
+    couplings = list(net.couplings)
+    c = couplings[k]
+    couplings[k] = replace(c, stiffness=c.stiffness * factor, warm_stiffness=c.warm_stiffness * factor)
+    shafts = list(net.shafts)
+    at = len(net.shafts) - len(net.couplings) + k
+    shafts[at] = replace(shafts[at], stiffness=shafts[at].stiffness * factor)
+    return replace(net, couplings=tuple(couplings), shafts=tuple(shafts))
+
+
+def tolerance_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) -> list[TVCCase]:
+    """Each coupling whose sheet states a stiffness tolerance at both ends of it, one at a time: its
+    natural frequencies, and the crossings and heats that follow them, move with its stiffness (a
+    rubber element's dynamic stiffness is made to a tolerance, typically ±15 %)."""
+    return [evaluate_case(with_coupling_stiffness(net, k, 1 + s * c.stiffness_tolerance), setup_of,
+                          f"coupling '{c.name}' C {100 * s * c.stiffness_tolerance:+g} %", coupling=k,
+                          stiffness_factor=1 + s * c.stiffness_tolerance)
+            for k, c in enumerate(net.couplings) if c.stiffness_tolerance > 0 for s in (-1, 1)]
+

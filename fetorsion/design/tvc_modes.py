@@ -106,7 +106,8 @@ def mode_table(net: Network, orders: np.ndarray, speed_range: tuple[float, float
 
 
 #: Each kind of configuration's barred band on the Campbell diagram: (colour, hatch).
-BAND_STYLES = {"normal running": ("crimson", None), "misfire": ("orange", "//"), "failed damper": ("purple", "\\\\")}
+BAND_STYLES = {"normal running": ("crimson", None), "misfire": ("orange", "//"), "failed damper": ("purple", "\\\\"),
+               "coupling tolerance": ("teal", "..")}
 
 
 def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major_orders: Sequence[float],
@@ -154,7 +155,7 @@ def plot_tvc_campbell(rows: list[ModeRow], engine_orders: Sequence[float], major
     shown = set()
     for name, a, b in barred:
         kind = "normal running" if name == "normal running" else "misfire" if name.startswith("misfire") \
-            else "failed damper"
+            else "coupling tolerance" if name.startswith("coupling") else "failed damper"
         color, hatch = BAND_STYLES[kind]
         ax.axvspan(a, b, color=color, alpha=0.25, lw=0, hatch=hatch, zorder=1,
                    label=None if kind in shown else f"barred, {kind}")

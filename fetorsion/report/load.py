@@ -267,7 +267,7 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
     from ..design.coupling_heat import at_temperatures
     from ..design.gear_hammering import GearHammering
     from ..design.shaft_verdict import ShaftVerdict
-    from ..design.tvc_cases import TVCCase, with_failed_damper
+    from ..design.tvc_cases import TVCCase, with_coupling_stiffness, with_failed_damper
     from ..design.tvc_modes import ModeRow, TVCCampbell
     from ..lumped_model.lumped import LumpedResult
     from ..response.forced import ResponseResult
@@ -281,6 +281,8 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
         rows = case["couplings"]["rows"] if case.get("couplings") else []
         described = net if case.get("failed_damper") is None else \
             with_failed_damper(net, case["failed_damper"] - 1, case["damper_state"])
+        if case.get("coupling") is not None:
+            described = with_coupling_stiffness(described, case["coupling"] - 1, case["stiffness_factor"])
         return at_temperatures(described, [r["temperature_c"] for r in rows]) if rows else described
 
     response = ResponseResult.from_dict(d["response"])
@@ -296,7 +298,8 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
                       passages, tuple(passage_image(k) for k in range(len(passages))),
                       tuple(ModeRow.from_dict(r) for r in d["modes"]), TVC_IMAGES["campbell"],
                       TVCCampbell.from_dict(d["campbell"]),
-                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("failed_dampers", [])))
+                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("failed_dampers", [])),
+                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("tolerances", [])))
 
 
 def _tvc(crank, data: dict[str, object]) -> TVCOutcome | Skipped | None:

@@ -83,6 +83,8 @@ class TVCOutcome:
     campbell: TVCCampbell | None = None
     #: Each damper failed in each of its states (:func:`fetorsion.design.tvc_cases.damper_failure_cases`).
     failed_dampers: tuple[TVCCase, ...] = ()
+    #: Each coupling at both ends of its sheet's stiffness tolerance (:func:`fetorsion.design.tvc_cases.tolerance_cases`).
+    tolerances: tuple[TVCCase, ...] = ()
 
     def to_dict(self) -> dict:
         """results.json's ``tvc`` entry: normal running's response, verdicts and dampers' heat, each misfire, the passages,
@@ -97,6 +99,7 @@ class TVCOutcome:
                    if self.normal else {}),
                 "misfires": [c.to_dict() for c in self.misfires], "misfire_note": self.misfire_note,
                 "failed_dampers": [c.to_dict() for c in self.failed_dampers],
+                "tolerances": [c.to_dict() for c in self.tolerances],
                 "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
                 "barred_passages": [p.to_dict() for p in self.passages],
                 "modes": [r.to_dict() for r in self.mode_rows], "network_modes": self.modes.to_dict(),

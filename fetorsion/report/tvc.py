@@ -170,12 +170,15 @@ def _crank_cell(case) -> str:
 def conclusion_lines(outcome: TVCOutcome) -> list[str]:
     """Each criterion's result over every configuration computed (normal running, each misfire, each
     failed damper), what it restricts and what is not judged: what a reviewer reads first."""
-    cases = [c for c in (outcome.normal, *outcome.misfires, *outcome.failed_dampers) if c is not None]
+    cases = [c for c in (outcome.normal, *outcome.misfires, *outcome.failed_dampers, *outcome.tolerances)
+             if c is not None]
     if not cases:
         return []
     lines = ["### Conclusions", "", f"Over {len(cases)} configuration(s): normal running"
              + (f", the misfire of each of {len(outcome.misfires)} cylinders" if outcome.misfires else "")
-             + (f", {len(outcome.failed_dampers)} failed-damper state(s)" if outcome.failed_dampers else "") + ".", ""]
+             + (f", {len(outcome.failed_dampers)} failed-damper state(s)" if outcome.failed_dampers else "")
+             + (f", {len(outcome.tolerances)} coupling stiffness(es) at the ends of their tolerance"
+                if outcome.tolerances else "") + ".", ""]
     lines += _shaft_conclusions(cases) + _coupling_conclusions(outcome, cases) + _hammering_conclusion(cases)
     if any(c.crank_torque_nm is not None for c in cases):
         w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
@@ -258,6 +261,16 @@ def failed_damper_lines(outcome: TVCOutcome) -> list[str]:
             + configuration_rows((outcome.normal, *outcome.failed_dampers)) + [""])
 
 
+def tolerance_lines(outcome: TVCOutcome) -> list[str]:
+    """Each coupling at both ends of its sheet's stiffness tolerance, one row each beside normal running."""
+    if not outcome.tolerances:
+        return []
+    return (["### Coupling stiffness at the ends of its tolerance", "", "Each coupling whose sheet states a "
+             "tolerance of its dynamic stiffness, at both ends of it (nominal and warm stiffness alike), one at a "
+             "time: its modes, crossings and heat move with it.", ""]
+            + configuration_rows((outcome.normal, *outcome.tolerances)) + [""])
+
+
 def mode_lines(outcome: TVCOutcome) -> list[str]:
     """The modes with their resonances in the speed range, and each station's relative amplitude."""
     rows = outcome.mode_rows
@@ -309,6 +322,7 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
     if outcome.hammering is not None:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
-    lines += damper_lines(outcome) + misfire_lines(outcome) + failed_damper_lines(outcome) + passage_lines(outcome)
+    lines += (damper_lines(outcome) + misfire_lines(outcome) + failed_damper_lines(outcome) + tolerance_lines(outcome)
+              + passage_lines(outcome))
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
