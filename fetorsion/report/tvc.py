@@ -253,22 +253,24 @@ def _hammering_conclusion(cases) -> list[str]:
 
 def failed_damper_lines(outcome: TVCOutcome) -> list[str]:
     """Each damper failed in each of its states, one row each beside normal running ([LRNavalTV] Ch 1 §1.3)."""
-    if not outcome.failed_dampers:
-        return []
-    return (["### A failed damper", "", "Each damper in turn with its ring free (the silicone lost, the rubber torn: "
-             "the housing or hub left on its station) and, a viscous one, seized (its ring turning with its housing). "
-             "A barred range here is the restriction the line runs under until the damper is mended.", ""]
-            + configuration_rows((outcome.normal, *outcome.failed_dampers)) + [""])
+    return _variant_lines(outcome, outcome.failed_dampers, "A failed damper", (
+        "Each damper in turn with its ring free (the silicone lost, the rubber torn: the housing or hub left on its "
+        "station) and, a viscous one, seized (its ring turning with its housing). A barred range here is the "
+        "restriction the line runs under until the damper is mended."))
 
 
 def tolerance_lines(outcome: TVCOutcome) -> list[str]:
     """Each coupling at both ends of its sheet's stiffness tolerance, one row each beside normal running."""
-    if not outcome.tolerances:
+    return _variant_lines(outcome, outcome.tolerances, "Coupling stiffness at the ends of its tolerance", (
+        "Each coupling whose sheet states a tolerance of its dynamic stiffness, at both ends of it (nominal and warm "
+        "stiffness alike), one at a time: its modes, crossings and heat move with it."))
+
+
+def _variant_lines(outcome: TVCOutcome, cases, title: str, text: str) -> list[str]:
+    """A subsection of configurations that vary the line, their rows beside normal running's (none: nothing)."""
+    if not cases:
         return []
-    return (["### Coupling stiffness at the ends of its tolerance", "", "Each coupling whose sheet states a "
-             "tolerance of its dynamic stiffness, at both ends of it (nominal and warm stiffness alike), one at a "
-             "time: its modes, crossings and heat move with it.", ""]
-            + configuration_rows((outcome.normal, *outcome.tolerances)) + [""])
+    return [f"### {title}", "", text, ""] + configuration_rows((outcome.normal, *cases)) + [""]
 
 
 def mode_lines(outcome: TVCOutcome) -> list[str]:
