@@ -145,8 +145,7 @@ class ShaftVerdict:
                 ax.plot(self.rpm, s.tau_t_pa / s.tau_c_pa, color=color, ls=":", lw=0.9, label=f"τ_T/τ_C {s.label}")
             beyond = lam > LAMBDA_MAX
             if beyond.any():
-                edge = float(section_limits(s.section, np.array([LAMBDA_MAX]))[0][0])
-                ax.plot(self.rpm[beyond], s.stress_pa[beyond] / edge, color=color, ls="--", lw=1.0,
+                ax.plot(self.rpm[beyond], s.stress_pa[beyond] / limit_at_edge(s.section), color=color, ls="--", lw=1.0,
                         label=f"τ/τ_C(λ {LAMBDA_MAX}) {s.label}, not judged")
             low.append(np.nanmin(np.where(u > 0, u, np.nan)) if np.any(u > 0) else 1.0)
         ax.axhline(1.0, color="crimson", lw=1.2, label="τ = τ_C")
@@ -181,6 +180,11 @@ def section_limits(section: ShaftSection, speed_ratio: np.ndarray) -> tuple[np.n
                       for x in speed_ratio])
     tau_t = np.where(speed_ratio <= LAMBDA_TRANSIENT_MAX, transient_limit(tau_c, section.ck), np.nan)
     return tau_c, tau_t
+
+
+def limit_at_edge(section: ShaftSection) -> float:
+    """τ_C at λ 1.05, the last speed UR M68 gives one at, Pa: what a stress beyond it is set against."""
+    return float(section_limits(section, np.array([LAMBDA_MAX]))[0][0])
 
 
 def rated_speed(net: Network) -> float:
@@ -276,7 +280,7 @@ def beyond_the_rule(sections: list[SectionStress], rpm: np.ndarray, lam: np.ndar
     out = []
     above = lam > LAMBDA_MAX
     for s in sections:
-        edge = float(section_limits(s.section, np.array([LAMBDA_MAX]))[0][0])
+        edge = limit_at_edge(s.section)
         over = above & (s.stress_pa > edge)
         if not over.any():
             continue
@@ -290,4 +294,3 @@ def beyond_the_rule(sections: list[SectionStress], rpm: np.ndarray, lam: np.ndar
                    f"{start:.1f} rpm, up to {s.stress_pa[j] / 1e6:.2f} N/mm² ({s.stress_pa[j] / edge:.2f} × it) at "
                    f"{rpm[j]:.1f} rpm (λ {lam[j]:.3f}): inside the speed range asked for, not judged by UR M68")
     return out
-    return ShaftVerdict(net.name, rpm, rated, sections, merged_ranges(sections, rpm, rated), bool(net.propellers), notes)

@@ -30,8 +30,8 @@ from ..errors import FetorsionError
 from .loads import cylinder_loads
 from .torque import cycle_angle, firing_angles
 from ..lumped_model.damped import DampedSystem, damped_modes_of
-from ..lumped_model.lumped import (lumped, lumped_modes_source, modal_damping_ratios,
-                                   stated_damping)
+from ..lumped_model.lumped import lumped, lumped_modes_source, modal_damping_ratios, stated_damping
+from ..lumped_model.network import network_damper_dof, rear_coordinate
 from ..modes import TorsionalModes, modal_damping_matrix
 from ..results import from_fields
 from ..description.defaults import DEFAULT_PARTITION, DEFAULT_TORSIONAL_MODES, DEFAULT_WEB_METHOD
@@ -50,8 +50,6 @@ def damper_model(crank, res):
     M, K = res.matrices()
     if res.network is None:
         return M, K, None, None
-    from ..lumped_model.network import network_damper_dof, rear_coordinate
-
     dof, scale = network_damper_dof(crank, res.network, rear_coordinate(crank, res.network.masters))
     return M, K, (lambda d: dof[d.at]), (lambda d: scale.get(d.at, 1.0))
 
@@ -206,19 +204,19 @@ class CampbellResult:
         major = {round(float(q), 9) for q in self.major}
         # the order lines that leave through the top crowd there: a label is kept where it has room
         # (a major order's always), so that "12 11.5 11" does not print as "1211.511"
-        room, kept = 0.025 * top, []
+        room, kept, labelled = 0.025 * top, [], set()
         ends = {float(q): min(top, fmax * 60 / q) for q in self.orders}
         for q in sorted(self.orders, key=lambda q: (round(float(q), 9) not in major, ends[float(q)])):
             e = ends[float(q)]
             if e >= top or round(float(q), 9) in major or all(abs(e - k) > room for k in kept):
                 kept.append(e)
-                ends[float(q)] = -e  # marked: labelled
+                labelled.add(float(q))
         for q in self.orders:
             bold = round(float(q), 9) in major
             ax.plot(rpm, q * rpm / 60, color="0.1" if bold else "0.6", lw=1.6 if bold else 0.6, zorder=1,
                     label="major order (all cylinders in phase)" if bold and round(float(q), 9) == min(major) else None)
-            if ends[float(q)] < 0:
-                end = -ends[float(q)]
+            if float(q) in labelled:
+                end = ends[float(q)]
                 ax.text(end, q * end / 60, f" {q:g}", fontsize=8 if bold else 7, color="0.1" if bold else "0.45",
                         va="bottom", fontweight="bold" if bold else None)
         zetas = self.damping_ratio if isinstance(self.damping_ratio, tuple) else None

@@ -30,7 +30,7 @@ from ..errors import FetorsionError, ParameterError
 from ..excitation.loads import cylinder_loads
 from ..lumped_model.lumped import lumped, stated_damping
 from ..modes import modal_damping_matrix
-from ..lumped_model.network import group_place, network_damper_dof, rear_coordinate
+from ..lumped_model.network import network_damper_dof, rear_coordinate
 from ..lumped_model.damped import DampedSystem, complex_times, damper_station
 from .forced_plots import compare_lines, plot_response
 from ..results import from_fields
@@ -404,6 +404,8 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
         # the pulley twist is read against the last station that turns at the pulley's speed
         # and is a coordinate of its own (factor 1 in its column)
         flywheel = rear_coordinate(crank, res.network.masters)
+        # a network's rear damper sits on the last coordinate at the engine's speed
+        dampers_at, dampers_scale = network_damper_dof(crank, res.network, flywheel)
         model_name = f"network of {len(res.network.labels)} stations"
     else:
         k = np.real(res.stiffnesses_nm_per_rad)
@@ -411,14 +413,13 @@ def response_setup(crank: Crank | Chain, partition: int = DEFAULT_PARTITION,
         rows[np.arange(n - 1), np.arange(n - 1)], rows[np.arange(n - 1), np.arange(1, n)] = k, -k  # k (θ_i − θ_i+1)
         section_labels = [f"{a}-{b}" for a, b in zip(res.labels, res.labels[1:])]
         flywheel, model_name = n - 1, f"lumped {res.dof}-DOF chain ({web_method})"
+        dampers_at = dampers_scale = None
     setup = ResponseSetup(crank.name, res.labels, M, K, C, forces, rpm, orders, period, zeta, stated, None,
                           Tq[..., None], phasors, W[:, None, :], rows,
                           section_labels, positions_m=res.positions_m,
                           pulley=0, flywheel=flywheel, model=model_name,
                           stiffnesses=res.stiffnesses_nm_per_rad,
-                          # a network's rear damper sits on the last coordinate at the engine's speed
-                          damper_dof=None if res.network is None else network_damper_dof(crank, res.network, flywheel)[0],
-                          damper_scale=None if res.network is None else network_damper_dof(crank, res.network, flywheel)[1])
+                          damper_dof=dampers_at, damper_scale=dampers_scale)
     if misfire is not None:  # that cylinder's firing torque replaced by its motored one
         return setup.with_misfire(misfire, misfire_harmonics(crank, setup))
     return setup

@@ -36,7 +36,7 @@ from ..description.defaults import DEFAULT_DAMPING_RATIO, DEFAULT_SPEED_STEPS
 from ..description.marine import Propeller, law_torque
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped, stated_damping
-from ..lumped_model.network import network_damper_dof, rear_coordinate, speed_factors
+from ..lumped_model.network import group_place, network_damper_dof, rear_coordinate, speed_factors
 from ..modes import modal_damping_matrix
 from .forced import ResponseSetup, response_setup
 
@@ -184,8 +184,6 @@ def law_damping_by_speed(net: Network, T: np.ndarray, factors: np.ndarray, rpm: 
     c = n Q(ω)/ω taken at the propeller's own speed at every speed of the sweep, not at one speed
     held at all (a resonance below the linearisation speed was damped too much: by ω_lin/ω at n = 2).
     ``factors``: each station's speed over station 1's (:func:`speed_factors`)."""
-    from ..lumped_model.network import group_place
-
     out = np.zeros((len(rpm), size))
     omega = np.asarray(rpm, float) * math.pi / 30.0
     for p in net.propellers:
@@ -239,14 +237,14 @@ def _bare_setup(net: Network, rpm, damping_ratio: float | None) -> ResponseSetup
     r = M.shape[0]
     orders = np.zeros(0)
     flywheel = rear_coordinate(net, res.network.masters)
+    dampers_at, dampers_scale = network_damper_dof(net, res.network, flywheel)
     return ResponseSetup(net.name, res.labels, M, K + 1j * H, C, np.zeros((len(rpm), 0, r), complex), rpm, orders,
                          2.0 * math.pi, zeta, "stated dampers of the network" if net.has_dampers else "", None,
                          np.zeros((len(rpm), 0, 1)), np.zeros((0, 0), complex), np.zeros((0, 1, r)),
                          res.network.section_rows, list(res.network.section_labels), positions_m=res.positions_m,
                          pulley=0, flywheel=flywheel,
                          model=f"network of {len(res.network.labels)} stations", stiffnesses=res.stiffnesses_nm_per_rad,
-                         damper_dof=network_damper_dof(net, res.network, flywheel)[0],
-                         damper_scale=network_damper_dof(net, res.network, flywheel)[1])
+                         damper_dof=dampers_at, damper_scale=dampers_scale)
 
 
 def tvc_setup(net: Network) -> ResponseSetup:
@@ -279,7 +277,7 @@ def run_damping(model: object, rpm: float | None) -> tuple[object, list[str]]:
     """(the model a time-domain run takes, its note): a network whose propellers' law damping follows
     the speed, damped at a steady run's ``rpm`` as the frequency domain is there; a run over a range
     holds the one at their stated or rated speed, and says so. Any other model as it is."""
-    if not any(getattr(p, "damping_each_speed", False) for p in getattr(model, "propellers", ())):
+    if not any(p.damping_each_speed for p in getattr(model, "propellers", ())):
         return model, []
     if rpm is not None:
         return damping_at(model, rpm), []
