@@ -134,6 +134,19 @@ COUPLINGS = Section("chain.couplings", "Network form: a flexible coupling from i
     Field("name", "label; default `coupling`", "a string"),
     Field("source", "the data sheet", "a string"),
 ), array=True)
+START = Section("start", "A network file's engine start: the time-domain run from the speed the engine fires "
+                "steadily at up to the lowest speed of `[excitation]`'s range, every shaft section's stress "
+                "against UR M68's τ_T (the passage of the resonances below the range, a generator set's start; "
+                "docs/propulsion-tvc.md). Needs `[engine]` and an `[excitation]` whose load is a mean indicated "
+                "pressure.", (
+    Field("from_rpm", "the speed the run starts at (station 1's), rpm: the speed the engine fires steadily at "
+          "after its starter", "> 0, < the lowest speed of `[excitation]` speed_range_rpm"),
+    Field("rate_rpm_per_s", "the start's acceleration, rpm/s of station 1; a slower start is the more severe",
+          "> 0"),
+    Field("imep_pa", "the mean indicated pressure of every cylinder during the start, Pa: its friction and the "
+          "torque that accelerates the line (no external load)", "> 0"),
+    Field("source", "where the numbers come from", "a string"),
+))
 GEARS = Section("chain.gears", "Network form: rigid gear meshes; a branch is solved with the gear constraint "
                 "(K_r = TᵀKT) at the reference speed of the first station.", (
     Field("between", "the driving and the driven station", "two different stations"),
@@ -171,7 +184,7 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 
 #: The tables of a chain file.
 CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, PROPELLERS, COUPLINGS, GEARS, NONLINEAR, ENGINE,
-                  EXCITATION, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
+                  EXCITATION, START, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 
 CHAIN_SCHEMA = schema(CHAIN_SECTIONS)
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from .defaults import DEFAULT_STICK_FACTOR
 from .derived import piecewise_torque, twist_at_torque
-from .marine import Coupling, Propeller, ShaftSection
+from .marine import Coupling, Propeller, ShaftSection, StartUp
 from .model import Crank, Damper, Engine, Excitation, Limits, partition_labels
 
 
@@ -234,6 +234,8 @@ class Network:
     #: ``[[chain.couplings]]``: each is also a shaft (its data sheet's stiffness and η = ψ/2π at
     #: its operating temperature), after the ``[[chain.shafts]]`` in ``shafts``.
     couplings: tuple[Coupling, ...] = ()
+    #: ``[start]``: the engine's start, judged against τ_T in the time domain; None: not stated.
+    start: StartUp | None = None
 
     @property
     def linear_shafts(self) -> tuple[Shaft, ...]:

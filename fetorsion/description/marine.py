@@ -215,6 +215,20 @@ class Propeller:
 
 
 @dataclass(frozen=True)
+class StartUp:
+    """The engine's start (``[start]`` of a network file): the run from ``from_rpm`` (the speed it
+    fires steadily at, station 1's) up to the lowest speed of the ``[excitation]`` range at
+    ``rate_rpm_per_s``, every cylinder at the mean indicated pressure ``imep_pa`` (the start's
+    load: friction and the line's acceleration, no external load). Judged against τ_T
+    (:func:`fetorsion.design.barred_passage.start_passages`)."""
+
+    from_rpm: float
+    rate_rpm_per_s: float
+    imep_pa: float
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class Coupling:
     """A flexible coupling from its maker's data sheet, between stations ``i`` and ``j``: dynamic
     stiffness (N·m/rad) and relative damping ψ at the sheet's nominal ``temperature_c`` and, where

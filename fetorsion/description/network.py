@@ -14,7 +14,7 @@ from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .chain_fields import CHAIN_SCHEMA
 from .model import CONDENSED, CRANK_END_ALIASES, PARTITIONS, WEB_METHOD_NAMES
 from .chain_model import GROUND, GearPair, Network, NetworkCrank, NonlinearSpring, Shaft
-from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection,
+from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection, StartUp,
                      loss_factor_of)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
@@ -68,6 +68,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     has_dampers = any(v > 0 for v in absolute) or any(s.damping > 0 or s.loss_factor > 0 for s in shafts)
     excitation = _network_excitation(root, data, source, engine, cranks, has_dampers, problems)
     uncertainty, distributions = read_variations(root, data, problems)
+    start = _start(root, engine, excitation, problems) if "start" in data else None
     root.finish()
     problems += _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers)
     if problems:
@@ -75,7 +76,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
                       tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
                       cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers,
-                      propellers=tuple(propellers), couplings=tuple(couplings))
+                      propellers=tuple(propellers), couplings=tuple(couplings), start=start)
     if check_uncertainty:
         bounds = uncertainty_bound_problems(network, parse_network)
         if bounds:
@@ -200,6 +201,27 @@ def _network_excitation(root: Table, data: dict, source: str, engine, cranks, ha
     if excitation is not None:
         excitation = stated_damping_excitation(excitation, ex_table, has_dampers, "network", problems)
     return excitation
+
+
+def _start(root: Table, engine, excitation, problems: list[Problem]) -> StartUp | None:
+    """``[start]``: the engine's start, from its firing speed below the ``[excitation]`` range at a
+    stated rate and mean indicated pressure; it needs an engine whose load is a mean indicated pressure."""
+    st = root.table("start")
+    start = StartUp(st.number("from_rpm", positive=True), st.number("rate_rpm_per_s", positive=True),
+                    st.number("imep_pa", positive=True), st.text("source"))
+    st.finish()
+    if engine is None or excitation is None:
+        problems.append(Problem("start", "given", "needs [engine] and [excitation]: the start is the engine's"))
+        return None
+    if excitation.load_kind == "peak" or excitation.pressure_curve is not None:
+        problems.append(Problem("start.imep_pa", start.imep_pa, "needs an [excitation] loaded by a mean indicated "
+                                "pressure (imep_pa, propeller_law_imep_pa or a harmonic table), not a peak pressure "
+                                "or a pressure curve"))
+    low = excitation.speed_range[0]
+    if math.isfinite(start.from_rpm) and not start.from_rpm < low:
+        problems.append(Problem("start.from_rpm", start.from_rpm, f"must be below the lowest speed of "
+                                f"[excitation] speed_range_rpm, {low:g} rpm: the start runs up to it"))
+    return start
 
 
 def _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers) -> list[Problem]:

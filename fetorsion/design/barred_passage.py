@@ -25,7 +25,7 @@ frequency domain's bound (the sum of each source's extremes).
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -43,6 +43,8 @@ DEFAULT_PASSAGE_RATE = 10.0
 PASSAGE_MARGIN = 1.0
 #: ... and by at least this many rpm either side.
 MIN_MARGIN_RPM = 20.0
+#: The kind of a start's run (:attr:`BarredPassage.kind`).
+START_UP = "start-up"
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,8 @@ class SectionPassage:
     tau_c_pa: float
     window_rpm: np.ndarray
     window_stress_pa: np.ndarray
+    #: τ_T at each window's speed (Pa; NaN above λ 0.8); empty in a passage stored before it was kept.
+    window_tau_t_pa: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     @property
     def utilisation(self) -> float:
@@ -86,6 +90,14 @@ class BarredPassage:
     window_rad: float
     steps: int
     sections: tuple[SectionPassage, ...]
+    #: "barred range", or "start-up": the engine's start from its firing speed to the range's lowest
+    #: speed (``[start]``), every resonance below the range passed at the start's load.
+    kind: str = "barred range"
+
+    @property
+    def is_start(self) -> bool:
+        """The engine's start (``[start]``), not a barred range's passage."""
+        return self.kind == START_UP
 
     @property
     def verdict(self) -> str:
@@ -98,27 +110,32 @@ class BarredPassage:
         return {"configuration": self.configuration, "from_rpm": self.from_rpm, "to_rpm": self.to_rpm,
                 "run_rpm": [self.run_from_rpm, self.run_to_rpm], "rate_rpm_per_s": self.rate_rpm_per_s,
                 "rate_source": self.rate_source, "window_rad": self.window_rad, "steps": self.steps,
-                "verdict": self.verdict,
+                "verdict": self.verdict, "kind": self.kind,
                 "sections": [{"label": s.label, "peak_pa": s.peak_pa, "peak_rpm": s.peak_rpm,
                               "tau_t_pa": None if not np.isfinite(s.tau_t_pa) else s.tau_t_pa,
                               "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
                               "within": s.within, "window_rpm": s.window_rpm.tolist(),
-                              "window_stress_pa": s.window_stress_pa.tolist()} for s in self.sections]}
+                              "window_stress_pa": s.window_stress_pa.tolist(),
+                              "window_tau_t_pa": _nulls(s.window_tau_t_pa)} for s in self.sections]}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "BarredPassage":
         """The passage back from its :meth:`to_dict` (KeyError: one written before the windows were kept)."""
         sections = tuple(from_fields(SectionPassage, s, window_rpm=np.array(s["window_rpm"], dtype=float),
-                                     window_stress_pa=np.array(s["window_stress_pa"], dtype=float))
+                                     window_stress_pa=np.array(s["window_stress_pa"], dtype=float),
+                                     window_tau_t_pa=np.array([np.nan if v is None else v
+                                                               for v in s.get("window_tau_t_pa", [])], dtype=float))
                          for s in d["sections"])
         return from_fields(cls, d, run_from_rpm=float(d["run_rpm"][0]), run_to_rpm=float(d["run_rpm"][1]),
                            sections=sections)
 
     def table(self) -> str:
         """The passage as plain text, stresses in N/mm²."""
-        lines = [f"{self.configuration}: passage of the barred range {self.from_rpm:.1f}-{self.to_rpm:.1f} rpm, "
-                 f"run {self.run_from_rpm:.1f} -> {self.run_to_rpm:.1f} rpm at {self.rate_rpm_per_s:g} rpm/s "
-                 f"({self.rate_source})"]
+        what = (f"from {self.from_rpm:.1f} rpm up to the range's lowest speed {self.to_rpm:.1f} rpm"
+                if self.is_start else
+                f"passage of the barred range {self.from_rpm:.1f}-{self.to_rpm:.1f} rpm")
+        lines = [f"{self.configuration}: {what}, run {self.run_from_rpm:.1f} -> {self.run_to_rpm:.1f} rpm at "
+                 f"{self.rate_rpm_per_s:g} rpm/s ({self.rate_source})"]
         for s in self.sections:
             limit = "no τ_T (λ > 0.8)" if not np.isfinite(s.tau_t_pa) else (
                 f"τ_T {s.tau_t_pa / 1e6:.2f} N/mm² ({s.utilisation:.3f} τ_T)")
@@ -133,11 +150,17 @@ class BarredPassage:
         ax = ax if ax is not None else plt.figure(figsize=(9, 4.5)).add_subplot()
         for k, s in enumerate(self.sections):
             ax.plot(s.window_rpm, s.window_stress_pa / 1e6, color=f"C{k % 10}", label=f"τ {s.label}")
-            if np.isfinite(s.tau_t_pa):
+            if s.window_tau_t_pa.size:  # τ_T(λ) where the rule gives it (λ ≤ 0.8)
+                ax.plot(s.window_rpm, s.window_tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9,
+                        label=f"τ_T {s.label} (to λ 0.8)")
+            elif np.isfinite(s.tau_t_pa):
                 ax.axhline(s.tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9, label=f"τ_T {s.label}")
-        ax.axvspan(self.from_rpm, self.to_rpm, color="crimson", alpha=0.15, lw=0, label="barred range")
+        if not self.is_start:  # a start's whole run lies below the range: nothing to shade
+            ax.axvspan(self.from_rpm, self.to_rpm, color="crimson", alpha=0.15, lw=0, label="barred range")
+        what = (f"{self.configuration} from {self.from_rpm:.0f} rpm" if self.is_start else
+                f"{self.configuration}: passage")
         ax.set(xlabel="engine speed (rpm)", ylabel="vibratory torsional stress, half-range (N/mm²)",
-               title=f"{self.configuration}: passage at {self.rate_rpm_per_s:g} rpm/s ({self.verdict})")
+               title=f"{what} at {self.rate_rpm_per_s:g} rpm/s ({self.verdict})")
         ax.legend(fontsize=7)
         return ax
 
@@ -165,7 +188,7 @@ def window_stresses(result: TransientResult, torque_nm: np.ndarray, section, win
 
 def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[float, float], rate: float,
                     rate_source: str, window_rad: float, configuration: str = "normal running",
-                    misfire: int | None = None) -> BarredPassage:
+                    misfire: int | None = None, kind: str = "barred range") -> BarredPassage:
     """Run ``net`` up through ``span_rpm`` at ``rate`` rpm/s from its settled state and judge the
     passage of the barred range ``barred`` (rpm) against τ_T (module docs).
 
@@ -183,6 +206,12 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
         The synthesis period the half-range is taken over, rad of station 1.
     configuration : str
         Normal running or a misfire, in words; ``misfire`` the 0-based misfiring cylinder.
+    kind : str
+        What is passed: "barred range" or "start-up" (:attr:`BarredPassage.kind`).
+
+    Each section's peak is its window of the largest τ/τ_T where the rule gives τ_T (λ ≤ 0.8), else
+    its largest stress: a start's largest stress may lie above λ 0.8 and a smaller one below
+    exceed τ_T.
     """
     # a propeller whose law damping follows the speed takes the one at the range's middle, where its peak is judged
     res = run_transient(damping_at(net, 0.5 * (barred[0] + barred[1])), run=span_rpm, rate_rpm_per_s=rate,
@@ -191,12 +220,14 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
     out = []
     for k, label, sec in judged_sections(net, res):
         rpm, stress = window_stresses(res, res.section_torque_nm[k], sec, window_rad)
-        j = int(np.argmax(stress))
-        tau_c, tau_t = section_limits(sec, np.array([rpm[j] / rated]))
-        out.append(SectionPassage(label, float(stress[j]), float(rpm[j]), float(tau_t[0]), float(tau_c[0]), rpm,
-                                  stress))
+        tau_c, tau_t = section_limits(sec, rpm / rated)
+        judged = np.isfinite(tau_t)
+        j = int(np.argmax(np.where(judged, stress / np.where(judged, tau_t, 1.0), -np.inf))) if judged.any() \
+            else int(np.argmax(stress))
+        out.append(SectionPassage(label, float(stress[j]), float(rpm[j]), float(tau_t[j]), float(tau_c[j]), rpm,
+                                  stress, tau_t))
     return BarredPassage(configuration, barred[0], barred[1], span_rpm[0], span_rpm[1], rate, rate_source,
-                         window_rad, res.samples, tuple(out))
+                         window_rad, res.samples, tuple(out), kind)
 
 
 def passage_span(barred: dict) -> tuple[float, float]:
@@ -215,3 +246,23 @@ def barred_passages(case: TVCCase) -> list[BarredPassage]:
     rate, source = passage_rate(net)
     return [passage_through(net, passage_span(b), (b["from_rpm"], b["to_rpm"]), rate, source,
                             case.response.cycle_rad, case.name, case.misfire) for b in case.shafts.barred]
+
+
+def start_passages(case: TVCCase) -> list[BarredPassage]:
+    """The engine's start (``[start]`` of the network file) through every resonance below the speed
+    range: a run from the start's firing speed up to the range's lowest speed at its rate, every
+    cylinder at the start's mean indicated pressure, each section against τ_T. None without ``[start]``."""
+    net = case.network
+    start = net.start
+    if start is None or net.engine is None or net.excitation is None:
+        return []
+    low = float(net.excitation.speed_range[0])
+    at_start = replace(net, excitation=replace(net.excitation, load_kind="imep", load=((1.0, start.imep_pa),)))
+    source = f"stated in [start]{': ' + start.source if start.source else ''}"
+    return [passage_through(at_start, (start.from_rpm, low), (start.from_rpm, low), start.rate_rpm_per_s, source,
+                            case.response.cycle_rad, f"start at p_mi {start.imep_pa / 1e6:g} MPa", kind=START_UP)]
+
+
+def _nulls(a: np.ndarray) -> list:
+    """The array as a JSON list, NaN as null."""
+    return [None if not np.isfinite(v) else float(v) for v in a]

@@ -179,7 +179,8 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
              + (f", {len(outcome.failed_dampers)} failed-damper state(s)" if outcome.failed_dampers else "")
              + (f", {len(outcome.tolerances)} coupling stiffness(es) at the ends of their tolerance"
                 if outcome.tolerances else "") + ".", ""]
-    lines += _shaft_conclusions(cases) + _coupling_conclusions(outcome, cases) + _hammering_conclusion(cases)
+    lines += (_shaft_conclusions(cases) + _passage_conclusions(outcome) + _coupling_conclusions(outcome, cases)
+              + _hammering_conclusion(cases))
     if any(c.crank_torque_nm is not None for c in cases):
         w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
         lines.append(f"- **Crankshaft: not judged here.** Its largest section torque {w.crank_torque_nm / 1e3:.1f} kN m "
@@ -211,6 +212,26 @@ def _shaft_conclusions(cases) -> list[str]:
                      f"({', '.join(b[0].name for b in beyond)}); the worst, {c.name}: "
                      f"{n.removeprefix('beyond the rule: ')}.")
     return lines
+
+
+def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
+    """The time-domain start and barred-range passages against τ_T: one line, the worst of each named."""
+    if not outcome.passages:
+        return []
+
+    def worst(p):
+        return max(p.sections, key=lambda s: s.utilisation if math.isfinite(s.utilisation) else -1.0)
+
+    parts = []
+    for p in outcome.passages:
+        w = worst(p)
+        what = (f"the start {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_start
+                else f"{p.configuration}, barred range {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm")
+        level = (f"{w.utilisation:.3f} τ_T" if math.isfinite(w.utilisation) else "no τ_T above λ 0.8")
+        parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)")
+    verdict = "fail" if any(p.verdict != "within τ_T" for p in outcome.passages) else "pass"
+    text = "; ".join(parts)
+    return [f"- **Transient passages in the time domain, UR M68's τ_T: {verdict}.** {text[:1].upper()}{text[1:]}."]
 
 
 def _coupling_conclusions(outcome: TVCOutcome, cases) -> list[str]:
@@ -291,8 +312,12 @@ def passage_lines(outcome: TVCOutcome) -> list[str]:
     """The time-domain passage of each barred range against τ_T, with its rate and picture."""
     if not outcome.passages:
         return []
-    lines = ["### Passage through the barred ranges (time domain) against τ_T", "",
-             "Run through each barred range from the steady state below it at the stated rate; the half-range "
+    start = any(p.is_start for p in outcome.passages)
+    lines = [f"### {'The start and the passages' if start else 'Passage'} through the barred ranges (time domain) "
+             "against τ_T", "",
+             ("The start runs from the speed the engine fires at up to the range's lowest speed at the start's rate "
+              "and load ([start]), through every resonance below the range. " if start else "")
+             + "Run through each barred range from the steady state below it at the stated rate; the half-range "
              "stress over each synthesis period against τ_T at its speed.", ""]
     for p, image in zip(outcome.passages, outcome.passage_images):
         lines += ["```", p.table(), "```", "", f"![]({image})", ""]

@@ -1,0 +1,73 @@
+"""The engine's start against UR M68's τ_T (``[start]`` of a network file,
+:func:`fetorsion.design.barred_passage.start_passages`): the file's table read and refused by name,
+and a slow start through a resonance against the frequency domain's steady state at the start's load."""
+
+from dataclasses import replace
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+import tomllib
+
+from fetorsion.description.network import parse_network
+from fetorsion.design.barred_passage import start_passages
+from fetorsion.design.tvc_cases import evaluate_case
+from fetorsion.errors import DescriptionError
+from fetorsion.response.propulsion import tvc_setup
+
+GENSET = Path(__file__).resolve().parents[1] / "examples" / "networks" / "generator_set_mwm6.toml"
+
+
+def genset(**start) -> dict:
+    data = tomllib.loads(GENSET.read_text())
+    data["start"] = {**data["start"], **start}
+    return data
+
+
+def test_the_start_is_read_from_the_file():
+    net = parse_network(genset(), str(GENSET))
+    assert (net.start.from_rpm, net.start.rate_rpm_per_s, net.start.imep_pa) == (300.0, 33.333, 2.013e5)
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"from_rpm": 1350.0}, "start.from_rpm"),          # not below the range's lowest speed
+    ({"rate_rpm_per_s": 0.0}, "start.rate_rpm_per_s"),
+    ({"imep_pa": -1.0}, "start.imep_pa"),
+    ({"speed": 1.0}, "start.speed"),                   # not a field of [start]
+])
+def test_a_bad_start_is_refused_by_name(change, field):
+    with pytest.raises(DescriptionError) as err:
+        parse_network(genset(**change), str(GENSET))
+    assert field in str(err.value)
+
+
+def test_a_start_needs_an_engine_loaded_by_its_mean_pressure():
+    data = genset()
+    data["excitation"] = {k: v for k, v in data["excitation"].items() if k != "imep_pa"}
+    data["excitation"]["peak_pressure_pa"] = 12e6
+    with pytest.raises(DescriptionError, match="start.imep_pa"):
+        parse_network(data, str(GENSET))
+
+
+def test_a_slow_start_through_a_resonance_reaches_the_steady_state_at_the_start_load():
+    # The set's 42.5 Hz mode crosses order 3 near 850 rpm. A start at 1 rpm/s dwells there far longer
+    # than the mode's decay time 1/(ζω) (~0.2 s): its half-range stress must come within 1 % of the
+    # frequency domain's steady state of the same network at the start's p_mi (the slow-passage limit, as
+    # the propulsion line's barred range in test_propulsion_transient), at the steady peak's speed within
+    # 2 rpm as there (the sweep lags the response by a few decay times, ~1 rpm at 1 rpm/s; one window 0.15 rpm).
+    data = genset(from_rpm=760.0, rate_rpm_per_s=1.0)
+    data["excitation"]["speed_range_rpm"] = [900.0, 1500.0]
+    net = parse_network(data, str(GENSET))
+    steady_ex = replace(net.excitation, load=((1.0, net.start.imep_pa),), speed_range=(760.0, 900.0), overspeed=1.0)
+    steady = evaluate_case(replace(net, excitation=steady_ex), tvc_setup, "steady at the start's load")
+    (start,) = start_passages(SimpleNamespace(network=replace(steady.network, excitation=net.excitation),
+                                              response=steady.response))
+    sec = steady.shafts.sections[0]
+    k = int(np.argmax(sec.stress_pa))
+    (run,) = start.sections
+    assert run.peak_pa == pytest.approx(sec.stress_pa[k], rel=0.01)
+    assert abs(run.peak_rpm - steady.shafts.rpm[k]) <= 2.0
+    # the peak judged is the window of the largest τ/τ_T
+    assert run.utilisation == pytest.approx(np.nanmax(run.window_stress_pa / run.window_tau_t_pa), rel=1e-12)
+    assert start.is_start and start.verdict == ("above τ_T" if run.peak_pa > run.tau_t_pa else "within τ_T")
