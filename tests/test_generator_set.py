@@ -86,6 +86,7 @@ def test_the_generator_sets_run_reports_its_tvc_and_its_numbers_agree(genset_run
     assert abs(held - row["temperature_c"]) <= tvc["couplings"]["tolerance_k"]
     # a constant-speed set: no barred range anywhere in its band, in normal running or any misfire
     assert tvc["shafts"]["barred_ranges"] == [] and all(m["barred"] == "" for m in tvc["misfires"])
+    assert tvc["shafts"]["constant_speed"] and tvc["shafts"]["verdict"] == "pass"  # a barred range would fail it
     assert len(tvc["misfires"]) == 6
     # the one time-domain run is the start, from its firing speed to the band's lowest speed, judged against τ_T
     (start,) = tvc["barred_passages"]

@@ -71,3 +71,20 @@ def test_a_slow_start_through_a_resonance_reaches_the_steady_state_at_the_start_
     # the peak judged is the window of the largest τ/τ_T
     assert run.utilisation == pytest.approx(np.nanmax(run.window_stress_pa / run.window_tau_t_pa), rel=1e-12)
     assert start.is_start and start.verdict == ("above τ_T" if run.peak_pa > run.tau_t_pa else "within τ_T")
+
+
+def test_a_constant_speed_set_fails_with_a_speed_barred_in_its_band():
+    # A set on its governor runs continuously anywhere in its band: a barred range there cannot be
+    # avoided. The generator shaft thinned to 22 mm bars part of the band; the same line without
+    # constant_speed passes with that range (within τ_T; the λ 0.8 rule is a propeller line's).
+    data = genset()
+    shaft = next(s for s in data["chain"]["shafts"] if "diameter_m" in s)
+    shaft["diameter_m"] = 0.022
+    on = parse_network(data, str(GENSET))
+    data["chain"]["constant_speed"] = False
+    off = parse_network(data, str(GENSET))
+    v_on, v_off = (evaluate_case(n, tvc_setup, "normal running").shafts for n in (on, off))
+    assert v_on.barred and v_on.barred == v_off.barred
+    assert all(b["within_transient"] for b in v_off.barred)
+    assert (v_on.verdict, v_off.verdict) == ("fail", "pass with barred ranges")
+    assert v_on.constant_speed and not v_off.constant_speed

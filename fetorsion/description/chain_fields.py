@@ -30,6 +30,9 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
     Field("cylinder_stations", "the station (1-based, or its name in a network) that carries each cylinder's "
           "whole torque; several may share one", "one per cylinder of `[engine]`, each 1..number of inertias; "
           "needs `[engine]`"),
+    Field("constant_speed", "network form: `true` for a line held at a constant speed anywhere in its "
+          "`[excitation]` range (a generating set on its governor, the range its band): it runs continuously across "
+          "the band, so a speed barred there fails the shafts' verdict; default false", "true or false"),
     Field("stations", "network form, instead of the lists above: `[[chain.stations]]` (below)",
           "at least 2 (with a crank's: any); not with the list keys"),
     Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop; "

@@ -236,6 +236,9 @@ class Network:
     couplings: tuple[Coupling, ...] = ()
     #: ``[start]``: the engine's start, judged against τ_T in the time domain; None: not stated.
     start: StartUp | None = None
+    #: ``[chain] constant_speed``: held at a constant speed anywhere in the ``[excitation]`` range (a
+    #: generating set): a barred range there cannot be avoided and fails the shafts.
+    constant_speed: bool = False
 
     @property
     def linear_shafts(self) -> tuple[Shaft, ...]:

@@ -46,6 +46,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
                      loss_factor_of(c.relative_damping_at(c.operating_temperature_c))) for c in couplings]
     propellers = _propellers(t, index, inertias, absolute, problems)
     stations = t.get("cylinder_stations", [])
+    constant_speed = t.flag("constant_speed", False)
     t.finish()
     if not problems:
         inside = [Shaft(c.first + s, c.first + s + 1, 1.0) for c in cranks for s in range(len(c.labels) - 1)]
@@ -76,7 +77,8 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     network = Network(name, tuple(labels), tuple(inertias), tuple(shafts), tuple(gears), tuple(absolute), source,
                       tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
                       cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers,
-                      propellers=tuple(propellers), couplings=tuple(couplings), start=start)
+                      propellers=tuple(propellers), couplings=tuple(couplings), start=start,
+                      constant_speed=constant_speed)
     if check_uncertainty:
         bounds = uncertainty_bound_problems(network, parse_network)
         if bounds:

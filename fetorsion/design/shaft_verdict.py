@@ -86,6 +86,9 @@ class ShaftVerdict:
     barred: list[dict[str, float | str | bool]]
     propeller_line: bool = True
     notes: list[str] = field(default_factory=list)
+    #: A constant-speed set (``[chain] constant_speed``): it runs continuously across its whole range, so
+    #: any barred range fails.
+    constant_speed: bool = False
 
     @property
     def speed_ratio(self) -> np.ndarray:
@@ -93,17 +96,18 @@ class ShaftVerdict:
 
     @property
     def verdict(self) -> str:
-        """pass; pass with barred ranges (each passable); or fail (one is not)."""
+        """pass; pass with barred ranges (each passable); or fail (one is not, or a constant-speed set has one)."""
         if not self.barred:
             return "pass"
-        ok = all(b["within_transient"] and not (self.propeller_line and b["above_0_8"]) for b in self.barred)
+        ok = not self.constant_speed and all(b["within_transient"] and not (self.propeller_line and b["above_0_8"])
+                                             for b in self.barred)
         return "pass with barred ranges" if ok else "fail"
 
     def to_dict(self) -> dict:
         """JSON-ready: speeds (rpm), λ, each section's stress and limits (Pa), the barred ranges."""
         return {"name": self.name, "rpm": self.rpm.tolist(), "rated_rpm": self.rated_rpm,
                 "speed_ratio": self.speed_ratio.tolist(), "verdict": self.verdict, "barred_ranges": self.barred,
-                "propeller_line": self.propeller_line, "notes": self.notes,
+                "propeller_line": self.propeller_line, "constant_speed": self.constant_speed, "notes": self.notes,
                 "sections": [s.to_dict() for s in self.sections]}
 
     @classmethod
@@ -267,10 +271,13 @@ def shaft_verdict(net: Network, response: ResponseResult, rated_rpm: float | Non
     sections = [section_stress(label, sec, response.section_torque_nm[:, k], rpm, lam)
                 for k, label, sec in judged_sections(net, response)]
     notes = ["stresses: half-range synthesised amplitudes, nominal on the plain section, 16 T d/(π(d⁴ − d_i⁴))"]
+    if net.constant_speed:
+        notes.append("a constant-speed set: it runs continuously anywhere in its range, so a barred speed there fails")
     if lam[-1] > LAMBDA_MAX:
         notes.append(f"speeds above λ {LAMBDA_MAX} ({LAMBDA_MAX * rated:.1f} rpm) are not judged: the rule gives no τ_C")
         notes += beyond_the_rule(sections, rpm, lam)
-    return ShaftVerdict(net.name, rpm, rated, sections, merged_ranges(sections, rpm, rated), bool(net.propellers), notes)
+    return ShaftVerdict(net.name, rpm, rated, sections, merged_ranges(sections, rpm, rated), bool(net.propellers), notes,
+                        net.constant_speed)
 
 
 def beyond_the_rule(sections: list[SectionStress], rpm: np.ndarray, lam: np.ndarray) -> list[str]:
