@@ -28,13 +28,13 @@ def curve_form():
     return parse_network(tomllib.loads(PATH.read_text()), str(PATH))
 
 
-def coefficients() -> tuple[np.ndarray, np.ndarray]:
+def coefficients(misfire: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """(a_q, b_q) Pa of the curve form's tangential gas pressure p_t = T_gas/(A r): its gas torque on
     its 4π grid from firing TDC, a_q = (2/N) Σ p_t sin qθ, b_q = (2/N) Σ p_t cos qθ. The synthetic
     cycle at a constant IMEP is the same at every speed, so one speed gives the table's column."""
     net = curve_form()
     e = net.engine
-    torque = cylinder_torque(net, 1500.0)
+    torque = cylinder_torque(net, 1500.0, misfire=misfire)
     pt = torque.gas / (math.pi / 4 * e.bore**2 * e.crank_radius)
     th = torque.theta
     a = 2.0 / len(th) * (pt[None, :] * np.sin(ORDERS[:, None] * th[None, :])).sum(axis=1)
@@ -93,3 +93,29 @@ def test_the_propeller_laws_mean_indicated_pressure():
                                          / (4 * math.pi), rel=1e-12)
     with pytest.raises(FetorsionError, match="tangential-pressure harmonics"):
         cylinder_torque(net, 2000.0, misfire=True)
+
+
+def test_a_misfire_reads_the_tables_motored_column():
+    # The table with a column at p_mi 0 holding the synthetic cycle's motored coefficients (the test's own
+    # DFT of its compression-and-expansion gas torque) and the firing column at 1.2 MPa: the misfire of
+    # each cylinder by the table equals the synthetic cycle's misfire (the same orders exactly: to 1e-6 of
+    # the largest torque, as the firing response above).
+    from fetorsion.response.forced import misfire_harmonics
+
+    data = copy.deepcopy(tomllib.loads(PATH.read_text()))
+    (a0, b0), (a1, b1) = coefficients(misfire=True), coefficients()
+    ex = data["excitation"]
+    data["excitation"] = {"reciprocating_mass_kg": ex["reciprocating_mass_kg"], "speed_range_rpm": ex["speed_range_rpm"],
+                          "harmonic_imep_pa": [0.0, 1.2e6], "imep_pa": 1.2e6,
+                          "tangential_harmonics": [{"order": float(q), "sine": [x0, x1], "cosine": [y0, y1]}
+                                                   for q, x0, x1, y0, y1 in zip(ORDERS, a0, a1, b0, b1)]}
+    table, curve = parse_network(data, str(PATH)), curve_form()
+    for c in range(curve.engine.cylinders):
+        got = []
+        for net in (curve, table):
+            setup = response_setup(net, rpm=RPM, orders=ORDERS)
+            got.append(solve_response(setup.with_misfire(c, misfire_harmonics(net, setup))).section_torque_nm)
+        assert np.abs(got[0] - got[1]).max() < 1e-6 * got[0].max()
+    # a table without its p_mi 0 column still says why no misfire is computed
+    with pytest.raises(FetorsionError, match="harmonic"):
+        cylinder_torque(harmonic_form(1.2e6), 2000.0, misfire=True)

@@ -134,8 +134,9 @@ def _harmonic_table(t: Table, common: dict) -> Excitation:
     top of the speed range, ∝ n² below it)."""
     unit = PRESSURE_UNITS[t.choice("tangential_pressure_unit", tuple(PRESSURE_UNITS), "Pa")]
     columns = t.numbers("harmonic_imep_pa")
-    if not (columns and all(c > 0 for c in columns) and all(a < b for a, b in zip(columns, columns[1:]))):
-        t.problems.append(Problem(f"{t.path}.harmonic_imep_pa", list(columns), "must be mean indicated pressures > 0 "
+    # a column at 0 is the motored cylinder's: what a misfiring one follows
+    if not (columns and all(c >= 0 for c in columns) and all(a < b for a, b in zip(columns, columns[1:]))):
+        t.problems.append(Problem(f"{t.path}.harmonic_imep_pa", list(columns), "must be mean indicated pressures >= 0 "
                                   "(Pa), ascending: the table's columns"))
     rows = []
     for h in t.tables("tangential_harmonics"):

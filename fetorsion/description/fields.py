@@ -322,7 +322,9 @@ EXCITATION = Section("excitation", "What drives the crank: the cylinder pressure
     Field("tangential_harmonics", "instead of a pressure: the engine maker's tangential-pressure harmonic table "
           "(`[[excitation.tangential_harmonics]]`), read at the load's `imep_pa` or `propeller_law_imep_pa`",
           "with `harmonic_imep_pa`"),
-    Field("harmonic_imep_pa", "the harmonic table's columns: mean indicated pressures, Pa", "> 0, ascending"),
+    Field("harmonic_imep_pa", "the harmonic table's columns: mean indicated pressures, Pa; a column at 0 holds the "
+          "motored cylinder's harmonics, which a misfiring cylinder follows (without it no misfire is computed)",
+          ">= 0, ascending"),
     Field("tangential_pressure_unit", "the harmonic table's unit: `Pa` (default), `bar` or `MPa`", "one of these"),
     Field("propeller_law_imep_pa", "with the harmonic table or the synthetic cycle: p_mi at the top of "
           "`speed_range_rpm`, Pa, the load's p_mi ∝ n² below it (an engine on a fixed-pitch propeller's curve)",

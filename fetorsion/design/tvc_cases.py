@@ -24,6 +24,7 @@ import numpy as np
 
 from ..description.chain_model import Network
 from ..errors import FetorsionError
+from ..excitation.torque import MOTORED_COLUMN_MISSING, has_motored_column
 from ..lumped_model.network import network_matrices, rear_coordinate
 from ..response.forced import ResponseResult, ResponseSetup, misfire_harmonics, solve_response
 from ..results import from_fields
@@ -146,9 +147,8 @@ def misfire_cases(net: Network, setup_of: Callable[[Network], ResponseSetup]) ->
         return []
     if net.excitation.pressure_curve is not None:
         raise FetorsionError("misfire not computed: the motored pressure of a measured pressure curve is not known")
-    if net.excitation.tangential_harmonics:
-        raise FetorsionError("misfire not computed: a tangential-pressure harmonic table gives no motored cycle (the "
-                             "maker's misfire table is not read)")
+    if net.excitation.tangential_harmonics and not has_motored_column(net.excitation):
+        raise FetorsionError(MOTORED_COLUMN_MISSING)
     motored = misfire_harmonics(net, setup_of(net))
     return [evaluate_case(net, lambda n, c=c: setup_of(n).with_misfire(c, motored), f"misfire of cylinder {c + 1}", c)
             for c in range(net.engine.cylinders)]

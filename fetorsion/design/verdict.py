@@ -261,6 +261,7 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
     >>> [r["case"] for r in v.rows()][:2]
     ['without damper', 'Den Hartog rubber damper (mu = 0.25)']
     """
+    from ..excitation.torque import MOTORED_COLUMN_MISSING, has_motored_column
     from ..response.forced import misfire_harmonics, response_setup, solve_response
     from .dampers import run_damper
 
@@ -294,8 +295,8 @@ def run_verdict(crank: Crank | Chain, mu: float = DEFAULT_INERTIA_RATIO, kind: s
              f"{tuned.equivalent_inertia_kgm2:.4g} kg m^2, ring {tuned.den_hartog.ring_inertia:.4g} kg m^2"]
     if misfire and crank.excitation.pressure_curve is not None:
         notes.append("misfire not computed: the motored pressure of a measured pressure_csv is not known")
-    elif misfire and crank.excitation.tangential_harmonics:
-        notes.append("misfire not computed: a tangential-pressure harmonic table gives no motored cycle")
+    elif misfire and crank.excitation.tangential_harmonics and not has_motored_column(crank.excitation):
+        notes.append(MOTORED_COLUMN_MISSING)
     elif misfire:
         best_name, best = min(options, key=lambda o: cases[[c.name for c in cases].index(o[0])].value.max())
         worst = {"without damper": None, best_name: None}

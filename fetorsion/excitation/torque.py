@@ -161,9 +161,10 @@ def cylinder_torque(crank: Crank, rpm: float, theta: np.ndarray | None = None, m
     engine, ex = crank.engine, _excitation_of(crank)
     r, l = engine.crank_radius, engine.rod_length
     omega = rpm * 2 * np.pi / 60
-    if ex.tangential_harmonics and not misfire:
+    if ex.tangential_harmonics and (not misfire or has_motored_column(ex)):
+        # a misfiring cylinder is motored: its gas torque the table's column at p_mi 0
         theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
-        gas = math.pi / 4 * engine.bore**2 * r * tangential_pressure(ex, engine, rpm, theta)
+        gas = math.pi / 4 * engine.bore**2 * r * tangential_pressure(ex, engine, rpm, theta, 0.0 if misfire else None)
         inertia = tangential_torque(theta, ex.reciprocating_mass * piston_acceleration(theta, r, l, omega), r, l)
         return CycleTorque(theta, gas + inertia, gas, inertia)
     theta, p = cylinder_pressure(crank, rpm, theta, misfire)
@@ -182,12 +183,26 @@ def harmonic_coefficients(ex: Excitation, imep_pa: float) -> tuple[np.ndarray, n
     return orders, sine, cosine
 
 
-def tangential_pressure(ex: Excitation, engine: Engine, rpm: float, theta: np.ndarray) -> np.ndarray:
+#: Why a misfire cannot be computed from a harmonic table without its motored column.
+MOTORED_COLUMN_MISSING = ("misfire not computed: the tangential-pressure harmonic table has no column at "
+                          "harmonic_imep_pa 0, the motored cylinder's harmonics a misfiring cylinder follows; add "
+                          "the maker's motored (or p_mi 0) column")
+
+
+def has_motored_column(ex: Excitation) -> bool:
+    """The harmonic table has a column at p_mi 0: the motored cylinder's harmonics (as [Porter1943]'s
+    coefficients a + b p_mi give at p_mi 0), which a misfiring cylinder follows."""
+    return bool(ex.tangential_harmonics) and len(ex.harmonic_imep) > 0 and ex.harmonic_imep[0] == 0.0
+
+
+def tangential_pressure(ex: Excitation, engine: Engine, rpm: float, theta: np.ndarray,
+                        imep: float | None = None) -> np.ndarray:
     """p_t(θ), Pa: the gas force's tangential share per unit piston area, referred to the crank
     radius (the gas torque is p_t A r), from the harmonic table at the load's p_mi at ``rpm``
-    (:meth:`~fetorsion.description.model.Excitation.running_imep`): its mean p_mi V_s / (A r Φ) = 2 p_mi / Φ
-    (the indicated work p_mi V_s over the cycle Φ rad, V_s = 2 r A), and Σ_q a_q sin qθ + b_q cos qθ."""
-    imep = ex.running_imep(rpm)
+    (:meth:`~fetorsion.description.model.Excitation.running_imep`) or at ``imep`` (Pa) where given: its
+    mean p_mi V_s / (A r Φ) = 2 p_mi / Φ (the indicated work p_mi V_s over the cycle Φ rad, V_s = 2 r A),
+    and Σ_q a_q sin qθ + b_q cos qθ."""
+    imep = ex.running_imep(rpm) if imep is None else imep
     orders, sine, cosine = harmonic_coefficients(ex, imep)
     q = orders[:, None] * np.asarray(theta, dtype=float)[None, :]
     return 2.0 * imep / cycle_angle(engine) + (sine[:, None] * np.sin(q) + cosine[:, None] * np.cos(q)).sum(axis=0)
