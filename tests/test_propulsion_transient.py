@@ -89,6 +89,8 @@ def test_passage_span_starts_and_ends_outside_the_range():
     # widened by its width either side, at least 20 rpm
     assert passage_span({"from_rpm": 400.0, "to_rpm": 430.0}) == (370.0, 460.0)
     assert passage_span({"from_rpm": 400.0, "to_rpm": 405.0}) == (380.0, 425.0)
+    # never below the speed range's lowest speed: a range barred from there is passed from there
+    assert passage_span({"from_rpm": 400.0, "to_rpm": 430.0}, 390.0) == (390.0, 460.0)
 
 
 def test_damping_at_a_speed_is_the_law_there(line):

@@ -34,6 +34,14 @@ ENGINE_LINE = (ROOT / "examples/networks/geared_engine.toml").read_text().replac
 ) + ('\n[[chain.propellers]]\nstation = "propeller"\nblades = 3\nentrained_water_share = 0.0\n'
      'rated_torque_nm = 100.0\nrated_speed_rpm = 1000.0\nblade_order_shares = [0.1]\npassage_rate_rpm_per_s = 200.0\n')
 
+#: The Renault 21 crank (lumped) in its driveline with a 25 mm section on the half-shafts: the network's
+#: crank is judged by UR M53 in each configuration.
+CRANK_LINE = (ROOT / "examples/networks/renault21_driveline.toml").read_text().replace(
+    'file = "../../geometry/renault21.toml"', f'file = "{ROOT / "geometry/renault21.toml"}"').replace(
+    'stiffness_nm_per_rad = 1.2e4\nloss_factor = 0.05',
+    'stiffness_nm_per_rad = 1.2e4\nloss_factor = 0.05\ndiameter_m = 0.025\ntensile_strength_pa = 600e6\n'
+    'feature = "integral_flange"')
+
 
 def _run(tmp: Path, name: str, text: str | None = None, path: Path | None = None) -> Path:
     if path is None:
@@ -45,7 +53,8 @@ def _run(tmp: Path, name: str, text: str | None = None, path: Path | None = None
 @pytest.fixture(scope="module")
 def tvc_runs(tmp_path_factory) -> dict[str, Path]:
     tmp = tmp_path_factory.mktemp("tvc")
-    return {"coupling": _run(tmp, "coupling", LINE), "engine": _run(tmp, "engine", ENGINE_LINE)}
+    return {"coupling": _run(tmp, "coupling", LINE), "engine": _run(tmp, "engine", ENGINE_LINE),
+            "crank": _run(tmp, "crank", CRANK_LINE)}
 
 
 def reports_the_same(folder: Path, copy: Path) -> None:
@@ -62,7 +71,7 @@ def reports_the_same(folder: Path, copy: Path) -> None:
         assert (copy / name).read_bytes() == (folder / name).read_bytes(), name
 
 
-@pytest.mark.slow  # 17 s: its fixture runs the TVC lines
+@pytest.mark.slow  # 25 s: its fixture runs the TVC lines
 def test_fetorsion_report_of_a_tvc_writes_the_same_report(tvc_runs, tmp_path, capsys):
     for kind, folder in tvc_runs.items():
         reports_the_same(folder, tmp_path / kind)
@@ -81,6 +90,7 @@ def test_the_tvc_read_back_writes_the_json_it_was_read_from(tvc_runs):
         seen |= {k for k in ("couplings", "shafts", "hammering") if getattr(tvc, k) is not None}
         seen |= {"misfires"} if tvc.misfires else set()
         seen |= {"passages"} if tvc.passages else set()
+        seen |= {"crank_m53"} if tvc.crank_m53 else set()
         # each result through its own to_dict and from_dict renders the section the same
         first = tvc_section(loaded.outcome.crank, tvc)
         results = [r for r in (tvc.shafts, tvc.hammering, *tvc.passages, *tvc.mode_rows) if r is not None]
@@ -90,7 +100,7 @@ def test_the_tvc_read_back_writes_the_json_it_was_read_from(tvc_runs):
             again = type(tvc.couplings).from_dict(json.loads(json.dumps(jsonable(tvc.couplings.to_dict()))))
             assert again.table() == tvc.couplings.table()
         assert tvc_section(loaded.outcome.crank, tvc) == first
-    assert seen == {"couplings", "shafts", "hammering", "misfires", "passages"}
+    assert seen == {"couplings", "shafts", "hammering", "misfires", "passages", "crank_m53"}
 
 
 @pytest.mark.slow  # its fixture runs the TVC lines (17 s)

@@ -17,6 +17,7 @@ from ..description.chain_model import Network
 from ..design.barred_passage import barred_passages, start_passages
 from ..design.tvc_cases import (TVCCase, damper_failure_cases, evaluate_case, misfire_cases, tolerance_cases,
                                  worst_case)
+from ..design.tvc_crank import crank_m53
 from ..design.tvc_modes import ModeRow, TVCCampbell, mode_table
 from ..errors import FetorsionError
 from ..lumped_model.lumped import lumped
@@ -65,13 +66,15 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     passages = tuple(start_passages(normal) + barred_passages(normal) + (barred_passages(worst) if worst else [])
                      + [p for c in (*failed, *tolerances) for p in barred_passages(c)])
     rows, campbell = tvc_modes(normal, [normal, *misfires, *failed, *tolerances])
+    m53, m53_note = crank_m53([normal, *misfires, *failed, *tolerances])
     outcome = TVCOutcome(normal.network, lumped(normal.network), response, shafts, heat,
                          TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
                          tuple(assumptions(net, response)), hammer, TVC_IMAGES["hammering"] if hammer else "",
                          normal, tuple(misfires), worst, why,
                          TVC_IMAGES["misfire_shafts"] if worst and worst.shafts else "",
                          passages, tuple(passage_image(k) for k in range(len(passages))),
-                         tuple(rows), TVC_IMAGES["campbell"], campbell, tuple(failed), tuple(tolerances))
+                         tuple(rows), TVC_IMAGES["campbell"], campbell, tuple(failed), tuple(tolerances),
+                         tuple(m53), m53_note, TVC_IMAGES["crank_m53"] if m53 else "")
     for name, draw in tvc_figures(outcome).items():
         ctx.save(draw().figure, name)
     ctx.results["tvc"] = outcome.to_dict()
@@ -93,7 +96,17 @@ def tvc_figures(outcome: TVCOutcome) -> dict[str, Callable[[], object]]:
     out.update({image: p.plot for p, image in zip(outcome.passages, outcome.passage_images)})
     if outcome.campbell_image:
         out[outcome.campbell_image] = lambda: outcome.campbell.plot(outcome.mode_rows)
+    if outcome.crank_m53_image:
+        name, result = outcome.crank_m53[0]
+        out[outcome.crank_m53_image] = lambda: titled(result.plot(wide_axes()), name)
     return out
+
+
+def wide_axes():
+    """Axes of a figure that keeps long place names on its left inside it."""
+    import matplotlib.pyplot as plt
+
+    return plt.figure(figsize=(8, 4), layout="constrained").add_subplot()
 
 
 def titled(ax, configuration: str):

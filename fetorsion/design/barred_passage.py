@@ -230,11 +230,13 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
                          window_rad, res.samples, tuple(out), kind)
 
 
-def passage_span(barred: dict) -> tuple[float, float]:
-    """The run's span about a barred range {from_rpm, to_rpm} (module docs), rpm."""
+def passage_span(barred: dict, lowest_rpm: float = 1.0) -> tuple[float, float]:
+    """The run's span about a barred range {from_rpm, to_rpm} (module docs), rpm, starting no lower
+    than ``lowest_rpm``: the speed range's lowest speed, below which the engine does not run (a range
+    barred from there is passed from there; the run from below is the start's, ``[start]``)."""
     lo, hi = barred["from_rpm"], barred["to_rpm"]
     margin = max(PASSAGE_MARGIN * (hi - lo), MIN_MARGIN_RPM)
-    return max(lo - margin, 1.0), hi + margin
+    return max(lo - margin, lowest_rpm, 1.0), hi + margin
 
 
 def barred_passages(case: TVCCase) -> list[BarredPassage]:
@@ -244,7 +246,8 @@ def barred_passages(case: TVCCase) -> list[BarredPassage]:
     if case.shafts is None or not case.shafts.barred or net.engine is None or net.excitation is None:
         return []
     rate, source = passage_rate(net)
-    return [passage_through(net, passage_span(b), (b["from_rpm"], b["to_rpm"]), rate, source,
+    lowest = float(net.excitation.speed_range[0])
+    return [passage_through(net, passage_span(b, lowest), (b["from_rpm"], b["to_rpm"]), rate, source,
                             case.response.cycle_rad, case.name, case.misfire) for b in case.shafts.barred]
 
 

@@ -266,6 +266,7 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
     from ..design.barred_passage import BarredPassage
     from ..design.coupling_heat import at_temperatures
     from ..design.gear_hammering import GearHammering
+    from ..design.m53 import M53Result
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.tvc_cases import TVCCase, with_coupling_stiffness, with_failed_damper
     from ..design.tvc_modes import ModeRow, TVCCampbell
@@ -290,6 +291,7 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
     misfires = tuple(TVCCase.from_dict(c, settled(c)) for c in d["misfires"])
     worst = None if d["worst_misfire_cylinder"] is None else misfires[d["worst_misfire_cylinder"] - 1]
     passages = tuple(BarredPassage.from_dict(p) for p in d["barred_passages"])
+    crank_m53 = tuple((c["configuration"], M53Result.from_dict(c["result"])) for c in d.get("crank_m53", []))
     shafts, heat, hammer = normal.shafts, normal.couplings, normal.hammering
     return TVCOutcome(normal.network, LumpedResult.from_dict(d["network_modes"]), response, shafts, heat,
                       TVC_IMAGES["shafts"] if shafts else "", TVC_IMAGES["heat"] if heat else "",
@@ -299,7 +301,8 @@ def tvc_outcome(net: Network, d: dict[str, object]) -> TVCOutcome:
                       tuple(ModeRow.from_dict(r) for r in d["modes"]), TVC_IMAGES["campbell"],
                       TVCCampbell.from_dict(d["campbell"]),
                       tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("failed_dampers", [])),
-                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("tolerances", [])))
+                      tuple(TVCCase.from_dict(c, settled(c)) for c in d.get("tolerances", [])),
+                      crank_m53, d.get("crank_m53_note", ""), TVC_IMAGES["crank_m53"] if crank_m53 else "")
 
 
 def _tvc(crank, data: dict[str, object]) -> TVCOutcome | Skipped | None:

@@ -23,6 +23,7 @@ if TYPE_CHECKING:  # the results each outcome holds, named for the reader and th
     from ..design.tvc_modes import ModeRow, TVCCampbell
     from ..design.shaft_verdict import ShaftVerdict
     from ..design.crank_verdict import CrankVerdict
+    from ..design.m53 import M53Result
     from ..design.scfset import SCFSet
     from ..design.stress import StressResult
     from ..design.verdict import VerdictResult
@@ -85,6 +86,12 @@ class TVCOutcome:
     failed_dampers: tuple[TVCCase, ...] = ()
     #: Each coupling at both ends of its sheet's stiffness tolerance (:func:`fetorsion.design.tvc_cases.tolerance_cases`).
     tolerances: tuple[TVCCase, ...] = ()
+    #: The network's fetorsion crank against UR M53 in each configuration (its name, the result;
+    #: :func:`fetorsion.design.tvc_crank.crank_m53`), normal running first; empty: no crank, or not
+    #: computed (``crank_m53_note`` says why); the picture of normal running's.
+    crank_m53: tuple[tuple[str, M53Result], ...] = ()
+    crank_m53_note: str = ""
+    crank_m53_image: str = ""
 
     def to_dict(self) -> dict:
         """results.json's ``tvc`` entry: normal running's response, verdicts and dampers' heat, each misfire, the passages,
@@ -103,12 +110,14 @@ class TVCOutcome:
                 "worst_misfire_cylinder": None if worst is None else worst.misfire + 1,
                 "barred_passages": [p.to_dict() for p in self.passages],
                 "modes": [r.to_dict() for r in self.mode_rows], "network_modes": self.modes.to_dict(),
-                "campbell": self.campbell.to_dict() if self.campbell else None, "assumptions": list(self.assumptions)}
+                "campbell": self.campbell.to_dict() if self.campbell else None, "assumptions": list(self.assumptions),
+                "crank_m53": [{"configuration": n, "result": r.to_dict()} for n, r in self.crank_m53],
+                "crank_m53_note": self.crank_m53_note}
 
 
 #: The file names of the TVC section's pictures (the run saves them, ``fetorsion report`` draws them again).
 TVC_IMAGES = {"shafts": "tvc_shafts.png", "heat": "tvc_coupling_heat.png", "hammering": "tvc_hammering.png",
-              "misfire_shafts": "tvc_shafts_misfire.png", "campbell": "tvc_campbell.png"}
+              "misfire_shafts": "tvc_shafts_misfire.png", "campbell": "tvc_campbell.png", "crank_m53": "tvc_crank_m53.png"}
 
 
 def passage_image(k: int) -> str:

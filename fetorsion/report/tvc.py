@@ -181,7 +181,9 @@ def conclusion_lines(outcome: TVCOutcome) -> list[str]:
                 if outcome.tolerances else "") + ".", ""]
     lines += (_shaft_conclusions(cases) + _passage_conclusions(outcome) + _coupling_conclusions(outcome, cases)
               + _hammering_conclusion(cases))
-    if any(c.crank_torque_nm is not None for c in cases):
+    if outcome.crank_m53 or outcome.crank_m53_note:
+        lines += _crank_m53_conclusion(outcome)
+    elif any(c.crank_torque_nm is not None for c in cases):
         w = max((c for c in cases if c.crank_torque_nm is not None), key=lambda c: c.crank_torque_nm)
         lines.append(f"- **Crankshaft: not judged here.** Its largest section torque {w.crank_torque_nm / 1e3:.1f} kN m "
                      f"({w.crank_section}, {w.crank_torque_rpm:.0f} rpm, {w.name}); the engine maker's permissible "
@@ -212,6 +214,39 @@ def _shaft_conclusions(cases) -> list[str]:
                      f"({', '.join(b[0].name for b in beyond)}); the worst, {c.name}: "
                      f"{n.removeprefix('beyond the rule: ')}.")
     return lines
+
+
+def _crank_m53_conclusion(outcome: TVCOutcome) -> list[str]:
+    """The network's crank against UR M53: normal running decides; the least Q of the other
+    configurations beside it, a restriction where below the required."""
+    crank = outcome.network.cranks[0].name if outcome.network.cranks else "the crank"
+    if not outcome.crank_m53:
+        return [f"- **Crankshaft '{crank}': not judged.** {outcome.crank_m53_note[:1].upper()}{outcome.crank_m53_note[1:]}."]
+    (name, normal), others = outcome.crank_m53[0], outcome.crank_m53[1:]
+    g = normal.governing
+    line = (f"- **Crankshaft '{crank}', IACS UR M53 ({name} decides): {'pass' if normal.passes else 'fail'}.** Least Q "
+            f"{g.safety:.3f} against the required {g.required:.2f} ({g.name}; torsion from the {g.torque_section} at "
+            f"{g.torque_rpm:.0f} rpm).")
+    if others:
+        n, r = min(others, key=lambda o: o[1].governing.safety / o[1].governing.required)
+        w = r.governing
+        line += (f" The other configurations' least Q {w.safety:.3f} ({n})"
+                 + (": below the required, a restriction for that operation." if w.safety < w.required else "."))
+    return [line]
+
+
+def crank_m53_lines(outcome: TVCOutcome) -> list[str]:
+    """The network's crank against UR M53 in each configuration, and normal running's places."""
+    if not outcome.crank_m53:
+        return []
+    lines = ["### Crankshaft against IACS UR M53", "",
+             "The crank description's own rule, its torsion the network's synthesised torque through each fillet in "
+             "each configuration, its bending the rod forces at the rated speed; normal running decides.", "",
+             "| configuration | least Q | required | place | torsion from | at [rpm] |", "|---|---|---|---|---|---|"]
+    for name, r in outcome.crank_m53:
+        g = r.governing
+        lines.append(f"| {name} | {g.safety:.3f} | {g.required:.2f} | {g.name} | {g.torque_section} | {g.torque_rpm:.0f} |")
+    return lines + ["", f"![]({outcome.crank_m53_image})", ""]
 
 
 def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
@@ -350,6 +385,6 @@ def tvc_section(crank, outcome: TVCOutcome | Skipped) -> list[str]:
         lines += ["### Gear hammering: vibratory against mean mesh torque", "", "```", outcome.hammering.table(), "```",
                   "", f"![]({outcome.hammering_image})", ""]
     lines += (damper_lines(outcome) + misfire_lines(outcome) + failed_damper_lines(outcome) + tolerance_lines(outcome)
-              + passage_lines(outcome))
+              + passage_lines(outcome) + crank_m53_lines(outcome))
     lines += ["### What is assumed", ""] + [f"- {a}." for a in outcome.assumptions] + [""]
     return lines
