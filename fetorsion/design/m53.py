@@ -255,8 +255,10 @@ class M53Result:
     factor says whether the rule's formula or the FE (Appendix III) gave it."""
 
     locations: tuple
-    nominal: dict
-    scf_source: dict
+    #: Per throw variant: its nominal stresses and torques (Pa, N·m), dimensions (m) and ratios, cylinders.
+    nominal: dict[str, dict[str, float | list[list[int]] | dict[str, float]]]
+    #: Per throw variant: each factor's source (the rule's formula or the FE), in words.
+    scf_source: dict[str, dict[str, str]]
     rated_rpm: float
     notes: tuple = ()
 
