@@ -80,7 +80,7 @@ def test_slow_passage_of_a_barred_range_approaches_the_steady_state_peak(line):
     assert abs(sp.peak_rpm - rpm[j]) < 2.0
     # τ_T at the peak's speed from the rule (the section's τ_C there × 1.7/√C_K, C_K 1 here)
     assert sp.tau_t_pa == pytest.approx(1.7 * sp.tau_c_pa, rel=1e-12)
-    assert passage.verdict == ("within τ_T" if sp.peak_pa <= sp.tau_t_pa else "above τ_T")
+    assert passage.verdict == ("within the limits" if sp.peak_pa <= sp.tau_t_pa else "above a limit")
     d = passage.to_dict()
     assert d["rate_rpm_per_s"] == 1.0 and d["rate_source"] == "test"
 

@@ -69,8 +69,8 @@ def test_a_slow_start_through_a_resonance_reaches_the_steady_state_at_the_start_
     assert run.peak_pa == pytest.approx(sec.stress_pa[k], rel=0.01)
     assert abs(run.peak_rpm - steady.shafts.rpm[k]) <= 2.0
     # the peak judged is the window of the largest τ/τ_T
-    assert run.utilisation == pytest.approx(np.nanmax(run.window_stress_pa / run.window_tau_t_pa), rel=1e-12)
-    assert start.is_start and start.verdict == ("above τ_T" if run.peak_pa > run.tau_t_pa else "within τ_T")
+    assert run.utilisation == pytest.approx(np.nanmax(run.window_stress_pa / run.window_limit_pa), rel=1e-12)
+    assert start.is_start and start.verdict == ("above a limit" if run.peak_pa > run.tau_t_pa else "within the limits")
 
 
 def test_a_constant_speed_set_fails_with_a_speed_barred_in_its_band():
@@ -88,3 +88,33 @@ def test_a_constant_speed_set_fails_with_a_speed_barred_in_its_band():
     assert all(b["within_transient"] for b in v_off.barred)
     assert (v_on.verdict, v_off.verdict) == ("fail", "pass with barred ranges")
     assert v_on.constant_speed and not v_off.constant_speed
+
+
+def test_a_start_is_judged_against_tau_t_to_lambda_0_8_and_tau_c_above():
+    # UR M68 by hand for the generator shaft (σ_B 600 N/mm², integral flange C_K 1, d 40 mm):
+    # τ_C = (σ_B + 160)/18 · C_K · C_D · (3 − 2λ²) below λ 0.9, C_D = 0.35 + 0.93 d^-0.2 (d in mm);
+    # τ_T = 1.7 τ_C/√C_K to λ 0.8. A start across λ 0.8 (1200 rpm of 1500) is held to τ_T below it
+    # and to τ_C above it, window by window.
+    net = parse_network(genset(from_rpm=1150.0, rate_rpm_per_s=100.0), str(GENSET))
+    case = evaluate_case(net, tvc_setup, "normal running")
+    (start,) = start_passages(case)
+    (sec,) = start.sections
+    lam = sec.window_rpm / 1500.0
+    tau_c = (600.0 + 160.0) / 18.0 * 1.0 * (0.35 + 0.93 * 40.0 ** -0.2) * (3 - 2 * lam**2) * 1e6
+    expected = np.where(lam <= 0.8, 1.7 * tau_c, tau_c)
+    assert (lam < 0.8).any() and (lam > 0.8).any()
+    assert np.allclose(sec.window_limit_pa, expected, rtol=1e-9)
+    assert sec.utilisation == pytest.approx(np.max(sec.window_stress_pa / expected), rel=1e-9)
+
+
+def test_a_constant_speed_sets_overspeed_alone_barred_does_not_fail_it():
+    # Barred only above the rated speed (the governor's overspeed, 1500-1650 rpm here), the set's band
+    # is clear: the rule's ordinary verdict holds. The ranges are the shafts' own, shifted in a copy.
+    from dataclasses import replace as copy_with
+
+    data = genset()
+    next(s for s in data["chain"]["shafts"] if "diameter_m" in s)["diameter_m"] = 0.022
+    v = evaluate_case(parse_network(data, str(GENSET)), tvc_setup, "normal running").shafts
+    above = [{**b, "from_rpm": 1510.0, "to_rpm": 1560.0} for b in v.barred[:1]]
+    assert copy_with(v, barred=above).verdict == copy_with(v, barred=above, constant_speed=False).verdict
+    assert copy_with(v, barred=[{**above[0], "from_rpm": 1490.0}]).verdict == "fail"

@@ -48,3 +48,19 @@ def test_a_driveline_moves_the_cranks_torques_and_its_m53(tmp_path):
          for n in (alone, net)]
     assert q[0].governing.safety != pytest.approx(q[1].governing.safety, rel=1e-6)
     assert crank_m53([]) == ([], "")
+
+
+def test_a_crank_that_does_not_drive_the_network_is_not_judged(tmp_path):
+    # the network's own [engine] puts the cylinders on stations of its choosing: the crank's rod forces
+    # are not what loads it, so its M53 is refused by name rather than mixed
+    path = tmp_path / "driven.toml"
+    path.write_text(f'[chain]\nname = "r21 driven"\ncylinder_stations = ["r21.P1", "r21.P2", "r21.P3", "r21.P4"]\n'
+                    f'[[chain.cranks]]\nname = "r21"\nfile = "{CRANK}"\ndof = 17\nstiffness = "carter"\n'
+                    '[units]\nlength = "mm"\n[engine]\ncylinders = 4\ncycle_strokes = 4\nbore = 81.0\nstroke = 83.5\n'
+                    'rod_length = 149.1\ncrank_angles_deg = [0.0, 180.0, 180.0, 0.0]\nfiring_order = [1, 3, 4, 2]\n'
+                    '[excitation]\nreciprocating_mass_kg = 0.5\nspeed_range_rpm = [1000.0, 5000.0]\nimep_pa = 1.0e6\n'
+                    'compression_ratio = 9.0\n')
+    net = fetorsion.load(path)
+    assert not net.cranks[0].drives
+    results, note = crank_m53([SimpleNamespace(network=net, response=solve_response(response_setup(net)), name="n")])
+    assert results == [] and "drive it" in note

@@ -32,7 +32,8 @@ CHAIN = Section("chain", "A torsional chain given directly: inertias joined by s
           "needs `[engine]`"),
     Field("constant_speed", "network form: `true` for a line held at a constant speed anywhere in its "
           "`[excitation]` range (a generating set on its governor, the range its band): it runs continuously across "
-          "the band, so a speed barred there fails the shafts' verdict; default false", "true or false"),
+          "the band, so a speed barred there (up to the rated speed, the range's top) fails the shafts' verdict; "
+          "default false", "true or false"),
     Field("stations", "network form, instead of the lists above: `[[chain.stations]]` (below)",
           "at least 2 (with a crank's: any); not with the list keys"),
     Field("shafts", "network form: `[[chain.shafts]]` (below)", "the stations all joined, no gear loop; "

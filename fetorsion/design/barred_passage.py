@@ -49,9 +49,11 @@ START_UP = "start-up"
 
 @dataclass(frozen=True)
 class SectionPassage:
-    """One shaft section's largest half-range stress in a passage (Pa, at ``peak_rpm`` of station 1)
-    against τ_T there (Pa; NaN above λ 0.8, where the rule gives none) and its record: the windows'
-    mean speeds (rpm) and stresses (Pa)."""
+    """One shaft section's most utilised half-range stress in a passage (Pa, at ``peak_rpm`` of station 1)
+    against its limit there, :attr:`limit_pa`: τ_T to λ 0.8, above it τ_C (UR M68 gives τ_T to λ 0.8 only;
+    above, the continuous limit holds: no barred range is allowed there in a propeller line, and a
+    start runs through it as a set runs); and its record: the windows' mean speeds (rpm), stresses and
+    limits (Pa)."""
 
     label: str
     peak_pa: float
@@ -60,18 +62,29 @@ class SectionPassage:
     tau_c_pa: float
     window_rpm: np.ndarray
     window_stress_pa: np.ndarray
-    #: τ_T at each window's speed (Pa; NaN above λ 0.8); empty in a passage stored before it was kept.
-    window_tau_t_pa: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: The limit at each window's speed (Pa): τ_T to λ 0.8, τ_C above to λ 1.05, NaN beyond; empty in
+    #: a passage stored before it was kept.
+    window_limit_pa: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def limit_pa(self) -> float:
+        """The limit at the peak, Pa: τ_T (λ ≤ 0.8), else τ_C (λ ≤ 1.05), else NaN (the rule gives none)."""
+        return self.tau_t_pa if np.isfinite(self.tau_t_pa) else self.tau_c_pa
+
+    @property
+    def limit_name(self) -> str:
+        """"τ_T" or "τ_C": which limit :attr:`limit_pa` is."""
+        return "τ_T" if np.isfinite(self.tau_t_pa) else "τ_C"
 
     @property
     def utilisation(self) -> float:
-        """τ / τ_T at the peak (NaN where the rule gives no τ_T)."""
-        return self.peak_pa / self.tau_t_pa
+        """τ over its limit at the peak (NaN where the rule gives none)."""
+        return self.peak_pa / self.limit_pa
 
     @property
     def within(self) -> bool:
-        """τ ≤ τ_T at the peak (True where the rule gives no τ_T: not judged)."""
-        return not self.peak_pa > self.tau_t_pa
+        """τ at or under its limit at the peak (True where the rule gives none: not judged)."""
+        return not self.peak_pa > self.limit_pa
 
 
 @dataclass(frozen=True)
@@ -101,8 +114,8 @@ class BarredPassage:
 
     @property
     def verdict(self) -> str:
-        """within τ_T, or above τ_T (some section's peak exceeds it)."""
-        return "within τ_T" if all(s.within for s in self.sections) else "above τ_T"
+        """"within the limits", or "above a limit" (some section's peak exceeds its τ_T, or its τ_C above λ 0.8)."""
+        return "within the limits" if all(s.within for s in self.sections) else "above a limit"
 
     def to_dict(self) -> dict:
         """JSON-ready: the range, the run, the rate and its source, each section's peak and τ_T (Pa) and
@@ -116,15 +129,15 @@ class BarredPassage:
                               "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
                               "within": s.within, "window_rpm": s.window_rpm.tolist(),
                               "window_stress_pa": s.window_stress_pa.tolist(),
-                              "window_tau_t_pa": _nulls(s.window_tau_t_pa)} for s in self.sections]}
+                              "window_limit_pa": _nulls(s.window_limit_pa)} for s in self.sections]}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "BarredPassage":
         """The passage back from its :meth:`to_dict` (KeyError: one written before the windows were kept)."""
         sections = tuple(from_fields(SectionPassage, s, window_rpm=np.array(s["window_rpm"], dtype=float),
                                      window_stress_pa=np.array(s["window_stress_pa"], dtype=float),
-                                     window_tau_t_pa=np.array([np.nan if v is None else v
-                                                               for v in s.get("window_tau_t_pa", [])], dtype=float))
+                                     window_limit_pa=np.array([np.nan if v is None else v
+                                                               for v in s.get("window_limit_pa", [])], dtype=float))
                          for s in d["sections"])
         return from_fields(cls, d, run_from_rpm=float(d["run_rpm"][0]), run_to_rpm=float(d["run_rpm"][1]),
                            sections=sections)
@@ -137,8 +150,9 @@ class BarredPassage:
         lines = [f"{self.configuration}: {what}, run {self.run_from_rpm:.1f} -> {self.run_to_rpm:.1f} rpm at "
                  f"{self.rate_rpm_per_s:g} rpm/s ({self.rate_source})"]
         for s in self.sections:
-            limit = "no τ_T (λ > 0.8)" if not np.isfinite(s.tau_t_pa) else (
-                f"τ_T {s.tau_t_pa / 1e6:.2f} N/mm² ({s.utilisation:.3f} τ_T)")
+            limit = "no limit (λ > 1.05)" if not np.isfinite(s.limit_pa) else (
+                f"{s.limit_name} {s.limit_pa / 1e6:.2f} N/mm² ({s.utilisation:.3f} {s.limit_name}"
+                + ("; λ > 0.8: the continuous limit)" if s.limit_name == "τ_C" else ")"))
             lines.append(f"  {s.label}: peak τ {s.peak_pa / 1e6:.2f} N/mm² at {s.peak_rpm:.1f} rpm; {limit}")
         return "\n".join(lines + [f"  verdict: {self.verdict}"])
 
@@ -150,9 +164,9 @@ class BarredPassage:
         ax = ax if ax is not None else plt.figure(figsize=(9, 4.5)).add_subplot()
         for k, s in enumerate(self.sections):
             ax.plot(s.window_rpm, s.window_stress_pa / 1e6, color=f"C{k % 10}", label=f"τ {s.label}")
-            if s.window_tau_t_pa.size:  # τ_T(λ) where the rule gives it (λ ≤ 0.8)
-                ax.plot(s.window_rpm, s.window_tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9,
-                        label=f"τ_T {s.label} (to λ 0.8)")
+            if s.window_limit_pa.size:  # τ_T to λ 0.8, τ_C above
+                ax.plot(s.window_rpm, s.window_limit_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9,
+                        label=f"limit {s.label}: τ_T to λ 0.8, τ_C above")
             elif np.isfinite(s.tau_t_pa):
                 ax.axhline(s.tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9, label=f"τ_T {s.label}")
         if not self.is_start:  # a start's whole run lies below the range: nothing to shade
@@ -209,9 +223,9 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
     kind : str
         What is passed: "barred range" or "start-up" (:attr:`BarredPassage.kind`).
 
-    Each section's peak is its window of the largest τ/τ_T where the rule gives τ_T (λ ≤ 0.8), else
-    its largest stress: a start's largest stress may lie above λ 0.8 and a smaller one below
-    exceed τ_T.
+    Each section's peak is its window of the largest stress over its limit (τ_T to λ 0.8, τ_C above to
+    λ 1.05; :class:`SectionPassage`), else of its largest stress where no window has a limit: a start's
+    largest stress may lie where the limit is high and a smaller one exceed a lower limit.
     """
     # a propeller whose law damping follows the speed takes the one at the range's middle, where its peak is judged
     res = run_transient(damping_at(net, 0.5 * (barred[0] + barred[1])), run=span_rpm, rate_rpm_per_s=rate,
@@ -221,11 +235,12 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
     for k, label, sec in judged_sections(net, res):
         rpm, stress = window_stresses(res, res.section_torque_nm[k], sec, window_rad)
         tau_c, tau_t = section_limits(sec, rpm / rated)
-        judged = np.isfinite(tau_t)
-        j = int(np.argmax(np.where(judged, stress / np.where(judged, tau_t, 1.0), -np.inf))) if judged.any() \
+        limit = np.where(np.isfinite(tau_t), tau_t, tau_c)
+        judged = np.isfinite(limit)
+        j = int(np.argmax(np.where(judged, stress / np.where(judged, limit, 1.0), -np.inf))) if judged.any() \
             else int(np.argmax(stress))
         out.append(SectionPassage(label, float(stress[j]), float(rpm[j]), float(tau_t[j]), float(tau_c[j]), rpm,
-                                  stress, tau_t))
+                                  stress, limit))
     return BarredPassage(configuration, barred[0], barred[1], span_rpm[0], span_rpm[1], rate, rate_source,
                          window_rad, res.samples, tuple(out), kind)
 

@@ -96,11 +96,13 @@ class ShaftVerdict:
 
     @property
     def verdict(self) -> str:
-        """pass; pass with barred ranges (each passable); or fail (one is not, or a constant-speed set has one)."""
+        """pass; pass with barred ranges (each passable); or fail (one is not, or a constant-speed set has one
+        in its band, at or below its rated speed: above it lies only the overspeed a governor passes through)."""
         if not self.barred:
             return "pass"
-        ok = not self.constant_speed and all(b["within_transient"] and not (self.propeller_line and b["above_0_8"])
-                                             for b in self.barred)
+        in_band = self.constant_speed and any(b["from_rpm"] <= self.rated_rpm for b in self.barred)
+        ok = not in_band and all(b["within_transient"] and not (self.propeller_line and b["above_0_8"])
+                                 for b in self.barred)
         return "pass with barred ranges" if ok else "fail"
 
     def to_dict(self) -> dict:
@@ -272,7 +274,8 @@ def shaft_verdict(net: Network, response: ResponseResult, rated_rpm: float | Non
                 for k, label, sec in judged_sections(net, response)]
     notes = ["stresses: half-range synthesised amplitudes, nominal on the plain section, 16 T d/(π(d⁴ − d_i⁴))"]
     if net.constant_speed:
-        notes.append("a constant-speed set: it runs continuously anywhere in its range, so a barred speed there fails")
+        notes.append("a constant-speed set: it runs continuously anywhere in its band up to the rated speed, so a "
+                     "barred speed there fails; above it lies only the overspeed it passes through")
     if lam[-1] > LAMBDA_MAX:
         notes.append(f"speeds above λ {LAMBDA_MAX} ({LAMBDA_MAX * rated:.1f} rpm) are not judged: the rule gives no τ_C")
         notes += beyond_the_rule(sections, rpm, lam)

@@ -17,6 +17,7 @@ said beside it.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -28,10 +29,15 @@ from .tvc_cases import TVCCase
 
 
 def network_fillet_torques(case: TVCCase):
-    """(crank, fillets, half-range torque (speeds, fillets) N·m) of the network's crank in a configuration.
+    """(crank, fillets, half-range torque (speeds, fillets) N·m) of the network's crank in a configuration,
+    the crank carrying the network's ``[excitation]`` (its rod forces then those the torques come from).
 
-    Raises FetorsionError where the response has no section between two of the crank's anchors."""
+    Raises FetorsionError where the crank does not drive the network (the network's own ``[engine]``
+    places the cylinders) or the response has no section between two of the crank's anchors."""
     part = case.network.cranks[0]
+    if not part.drives or case.network.excitation is None:
+        raise FetorsionError("the network's own [engine] and [excitation] drive it, not the crank description's "
+                             "pins, so the crank's rod forces are not the network's")
     chain = lumped(part.crank, part.partition, part.web_method)
     fillets = fillets_of(part.crank)
     springs = fillet_springs(fillets, chain.positions_m)
@@ -41,7 +47,8 @@ def network_fillet_torques(case: TVCCase):
     if missing:
         raise FetorsionError(f"the crank's sections {', '.join(missing)} are not in the network's response")
     columns = [labels.index(names[k]) for k in springs]
-    return part.crank, fillets, np.asarray(case.response.section_torque_nm)[:, columns]
+    crank = replace(part.crank, excitation=case.network.excitation)
+    return crank, fillets, np.asarray(case.response.section_torque_nm)[:, columns]
 
 
 def crank_m53(cases: Sequence[TVCCase]) -> tuple[list[tuple[str, M53Result]], str]:

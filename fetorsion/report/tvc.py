@@ -262,11 +262,12 @@ def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
         w = worst(p)
         what = (f"the start {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_start
                 else f"{p.configuration}, barred range {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm")
-        level = (f"{w.utilisation:.3f} τ_T" if math.isfinite(w.utilisation) else "no τ_T above λ 0.8")
+        level = (f"{w.utilisation:.3f} {w.limit_name}" if math.isfinite(w.utilisation) else "no limit above λ 1.05")
         parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)")
-    verdict = "fail" if any(p.verdict != "within τ_T" for p in outcome.passages) else "pass"
+    verdict = "fail" if any(p.verdict != "within the limits" for p in outcome.passages) else "pass"
     text = "; ".join(parts)
-    return [f"- **Transient passages in the time domain, UR M68's τ_T: {verdict}.** {text[:1].upper()}{text[1:]}."]
+    return [f"- **Transient passages in the time domain, UR M68's τ_T (τ_C above λ 0.8): {verdict}.** "
+            f"{text[:1].upper()}{text[1:]}."]
 
 
 def _coupling_conclusions(outcome: TVCOutcome, cases) -> list[str]:
