@@ -119,3 +119,35 @@ def test_a_misfire_reads_the_tables_motored_column():
     # a table without its p_mi 0 column still says why no misfire is computed
     with pytest.raises(FetorsionError, match="harmonic"):
         cylinder_torque(harmonic_form(1.2e6), 2000.0, misfire=True)
+
+
+def test_a_misfire_reads_the_makers_misfire_harmonics_first():
+    # The firing columns at 1.2 and 2.4 MPa, and the synthetic cycle's motored coefficients given as the
+    # maker's misfire harmonics (misfire_sine/misfire_cosine): each cylinder's misfire equals the cycle's
+    # to 1e-6 of the largest torque; with a p_mi 0 column of zeros beside them, they still decide.
+    from fetorsion.response.forced import misfire_harmonics
+
+    (a0, b0), (a1, b1) = coefficients(misfire=True), coefficients()
+    curve = curve_form()
+    want = []
+    for c in range(curve.engine.cylinders):
+        setup = response_setup(curve, rpm=RPM, orders=ORDERS)
+        want.append(solve_response(setup.with_misfire(c, misfire_harmonics(curve, setup))).section_torque_nm)
+    for columns, firing in (([1.2e6, 2.4e6], lambda x: [x, 2 * x]), ([0.0, 1.2e6], lambda x: [0.0, x])):
+        data = copy.deepcopy(tomllib.loads(PATH.read_text()))
+        ex = data["excitation"]
+        data["excitation"] = {"reciprocating_mass_kg": ex["reciprocating_mass_kg"],
+                              "speed_range_rpm": ex["speed_range_rpm"], "harmonic_imep_pa": columns, "imep_pa": 1.2e6,
+                              "tangential_harmonics": [{"order": float(q), "sine": firing(x1), "cosine": firing(y1),
+                                                        "misfire_sine": x0, "misfire_cosine": y0}
+                                                       for q, x0, x1, y0, y1 in zip(ORDERS, a0, a1, b0, b1)]}
+        table = parse_network(data, str(PATH))
+        for c in range(curve.engine.cylinders):
+            setup = response_setup(table, rpm=RPM, orders=ORDERS)
+            got = solve_response(setup.with_misfire(c, misfire_harmonics(table, setup))).section_torque_nm
+            assert np.abs(got - want[c]).max() < 1e-6 * want[c].max()
+    # for some orders only: refused by name
+    rows = data["excitation"]["tangential_harmonics"]
+    del rows[0]["misfire_sine"], rows[0]["misfire_cosine"]
+    with pytest.raises(Exception, match="misfire_sine"):
+        parse_network(data, str(PATH))

@@ -20,6 +20,7 @@ from ..design.tvc_cases import (TVCCase, damper_failure_cases, evaluate_case, mi
 from ..design.tvc_crank import crank_m53
 from ..design.tvc_modes import ModeRow, TVCCampbell, mode_table
 from ..errors import FetorsionError
+from ..excitation.torque import has_motored_column
 from ..lumped_model.lumped import lumped
 from ..report.outcomes import TVC_IMAGES, Skipped, TVCOutcome, passage_image
 from ..excitation.campbell import major_orders
@@ -163,4 +164,11 @@ def assumptions(net: Network, response) -> list[str]:
     if net.gears and net.propellers:
         out.append("Gear hammering: mesh torque from the gear's own equilibrium (the modal damping left out), against "
                    "the propeller law's mean torque referred by power, no gear losses")
+    ex = net.excitation
+    if ex is not None and ex.tangential_harmonics and ex.misfire_harmonics:
+        out.append("Misfire: the misfiring cylinder by the engine maker's misfire harmonics of the table")
+    elif ex is not None and ex.tangential_harmonics and has_motored_column(ex):
+        out.append("Misfire: the misfiring cylinder by the table's column at p_mi 0, the motored cylinder at no-load "
+                   "boost; a turbocharged engine's misfire at load compresses at the running boost and is larger "
+                   "(the maker's misfire harmonics, misfire_sine and misfire_cosine, take it)")
     return out

@@ -138,7 +138,7 @@ def _harmonic_table(t: Table, common: dict) -> Excitation:
     if not (columns and all(c >= 0 for c in columns) and all(a < b for a, b in zip(columns, columns[1:]))):
         t.problems.append(Problem(f"{t.path}.harmonic_imep_pa", list(columns), "must be mean indicated pressures >= 0 "
                                   "(Pa), ascending: the table's columns"))
-    rows = []
+    rows, misfire = [], []
     for h in t.tables("tangential_harmonics"):
         order = h.number("order", positive=True)
         if "amplitude" in h.data:
@@ -146,11 +146,16 @@ def _harmonic_table(t: Table, common: dict) -> Excitation:
             sine, cosine = [a * math.cos(f) for a, f in zip(amp, phase)], [a * math.sin(f) for a, f in zip(amp, phase)]
         else:
             sine, cosine = h.numbers("sine"), h.numbers("cosine")
+        if "misfire_sine" in h.data or "misfire_cosine" in h.data:
+            misfire.append((order, h.number("misfire_sine") * unit, h.number("misfire_cosine") * unit))
         h.finish()
         if not len(sine) == len(cosine) == len(columns):
             h.problems.append(Problem(h.path, dict(h.data), f"needs one value per harmonic_imep_pa column "
                                       f"({len(columns)}) in sine and cosine (or amplitude and phase_deg)"))
         rows.append((order, tuple(v * unit for v in sine), tuple(v * unit for v in cosine)))
+    if misfire and len(misfire) != len(rows):
+        t.problems.append(Problem(f"{t.path}.tangential_harmonics", f"{len(misfire)} of {len(rows)} orders",
+                                  "misfire_sine and misfire_cosine: give them for every order or for none"))
     load = [k for k in ("imep_pa", "propeller_law_imep_pa") if k in t.data]
     if len(load) != 1:
         t.problems.append(Problem(t.path, load or None, "with tangential_harmonics give exactly one of imep_pa, "
@@ -167,7 +172,7 @@ def _harmonic_table(t: Table, common: dict) -> Excitation:
             pairs = [(1.0, 1.0)]
     t.finish()
     return Excitation(tangential_harmonics=tuple(rows), harmonic_imep=tuple(columns), load_kind=kind,
-                      load=tuple((float(a), float(b)) for a, b in pairs), **common)
+                      load=tuple((float(a), float(b)) for a, b in pairs), misfire_harmonics=tuple(misfire), **common)
 
 
 _SYNTHETIC_CYCLE_KEYS = ("compression_ratio", "intake_pressure_pa", "polytropic_exponent", "combustion_start_deg",

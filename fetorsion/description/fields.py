@@ -339,6 +339,10 @@ TANGENTIAL_HARMONICS = Section("excitation.tangential_harmonics", "One order q o
     Field("cosine", "b_q, one per column", "with `sine`"),
     Field("amplitude", "P_q, one per column", "with `phase_deg`"),
     Field("phase_deg", "φ_q, deg, one per column", "with `amplitude`"),
+    Field("misfire_sine", "a_q of the misfiring cylinder (its motored cycle at the running boost: the engine maker's "
+          "misfire table), one value; a misfire reads these before the table's column at p_mi 0", "with "
+          "`misfire_cosine`, for every order or none"),
+    Field("misfire_cosine", "b_q of the misfiring cylinder, one value", "with `misfire_sine`"),
 ), array=True)
 
 DAMPERS = Section("dampers", "Torsional dampers, in crank descriptions and chain files. A damper's ring is one more "

@@ -298,6 +298,9 @@ class Excitation:
     #: "propeller_imep": p_mi = load's value × (n / its rpm)²). Empty: a pressure curve or the cycle.
     tangential_harmonics: tuple[tuple[float, tuple[float, ...], tuple[float, ...]], ...] = ()
     harmonic_imep: tuple[float, ...] = ()
+    #: The misfiring cylinder's harmonics (order, sine Pa, cosine Pa): its motored cycle at the running
+    #: boost, the engine maker's misfire table. Empty: the table's column at p_mi 0, if it has one.
+    misfire_harmonics: tuple[tuple[float, float, float], ...] = ()
 
     def running_imep(self, rpm: float) -> float:
         """The mean indicated pressure at ``rpm``, Pa: the ``load`` table's (linear between its rows,

@@ -162,9 +162,11 @@ def cylinder_torque(crank: Crank, rpm: float, theta: np.ndarray | None = None, m
     r, l = engine.crank_radius, engine.rod_length
     omega = rpm * 2 * np.pi / 60
     if ex.tangential_harmonics and (not misfire or has_motored_column(ex)):
-        # a misfiring cylinder is motored: its gas torque the table's column at p_mi 0
+        # a misfiring cylinder is motored: the maker's misfire harmonics, else the table's column at p_mi 0
         theta = cycle_grid(engine) if theta is None else np.asarray(theta, dtype=float)
-        gas = math.pi / 4 * engine.bore**2 * r * tangential_pressure(ex, engine, rpm, theta, 0.0 if misfire else None)
+        pt = (misfire_pressure(ex, theta) if misfire and ex.misfire_harmonics else
+              tangential_pressure(ex, engine, rpm, theta, 0.0 if misfire else None))
+        gas = math.pi / 4 * engine.bore**2 * r * pt
         inertia = tangential_torque(theta, ex.reciprocating_mass * piston_acceleration(theta, r, l, omega), r, l)
         return CycleTorque(theta, gas + inertia, gas, inertia)
     theta, p = cylinder_pressure(crank, rpm, theta, misfire)
@@ -184,15 +186,24 @@ def harmonic_coefficients(ex: Excitation, imep_pa: float) -> tuple[np.ndarray, n
 
 
 #: Why a misfire cannot be computed from a harmonic table without its motored column.
-MOTORED_COLUMN_MISSING = ("misfire not computed: the tangential-pressure harmonic table has no column at "
-                          "harmonic_imep_pa 0, the motored cylinder's harmonics a misfiring cylinder follows; add "
-                          "the maker's motored (or p_mi 0) column")
+MOTORED_COLUMN_MISSING = ("misfire not computed: the tangential-pressure harmonic table has neither misfire_sine "
+                          "and misfire_cosine (the engine maker's misfire harmonics) nor a column at harmonic_imep_pa "
+                          "0 (the motored cylinder's); add one")
 
 
 def has_motored_column(ex: Excitation) -> bool:
-    """The harmonic table has a column at p_mi 0: the motored cylinder's harmonics (as [Porter1943]'s
-    coefficients a + b p_mi give at p_mi 0), which a misfiring cylinder follows."""
-    return bool(ex.tangential_harmonics) and len(ex.harmonic_imep) > 0 and ex.harmonic_imep[0] == 0.0
+    """The harmonic table says what a misfiring cylinder does: the maker's misfire harmonics, or a column at
+    p_mi 0 (the motored cylinder's harmonics at no-load boost, as [Porter1943]'s a + b p_mi give at p_mi 0)."""
+    return bool(ex.tangential_harmonics) and (bool(ex.misfire_harmonics) or (
+        len(ex.harmonic_imep) > 0 and ex.harmonic_imep[0] == 0.0))
+
+
+def misfire_pressure(ex: Excitation, theta: np.ndarray) -> np.ndarray:
+    """p_t(θ) of the misfiring cylinder from the maker's misfire harmonics, Pa: Σ_q a_q sin qθ + b_q cos qθ
+    (a motored cylinder does no indicated work: no mean)."""
+    q, a, b = (np.array(c, dtype=float)[:, None] for c in zip(*ex.misfire_harmonics))
+    th = np.asarray(theta, dtype=float)[None, :]
+    return (a * np.sin(q * th) + b * np.cos(q * th)).sum(axis=0)
 
 
 def tangential_pressure(ex: Excitation, engine: Engine, rpm: float, theta: np.ndarray,
