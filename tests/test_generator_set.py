@@ -55,6 +55,9 @@ def test_the_generator_sets_numbers_follow_the_rules_its_comments_state():
     accel = (sum(net.inertias) + damper.ring_inertia) * start.rate_rpm_per_s * math.pi / 30.0
     friction = (1 - 0.85) * ex.running_imep(RATED_RPM)
     assert start.imep_pa == pytest.approx(friction + 4 * math.pi * accel / vs, rel=1e-3)
+    # the stop: the same friction torque p_f V_s/4π over the same inertia
+    inertia = sum(net.inertias) + damper.ring_inertia
+    assert net.stop.rate_rpm_per_s == pytest.approx(friction * vs / (4 * math.pi) / inertia * 30 / math.pi, rel=1e-3)
 
 
 @pytest.fixture(scope="module")
@@ -88,9 +91,11 @@ def test_the_generator_sets_run_reports_its_tvc_and_its_numbers_agree(genset_run
     assert tvc["shafts"]["barred_ranges"] == [] and all(m["barred"] == "" for m in tvc["misfires"])
     assert tvc["shafts"]["constant_speed"] and tvc["shafts"]["verdict"] == "pass"  # a barred range would fail it
     assert len(tvc["misfires"]) == 6
-    # the one time-domain run is the start, from its firing speed to the band's lowest speed, judged against τ_T
-    (start,) = tvc["barred_passages"]
+    # the time-domain runs are the start, from its firing speed to the band's lowest speed, and the stop, from
+    # the rated speed down to it, each judged against τ_T (τ_C above λ 0.8)
+    start, stop = tvc["barred_passages"]
     assert start["kind"] == "start-up" and start["run_rpm"] == [300.0, 0.9 * RATED_RPM]
+    assert stop["kind"] == "shut-down" and stop["run_rpm"] == [RATED_RPM, 300.0]
     (sec,) = start["sections"]
     assert start["verdict"] == ("above a limit" if sec["peak_pa"] > sec["tau_t_pa"] else "within the limits")
     assert f"(τ_C above λ 0.8): {'fail' if start['verdict'] == 'above a limit' else 'pass'}" in text

@@ -14,7 +14,7 @@ from collections.abc import Callable
 import numpy as np
 
 from ..description.chain_model import Network
-from ..design.barred_passage import barred_passages, start_passages
+from ..design.barred_passage import barred_passages, start_passages, stop_passages
 from ..design.tvc_cases import (TVCCase, damper_failure_cases, evaluate_case, misfire_cases, tolerance_cases,
                                  worst_case)
 from ..design.tvc_crank import crank_m53
@@ -64,7 +64,7 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
     # the time-domain passage of each barred range: normal running's, the worst misfire's and each
     # failed damper's (the restriction a ship runs under until the damper is mended); and the start's
-    passages = tuple(start_passages(normal) + barred_passages(normal) + (barred_passages(worst) if worst else [])
+    passages = tuple(start_passages(normal) + stop_passages(normal) + barred_passages(normal) + (barred_passages(worst) if worst else [])
                      + [p for c in (*failed, *tolerances) for p in barred_passages(c)])
     rows, campbell = tvc_modes(normal, [normal, *misfires, *failed, *tolerances])
     m53, m53_note = crank_m53([normal, *misfires, *failed, *tolerances])

@@ -151,6 +151,17 @@ START = Section("start", "A network file's engine start: the time-domain run fro
           "torque that accelerates the line (no external load)", "> 0"),
     Field("source", "where the numbers come from", "a string"),
 ))
+STOP = Section("stop", "A network file's engine stop: the fuel cut, every cylinder motored, the line coasting "
+               "down in the time domain, every shaft section's stress against UR M68's τ_T (τ_C above λ 0.8), as "
+               "the start (docs/propulsion-tvc.md). Needs `[engine]` and an `[excitation]` by the synthetic cycle "
+               "or a harmonic table with a column at p_mi 0.", (
+    Field("from_rpm", "the speed the fuel is cut at (station 1's), rpm; default the top of `[excitation]` "
+          "speed_range_rpm", "> `to_rpm`"),
+    Field("to_rpm", "the speed the run ends at, rpm", "> 0"),
+    Field("rate_rpm_per_s", "the coast-down's deceleration, rpm/s of station 1 (the friction torque over the "
+          "line's inertia); a slower stop is the more severe", "> 0"),
+    Field("source", "where the numbers come from", "a string"),
+))
 GEARS = Section("chain.gears", "Network form: rigid gear meshes; a branch is solved with the gear constraint "
                 "(K_r = TᵀKT) at the reference speed of the first station.", (
     Field("between", "the driving and the driven station", "two different stations"),
@@ -188,7 +199,7 @@ NONLINEAR = Section("chain.nonlinear", "Network form: a nonlinear element betwee
 
 #: The tables of a chain file.
 CHAIN_SECTIONS = (META, UNITS, CHAIN, CRANKS, STATIONS, SHAFTS, PROPELLERS, COUPLINGS, GEARS, NONLINEAR, ENGINE,
-                  EXCITATION, START, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
+                  EXCITATION, START, STOP, TANGENTIAL_HARMONICS, DAMPERS, LIMITS, UNCERTAINTY, DISTRIBUTIONS)
 
 CHAIN_SCHEMA = schema(CHAIN_SECTIONS)
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 from .defaults import DEFAULT_STICK_FACTOR
 from .derived import piecewise_torque, twist_at_torque
-from .marine import Coupling, Propeller, ShaftSection, StartUp
+from .marine import Coupling, Propeller, ShaftSection, ShutDown, StartUp
 from .model import Crank, Damper, Engine, Excitation, Limits, partition_labels
 
 
@@ -236,6 +236,8 @@ class Network:
     couplings: tuple[Coupling, ...] = ()
     #: ``[start]``: the engine's start, judged against τ_T in the time domain; None: not stated.
     start: StartUp | None = None
+    #: ``[stop]``: the engine's coast-down after its fuel is cut, judged likewise; None: not stated.
+    stop: ShutDown | None = None
     #: ``[chain] constant_speed``: held at a constant speed anywhere in the ``[excitation]`` range (a
     #: generating set): a barred range there cannot be avoided and fails the shafts.
     constant_speed: bool = False

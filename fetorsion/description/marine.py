@@ -229,6 +229,18 @@ class StartUp:
 
 
 @dataclass(frozen=True)
+class ShutDown:
+    """The engine's stop (``[stop]`` of a network file): the fuel cut at ``from_rpm`` (station 1's; the
+    top of the speed range unless stated), every cylinder motored, the line coasting down to ``to_rpm`` at
+    ``rate_rpm_per_s`` (its friction over its inertia). Judged as the start is."""
+
+    from_rpm: float
+    to_rpm: float
+    rate_rpm_per_s: float
+    source: str = ""
+
+
+@dataclass(frozen=True)
 class Coupling:
     """A flexible coupling from its maker's data sheet, between stations ``i`` and ``j``: dynamic
     stiffness (N·m/rad) and relative damping ψ at the sheet's nominal ``temperature_c`` and, where

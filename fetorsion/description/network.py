@@ -14,7 +14,8 @@ from .defaults import DEFAULT_PARTITION, DEFAULT_WEB_METHOD
 from .chain_fields import CHAIN_SCHEMA
 from .model import CONDENSED, CRANK_END_ALIASES, PARTITIONS, WEB_METHOD_NAMES
 from .chain_model import GROUND, GearPair, Network, NetworkCrank, NonlinearSpring, Shaft
-from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection, StartUp,
+from .marine import (CK_FACTORS, PROPELLER_DAMPING, SIGMA_B_CAP_PA, Coupling, Propeller, ShaftSection, ShutDown,
+                     StartUp,
                      loss_factor_of)
 from .reader import Table, read_length_unit, read_toml
 from .crank import crank_file
@@ -70,6 +71,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
     excitation = _network_excitation(root, data, source, engine, cranks, has_dampers, problems)
     uncertainty, distributions = read_variations(root, data, problems)
     start = _start(root, engine, excitation, problems) if "start" in data else None
+    stop = _stop(root, engine, excitation, problems) if "stop" in data else None
     root.finish()
     problems += _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers)
     if problems:
@@ -78,7 +80,7 @@ def parse_network(data: dict, source: str = "<network>", check_uncertainty: bool
                       tuple(picked), engine, excitation, unit, data, limits, nonlinear=tuple(nonlinear),
                       cranks=tuple(cranks), uncertainty=uncertainty, distributions=distributions, dampers=dampers,
                       propellers=tuple(propellers), couplings=tuple(couplings), start=start,
-                      constant_speed=constant_speed)
+                      constant_speed=constant_speed, stop=stop)
     if check_uncertainty:
         bounds = uncertainty_bound_problems(network, parse_network)
         if bounds:
@@ -224,6 +226,28 @@ def _start(root: Table, engine, excitation, problems: list[Problem]) -> StartUp 
         problems.append(Problem("start.from_rpm", start.from_rpm, f"must be below the lowest speed of "
                                 f"[excitation] speed_range_rpm, {low:g} rpm: the start runs up to it"))
     return start
+
+
+def _stop(root: Table, engine, excitation, problems: list[Problem]) -> ShutDown | None:
+    """``[stop]``: the coast-down after the fuel cut, every cylinder motored: it needs an engine whose
+    motored cycle is known at p_mi 0 (the synthetic cycle, or a harmonic table's column at 0)."""
+    st = root.table("stop")
+    top = excitation.speed_range[1] if excitation is not None else 1.0
+    stop = ShutDown(st.number("from_rpm", top, positive=True), st.number("to_rpm", positive=True),
+                    st.number("rate_rpm_per_s", positive=True), st.text("source"))
+    st.finish()
+    if engine is None or excitation is None:
+        problems.append(Problem("stop", "given", "needs [engine] and [excitation]: the stop is the engine's"))
+        return None
+    motored_at_zero = excitation.load_kind != "peak" and excitation.pressure_curve is None and (
+        not excitation.tangential_harmonics or excitation.harmonic_imep[0] == 0.0)
+    if not motored_at_zero:
+        problems.append(Problem("stop", "given", "needs every cylinder's motored cycle at p_mi 0: the synthetic cycle by "
+                                "imep_pa, or a harmonic table with a column at harmonic_imep_pa 0"))
+    if math.isfinite(stop.from_rpm) and math.isfinite(stop.to_rpm) and not stop.from_rpm > stop.to_rpm:
+        problems.append(Problem("stop.to_rpm", stop.to_rpm, f"must be below from_rpm ({stop.from_rpm:g} rpm): the "
+                                "line coasts down"))
+    return stop
 
 
 def _condensed_crank_problems(cranks, labels, shafts, gears, nonlinear, dampers) -> list[Problem]:

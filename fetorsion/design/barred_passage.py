@@ -43,8 +43,9 @@ DEFAULT_PASSAGE_RATE = 10.0
 PASSAGE_MARGIN = 1.0
 #: ... and by at least this many rpm either side.
 MIN_MARGIN_RPM = 20.0
-#: The kind of a start's run (:attr:`BarredPassage.kind`).
+#: The kind of a start's run and of a stop's (:attr:`BarredPassage.kind`).
 START_UP = "start-up"
+SHUT_DOWN = "shut-down"
 
 
 @dataclass(frozen=True)
@@ -113,6 +114,11 @@ class BarredPassage:
         return self.kind == START_UP
 
     @property
+    def is_stop(self) -> bool:
+        """The engine's coast-down after its fuel is cut (``[stop]``)."""
+        return self.kind == SHUT_DOWN
+
+    @property
     def verdict(self) -> str:
         """"within the limits", or "above a limit" (some section's peak exceeds its τ_T, or its τ_C above λ 0.8)."""
         return "within the limits" if all(s.within for s in self.sections) else "above a limit"
@@ -145,8 +151,8 @@ class BarredPassage:
     def table(self) -> str:
         """The passage as plain text, stresses in N/mm²."""
         what = (f"from {self.from_rpm:.1f} rpm up to the range's lowest speed {self.to_rpm:.1f} rpm"
-                if self.is_start else
-                f"passage of the barred range {self.from_rpm:.1f}-{self.to_rpm:.1f} rpm")
+                if self.is_start else f"fuel cut at {self.from_rpm:.1f} rpm, coasting down to {self.to_rpm:.1f} rpm"
+                if self.is_stop else f"passage of the barred range {self.from_rpm:.1f}-{self.to_rpm:.1f} rpm")
         lines = [f"{self.configuration}: {what}, run {self.run_from_rpm:.1f} -> {self.run_to_rpm:.1f} rpm at "
                  f"{self.rate_rpm_per_s:g} rpm/s ({self.rate_source})"]
         for s in self.sections:
@@ -169,9 +175,9 @@ class BarredPassage:
                         label=f"limit {s.label}: τ_T to λ 0.8, τ_C above")
             elif np.isfinite(s.tau_t_pa):
                 ax.axhline(s.tau_t_pa / 1e6, color=f"C{k % 10}", ls=":", lw=0.9, label=f"τ_T {s.label}")
-        if not self.is_start:  # a start's whole run lies below the range: nothing to shade
+        if not (self.is_start or self.is_stop):  # a start's or stop's run is no barred range: nothing to shade
             ax.axvspan(self.from_rpm, self.to_rpm, color="crimson", alpha=0.15, lw=0, label="barred range")
-        what = (f"{self.configuration} from {self.from_rpm:.0f} rpm" if self.is_start else
+        what = (f"{self.configuration} from {self.from_rpm:.0f} rpm" if self.is_start or self.is_stop else
                 f"{self.configuration}: passage")
         ax.set(xlabel="engine speed (rpm)", ylabel="vibratory torsional stress, half-range (N/mm²)",
                title=f"{what} at {self.rate_rpm_per_s:g} rpm/s ({self.verdict})")
@@ -280,6 +286,21 @@ def start_passages(case: TVCCase) -> list[BarredPassage]:
     return [passage_through(at_start, (start.from_rpm, low), (start.from_rpm, low), start.rate_rpm_per_s, source,
                             case.response.cycle_rad, f"start at p_mi {start.imep_pa / 1e6:g} MPa", kind=START_UP)]
 
+
+
+def stop_passages(case: TVCCase) -> list[BarredPassage]:
+    """The engine's stop (``[stop]`` of the network file): the fuel cut at its speed, every cylinder
+    motored (the synthetic cycle, or the harmonic table's column, at p_mi 0), the line coasting down at
+    its rate, each section against its limit as a start is. None without ``[stop]``."""
+    net = case.network
+    stop = net.stop
+    if stop is None or net.engine is None or net.excitation is None:
+        return []
+    motored = replace(net, excitation=replace(net.excitation, load_kind="imep", load=((1.0, 0.0),)))
+    source = f"stated in [stop]{': ' + stop.source if stop.source else ''}"
+    span = (stop.from_rpm, stop.to_rpm)
+    return [passage_through(motored, span, span, stop.rate_rpm_per_s, source, case.response.cycle_rad,
+                            "stop, every cylinder motored", kind=SHUT_DOWN)]
 
 def _nulls(a: np.ndarray) -> list:
     """The array as a JSON list, NaN as null."""

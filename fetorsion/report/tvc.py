@@ -261,6 +261,7 @@ def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
     for p in outcome.passages:
         w = worst(p)
         what = (f"the start {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_start
+                else f"the stop {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_stop
                 else f"{p.configuration}, barred range {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm")
         level = (f"{w.utilisation:.3f} {w.limit_name}" if math.isfinite(w.utilisation) else "no limit above λ 1.05")
         parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)")
@@ -348,11 +349,12 @@ def passage_lines(outcome: TVCOutcome) -> list[str]:
     """The time-domain passage of each barred range against τ_T, with its rate and picture."""
     if not outcome.passages:
         return []
-    start = any(p.is_start for p in outcome.passages)
-    lines = [f"### {'The start and the passages' if start else 'Passage'} through the barred ranges (time domain) "
-             "against τ_T", "",
+    start = any(p.is_start or p.is_stop for p in outcome.passages)
+    lines = [f"### {'The start, the stop and the passages' if start else 'Passage'} through the barred ranges (time "
+             "domain) against τ_T", "",
              ("The start runs from the speed the engine fires at up to the range's lowest speed at the start's rate "
-              "and load ([start]), through every resonance below the range. " if start else "")
+              "and load ([start]); the stop from the fuel cut down, every cylinder motored, at the coast-down's rate "
+              "([stop]); both through every resonance below the range, τ_C holding above λ 0.8. " if start else "")
              + "Run through each barred range from the steady state below it at the stated rate; the half-range "
              "stress over each synthesis period against τ_T at its speed.", ""]
     for p, image in zip(outcome.passages, outcome.passage_images):
