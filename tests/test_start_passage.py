@@ -42,12 +42,30 @@ def test_a_bad_start_is_refused_by_name(change, field):
     assert field in str(err.value)
 
 
-def test_a_start_needs_an_engine_loaded_by_its_mean_pressure():
+def by_peak_pressure() -> dict:
+    """The generator set with its synthetic cycle scaled to a peak pressure, not a mean indicated one."""
     data = genset()
     data["excitation"] = {k: v for k, v in data["excitation"].items() if k != "imep_pa"}
     data["excitation"]["peak_pressure_pa"] = 12e6
+    return data
+
+
+def test_a_start_needs_an_engine_loaded_by_its_mean_pressure():
     with pytest.raises(DescriptionError, match="start.imep_pa"):
-        parse_network(data, str(GENSET))
+        parse_network(by_peak_pressure(), str(GENSET))
+
+
+def slow_run_and_steady_state(net, imep_pa: float, passages):
+    """(the run's one passage, its section, the steady state's peak stress Pa and its rpm): ``passages``
+    (start or stop) of ``net`` beside the frequency domain's steady state of the same network (its
+    couplings where that case's heat holds them) with every cylinder at ``imep_pa``, over 760-900 rpm."""
+    steady_ex = replace(net.excitation, load=((1.0, imep_pa),), speed_range=(760.0, 900.0), overspeed=1.0)
+    steady = evaluate_case(replace(net, excitation=steady_ex), tvc_setup, "steady")
+    (run,) = passages(SimpleNamespace(network=replace(steady.network, excitation=net.excitation),
+                                      response=steady.response))
+    sec = steady.shafts.sections[0]
+    k = int(np.argmax(sec.stress_pa))
+    return run, run.sections[0], sec.stress_pa[k], steady.shafts.rpm[k]
 
 
 def test_a_slow_start_through_a_resonance_reaches_the_steady_state_at_the_start_load():
@@ -59,15 +77,8 @@ def test_a_slow_start_through_a_resonance_reaches_the_steady_state_at_the_start_
     data = genset(from_rpm=760.0, rate_rpm_per_s=1.0)
     data["excitation"]["speed_range_rpm"] = [900.0, 1500.0]
     net = parse_network(data, str(GENSET))
-    steady_ex = replace(net.excitation, load=((1.0, net.start.imep_pa),), speed_range=(760.0, 900.0), overspeed=1.0)
-    steady = evaluate_case(replace(net, excitation=steady_ex), tvc_setup, "steady at the start's load")
-    (start,) = start_passages(SimpleNamespace(network=replace(steady.network, excitation=net.excitation),
-                                              response=steady.response))
-    sec = steady.shafts.sections[0]
-    k = int(np.argmax(sec.stress_pa))
-    (run,) = start.sections
-    assert run.peak_pa == pytest.approx(sec.stress_pa[k], rel=0.01)
-    assert abs(run.peak_rpm - steady.shafts.rpm[k]) <= 2.0
+    start, run, peak, at = slow_run_and_steady_state(net, net.start.imep_pa, start_passages)
+    assert run.peak_pa == pytest.approx(peak, rel=0.01) and abs(run.peak_rpm - at) <= 2.0
     # the peak judged is the window of the largest τ/τ_T
     assert run.utilisation == pytest.approx(np.nanmax(run.window_stress_pa / run.window_limit_pa), rel=1e-12)
     assert start.is_start and start.verdict == ("above a limit" if run.peak_pa > run.tau_t_pa else "within the limits")
@@ -127,11 +138,8 @@ def test_the_stop_is_read_and_refused_by_name():
     data["stop"]["to_rpm"] = 1600.0
     with pytest.raises(DescriptionError, match="stop.to_rpm"):
         parse_network(data, str(GENSET))
-    data = genset()
-    data["excitation"] = {k: v for k, v in data["excitation"].items() if k != "imep_pa"}
-    data["excitation"]["peak_pressure_pa"] = 12e6
     with pytest.raises(DescriptionError, match="motored cycle at p_mi 0"):
-        parse_network(data, str(GENSET))
+        parse_network(by_peak_pressure(), str(GENSET))
 
 
 def test_a_slow_stop_through_a_resonance_reaches_the_motored_steady_state():
@@ -140,14 +148,6 @@ def test_a_slow_stop_through_a_resonance_reaches_the_motored_steady_state():
     # p_mi 0 (the synthetic cycle's motored cycle), at its speed within 2 rpm, as the start above.
     data = genset()
     data["stop"] = {"from_rpm": 900.0, "to_rpm": 760.0, "rate_rpm_per_s": 1.0}
-    net = parse_network(data, str(GENSET))
-    steady_ex = replace(net.excitation, load=((1.0, 0.0),), speed_range=(760.0, 900.0), overspeed=1.0)
-    steady = evaluate_case(replace(net, excitation=steady_ex), tvc_setup, "steady, motored")
-    (stop,) = stop_passages(SimpleNamespace(network=replace(steady.network, excitation=net.excitation),
-                                            response=steady.response))
-    sec = steady.shafts.sections[0]
-    k = int(np.argmax(sec.stress_pa))
-    (run,) = stop.sections
+    stop, run, peak, at = slow_run_and_steady_state(parse_network(data, str(GENSET)), 0.0, stop_passages)
     assert stop.is_stop and stop.run_from_rpm > stop.run_to_rpm
-    assert run.peak_pa == pytest.approx(sec.stress_pa[k], rel=0.01)
-    assert abs(run.peak_rpm - steady.shafts.rpm[k]) <= 2.0
+    assert run.peak_pa == pytest.approx(peak, rel=0.01) and abs(run.peak_rpm - at) <= 2.0
