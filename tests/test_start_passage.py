@@ -151,3 +151,31 @@ def test_a_slow_stop_through_a_resonance_reaches_the_motored_steady_state():
     stop, run, peak, at = slow_run_and_steady_state(parse_network(data, str(GENSET)), 0.0, stop_passages)
     assert stop.is_stop and stop.run_from_rpm > stop.run_to_rpm
     assert run.peak_pa == pytest.approx(peak, rel=0.01) and abs(run.peak_rpm - at) <= 2.0
+
+def test_a_couplings_largest_torque_in_a_start_is_its_own_section_and_bounded_by_the_steady_state():
+    # The record judged is the coupling's own section (found here by its stations' names, not by its place
+    # among the shafts), and in a start slow enough to be a steady state (1 rpm/s) its largest |T| lies
+    # between the frequency domain's half-range (max|T| >= (max - min)/2 of any record) and the sum of its
+    # orders' amplitudes at the same speed (no waveform exceeds it), each with the 1 % of the slow passage.
+    from fetorsion.response.forced import section_torques
+    from fetorsion.response.transient import run_transient
+
+    data = genset(from_rpm=760.0, rate_rpm_per_s=1.0)
+    data["excitation"]["speed_range_rpm"] = [900.0, 1500.0]
+    data["chain"]["couplings"][0]["maximum_torque_nm"] = 2000.0
+    net = parse_network(data, str(GENSET))
+    steady_ex = replace(net.excitation, load=((1.0, net.start.imep_pa),), speed_range=(760.0, 900.0), overspeed=1.0)
+    steady = evaluate_case(replace(net, excitation=steady_ex), tvc_setup, "steady")
+    (start,) = start_passages(SimpleNamespace(network=replace(steady.network, excitation=net.excitation),
+                                              response=steady.response))
+    (c,) = start.couplings
+    k = list(steady.response.section_labels).index("flywheel-generator hub")
+    half = steady.response.section_torque_nm[:, k].max()
+    orders = np.abs(section_torques(tvc_setup(steady.network), steady.response.theta)[:, k, :]).sum(axis=1).max()
+    assert 0.99 * half <= c.peak_nm <= 1.01 * orders
+    assert c.maximum_nm == 2000.0 and c.within == (c.peak_nm <= 2000.0)
+    assert start.verdict == "above a limit"  # the shaft's τ_T is passed here either way
+    run = run_transient(replace(steady.network, excitation=replace(net.excitation, load=((1.0, net.start.imep_pa),))),
+                        run=(760.0, 900.0), rate_rpm_per_s=1.0, settled_start=True)
+    own = run.section_labels.index("flywheel-generator hub")
+    assert c.peak_nm == pytest.approx(np.abs(run.section_torque_nm[own]).max(), rel=1e-9)

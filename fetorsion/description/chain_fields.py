@@ -133,6 +133,9 @@ COUPLINGS = Section("chain.couplings", "Network form: a flexible coupling from i
     Field("max_temperature_c", "the rubber's permissible continuous temperature, °C, which P_KV reaches from "
           "`ambient_c` (the heat balance, docs/propulsion-tvc.md); default `warm_temperature_c`",
           "> `ambient_c`; needs `permissible_power_w`"),
+    Field("maximum_torque_nm", "the sheet's maximum torque T_Kmax for transient events (a start, a stop, a "
+          "resonance passed), N·m: the time-domain passages judge the coupling's largest torque against it; optional",
+          ">= 0"),
     Field("stiffness_tolerance", "the sheet's tolerance of the dynamic stiffness as a share (0.15: ±15 %); the "
           "TVC then adds the configurations with the stiffness at both ends; optional", ">= 0 and < 1"),
     Field("name", "label; default `coupling`", "a string"),

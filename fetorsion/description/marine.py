@@ -268,6 +268,9 @@ class Coupling:
     #: The sheet's tolerance of the dynamic stiffness, a share (0: not stated): the TVC's configurations
     #: with the stiffness at both ends (:func:`fetorsion.design.tvc_cases.tolerance_cases`).
     stiffness_tolerance: float = 0.0
+    #: The sheet's maximum torque T_Kmax for transient events (a start, a stop, a resonance passed), N·m
+    #: (0: not stated): what the time-domain passages set the coupling's largest torque against.
+    maximum_torque: float = 0.0
 
     def stiffness_at(self, temperature_c: float) -> float:
         """C_Tdyn at a temperature, N·m/rad."""

@@ -550,10 +550,11 @@ def _couplings(t: Table, cranks, index: dict, problems: list[Problem]) -> list[C
         t_max = _max_temperature(ct, power, ambient, t1, problems)
         name, source = ct.text("name", "coupling"), ct.text("source")
         tolerance = ct.number("stiffness_tolerance", 0.0, nonnegative=True, below=1.0)
+        maximum = ct.number("maximum_torque_nm", 0.0, nonnegative=True)
         ct.finish()
         if pair and not any(p.field.startswith(f"{ct.path}.") for p in problems):
             out.append(Coupling(pair[0], pair[1], k, psi, t0, t_op, k1, psi1, t1, torque, power, ambient, name,
-                                source, t_max, tolerance))
+                                source, t_max, tolerance, maximum))
     return out
 
 

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..description.chain_model import Network
+from ..lumped_model.network import resolved
 from ..response.propulsion import damping_at
 from ..response.transient import TransientResult, run_transient
 from ..results import from_fields
@@ -89,6 +90,29 @@ class SectionPassage:
 
 
 @dataclass(frozen=True)
+class CouplingPassage:
+    """A flexible coupling's largest torque in a passage (N·m, at ``peak_rpm`` of station 1): the
+    run's vibratory torque through it (the mean its acceleration passes is not in the run's
+    coordinates), against the sheet's T_Kmax (``maximum_nm``; 0: the sheet gives none, not judged)."""
+
+    label: str
+    peak_nm: float
+    peak_rpm: float
+    maximum_nm: float = 0.0
+
+    @property
+    def within(self) -> bool:
+        """At or under T_Kmax (True where the sheet gives none: not judged)."""
+        return not (self.maximum_nm > 0 and self.peak_nm > self.maximum_nm)
+
+    def line(self) -> str:
+        """The coupling's largest torque against T_Kmax, in words."""
+        judged = (f"T_Kmax {self.maximum_nm:.0f} N m ({self.peak_nm / self.maximum_nm:.3f} T_Kmax)" if self.maximum_nm
+                  else "not judged (the sheet gives no T_Kmax)")
+        return f"coupling '{self.label}': largest torque {self.peak_nm:.0f} N m at {self.peak_rpm:.1f} rpm; {judged}"
+
+
+@dataclass(frozen=True)
 class BarredPassage:
     """The time-domain passage through one barred range (module docs): the ``configuration`` it is
     of, the range (``from_rpm``, ``to_rpm``), the run's span and rate (rpm, rpm/s) with where the
@@ -107,6 +131,8 @@ class BarredPassage:
     #: "barred range", or "start-up": the engine's start from its firing speed to the range's lowest
     #: speed (``[start]``), every resonance below the range passed at the start's load.
     kind: str = "barred range"
+    #: Each flexible coupling's largest torque in the run against its sheet's T_Kmax.
+    couplings: tuple[CouplingPassage, ...] = ()
 
     @property
     def is_start(self) -> bool:
@@ -121,7 +147,7 @@ class BarredPassage:
     @property
     def verdict(self) -> str:
         """"within the limits", or "above a limit" (some section's peak exceeds its τ_T, or its τ_C above λ 0.8)."""
-        return "within the limits" if all(s.within for s in self.sections) else "above a limit"
+        return "within the limits" if all(s.within for s in (*self.sections, *self.couplings)) else "above a limit"
 
     def to_dict(self) -> dict:
         """JSON-ready: the range, the run, the rate and its source, each section's peak and τ_T (Pa) and
@@ -135,7 +161,9 @@ class BarredPassage:
                               "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
                               "within": s.within, "window_rpm": s.window_rpm.tolist(),
                               "window_stress_pa": s.window_stress_pa.tolist(),
-                              "window_limit_pa": _nulls(s.window_limit_pa)} for s in self.sections]}
+                              "window_limit_pa": _nulls(s.window_limit_pa)} for s in self.sections],
+                "couplings": [{"label": c.label, "peak_nm": c.peak_nm, "peak_rpm": c.peak_rpm,
+                               "maximum_nm": c.maximum_nm, "within": c.within} for c in self.couplings]}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "BarredPassage":
@@ -146,7 +174,8 @@ class BarredPassage:
                                                                for v in s.get("window_limit_pa", [])], dtype=float))
                          for s in d["sections"])
         return from_fields(cls, d, run_from_rpm=float(d["run_rpm"][0]), run_to_rpm=float(d["run_rpm"][1]),
-                           sections=sections)
+                           sections=sections,
+                           couplings=tuple(from_fields(CouplingPassage, c) for c in d.get("couplings", [])))
 
     def table(self) -> str:
         """The passage as plain text, stresses in N/mm²."""
@@ -160,6 +189,7 @@ class BarredPassage:
                 f"{s.limit_name} {s.limit_pa / 1e6:.2f} N/mm² ({s.utilisation:.3f} {s.limit_name}"
                 + ("; λ > 0.8: the continuous limit)" if s.limit_name == "τ_C" else ")"))
             lines.append(f"  {s.label}: peak τ {s.peak_pa / 1e6:.2f} N/mm² at {s.peak_rpm:.1f} rpm; {limit}")
+        lines += [f"  {c.line()}" for c in self.couplings]
         return "\n".join(lines + [f"  verdict: {self.verdict}"])
 
     def plot(self, ax=None):
@@ -248,7 +278,19 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
         out.append(SectionPassage(label, float(stress[j]), float(rpm[j]), float(tau_t[j]), float(tau_c[j]), rpm,
                                   stress, limit))
     return BarredPassage(configuration, barred[0], barred[1], span_rpm[0], span_rpm[1], rate, rate_source,
-                         window_rad, res.samples, tuple(out), kind)
+                         window_rad, res.samples, tuple(out), kind, coupling_peaks(net, res))
+
+
+def coupling_peaks(net: Network, res: TransientResult) -> tuple[CouplingPassage, ...]:
+    """Each coupling's largest torque in a run: its elastic section's record, the couplings being the
+    network's last shafts (after the cranks' inner ones and the file's shafts)."""
+    first = len(resolved(net).shafts) - len(net.couplings)
+    out = []
+    for k, c in enumerate(net.couplings):
+        torque = np.abs(res.section_torque_nm[first + k])
+        j = int(np.argmax(torque))
+        out.append(CouplingPassage(c.name, float(torque[j]), float(res.rpm[j]), c.maximum_torque))
+    return tuple(out)
 
 
 def passage_span(barred: dict, lowest_rpm: float = 1.0) -> tuple[float, float]:

@@ -264,7 +264,11 @@ def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
                 else f"the stop {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_stop
                 else f"{p.configuration}, barred range {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm")
         level = (f"{w.utilisation:.3f} {w.limit_name}" if math.isfinite(w.utilisation) else "no limit above λ 1.05")
-        parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)")
+        couplings = "".join(f"; coupling '{c.label}' {c.peak_nm:.0f} N m "
+                            + (f"({c.peak_nm / c.maximum_nm:.3f} T_Kmax)" if c.maximum_nm else "(no T_Kmax: not judged)")
+                            for c in p.couplings)
+        parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)"
+                     + couplings)
     verdict = "fail" if any(p.verdict != "within the limits" for p in outcome.passages) else "pass"
     text = "; ".join(parts)
     return [f"- **Transient passages in the time domain, UR M68's τ_T (τ_C above λ 0.8): {verdict}.** "
