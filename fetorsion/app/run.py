@@ -340,7 +340,7 @@ def run(path: str | Path, out: str | Path, steps: Sequence[RunStep] = DEFAULT_ST
         features = solid_features(crank)
     if isinstance(crank, (Chain, Network)):  # no geometry: the report without the mesh and FE sections
         steps = tuple(s for s in steps if s[2] not in (step_fe, step_bearings))
-    steps = _with_tvc(tuple(steps), crank)
+    steps = _with_tvc(tuple(steps), crank if network is None else network)
     with atomic_folder(out) as work, background_executor() as background:
         outcome = RunOutcome(crank, str(path), timings_s={}, folder=str(out),
                              driveline="" if network is None else network.name)
@@ -373,19 +373,17 @@ def _with_tvc(steps: tuple, crank) -> tuple:
 
 def _crank_in_driveline(crank, path, options: RunOptions, steps) -> tuple[Network | None, Crank | Chain | Network]:
     """(network, its condensed crank with its dampers) of a network on the condensed crank, else (None, ``crank``)."""
-    import dataclasses
-
     if not (isinstance(crank, Network) and any(c.condensed for c in crank.cranks)):
         return None, crank
     # a driveline on the condensed crank: the crank's own report, its engine model in that driveline
-    network, crank = crank, next(c for c in crank.cranks if c.condensed).crank
+    network = crank
     away = [d.name or d.at for d in network.dampers if d.at != "front"]
     if away:
         raise FetorsionError(f"{path}: damper(s) {', '.join(away)} away from the crank's pulley: the report of a "
                              "network on the condensed crank takes a damper at \"front\" only yet (`fetorsion "
                              "response` takes one on any station)")
     # the network's dampers at the pulley are the crank's in the report (its verdict's "as described")
-    crank = dataclasses.replace(crank, dampers=tuple(network.dampers))
+    crank = network.condensed_crank()
     if options.no_fe or not any(s[2] is step_fe for s in steps):
         raise ParameterError("no_fe", f"{path}: a network on the condensed crank needs the FE steps (its engine "
                                       "model); give the crank dof = 17 for the lumped driveline")

@@ -50,6 +50,10 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     """The propulsion line's TVC: response, couplings' heat, shaft sections, barred ranges, gear
     hammering, in normal running, in the misfire of each cylinder and with each damper failed
     (results.json's ``tvc`` entry: :meth:`TVCOutcome.to_dict`)."""
+    if ctx.network is not None and is_propulsion_line(ctx.network):
+        return Skipped("the network's crank is its condensed FE crank: the report above judges that crank in this "
+                       "driveline (M53 and fe); the TVC of the network's shafts, couplings and propellers runs on a lumped "
+                       "crank part for now (dof = 17 in [[chain.cranks]])")
     net = ctx.crank
     if not is_propulsion_line(net):
         return None

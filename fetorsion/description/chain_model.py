@@ -248,6 +248,15 @@ class Network:
         operating point: what the steady-state analyses (modes, Campbell, response) see."""
         return self.shafts + tuple(Shaft(e.i, e.j, e.tangent) for e in self.nonlinear)
 
+    def condensed_crank(self) -> Crank | None:
+        """The crank whose report a run of this network writes when one of its cranks is condensed (its
+        engine model in this driveline): that crank with the network's dampers (at its pulley); None
+        without a condensed crank."""
+        from dataclasses import replace
+
+        part = next((c for c in self.cranks if c.condensed), None)
+        return None if part is None else replace(part.crank, dampers=tuple(self.dampers))
+
     @property
     def has_dampers(self) -> bool:
         """Whether the file states any absolute, relative or hysteretic damping."""

@@ -1,7 +1,7 @@
 """The crank of a network against IACS UR M53 in each TVC configuration (docs/propulsion-tvc.md).
 
-Where a network holds a fetorsion crank description (``[[chain.cranks]]``, lumped or condensed), the
-TVC judges that crank by the rule the crank alone is judged by: UR M53 (:func:`.m53.run_m53_crank`),
+Where a network holds a fetorsion crank description as a lumped part (``[[chain.cranks]]``; a network on
+the condensed crank is run as that crank's own report in its driveline), the TVC judges that crank by the rule the crank alone is judged by: UR M53 (:func:`.m53.run_m53_crank`),
 its torsion the network's own synthesised half-range torque through each fillet's section in the
 configuration (the driveline, couplings and propeller change it), its bending the crank's rod forces
 at the rated speed (the same in every configuration). The network's response names the crank's

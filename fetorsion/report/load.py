@@ -324,6 +324,8 @@ def load_run(folder: str | Path) -> LoadedRun:
     path = described_path(folder, data)
     entry = data.get("description")
     crank = read_description(path, entry.get("text") if isinstance(entry, dict) else None)
+    if isinstance(crank, Network) and crank.condensed_crank() is not None:  # the run reported that crank
+        crank = crank.condensed_crank()
     pictures = sorted(p.name for p in folder.glob("*.png"))
     driveline = data.get("driveline", {}).get("network", "") if isinstance(data.get("driveline"), dict) else ""
     outcome = RunOutcome(crank, path, timings_s=dict(data["timings_s"]), folder=str(folder), driveline=driveline,
