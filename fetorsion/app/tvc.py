@@ -67,8 +67,9 @@ def step_tvc(ctx: RunContext) -> TVCOutcome | Skipped | None:
     tolerances = tolerance_cases(net, tvc_setup)
     response, shafts, heat, hammer = normal.response, normal.shafts, normal.couplings, normal.hammering
     # the time-domain passage of each barred range: normal running's, the worst misfire's and each
-    # failed damper's (the restriction a ship runs under until the damper is mended); and the start's
-    passages = tuple(start_passages(normal) + stop_passages(normal) + barred_passages(normal) + (barred_passages(worst) if worst else [])
+    # failed damper's (the restriction a ship runs under until the damper is mended); and the start's and stop's
+    passages = tuple(start_passages(normal) + stop_passages(normal) + barred_passages(normal)
+                     + (barred_passages(worst) if worst else [])
                      + [p for c in (*failed, *tolerances) for p in barred_passages(c)])
     rows, campbell = tvc_modes(normal, [normal, *misfires, *failed, *tolerances])
     m53, m53_note = crank_m53([normal, *misfires, *failed, *tolerances])

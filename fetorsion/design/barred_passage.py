@@ -34,7 +34,7 @@ from ..lumped_model.network import resolved
 from ..response.propulsion import damping_at
 from ..response.transient import TransientResult, run_transient
 from ..results import from_fields
-from .shaft_verdict import judged_sections, rated_speed, section_limits
+from .shaft_verdict import json_nulls, judged_sections, rated_speed, section_limits
 from .tvc_cases import TVCCase
 
 #: The passage rate when the network states none, rpm/s of station 1: ASSUMED (no rule text giving a
@@ -128,8 +128,8 @@ class BarredPassage:
     window_rad: float
     steps: int
     sections: tuple[SectionPassage, ...]
-    #: "barred range", or "start-up": the engine's start from its firing speed to the range's lowest
-    #: speed (``[start]``), every resonance below the range passed at the start's load.
+    #: "barred range"; "start-up": the engine's start from its firing speed to the range's lowest speed
+    #: (``[start]``); or "shut-down": its coast-down after the fuel cut (``[stop]``).
     kind: str = "barred range"
     #: Each flexible coupling's largest torque in the run against its sheet's T_Kmax.
     couplings: tuple[CouplingPassage, ...] = ()
@@ -161,7 +161,7 @@ class BarredPassage:
                               "tau_c_pa": None if not np.isfinite(s.tau_c_pa) else s.tau_c_pa,
                               "within": s.within, "window_rpm": s.window_rpm.tolist(),
                               "window_stress_pa": s.window_stress_pa.tolist(),
-                              "window_limit_pa": _nulls(s.window_limit_pa)} for s in self.sections],
+                              "window_limit_pa": json_nulls(s.window_limit_pa)} for s in self.sections],
                 "couplings": [{"label": c.label, "peak_nm": c.peak_nm, "peak_rpm": c.peak_rpm,
                                "maximum_nm": c.maximum_nm, "within": c.within} for c in self.couplings]}
 
@@ -169,9 +169,7 @@ class BarredPassage:
     def from_dict(cls, d: Mapping[str, object]) -> "BarredPassage":
         """The passage back from its :meth:`to_dict` (KeyError: one written before the windows were kept)."""
         sections = tuple(from_fields(SectionPassage, s, window_rpm=np.array(s["window_rpm"], dtype=float),
-                                     window_stress_pa=np.array(s["window_stress_pa"], dtype=float),
-                                     window_limit_pa=np.array([np.nan if v is None else v
-                                                               for v in s.get("window_limit_pa", [])], dtype=float))
+                                     window_stress_pa=np.array(s["window_stress_pa"], dtype=float))
                          for s in d["sections"])
         return from_fields(cls, d, run_from_rpm=float(d["run_rpm"][0]), run_to_rpm=float(d["run_rpm"][1]),
                            sections=sections,
@@ -257,7 +255,7 @@ def passage_through(net: Network, span_rpm: tuple[float, float], barred: tuple[f
     configuration : str
         Normal running or a misfire, in words; ``misfire`` the 0-based misfiring cylinder.
     kind : str
-        What is passed: "barred range" or "start-up" (:attr:`BarredPassage.kind`).
+        What is passed: "barred range", "start-up" or "shut-down" (:attr:`BarredPassage.kind`).
 
     Each section's peak is its window of the largest stress over its limit (τ_T to λ 0.8, τ_C above to
     λ 1.05; :class:`SectionPassage`), else of its largest stress where no window has a limit: a start's
@@ -317,33 +315,32 @@ def barred_passages(case: TVCCase) -> list[BarredPassage]:
 def start_passages(case: TVCCase) -> list[BarredPassage]:
     """The engine's start (``[start]`` of the network file) through every resonance below the speed
     range: a run from the start's firing speed up to the range's lowest speed at its rate, every
-    cylinder at the start's mean indicated pressure, each section against τ_T. None without ``[start]``."""
-    net = case.network
-    start = net.start
+    cylinder at the start's mean indicated pressure, each section against its limit. None without ``[start]``."""
+    start, net = case.network.start, case.network
     if start is None or net.engine is None or net.excitation is None:
         return []
-    low = float(net.excitation.speed_range[0])
-    at_start = replace(net, excitation=replace(net.excitation, load_kind="imep", load=((1.0, start.imep_pa),)))
-    source = f"stated in [start]{': ' + start.source if start.source else ''}"
-    return [passage_through(at_start, (start.from_rpm, low), (start.from_rpm, low), start.rate_rpm_per_s, source,
-                            case.response.cycle_rad, f"start at p_mi {start.imep_pa / 1e6:g} MPa", kind=START_UP)]
-
+    return [run_at_load(case, start.imep_pa, (start.from_rpm, float(net.excitation.speed_range[0])),
+                        start.rate_rpm_per_s, "[start]", start.source,
+                        f"start at p_mi {start.imep_pa / 1e6:g} MPa", START_UP)]
 
 
 def stop_passages(case: TVCCase) -> list[BarredPassage]:
     """The engine's stop (``[stop]`` of the network file): the fuel cut at its speed, every cylinder
     motored (the synthetic cycle, or the harmonic table's column, at p_mi 0), the line coasting down at
     its rate, each section against its limit as a start is. None without ``[stop]``."""
-    net = case.network
-    stop = net.stop
+    stop, net = case.network.stop, case.network
     if stop is None or net.engine is None or net.excitation is None:
         return []
-    motored = replace(net, excitation=replace(net.excitation, load_kind="imep", load=((1.0, 0.0),)))
-    source = f"stated in [stop]{': ' + stop.source if stop.source else ''}"
-    span = (stop.from_rpm, stop.to_rpm)
-    return [passage_through(motored, span, span, stop.rate_rpm_per_s, source, case.response.cycle_rad,
-                            "stop, every cylinder motored", kind=SHUT_DOWN)]
+    return [run_at_load(case, 0.0, (stop.from_rpm, stop.to_rpm), stop.rate_rpm_per_s, "[stop]", stop.source,
+                        "stop, every cylinder motored", SHUT_DOWN)]
 
-def _nulls(a: np.ndarray) -> list:
-    """The array as a JSON list, NaN as null."""
-    return [None if not np.isfinite(v) else float(v) for v in a]
+
+def run_at_load(case: TVCCase, imep_pa: float, span_rpm: tuple[float, float], rate: float, table: str,
+                source: str, configuration: str, kind: str) -> BarredPassage:
+    """A start's or stop's run over ``span_rpm`` at ``rate`` rpm/s, every cylinder at ``imep_pa`` (Pa; 0: motored),
+    judged over its whole span; ``table`` and ``source`` say where the rate comes from."""
+    net = case.network
+    at_load = replace(net, excitation=replace(net.excitation, load_kind="imep", load=((1.0, imep_pa),)))
+    stated = f"stated in {table}{': ' + source if source else ''}"
+    return passage_through(at_load, span_rpm, span_rpm, rate, stated, case.response.cycle_rad, configuration,
+                           kind=kind)

@@ -56,8 +56,8 @@ class SectionStress:
         return {"label": self.label, "feature": self.section.feature, "ck": self.section.ck,
                 "diameter_m": self.section.diameter, "bore_m": self.section.bore,
                 "tensile_strength_pa": self.section.tensile_strength, "material": self.section.material,
-                "stress_pa": self.stress_pa.tolist(), "tau_c_pa": _nulls(self.tau_c_pa),
-                "tau_t_pa": _nulls(self.tau_t_pa), "barred_ranges": self.barred}
+                "stress_pa": self.stress_pa.tolist(), "tau_c_pa": json_nulls(self.tau_c_pa),
+                "tau_t_pa": json_nulls(self.tau_t_pa), "barred_ranges": self.barred}
 
     @classmethod
     def from_dict(cls, d: Mapping[str, object]) -> "SectionStress":
@@ -174,7 +174,8 @@ class ShaftVerdict:
         return ax
 
 
-def _nulls(a: np.ndarray) -> list:
+def json_nulls(a: np.ndarray) -> list:
+    """The array as a JSON list, NaN as null."""
     return [None if not np.isfinite(v) else float(v) for v in a]
 
 
