@@ -179,3 +179,17 @@ def test_a_couplings_largest_torque_in_a_start_is_its_own_section_and_bounded_by
                         run=(760.0, 900.0), rate_rpm_per_s=1.0, settled_start=True)
     own = run.section_labels.index("flywheel-generator hub")
     assert c.peak_nm == pytest.approx(np.abs(run.section_torque_nm[own]).max(), rel=1e-9)
+
+
+def test_a_start_with_nothing_to_judge_says_so():
+    # A line without a shaft section and a coupling sheet without T_Kmax: the start runs, and the
+    # conclusions say it is not judged rather than passing it (or stopping on the empty section list).
+    from fetorsion.design.barred_passage import BarredPassage, CouplingPassage
+    from fetorsion.report.tvc import _passage_conclusions
+
+    start = BarredPassage("start at p_mi 0.2 MPa", 300.0, 1350.0, 300.0, 1350.0, 33.3, "stated", 4 * np.pi, 10, (),
+                          "start-up", (CouplingPassage("coupling", 2320.0, 860.0),))
+    (line,) = _passage_conclusions(SimpleNamespace(passages=(start,)))
+    assert "not judged.**" in line and "no shaft section" in line and "2320 N m" in line
+    judged = replace(start, couplings=(CouplingPassage("coupling", 2320.0, 860.0, 2000.0),))
+    assert "fail.**" in _passage_conclusions(SimpleNamespace(passages=(judged,)))[0]

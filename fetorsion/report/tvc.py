@@ -250,7 +250,8 @@ def crank_m53_lines(outcome: TVCOutcome) -> list[str]:
 
 
 def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
-    """The time-domain start and barred-range passages against τ_T: one line, the worst of each named."""
+    """The time-domain start, stop and barred-range passages against their limits: one line, the worst
+    section of each named (a line without shaft sections has its couplings only)."""
     if not outcome.passages:
         return []
 
@@ -259,17 +260,20 @@ def _passage_conclusions(outcome: TVCOutcome) -> list[str]:
 
     parts = []
     for p in outcome.passages:
-        w = worst(p)
+        w = worst(p) if p.sections else None
         what = (f"the start {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_start
                 else f"the stop {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm at {p.rate_rpm_per_s:g} rpm/s" if p.is_stop
                 else f"{p.configuration}, barred range {p.from_rpm:.0f}-{p.to_rpm:.0f} rpm")
-        level = (f"{w.utilisation:.3f} {w.limit_name}" if math.isfinite(w.utilisation) else "no limit above λ 1.05")
+        level = ("no shaft section" if w is None else f"{w.utilisation:.3f} {w.limit_name}"
+                 if math.isfinite(w.utilisation) else "no limit above λ 1.05")
         couplings = "".join(f"; coupling '{c.label}' {c.peak_nm:.0f} N m "
                             + (f"({c.peak_nm / c.maximum_nm:.3f} T_Kmax)" if c.maximum_nm else "(no T_Kmax: not judged)")
                             for c in p.couplings)
-        parts.append(f"{what}: {p.verdict}, {level} ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)"
-                     + couplings)
-    verdict = "fail" if any(p.verdict != "within the limits" for p in outcome.passages) else "pass"
+        where = "" if w is None else f" ({w.label}, {w.peak_pa / 1e6:.1f} N/mm² at {w.peak_rpm:.0f} rpm)"
+        parts.append(f"{what}: {p.verdict}, {level}{where}{couplings}")
+    judged = any(p.sections or any(c.maximum_nm for c in p.couplings) for p in outcome.passages)
+    verdict = ("fail" if any(p.verdict != "within the limits" for p in outcome.passages) else
+               "pass" if judged else "not judged")
     text = "; ".join(parts)
     return [f"- **Transient passages in the time domain, UR M68's τ_T (τ_C above λ 0.8): {verdict}.** "
             f"{text[:1].upper()}{text[1:]}."]
